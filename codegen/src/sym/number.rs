@@ -1,0 +1,343 @@
+//! Exact rational numbers: the only numbers inside the symbolic engine.
+//!
+//! A [`Rational`] is kept reduced with a positive denominator. Small values live
+//! in two `i64`s and every operation is done in `i128` and checked; a result
+//! that does not fit is promoted to a big rational (`num_rational::BigRational`),
+//! and a big result that fits again is demoted. Overflow therefore never wraps
+//! and equal values always have equal representations (so hashing is sound).
+
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{Signed, ToPrimitive};
+use std::cmp::Ordering;
+use std::fmt;
+
+/// An exact rational number, reduced, with a positive denominator.
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub struct Rational(Repr);
+
+#[derive(Clone, PartialEq, Eq, Hash)]
+enum Repr {
+    /// numerator, denominator > 0, gcd = 1
+    Small(i64, i64),
+    /// only values that do not fit `Small`
+    Big(BigRational),
+}
+
+impl Rational {
+    /// Zero.
+    pub const ZERO: Rational = Rational(Repr::Small(0, 1));
+    /// One.
+    pub const ONE: Rational = Rational(Repr::Small(1, 1));
+
+    /// The integer `n`.
+    pub fn integer(n: i64) -> Rational {
+        Rational(Repr::Small(n, 1))
+    }
+
+    /// `numerator / denominator`, or `None` when the denominator is zero.
+    pub fn new(numerator: i64, denominator: i64) -> Option<Rational> {
+        (denominator != 0).then(|| from_i128(numerator as i128, denominator as i128))
+    }
+
+    /// Parses a decimal literal exactly: `"2"`, `"0.05"`, `"1e-3"`, `"1.5E2"`.
+    pub fn from_decimal(text: &str) -> Option<Rational> {
+        let (mantissa, exponent) = match text.find(['e', 'E']) {
+            Some(at) => (&text[..at], text[at + 1..].parse::<i32>().ok()?),
+            None => (text, 0),
+        };
+        let (whole, fraction) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+        let digits = format!("{whole}{fraction}").replace('_', "");
+        if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        let scale = exponent.checked_sub(i32::try_from(fraction.len()).ok()?)?;
+        if scale.unsigned_abs() > 4096 {
+            return None;
+        }
+        let value = BigRational::from_integer(digits.parse::<BigInt>().ok()?);
+        let ten = BigRational::from_integer(BigInt::from(10));
+        let power = num_traits::pow(ten, scale.unsigned_abs() as usize);
+        Some(from_big(if scale >= 0 {
+            value * power
+        } else {
+            value / power
+        }))
+    }
+
+    /// True for zero.
+    pub fn is_zero(&self) -> bool {
+        matches!(self.0, Repr::Small(0, _))
+    }
+
+    /// True for one.
+    pub fn is_one(&self) -> bool {
+        matches!(self.0, Repr::Small(1, 1))
+    }
+
+    /// True for a negative value.
+    pub fn is_negative(&self) -> bool {
+        match &self.0 {
+            Repr::Small(n, _) => *n < 0,
+            Repr::Big(b) => b.is_negative(),
+        }
+    }
+
+    /// True when the denominator is 1.
+    pub fn is_integer(&self) -> bool {
+        match &self.0 {
+            Repr::Small(_, d) => *d == 1,
+            Repr::Big(b) => b.is_integer(),
+        }
+    }
+
+    /// The value as an `i64` when it is an integer that fits.
+    pub fn to_i64(&self) -> Option<i64> {
+        match &self.0 {
+            Repr::Small(n, 1) => Some(*n),
+            _ => None,
+        }
+    }
+
+    /// Numerator and denominator when both fit in `i64`.
+    pub fn to_small(&self) -> Option<(i64, i64)> {
+        match &self.0 {
+            Repr::Small(n, d) => Some((*n, *d)),
+            Repr::Big(_) => None,
+        }
+    }
+
+    /// The nearest `f64`.
+    pub fn to_f64(&self) -> f64 {
+        match &self.0 {
+            Repr::Small(n, d) => *n as f64 / *d as f64,
+            Repr::Big(b) => b.to_f64().unwrap_or(f64::NAN),
+        }
+    }
+
+    fn to_big(&self) -> BigRational {
+        match &self.0 {
+            Repr::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
+            Repr::Big(b) => b.clone(),
+        }
+    }
+
+    /// `-self`.
+    pub fn neg(&self) -> Rational {
+        match &self.0 {
+            Repr::Small(n, d) => from_i128(-(*n as i128), *d as i128),
+            Repr::Big(b) => from_big(-b.clone()),
+        }
+    }
+
+    /// `|self|`.
+    pub fn abs(&self) -> Rational {
+        if self.is_negative() {
+            self.neg()
+        } else {
+            self.clone()
+        }
+    }
+
+    /// `self + other`.
+    pub fn add(&self, other: &Rational) -> Rational {
+        match (&self.0, &other.0) {
+            (Repr::Small(a, b), Repr::Small(c, d)) => {
+                let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
+                from_i128(a * d + c * b, b * d)
+            }
+            _ => from_big(self.to_big() + other.to_big()),
+        }
+    }
+
+    /// `self - other`.
+    pub fn sub(&self, other: &Rational) -> Rational {
+        self.add(&other.neg())
+    }
+
+    /// `self * other`.
+    pub fn mul(&self, other: &Rational) -> Rational {
+        match (&self.0, &other.0) {
+            (Repr::Small(a, b), Repr::Small(c, d)) => {
+                from_i128(*a as i128 * *c as i128, *b as i128 * *d as i128)
+            }
+            _ => from_big(self.to_big() * other.to_big()),
+        }
+    }
+
+    /// `1 / self`, or `None` for zero.
+    pub fn recip(&self) -> Option<Rational> {
+        if self.is_zero() {
+            return None;
+        }
+        Some(match &self.0 {
+            Repr::Small(n, d) => from_i128(*d as i128, *n as i128),
+            Repr::Big(b) => from_big(b.recip()),
+        })
+    }
+
+    /// `self / other`, or `None` when `other` is zero.
+    pub fn div(&self, other: &Rational) -> Option<Rational> {
+        Some(self.mul(&other.recip()?))
+    }
+
+    /// `self^exponent` for an integer exponent, or `None` for `0^negative`.
+    pub fn powi(&self, exponent: i64) -> Option<Rational> {
+        let base = if exponent < 0 { self.recip()? } else { self.clone() };
+        let mut result = Rational::ONE;
+        let mut square = base;
+        let mut remaining = exponent.unsigned_abs();
+        while remaining > 0 {
+            if remaining & 1 == 1 {
+                result = result.mul(&square);
+            }
+            remaining >>= 1;
+            if remaining > 0 {
+                square = square.mul(&square);
+            }
+        }
+        Some(result)
+    }
+
+    /// The exact `n`-th root of a non-negative value when it is rational.
+    pub fn exact_root(&self, n: u32) -> Option<Rational> {
+        if self.is_negative() || n == 0 {
+            return None;
+        }
+        let big = self.to_big();
+        let numerator = big.numer().nth_root(n);
+        let denominator = big.denom().nth_root(n);
+        let root = from_big(BigRational::new(numerator, denominator));
+        (root.powi(n as i64).as_ref() == Some(self)).then_some(root)
+    }
+
+    /// The numerator as a rational (an integer).
+    pub fn numerator(&self) -> Rational {
+        match &self.0 {
+            Repr::Small(n, _) => Rational::integer(*n),
+            Repr::Big(b) => from_big(BigRational::from_integer(b.numer().clone())),
+        }
+    }
+
+    /// The denominator as a rational (a positive integer).
+    pub fn denominator(&self) -> Rational {
+        match &self.0 {
+            Repr::Small(_, d) => Rational::integer(*d),
+            Repr::Big(b) => from_big(BigRational::from_integer(b.denom().clone())),
+        }
+    }
+}
+
+fn from_i128(numerator: i128, denominator: i128) -> Rational {
+    let divisor = numerator.gcd(&denominator);
+    let sign = if denominator < 0 { -1 } else { 1 };
+    let (n, d) = (sign * numerator / divisor, sign * denominator / divisor);
+    match (i64::try_from(n), i64::try_from(d)) {
+        (Ok(n), Ok(d)) => Rational(Repr::Small(n, d)),
+        _ => Rational(Repr::Big(BigRational::new(BigInt::from(n), BigInt::from(d)))),
+    }
+}
+
+fn from_big(value: BigRational) -> Rational {
+    match (value.numer().to_i64(), value.denom().to_i64()) {
+        (Some(n), Some(d)) => Rational(Repr::Small(n, d)),
+        _ => Rational(Repr::Big(value)),
+    }
+}
+
+impl Default for Rational {
+    fn default() -> Self {
+        Rational::ZERO
+    }
+}
+
+impl From<i64> for Rational {
+    fn from(n: i64) -> Self {
+        Rational::integer(n)
+    }
+}
+
+impl PartialOrd for Rational {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Rational {
+    fn cmp(&self, other: &Self) -> Ordering {
+        match (&self.0, &other.0) {
+            (Repr::Small(a, b), Repr::Small(c, d)) => {
+                (*a as i128 * *d as i128).cmp(&(*c as i128 * *b as i128))
+            }
+            _ => self.to_big().cmp(&other.to_big()),
+        }
+    }
+}
+
+impl fmt::Display for Rational {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.0 {
+            Repr::Small(n, 1) => write!(f, "{n}"),
+            Repr::Small(n, d) => write!(f, "{n}/{d}"),
+            Repr::Big(b) if b.is_integer() => write!(f, "{}", b.numer()),
+            Repr::Big(b) => write!(f, "{}/{}", b.numer(), b.denom()),
+        }
+    }
+}
+
+impl fmt::Debug for Rational {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(self, f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arithmetic_stays_reduced_and_exact() {
+        let third = Rational::new(1, 3).unwrap();
+        let sixth = Rational::new(-1, -6).unwrap();
+        assert_eq!(third.add(&sixth), Rational::new(1, 2).unwrap());
+        assert_eq!(third.mul(&Rational::integer(3)), Rational::ONE);
+        assert_eq!(Rational::new(2, -4).unwrap().to_small(), Some((-1, 2)));
+        assert!(Rational::new(1, 0).is_none());
+        assert!(Rational::ZERO.recip().is_none());
+    }
+
+    #[test]
+    fn overflow_promotes_and_demotes() {
+        let big = Rational::integer(i64::MAX);
+        let square = big.mul(&big);
+        assert!(square.to_small().is_none());
+        let expected = BigInt::from(i64::MAX) * BigInt::from(i64::MAX);
+        assert_eq!(square.numerator().to_big().numer(), &expected);
+        let back = square.div(&big).unwrap();
+        assert_eq!(back.to_small(), Some((i64::MAX, 1)));
+        let min = Rational::integer(i64::MIN);
+        assert_eq!(min.neg().sub(&Rational::ONE), Rational::integer(i64::MAX));
+        assert_eq!(Rational::integer(2).powi(200).unwrap().powi(-1).unwrap().recip().unwrap(),
+            Rational::integer(2).powi(200).unwrap());
+    }
+
+    #[test]
+    fn decimal_literals_are_exact() {
+        assert_eq!(Rational::from_decimal("0.05"), Rational::new(1, 20));
+        assert_eq!(Rational::from_decimal("1e-3"), Rational::new(1, 1000));
+        assert_eq!(Rational::from_decimal("1.5E2"), Some(Rational::integer(150)));
+        assert_eq!(Rational::from_decimal("2"), Some(Rational::integer(2)));
+        assert_eq!(Rational::from_decimal("abc"), None);
+        assert_eq!(Rational::from_decimal("1e999999"), None);
+    }
+
+    #[test]
+    fn roots_and_order() {
+        assert_eq!(Rational::new(9, 4).unwrap().exact_root(2), Rational::new(3, 2));
+        assert_eq!(Rational::integer(2).exact_root(2), None);
+        assert_eq!(Rational::integer(-8).exact_root(3), None);
+        assert!(Rational::new(1, 3).unwrap() < Rational::new(1, 2).unwrap());
+        assert_eq!(format!("{}", Rational::new(-3, 6).unwrap()), "-1/2");
+    }
+}

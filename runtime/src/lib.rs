@@ -1,0 +1,1 @@
+//! The Chaplygin runtime: what generated models plug into.
