@@ -184,7 +184,11 @@ impl Rational {
 
     /// `self^exponent` for an integer exponent, or `None` for `0^negative`.
     pub fn powi(&self, exponent: i64) -> Option<Rational> {
-        let base = if exponent < 0 { self.recip()? } else { self.clone() };
+        let base = if exponent < 0 {
+            self.recip()?
+        } else {
+            self.clone()
+        };
         let mut result = Rational::ONE;
         let mut square = base;
         let mut remaining = exponent.unsigned_abs();
@@ -235,7 +239,10 @@ fn from_i128(numerator: i128, denominator: i128) -> Rational {
     let (n, d) = (sign * numerator / divisor, sign * denominator / divisor);
     match (i64::try_from(n), i64::try_from(d)) {
         (Ok(n), Ok(d)) => Rational(Repr::Small(n, d)),
-        _ => Rational(Repr::Big(BigRational::new(BigInt::from(n), BigInt::from(d)))),
+        _ => Rational(Repr::Big(BigRational::new(
+            BigInt::from(n),
+            BigInt::from(d),
+        ))),
     }
 }
 
@@ -318,15 +325,26 @@ mod tests {
         assert_eq!(back.to_small(), Some((i64::MAX, 1)));
         let min = Rational::integer(i64::MIN);
         assert_eq!(min.neg().sub(&Rational::ONE), Rational::integer(i64::MAX));
-        assert_eq!(Rational::integer(2).powi(200).unwrap().powi(-1).unwrap().recip().unwrap(),
-            Rational::integer(2).powi(200).unwrap());
+        assert_eq!(
+            Rational::integer(2)
+                .powi(200)
+                .unwrap()
+                .powi(-1)
+                .unwrap()
+                .recip()
+                .unwrap(),
+            Rational::integer(2).powi(200).unwrap()
+        );
     }
 
     #[test]
     fn decimal_literals_are_exact() {
         assert_eq!(Rational::from_decimal("0.05"), Rational::new(1, 20));
         assert_eq!(Rational::from_decimal("1e-3"), Rational::new(1, 1000));
-        assert_eq!(Rational::from_decimal("1.5E2"), Some(Rational::integer(150)));
+        assert_eq!(
+            Rational::from_decimal("1.5E2"),
+            Some(Rational::integer(150))
+        );
         assert_eq!(Rational::from_decimal("2"), Some(Rational::integer(2)));
         assert_eq!(Rational::from_decimal("abc"), None);
         assert_eq!(Rational::from_decimal("1e999999"), None);
@@ -334,7 +352,10 @@ mod tests {
 
     #[test]
     fn roots_and_order() {
-        assert_eq!(Rational::new(9, 4).unwrap().exact_root(2), Rational::new(3, 2));
+        assert_eq!(
+            Rational::new(9, 4).unwrap().exact_root(2),
+            Rational::new(3, 2)
+        );
         assert_eq!(Rational::integer(2).exact_root(2), None);
         assert_eq!(Rational::integer(-8).exact_root(3), None);
         assert!(Rational::new(1, 3).unwrap() < Rational::new(1, 2).unwrap());

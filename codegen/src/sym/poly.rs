@@ -1,0 +1,589 @@
+//! Sparse multivariate polynomials over *atoms*, reduced modulo `sin^2 + cos^2 = 1`.
+//!
+//! An atom is a symbol, the sine or cosine of an argument (always interned as a
+//! pair), or an opaque kernel (`exp(u)`, `ln(u)`, `u^(p/q)` with `u` already in
+//! normal form). A [`Poly`] is a list of terms with exact rational coefficients,
+//! sorted by the lexicographic monomial order, leading term first. Every
+//! product is reduced by `sin^2 a -> 1 - cos^2 a`, so each sine has degree at
+//! most one; on this representation two polynomials are equal as functions of
+//! independent symbols exactly when their term lists are equal (the monomials
+//! `s^e * c^k * ...` with `e <= 1` form a basis of `Q[s, c]/(s^2 + c^2 - 1)`).
+
+use super::expr::{ExprId, SymbolId};
+use super::number::Rational;
+use std::cmp::Ordering;
+use std::collections::HashMap;
+
+/// Handle of an atom in an [`Atoms`] table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct AtomId(u32);
+
+/// An indivisible factor of a polynomial.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Atom {
+    /// A symbol used polynomially.
+    Symbol(SymbolId),
+    /// `sin(arg)`; `arg` is a symbol, or an argument the expansion leaves whole.
+    Sin(ExprId),
+    /// `cos(arg)`.
+    Cos(ExprId),
+    /// An opaque function of normal-form arguments (`exp`, `ln`, fractional powers).
+    Kernel(ExprId),
+}
+
+/// The interned atoms, each sine paired with the cosine of the same argument.
+#[derive(Clone, Default, Debug)]
+pub struct Atoms {
+    list: Vec<Atom>,
+    index: HashMap<Atom, AtomId>,
+    cosine_partner: HashMap<AtomId, AtomId>,
+}
+
+impl Atoms {
+    /// The atom behind a handle.
+    pub fn get(&self, id: AtomId) -> &Atom {
+        &self.list[id.0 as usize]
+    }
+
+    /// Interns a symbol atom.
+    pub fn symbol(&mut self, symbol: SymbolId) -> AtomId {
+        self.intern(Atom::Symbol(symbol))
+    }
+
+    /// Interns an opaque kernel.
+    pub fn kernel(&mut self, expression: ExprId) -> AtomId {
+        self.intern(Atom::Kernel(expression))
+    }
+
+    /// Interns `(sin(arg), cos(arg))` together.
+    pub fn trig_pair(&mut self, argument: ExprId) -> (AtomId, AtomId) {
+        let sine = self.intern(Atom::Sin(argument));
+        let cosine = self.intern(Atom::Cos(argument));
+        self.cosine_partner.insert(sine, cosine);
+        (sine, cosine)
+    }
+
+    /// The cosine paired with a sine atom (`None` for any other atom).
+    pub fn cosine_of(&self, sine: AtomId) -> Option<AtomId> {
+        self.cosine_partner.get(&sine).copied()
+    }
+
+    fn intern(&mut self, atom: Atom) -> AtomId {
+        if let Some(&id) = self.index.get(&atom) {
+            return id;
+        }
+        let id = AtomId(self.list.len() as u32);
+        self.list.push(atom.clone());
+        self.index.insert(atom, id);
+        id
+    }
+}
+
+/// A power product of atoms, sorted by atom, exponents positive.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, Default)]
+pub struct Monomial(Vec<(AtomId, u32)>);
+
+impl Monomial {
+    /// The monomial 1.
+    pub fn one() -> Monomial {
+        Monomial(Vec::new())
+    }
+
+    /// `atom^exponent`.
+    pub fn power(atom: AtomId, exponent: u32) -> Monomial {
+        if exponent == 0 {
+            Monomial::one()
+        } else {
+            Monomial(vec![(atom, exponent)])
+        }
+    }
+
+    /// The `(atom, exponent)` pairs, sorted by atom.
+    pub fn factors(&self) -> &[(AtomId, u32)] {
+        &self.0
+    }
+
+    /// The exponent of `atom` (0 when absent).
+    pub fn exponent(&self, atom: AtomId) -> u32 {
+        self.0
+            .binary_search_by_key(&atom, |&(a, _)| a)
+            .map_or(0, |at| self.0[at].1)
+    }
+
+    /// True for the monomial 1.
+    pub fn is_one(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// `self * other`.
+    pub fn mul(&self, other: &Monomial) -> Monomial {
+        let (a, b) = (&self.0, &other.0);
+        let mut out = Vec::with_capacity(a.len() + b.len());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() && j < b.len() {
+            match a[i].0.cmp(&b[j].0) {
+                Ordering::Less => {
+                    out.push(a[i]);
+                    i += 1;
+                }
+                Ordering::Greater => {
+                    out.push(b[j]);
+                    j += 1;
+                }
+                Ordering::Equal => {
+                    out.push((a[i].0, a[i].1 + b[j].1));
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        out.extend_from_slice(&a[i..]);
+        out.extend_from_slice(&b[j..]);
+        Monomial(out)
+    }
+
+    /// `self / other` when `other` divides `self`.
+    pub fn div(&self, other: &Monomial) -> Option<Monomial> {
+        let mut out = Vec::with_capacity(self.0.len());
+        let mut j = 0;
+        for &(atom, exponent) in &self.0 {
+            let divisor = match other.0.get(j) {
+                Some(&(a, e)) if a == atom => {
+                    j += 1;
+                    e
+                }
+                Some(&(a, _)) if a < atom => return None,
+                _ => 0,
+            };
+            match exponent.cmp(&divisor) {
+                Ordering::Less => return None,
+                Ordering::Equal => {}
+                Ordering::Greater => out.push((atom, exponent - divisor)),
+            }
+        }
+        (j == other.0.len()).then_some(Monomial(out))
+    }
+
+    /// The greatest common divisor of two monomials.
+    pub fn gcd(&self, other: &Monomial) -> Monomial {
+        Monomial(
+            self.0
+                .iter()
+                .filter_map(|&(atom, e)| {
+                    let f = other.exponent(atom);
+                    (f > 0).then_some((atom, e.min(f)))
+                })
+                .collect(),
+        )
+    }
+
+    /// Total degree.
+    pub fn degree(&self) -> u32 {
+        self.0.iter().map(|&(_, e)| e).sum()
+    }
+
+    /// Removes `atom` entirely, returning its exponent and the rest.
+    fn without(&self, atom: AtomId) -> (u32, Monomial) {
+        let exponent = self.exponent(atom);
+        let rest = self.0.iter().copied().filter(|&(a, _)| a != atom).collect();
+        (exponent, Monomial(rest))
+    }
+}
+
+/// The lexicographic monomial order (lower atom ids most significant).
+/// It is a monomial order: total, and `a > b` implies `t a > t b`.
+impl Ord for Monomial {
+    fn cmp(&self, other: &Self) -> Ordering {
+        let (a, b) = (&self.0, &other.0);
+        for k in 0.. {
+            return match (a.get(k), b.get(k)) {
+                (None, None) => Ordering::Equal,
+                (Some(_), None) => Ordering::Greater,
+                (None, Some(_)) => Ordering::Less,
+                (Some(&(x, e)), Some(&(y, f))) => match x.cmp(&y) {
+                    Ordering::Less => Ordering::Greater,
+                    Ordering::Greater => Ordering::Less,
+                    Ordering::Equal if e == f => continue,
+                    Ordering::Equal => e.cmp(&f),
+                },
+            };
+        }
+        Ordering::Equal
+    }
+}
+
+impl PartialOrd for Monomial {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// A polynomial: terms sorted by decreasing monomial, no zero coefficients.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
+pub struct Poly {
+    terms: Vec<(Monomial, Rational)>,
+}
+
+impl Poly {
+    /// The zero polynomial.
+    pub fn zero() -> Poly {
+        Poly { terms: Vec::new() }
+    }
+
+    /// A constant.
+    pub fn constant(value: Rational) -> Poly {
+        Poly::term(Monomial::one(), value)
+    }
+
+    /// `coefficient * monomial`.
+    pub fn term(monomial: Monomial, coefficient: Rational) -> Poly {
+        if coefficient.is_zero() {
+            return Poly::zero();
+        }
+        Poly {
+            terms: vec![(monomial, coefficient)],
+        }
+    }
+
+    /// The atom itself.
+    pub fn atom(atom: AtomId) -> Poly {
+        Poly::term(Monomial::power(atom, 1), Rational::ONE)
+    }
+
+    /// Builds a polynomial from terms in any order, merging equal monomials.
+    pub fn from_terms(terms: impl IntoIterator<Item = (Monomial, Rational)>) -> Poly {
+        let mut collected: HashMap<Monomial, Rational> = HashMap::new();
+        for (monomial, coefficient) in terms {
+            let entry = collected.entry(monomial).or_insert(Rational::ZERO);
+            *entry = entry.add(&coefficient);
+        }
+        let mut terms: Vec<(Monomial, Rational)> = collected
+            .into_iter()
+            .filter(|(_, c)| !c.is_zero())
+            .collect();
+        terms.sort_unstable_by(|a, b| b.0.cmp(&a.0));
+        Poly { terms }
+    }
+
+    /// The terms, leading term first.
+    pub fn terms(&self) -> &[(Monomial, Rational)] {
+        &self.terms
+    }
+
+    /// True for zero.
+    pub fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// The value when the polynomial is a constant.
+    pub fn as_constant(&self) -> Option<Rational> {
+        match self.terms.as_slice() {
+            [] => Some(Rational::ZERO),
+            [(m, c)] if m.is_one() => Some(c.clone()),
+            _ => None,
+        }
+    }
+
+    /// The leading term.
+    pub fn leading(&self) -> Option<&(Monomial, Rational)> {
+        self.terms.first()
+    }
+
+    /// The atoms the polynomial mentions.
+    pub fn atoms(&self) -> Vec<AtomId> {
+        let mut atoms: Vec<AtomId> = self
+            .terms
+            .iter()
+            .flat_map(|(m, _)| m.0.iter().map(|&(a, _)| a))
+            .collect();
+        atoms.sort_unstable();
+        atoms.dedup();
+        atoms
+    }
+
+    /// `-self`.
+    pub fn neg(&self) -> Poly {
+        self.scale(&Rational::integer(-1))
+    }
+
+    /// `c * self`.
+    pub fn scale(&self, c: &Rational) -> Poly {
+        if c.is_zero() {
+            return Poly::zero();
+        }
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .map(|(m, k)| (m.clone(), k.mul(c)))
+                .collect(),
+        }
+    }
+
+    /// `self + other`, by merging the sorted term lists.
+    pub fn add(&self, other: &Poly) -> Poly {
+        let (a, b) = (&self.terms, &other.terms);
+        let mut terms = Vec::with_capacity(a.len() + b.len());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() && j < b.len() {
+            match a[i].0.cmp(&b[j].0) {
+                Ordering::Greater => {
+                    terms.push(a[i].clone());
+                    i += 1;
+                }
+                Ordering::Less => {
+                    terms.push(b[j].clone());
+                    j += 1;
+                }
+                Ordering::Equal => {
+                    let sum = a[i].1.add(&b[j].1);
+                    if !sum.is_zero() {
+                        terms.push((a[i].0.clone(), sum));
+                    }
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        terms.extend_from_slice(&a[i..]);
+        terms.extend_from_slice(&b[j..]);
+        Poly { terms }
+    }
+
+    /// `self - other`.
+    pub fn sub(&self, other: &Poly) -> Poly {
+        self.add(&other.neg())
+    }
+
+    /// `coefficient * monomial * self`; the order is kept, so no sorting.
+    pub fn mul_term(&self, monomial: &Monomial, coefficient: &Rational) -> Poly {
+        if coefficient.is_zero() {
+            return Poly::zero();
+        }
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .map(|(m, c)| (m.mul(monomial), c.mul(coefficient)))
+                .collect(),
+        }
+    }
+
+    /// `self * other` without trigonometric reduction.
+    fn mul_unreduced(&self, other: &Poly) -> Poly {
+        if self.is_zero() || other.is_zero() {
+            return Poly::zero();
+        }
+        if let Some(c) = other.as_constant() {
+            return self.scale(&c);
+        }
+        if let Some(c) = self.as_constant() {
+            return other.scale(&c);
+        }
+        Poly::from_terms(
+            self.terms
+                .iter()
+                .flat_map(|(m, c)| other.terms.iter().map(move |(n, d)| (m.mul(n), c.mul(d)))),
+        )
+    }
+
+    /// `self * other`, reduced by `sin^2 = 1 - cos^2`.
+    pub fn mul(&self, other: &Poly, atoms: &Atoms) -> Poly {
+        self.mul_unreduced(other).reduce_trig(atoms)
+    }
+
+    /// `self^n`.
+    pub fn pow(&self, n: u32, atoms: &Atoms) -> Poly {
+        let mut result = Poly::constant(Rational::ONE);
+        for _ in 0..n {
+            result = result.mul(self, atoms);
+        }
+        result
+    }
+
+    /// Replaces every `sin^e` with `e >= 2` by `sin^(e mod 2) (1 - cos^2)^(e div 2)`.
+    pub fn reduce_trig(self, atoms: &Atoms) -> Poly {
+        let needs_reduction = |m: &Monomial| {
+            m.0.iter()
+                .any(|&(a, e)| e >= 2 && atoms.cosine_of(a).is_some())
+        };
+        if !self.terms.iter().any(|(m, _)| needs_reduction(m)) {
+            return self;
+        }
+        let mut reduced = Vec::new();
+        for (monomial, coefficient) in self.terms {
+            let mut expansion = Poly::term(Monomial::one(), coefficient);
+            let mut kept = Vec::with_capacity(monomial.0.len());
+            for (atom, exponent) in monomial.0 {
+                match atoms.cosine_of(atom) {
+                    Some(cosine) if exponent >= 2 => {
+                        let one_minus_cos2 = Poly::constant(Rational::ONE)
+                            .sub(&Poly::term(Monomial::power(cosine, 2), Rational::ONE));
+                        for _ in 0..exponent / 2 {
+                            expansion = expansion.mul_unreduced(&one_minus_cos2);
+                        }
+                        if exponent % 2 == 1 {
+                            kept.push((atom, 1));
+                        }
+                    }
+                    _ => kept.push((atom, exponent)),
+                }
+            }
+            let kept = Monomial(kept);
+            reduced.extend(expansion.terms.into_iter().map(|(m, c)| (m.mul(&kept), c)));
+        }
+        Poly::from_terms(reduced)
+    }
+
+    /// True when some sine atom occurs.
+    pub fn has_sine(&self, atoms: &Atoms) -> bool {
+        self.atoms().iter().any(|&a| atoms.cosine_of(a).is_some())
+    }
+
+    /// `p(-s)` for a sine atom `s`: the conjugate used to clear sines from a denominator.
+    pub fn conjugate(&self, sine: AtomId) -> Poly {
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .map(|(m, c)| {
+                    if m.exponent(sine) % 2 == 1 {
+                        (m.clone(), c.neg())
+                    } else {
+                        (m.clone(), c.clone())
+                    }
+                })
+                .collect(),
+        }
+    }
+
+    /// `self / divisor` when the division is exact. The divisor must contain no
+    /// sine (then no reduction can occur and polynomial division is division in
+    /// the trigonometric ring).
+    pub fn div_exact(&self, divisor: &Poly) -> Option<Poly> {
+        let (lead_monomial, lead_coefficient) = divisor.leading()?;
+        if let Some(c) = divisor.as_constant() {
+            return Some(self.scale(&c.recip()?));
+        }
+        let mut remainder = self.clone();
+        let mut quotient = Vec::new();
+        while let Some((monomial, coefficient)) = remainder.leading() {
+            let factor = monomial.div(lead_monomial)?;
+            let c = coefficient.div(lead_coefficient)?;
+            remainder = remainder.sub(&divisor.mul_term(&factor, &c));
+            quotient.push((factor, c));
+        }
+        Some(Poly { terms: quotient })
+    }
+
+    /// The largest monomial dividing every term (1 for zero).
+    pub fn monomial_content(&self) -> Monomial {
+        let mut terms = self.terms.iter();
+        let Some((first, _)) = terms.next() else {
+            return Monomial::one();
+        };
+        terms.fold(first.clone(), |g, (m, _)| g.gcd(m))
+    }
+
+    /// Divides every term by a monomial that divides all of them.
+    pub fn div_monomial(&self, monomial: &Monomial) -> Poly {
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .filter_map(|(m, c)| Some((m.div(monomial)?, c.clone())))
+                .collect(),
+        }
+    }
+
+    /// Highest exponent of `atom`.
+    pub fn degree_in(&self, atom: AtomId) -> u32 {
+        self.terms
+            .iter()
+            .map(|(m, _)| m.exponent(atom))
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// Coefficients of `atom^0, atom^1, ...`, as polynomials in the other atoms.
+    pub fn coefficients_in(&self, atom: AtomId) -> Vec<Poly> {
+        let mut by_power = vec![Vec::new(); self.degree_in(atom) as usize + 1];
+        for (monomial, coefficient) in &self.terms {
+            let (exponent, rest) = monomial.without(atom);
+            by_power[exponent as usize].push((rest, coefficient.clone()));
+        }
+        by_power.into_iter().map(Poly::from_terms).collect()
+    }
+
+    /// The value at the given atom values.
+    pub fn evaluate(&self, value_of: &dyn Fn(AtomId) -> f64) -> f64 {
+        self.terms
+            .iter()
+            .map(|(m, c)| {
+                m.0.iter()
+                    .fold(c.to_f64(), |acc, &(a, e)| acc * value_of(a).powi(e as i32))
+            })
+            .sum()
+    }
+
+    /// Number of terms.
+    pub fn len(&self) -> usize {
+        self.terms.len()
+    }
+
+    /// True for zero (no terms).
+    pub fn is_empty(&self) -> bool {
+        self.terms.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sym::{Store, SymbolKind};
+
+    fn setup() -> (Atoms, AtomId, AtomId, AtomId) {
+        let mut store = Store::new();
+        let x = store.declare("x", SymbolKind::Coordinate);
+        let arg = store.symbol(x);
+        let mut atoms = Atoms::default();
+        let m = atoms.symbol(store.declare("m", SymbolKind::Parameter));
+        let (s, c) = atoms.trig_pair(arg);
+        (atoms, m, s, c)
+    }
+
+    #[test]
+    fn sine_squared_reduces_to_one_minus_cosine_squared() {
+        let (atoms, _, s, c) = setup();
+        let sine = Poly::atom(s);
+        let cosine = Poly::atom(c);
+        let pythagoras = sine.mul(&sine, &atoms).add(&cosine.mul(&cosine, &atoms));
+        assert_eq!(pythagoras, Poly::constant(Rational::ONE));
+        let cube = sine.pow(3, &atoms);
+        assert_eq!(cube.degree_in(s), 1);
+    }
+
+    #[test]
+    fn exact_division_recovers_the_factor_and_rejects_non_factors() {
+        let (atoms, m, s, c) = setup();
+        let a = Poly::atom(m).add(&Poly::atom(c));
+        let b = Poly::atom(s).add(&Poly::constant(Rational::integer(3)));
+        let product = a.mul(&b, &atoms);
+        assert_eq!(product.div_exact(&a), Some(b.clone()));
+        assert_eq!(b.div_exact(&a), None);
+        assert_eq!(
+            Poly::atom(m).mul(&Poly::atom(m), &atoms).monomial_content(),
+            Monomial::power(m, 2)
+        );
+    }
+
+    #[test]
+    fn lexicographic_order_is_multiplicative() {
+        let (_, m, s, c) = setup();
+        let a = Monomial::power(m, 1);
+        let b = Monomial::power(s, 3).mul(&Monomial::power(c, 1));
+        assert_eq!(a.cmp(&b), Ordering::Greater);
+        let t = Monomial::power(c, 2);
+        assert_eq!(a.mul(&t).cmp(&b.mul(&t)), Ordering::Greater);
+    }
+}

@@ -1,0 +1,245 @@
+//! Exact identities decided by the normal form, cross-checked numerically.
+
+use super::{Decision, ExprId, Function, NumericZeroTest, Store, SymbolId, SymbolKind};
+use std::collections::HashMap;
+
+/// A store with the given coordinates and parameters declared.
+struct Fixture {
+    store: Store,
+    symbols: HashMap<&'static str, SymbolId>,
+}
+
+impl Fixture {
+    fn new(coordinates: &[&'static str], parameters: &[&'static str]) -> Fixture {
+        let mut store = Store::new();
+        let mut symbols = HashMap::new();
+        for &name in coordinates {
+            symbols.insert(name, store.declare(name, SymbolKind::Coordinate));
+        }
+        for &name in parameters {
+            symbols.insert(name, store.declare(name, SymbolKind::Parameter));
+        }
+        Fixture { store, symbols }
+    }
+
+    fn var(&mut self, name: &str) -> ExprId {
+        let id = self.symbols[name];
+        self.store.symbol(id)
+    }
+
+    fn velocity(&mut self, name: &str) -> ExprId {
+        let id = self.store.velocity_of(self.symbols[name]);
+        self.store.symbol(id)
+    }
+
+    fn call(&mut self, function: Function, argument: ExprId) -> ExprId {
+        self.store.apply(function, argument).unwrap()
+    }
+
+    /// Asserts zero by the normal form and by the numeric test.
+    fn assert_exactly_zero(&mut self, e: ExprId) {
+        let test = self.store.zero_test(e).unwrap();
+        assert!(test.is_zero, "{} is not zero", self.store.display(e));
+        assert_eq!(test.decided_by, Decision::NormalForm);
+        assert!(self.store.numerically_zero(e, &NumericZeroTest::default()));
+    }
+
+    /// Asserts non-zero by the normal form and by the numeric test.
+    fn assert_exactly_nonzero(&mut self, e: ExprId) {
+        let test = self.store.zero_test(e).unwrap();
+        assert!(!test.is_zero, "{} is zero", self.store.display(e));
+        assert_eq!(test.decided_by, Decision::NormalForm);
+        assert!(!self.store.numerically_zero(e, &NumericZeroTest::default()));
+    }
+}
+
+#[test]
+fn pythagoras() {
+    let mut f = Fixture::new(&["q"], &[]);
+    let q = f.var("q");
+    let (s, c) = (f.call(Function::Sin, q), f.call(Function::Cos, q));
+    let two = f.store.integer(2);
+    let s2 = f.store.pow(s, 2.into()).unwrap();
+    let c2 = f.store.pow(c, 2.into()).unwrap();
+    let one = f.store.integer(1);
+    let sum = f.store.add(&[s2, c2]);
+    let e = f.store.sub(sum, one);
+    f.assert_exactly_zero(e);
+    let wrong = f.store.sub(sum, two);
+    f.assert_exactly_nonzero(wrong);
+}
+
+#[test]
+fn angle_addition() {
+    let mut f = Fixture::new(&["a", "b"], &[]);
+    let (a, b) = (f.var("a"), f.var("b"));
+    let sum = f.store.add2(a, b);
+    let left = f.call(Function::Sin, sum);
+    let (sa, cb) = (f.call(Function::Sin, a), f.call(Function::Cos, b));
+    let (ca, sb) = (f.call(Function::Cos, a), f.call(Function::Sin, b));
+    let p1 = f.store.mul2(sa, cb);
+    let p2 = f.store.mul2(ca, sb);
+    let right = f.store.add2(p1, p2);
+    let e = f.store.sub(left, right);
+    f.assert_exactly_zero(e);
+}
+
+#[test]
+fn tangent_times_cosine_is_sine() {
+    let mut f = Fixture::new(&["phi"], &[]);
+    let phi = f.var("phi");
+    let (t, c, s) = (
+        f.call(Function::Tan, phi),
+        f.call(Function::Cos, phi),
+        f.call(Function::Sin, phi),
+    );
+    let product = f.store.mul2(t, c);
+    let e = f.store.sub(product, s);
+    f.assert_exactly_zero(e);
+}
+
+#[test]
+fn double_angle_and_negated_arguments() {
+    let mut f = Fixture::new(&["x", "y"], &[]);
+    let (x, y) = (f.var("x"), f.var("y"));
+    let two = f.store.integer(2);
+    let two_x = f.store.mul2(two, x);
+    let sin_2x = f.call(Function::Sin, two_x);
+    let (s, c) = (f.call(Function::Sin, x), f.call(Function::Cos, x));
+    let expected = f.store.mul(&[two, s, c]);
+    let e = f.store.sub(sin_2x, expected);
+    f.assert_exactly_zero(e);
+    let x_minus_y = f.store.sub(x, y);
+    let y_minus_x = f.store.sub(y, x);
+    let c1 = f.call(Function::Cos, x_minus_y);
+    let c2 = f.call(Function::Cos, y_minus_x);
+    let e = f.store.sub(c1, c2);
+    f.assert_exactly_zero(e);
+}
+
+#[test]
+fn cancellation_through_sine_free_denominators() {
+    // (1 - cos^2 q) / sin q - sin q = 0 needs the conjugate of the denominator.
+    let mut f = Fixture::new(&["q"], &["m"]);
+    let (q, m) = (f.var("q"), f.var("m"));
+    let (s, c) = (f.call(Function::Sin, q), f.call(Function::Cos, q));
+    let one = f.store.integer(1);
+    let c2 = f.store.pow(c, 2.into()).unwrap();
+    let numerator = f.store.sub(one, c2);
+    let ratio = f.store.div(numerator, s).unwrap();
+    let e = f.store.sub(ratio, s);
+    f.assert_exactly_zero(e);
+    // m sin q / (m + m cos q) simplifies to a quotient with no m left.
+    let numerator = f.store.mul2(m, s);
+    let mc = f.store.mul2(m, c);
+    let denominator = f.store.add2(m, mc);
+    let ratio = f.store.div(numerator, denominator).unwrap();
+    let form = f.store.normal(ratio).unwrap();
+    let m_atom = f.store.symbol_atom(f.symbols["m"]);
+    assert!(!form.atoms().contains(&m_atom), "m should cancel: {form:?}");
+}
+
+#[test]
+fn division_by_an_exact_zero_is_an_error() {
+    let mut f = Fixture::new(&["q"], &[]);
+    let q = f.var("q");
+    let (s, c) = (f.call(Function::Sin, q), f.call(Function::Cos, q));
+    let s2 = f.store.pow(s, 2.into()).unwrap();
+    let c2 = f.store.pow(c, 2.into()).unwrap();
+    let one = f.store.integer(1);
+    let sum = f.store.add(&[s2, c2]);
+    let zero = f.store.sub(sum, one);
+    let ratio = f.store.div(q, zero).unwrap();
+    let error = f.store.normal(ratio).unwrap_err();
+    assert!(
+        matches!(error, super::SymError::DivisionByZero { .. }),
+        "{error}"
+    );
+}
+
+#[test]
+fn kernels_outside_the_class_fall_back_to_numbers() {
+    let mut f = Fixture::new(&["x"], &[]);
+    let x = f.var("x");
+    // exp(2 ln x) - x^2 is zero, but exp and ln are opaque kernels.
+    let ln = f.call(Function::Ln, x);
+    let two = f.store.integer(2);
+    let twice = f.store.mul2(two, ln);
+    let e_twice = f.call(Function::Exp, twice);
+    let x2 = f.store.pow(x, 2.into()).unwrap();
+    let e = f.store.sub(e_twice, x2);
+    let test = f.store.zero_test(e).unwrap();
+    assert_eq!(test.decided_by, Decision::Numeric);
+    assert!(test.is_zero);
+    let e_plus = f.store.add2(e, x);
+    assert!(!f.store.zero_test(e_plus).unwrap().is_zero);
+}
+
+/// Moore's mixed-partials test on one constraint row `sum_i a_i(q) qdot_i`:
+/// true when every `d a_i / d q_j - d a_j / d q_i` is exactly zero.
+fn mixed_partials_agree(f: &mut Fixture, row: ExprId, coordinates: &[&str]) -> bool {
+    let coefficients: Vec<ExprId> = coordinates
+        .iter()
+        .map(|name| {
+            let velocity = f.store.velocity_of(f.symbols[name]);
+            f.store.derivative(row, velocity)
+        })
+        .collect();
+    for (i, &a_i) in coefficients.iter().enumerate() {
+        for (j, &a_j) in coefficients.iter().enumerate().skip(i + 1) {
+            let d_ai = f.store.derivative(a_i, f.symbols[coordinates[j]]);
+            let d_aj = f.store.derivative(a_j, f.symbols[coordinates[i]]);
+            let difference = f.store.sub(d_ai, d_aj);
+            let exact = f.store.zero_test(difference).unwrap();
+            let numeric = f
+                .store
+                .numerically_zero(difference, &NumericZeroTest::default());
+            assert_eq!(exact.is_zero, numeric, "exact and numeric tests disagree");
+            if !exact.is_zero {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+#[test]
+fn moore_mixed_partials_sleigh_fails_four_bar_passes() {
+    let mut f = Fixture::new(&["x", "y", "theta"], &[]);
+    let theta = f.var("theta");
+    let (s, c) = (f.call(Function::Sin, theta), f.call(Function::Cos, theta));
+    let (xd, yd) = (f.velocity("x"), f.velocity("y"));
+    let minus_s_xd = {
+        let p = f.store.mul2(s, xd);
+        f.store.neg(p)
+    };
+    let c_yd = f.store.mul2(c, yd);
+    let sleigh = f.store.add2(minus_s_xd, c_yd);
+    assert!(!mixed_partials_agree(&mut f, sleigh, &["x", "y", "theta"]));
+
+    // Four-bar loop closure: la cos q1 + lb cos(q1+q2) + lc cos(q1+q2+q3) - ln = 0,
+    // differentiated in time by the engine.
+    let mut g = Fixture::new(&["q1", "q2", "q3"], &["la", "lb", "lc", "ln"]);
+    let (q1, q2, q3) = (g.var("q1"), g.var("q2"), g.var("q3"));
+    let (la, lb, lc, ln) = (g.var("la"), g.var("lb"), g.var("lc"), g.var("ln"));
+    let a12 = g.store.add2(q1, q2);
+    let a123 = g.store.add(&[q1, q2, q3]);
+    let cos1 = g.call(Function::Cos, q1);
+    let cos12 = g.call(Function::Cos, a12);
+    let cos123 = g.call(Function::Cos, a123);
+    let terms = [
+        g.store.mul2(la, cos1),
+        g.store.mul2(lb, cos12),
+        g.store.mul2(lc, cos123),
+        g.store.neg(ln),
+    ];
+    let closure = g.store.add(&terms);
+    let mut rate_terms = Vec::new();
+    for name in ["q1", "q2", "q3"] {
+        let partial = g.store.derivative(closure, g.symbols[name]);
+        let velocity = g.velocity(name);
+        rate_terms.push(g.store.mul2(partial, velocity));
+    }
+    let rate = g.store.add(&rate_terms);
+    assert!(mixed_partials_agree(&mut g, rate, &["q1", "q2", "q3"]));
+}
