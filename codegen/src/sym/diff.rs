@@ -132,13 +132,7 @@ impl Store {
                 &self.atoms,
             );
         }
-        let denominator_only = RationalFunction::one()
-            .div(
-                &RationalFunction::from_poly(form.denominator_product(&self.atoms)),
-                &self.atoms,
-            )
-            .unwrap_or_else(RationalFunction::one);
-        let quotient_part = numerator.mul(&denominator_only, &self.atoms);
+        let quotient_part = numerator.mul(&form.reciprocal_of_denominator(), &self.atoms);
         Ok(quotient_part.sub(&form.mul(&logarithmic, &self.atoms), &self.atoms))
     }
 

@@ -41,6 +41,21 @@ impl Store {
     }
 }
 
+impl Store {
+    /// The value of a normal form, each atom evaluated through its expression.
+    pub fn evaluate_normal(
+        &mut self,
+        form: &super::RationalFunction,
+        value_of: &dyn Fn(SymbolId) -> f64,
+    ) -> f64 {
+        let atoms = form.atoms();
+        let expressions: Vec<ExprId> = atoms.iter().map(|&a| self.expression_of_atom(a)).collect();
+        let values = self.evaluate_many(&expressions, value_of);
+        let value_of_atom = |atom| atoms.binary_search(&atom).map_or(f64::NAN, |at| values[at]);
+        form.evaluate(&value_of_atom)
+    }
+}
+
 /// `base^exponent`, exact for integer exponents and square roots.
 pub(crate) fn power(base: f64, exponent: &super::Rational) -> f64 {
     match exponent.to_small() {

@@ -377,13 +377,23 @@ impl Store {
             return self.integer(0);
         }
         let mut children = Vec::with_capacity(exponents.len() + 1);
+        let mut distributed = false;
         for (base, exponent) in exponents {
             let power = self.pow_of_collected(base, exponent);
             match self.node(power) {
                 Node::Number(value) => constant = constant.mul(value),
-                Node::Mul(inner) => children.extend(inner.iter().copied()),
+                Node::Mul(_) => {
+                    distributed = true;
+                    children.push(power);
+                }
                 _ => children.push(power),
             }
+        }
+        if distributed {
+            // An integer power of a product, e.g. sqrt(2x)^2 = 2x, was
+            // distributed: collect its factors with the others once more.
+            children.push(self.number(constant));
+            return self.mul(&children);
         }
         if constant.is_zero() {
             return self.integer(0);
@@ -461,10 +471,8 @@ impl Store {
                 expr: "0".to_string(),
             });
         }
-        if let Some(n) = exponent.to_i64() {
-            if let Some(folded) = value.powi(n) {
-                return Ok(self.number(folded));
-            }
+        if let Some(folded) = exponent.to_i64().and_then(|n| value.powi(n)) {
+            return Ok(self.number(folded));
         }
         if value.is_negative() {
             return Err(SymError::NegativeBase {
@@ -802,6 +810,21 @@ mod tests {
             s.apply(Function::Ln, zero),
             Err(SymError::Undefined { .. })
         ));
+    }
+
+    #[test]
+    fn distributed_powers_of_products_collect_again() {
+        let (mut s, v) = store_with(&["x"]);
+        let two = s.integer(2);
+        let two_x = s.mul2(two, v[0]);
+        let root = s.sqrt(two_x).unwrap();
+        let square = s.mul2(root, root);
+        assert_eq!(square, two_x);
+        let cancelled = s.sub(square, two_x);
+        assert_eq!(s.as_number(cancelled), Some(&Rational::ZERO));
+        let three = s.integer(3);
+        let triple = s.mul(&[three, root, root, v[0]]);
+        assert_eq!(s.display(triple).to_string(), "6*x^2");
     }
 
     #[test]

@@ -3,16 +3,20 @@
 pub mod diff;
 pub mod eval;
 pub mod expr;
+pub mod matrix;
 pub mod normal;
 pub mod number;
 pub mod poly;
 pub mod zero;
 
 pub use expr::{ExprId, Function, Node, Store, SymError, Symbol, SymbolId, SymbolKind};
+pub use matrix::{Matrix, MatrixError};
 pub use normal::RationalFunction;
 pub use number::Rational;
 pub use poly::{Atom, AtomId, Atoms, Monomial, Poly};
 pub use zero::{Decision, NumericZeroTest, ZeroTest};
 
+#[cfg(test)]
+mod proptests;
 #[cfg(test)]
 mod tests;

@@ -74,6 +74,14 @@ impl RationalFunction {
         product_of(&self.denominator, atoms)
     }
 
+    /// `1 / (f_1^k_1 ... f_m^k_m)`: one over the denominator, factors kept.
+    pub fn reciprocal_of_denominator(&self) -> RationalFunction {
+        RationalFunction {
+            numerator: Poly::constant(Rational::ONE),
+            denominator: self.denominator.clone(),
+        }
+    }
+
     /// True when the function is exactly zero (the numerator has no terms).
     pub fn is_zero(&self) -> bool {
         self.numerator.is_zero()

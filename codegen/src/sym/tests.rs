@@ -1,6 +1,9 @@
 //! Exact identities decided by the normal form, cross-checked numerically.
 
-use super::{Decision, ExprId, Function, NumericZeroTest, Store, SymbolId, SymbolKind};
+use super::{
+    Decision, ExprId, Function, Matrix, NumericZeroTest, RationalFunction, Store, SymbolId,
+    SymbolKind,
+};
 use std::collections::HashMap;
 
 /// A store with the given coordinates and parameters declared.
@@ -242,4 +245,171 @@ fn moore_mixed_partials_sleigh_fails_four_bar_passes() {
     }
     let rate = g.store.add(&rate_terms);
     assert!(mixed_partials_agree(&mut g, rate, &["q1", "q2", "q3"]));
+}
+
+/// The snakeboard metric of MATH.md 3.1, row-major, with `J = Jt + m r^2`.
+fn snakeboard_metric(f: &mut Fixture) -> Vec<ExprId> {
+    let (m, r, jt, jw) = (f.var("m"), f.var("r"), f.var("jt"), f.var("jw"));
+    let r2 = f.store.pow(r, 2.into()).unwrap();
+    let mr2 = f.store.mul2(m, r2);
+    let j = f.store.add2(jt, mr2);
+    let zero = f.store.integer(0);
+    #[rustfmt::skip]
+    let g = vec![
+        m, zero, zero, zero, zero,
+        zero, m, zero, zero, zero,
+        zero, zero, j, jt, zero,
+        zero, zero, jt, jt, zero,
+        zero, zero, zero, zero, jw,
+    ];
+    g
+}
+
+#[test]
+fn snakeboard_metric_inverse_equals_the_hand_inverse() {
+    let mut f = Fixture::new(&["x", "y", "theta", "psi", "phi"], &["m", "r", "jt", "jw"]);
+    let g_entries = snakeboard_metric(&mut f);
+    let g = Matrix::from_expressions(&mut f.store, 5, 5, &g_entries).unwrap();
+    assert_eq!(
+        g.diagonal_blocks(),
+        vec![vec![0], vec![1], vec![2, 3], vec![4]]
+    );
+    let inverse = g.inverse(f.store.atoms()).unwrap();
+
+    // Hand inverse: diag(1/m, 1/m, [[1/(m r^2), -1/(m r^2)], [-1/(m r^2), J/(Jt m r^2)]], 1/jw).
+    let (m, r, jt, jw) = (f.var("m"), f.var("r"), f.var("jt"), f.var("jw"));
+    let one = f.store.integer(1);
+    let r2 = f.store.pow(r, 2.into()).unwrap();
+    let mr2 = f.store.mul2(m, r2);
+    let j = f.store.add2(jt, mr2);
+    let inv_m = f.store.div(one, m).unwrap();
+    let inv_mr2 = f.store.div(one, mr2).unwrap();
+    let minus_inv_mr2 = f.store.neg(inv_mr2);
+    let jt_mr2 = f.store.mul2(jt, mr2);
+    let j_over = f.store.div(j, jt_mr2).unwrap();
+    let inv_jw = f.store.div(one, jw).unwrap();
+    let zero = f.store.integer(0);
+    #[rustfmt::skip]
+    let expected = [
+        inv_m, zero, zero, zero, zero,
+        zero, inv_m, zero, zero, zero,
+        zero, zero, inv_mr2, minus_inv_mr2, zero,
+        zero, zero, minus_inv_mr2, j_over, zero,
+        zero, zero, zero, zero, inv_jw,
+    ];
+    let computed = inverse.to_expressions(&mut f.store);
+    for (&c, &e) in computed.iter().zip(&expected) {
+        let difference = f.store.sub(c, e);
+        f.assert_exactly_zero(difference);
+    }
+    let product = g.mul(&inverse, f.store.atoms()).unwrap();
+    assert_eq!(product, Matrix::identity(5));
+    let determinant = g.determinant(f.store.atoms()).unwrap();
+    let det = f.store.expression_of(&determinant);
+    let expected_det = f.store.mul(&[m, m, jt, mr2, jw]);
+    let difference = f.store.sub(det, expected_det);
+    f.assert_exactly_zero(difference);
+}
+
+#[test]
+fn dense_solve_and_determinant_match_cofactors() {
+    let mut f = Fixture::new(&["a", "b"], &["k"]);
+    let (a, b, k) = (f.var("a"), f.var("b"), f.var("k"));
+    let (sa, cb) = (f.call(Function::Sin, a), f.call(Function::Cos, b));
+    let one = f.store.integer(1);
+    let two = f.store.integer(2);
+    let kb = f.store.mul2(k, b);
+    let k_plus_1 = f.store.add2(k, one);
+    #[rustfmt::skip]
+    let entries = [
+        k_plus_1, sa, two,
+        cb, k, one,
+        a, kb, sa,
+    ];
+    let m = Matrix::from_expressions(&mut f.store, 3, 3, &entries).unwrap();
+    let det = m.determinant(f.store.atoms()).unwrap();
+    // cofactor expansion along the first row
+    let cofactor = |f: &mut Fixture, p: ExprId, q: ExprId, r: ExprId, s: ExprId| {
+        let ps = f.store.mul2(p, s);
+        let qr = f.store.mul2(q, r);
+        f.store.sub(ps, qr)
+    };
+    let m11 = cofactor(&mut f, k, one, kb, sa);
+    let m12 = cofactor(&mut f, cb, one, a, sa);
+    let m13 = cofactor(&mut f, cb, k, a, kb);
+    let t1 = f.store.mul2(k_plus_1, m11);
+    let t2 = f.store.mul2(sa, m12);
+    let t3 = f.store.mul2(two, m13);
+    let minus_t2 = f.store.neg(t2);
+    let expected = f.store.add(&[t1, minus_t2, t3]);
+    let computed = f.store.expression_of(&det);
+    let difference = f.store.sub(computed, expected);
+    f.assert_exactly_zero(difference);
+
+    let inverse = m.inverse(f.store.atoms()).unwrap();
+    assert_eq!(
+        m.mul(&inverse, f.store.atoms()).unwrap(),
+        Matrix::identity(3)
+    );
+    assert_eq!(m.rank(f.store.atoms()), 3);
+}
+
+#[test]
+fn ranks_exact_and_numeric_and_singular_solves() {
+    let mut f = Fixture::new(&["q"], &[]);
+    let q = f.var("q");
+    let (s, c) = (f.call(Function::Sin, q), f.call(Function::Cos, q));
+    let one = f.store.integer(1);
+    let two = f.store.integer(2);
+    // third row = sin q * first + cos q * second
+    let s2 = f.store.mul2(s, two);
+    let third_a = f.store.add2(s, c);
+    let third_b = f.store.add2(s2, c);
+    let zero = f.store.integer(0);
+    #[rustfmt::skip]
+    let entries = [
+        one, two,
+        one, one,
+        third_a, third_b,
+        zero, zero,
+    ];
+    let m = Matrix::from_expressions(&mut f.store, 4, 2, &entries).unwrap();
+    assert_eq!(m.rank(f.store.atoms()), 2);
+    #[rustfmt::skip]
+    let square = [
+        one, s, c,
+        s, one, c,
+        third_a, third_a, c,
+    ];
+    let m = Matrix::from_expressions(&mut f.store, 3, 3, &square).unwrap();
+    let numeric = m.rank_at(&mut f.store, &|_| 0.7, 1e-12);
+    let exact = m.rank(f.store.atoms());
+    assert_eq!(numeric, exact);
+}
+
+#[test]
+fn sleigh_lie_bracket_leaves_the_distribution() {
+    let mut f = Fixture::new(&["x", "y", "theta"], &[]);
+    let theta = f.var("theta");
+    let (s, c) = (f.call(Function::Sin, theta), f.call(Function::Cos, theta));
+    let (zero, one) = (f.store.integer(0), f.store.integer(1));
+    let to_forms = |f: &mut Fixture, v: &[ExprId]| -> Vec<RationalFunction> {
+        v.iter().map(|&e| f.store.normal(e).unwrap()).collect()
+    };
+    let x1 = to_forms(&mut f, &[c, s, zero]);
+    let x2 = to_forms(&mut f, &[zero, zero, one]);
+    let coordinates: Vec<SymbolId> = ["x", "y", "theta"].iter().map(|n| f.symbols[n]).collect();
+    let bracket = f.store.lie_bracket(&x1, &x2, &coordinates).unwrap();
+    let expected = to_forms(&mut f, &[s, zero, zero]);
+    let minus_c = f.store.neg(c);
+    let expected_y = f.store.normal(minus_c).unwrap();
+    assert_eq!(bracket[0], expected[0]);
+    assert_eq!(bracket[1], expected_y);
+    assert!(bracket[2].is_zero());
+    let mut columns = Vec::new();
+    for i in 0..3 {
+        columns.extend([x1[i].clone(), x2[i].clone(), bracket[i].clone()]);
+    }
+    let span = Matrix::new(3, 3, columns).unwrap();
+    assert_eq!(span.rank(f.store.atoms()), 3);
 }
