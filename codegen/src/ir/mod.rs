@@ -1,0 +1,352 @@
+//! Straight-line intermediate representation of derived expressions.
+//!
+//! A [`Program`] computes a list of outputs from a list of `f64` inputs with a
+//! flat sequence of [`Instruction`]s in SSA form: each instruction defines a
+//! fresh [`Value`] (printed `t<n>`) from earlier values, except
+//! [`Op::SinCos`], which defines two. [`lower()`] builds a program from
+//! expressions of a [`Store`](crate::sym::Store); the program can then be
+//! interpreted ([`Program::evaluate`]) or emitted as Rust statements
+//! ([`Program::emit`]).
+//!
+//! # Common subexpressions
+//!
+//! The store is hash-consed, so equal sub-expressions are already one node;
+//! lowering gives every node that is needed exactly one value, whatever the
+//! number of parents or outputs that use it. On top of that:
+//!
+//! - every instruction is value-numbered: an instruction equal to an earlier one
+//!   (operands of `+` and `*` taken in either order) reuses its value;
+//! - n-ary sums and products become binary chains whose operands are ordered by
+//!   how many sums and products share them, constants last, so that chains
+//!   with a common prefix (`a*b*c` and `a*b*d`) compute the prefix (`a*b`) once;
+//! - `sin u` and `cos u` both needed become one `sin_cos(u)`;
+//! - the same constant is one value;
+//! - a term `-c*u` of a sum whose value `-c*u` is computed anyway (it is an
+//!   output, say) is added rather than rebuilt as `c*u` and subtracted.
+//!
+//! Arithmetic is shaped as a person would write it: a term with a negative
+//! coefficient is subtracted (`a - 3*b`, not `a + (-3)*b`), `-x` is a
+//! negation, the factors `x^-1`, `x^-2`, `x^-3` and `x^(-1/2)` of a product
+//! are gathered into one division (`a*b/(c*d^2)`), `x^2` and `x^3` are
+//! multiplications (`x*x`, `x^2*x`), other integer powers are `powi`,
+//! `x^(1/2)` is `sqrt`, `x^(-1/2)` is `1/sqrt`, and other rational powers are
+//! `powf`.
+//!
+//! # Cost model
+//!
+//! One operation is one binary `+ - * /`, one negation, or one call of `sin`,
+//! `cos`, `tan`, `exp`, `ln`, `sqrt`, `powi`, `powf` or `sin_cos`; inputs and
+//! constants are free. [`Program::operation_count`] reports
+//!
+//! - `before_cse`: the cost of the outputs written out as trees, every use of
+//!   a shared node paying for the node again: a sum or product of `n` operands
+//!   costs `n - 1`, a call costs 1, and a power costs what it costs on its own
+//!   (`x^2` 1, `x^3` 2, `x^-1` 1, `x^-2` 2, `x^-3` 3, `x^(1/2)` 1,
+//!   `x^(-1/2)` 2, any other exponent 1). It is computed node by node on the
+//!   DAG (never by expanding it) and saturates at `u64::MAX`;
+//! - `after_cse`: the cost of the program's instructions.
+//!
+//! Lowering never spends more on a node than the tree pays for it, so
+//! `after_cse <= before_cse` always holds.
+//!
+//! # Example
+//!
+//! `sin(x)*y - cos(x)`, `x^2 + 3*sin(x)` lowered with inputs `[x, y]`
+//! prints (see [`Program`]'s `Display`):
+//!
+//! ```text
+//! t0 = in[0] (x)
+//! t1 = in[1] (y)
+//! t2, t3 = sin_cos(t0)
+//! t4 = t1 * t2
+//! t5 = t4 - t3
+//! t6 = t0 * t0
+//! t7 = 3
+//! t8 = t2 * t7
+//! t9 = t6 + t8
+//! out[0] = t5
+//! out[1] = t9
+//! ```
+
+mod cost;
+mod emit;
+mod interpret;
+mod lower;
+#[cfg(test)]
+mod properties;
+#[cfg(test)]
+mod tests;
+
+pub use emit::Emitted;
+pub use lower::lower;
+
+use crate::sym::Rational;
+use std::fmt;
+use std::hash::{Hash, Hasher};
+
+/// An SSA value: the result of one instruction, printed `t<n>`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Value(u32);
+
+impl Value {
+    /// Position of the value in the program's value table.
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+impl fmt::Display for Value {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "t{}", self.0)
+    }
+}
+
+/// An exact constant together with its nearest `f64`.
+///
+/// Equality and hashing look at the exact value only.
+#[derive(Clone, Debug)]
+pub struct Constant {
+    exact: Rational,
+    value: f64,
+}
+
+impl Constant {
+    /// The constant `exact`, rounded once to `f64`.
+    pub fn new(exact: Rational) -> Constant {
+        let value = exact.to_f64();
+        Constant { exact, value }
+    }
+
+    /// The exact value.
+    pub fn exact(&self) -> &Rational {
+        &self.exact
+    }
+
+    /// The value used in arithmetic.
+    pub fn value(&self) -> f64 {
+        self.value
+    }
+}
+
+impl PartialEq for Constant {
+    fn eq(&self, other: &Self) -> bool {
+        self.exact == other.exact
+    }
+}
+
+impl Eq for Constant {}
+
+impl Hash for Constant {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.exact.hash(state);
+    }
+}
+
+/// What an instruction computes, from earlier values.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Op {
+    /// Input slot `i`.
+    Input(usize),
+    /// A constant.
+    Constant(Constant),
+    /// `a + b`.
+    Add(Value, Value),
+    /// `a - b`.
+    Sub(Value, Value),
+    /// `a * b`.
+    Mul(Value, Value),
+    /// `a / b`.
+    Div(Value, Value),
+    /// `-a`.
+    Neg(Value),
+    /// `a.powi(n)`.
+    Powi(Value, i32),
+    /// `a.sqrt()`.
+    Sqrt(Value),
+    /// `a.powf(exponent)`.
+    Powf(Value, Constant),
+    /// `a.sin()`.
+    Sin(Value),
+    /// `a.cos()`.
+    Cos(Value),
+    /// `a.tan()`.
+    Tan(Value),
+    /// `a.exp()`.
+    Exp(Value),
+    /// `a.ln()`.
+    Ln(Value),
+    /// `angle.sin_cos()`: the instruction's result is the sine, and it also
+    /// defines `cosine`.
+    SinCos {
+        /// The argument.
+        angle: Value,
+        /// The second value defined, the cosine.
+        cosine: Value,
+    },
+}
+
+impl Op {
+    /// The operation's cost in the module's cost model: 0 for inputs and
+    /// constants, 1 for everything else.
+    pub fn cost(&self) -> u64 {
+        match self {
+            Op::Input(_) | Op::Constant(_) => 0,
+            _ => 1,
+        }
+    }
+
+    /// The values the operation reads, in order.
+    pub fn operands(&self) -> impl Iterator<Item = Value> {
+        let (first, second) = match *self {
+            Op::Input(_) | Op::Constant(_) => (None, None),
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => (Some(a), Some(b)),
+            Op::Neg(a)
+            | Op::Powi(a, _)
+            | Op::Sqrt(a)
+            | Op::Powf(a, _)
+            | Op::Sin(a)
+            | Op::Cos(a)
+            | Op::Tan(a)
+            | Op::Exp(a)
+            | Op::Ln(a)
+            | Op::SinCos { angle: a, .. } => (Some(a), None),
+        };
+        first.into_iter().chain(second)
+    }
+}
+
+/// One SSA instruction.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Instruction {
+    /// What is computed.
+    pub op: Op,
+    /// The value defined (the sine for [`Op::SinCos`]).
+    pub result: Value,
+}
+
+/// Operation counts of a program under the module's cost model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OperationCount {
+    /// The outputs' expression trees fully expanded (saturating).
+    pub before_cse: u64,
+    /// The program's instructions.
+    pub after_cse: u64,
+}
+
+/// Errors of lowering, interpretation and emission.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum IrError {
+    /// An output mentions a symbol that is not one of the inputs.
+    #[error("symbol `{name}` is used by an output but is not an input")]
+    UnboundSymbol {
+        /// The symbol's name.
+        name: String,
+    },
+    /// An output id that does not belong to the store.
+    #[error("output {output} is not an expression of this store")]
+    UnknownExpression {
+        /// Position of the output.
+        output: usize,
+    },
+    /// Wrong number of input values or input expressions.
+    #[error("the program has {expected} inputs, {found} were given")]
+    InputCount {
+        /// The program's number of inputs.
+        expected: usize,
+        /// The number given.
+        found: usize,
+    },
+    /// Wrong length of the output buffer.
+    #[error("the program has {expected} outputs, the buffer holds {found}")]
+    OutputCount {
+        /// The program's number of outputs.
+        expected: usize,
+        /// The buffer's length.
+        found: usize,
+    },
+}
+
+/// Straight-line code computing outputs from inputs; built by [`lower()`].
+///
+/// Every value is defined before it is read, and every value defined is read
+/// by a later instruction or is an output.
+#[derive(Clone, Debug)]
+pub struct Program {
+    /// Names of the input slots (empty for slots the outputs do not use).
+    input_names: Vec<String>,
+    instructions: Vec<Instruction>,
+    outputs: Vec<Value>,
+    value_count: usize,
+    before_cse: u64,
+}
+
+impl Program {
+    /// The instructions, in execution order.
+    pub fn instructions(&self) -> &[Instruction] {
+        &self.instructions
+    }
+
+    /// The value of each output.
+    pub fn outputs(&self) -> &[Value] {
+        &self.outputs
+    }
+
+    /// The number of input slots.
+    pub fn input_count(&self) -> usize {
+        self.input_names.len()
+    }
+
+    /// The number of values the instructions define.
+    pub fn value_count(&self) -> usize {
+        self.value_count
+    }
+
+    /// Operation counts before and after common subexpressions are shared.
+    pub fn operation_count(&self) -> OperationCount {
+        OperationCount {
+            before_cse: self.before_cse,
+            after_cse: self.instructions.iter().map(|i| i.op.cost()).sum(),
+        }
+    }
+}
+
+/// One line per instruction (`t3 = t1 * t0`), then one per output (`out[0] = t3`).
+impl fmt::Display for Program {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for instruction in &self.instructions {
+            self.write_instruction(f, instruction)?;
+        }
+        for (i, value) in self.outputs.iter().enumerate() {
+            writeln!(f, "out[{i}] = {value}")?;
+        }
+        Ok(())
+    }
+}
+
+impl Program {
+    fn write_instruction(
+        &self,
+        f: &mut fmt::Formatter<'_>,
+        instruction: &Instruction,
+    ) -> fmt::Result {
+        let t = instruction.result;
+        match &instruction.op {
+            Op::Input(slot) => writeln!(f, "{t} = in[{slot}] ({})", self.input_names[*slot]),
+            Op::Constant(c) => writeln!(f, "{t} = {}", c.exact),
+            Op::Add(a, b) => writeln!(f, "{t} = {a} + {b}"),
+            Op::Sub(a, b) => writeln!(f, "{t} = {a} - {b}"),
+            Op::Mul(a, b) => writeln!(f, "{t} = {a} * {b}"),
+            Op::Div(a, b) => writeln!(f, "{t} = {a} / {b}"),
+            Op::Neg(a) => writeln!(f, "{t} = -{a}"),
+            Op::Powi(a, n) => writeln!(f, "{t} = powi({a}, {n})"),
+            Op::Sqrt(a) => writeln!(f, "{t} = sqrt({a})"),
+            Op::Powf(a, e) => writeln!(f, "{t} = powf({a}, {})", e.exact),
+            Op::Sin(a) => writeln!(f, "{t} = sin({a})"),
+            Op::Cos(a) => writeln!(f, "{t} = cos({a})"),
+            Op::Tan(a) => writeln!(f, "{t} = tan({a})"),
+            Op::Exp(a) => writeln!(f, "{t} = exp({a})"),
+            Op::Ln(a) => writeln!(f, "{t} = ln({a})"),
+            Op::SinCos { angle, cosine } => writeln!(f, "{t}, {cosine} = sin_cos({angle})"),
+        }
+    }
+}
