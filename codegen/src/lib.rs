@@ -7,5 +7,7 @@
 
 #![warn(missing_docs)]
 
+pub mod diagnostic;
 pub mod ir;
 pub mod sym;
+pub mod syntax;

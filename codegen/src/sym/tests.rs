@@ -413,3 +413,27 @@ fn sleigh_lie_bracket_leaves_the_distribution() {
     let span = Matrix::new(3, 3, columns).unwrap();
     assert_eq!(span.rank(f.store.atoms()), 3);
 }
+
+#[test]
+fn substitution_rebuilds_and_reports_exact_zero_divisors() {
+    let mut f = Fixture::new(&["x", "y"], &[]);
+    let (x, y) = (f.var("x"), f.var("y"));
+    let two = f.store.integer(2);
+    let x2 = f.store.pow(x, 2.into()).unwrap();
+    let two_x = f.store.mul2(two, x);
+    let e = f.store.sub(x2, two_x);
+    let one = f.store.integer(1);
+    let y_plus_1 = f.store.add2(y, one);
+    let replacements = HashMap::from([(f.symbols["x"], y_plus_1)]);
+    let substituted = f.store.substitute(e, &replacements).unwrap();
+    // (y + 1)^2 - 2 (y + 1) = y^2 - 1
+    let y2 = f.store.pow(y, 2.into()).unwrap();
+    let expected = f.store.sub(y2, one);
+    assert!(f.store.equal(substituted, expected).unwrap());
+    let inverse = f.store.div(one, x).unwrap();
+    let zero = HashMap::from([(f.symbols["x"], f.store.integer(0))]);
+    assert!(matches!(
+        f.store.substitute(inverse, &zero),
+        Err(super::SymError::DivisionByZero { .. })
+    ));
+}

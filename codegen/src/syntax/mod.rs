@@ -1,0 +1,86 @@
+//! The model language's grammar: tokens in, a spanned syntax tree out.
+//!
+//! This stage is a pure grammar. It does not know which sections exist or
+//! what shape each must have; the check stage decides that (and reports
+//! unknown or missing sections). The same grammar serves both doors: the
+//! tokens of a `chaplygin::model! { ... }` invocation ([`parse`]) and the
+//! text of a `.model` file ([`parse_str`]).
+//!
+//! ```text
+//! model      = attribute* visibility? "struct" IDENT "{" sections "}" ;
+//! attribute  = "#" "[" ... "]" ;           (* `///` doc comments included *)
+//! visibility = "pub" ( "(" ... ")" )? ;
+//! sections   = ( section ( "," section )* ","? )? ;
+//! section    = IDENT ":" value ;
+//! value      = list | expr ;
+//! list       = "[" ( item ( "," item )* ","? )? "]" ;
+//! item       = IDENT "=" value | value ;
+//! expr       = term ( ( "+" | "-" ) term )* ;         (* left-assoc *)
+//! term       = unary ( ( "*" | "/" ) unary )* ;       (* left-assoc *)
+//! unary      = "-" unary | power ;
+//! power      = operand ( "^" unary )? ;               (* right-assoc *)
+//! operand    = NUMBER | IDENT | IDENT "(" arguments ")" | "(" expr ")" ;
+//! arguments  = ( expr ( "," expr )* ","? )? ;
+//! NUMBER     = untyped decimal literal: 2, 0.5, 1e-3, 1.5E2 ;
+//! ```
+//!
+//! So `-x^2` is `-(x^2)`, `x^-1` is `x^(-1)`, `2^-3^2` is `2^(-(3^2))`,
+//! `a*b^c^d` is `a*(b^(c^d))`, `a-b-c` is `(a-b)-c`, `2*-x` is `2*(-x)`.
+//!
+//! Every error is a [`Diagnostic`] spanned
+//! on the offending token. Sections, list items and call arguments are
+//! parsed independently, so all of their errors are reported together.
+
+mod ast;
+mod literal;
+mod parser;
+mod tokens;
+
+#[cfg(test)]
+mod tests;
+
+use proc_macro2::{LexError, TokenStream};
+
+pub use ast::{Attribute, BinaryOperator, Expr, Item, List, ModelSyntax, Section, Value};
+pub use parser::MAX_EXPRESSION_DEPTH;
+
+use crate::diagnostic::{Diagnostic, Diagnostics};
+use parser::Parser;
+
+/// Parses the tokens of a `chaplygin::model! { ... }` invocation.
+pub fn parse(tokens: TokenStream) -> Result<ModelSyntax, Diagnostics> {
+    Parser::default().parse_model(tokens)
+}
+
+/// Parses the text of a `.model` file. Spans carry the file's lines and
+/// columns, so [`Diagnostics::render`] can report them.
+pub fn parse_str(source: &str) -> Result<ModelSyntax, Diagnostics> {
+    match source.parse::<TokenStream>() {
+        Ok(tokens) => parse(tokens),
+        Err(error) => Err(lex_error(source, &error).into()),
+    }
+}
+
+/// Explains a lexing failure, judging by the character it stopped at.
+fn lex_error(source: &str, error: &LexError) -> Diagnostic {
+    let start = error.span().start();
+    let character = start
+        .line
+        .checked_sub(1)
+        .and_then(|line| source.lines().nth(line))
+        .and_then(|line| line.chars().nth(start.column));
+    let message = match character {
+        Some(open @ ('(' | '[' | '{')) => {
+            format!("unclosed delimiter `{open}`: it has no matching closing delimiter")
+        }
+        Some(close @ (')' | ']' | '}')) => format!(
+            "unmatched closing delimiter `{close}`: it does not close the innermost open delimiter"
+        ),
+        Some(other) => format!(
+            "cannot read the model text at `{other}`: expected Rust tokens \
+             (an unterminated string or comment, or a character Rust does not allow)"
+        ),
+        None => "cannot read the model text: expected Rust tokens".to_owned(),
+    };
+    Diagnostic::new(error.span(), message)
+}
