@@ -9,5 +9,6 @@
 
 pub mod diagnostic;
 pub mod ir;
+pub mod model;
 pub mod sym;
 pub mod syntax;

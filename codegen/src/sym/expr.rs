@@ -155,6 +155,15 @@ pub struct Store {
     pub(crate) normal_forms: HashMap<ExprId, super::normal::RationalFunction>,
 }
 
+impl fmt::Debug for Store {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Store")
+            .field("nodes", &self.nodes.len())
+            .field("symbols", &self.symbols)
+            .finish()
+    }
+}
+
 impl Store {
     /// An empty store.
     pub fn new() -> Store {

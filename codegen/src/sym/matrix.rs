@@ -353,6 +353,60 @@ impl Matrix {
         })
     }
 
+    /// A basis of the null space `{v : self v = 0}`, as the rows of the result,
+    /// from the reduced row echelon form: one basis vector per free column,
+    /// 1 in that column and minus the pivot rows' entries in the pivot columns.
+    pub fn null_space(&self, atoms: &Atoms) -> Result<Matrix, MatrixError> {
+        let (rows, pivots) = self.reduced_row_echelon(atoms)?;
+        let free: Vec<usize> = (0..self.columns).filter(|c| !pivots.contains(c)).collect();
+        let mut basis = Matrix::zeros(free.len(), self.columns);
+        for (b, &f) in free.iter().enumerate() {
+            basis.set(b, f, RationalFunction::one());
+            for (row, &p) in pivots.iter().enumerate() {
+                basis.set(b, p, rows[row][f].neg());
+            }
+        }
+        Ok(basis)
+    }
+
+    /// The reduced row echelon form (pivots 1) and its pivot columns.
+    fn reduced_row_echelon(
+        &self,
+        atoms: &Atoms,
+    ) -> Result<(Vec<Vec<RationalFunction>>, Vec<usize>), MatrixError> {
+        let mut rows: Vec<Vec<RationalFunction>> = (0..self.rows)
+            .map(|i| (0..self.columns).map(|j| self.get(i, j).clone()).collect())
+            .collect();
+        let mut pivots = Vec::new();
+        for column in 0..self.columns {
+            let rank = pivots.len();
+            let Some(pivot_row) = choose_pivot(&rows, rank, column) else {
+                continue;
+            };
+            rows.swap(pivot_row, rank);
+            let pivot = rows[rank][column].clone();
+            let singular = MatrixError::Singular {
+                size: self.rows,
+                column,
+            };
+            for entry in rows[rank].iter_mut() {
+                *entry = entry.div(&pivot, atoms).ok_or(singular.clone())?;
+            }
+            let pivot_values = rows[rank].clone();
+            for (i, row) in rows.iter_mut().enumerate() {
+                if i == rank || row[column].is_zero() {
+                    continue;
+                }
+                let factor = row[column].clone();
+                for (entry, p) in row.iter_mut().zip(&pivot_values) {
+                    *entry = entry.sub(&factor.mul(p, atoms), atoms);
+                }
+            }
+            pivots.push(column);
+        }
+        Ok((rows, pivots))
+    }
+
     /// The exact (generic) rank, by elimination with exact zero tests.
     pub fn rank(&self, atoms: &Atoms) -> usize {
         let mut rows: Vec<Vec<RationalFunction>> = (0..self.rows)

@@ -1,0 +1,202 @@
+//! Lowering of syntax expressions into the model's expression store.
+//!
+//! Names resolve to coordinates, parameters and earlier definitions;
+//! `dot(q)` to the velocity of coordinate `q`; the functions are
+//! `sin cos tan sqrt exp ln`. Exponents must be constant numbers. Every
+//! failure becomes a diagnostic on the offending token, and both operands of
+//! an operator are lowered even when one fails, so all errors are reported.
+
+use crate::diagnostic::Diagnostics;
+use crate::sym::{ExprId, Node, Rational, Store, SymError, SymbolId};
+use crate::syntax::{BinaryOperator, Expr};
+use proc_macro2::Span;
+use std::collections::HashMap;
+
+/// What a name in an expression stands for.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Binding {
+    Coordinate(SymbolId),
+    Parameter(SymbolId),
+    Definition(ExprId),
+}
+
+/// The names visible to an expression.
+#[derive(Default, Debug)]
+pub(super) struct Scope {
+    names: HashMap<String, Binding>,
+}
+
+impl Scope {
+    pub(super) fn bind(&mut self, name: &str, binding: Binding) {
+        self.names.insert(name.to_string(), binding);
+    }
+
+    pub(super) fn get(&self, name: &str) -> Option<Binding> {
+        self.names.get(name).copied()
+    }
+}
+
+/// The functions of the model language besides `dot`.
+pub(super) const FUNCTIONS: [&str; 6] = ["sin", "cos", "tan", "sqrt", "exp", "ln"];
+
+/// Lowers expressions, collecting diagnostics.
+pub(super) struct Lowerer<'a> {
+    pub(super) store: &'a mut Store,
+    pub(super) scope: &'a Scope,
+    pub(super) diagnostics: &'a mut Diagnostics,
+}
+
+impl Lowerer<'_> {
+    /// The expression, or `None` after reporting why it cannot be built.
+    pub(super) fn lower(&mut self, expr: &Expr) -> Option<ExprId> {
+        match expr {
+            Expr::Number { literal, span } => self.number(literal, *span),
+            Expr::Name(ident) => self.name(&ident.to_string(), ident.span()),
+            Expr::Call {
+                function,
+                arguments,
+                ..
+            } => self.call(function, arguments),
+            Expr::Negate { operand, .. } => {
+                let operand = self.lower(operand)?;
+                Some(self.store.neg(operand))
+            }
+            Expr::Binary {
+                operator,
+                left,
+                right,
+                span,
+            } => self.binary(*operator, left, right, *span),
+        }
+    }
+
+    fn number(&mut self, literal: &str, span: Span) -> Option<ExprId> {
+        match Rational::from_decimal(literal) {
+            Some(value) => Some(self.store.number(value)),
+            None => {
+                self.diagnostics.error(
+                    span,
+                    format!("the number `{literal}` is out of range for an exact rational"),
+                );
+                None
+            }
+        }
+    }
+
+    fn name(&mut self, name: &str, span: Span) -> Option<ExprId> {
+        match self.scope.get(name) {
+            Some(Binding::Coordinate(symbol) | Binding::Parameter(symbol)) => {
+                Some(self.store.symbol(symbol))
+            }
+            Some(Binding::Definition(expression)) => Some(expression),
+            None => {
+                self.diagnostics.error(
+                    span,
+                    format!(
+                        "unknown name `{name}`: expressions may use the coordinates, the \
+                         parameters, the definitions made before this point, and `dot(q)`"
+                    ),
+                );
+                None
+            }
+        }
+    }
+
+    fn call(&mut self, function: &proc_macro2::Ident, arguments: &[Expr]) -> Option<ExprId> {
+        let name = function.to_string();
+        if name == "dot" {
+            return self.velocity(function, arguments);
+        }
+        if !FUNCTIONS.contains(&name.as_str()) {
+            self.diagnostics.error(
+                function.span(),
+                format!(
+                    "unknown function `{name}`: the functions are sin, cos, tan, sqrt, exp, ln, \
+                     and dot(q) for a velocity"
+                ),
+            );
+            return None;
+        }
+        let [argument] = arguments else {
+            self.diagnostics.error(
+                function.span(),
+                format!(
+                    "`{name}` takes exactly one argument, found {}",
+                    arguments.len()
+                ),
+            );
+            return None;
+        };
+        let argument = self.lower(argument)?;
+        let applied = self.store.apply_named(&name, argument);
+        self.report(applied, function.span())
+    }
+
+    /// `dot(q)`: the velocity of a coordinate.
+    fn velocity(&mut self, function: &proc_macro2::Ident, arguments: &[Expr]) -> Option<ExprId> {
+        let [Expr::Name(argument)] = arguments else {
+            let span = arguments.first().map_or(function.span(), Expr::first_span);
+            self.diagnostics.error(
+                span,
+                "`dot()` takes exactly one coordinate name, e.g. `dot(theta)`",
+            );
+            return None;
+        };
+        let name = argument.to_string();
+        match self.scope.get(&name) {
+            Some(Binding::Coordinate(coordinate)) => {
+                let velocity = self.store.velocity_of(coordinate);
+                Some(self.store.symbol(velocity))
+            }
+            Some(_) => {
+                self.diagnostics.error(
+                    argument.span(),
+                    format!(
+                        "`dot()` of `{name}`, which is not a coordinate: only coordinates have \
+                         velocities"
+                    ),
+                );
+                None
+            }
+            None => self.name(&name, argument.span()),
+        }
+    }
+
+    fn binary(
+        &mut self,
+        operator: BinaryOperator,
+        left: &Expr,
+        right: &Expr,
+        span: Span,
+    ) -> Option<ExprId> {
+        let left_value = self.lower(left);
+        let right_value = self.lower(right);
+        let (a, b) = (left_value?, right_value?);
+        match operator {
+            BinaryOperator::Add => Some(self.store.add2(a, b)),
+            BinaryOperator::Subtract => Some(self.store.sub(a, b)),
+            BinaryOperator::Multiply => Some(self.store.mul2(a, b)),
+            BinaryOperator::Divide => {
+                let quotient = self.store.div(a, b);
+                self.report(quotient, span)
+            }
+            BinaryOperator::Power => {
+                let Node::Number(exponent) = self.store.node(b).clone() else {
+                    self.diagnostics.error(
+                        right.first_span(),
+                        "an exponent must be a constant number (an integer or a fraction like 1/2)",
+                    );
+                    return None;
+                };
+                let power = self.store.pow(a, exponent);
+                self.report(power, span)
+            }
+        }
+    }
+
+    fn report(&mut self, result: Result<ExprId, SymError>, span: Span) -> Option<ExprId> {
+        result
+            .map_err(|error| self.diagnostics.error(span, error.to_string()))
+            .ok()
+    }
+}

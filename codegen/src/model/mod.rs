@@ -1,0 +1,166 @@
+//! The checked model: a declaration turned into exact symbolic objects.
+//!
+//! [`check`] takes the syntax tree and produces a [`Model`]: the metric
+//! `g(q)` (from the kinetic energy by exact second derivatives,
+//! `g_ij = d^2 T / d qdot_i d qdot_j`, or as declared), the potential `V(q)`,
+//! the constraint rows `A(q)` (`A qdot = 0`; from a declared distribution, a
+//! basis of its annihilator), the input matrix `B(q)`, and the optional
+//! momentum basis `h(q)` and symmetry group. Every rule of the model
+//! language is one function in [`check`]; all violations are reported at once.
+
+mod check;
+mod lower;
+#[cfg(test)]
+mod tests;
+
+pub use check::check;
+
+use crate::sym::{Matrix, Rational, RationalFunction, Store, SymbolId};
+use proc_macro2::{Ident, Span, TokenStream};
+
+/// A name the user declared, with where they declared it.
+#[derive(Clone, Debug)]
+pub struct Declared {
+    /// The name as written.
+    pub name: String,
+    /// Where it was written.
+    pub span: Span,
+}
+
+/// A coordinate or parameter: a declared name that is also a symbol.
+#[derive(Clone, Debug)]
+pub struct Variable {
+    /// The declaration.
+    pub declared: Declared,
+    /// Its symbol in the model's store.
+    pub symbol: SymbolId,
+}
+
+/// A parameter with its default value.
+#[derive(Clone, Debug)]
+pub struct Parameter {
+    /// The declaration and symbol.
+    pub variable: Variable,
+    /// The declared default, exact.
+    pub default: Rational,
+}
+
+/// Options set by attributes on the model.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Options {
+    /// `#[deny_holonomic]`: integrable constraints are an error, not a report.
+    pub deny_holonomic: bool,
+}
+
+/// One factor of a symmetry group acting on coordinates (indices into the
+/// coordinate list).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroupFactor {
+    /// The special Euclidean group of the plane on `(x, y, theta)`.
+    Se2 {
+        /// Index of `x`.
+        x: usize,
+        /// Index of `y`.
+        y: usize,
+        /// Index of the heading `theta`.
+        theta: usize,
+    },
+    /// Translations of one coordinate.
+    Translation(usize),
+    /// Rotations of one angle.
+    Rotation(usize),
+}
+
+/// A declared symmetry group: the product of its factors.
+#[derive(Clone, Debug)]
+pub struct Symmetry {
+    /// The factors, as written.
+    pub factors: Vec<GroupFactor>,
+    /// Where the group was declared.
+    pub span: Span,
+}
+
+/// A declared momentum basis `h(q)`: k one-forms spanning `g(D)`.
+#[derive(Clone, Debug)]
+pub struct MomentumBasis {
+    /// The names of the rows (the reduced momenta).
+    pub names: Vec<Declared>,
+    /// `h`, k x n.
+    pub rows: Matrix,
+}
+
+/// A checked model.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// The struct's name.
+    pub name: Ident,
+    /// Doc comment lines.
+    pub docs: Vec<String>,
+    /// The struct's visibility, as written.
+    pub visibility: TokenStream,
+    /// Attribute options.
+    pub options: Options,
+    /// The expression store holding every expression of the model.
+    pub store: Store,
+    /// `q`, in declared order.
+    pub coordinates: Vec<Variable>,
+    /// `qdot`, in the coordinates' order.
+    pub velocities: Vec<SymbolId>,
+    /// The parameters, in declared order.
+    pub parameters: Vec<Parameter>,
+    /// `T(q, qdot) = 1/2 qdot^T g qdot`.
+    pub kinetic_energy: RationalFunction,
+    /// `V(q)`.
+    pub potential_energy: RationalFunction,
+    /// `g(q)`, n x n, symmetric.
+    pub mass_matrix: Matrix,
+    /// The constraint names (`c1, c2, ...` when derived from a distribution).
+    pub constraints: Vec<Declared>,
+    /// `A(q)`, c x n, full row rank.
+    pub constraint_matrix: Matrix,
+    /// The input names.
+    pub inputs: Vec<Declared>,
+    /// `B(q)`, n x p.
+    pub input_matrix: Matrix,
+    /// The declared momentum basis, if any.
+    pub momentum_basis: Option<MomentumBasis>,
+    /// The declared symmetry, if any.
+    pub symmetry: Option<Symmetry>,
+}
+
+impl Model {
+    /// Number of coordinates `n`.
+    pub fn n(&self) -> usize {
+        self.coordinates.len()
+    }
+
+    /// Number of constraints `c`.
+    pub fn c(&self) -> usize {
+        self.constraints.len()
+    }
+
+    /// Degrees of freedom in velocity, `k = n - c`.
+    pub fn k(&self) -> usize {
+        self.n() - self.c()
+    }
+
+    /// Number of inputs `p`.
+    pub fn p(&self) -> usize {
+        self.inputs.len()
+    }
+
+    /// The coordinate symbols, in order.
+    pub fn coordinate_symbols(&self) -> Vec<SymbolId> {
+        self.coordinates.iter().map(|c| c.symbol).collect()
+    }
+
+    /// The parameter symbols, in order.
+    pub fn parameter_symbols(&self) -> Vec<SymbolId> {
+        self.parameters.iter().map(|p| p.variable.symbol).collect()
+    }
+
+    /// The parameters' default values as `f64`, in order.
+    pub fn parameter_defaults(&self) -> Vec<f64> {
+        self.parameters.iter().map(|p| p.default.to_f64()).collect()
+    }
+}

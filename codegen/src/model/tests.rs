@@ -1,0 +1,209 @@
+//! The checker on the snakeboard of MATH.md 3.1 and on broken models.
+
+use super::{Model, check};
+use crate::sym::{Function, Matrix};
+use crate::syntax::parse_str;
+
+pub(crate) const SNAKEBOARD: &str = r#"
+/// Snakeboard with J = Jt + m r^2 (Duindam & Stramigioli 2004).
+pub struct Snakeboard {
+    coordinates: [x, y, theta, psi, phi],
+    parameters: [m = 1.0, r = 0.5, jt = 0.3, jw = 0.05],
+    define: [j = jt + m*r^2],
+    kinetic_energy: m/2*(dot(x)^2 + dot(y)^2) + j/2*dot(theta)^2
+        + jt*dot(theta)*dot(psi) + jt/2*dot(psi)^2 + jw/2*dot(phi)^2,
+    potential_energy: 0,
+    constraints: [
+        front = -sin(theta + phi)*dot(x) + cos(theta + phi)*dot(y) + r*cos(phi)*dot(theta),
+        back  = -sin(theta - phi)*dot(x) + cos(theta - phi)*dot(y) - r*cos(phi)*dot(theta),
+    ],
+    inputs: [u_torso = psi, u_wheels = phi],
+    momentum_basis: [
+        group  = [cos(phi)*cos(theta), cos(phi)*sin(theta), r*sin(phi), 0, 0],
+        torso  = [0, 0, 1, 1, 0],
+        wheels = [0, 0, 0, 0, 1],
+    ],
+    symmetry: se2(x, y, theta),
+}
+"#;
+
+fn checked(source: &str) -> Model {
+    let syntax = parse_str(source).expect("parses");
+    check(&syntax).unwrap_or_else(|e| panic!("{}", e.render("test.model")))
+}
+
+fn errors(source: &str) -> String {
+    let syntax = parse_str(source).expect("parses");
+    check(&syntax)
+        .map(|_| ())
+        .expect_err("must be rejected")
+        .render("m.model")
+}
+
+/// The paper's basis of D (MATH.md 3.1) as a 5 x 3 matrix in the model's store:
+/// `r cos(theta) d_x + r sin(theta) d_y + tan(phi) d_theta`, `d_psi`, `d_phi`.
+fn papers_distribution(model: &mut Model) -> Matrix {
+    let store = &mut model.store;
+    let symbol = |store: &mut crate::sym::Store, name: &str| {
+        let id = store.find_symbol(name).expect("declared");
+        store.symbol(id)
+    };
+    let (r, theta, phi) = (
+        symbol(store, "r"),
+        symbol(store, "theta"),
+        symbol(store, "phi"),
+    );
+    let cos_theta = store.apply(Function::Cos, theta).expect("cos");
+    let sin_theta = store.apply(Function::Sin, theta).expect("sin");
+    let tan_phi = store.apply(Function::Tan, phi).expect("tan");
+    let (zero, one) = (store.integer(0), store.integer(1));
+    let rolling = [
+        store.mul2(r, cos_theta),
+        store.mul2(r, sin_theta),
+        tan_phi,
+        zero,
+        zero,
+    ];
+    let mut entries = Vec::new();
+    for i in 0..5 {
+        entries.extend([
+            rolling[i],
+            if i == 3 { one } else { zero },
+            if i == 4 { one } else { zero },
+        ]);
+    }
+    Matrix::from_expressions(store, 5, 3, &entries).expect("5 x 3")
+}
+
+#[test]
+fn snakeboard_metric_is_the_hand_derived_g() {
+    let model = checked(SNAKEBOARD);
+    assert_eq!((model.n(), model.c(), model.k(), model.p()), (5, 2, 3, 2));
+    assert!(model.mass_matrix.is_symmetric());
+    // MATH.md 3.1: g = [[m,0,0,0,0],[0,m,0,0,0],[0,0,J,Jt,0],[0,0,Jt,Jt,0],[0,0,0,0,Jw]],
+    // J = Jt + m r^2, at parameter values other than the defaults.
+    let [m, r, jt, jw] = [1.7, 0.45, 0.31, 0.07];
+    let j = jt + m * r * r;
+    let expected = [
+        [m, 0.0, 0.0, 0.0, 0.0],
+        [0.0, m, 0.0, 0.0, 0.0],
+        [0.0, 0.0, j, jt, 0.0],
+        [0.0, 0.0, jt, jt, 0.0],
+        [0.0, 0.0, 0.0, 0.0, jw],
+    ];
+    let mut store = model.store.clone();
+    let names: Vec<String> = ["m", "r", "jt", "jw"].map(String::from).to_vec();
+    let lookup = store.clone();
+    let value_of = |s| {
+        let name = &lookup.symbol_info(s).name;
+        names
+            .iter()
+            .position(|n| n == name)
+            .map_or(0.3, |i| [m, r, jt, jw][i])
+    };
+    let numbers = model.mass_matrix.evaluate(&mut store, &value_of);
+    for (i, row) in expected.iter().enumerate() {
+        for (k, value) in row.iter().enumerate() {
+            assert!((numbers[i * 5 + k] - value).abs() < 1e-15, "g[{i}][{k}]");
+        }
+    }
+}
+
+#[test]
+fn snakeboard_constraints_annihilate_the_papers_distribution_exactly() {
+    let mut model = checked(SNAKEBOARD);
+    let fields = papers_distribution(&mut model);
+    let atoms = model.store.atoms().clone();
+    let product = model
+        .constraint_matrix
+        .mul(&fields, &atoms)
+        .expect("2x5 * 5x3");
+    assert!(product.is_zero(), "A X = {product:?}");
+}
+
+#[test]
+fn a_declared_distribution_yields_constraints_with_the_same_kernel() {
+    let text = SNAKEBOARD
+        .replace("constraints: [", "distribution: [ rolling = [r*cos(theta), r*sin(theta), tan(phi), 0, 0], torso = [0, 0, 0, 1, 0], wheels = [0, 0, 0, 0, 1] ], ignored: [")
+        .replace("ignored: [", "")
+        .replace("front = -sin(theta + phi)*dot(x) + cos(theta + phi)*dot(y) + r*cos(phi)*dot(theta),\n        back  = -sin(theta - phi)*dot(x) + cos(theta - phi)*dot(y) - r*cos(phi)*dot(theta),\n    ],\n", "");
+    let mut model = checked(&text);
+    assert_eq!(
+        model
+            .constraints
+            .iter()
+            .map(|c| c.name.as_str())
+            .collect::<Vec<_>>(),
+        ["c1", "c2"]
+    );
+    let fields = papers_distribution(&mut model);
+    let atoms = model.store.atoms().clone();
+    assert!(
+        model
+            .constraint_matrix
+            .mul(&fields, &atoms)
+            .expect("fits")
+            .is_zero()
+    );
+    assert_eq!(model.constraint_matrix.rank(&atoms), 2);
+}
+
+#[test]
+fn snakeboard_momentum_basis_is_accepted_and_a_wrong_one_rejected() {
+    let model = checked(SNAKEBOARD);
+    let basis = model.momentum_basis.as_ref().expect("declared");
+    assert_eq!(basis.rows.rows(), 3);
+    let broken = SNAKEBOARD.replace("torso  = [0, 0, 1, 1, 0]", "torso  = [0, 0, 1, 0, 0]");
+    let message = errors(&broken);
+    assert!(
+        message.contains("momentum-basis row `torso` is not in g(D)"),
+        "{message}"
+    );
+    assert!(message.contains("m.model:17:9"), "{message}");
+}
+
+#[test]
+fn every_error_of_a_model_is_reported_with_its_position() {
+    let source = "struct Bad {
+    coordinates: [x, y],
+    parameters: [m = 1.0, x = 2.0],
+    kinetic_energy: m/2*dot(x)^2 + m*dot(y),
+    potential_energy: dot(x),
+    constraints: [c = dot(x)^2],
+    inputs: [u = m],
+}";
+    let message = errors(source);
+    for expected in [
+        "m.model:3:27: error: `x` is a coordinate and cannot also be used as a parameter",
+        "m.model:4:36: error: the kinetic energy must be quadratic",
+        "m.model:5:23: error: the potential energy depends on the configuration only",
+        "m.model:6:23: error: a constraint must be linear and homogeneous",
+        "m.model:7:18: error: an input acts on a coordinate, and `m` is not a coordinate",
+    ] {
+        assert!(
+            message.contains(expected),
+            "missing `{expected}` in\n{message}"
+        );
+    }
+}
+
+#[test]
+fn definiteness_symmetry_and_dependence_are_checked() {
+    let negative = "struct N { coordinates: [x, y], parameters: [m = -1.0], kinetic_energy: m/2*(dot(x)^2 + dot(y)^2) }";
+    assert!(errors(negative).contains("not positive definite"));
+    let asymmetric = "struct A { coordinates: [x, y], mass_matrix: [[1, x], [0, 1]] }";
+    assert!(errors(asymmetric).contains("entry (1, 2) differs from entry (2, 1)"));
+    let dependent = "struct D { coordinates: [x, y, theta], kinetic_energy: dot(x)^2 + dot(y)^2 + dot(theta)^2,
+        constraints: [a = -sin(theta)*dot(x) + cos(theta)*dot(y), b = 2*(-sin(theta)*dot(x) + cos(theta)*dot(y))] }";
+    assert!(errors(dependent).contains("constraint `b` depends on the ones before it"));
+    let unknown = "struct U { coordinates: [x], kinetic_enrgy: dot(x)^2 }";
+    let message = errors(unknown);
+    assert!(
+        message.contains("unknown section `kinetic_enrgy`"),
+        "{message}"
+    );
+    assert!(
+        message.contains("missing section `kinetic_energy`"),
+        "{message}"
+    );
+}
