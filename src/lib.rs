@@ -1,3 +1,8 @@
 //! Chaplygin: nonholonomic mechanical models compiled into verified simulators.
+//!
+//! Declare a model with [`model!`]; the macro checks it and emits a parameter
+//! struct with its mass matrix, energy, constraint matrix and constraint
+//! residual as allocation-free functions.
 
+pub use chaplygin_macros::model;
 pub use chaplygin_runtime as runtime;

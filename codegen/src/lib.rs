@@ -1,14 +1,43 @@
 //! The Chaplygin compiler.
 //!
-//! A model flows one way through typed stages: the symbolic engine [`sym`]
-//! holds every expression, and [`ir`] lowers derived expressions to
-//! straight-line code with common subexpressions shared, which is interpreted
-//! or emitted as allocation-free Rust.
+//! A model flows one way through typed stages:
+//!
+//! ```text
+//! tokens --syntax::parse--> ModelSyntax --model::check--> Model --emit--> Rust items
+//! ```
+//!
+//! The symbolic engine [`sym`] holds every expression; [`ir`] lowers derived
+//! expressions to straight-line code with common subexpressions shared, which
+//! [`emit`] splices into allocation-free Rust. [`expand`] is what the
+//! `chaplygin::model!` macro calls; [`Builder`] is the build-script door for
+//! `.model` files.
 
 #![warn(missing_docs)]
 
+mod build;
 pub mod diagnostic;
+pub mod emit;
 pub mod ir;
 pub mod model;
 pub mod sym;
 pub mod syntax;
+
+pub use build::{BuildError, Builder, generate};
+
+use proc_macro2::TokenStream;
+
+/// Expands the body of a `chaplygin::model! { ... }` invocation: the model's
+/// items, or one `compile_error!` per problem, each spanned on its token.
+pub fn expand(tokens: TokenStream) -> TokenStream {
+    match try_expand(tokens) {
+        Ok(items) => items,
+        Err(diagnostics) => diagnostics.to_compile_errors(),
+    }
+}
+
+/// [`expand`], keeping the diagnostics.
+pub fn try_expand(tokens: TokenStream) -> Result<TokenStream, diagnostic::Diagnostics> {
+    let syntax = syntax::parse(tokens)?;
+    let mut model = model::check(&syntax)?;
+    emit::model_items(&mut model)
+}

@@ -1,0 +1,321 @@
+//! Emission of a checked model as Rust items.
+//!
+//! For a model with n coordinates, c constraints and p inputs this emits the
+//! parameter struct (`Copy`, `Debug`, `PartialEq`, `Default` from the
+//! declared defaults), the name and size constants, and
+//!
+//! ```text
+//! mass_matrix(q)                  g(q)
+//! energy(q, qdot)                 T + V = 1/2 qdot^T g qdot + V(q)
+//! constraint_matrix(q)            A(q)
+//! constraint_residual(q, qdot)    A(q) qdot
+//! ```
+//!
+//! Each function body is one [`crate::ir::Program`]: straight-line `let`s over
+//! `f64` with common subexpressions shared, no allocation, no panics, types
+//! named by absolute paths (`::core::primitive::f64`), so the items compile
+//! under `#![deny(warnings)]` whatever the caller has in scope.
+
+use crate::diagnostic::{Diagnostic, Diagnostics};
+use crate::ir::{self, Op};
+use crate::model::Model;
+use crate::sym::{ExprId, Matrix, RationalFunction, SymbolId};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::{format_ident, quote};
+
+/// One argument array of an emitted function: `q` or `qdot`.
+struct Argument {
+    name: &'static str,
+    symbols: Vec<SymbolId>,
+}
+
+/// The Rust items of a checked model.
+pub fn model_items(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+    let definition = parameter_struct(model);
+    let constants = constants(model);
+    let functions = [
+        mass_matrix(model)?,
+        energy(model)?,
+        constraint_matrix(model)?,
+        constraint_residual(model)?,
+    ];
+    let name = &model.name;
+    Ok(quote! {
+        #definition
+        impl #name {
+            #constants
+            #(#functions)*
+        }
+    })
+}
+
+fn f64_type() -> TokenStream {
+    quote!(::core::primitive::f64)
+}
+
+fn parameter_struct(model: &Model) -> TokenStream {
+    let name = &model.name;
+    let visibility = &model.visibility;
+    let docs = model.docs.iter().map(|line| quote!(#[doc = #line]));
+    let f64 = f64_type();
+    let fields: Vec<Ident> = model
+        .parameters
+        .iter()
+        .map(|p| Ident::new(&p.variable.declared.name, p.variable.declared.span))
+        .collect();
+    let field_docs = model.parameters.iter().map(|p| {
+        format!(
+            "Parameter `{}` (default {}).",
+            p.variable.declared.name,
+            p.default.to_f64()
+        )
+    });
+    let defaults = model
+        .parameters
+        .iter()
+        .map(|p| Literal::f64_unsuffixed(p.default.to_f64()));
+    quote! {
+        #(#docs)*
+        #[derive(::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, ::core::cmp::PartialEq)]
+        #visibility struct #name {
+            #(#[doc = #field_docs] pub #fields: #f64,)*
+        }
+
+        impl ::core::default::Default for #name {
+            fn default() -> Self {
+                Self { #(#fields: #defaults,)* }
+            }
+        }
+    }
+}
+
+fn constants(model: &Model) -> TokenStream {
+    let names = |list: Vec<&str>| {
+        let count = list.len();
+        (
+            quote!([&'static ::core::primitive::str; #count]),
+            quote!([#(#list),*]),
+        )
+    };
+    let (coordinates_type, coordinates) = names(
+        model
+            .coordinates
+            .iter()
+            .map(|c| c.declared.name.as_str())
+            .collect(),
+    );
+    let (parameters_type, parameters) = names(
+        model
+            .parameters
+            .iter()
+            .map(|p| p.variable.declared.name.as_str())
+            .collect(),
+    );
+    let (inputs_type, inputs) = names(model.inputs.iter().map(|i| i.name.as_str()).collect());
+    let (constraints_type, constraints) =
+        names(model.constraints.iter().map(|c| c.name.as_str()).collect());
+    let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
+    let s = n + k;
+    quote! {
+        /// The coordinates, in order.
+        pub const COORDINATES: #coordinates_type = #coordinates;
+        /// The parameters, in order.
+        pub const PARAMETERS: #parameters_type = #parameters;
+        /// The inputs, in order.
+        pub const INPUTS: #inputs_type = #inputs;
+        /// The constraints, in declared order.
+        pub const CONSTRAINTS: #constraints_type = #constraints;
+        /// Number of coordinates `n`.
+        pub const N: ::core::primitive::usize = #n;
+        /// Number of constraints `c`.
+        pub const C: ::core::primitive::usize = #c;
+        /// Degrees of freedom in velocity, `k = n - c`.
+        pub const K: ::core::primitive::usize = #k;
+        /// Number of inputs `p`.
+        pub const P: ::core::primitive::usize = #p;
+        /// Size of the reduced state `(q, alpha)`, `s = n + k`.
+        pub const S: ::core::primitive::usize = #s;
+    }
+}
+
+fn mass_matrix(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+    let n = model.n();
+    let outputs = expressions(model, &model.mass_matrix.clone());
+    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+        matrix_literal(values, n)
+    })?;
+    let f64 = f64_type();
+    let (q, _) = argument_names(&body.used);
+    let statements = body.statements;
+    Ok(quote! {
+        /// The mass matrix `g(q)`.
+        pub fn mass_matrix(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #n] {
+            #statements
+        }
+    })
+}
+
+fn energy(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+    let n = model.n();
+    let atoms = model.store.atoms().clone();
+    let total = model.kinetic_energy.add(&model.potential_energy, &atoms);
+    let outputs = vec![model.store.expression_of(&total)];
+    let arguments = [coordinates(model), velocities(model)];
+    let body = function_body(model, &arguments, &outputs, |values| quote!(#(#values)*))?;
+    let f64 = f64_type();
+    let (q, qdot) = argument_names(&body.used);
+    let statements = body.statements;
+    Ok(quote! {
+        /// The total energy `T + V`.
+        pub fn energy(&self, #q: &[#f64; #n], #qdot: &[#f64; #n]) -> #f64 {
+            #statements
+        }
+    })
+}
+
+fn constraint_matrix(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+    let (n, c) = (model.n(), model.c());
+    let outputs = expressions(model, &model.constraint_matrix.clone());
+    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+        matrix_literal(values, n)
+    })?;
+    let f64 = f64_type();
+    let (q, _) = argument_names(&body.used);
+    let statements = body.statements;
+    Ok(quote! {
+        /// The constraint rows `A(q)`, in declared order: allowed velocities satisfy `A(q) qdot = 0`.
+        pub fn constraint_matrix(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #c] {
+            #statements
+        }
+    })
+}
+
+fn constraint_residual(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+    let (n, c) = (model.n(), model.c());
+    let atoms = model.store.atoms().clone();
+    let velocity_column = Matrix::new(
+        n,
+        1,
+        model
+            .velocities
+            .clone()
+            .into_iter()
+            .map(|v| {
+                let atom = model.store.symbol_atom(v);
+                RationalFunction::from_poly(crate::sym::Poly::atom(atom))
+            })
+            .collect(),
+    )
+    .map_err(|e| internal(model, e))?;
+    let residual = model
+        .constraint_matrix
+        .mul(&velocity_column, &atoms)
+        .map_err(|e| internal(model, e))?;
+    let outputs = expressions(model, &residual);
+    let arguments = [coordinates(model), velocities(model)];
+    let body = function_body(model, &arguments, &outputs, |values| quote!([#(#values),*]))?;
+    let f64 = f64_type();
+    let (q, qdot) = argument_names(&body.used);
+    let statements = body.statements;
+    Ok(quote! {
+        /// The constraint residual `A(q) qdot`: zero for allowed velocities.
+        pub fn constraint_residual(&self, #q: &[#f64; #n], #qdot: &[#f64; #n]) -> [#f64; #c] {
+            #statements
+        }
+    })
+}
+
+fn coordinates(model: &Model) -> Argument {
+    Argument {
+        name: "q",
+        symbols: model.coordinate_symbols(),
+    }
+}
+
+fn velocities(model: &Model) -> Argument {
+    Argument {
+        name: "qdot",
+        symbols: model.velocities.clone(),
+    }
+}
+
+fn expressions(model: &mut Model, matrix: &Matrix) -> Vec<ExprId> {
+    matrix.to_expressions(&mut model.store)
+}
+
+fn matrix_literal(values: &[TokenStream], columns: usize) -> TokenStream {
+    let rows = values.chunks(columns.max(1)).map(|row| quote!([#(#row),*]));
+    quote!([#(#rows),*])
+}
+
+/// A function body and which argument arrays it reads.
+struct Body {
+    statements: TokenStream,
+    used: Vec<&'static str>,
+}
+
+/// Lowers `outputs` with the arguments and the parameters (`self.name`) as
+/// inputs, and assembles the returned value with `result`.
+fn function_body(
+    model: &Model,
+    arguments: &[Argument],
+    outputs: &[ExprId],
+    result: impl Fn(&[TokenStream]) -> TokenStream,
+) -> Result<Body, Diagnostics> {
+    let mut symbols = Vec::new();
+    let mut sources = Vec::new();
+    let mut owners = Vec::new();
+    for argument in arguments {
+        let array = Ident::new(argument.name, Span::call_site());
+        for (i, &symbol) in argument.symbols.iter().enumerate() {
+            symbols.push(symbol);
+            sources.push(quote!(#array[#i]));
+            owners.push(Some(argument.name));
+        }
+    }
+    for parameter in &model.parameters {
+        let field = format_ident!("{}", parameter.variable.declared.name);
+        symbols.push(parameter.variable.symbol);
+        sources.push(quote!(self.#field));
+        owners.push(None);
+    }
+    let program = ir::lower(&model.store, &symbols, outputs).map_err(|e| internal(model, e))?;
+    let emitted = program.emit(&sources).map_err(|e| internal(model, e))?;
+    let mut used: Vec<&'static str> = program
+        .instructions()
+        .iter()
+        .filter_map(|i| match i.op {
+            Op::Input(slot) => owners[slot],
+            _ => None,
+        })
+        .collect();
+    used.dedup();
+    let statements = emitted.statements;
+    let value = result(&emitted.outputs);
+    Ok(Body {
+        statements: quote!(#statements #value),
+        used,
+    })
+}
+
+/// `q`/`qdot`, or `_q`/`_qdot` when the body does not read them.
+fn argument_names(used: &[&str]) -> (Ident, Ident) {
+    let name = |n: &str| {
+        let spelled = if used.contains(&n) {
+            n.to_string()
+        } else {
+            format!("_{n}")
+        };
+        Ident::new(&spelled, Span::call_site())
+    };
+    (name("q"), name("qdot"))
+}
+
+/// An error of the generator itself, reported on the model's name.
+fn internal(model: &Model, error: impl std::fmt::Display) -> Diagnostics {
+    Diagnostic::new(
+        model.name.span(),
+        format!("internal error while generating code for this model: {error}"),
+    )
+    .into()
+}

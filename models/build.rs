@@ -1,0 +1,11 @@
+//! Generates the models declared in `.model` files.
+
+fn main() {
+    if let Err(error) = chaplygin_codegen::Builder::new()
+        .model_file("sleigh.model")
+        .write_to_out_dir()
+    {
+        eprintln!("{error}");
+        std::process::exit(1);
+    }
+}
