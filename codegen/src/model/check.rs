@@ -40,7 +40,7 @@ const KEYWORDS: [&str; 51] = [
     "override", "priv", "typeof", "unsized", "virtual", "yield",
 ];
 
-/// Configurations at which positive definiteness is sampled (besides q = 0).
+/// Random configurations at which positive definiteness is sampled.
 const DEFINITENESS_SAMPLES: usize = 24;
 
 /// Checks a parsed model and builds its symbolic form.
@@ -355,9 +355,10 @@ impl Checker {
             if !self.rule_fresh_name(&declared.name, declared.span, "parameter") || !field_ok {
                 continue;
             }
-            let Some(default) = default else { continue };
+            // Declared even when its default is wrong, so its uses are not reported too.
             let symbol = self.store.declare(&declared.name, SymbolKind::Parameter);
             self.scope.bind(&declared.name, Binding::Parameter(symbol));
+            let Some(default) = default else { continue };
             parameters.push(Parameter {
                 variable: Variable { declared, symbol },
                 default,
@@ -589,8 +590,10 @@ impl Checker {
         true
     }
 
-    /// The metric is positive definite at the default parameters, at q = 0
-    /// and at a sample of configurations.
+    /// The metric is positive definite at the default parameters at a sample
+    /// of random configurations. Singular sets of measure zero, such as
+    /// `r = 0` of polar coordinates, are coordinate singularities, not errors,
+    /// and random samples do not land on them.
     fn rule_positive_definite(
         &mut self,
         g: &Matrix,
@@ -600,16 +603,8 @@ impl Checker {
     ) {
         let mut generator = SplitMix::new(0x9d2c_5680);
         let n = coordinates.len();
-        for sample in 0..=DEFINITENESS_SAMPLES {
-            let configuration: Vec<f64> = (0..n)
-                .map(|_| {
-                    if sample == 0 {
-                        0.0
-                    } else {
-                        generator.uniform(-3.0, 3.0)
-                    }
-                })
-                .collect();
+        for _ in 0..DEFINITENESS_SAMPLES {
+            let configuration: Vec<f64> = (0..n).map(|_| generator.uniform(-3.0, 3.0)).collect();
             let value_of = |s: SymbolId| {
                 coordinates
                     .iter()
