@@ -6,3 +6,8 @@
 
 pub use chaplygin_macros::model;
 pub use chaplygin_runtime as runtime;
+
+/// The README's examples, compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
