@@ -47,6 +47,10 @@ const DEFINITENESS_SAMPLES: usize = 24;
 pub fn check(syntax: &ModelSyntax) -> Result<Model, Diagnostics> {
     let mut checker = Checker::default();
     let sections = checker.sections(syntax);
+    if !sections.contains_key("coordinates") {
+        // Every expression would mention undeclared names: report the cause only.
+        return Err(checker.diagnostics);
+    }
     let options = checker.options(syntax);
     let coordinates = checker.coordinates(sections.get("coordinates"));
     let parameters = checker.parameters(sections.get("parameters"));
@@ -267,6 +271,8 @@ impl Checker {
         if let Some(&(first, _)) = self.declared.get(name) {
             let message = if kind == "parameter" && first == "coordinate" {
                 format!("`{name}` is a coordinate and cannot also be used as a parameter")
+            } else if first == kind {
+                format!("`{name}` is declared twice as a {kind}")
             } else {
                 format!("`{name}` is declared twice: first as a {first}, again as a {kind}")
             };
@@ -378,10 +384,20 @@ impl Checker {
             _ => None,
         };
         if parsed.is_none() {
-            self.diagnostics.error(
-                value.span(),
-                "a parameter's default must be a number, e.g. `m = 1.0` or `g = -9.81`",
-            );
+            let coordinate = match value {
+                Value::Expr(Expr::Name(name)) => self
+                    .declared
+                    .get(&name.to_string())
+                    .is_some_and(|(kind, _)| *kind == "coordinate"),
+                _ => false,
+            };
+            let message = if coordinate {
+                "a parameter's default must be a number, and this is a coordinate (parameters are \
+                 constants), e.g. `m = 1.0` or `g = -9.81`"
+            } else {
+                "a parameter's default must be a number, e.g. `m = 1.0` or `g = -9.81`"
+            };
+            self.diagnostics.error(value.span(), message);
         }
         parsed
     }
@@ -417,9 +433,12 @@ impl Checker {
             if !self.rule_fresh_name(&declared.name, declared.span, "definition") {
                 continue;
             }
-            if let Some(id) = lowered {
-                self.scope.bind(&declared.name, Binding::Definition(id));
-            }
+            // A definition that failed is still declared, so its uses are not reported too.
+            let id = lowered.unwrap_or_else(|| {
+                let placeholder = self.store.declare(&declared.name, SymbolKind::Auxiliary);
+                self.store.symbol(placeholder)
+            });
+            self.scope.bind(&declared.name, Binding::Definition(id));
         }
     }
 

@@ -135,7 +135,12 @@ impl Lowerer<'_> {
     /// `dot(q)`: the velocity of a coordinate.
     fn velocity(&mut self, function: &proc_macro2::Ident, arguments: &[Expr]) -> Option<ExprId> {
         let [Expr::Name(argument)] = arguments else {
-            let span = arguments.first().map_or(function.span(), Expr::first_span);
+            // Point at the surplus argument, the one that is not a name, or `dot` itself.
+            let span = match arguments {
+                [] => function.span(),
+                [only] => only.first_span(),
+                [_, surplus, ..] => surplus.first_span(),
+            };
             self.diagnostics.error(
                 span,
                 "`dot()` takes exactly one coordinate name, e.g. `dot(theta)`",

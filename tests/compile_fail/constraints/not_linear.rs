@@ -1,4 +1,4 @@
-// Rule: a constraint not linear and homogeneous in velocities (`dot(y)^2` is quadratic). Error at `dot` in `dot(y)^2`.
+// Rule: a constraint not linear and homogeneous in velocities (`dot(y)^2` is quadratic). Error at `cos`, the first token of the offending term `cos(theta)*dot(y)^2`.
 chaplygin::model! {
     pub struct Sleigh {
         coordinates: [x, y, theta],

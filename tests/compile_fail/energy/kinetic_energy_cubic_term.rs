@@ -1,4 +1,4 @@
-// Rule: kinetic energy not quadratic in velocities (`dot(theta)^3` is cubic). Error at `dot` in `dot(theta)^3`.
+// Rule: kinetic energy not quadratic in velocities (`dot(theta)^3` is cubic). Error at `inertia`, the first token of the term `inertia/2*dot(theta)^3`.
 chaplygin::model! {
     pub struct Sleigh {
         coordinates: [x, y, theta],

@@ -1,4 +1,4 @@
-// Rule: kinetic energy not quadratic in velocities (the last term `m*a*dot(theta)` is linear). Error at `dot` in that term's `dot(theta)`.
+// Rule: kinetic energy not quadratic in velocities (the last term `m*a*dot(theta)` is linear). Error at `m`, the first token of that term.
 chaplygin::model! {
     pub struct Sleigh {
         coordinates: [x, y, theta],

@@ -1,4 +1,4 @@
-// Rule: kinetic energy not quadratic in velocities (a velocity inside `cos`). Error at `dot` in `cos(dot(theta))`.
+// Rule: kinetic energy not quadratic in velocities (a velocity inside `cos`). Error at `inertia`, the first token of the term `inertia*(1 - cos(dot(theta)))`.
 chaplygin::model! {
     pub struct Sleigh {
         coordinates: [x, y, theta],

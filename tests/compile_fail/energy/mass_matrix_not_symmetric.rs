@@ -1,4 +1,4 @@
-// Rule: mass matrix not symmetric (entry (3, 1) is `m*a*sin(theta)`, entry (1, 3) is `-m*a*sin(theta)`). Error at `m`, the first token of entry (3, 1).
+// Rule: mass matrix not symmetric (entry (1, 3) is `-m*a*sin(theta)`, entry (3, 1) is `m*a*sin(theta)`). Error at the `-` that starts entry (1, 3).
 chaplygin::model! {
     pub struct Sleigh {
         coordinates: [x, y, theta],

@@ -7,7 +7,7 @@ chaplygin::model! {
             + (dot(y) + a*cos(theta)*dot(theta))^2) + inertia/2*dot(theta)^2,
         potential_energy: 0,
         constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
-        inputs: [torque = theta, thrust = [cos(theta), sin(theta)]],
+        inputs: [thrust = [cos(theta), sin(theta)]],
     }
 }
 

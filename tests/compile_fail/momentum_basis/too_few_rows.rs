@@ -1,4 +1,4 @@
-// Rule: momentum-basis rows not k (k = n - c = 3 - 1 = 2, one row given). Error at the momentum_basis list `[ ... ]` (starts at its `[`).
+// Rule: momentum-basis rows not k (k = n - c = 3 - 1 = 2, one row given). Error at the section name `momentum_basis`.
 chaplygin::model! {
     pub struct Sleigh {
         coordinates: [x, y, theta],

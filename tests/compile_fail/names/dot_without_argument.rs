@@ -1,4 +1,4 @@
-// Rule: `dot()` of a non-coordinate: `dot` takes exactly one coordinate; `dot()` has none. Error at the empty parentheses `()` of `dot()`.
+// Rule: `dot()` of a non-coordinate: `dot` takes exactly one coordinate; `dot()` has none. Error at the function name `dot` of `dot()`.
 chaplygin::model! {
     pub struct Sleigh {
         coordinates: [x, y, theta],
