@@ -465,7 +465,7 @@ impl Checker {
             .map(|c| self.store.velocity_of(c.symbol))
             .collect();
         let (section, energy, g) = if let Some(section) = sections.get("kinetic_energy") {
-            let (t, g) = self.from_kinetic_energy(section, &velocities)?;
+            let (t, g) = self.metric_of_kinetic_energy(section, &velocities)?;
             (section, t, g)
         } else {
             let section = sections.get("mass_matrix")?;
@@ -480,7 +480,7 @@ impl Checker {
         Some((energy, g))
     }
 
-    fn from_kinetic_energy(
+    fn metric_of_kinetic_energy(
         &mut self,
         section: &Section,
         velocities: &[SymbolId],
@@ -770,7 +770,7 @@ impl Checker {
     /// `(names, A)` from `constraints` or `distribution` (none: c = 0).
     fn constraints(&mut self, sections: &Sections, n: usize) -> Option<(Vec<Declared>, Matrix)> {
         if let Some(section) = sections.get("distribution") {
-            return self.from_distribution(section, n);
+            return self.annihilator_of_distribution(section, n);
         }
         let Some(section) = sections.get("constraints") else {
             return Some((Vec::new(), Matrix::zeros(0, n)));
@@ -827,7 +827,7 @@ impl Checker {
     /// Rows of A (or of a momentum basis) are independent: each row adds rank.
     fn rule_independent_rows(&mut self, m: &Matrix, names: &[Declared], what: &str) -> bool {
         let atoms = self.store.atoms().clone();
-        for i in 0..m.rows() {
+        for (i, name) in names.iter().enumerate().take(m.rows()) {
             let upto = Matrix::new(
                 i + 1,
                 m.columns(),
@@ -835,10 +835,10 @@ impl Checker {
             );
             if upto.is_ok_and(|u| u.rank(&atoms) < i + 1) {
                 self.diagnostics.error(
-                    names[i].span,
+                    name.span,
                     format!(
                         "{what} `{}` depends on the ones before it: the rows must be linearly independent",
-                        names[i].name
+                        name.name
                     ),
                 );
                 return false;
@@ -849,7 +849,7 @@ impl Checker {
 
     /// A distribution: k independent vector fields of length n, no velocities;
     /// the constraint rows are a basis of its annihilator.
-    fn from_distribution(
+    fn annihilator_of_distribution(
         &mut self,
         section: &Section,
         n: usize,
@@ -1119,9 +1119,7 @@ impl Checker {
         let mut indices = Vec::with_capacity(arity);
         for argument in arguments {
             let found = match argument {
-                Expr::Name(ident) => coordinates
-                    .iter()
-                    .position(|c| c.declared.name == ident.to_string()),
+                Expr::Name(ident) => coordinates.iter().position(|c| *ident == c.declared.name),
                 _ => None,
             };
             match found {

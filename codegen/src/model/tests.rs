@@ -65,12 +65,10 @@ fn papers_distribution(model: &mut Model) -> Matrix {
         zero,
     ];
     let mut entries = Vec::new();
-    for i in 0..5 {
-        entries.extend([
-            rolling[i],
-            if i == 3 { one } else { zero },
-            if i == 4 { one } else { zero },
-        ]);
+    for (i, &component) in rolling.iter().enumerate() {
+        let psi = if i == 3 { one } else { zero };
+        let phi = if i == 4 { one } else { zero };
+        entries.extend([component, psi, phi]);
     }
     Matrix::from_expressions(store, 5, 3, &entries).expect("5 x 3")
 }
