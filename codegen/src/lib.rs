@@ -15,12 +15,16 @@
 #![warn(missing_docs)]
 
 mod build;
+pub mod derive;
 pub mod diagnostic;
 pub mod emit;
 pub mod ir;
 pub mod model;
 pub mod sym;
 pub mod syntax;
+
+#[cfg(test)]
+mod fixtures;
 
 pub use build::{BuildError, Builder, generate};
 

@@ -16,29 +16,27 @@
 //! named by absolute paths (`::core::primitive::f64`), so the items compile
 //! under `#![deny(warnings)]` whatever the caller has in scope.
 
+mod kinematics;
+
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::ir::{self, Op};
 use crate::model::Model;
-use crate::sym::{ExprId, Matrix, RationalFunction, SymbolId};
+use crate::sym::{ExprId, Matrix, SymbolId};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-/// One argument array of an emitted function: `q` or `qdot`.
-struct Argument {
-    name: &'static str,
-    symbols: Vec<SymbolId>,
+/// One argument array of an emitted function (`q`, `qdot`, `x`, `u`): its
+/// elements are these symbols, in order.
+pub(crate) struct Argument {
+    pub(crate) name: &'static str,
+    pub(crate) symbols: Vec<SymbolId>,
 }
 
 /// The Rust items of a checked model.
 pub fn model_items(model: &mut Model) -> Result<TokenStream, Diagnostics> {
     let definition = parameter_struct(model);
     let constants = constants(model);
-    let functions = [
-        mass_matrix(model)?,
-        energy(model)?,
-        constraint_matrix(model)?,
-        constraint_residual(model)?,
-    ];
+    let functions = kinematics::functions(model)?;
     let name = &model.name;
     Ok(quote! {
         #definition
@@ -49,7 +47,7 @@ pub fn model_items(model: &mut Model) -> Result<TokenStream, Diagnostics> {
     })
 }
 
-fn f64_type() -> TokenStream {
+pub(crate) fn f64_type() -> TokenStream {
     quote!(::core::primitive::f64)
 }
 
@@ -138,125 +136,51 @@ fn constants(model: &Model) -> TokenStream {
     }
 }
 
-fn mass_matrix(model: &mut Model) -> Result<TokenStream, Diagnostics> {
-    let n = model.n();
-    let outputs = expressions(model, &model.mass_matrix.clone());
-    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
-        matrix_literal(values, n)
-    })?;
-    let f64 = f64_type();
-    let (q, _) = argument_names(&body.used);
-    let statements = body.statements;
-    Ok(quote! {
-        /// The mass matrix `g(q)`.
-        pub fn mass_matrix(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #n] {
-            #statements
-        }
-    })
-}
-
-fn energy(model: &mut Model) -> Result<TokenStream, Diagnostics> {
-    let n = model.n();
-    let atoms = model.store.atoms().clone();
-    let total = model.kinetic_energy.add(&model.potential_energy, &atoms);
-    let outputs = vec![model.store.expression_of(&total)];
-    let arguments = [coordinates(model), velocities(model)];
-    let body = function_body(model, &arguments, &outputs, |values| quote!(#(#values)*))?;
-    let f64 = f64_type();
-    let (q, qdot) = argument_names(&body.used);
-    let statements = body.statements;
-    Ok(quote! {
-        /// The total energy `T + V`.
-        pub fn energy(&self, #q: &[#f64; #n], #qdot: &[#f64; #n]) -> #f64 {
-            #statements
-        }
-    })
-}
-
-fn constraint_matrix(model: &mut Model) -> Result<TokenStream, Diagnostics> {
-    let (n, c) = (model.n(), model.c());
-    let outputs = expressions(model, &model.constraint_matrix.clone());
-    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
-        matrix_literal(values, n)
-    })?;
-    let f64 = f64_type();
-    let (q, _) = argument_names(&body.used);
-    let statements = body.statements;
-    Ok(quote! {
-        /// The constraint rows `A(q)`, in declared order: allowed velocities satisfy `A(q) qdot = 0`.
-        pub fn constraint_matrix(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #c] {
-            #statements
-        }
-    })
-}
-
-fn constraint_residual(model: &mut Model) -> Result<TokenStream, Diagnostics> {
-    let (n, c) = (model.n(), model.c());
-    let atoms = model.store.atoms().clone();
-    let velocity_column = Matrix::new(
-        n,
-        1,
-        model
-            .velocities
-            .clone()
-            .into_iter()
-            .map(|v| {
-                let atom = model.store.symbol_atom(v);
-                RationalFunction::from_poly(crate::sym::Poly::atom(atom))
-            })
-            .collect(),
-    )
-    .map_err(|e| internal(model, e))?;
-    let residual = model
-        .constraint_matrix
-        .mul(&velocity_column, &atoms)
-        .map_err(|e| internal(model, e))?;
-    let outputs = expressions(model, &residual);
-    let arguments = [coordinates(model), velocities(model)];
-    let body = function_body(model, &arguments, &outputs, |values| quote!([#(#values),*]))?;
-    let f64 = f64_type();
-    let (q, qdot) = argument_names(&body.used);
-    let statements = body.statements;
-    Ok(quote! {
-        /// The constraint residual `A(q) qdot`: zero for allowed velocities.
-        pub fn constraint_residual(&self, #q: &[#f64; #n], #qdot: &[#f64; #n]) -> [#f64; #c] {
-            #statements
-        }
-    })
-}
-
-fn coordinates(model: &Model) -> Argument {
+pub(crate) fn coordinates(model: &Model) -> Argument {
     Argument {
         name: "q",
         symbols: model.coordinate_symbols(),
     }
 }
 
-fn velocities(model: &Model) -> Argument {
+pub(crate) fn velocities(model: &Model) -> Argument {
     Argument {
         name: "qdot",
         symbols: model.velocities.clone(),
     }
 }
 
-fn expressions(model: &mut Model, matrix: &Matrix) -> Vec<ExprId> {
+pub(crate) fn expressions(model: &mut Model, matrix: &Matrix) -> Vec<ExprId> {
     matrix.to_expressions(&mut model.store)
 }
 
-fn matrix_literal(values: &[TokenStream], columns: usize) -> TokenStream {
+pub(crate) fn matrix_literal(values: &[TokenStream], columns: usize) -> TokenStream {
     let rows = values.chunks(columns.max(1)).map(|row| quote!([#(#row),*]));
     quote!([#(#rows),*])
 }
 
 /// A function body and which argument arrays it reads.
-struct Body {
-    statements: TokenStream,
+pub(crate) struct Body {
+    pub(crate) statements: TokenStream,
     used: Vec<&'static str>,
+}
+
+impl Body {
+    /// The name to give argument `name` in the signature: itself, or with a
+    /// leading underscore when the body does not read it (no unused warnings).
+    pub(crate) fn argument(&self, name: &'static str) -> Ident {
+        let spelled = if self.used.contains(&name) {
+            name.to_string()
+        } else {
+            format!("_{name}")
+        };
+        Ident::new(&spelled, Span::call_site())
+    }
 }
 
 /// Lowers `outputs` with the arguments and the parameters (`self.name`) as
 /// inputs, and assembles the returned value with `result`.
-fn function_body(
+pub(crate) fn function_body(
     model: &Model,
     arguments: &[Argument],
     outputs: &[ExprId],
@@ -289,6 +213,7 @@ fn function_body(
             _ => None,
         })
         .collect();
+    used.sort_unstable();
     used.dedup();
     let statements = emitted.statements;
     let value = result(&emitted.outputs);
@@ -298,21 +223,8 @@ fn function_body(
     })
 }
 
-/// `q`/`qdot`, or `_q`/`_qdot` when the body does not read them.
-fn argument_names(used: &[&str]) -> (Ident, Ident) {
-    let name = |n: &str| {
-        let spelled = if used.contains(&n) {
-            n.to_string()
-        } else {
-            format!("_{n}")
-        };
-        Ident::new(&spelled, Span::call_site())
-    };
-    (name("q"), name("qdot"))
-}
-
 /// An error of the generator itself, reported on the model's name.
-fn internal(model: &Model, error: impl std::fmt::Display) -> Diagnostics {
+pub(crate) fn internal(model: &Model, error: impl std::fmt::Display) -> Diagnostics {
     Diagnostic::new(
         model.name.span(),
         format!("internal error while generating code for this model: {error}"),

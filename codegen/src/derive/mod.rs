@@ -1,0 +1,5 @@
+//! Derivations: from a checked model to its equations of motion.
+//!
+//! One module per formulation, each stating its equation and citing its source.
+
+pub mod constraints;

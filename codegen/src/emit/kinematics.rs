@@ -1,0 +1,108 @@
+//! The configuration-level items: `mass_matrix`, `energy`,
+//! `constraint_matrix`, `constraint_residual`.
+
+use super::{
+    coordinates, expressions, f64_type, function_body, internal, matrix_literal, velocities,
+};
+use crate::diagnostic::Diagnostics;
+use crate::model::Model;
+use crate::sym::{Matrix, RationalFunction};
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// The four functions, in the order they are documented.
+pub(super) fn functions(model: &mut Model) -> Result<Vec<TokenStream>, Diagnostics> {
+    Ok(vec![
+        mass_matrix(model)?,
+        energy(model)?,
+        constraint_matrix(model)?,
+        constraint_residual(model)?,
+    ])
+}
+
+fn mass_matrix(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+    let n = model.n();
+    let outputs = expressions(model, &model.mass_matrix.clone());
+    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+        matrix_literal(values, n)
+    })?;
+    let f64 = f64_type();
+    let q = body.argument("q");
+    let statements = body.statements;
+    Ok(quote! {
+        /// The mass matrix `g(q)`.
+        pub fn mass_matrix(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #n] {
+            #statements
+        }
+    })
+}
+
+fn energy(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+    let n = model.n();
+    let atoms = model.store.atoms().clone();
+    let total = model.kinetic_energy.add(&model.potential_energy, &atoms);
+    let outputs = vec![model.store.expression_of(&total)];
+    let arguments = [coordinates(model), velocities(model)];
+    let body = function_body(model, &arguments, &outputs, |values| quote!(#(#values)*))?;
+    let f64 = f64_type();
+    let (q, qdot) = (body.argument("q"), body.argument("qdot"));
+    let statements = body.statements;
+    Ok(quote! {
+        /// The total energy `T + V`.
+        pub fn energy(&self, #q: &[#f64; #n], #qdot: &[#f64; #n]) -> #f64 {
+            #statements
+        }
+    })
+}
+
+fn constraint_matrix(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+    let (n, c) = (model.n(), model.c());
+    let outputs = expressions(model, &model.constraint_matrix.clone());
+    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+        matrix_literal(values, n)
+    })?;
+    let f64 = f64_type();
+    let q = body.argument("q");
+    let statements = body.statements;
+    Ok(quote! {
+        /// The constraint rows `A(q)`, in declared order: allowed velocities satisfy `A(q) qdot = 0`.
+        pub fn constraint_matrix(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #c] {
+            #statements
+        }
+    })
+}
+
+fn constraint_residual(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+    let (n, c) = (model.n(), model.c());
+    let atoms = model.store.atoms().clone();
+    let velocity_column = Matrix::new(
+        n,
+        1,
+        model
+            .velocities
+            .clone()
+            .into_iter()
+            .map(|v| {
+                let atom = model.store.symbol_atom(v);
+                RationalFunction::from_poly(crate::sym::Poly::atom(atom))
+            })
+            .collect(),
+    )
+    .map_err(|e| internal(model, e))?;
+    let residual = model
+        .constraint_matrix
+        .mul(&velocity_column, &atoms)
+        .map_err(|e| internal(model, e))?;
+    let outputs = expressions(model, &residual);
+    let arguments = [coordinates(model), velocities(model)];
+    let body = function_body(model, &arguments, &outputs, |values| quote!([#(#values),*]))?;
+    let f64 = f64_type();
+    let (q, qdot) = (body.argument("q"), body.argument("qdot"));
+    let statements = body.statements;
+    Ok(quote! {
+        /// The constraint residual `A(q) qdot`: zero for allowed velocities.
+        pub fn constraint_residual(&self, #q: &[#f64; #n], #qdot: &[#f64; #n]) -> [#f64; #c] {
+            #statements
+        }
+    })
+}
