@@ -7,6 +7,7 @@
 //! reported at once; a section whose inputs failed is skipped rather than
 //! reported again.
 
+use super::invariance::{Invariants, first_broken};
 use super::lower::{Binding, FUNCTIONS, Lowerer, Scope};
 use super::{Declared, GroupFactor, Model, MomentumBasis, Options, Parameter, Symmetry, Variable};
 use crate::diagnostic::Diagnostics;
@@ -66,6 +67,24 @@ pub fn check(syntax: &ModelSyntax) -> Result<Model, Diagnostics> {
         _ => None,
     };
     let symmetry = checker.symmetry(sections.get("symmetry"), &coordinates);
+    if let (Some(symmetry), Some((kinetic_energy, _)), Some(potential_energy), Some((_, a))) =
+        (&symmetry, &energy, &potential_energy, &constraints)
+    {
+        let velocities: Vec<SymbolId> = coordinates
+            .iter()
+            .map(|c| checker.store.velocity_of(c.symbol))
+            .collect();
+        checker.rule_invariant(
+            symmetry,
+            &Invariants {
+                coordinates: &coordinates,
+                velocities: &velocities,
+                kinetic_energy,
+                potential_energy,
+                constraint_matrix: a,
+            },
+        );
+    }
     if !checker.diagnostics.is_empty() {
         return Err(checker.diagnostics);
     }
@@ -1049,6 +1068,22 @@ impl Checker {
 
     // ----- symmetry ------------------------------------------------------
 
+    /// The Lagrangian and the constraints are invariant under the declared group.
+    fn rule_invariant(&mut self, symmetry: &Symmetry, model: &Invariants) {
+        match first_broken(&mut self.store, symmetry, model) {
+            Ok(None) => {}
+            Ok(Some(broken)) => self.diagnostics.error(
+                symmetry.span,
+                format!(
+                    "{} not invariant under the declared symmetry group: the momentum \
+                     equation needs the Lagrangian and the constraints to be invariant",
+                    broken.describe()
+                ),
+            ),
+            Err(error) => self.diagnostics.error(symmetry.span, error.to_string()),
+        }
+    }
+
     /// A symmetry is a product of `se2(x, y, theta)`, `translation(q)` and
     /// `rotation(q)` of distinct coordinates.
     fn symmetry(
@@ -1085,7 +1120,7 @@ impl Checker {
         }
         Some(Symmetry {
             factors,
-            span: section.key.span(),
+            span: expr.first_span(),
         })
     }
 

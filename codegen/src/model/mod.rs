@@ -9,6 +9,7 @@
 //! language is one function in [`check`]; all violations are reported at once.
 
 mod check;
+mod invariance;
 mod lower;
 #[cfg(test)]
 mod tests;
@@ -76,7 +77,7 @@ pub enum GroupFactor {
 pub struct Symmetry {
     /// The factors, as written.
     pub factors: Vec<GroupFactor>,
-    /// Where the group was declared.
+    /// Where the group was declared (its first token).
     pub span: Span,
 }
 

@@ -183,3 +183,49 @@ fn definiteness_symmetry_and_dependence_are_checked() {
         "{message}"
     );
 }
+
+/// The sleigh with a given potential, constraint, kinetic energy and group.
+fn sleigh_with(potential: &str, constraint: &str, kinetic: &str, group: &str) -> String {
+    format!(
+        "struct S {{ coordinates: [x, y, theta], parameters: [m = 1.0, inertia = 0.1, a = 0.5, slope = 0.1],
+        kinetic_energy: {kinetic}, potential_energy: {potential},
+        constraints: [blade = {constraint}], symmetry: {group} }}"
+    )
+}
+
+const SLEIGH_T: &str = "m/2*((dot(x) - a*sin(theta)*dot(theta))^2 + (dot(y) + a*cos(theta)*dot(theta))^2) + inertia/2*dot(theta)^2";
+const BLADE: &str = "-sin(theta)*dot(x) + cos(theta)*dot(y)";
+
+#[test]
+fn the_group_must_preserve_the_lagrangian_and_the_constraints() {
+    // SE(2) is a symmetry of the flat sleigh
+    checked(&sleigh_with("0", BLADE, SLEIGH_T, "se2(x, y, theta)"));
+    // on an incline rising along x, translations along y remain a symmetry, SE(2) does not
+    let slope = "m*sin(slope)*(x + a*cos(theta))";
+    checked(&sleigh_with(slope, BLADE, SLEIGH_T, "translation(y)"));
+    let message = errors(&sleigh_with(slope, BLADE, SLEIGH_T, "se2(x, y, theta)"));
+    assert!(
+        message.contains("the potential energy is not invariant"),
+        "{message}"
+    );
+    // an anisotropic kinetic energy breaks rotations
+    let anisotropic = "m/2*(dot(x)^2 + 2*dot(y)^2) + inertia/2*dot(theta)^2";
+    let message = errors(&sleigh_with("0", BLADE, anisotropic, "se2(x, y, theta)"));
+    assert!(
+        message.contains("the kinetic energy is not invariant"),
+        "{message}"
+    );
+    // a blade fixed in the world frame (no motion along x) is not carried along by rotations
+    let message = errors(&sleigh_with("0", "dot(x)", SLEIGH_T, "se2(x, y, theta)"));
+    assert!(
+        message.contains("the constraints are not invariant"),
+        "{message}"
+    );
+    // but it is by translations
+    checked(&sleigh_with(
+        "0",
+        "dot(x)",
+        SLEIGH_T,
+        "translation(x) * translation(y)",
+    ));
+}

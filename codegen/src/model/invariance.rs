@@ -1,0 +1,171 @@
+//! Invariance of a model under its declared symmetry group.
+//!
+//! The group acts on the coordinates: `se2(x, y, theta)` by
+//! `(x, y, theta) -> (x cos a - y sin a + b_x, x sin a + y cos a + b_y, theta + a)`,
+//! `translation(q)` and `rotation(q)` by `q -> q + b`; velocities transform by
+//! the tangent map (`xdot -> xdot cos a - ydot sin a`, ...). The group
+//! parameters are fresh symbols, so the checks hold for every group element:
+//! `T(g q, g qdot) = T(q, qdot)` and `V(g q) = V(q)` exactly (normal form of
+//! the difference), and the constraint distribution is carried to itself, i.e.
+//! the transformed rows `A(g q) g_*` lie in the row space of `A(q)`: the
+//! exact rank of the stacked rows stays `c` (Koon & Marsden, section 2).
+
+use super::{GroupFactor, Symmetry, Variable};
+use crate::sym::{
+    ExprId, Function, Matrix, RationalFunction, Store, SymError, SymbolId, SymbolKind,
+};
+use std::collections::HashMap;
+
+/// Which part of the model the group does not preserve.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Broken {
+    KineticEnergy,
+    PotentialEnergy,
+    Constraints,
+}
+
+impl Broken {
+    /// The subject and verb of the error message.
+    pub(super) fn describe(self) -> &'static str {
+        match self {
+            Broken::KineticEnergy => "the kinetic energy is",
+            Broken::PotentialEnergy => "the potential energy is",
+            Broken::Constraints => "the constraints are",
+        }
+    }
+}
+
+/// What the check needs of the model.
+pub(super) struct Invariants<'a> {
+    pub(super) coordinates: &'a [Variable],
+    pub(super) velocities: &'a [SymbolId],
+    pub(super) kinetic_energy: &'a RationalFunction,
+    pub(super) potential_energy: &'a RationalFunction,
+    pub(super) constraint_matrix: &'a Matrix,
+}
+
+/// The first part of the model the group does not preserve, if any.
+pub(super) fn first_broken(
+    store: &mut Store,
+    symmetry: &Symmetry,
+    model: &Invariants,
+) -> Result<Option<Broken>, SymError> {
+    let action = group_action(store, symmetry, model.coordinates, model.velocities)?;
+    if !preserved(store, model.kinetic_energy, &action)? {
+        return Ok(Some(Broken::KineticEnergy));
+    }
+    if !preserved(store, model.potential_energy, &action)? {
+        return Ok(Some(Broken::PotentialEnergy));
+    }
+    if !constraints_preserved(store, model.constraint_matrix, model.velocities, &action)? {
+        return Ok(Some(Broken::Constraints));
+    }
+    Ok(None)
+}
+
+/// The substitution `q -> g q`, `qdot -> g_* qdot` for a generic group element.
+fn group_action(
+    store: &mut Store,
+    symmetry: &Symmetry,
+    coordinates: &[Variable],
+    velocities: &[SymbolId],
+) -> Result<HashMap<SymbolId, ExprId>, SymError> {
+    let mut action = HashMap::new();
+    for (index, factor) in symmetry.factors.iter().enumerate() {
+        let parameter = |store: &mut Store, role: &str| {
+            let symbol = store.declare(&format!("group {role} {index}"), SymbolKind::Auxiliary);
+            store.symbol(symbol)
+        };
+        match *factor {
+            GroupFactor::Se2 { x, y, theta } => {
+                let (angle, shift_x, shift_y) = (
+                    parameter(store, "angle"),
+                    parameter(store, "shift x"),
+                    parameter(store, "shift y"),
+                );
+                let (cos, sin) = (
+                    store.apply(Function::Cos, angle)?,
+                    store.apply(Function::Sin, angle)?,
+                );
+                let rotate = |store: &mut Store, u: ExprId, v: ExprId| {
+                    let (uc, vs) = (store.mul2(u, cos), store.mul2(v, sin));
+                    let (us, vc) = (store.mul2(u, sin), store.mul2(v, cos));
+                    (store.sub(uc, vs), store.add2(us, vc))
+                };
+                let (qx, qy, qt) = (
+                    store.symbol(coordinates[x].symbol),
+                    store.symbol(coordinates[y].symbol),
+                    store.symbol(coordinates[theta].symbol),
+                );
+                let (rx, ry) = rotate(store, qx, qy);
+                action.insert(coordinates[x].symbol, store.add2(rx, shift_x));
+                action.insert(coordinates[y].symbol, store.add2(ry, shift_y));
+                action.insert(coordinates[theta].symbol, store.add2(qt, angle));
+                let (vx, vy) = (store.symbol(velocities[x]), store.symbol(velocities[y]));
+                let (wx, wy) = rotate(store, vx, vy);
+                action.insert(velocities[x], wx);
+                action.insert(velocities[y], wy);
+            }
+            GroupFactor::Translation(q) | GroupFactor::Rotation(q) => {
+                let shift = parameter(store, "shift");
+                let coordinate = store.symbol(coordinates[q].symbol);
+                action.insert(coordinates[q].symbol, store.add2(coordinate, shift));
+            }
+        }
+    }
+    Ok(action)
+}
+
+/// `f(g q, g_* qdot) = f(q, qdot)` exactly.
+fn preserved(
+    store: &mut Store,
+    form: &RationalFunction,
+    action: &HashMap<SymbolId, ExprId>,
+) -> Result<bool, SymError> {
+    let moved = transformed(store, form, action)?;
+    Ok(moved.sub(form, store.atoms()).is_zero())
+}
+
+fn transformed(
+    store: &mut Store,
+    form: &RationalFunction,
+    action: &HashMap<SymbolId, ExprId>,
+) -> Result<RationalFunction, SymError> {
+    let expression = store.expression_of(form);
+    let moved = store.substitute(expression, action)?;
+    store.normal(moved)
+}
+
+/// The transformed constraint rows stay in the row space of `A(q)`.
+fn constraints_preserved(
+    store: &mut Store,
+    a: &Matrix,
+    velocities: &[SymbolId],
+    action: &HashMap<SymbolId, ExprId>,
+) -> Result<bool, SymError> {
+    let (c, n) = (a.rows(), a.columns());
+    if c == 0 {
+        return Ok(true);
+    }
+    let atoms = store.atoms().clone();
+    let mut stacked = a.entries().to_vec();
+    for i in 0..c {
+        // the residual row i, moved: sum_j A_ij(g q) (g_* qdot)_j
+        let mut residual = RationalFunction::zero();
+        for (j, &velocity) in velocities.iter().enumerate() {
+            let atom = store.symbol_atom(velocity);
+            let term = a.get(i, j).mul(
+                &RationalFunction::from_poly(crate::sym::Poly::atom(atom)),
+                &atoms,
+            );
+            residual = residual.add(&term, &atoms);
+        }
+        let moved = transformed(store, &residual, action)?;
+        for &velocity in velocities {
+            stacked.push(store.derivative_of_normal(&moved, velocity)?);
+        }
+    }
+    let atoms = store.atoms().clone();
+    let rank = Matrix::new(2 * c, n, stacked).map_or(0, |m| m.rank(&atoms));
+    Ok(rank == c)
+}
