@@ -7,7 +7,11 @@
 //! `X_1..X_k` spanning `D = ker A`. The pivots are chosen at the model's
 //! default configuration (every coordinate 0, parameters at their defaults):
 //! row by row, the column with the largest value there, so the pivots do not
-//! vanish at the defaults and the basis is regular near them.
+//! vanish at the defaults and the basis is regular near them. When A loses
+//! rank at the defaults (a row such as `(1 + x^2)(y xdot + x ydot)` vanishes
+//! at q = 0), no choice is regular there; the pivots are then chosen by exact
+//! elimination instead (the first column with a non-zero entry), which is
+//! regular at almost every configuration.
 //!
 //! **Integrability (Frobenius).** D is integrable, i.e. the constraints are
 //! holonomic in disguise, iff it is involutive: every Lie bracket
@@ -284,29 +288,74 @@ pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, Matrix
     })
 }
 
-/// Gaussian elimination with partial pivoting on A at the defaults: the
-/// pivot column of each row is the one of largest magnitude there.
+/// The dependent speeds: pivots at the defaults when A has full rank there,
+/// generic pivots otherwise.
 fn pivot_columns(model: &mut Model) -> Vec<usize> {
+    pivots_at_defaults(model).unwrap_or_else(|| generic_pivots(model))
+}
+
+/// A pivot smaller than this, relative to A's largest entry at the defaults,
+/// counts as vanishing there (the choice only needs to be regular; the solve
+/// that follows is exact).
+const VANISHING_PIVOT: f64 = 1e-9;
+
+/// Gaussian elimination with partial pivoting on A at the defaults: the
+/// pivot column of each row is the one of largest magnitude there. `None`
+/// when a pivot vanishes (A is singular at the defaults).
+fn pivots_at_defaults(model: &mut Model) -> Option<Vec<usize>> {
     let (n, c) = (model.n(), model.c());
     let defaults = default_point(model);
     let mut values = model
         .constraint_matrix
         .evaluate(&mut model.store, &|s| defaults(s));
+    let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let mut pivots: Vec<usize> = Vec::with_capacity(c);
     for row in 0..c {
-        let best = (0..n).filter(|j| !pivots.contains(j)).max_by(|&a, &b| {
+        let column = (0..n).filter(|j| !pivots.contains(j)).max_by(|&a, &b| {
             values[row * n + a]
                 .abs()
                 .total_cmp(&values[row * n + b].abs())
-        });
-        let Some(column) = best else { break };
+        })?;
         let pivot = values[row * n + column];
-        if pivot != 0.0 {
-            for below in row + 1..c {
-                let factor = values[below * n + column] / pivot;
-                for j in 0..n {
-                    values[below * n + j] -= factor * values[row * n + j];
-                }
+        let regular = pivot.abs() > VANISHING_PIVOT * scale;
+        if !regular {
+            return None;
+        }
+        for below in row + 1..c {
+            let factor = values[below * n + column] / pivot;
+            for j in 0..n {
+                values[below * n + j] -= factor * values[row * n + j];
+            }
+        }
+        pivots.push(column);
+    }
+    Some(pivots)
+}
+
+/// Exact elimination on A: the pivot of each row is its first column with a
+/// non-zero entry (A has full generic rank, checked by `model::check`).
+fn generic_pivots(model: &Model) -> Vec<usize> {
+    let (n, c) = (model.n(), model.c());
+    let atoms = model.store.atoms();
+    let mut rows: Vec<Field> = (0..c)
+        .map(|i| {
+            (0..n)
+                .map(|j| model.constraint_matrix.get(i, j).clone())
+                .collect()
+        })
+        .collect();
+    let mut pivots = Vec::with_capacity(c);
+    for row in 0..c {
+        let Some(column) = (0..n).find(|&j| !pivots.contains(&j) && !rows[row][j].is_zero()) else {
+            break;
+        };
+        let pivot_row = rows[row].clone();
+        for below in &mut rows[row + 1..] {
+            let Some(factor) = below[column].div(&pivot_row[column], atoms) else {
+                continue;
+            };
+            for (entry, p) in below.iter_mut().zip(&pivot_row) {
+                *entry = entry.sub(&factor.mul(p, atoms), atoms);
             }
         }
         pivots.push(column);

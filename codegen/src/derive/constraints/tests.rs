@@ -159,3 +159,16 @@ fn no_constraints_is_unconstrained() {
     assert_eq!(analysis.classification, Classification::Unconstrained);
     assert!(analysis.exact_rows.is_empty());
 }
+
+/// `(1 + x^2)(y xdot + x ydot) = (1 + x^2) d(x y)` vanishes at q = 0, so no
+/// pivot is regular at the defaults: the generic pivots are used (x, the
+/// first column), and the analysis goes through: holonomic, not exact.
+#[test]
+fn a_row_vanishing_at_the_defaults_gets_generic_pivots() {
+    let mut m = constrained("x, y, z", "level = (1 + x^2)*(y*dot(x) + x*dot(y))");
+    let analysis = analyse(&mut m).expect("analyses");
+    assert_eq!(analysis.basis.dependent, [0]);
+    assert!(analysis.integrable);
+    assert_eq!(analysis.classification, Classification::Holonomic);
+    assert_eq!(analysis.exact_rows, [false]);
+}
