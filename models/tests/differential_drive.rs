@@ -109,6 +109,10 @@ fn the_report_states_the_growth_vector_and_the_classification() {
     assert!(report.contains("growth vector (2, 3, 4)"), "{report}");
     assert!(report.contains("classification: nonholonomic"), "{report}");
     assert!(
+        report.contains("reachable dimension (last rank of the growth): 4 of n = 5"),
+        "{report}"
+    );
+    assert!(
         report.contains("sizes: n = 5, c = 3, k = 2, p = 2"),
         "{report}"
     );

@@ -142,3 +142,27 @@ fn the_report_states_the_growth_vector_and_the_classification() {
         "{report}"
     );
 }
+
+/// Every generated function has its operation counts in the report, and
+/// sharing subexpressions never costs more than the expanded trees.
+#[test]
+fn the_report_counts_the_operations_of_every_function() {
+    for function in [
+        "mass_matrix",
+        "energy",
+        "constraint_matrix",
+        "constraint_residual",
+    ] {
+        let prefix = format!("  {function}: ");
+        let line = Snakeboard::REPORT
+            .lines()
+            .find(|line| line.starts_with(&prefix))
+            .unwrap_or_else(|| panic!("no counts for {function}"));
+        let counts: Vec<u64> = line[prefix.len()..]
+            .split(" -> ")
+            .map(|n| n.parse().expect("a count"))
+            .collect();
+        assert_eq!(counts.len(), 2, "{line}");
+        assert!(counts[1] <= counts[0], "{line}");
+    }
+}

@@ -21,7 +21,9 @@
 //! and each entry is decided by [`RationalFunction::is_zero`].
 //!
 //! **Growth vector.** With `D^1 = D` and `D^{j+1} = D^j + [D, D^j]`, the
-//! exact generic ranks `(rank D^1, rank D^2, ...)` until they stop growing.
+//! exact generic ranks `(rank D^1, rank D^2, ...)` until they stop growing
+//! (generic: at almost every configuration; a rank that drops on a thin set,
+//! such as the snakeboard's basis at `phi = +-pi/2`, is not seen).
 //! Each level brackets the basis fields with the fields the previous level
 //! added (enough, since `[X, f Y] = f [X, Y] + X(f) Y`). When the growth
 //! reaches n the constraints are completely nonholonomic and every
@@ -49,7 +51,9 @@ pub enum Classification {
     /// D is integrable: the constraints confine the motion to a
     /// submanifold of dimension k (Frobenius).
     Holonomic,
-    /// D is not integrable, but its growth stops short of n.
+    /// D is not integrable, but its growth stops short of n: the motion
+    /// stays on submanifolds of dimension `growth.last()` (some combination
+    /// of the rows is holonomic, as for the differential drive).
     Nonholonomic,
     /// The growth of D reaches n: every configuration is reachable (Chow).
     CompletelyNonholonomic,
@@ -106,6 +110,8 @@ fn derive_analysis(model: &mut Model) -> Result<ConstraintAnalysis, MatrixError>
     })
 }
 
+/// `#[deny_holonomic]` and integrable constraints: an error on the first
+/// constraint's name. A model without constraints has nothing to deny.
 fn deny_holonomic(model: &Model, analysis: &ConstraintAnalysis) -> Result<(), Diagnostics> {
     let Some(first) = model.constraints.first() else {
         return Ok(());

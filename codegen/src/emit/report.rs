@@ -110,6 +110,11 @@ pub(super) fn constraints(model: &mut Model, analysis: &ConstraintAnalysis) -> S
         "classification: {}",
         analysis.classification.describe()
     ));
+    if let Some(reachable) = analysis.growth.last() {
+        section.line(format!(
+            "reachable dimension (last rank of the growth): {reachable} of n = {n}"
+        ));
+    }
     section.line(format!(
         "Moore's mixed-partials test (is each row exact? misses integrating factors): {}",
         moore(model, analysis)
@@ -181,7 +186,39 @@ fn moore(model: &Model, analysis: &ConstraintAnalysis) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{Report, Section};
+    use super::{Report, Section, constraints};
+    use crate::derive::constraints::analyse;
+    use crate::model::check;
+    use crate::syntax::parse_str;
+
+    /// `(1 + x^2) d(x y + z)`: holonomic by Frobenius, not exact for Moore.
+    #[test]
+    fn an_integrating_factor_is_reported_holonomic_and_not_exact() {
+        let source = "pub struct M {
+            coordinates: [x, y, z],
+            kinetic_energy: dot(x)^2/2 + dot(y)^2/2 + dot(z)^2/2,
+            constraints: [level = (1 + x^2)*(y*dot(x) + x*dot(y) + dot(z))],
+        }";
+        let mut model = check(&parse_str(source).expect("parses")).expect("checks");
+        let analysis = analyse(&mut model).expect("analyses");
+        let mut report = Report::new("M");
+        report.push(constraints(&mut model, &analysis));
+        let text = report.render();
+        for line in [
+            "  sizes: n = 3, c = 1, k = 2, p = 0\n",
+            "  dependent speeds: dot(z)\n",
+            "  independent speeds: dot(x), dot(y)\n",
+            "    X1 = [1, 0, -y]\n",
+            "    X2 = [0, 1, -x]\n",
+            "  integrable (A [X_i, X_j] = 0 for all i, j): yes\n",
+            "  growth vector (2)\n",
+            "  classification: holonomic\n",
+            "  reachable dimension (last rank of the growth): 2 of n = 3\n",
+            "misses integrating factors): level not exact\n",
+        ] {
+            assert!(text.contains(line), "{line:?} not in\n{text}");
+        }
+    }
 
     #[test]
     fn sections_render_under_their_titles_with_indented_lines() {
