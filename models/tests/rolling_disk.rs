@@ -1,4 +1,4 @@
-//! The vertical rolling disk against its hand derivation (Bloch 2003, 1.4).
+//! The vertical rolling disk against its hand derivation (Bloch 2003, chapter 1).
 
 use chaplygin_models::rolling_disk::RollingDisk;
 use proptest::prelude::*;

@@ -16,8 +16,8 @@
 //! **Integrability (Frobenius).** D is integrable, i.e. the constraints are
 //! holonomic in disguise, iff it is involutive: every Lie bracket
 //! `[X_i, X_j] = (dX_j/dq) X_i - (dX_i/dq) X_j` of the basis lies in D again,
-//! `A [X_i, X_j] = 0` (Frobenius; Bloch, *Nonholonomic Mechanics and
-//! Control*, section 2.2). The test is exact: the products are normal forms
+//! `A [X_i, X_j] = 0` (Frobenius' theorem; MATH.md 1.2; Bloch,
+//! *Nonholonomic Mechanics and Control*, 2003). The test is exact: the products are normal forms
 //! and each entry is decided by [`RationalFunction::is_zero`].
 //!
 //! **Growth vector.** With `D^1 = D` and `D^{j+1} = D^j + [D, D^j]`, the

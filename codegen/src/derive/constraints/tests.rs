@@ -53,7 +53,8 @@ fn the_basis_spans_the_kernel_of_the_constraints() {
 }
 
 /// Sleigh: D = span{(cos, sin, 0), d_theta}; their bracket (-sin, cos, 0) is
-/// the forbidden sideways direction, so (2, 3) (Bloch, section 1.7).
+/// the forbidden sideways direction, so (2, 3) (Moore's "Chaplygin Sleigh" example shows
+/// the blade row is not integrable).
 #[test]
 fn the_sleigh_grows_2_3() {
     let analysis = analyse(&mut model(SLEIGH)).expect("analyses");
