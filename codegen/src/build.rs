@@ -99,8 +99,6 @@ impl Builder {
 
 /// The Rust source generated for the text of a `.model` file.
 pub fn generate(source: &str) -> Result<String, Diagnostics> {
-    let syntax = crate::syntax::parse_str(source)?;
-    let mut model = crate::model::check(&syntax)?;
-    let items = crate::emit::model_items(&mut model)?;
+    let items = crate::compile(&crate::syntax::parse_str(source)?)?;
     Ok(items.to_string())
 }

@@ -3,7 +3,7 @@
 //! A model flows one way through typed stages:
 //!
 //! ```text
-//! tokens --syntax::parse--> ModelSyntax --model::check--> Model --emit--> Rust items
+//! tokens --syntax::parse--> ModelSyntax --model::check--> Model --derive--> analyses --emit--> Rust items
 //! ```
 //!
 //! The symbolic engine [`sym`] holds every expression; [`ir`] lowers derived
@@ -41,7 +41,12 @@ pub fn expand(tokens: TokenStream) -> TokenStream {
 
 /// [`expand`], keeping the diagnostics.
 pub fn try_expand(tokens: TokenStream) -> Result<TokenStream, diagnostic::Diagnostics> {
-    let syntax = syntax::parse(tokens)?;
-    let mut model = model::check(&syntax)?;
-    emit::model_items(&mut model)
+    compile(&syntax::parse(tokens)?)
+}
+
+/// A parsed model's items: checked, analysed, emitted (both doors).
+fn compile(syntax: &syntax::ModelSyntax) -> Result<TokenStream, diagnostic::Diagnostics> {
+    let mut model = model::check(syntax)?;
+    let constraints = derive::constraints::analyse(&mut model)?;
+    emit::model_items(&mut model, &constraints)
 }

@@ -1,7 +1,10 @@
 //! Generated functions allocate nothing: a counting global allocator sees
 //! zero allocations across 10^4 calls of each.
 
-use chaplygin_models::{sleigh::Sleigh, snakeboard::Snakeboard};
+use chaplygin_models::{
+    differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
+    snakeboard::Snakeboard,
+};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::hint::black_box;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -38,6 +41,8 @@ fn allocations(work: impl FnOnce()) -> usize {
 fn generated_functions_do_not_allocate() {
     let board = Snakeboard::default();
     let sleigh = Sleigh::default();
+    let disk = RollingDisk::default();
+    let robot = DifferentialDrive::default();
     let counted = allocations(|| {
         for i in 0..10_000 {
             let t = i as f64 * 1e-3;
@@ -53,6 +58,16 @@ fn generated_functions_do_not_allocate() {
             black_box(sleigh.energy(black_box(&q3), black_box(&v3)));
             black_box(sleigh.constraint_matrix(black_box(&q3)));
             black_box(sleigh.constraint_residual(black_box(&q3), black_box(&v3)));
+            let q4 = [t, -t, 0.4 + t, 0.1];
+            let v4 = [0.5, -0.25, t, 1.0];
+            black_box(disk.mass_matrix(black_box(&q4)));
+            black_box(disk.energy(black_box(&q4), black_box(&v4)));
+            black_box(disk.constraint_matrix(black_box(&q4)));
+            black_box(disk.constraint_residual(black_box(&q4), black_box(&v4)));
+            black_box(robot.mass_matrix(black_box(&q)));
+            black_box(robot.energy(black_box(&q), black_box(&qdot)));
+            black_box(robot.constraint_matrix(black_box(&q)));
+            black_box(robot.constraint_residual(black_box(&q), black_box(&qdot)));
         }
     });
     assert_eq!(counted, 0);

@@ -118,3 +118,51 @@ proptest! {
         prop_assert!((board.energy(&q, &v) - quadratic).abs() <= 1e-13 * quadratic.abs().max(1.0));
     }
 }
+
+/// MATH.md 1.3: the snakeboard's D (rank 3 in n = 5) grows to 5; by hand,
+/// `[d_phi, X] = sec^2(phi) d_theta` (4) and `[X, d_theta]` is sideways (5).
+#[test]
+fn the_report_states_the_growth_vector_and_the_classification() {
+    let report = Snakeboard::REPORT;
+    assert!(report.contains("growth vector (3, 4, 5)"), "{report}");
+    assert!(
+        report.contains("classification: completely nonholonomic"),
+        "{report}"
+    );
+    assert!(
+        report.contains("sizes: n = 5, c = 2, k = 3, p = 2"),
+        "{report}"
+    );
+    assert!(
+        report.contains("integrable (A [X_i, X_j] = 0 for all i, j): no"),
+        "{report}"
+    );
+    assert!(
+        report.contains("front not exact, back not exact"),
+        "{report}"
+    );
+}
+
+/// Every generated function has its operation counts in the report, and
+/// sharing subexpressions never costs more than the expanded trees.
+#[test]
+fn the_report_counts_the_operations_of_every_function() {
+    for function in [
+        "mass_matrix",
+        "energy",
+        "constraint_matrix",
+        "constraint_residual",
+    ] {
+        let prefix = format!("  {function}: ");
+        let line = Snakeboard::REPORT
+            .lines()
+            .find(|line| line.starts_with(&prefix))
+            .unwrap_or_else(|| panic!("no counts for {function}"));
+        let counts: Vec<u64> = line[prefix.len()..]
+            .split(" -> ")
+            .map(|n| n.parse().expect("a count"))
+            .collect();
+        assert_eq!(counts.len(), 2, "{line}");
+        assert!(counts[1] <= counts[0], "{line}");
+    }
+}

@@ -2,16 +2,16 @@
 //! `constraint_matrix`, `constraint_residual`.
 
 use super::{
-    coordinates, expressions, f64_type, function_body, internal, matrix_literal, velocities,
+    Function, coordinates, expressions, f64_type, function_body, internal, matrix_literal,
+    velocities,
 };
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
 use crate::sym::{Matrix, RationalFunction};
-use proc_macro2::TokenStream;
 use quote::quote;
 
 /// The four functions, in the order they are documented.
-pub(super) fn functions(model: &mut Model) -> Result<Vec<TokenStream>, Diagnostics> {
+pub(super) fn functions(model: &mut Model) -> Result<Vec<Function>, Diagnostics> {
     Ok(vec![
         mass_matrix(model)?,
         energy(model)?,
@@ -20,7 +20,7 @@ pub(super) fn functions(model: &mut Model) -> Result<Vec<TokenStream>, Diagnosti
     ])
 }
 
-fn mass_matrix(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+fn mass_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
     let n = model.n();
     let outputs = expressions(model, &model.mass_matrix.clone());
     let body = function_body(model, &[coordinates(model)], &outputs, |values| {
@@ -28,16 +28,21 @@ fn mass_matrix(model: &mut Model) -> Result<TokenStream, Diagnostics> {
     })?;
     let f64 = f64_type();
     let q = body.argument("q");
-    let statements = body.statements;
-    Ok(quote! {
+    let (statements, operations) = (body.statements, body.operations);
+    let item = quote! {
         /// The mass matrix `g(q)`.
         pub fn mass_matrix(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #n] {
             #statements
         }
+    };
+    Ok(Function {
+        name: "mass_matrix",
+        item,
+        operations,
     })
 }
 
-fn energy(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+fn energy(model: &mut Model) -> Result<Function, Diagnostics> {
     let n = model.n();
     let atoms = model.store.atoms().clone();
     let total = model.kinetic_energy.add(&model.potential_energy, &atoms);
@@ -46,16 +51,21 @@ fn energy(model: &mut Model) -> Result<TokenStream, Diagnostics> {
     let body = function_body(model, &arguments, &outputs, |values| quote!(#(#values)*))?;
     let f64 = f64_type();
     let (q, qdot) = (body.argument("q"), body.argument("qdot"));
-    let statements = body.statements;
-    Ok(quote! {
+    let (statements, operations) = (body.statements, body.operations);
+    let item = quote! {
         /// The total energy `T + V`.
         pub fn energy(&self, #q: &[#f64; #n], #qdot: &[#f64; #n]) -> #f64 {
             #statements
         }
+    };
+    Ok(Function {
+        name: "energy",
+        item,
+        operations,
     })
 }
 
-fn constraint_matrix(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+fn constraint_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
     let (n, c) = (model.n(), model.c());
     let outputs = expressions(model, &model.constraint_matrix.clone());
     let body = function_body(model, &[coordinates(model)], &outputs, |values| {
@@ -63,16 +73,21 @@ fn constraint_matrix(model: &mut Model) -> Result<TokenStream, Diagnostics> {
     })?;
     let f64 = f64_type();
     let q = body.argument("q");
-    let statements = body.statements;
-    Ok(quote! {
+    let (statements, operations) = (body.statements, body.operations);
+    let item = quote! {
         /// The constraint rows `A(q)`, in declared order: allowed velocities satisfy `A(q) qdot = 0`.
         pub fn constraint_matrix(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #c] {
             #statements
         }
+    };
+    Ok(Function {
+        name: "constraint_matrix",
+        item,
+        operations,
     })
 }
 
-fn constraint_residual(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+fn constraint_residual(model: &mut Model) -> Result<Function, Diagnostics> {
     let (n, c) = (model.n(), model.c());
     let atoms = model.store.atoms().clone();
     let velocity_column = Matrix::new(
@@ -98,11 +113,16 @@ fn constraint_residual(model: &mut Model) -> Result<TokenStream, Diagnostics> {
     let body = function_body(model, &arguments, &outputs, |values| quote!([#(#values),*]))?;
     let f64 = f64_type();
     let (q, qdot) = (body.argument("q"), body.argument("qdot"));
-    let statements = body.statements;
-    Ok(quote! {
+    let (statements, operations) = (body.statements, body.operations);
+    let item = quote! {
         /// The constraint residual `A(q) qdot`: zero for allowed velocities.
         pub fn constraint_residual(&self, #q: &[#f64; #n], #qdot: &[#f64; #n]) -> [#f64; #c] {
             #statements
         }
+    };
+    Ok(Function {
+        name: "constraint_residual",
+        item,
+        operations,
     })
 }

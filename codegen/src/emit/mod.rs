@@ -9,6 +9,7 @@
 //! energy(q, qdot)                 T + V = 1/2 qdot^T g qdot + V(q)
 //! constraint_matrix(q)            A(q)
 //! constraint_residual(q, qdot)    A(q) qdot
+//! REPORT                          the derivation report (see [`report`])
 //! ```
 //!
 //! Each function body is one [`crate::ir::Program`]: straight-line `let`s over
@@ -17,9 +18,11 @@
 //! under `#![deny(warnings)]` whatever the caller has in scope.
 
 mod kinematics;
+pub mod report;
 
+use crate::derive::constraints::ConstraintAnalysis;
 use crate::diagnostic::{Diagnostic, Diagnostics};
-use crate::ir::{self, Op};
+use crate::ir::{self, Op, OperationCount};
 use crate::model::Model;
 use crate::sym::{ExprId, Matrix, SymbolId};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
@@ -32,19 +35,48 @@ pub(crate) struct Argument {
     pub(crate) symbols: Vec<SymbolId>,
 }
 
-/// The Rust items of a checked model.
-pub fn model_items(model: &mut Model) -> Result<TokenStream, Diagnostics> {
+/// One emitted function: its name, its item, and its operation counts.
+pub(crate) struct Function {
+    pub(crate) name: &'static str,
+    pub(crate) item: TokenStream,
+    pub(crate) operations: OperationCount,
+}
+
+/// The Rust items of a checked and analysed model.
+pub fn model_items(
+    model: &mut Model,
+    constraints: &ConstraintAnalysis,
+) -> Result<TokenStream, Diagnostics> {
     let definition = parameter_struct(model);
     let constants = constants(model);
     let functions = kinematics::functions(model)?;
+    let report = report_constant(model, constraints, &functions);
+    let items = functions.iter().map(|f| &f.item);
     let name = &model.name;
     Ok(quote! {
         #definition
         impl #name {
             #constants
-            #(#functions)*
+            #report
+            #(#items)*
         }
     })
+}
+
+fn report_constant(
+    model: &mut Model,
+    constraints: &ConstraintAnalysis,
+    functions: &[Function],
+) -> TokenStream {
+    let mut report = report::Report::new(model.name.to_string());
+    report.push(report::constraints(model, constraints));
+    report.push(report::operations(functions));
+    let text = report.render();
+    quote! {
+        /// The derivation report: sizes, the basis of D, integrability,
+        /// growth vector, classification, operation counts.
+        pub const REPORT: &'static ::core::primitive::str = #text;
+    }
 }
 
 pub(crate) fn f64_type() -> TokenStream {
@@ -159,9 +191,10 @@ pub(crate) fn matrix_literal(values: &[TokenStream], columns: usize) -> TokenStr
     quote!([#(#rows),*])
 }
 
-/// A function body and which argument arrays it reads.
+/// A function body, which argument arrays it reads, and what it costs.
 pub(crate) struct Body {
     pub(crate) statements: TokenStream,
+    pub(crate) operations: OperationCount,
     used: Vec<&'static str>,
 }
 
@@ -219,6 +252,7 @@ pub(crate) fn function_body(
     let value = result(&emitted.outputs);
     Ok(Body {
         statements: quote!(#statements #value),
+        operations: program.operation_count(),
         used,
     })
 }

@@ -1,0 +1,175 @@
+//! The constraint analysis against hand derivations.
+
+use super::{Classification, analyse, distribution_basis};
+use crate::model::{Model, check};
+use crate::syntax::parse_str;
+
+fn model(source: &str) -> Model {
+    check(&parse_str(source).expect("parses")).expect("checks")
+}
+
+/// A model with unit kinetic energy on `coordinates` and these constraints.
+fn constrained(coordinates: &str, constraints: &str) -> Model {
+    let names: Vec<&str> = coordinates.split(',').map(str::trim).collect();
+    let energy: Vec<String> = names.iter().map(|q| format!("dot({q})^2/2")).collect();
+    model(&format!(
+        "pub struct M {{
+            coordinates: [{coordinates}],
+            parameters: [r = 0.5],
+            kinetic_energy: {},
+            constraints: [{constraints}],
+        }}",
+        energy.join(" + ")
+    ))
+}
+
+/// The Chaplygin sleigh of `models/sleigh.model`.
+const SLEIGH: &str = r#"
+pub struct Sleigh {
+    coordinates: [x, y, theta],
+    parameters: [m = 1.0, inertia = 0.1, a = 0.5],
+    kinetic_energy: m/2*((dot(x) - a*sin(theta)*dot(theta))^2
+        + (dot(y) + a*cos(theta)*dot(theta))^2) + inertia/2*dot(theta)^2,
+    constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
+}
+"#;
+
+#[test]
+fn the_basis_spans_the_kernel_of_the_constraints() {
+    let mut snakeboard = model(crate::fixtures::SNAKEBOARD);
+    let basis = distribution_basis(&mut snakeboard).expect("regular at the defaults");
+    assert_eq!(basis.fields.columns(), 3);
+    let atoms = snakeboard.store.atoms().clone();
+    let product = snakeboard
+        .constraint_matrix
+        .mul(&basis.fields, &atoms)
+        .expect("fits");
+    assert!(product.is_zero(), "A X must vanish exactly");
+    assert_eq!(basis.fields.rank(&atoms), 3);
+    // at q = 0 the front and back rows are (0, 1, r, 0, 0) and (0, 1, -r, 0, 0):
+    // x has a zero column there, so y and theta are the dependent speeds.
+    assert_eq!(basis.dependent, [1, 2]);
+    assert_eq!(basis.independent, [0, 3, 4]);
+}
+
+/// Sleigh: D = span{(cos, sin, 0), d_theta}; their bracket (-sin, cos, 0) is
+/// the forbidden sideways direction, so (2, 3) (Moore's "Chaplygin Sleigh" example shows
+/// the blade row is not integrable).
+#[test]
+fn the_sleigh_grows_2_3() {
+    let analysis = analyse(&mut model(SLEIGH)).expect("analyses");
+    assert_eq!(analysis.growth, [2, 3]);
+    assert!(!analysis.integrable);
+    assert_eq!(
+        analysis.classification,
+        Classification::CompletelyNonholonomic
+    );
+    assert_eq!(analysis.exact_rows, [false]);
+}
+
+/// Snakeboard (MATH.md 1.3), by hand: D = span{X = r cos d_x + r sin d_y +
+/// tan(phi) d_theta, d_psi, d_phi}; `[d_phi, X] = sec^2(phi) d_theta` is new
+/// (4), and `[X, sec^2(phi) d_theta]` has the sideways part
+/// `sec^2(phi) r (sin d_x - cos d_y)`, new again (5).
+#[test]
+fn the_snakeboard_grows_3_4_5() {
+    let analysis = analyse(&mut model(crate::fixtures::SNAKEBOARD)).expect("analyses");
+    assert_eq!(analysis.growth, [3, 4, 5]);
+    assert!(!analysis.integrable);
+    assert_eq!(
+        analysis.classification,
+        Classification::CompletelyNonholonomic
+    );
+    assert_eq!(analysis.exact_rows, [false, false]);
+}
+
+/// The Heisenberg system `zdot = x ydot`: X1 = d_x, X2 = d_y + x d_z,
+/// `[X1, X2] = d_z`, so (2, 3).
+#[test]
+fn the_heisenberg_constraint_grows_2_3() {
+    let analysis = analyse(&mut constrained("x, y, z", "h = dot(z) - x*dot(y)")).expect("analyses");
+    assert_eq!(analysis.growth, [2, 3]);
+    assert!(!analysis.integrable);
+}
+
+/// `(1 + x^2)(y xdot + x ydot + zdot) = (1 + x^2) d(x y + z)`: holonomic
+/// (x y + z is constant along solutions), but the row is not exact:
+/// `d a_x / d y = 1 + x^2`, `d a_y / d x = 1 + 3 x^2`.
+#[test]
+fn an_integrating_factor_is_holonomic_though_moores_test_fails() {
+    let mut m = constrained(
+        "x, y, z",
+        "level = (1 + x^2)*(y*dot(x) + x*dot(y) + dot(z))",
+    );
+    let analysis = analyse(&mut m).expect("analyses");
+    assert!(analysis.integrable);
+    assert_eq!(analysis.classification, Classification::Holonomic);
+    assert_eq!(analysis.growth, [2]);
+    assert_eq!(analysis.exact_rows, [false]);
+}
+
+/// Without the factor the same row is exact: Moore's test agrees with Frobenius.
+#[test]
+fn an_exact_row_passes_moores_test() {
+    let mut m = constrained("x, y, z", "level = y*dot(x) + x*dot(y) + dot(z)");
+    let analysis = analyse(&mut m).expect("analyses");
+    assert!(analysis.integrable);
+    assert_eq!(analysis.exact_rows, [true]);
+}
+
+/// One constraint on two coordinates leaves k = 1: a single field is always
+/// integrable, whatever the factor (`(1 + x^2)(xdot - r phidot)`).
+#[test]
+fn one_degree_of_freedom_is_integrable() {
+    let mut m = constrained("x, phi", "roll = (1 + x^2)*(dot(x) - r*dot(phi))");
+    let analysis = analyse(&mut m).expect("analyses");
+    assert!(analysis.integrable);
+    assert_eq!(analysis.growth, [1]);
+    assert_eq!(analysis.classification, Classification::Holonomic);
+    assert_eq!(analysis.exact_rows, [false]);
+}
+
+#[test]
+fn deny_holonomic_rejects_integrable_constraints_on_the_first_name() {
+    let source = "#[deny_holonomic]
+        pub struct M {
+            coordinates: [x, y, z],
+            kinetic_energy: dot(x)^2/2 + dot(y)^2/2 + dot(z)^2/2,
+            constraints: [level = (1 + x^2)*(y*dot(x) + x*dot(y) + dot(z))],
+        }";
+    let diagnostics = analyse(&mut model(source)).expect_err("integrable is denied");
+    let messages: Vec<&str> = diagnostics.iter().map(|d| d.message.as_str()).collect();
+    assert_eq!(messages.len(), 1);
+    assert!(messages[0].contains("integrable"), "{}", messages[0]);
+    assert!(messages[0].contains("#[deny_holonomic]"), "{}", messages[0]);
+}
+
+#[test]
+fn deny_holonomic_accepts_nonholonomic_constraints() {
+    let source = format!("#[deny_holonomic]\n{SLEIGH}");
+    assert!(analyse(&mut model(&source)).is_ok());
+}
+
+#[test]
+fn no_constraints_is_unconstrained() {
+    let mut m =
+        model("pub struct Free { coordinates: [x, y], kinetic_energy: dot(x)^2/2 + dot(y)^2/2 }");
+    let analysis = analyse(&mut m).expect("analyses");
+    assert_eq!(analysis.growth, [2]);
+    assert!(analysis.integrable);
+    assert_eq!(analysis.classification, Classification::Unconstrained);
+    assert!(analysis.exact_rows.is_empty());
+}
+
+/// `(1 + x^2)(y xdot + x ydot) = (1 + x^2) d(x y)` vanishes at q = 0, so no
+/// pivot is regular at the defaults: the generic pivots are used (x, the
+/// first column), and the analysis goes through: holonomic, not exact.
+#[test]
+fn a_row_vanishing_at_the_defaults_gets_generic_pivots() {
+    let mut m = constrained("x, y, z", "level = (1 + x^2)*(y*dot(x) + x*dot(y))");
+    let analysis = analyse(&mut m).expect("analyses");
+    assert_eq!(analysis.basis.dependent, [0]);
+    assert!(analysis.integrable);
+    assert_eq!(analysis.classification, Classification::Holonomic);
+    assert_eq!(analysis.exact_rows, [false]);
+}
