@@ -645,6 +645,7 @@ impl Displayed<'_> {
             Node::Mul(_) => PRODUCT,
             Node::Number(v) if v.is_negative() => SUM,
             Node::Number(v) if !v.is_integer() => PRODUCT,
+            Node::Pow(_, exponent) if exponent.is_negative() => PRODUCT,
             Node::Pow(..) => POWER,
             _ => POWER + 1,
         }
@@ -657,6 +658,10 @@ impl Displayed<'_> {
             Node::Symbol(symbol) => write!(f, "{}", store.symbol_info(*symbol).name),
             Node::Add(terms) => self.write_sum(f, terms),
             Node::Mul(factors) => self.write_product(f, factors),
+            Node::Pow(_, exponent) if exponent.is_negative() => {
+                write!(f, "1/")?;
+                self.write_reciprocal(f, id, POWER)
+            }
             Node::Pow(base, exponent) => {
                 self.write(f, *base, POWER + 1)?;
                 if exponent.is_integer() && !exponent.is_negative() {
@@ -719,14 +724,67 @@ impl Displayed<'_> {
         self.write_factors(f, factors)
     }
 
+    /// `a*b/(c*d^2)`: factors with negative exponents form the denominator.
     fn write_factors(&self, f: &mut fmt::Formatter<'_>, factors: &[ExprId]) -> fmt::Result {
+        let (denominator, numerator): (Vec<ExprId>, Vec<ExprId>) = factors.iter().partition(
+            |&&factor| matches!(self.store.node(factor), Node::Pow(_, e) if e.is_negative()),
+        );
+        if numerator.is_empty() {
+            write!(f, "1")?;
+        }
+        self.write_joined(f, &numerator, PRODUCT + 1, |display, f, factor, context| {
+            display.write(f, factor, context)
+        })?;
+        match denominator.as_slice() {
+            [] => Ok(()),
+            [single] => {
+                write!(f, "/")?;
+                self.write_reciprocal(f, *single, POWER)
+            }
+            _ => {
+                write!(f, "/(")?;
+                self.write_joined(f, &denominator, PRODUCT + 1, Displayed::write_reciprocal)?;
+                write!(f, ")")
+            }
+        }
+    }
+
+    fn write_joined(
+        &self,
+        f: &mut fmt::Formatter<'_>,
+        factors: &[ExprId],
+        context: u8,
+        write_one: fn(&Self, &mut fmt::Formatter<'_>, ExprId, u8) -> fmt::Result,
+    ) -> fmt::Result {
         for (i, &factor) in factors.iter().enumerate() {
             if i > 0 {
                 write!(f, "*")?;
             }
-            self.write(f, factor, PRODUCT + 1)?;
+            write_one(self, f, factor, context)?;
         }
         Ok(())
+    }
+
+    /// `base^(-e)` written as `base^e`, for use after a `/`.
+    fn write_reciprocal(
+        &self,
+        f: &mut fmt::Formatter<'_>,
+        factor: ExprId,
+        context: u8,
+    ) -> fmt::Result {
+        let Node::Pow(base, exponent) = self.store.node(factor) else {
+            return self.write(f, factor, context);
+        };
+        let positive = exponent.neg();
+        if positive.is_one() {
+            return self.write(f, *base, context.max(PRODUCT + 1));
+        }
+        self.write(f, *base, POWER + 1)?;
+        if positive.is_integer() {
+            write!(f, "^{positive}")
+        } else {
+            write!(f, "^({positive})")
+        }
     }
 }
 
@@ -784,7 +842,10 @@ mod tests {
         let square = s.mul2(v[0], v[0]);
         assert_eq!(s.display(square).to_string(), "x^2");
         let inverse = s.div(v[0], square).unwrap();
-        assert_eq!(s.display(inverse).to_string(), "x^(-1)");
+        assert_eq!(s.display(inverse).to_string(), "1/x");
+        let three = s.integer(3);
+        let ratio = s.div(three, square).unwrap();
+        assert_eq!(s.display(ratio).to_string(), "3/x^2");
     }
 
     #[test]
