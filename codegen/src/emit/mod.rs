@@ -11,12 +11,16 @@
 //! constraint_residual(q, qdot)    A(q) qdot
 //! ```
 //!
+//! and the reduced port-Hamiltonian items of `port_hamiltonian` (MATH.md
+//! section 3).
+//!
 //! Each function body is one [`crate::ir::Program`]: straight-line `let`s over
 //! `f64` with common subexpressions shared, no allocation, no panics, types
 //! named by absolute paths (`::core::primitive::f64`), so the items compile
 //! under `#![deny(warnings)]` whatever the caller has in scope.
 
 mod kinematics;
+mod port_hamiltonian;
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::ir::{self, Op};
@@ -36,7 +40,8 @@ pub(crate) struct Argument {
 pub fn model_items(model: &mut Model) -> Result<TokenStream, Diagnostics> {
     let definition = parameter_struct(model);
     let constants = constants(model);
-    let functions = kinematics::functions(model)?;
+    let mut functions = kinematics::functions(model)?;
+    functions.extend(port_hamiltonian::functions(model)?);
     let name = &model.name;
     Ok(quote! {
         #definition
