@@ -112,20 +112,18 @@ fn the_structure_matrix_is_zero_p_transpose_minus_p_zero() {
         let (x, _) = state(&mut random);
         let j = b.structure_matrix(&x);
         let h = hand_basis(&b, &x);
-        for row in 0..8 {
-            for column in 0..8 {
-                let top_left = row < 5 && column < 5;
-                let gamma = row >= 5 && column >= 5;
-                if top_left || gamma {
-                    assert_eq!(j[row][column], 0.0, "Jbar[{row}][{column}]");
-                }
-                assert_eq!(j[row][column], -j[column][row], "skew at ({row}, {column})");
+        for (row, column) in (0..8).flat_map(|row| (0..8).map(move |column| (row, column))) {
+            let top_left = row < 5 && column < 5;
+            let gamma = row >= 5 && column >= 5;
+            if top_left || gamma {
+                assert_eq!(j[row][column], 0.0, "Jbar[{row}][{column}]");
             }
+            assert_eq!(j[row][column], -j[column][row], "skew at ({row}, {column})");
         }
         // the lower-left block is -P, and P h^T = I with the paper's h
         for a in 0..3 {
-            for c in 0..3 {
-                let product: f64 = (0..5).map(|l| -j[5 + a][l] * h[c][l]).sum();
+            for (c, h_c) in h.iter().enumerate() {
+                let product: f64 = (0..5).map(|l| -j[5 + a][l] * h_c[l]).sum();
                 let identity = if a == c { 1.0 } else { 0.0 };
                 assert!(
                     (product - identity).abs() <= 1e-12,
@@ -135,9 +133,7 @@ fn the_structure_matrix_is_zero_p_transpose_minus_p_zero() {
         }
         let bbar = b.input_matrix(&x);
         let expected_bbar = [[-x[4].sin() / b.r, 0.0], [1.0, 0.0], [0.0, 1.0]];
-        for row in 0..5 {
-            assert_eq!(bbar[row], [0.0, 0.0]);
-        }
+        assert!(bbar[..5].iter().all(|row| *row == [0.0, 0.0]));
         for a in 0..3 {
             for input in 0..2 {
                 assert!(

@@ -26,7 +26,7 @@ use crate::derive::port_hamiltonian::{PortHamiltonian, derive};
 use crate::diagnostic::Diagnostics;
 use crate::ir;
 use crate::model::Model;
-use crate::sym::{ExprId, Matrix, RationalFunction, SymbolId};
+use crate::sym::{ExprId, Matrix, Rational, RationalFunction, SymbolId};
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 
@@ -264,15 +264,38 @@ fn velocities_of_momenta(
     item(model, signature, &outputs, vector_literal)
 }
 
+/// `1/2 alpha . (gbar_inv alpha) + V`, unexpanded.
+fn structured_hamiltonian(model: &mut Model, reduced: &PortHamiltonian) -> ExprId {
+    let alpha = symbol_expressions(model, &reduced.momenta);
+    let metric_alpha = structured_product(model, &reduced.metric_inverse, &alpha);
+    let terms: Vec<ExprId> = alpha
+        .iter()
+        .zip(&metric_alpha)
+        .map(|(&a, &b)| model.store.mul2(a, b))
+        .collect();
+    let twice_kinetic = model.store.add(&terms);
+    let half = model
+        .store
+        .number(Rational::new(1, 2).unwrap_or(Rational::ONE));
+    let kinetic = model.store.mul2(half, twice_kinetic);
+    let potential = model.store.expression_of(&model.potential_energy);
+    model.store.add2(kinetic, potential)
+}
+
 fn hamiltonian(model: &mut Model, reduced: &PortHamiltonian) -> Result<TokenStream, Diagnostics> {
-    let outputs = expressions_of(model, std::slice::from_ref(&reduced.hamiltonian));
+    let arguments = vec![state_argument(model, reduced)];
+    let candidates = vec![
+        vec![structured_hamiltonian(model, reduced)],
+        expressions_of(model, std::slice::from_ref(&reduced.hamiltonian)),
+    ];
+    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "hamiltonian",
         doc: format!(
             "The reduced energy `Hbar = 1/2 alpha^T gbar_inv alpha + V(q)` at the state {}.",
             state_names(model, reduced)
         ),
-        arguments: vec![state_argument(model, reduced)],
+        arguments,
         returns: f64_type(),
     };
     item(model, signature, &outputs, |values| quote!(#(#values)*))
@@ -427,4 +450,117 @@ fn output(model: &mut Model, reduced: &PortHamiltonian) -> Result<TokenStream, D
         returns: vector_type(p),
     };
     item(model, signature, &outputs, vector_literal)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::check;
+    use crate::syntax::parse_str;
+
+    const SLEIGH: &str = include_str!("../../../models/sleigh.model");
+
+    fn derived(source: &str) -> (Model, PortHamiltonian) {
+        let mut model = check(&parse_str(source).expect("parses")).expect("checks");
+        let basis = distribution_basis(&mut model).expect("regular at the defaults");
+        let reduced = derive(&mut model, &basis).expect("derives");
+        (model, reduced)
+    }
+
+    fn cost(model: &Model, arguments: &[Argument], outputs: &[ExprId]) -> u64 {
+        let mut inputs: Vec<SymbolId> = arguments
+            .iter()
+            .flat_map(|a| a.symbols.iter().copied())
+            .collect();
+        inputs.extend(model.parameter_symbols());
+        ir::lower(&model.store, &inputs, outputs)
+            .expect("lowers")
+            .operation_count()
+            .after_cse
+    }
+
+    /// (structured, expanded) operation counts of `reduced_rhs` and of its Jacobian.
+    fn rhs_costs(model: &mut Model, reduced: &PortHamiltonian) -> [(u64, u64); 2] {
+        let arguments = vec![state_argument(model, reduced), inputs_argument(reduced)];
+        let structured = structured_rhs(model, reduced);
+        let expanded = expressions_of(model, &reduced.rhs);
+        let state = reduced.state(model);
+        let jacobian = model.store.jacobian(&reduced.rhs, &state).expect("fits");
+        let expanded_jacobian = expressions_of(model, jacobian.entries());
+        let structured_jacobian: Vec<ExprId> = structured
+            .iter()
+            .flat_map(|&f| state.iter().map(move |&x| (f, x)))
+            .map(|(f, x)| model.store.derivative(f, x))
+            .collect();
+        [
+            (
+                cost(model, &arguments, &structured),
+                cost(model, &arguments, &expanded),
+            ),
+            (
+                cost(model, &arguments, &structured_jacobian),
+                cost(model, &arguments, &expanded_jacobian),
+            ),
+        ]
+    }
+
+    #[test]
+    fn the_cheaper_form_of_each_product_is_emitted() {
+        for (name, source) in [
+            ("snakeboard", crate::fixtures::SNAKEBOARD),
+            ("sleigh", SLEIGH),
+        ] {
+            let (mut model, reduced) = derived(source);
+            let [rhs, jacobian] = rhs_costs(&mut model, &reduced);
+            println!(
+                "{name}: reduced_rhs structured {} expanded {}",
+                rhs.0, rhs.1
+            );
+            println!(
+                "{name}: reduced_rhs_jacobian structured {} expanded {}",
+                jacobian.0, jacobian.1
+            );
+            let arguments = vec![state_argument(&model, &reduced), inputs_argument(&reduced)];
+            let candidates = vec![
+                structured_rhs(&mut model, &reduced),
+                expressions_of(&mut model, &reduced.rhs),
+            ];
+            let chosen = cheapest(&model, &arguments, candidates).expect("lowers");
+            assert_eq!(cost(&model, &arguments, &chosen), rhs.0.min(rhs.1));
+        }
+    }
+
+    #[test]
+    fn every_item_has_the_interface_signature() {
+        let mut model =
+            check(&parse_str(crate::fixtures::SNAKEBOARD).expect("parses")).expect("checks");
+        let items: Vec<String> = functions(&mut model)
+            .expect("emits")
+            .iter()
+            .map(|item| item.to_string().replace(' ', ""))
+            .collect();
+        let f64 = "::core::primitive::f64";
+        let expected = [
+            format!("pubfnmomenta(&self,q:&[{f64};5usize],qdot:&[{f64};5usize])->[{f64};3usize]"),
+            format!(
+                "pubfnvelocities(&self,q:&[{f64};5usize],alpha:&[{f64};3usize])->[{f64};5usize]"
+            ),
+            format!("pubfnhamiltonian(&self,x:&[{f64};8usize])->{f64}"),
+            format!("pubfnhamiltonian_gradient(&self,x:&[{f64};8usize])->[{f64};8usize]"),
+            format!("pubfnstructure_matrix(&self,x:&[{f64};8usize])->[[{f64};8usize];8usize]"),
+            format!("pubfninput_matrix(&self,x:&[{f64};8usize])->[[{f64};2usize];8usize]"),
+            format!("pubfnreduced_rhs(&self,x:&[{f64};8usize],u:&[{f64};2usize])->[{f64};8usize]"),
+            format!(
+                "pubfnreduced_rhs_jacobian(&self,x:&[{f64};8usize],u:&[{f64};2usize])->[[{f64};8usize];8usize]"
+            ),
+            format!("pubfnoutput(&self,x:&[{f64};8usize])->[{f64};2usize]"),
+        ];
+        assert_eq!(items.len(), expected.len());
+        for (item, signature) in items.iter().zip(&expected) {
+            assert!(
+                item.contains(signature.as_str()),
+                "{signature} not in {item}"
+            );
+        }
+    }
 }

@@ -213,13 +213,12 @@ fn central_difference(f: &dyn Fn(&[f64]) -> Vec<f64>, x: &[f64], j: usize) -> Ve
 pub fn gradient_matches_central_differences<M: Reduced>(model: &M, s: &Sample) {
     let gradient = model.hamiltonian_gradient(&s.x);
     let energy = |x: &[f64]| vec![model.hamiltonian(x)];
-    for j in 0..s.x.len() {
+    for (j, derivative) in gradient.iter().enumerate() {
         let numeric = central_difference(&energy, &s.x, j)[0];
-        let tolerance = 1e-6 * (gradient[j].abs() + model.hamiltonian(&s.x).abs()).max(1.0);
+        let tolerance = 1e-6 * (derivative.abs() + model.hamiltonian(&s.x).abs()).max(1.0);
         assert!(
-            (numeric - gradient[j]).abs() <= tolerance,
-            "dH/dx[{j}] {} vs {numeric}",
-            gradient[j]
+            (numeric - derivative).abs() <= tolerance,
+            "dH/dx[{j}] {derivative} vs {numeric}"
         );
     }
 }
@@ -230,12 +229,12 @@ pub fn jacobian_matches_central_differences<M: Reduced>(model: &M, s: &Sample) {
     let scale = max_abs(&model.reduced_rhs(&s.x, &s.u)).max(1.0);
     for j in 0..s.x.len() {
         let numeric = central_difference(&rhs, &s.x, j);
-        for (i, value) in numeric.iter().enumerate() {
-            let tolerance = 1e-6 * (jacobian[i][j].abs() + scale);
+        for (i, (value, row)) in numeric.iter().zip(&jacobian).enumerate() {
+            let tolerance = 1e-6 * (row[j].abs() + scale);
             assert!(
-                (value - jacobian[i][j]).abs() <= tolerance,
+                (value - row[j]).abs() <= tolerance,
                 "d xdot[{i}]/dx[{j}] {} vs {value}",
-                jacobian[i][j]
+                row[j]
             );
         }
     }
