@@ -126,58 +126,106 @@ pub fn derive(
         .map(|input| fresh_symbol(model, &input.name, SymbolKind::Auxiliary))
         .collect();
     let alpha = column_of_symbols(model, &momenta)?;
-    let u = column_of_symbols(model, &inputs)?;
-    let atoms = model.store.atoms().clone();
-
-    let g_inverse = model.mass_matrix.inverse(&atoms)?;
-    let velocity_map = g_inverse.mul(&h.transpose(), &atoms)?;
-    let metric_inverse = h.mul(&velocity_map, &atoms)?;
-    let metric = metric_inverse.inverse(&atoms)?;
-    let projection = metric.mul(&h, &atoms)?.mul(&g_inverse, &atoms)?;
-    let momentum_map = projection.mul(&model.mass_matrix, &atoms)?;
-    let gyroscopic = gyroscopic(model, &h, &projection, &alpha)?;
-    let structure = structure_matrix(&projection, &gyroscopic);
-    prove_skew(&structure, &atoms)?;
-    let input_matrix = reduced_input_matrix(model, &projection, &atoms)?;
-
-    let kinetic = quadratic_form(&alpha, &metric_inverse, &atoms)?;
-    let hamiltonian = kinetic
-        .scale(&Rational::new(1, 2).unwrap_or(Rational::ONE))
-        .add(&model.potential_energy, &atoms);
-    let mut state = model.coordinate_symbols();
-    state.extend(&momenta);
-    let gradient = model
-        .store
-        .jacobian(std::slice::from_ref(&hamiltonian), &state)?;
-    let gradient = gradient.transpose();
-    let atoms = model.store.atoms().clone();
-    let rhs = structure
-        .mul(&gradient, &atoms)?
-        .add(&input_matrix.mul(&u, &atoms)?, &atoms)?;
-    let output = input_matrix.transpose().mul(&gradient, &atoms)?;
-    let metric_constant = is_constant(model, &metric)?;
-    let metric_diagonal = is_diagonal(&metric);
+    let maps = Maps::of(model, &h)?;
+    let gyroscopic = gyroscopic(model, &h, &maps.projection, &alpha)?;
+    let structure = structure_matrix(&maps.projection, &gyroscopic);
+    prove_skew(&structure, model.store.atoms())?;
+    let input_matrix = reduced_input_matrix(model, &maps.projection)?;
+    let flow = Flow::of(model, &maps, &structure, &input_matrix, &momenta, &inputs)?;
     Ok(PortHamiltonian {
         momentum_names,
         momenta,
         inputs,
         declared_basis,
         basis: h,
-        metric_inverse,
-        metric,
-        projection,
-        velocity_map,
-        momentum_map,
+        metric_constant: is_constant(model, &maps.metric)?,
+        metric_diagonal: is_diagonal(&maps.metric),
+        metric_inverse: maps.metric_inverse,
+        metric: maps.metric,
+        projection: maps.projection,
+        velocity_map: maps.velocity_map,
+        momentum_map: maps.momentum_map,
         gyroscopic,
         structure,
         input_matrix,
-        hamiltonian,
-        gradient: gradient.entries().to_vec(),
-        rhs: rhs.entries().to_vec(),
-        output: output.entries().to_vec(),
-        metric_constant,
-        metric_diagonal,
+        hamiltonian: flow.hamiltonian,
+        gradient: flow.gradient,
+        rhs: flow.rhs,
+        output: flow.output,
     })
+}
+
+/// The configuration-dependent maps between velocities and reduced momenta.
+struct Maps {
+    velocity_map: Matrix,
+    metric_inverse: Matrix,
+    metric: Matrix,
+    projection: Matrix,
+    momentum_map: Matrix,
+}
+
+impl Maps {
+    /// `g^-1 h^T`, `gbar_inv = h g^-1 h^T`, `gbar`, `P = gbar h g^-1` and `P g`.
+    fn of(model: &Model, h: &Matrix) -> Result<Maps, MatrixError> {
+        let atoms = model.store.atoms();
+        let g_inverse = model.mass_matrix.inverse(atoms)?;
+        let velocity_map = g_inverse.mul(&h.transpose(), atoms)?;
+        let metric_inverse = h.mul(&velocity_map, atoms)?;
+        let metric = metric_inverse.inverse(atoms)?;
+        let projection = metric.mul(h, atoms)?.mul(&g_inverse, atoms)?;
+        let momentum_map = projection.mul(&model.mass_matrix, atoms)?;
+        Ok(Maps {
+            velocity_map,
+            metric_inverse,
+            metric,
+            projection,
+            momentum_map,
+        })
+    }
+}
+
+/// The energy and the port-Hamiltonian flow it generates.
+struct Flow {
+    hamiltonian: RationalFunction,
+    gradient: Vec<RationalFunction>,
+    rhs: Vec<RationalFunction>,
+    output: Vec<RationalFunction>,
+}
+
+impl Flow {
+    /// `Hbar`, `dHbar/dx`, `Jbar dHbar/dx + Bbar u` and `Bbar^T dHbar/dx`.
+    fn of(
+        model: &mut Model,
+        maps: &Maps,
+        structure: &Matrix,
+        input_matrix: &Matrix,
+        momenta: &[SymbolId],
+        inputs: &[SymbolId],
+    ) -> Result<Flow, PortHamiltonianError> {
+        let alpha = column_of_symbols(model, momenta)?;
+        let u = column_of_symbols(model, inputs)?;
+        let atoms = model.store.atoms().clone();
+        let hamiltonian = quadratic_form(&alpha, &maps.metric_inverse, &atoms)?
+            .scale(&Rational::new(1, 2).unwrap_or(Rational::ONE))
+            .add(&model.potential_energy, &atoms);
+        let mut state = model.coordinate_symbols();
+        state.extend(momenta);
+        let gradient = model
+            .store
+            .jacobian(std::slice::from_ref(&hamiltonian), &state)?
+            .transpose();
+        let atoms = model.store.atoms().clone();
+        let rhs = structure
+            .mul(&gradient, &atoms)?
+            .add(&input_matrix.mul(&u, &atoms)?, &atoms)?;
+        let output = input_matrix.transpose().mul(&gradient, &atoms)?;
+        Ok(Flow {
+            hamiltonian,
+            gradient: gradient.entries().to_vec(),
+            rhs: rhs.entries().to_vec(),
+            output: output.entries().to_vec(),
+        })
+    }
 }
 
 /// `(h, names, declared)`: the declared basis, or `h = (g X)^T = X^T g`
@@ -289,13 +337,9 @@ fn prove_skew(structure: &Matrix, atoms: &Atoms) -> Result<(), PortHamiltonianEr
 }
 
 /// `Bbar = [0; P B]`, s x p.
-fn reduced_input_matrix(
-    model: &Model,
-    projection: &Matrix,
-    atoms: &Atoms,
-) -> Result<Matrix, MatrixError> {
+fn reduced_input_matrix(model: &Model, projection: &Matrix) -> Result<Matrix, MatrixError> {
     let (n, k, p) = (model.n(), projection.rows(), model.p());
-    let reduced = projection.mul(&model.input_matrix, atoms)?;
+    let reduced = projection.mul(&model.input_matrix, model.store.atoms())?;
     let mut bbar = Matrix::zeros(n + k, p);
     for a in 0..k {
         for j in 0..p {

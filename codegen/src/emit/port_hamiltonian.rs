@@ -139,6 +139,15 @@ fn state_names(model: &Model, reduced: &PortHamiltonian) -> String {
     format!("`x = ({})`", names.join(", "))
 }
 
+/// `u = (u_1, ..., u_p)` by name, for the docs.
+fn input_names(model: &Model) -> String {
+    if model.inputs.is_empty() {
+        return "`u` (the model has none)".to_string();
+    }
+    let names: Vec<&str> = model.inputs.iter().map(|i| i.name.as_str()).collect();
+    format!("`u = ({})`", names.join(", "))
+}
+
 // ----- expressions ------------------------------------------------------------
 
 fn expressions_of(model: &mut Model, forms: &[RationalFunction]) -> Vec<ExprId> {
@@ -380,14 +389,9 @@ fn reduced_rhs(model: &mut Model, reduced: &PortHamiltonian) -> Result<TokenStre
         name: "reduced_rhs",
         doc: format!(
             "The reduced equations of motion `xdot = Jbar dHbar/dx + Bbar u` at the state {} \
-             and inputs `u` ({}); no constraints or multipliers remain.",
+             and inputs {}; no constraints or multipliers remain.",
             state_names(model, reduced),
-            model
-                .inputs
-                .iter()
-                .map(|i| i.name.as_str())
-                .collect::<Vec<_>>()
-                .join(", ")
+            input_names(model)
         ),
         arguments,
         returns: vector_type(s),
