@@ -377,6 +377,22 @@ mod tests {
 
     const SLEIGH: &str = include_str!("../../../models/sleigh.model");
 
+    /// The snakeboard with its momentum basis removed: the tool picks its own.
+    fn snakeboard_without_basis() -> String {
+        let fixture = crate::fixtures::SNAKEBOARD;
+        let start = fixture.find("    momentum_basis").expect("declared");
+        let end = fixture.find("    symmetry").expect("declared");
+        format!("{}{}", &fixture[..start], &fixture[end..])
+    }
+
+    fn sources() -> [String; 3] {
+        [
+            crate::fixtures::SNAKEBOARD.to_string(),
+            snakeboard_without_basis(),
+            SLEIGH.to_string(),
+        ]
+    }
+
     fn derived(source: &str) -> (Model, PortHamiltonian) {
         let mut model = check(&parse_str(source).expect("parses")).expect("checks");
         let basis = distribution_basis(&mut model).expect("regular at the defaults");
@@ -416,8 +432,8 @@ mod tests {
 
     #[test]
     fn the_projection_is_a_left_inverse_of_the_basis() {
-        for source in [crate::fixtures::SNAKEBOARD, SLEIGH] {
-            let (model, reduced) = derived(source);
+        for source in sources() {
+            let (model, reduced) = derived(&source);
             let product = reduced
                 .projection
                 .mul(&reduced.basis.transpose(), model.store.atoms())
@@ -428,8 +444,8 @@ mod tests {
 
     #[test]
     fn the_structure_matrix_is_exactly_skew() {
-        for source in [crate::fixtures::SNAKEBOARD, SLEIGH] {
-            let (model, reduced) = derived(source);
+        for source in sources() {
+            let (model, reduced) = derived(&source);
             let atoms = model.store.atoms();
             assert!(reduced.structure.is_skew(atoms));
             let sum = reduced
@@ -490,6 +506,24 @@ mod tests {
             !reduced.gyroscopic.is_zero(),
             "the sleigh's momenta are gyroscopically coupled"
         );
+    }
+
+    #[test]
+    fn the_snakeboard_without_a_basis_gets_the_tools() {
+        let (mut model, reduced) = derived(&snakeboard_without_basis());
+        assert!(!reduced.declared_basis);
+        assert_eq!(reduced.momentum_names, ["alpha1", "alpha2", "alpha3"]);
+        for (name, matrix) in [("gbar", &reduced.metric), ("Gamma", &reduced.gyroscopic)] {
+            for (i, entry) in matrix.entries().iter().enumerate() {
+                let expression = model.store.expression_of(entry);
+                println!(
+                    "snakeboard (own basis) {name}[{i}] = {}",
+                    model.store.display(expression)
+                );
+            }
+        }
+        assert!(!reduced.metric_constant && !reduced.metric_diagonal);
+        assert!(!reduced.gyroscopic.is_zero());
     }
 
     #[test]
