@@ -16,8 +16,8 @@
 //!
 //! Where an output is a product of derived matrices, two forms are lowered:
 //! the expanded normal form, and the structured sum of products of the
-//! factors' entries (for the Jacobian, the structured form differentiated as
-//! an expression). The one with fewer operations is emitted: expanded normal
+//! factors' entries (for the gradient and the Jacobian, the structured form
+//! differentiated as an expression). The one with fewer operations is emitted: expanded normal
 //! forms are often longer, and lose accuracy to cancellation.
 
 use super::{Argument, coordinates, f64_type, function_body, internal, matrix_literal, velocities};
@@ -315,14 +315,22 @@ fn hamiltonian_gradient(
     reduced: &PortHamiltonian,
 ) -> Result<TokenStream, Diagnostics> {
     let s = reduced.gradient.len();
-    let outputs = expressions_of(model, &reduced.gradient);
+    let energy = structured_hamiltonian(model, reduced);
+    let structured: Vec<ExprId> = reduced
+        .state(model)
+        .into_iter()
+        .map(|x| model.store.derivative(energy, x))
+        .collect();
+    let expanded = expressions_of(model, &reduced.gradient);
+    let arguments = vec![state_argument(model, reduced)];
+    let outputs = cheapest(model, &arguments, vec![structured, expanded])?;
     let signature = Signature {
         name: "hamiltonian_gradient",
         doc: format!(
             "The gradient `dHbar/dx` of the reduced energy at the state {}.",
             state_names(model, reduced)
         ),
-        arguments: vec![state_argument(model, reduced)],
+        arguments,
         returns: vector_type(s),
     };
     item(model, signature, &outputs, vector_literal)
