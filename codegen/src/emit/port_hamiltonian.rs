@@ -17,8 +17,10 @@
 //! Where an output is a product of derived matrices, two forms are lowered:
 //! the expanded normal form, and the structured sum of products of the
 //! factors' entries (for the gradient and the Jacobian, the structured form
-//! differentiated as an expression). The one with fewer operations is emitted: expanded normal
-//! forms are often longer, and lose accuracy to cancellation.
+//! differentiated as an expression). The one with fewer operations is
+//! emitted: expanded normal forms are often longer, and lose accuracy to
+//! cancellation. The snakeboard's `reduced_rhs` is the structured form (16
+//! operations against 20), the sleigh's the expanded one (19 against 29).
 
 use super::{Argument, coordinates, f64_type, function_body, internal, matrix_literal, velocities};
 use crate::derive::constraints::distribution_basis;
