@@ -37,6 +37,36 @@ fn allocations(work: impl FnOnce()) -> usize {
     ALLOCATIONS.load(Ordering::SeqCst) - before
 }
 
+/// One call of every reduced port-Hamiltonian item of both models.
+/// Calls every reduced port-Hamiltonian item of a model once, at a state
+/// built from `t` through `velocities` and `momenta`.
+macro_rules! reduced_items {
+    ($model:expr, $type:ty, $t:expr) => {{
+        let t: f64 = $t;
+        let mut q = [0.0; <$type>::N];
+        for (i, value) in q.iter_mut().enumerate() {
+            *value = 0.1 * i as f64 + t;
+        }
+        let mut seed = [0.0; <$type>::K];
+        for (i, value) in seed.iter_mut().enumerate() {
+            *value = 0.5 - 0.2 * i as f64 + t;
+        }
+        let qdot = black_box($model.velocities(black_box(&q), black_box(&seed)));
+        let alpha = black_box($model.momenta(black_box(&q), &qdot));
+        let mut x = [0.0; <$type>::S];
+        x[..<$type>::N].copy_from_slice(&q);
+        x[<$type>::N..].copy_from_slice(&alpha);
+        let u = [0.3 - t; <$type>::P];
+        black_box($model.hamiltonian(black_box(&x)));
+        black_box($model.hamiltonian_gradient(black_box(&x)));
+        black_box($model.structure_matrix(black_box(&x)));
+        black_box($model.input_matrix(black_box(&x)));
+        black_box($model.reduced_rhs(black_box(&x), black_box(&u)));
+        black_box($model.reduced_rhs_jacobian(black_box(&x), black_box(&u)));
+        black_box($model.output(black_box(&x)));
+    }};
+}
+
 #[test]
 fn generated_functions_do_not_allocate() {
     let board = Snakeboard::default();
@@ -68,6 +98,10 @@ fn generated_functions_do_not_allocate() {
             black_box(robot.energy(black_box(&q), black_box(&qdot)));
             black_box(robot.constraint_matrix(black_box(&q)));
             black_box(robot.constraint_residual(black_box(&q), black_box(&qdot)));
+            reduced_items!(board, Snakeboard, t);
+            reduced_items!(sleigh, Sleigh, t);
+            reduced_items!(disk, RollingDisk, t);
+            reduced_items!(robot, DifferentialDrive, t);
         }
     });
     assert_eq!(counted, 0);

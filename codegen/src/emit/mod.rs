@@ -12,12 +12,16 @@
 //! REPORT                          the derivation report (see [`report`])
 //! ```
 //!
+//! and the reduced port-Hamiltonian items of `port_hamiltonian` (MATH.md
+//! section 3).
+//!
 //! Each function body is one [`crate::ir::Program`]: straight-line `let`s over
 //! `f64` with common subexpressions shared, no allocation, no panics, types
 //! named by absolute paths (`::core::primitive::f64`), so the items compile
 //! under `#![deny(warnings)]` whatever the caller has in scope.
 
 mod kinematics;
+mod port_hamiltonian;
 pub mod report;
 
 use crate::derive::constraints::ConstraintAnalysis;
@@ -49,8 +53,10 @@ pub fn model_items(
 ) -> Result<TokenStream, Diagnostics> {
     let definition = parameter_struct(model);
     let constants = constants(model);
-    let functions = kinematics::functions(model)?;
-    let report = report_constant(model, constraints, &functions);
+    let mut functions = kinematics::functions(model)?;
+    let (reduced, reduced_report) = port_hamiltonian::functions(model)?;
+    functions.extend(reduced);
+    let report = report_constant(model, constraints, reduced_report, &functions);
     let items = functions.iter().map(|f| &f.item);
     let name = &model.name;
     Ok(quote! {
@@ -66,15 +72,18 @@ pub fn model_items(
 fn report_constant(
     model: &mut Model,
     constraints: &ConstraintAnalysis,
+    reduced: report::Section,
     functions: &[Function],
 ) -> TokenStream {
     let mut report = report::Report::new(model.name.to_string());
     report.push(report::constraints(model, constraints));
+    report.push(reduced);
     report.push(report::operations(functions));
     let text = report.render();
     quote! {
         /// The derivation report: sizes, the basis of D, integrability,
-        /// growth vector, classification, operation counts.
+        /// growth vector, classification, the reduced port-Hamiltonian
+        /// form's metric and structure, operation counts.
         pub const REPORT: &'static ::core::primitive::str = #text;
     }
 }

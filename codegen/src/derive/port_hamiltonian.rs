@@ -1,0 +1,537 @@
+//! Reduced port-Hamiltonian form (Duindam & Stramigioli, "Energy-based model
+//! reduction of nonholonomic mechanical systems", Theorem 1; MATH.md section 3).
+//!
+//! The momenta `p = g qdot` of allowed motions lie in `g(D)`, spanned by the k
+//! rows of a momentum basis `h(q)` (k x n): `p = h^T alpha`. The basis is the
+//! declared one, or `h = (g X)^T` from a basis `X` of D (section 1) when none
+//! is declared. With
+//!
+//! ```text
+//! gbar_inv = h g^-1 h^T                      (k x k)
+//! gbar     = gbar_inv^-1
+//! P        = gbar h g^-1                     (k x n, P h^T = I)
+//! Gamma_ab = alpha_c dh^c(P^T e_a, P^T e_b)  (k x k)
+//! dh^c(X, Y) = X^j Y^l (d h^c_l / d q_j - d h^c_j / d q_l)
+//! Hbar     = 1/2 alpha^T gbar_inv alpha + V(q)
+//! ```
+//!
+//! the state `x = (q, alpha)` of size `s = n + k` obeys, with no multipliers
+//! and no constraints left,
+//!
+//! ```text
+//! xdot = Jbar dHbar/dx + Bbar u,   y = Bbar^T dHbar/dx,
+//! Jbar = [[0, P^T], [-P, Gamma]],   Bbar = [0; P B].
+//! ```
+//!
+//! `Jbar` is skew-symmetric, so `dHbar/dt = y . u`; the derivation proves it
+//! exactly (`Jbar + Jbar^T` is zero in normal form) and fails otherwise. The
+//! velocities are `qdot = g^-1 h^T alpha` and the momenta `alpha = P g qdot`.
+//! Whether `gbar` is constant (free of the coordinates) and diagonal is
+//! decided exactly and recorded.
+
+use super::constraints::DistributionBasis;
+use crate::model::Model;
+use crate::sym::{
+    Atoms, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError, SymbolId, SymbolKind,
+};
+
+/// The reduced port-Hamiltonian model: every matrix in exact normal form.
+#[derive(Clone, Debug)]
+pub struct PortHamiltonian {
+    /// The names of the reduced momenta: the declared basis rows, or
+    /// `alpha1..alphak` for the tool's own basis.
+    pub momentum_names: Vec<String>,
+    /// The reduced momenta `alpha`, k symbols.
+    pub momenta: Vec<SymbolId>,
+    /// The inputs `u`, p symbols named as the model's inputs.
+    pub inputs: Vec<SymbolId>,
+    /// True when `h` was declared, false when the tool chose `(g X)^T`.
+    pub declared_basis: bool,
+    /// `h`, k x n.
+    pub basis: Matrix,
+    /// `gbar_inv = h g^-1 h^T`, k x k.
+    pub metric_inverse: Matrix,
+    /// `gbar`, k x k.
+    pub metric: Matrix,
+    /// `P = gbar h g^-1`, k x n.
+    pub projection: Matrix,
+    /// `g^-1 h^T`, n x k: `qdot = g^-1 h^T alpha`.
+    pub velocity_map: Matrix,
+    /// `P g = gbar h`, k x n: `alpha = P g qdot`.
+    pub momentum_map: Matrix,
+    /// `Gamma`, k x k, linear in `alpha`.
+    pub gyroscopic: Matrix,
+    /// `Jbar`, s x s, skew-symmetric.
+    pub structure: Matrix,
+    /// `Bbar`, s x p.
+    pub input_matrix: Matrix,
+    /// `Hbar(q, alpha)`.
+    pub hamiltonian: RationalFunction,
+    /// `dHbar/dx`, s entries.
+    pub gradient: Vec<RationalFunction>,
+    /// `xdot = Jbar dHbar/dx + Bbar u`, s entries, expanded.
+    pub rhs: Vec<RationalFunction>,
+    /// `y = Bbar^T dHbar/dx`, p entries.
+    pub output: Vec<RationalFunction>,
+    /// `gbar` does not depend on the coordinates.
+    pub metric_constant: bool,
+    /// `gbar` is diagonal.
+    pub metric_diagonal: bool,
+}
+
+/// Why the reduced form could not be derived.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum PortHamiltonianError {
+    /// A solve or product failed (a singular metric, say).
+    #[error("reduced port-Hamiltonian form: {0}")]
+    Matrix(#[from] MatrixError),
+    /// The engine failed on an entry.
+    #[error("reduced port-Hamiltonian form: {0}")]
+    Symbolic(#[from] SymError),
+    /// `Jbar + Jbar^T` is not exactly zero: a bug of the derivation.
+    #[error(
+        "the derived structure matrix Jbar is not skew-symmetric (entry ({row}, {column}) of Jbar + Jbar^T is not zero)"
+    )]
+    NotSkew {
+        /// Row of the first non-zero entry.
+        row: usize,
+        /// Its column.
+        column: usize,
+    },
+}
+
+impl PortHamiltonian {
+    /// The state symbols `x = (q, alpha)`.
+    pub fn state(&self, model: &Model) -> Vec<SymbolId> {
+        let mut state = model.coordinate_symbols();
+        state.extend(&self.momenta);
+        state
+    }
+}
+
+/// Derives the reduced port-Hamiltonian form of `model` (Theorem 1).
+pub fn derive(
+    model: &mut Model,
+    basis: &DistributionBasis,
+) -> Result<PortHamiltonian, PortHamiltonianError> {
+    let (h, momentum_names, declared_basis) = momentum_basis(model, basis)?;
+    let momenta: Vec<SymbolId> = momentum_names
+        .iter()
+        .map(|name| fresh_symbol(model, name, SymbolKind::Momentum))
+        .collect();
+    let inputs: Vec<SymbolId> = model
+        .inputs
+        .clone()
+        .iter()
+        .map(|input| fresh_symbol(model, &input.name, SymbolKind::Auxiliary))
+        .collect();
+    let alpha = column_of_symbols(model, &momenta)?;
+    let maps = Maps::of(model, &h)?;
+    let gyroscopic = gyroscopic(model, &h, &maps.projection, &alpha)?;
+    let structure = structure_matrix(&maps.projection, &gyroscopic);
+    prove_skew(&structure, model.store.atoms())?;
+    let input_matrix = reduced_input_matrix(model, &maps.projection)?;
+    let flow = Flow::of(model, &maps, &structure, &input_matrix, &momenta, &inputs)?;
+    Ok(PortHamiltonian {
+        momentum_names,
+        momenta,
+        inputs,
+        declared_basis,
+        basis: h,
+        metric_constant: is_constant(model, &maps.metric)?,
+        metric_diagonal: is_diagonal(&maps.metric),
+        metric_inverse: maps.metric_inverse,
+        metric: maps.metric,
+        projection: maps.projection,
+        velocity_map: maps.velocity_map,
+        momentum_map: maps.momentum_map,
+        gyroscopic,
+        structure,
+        input_matrix,
+        hamiltonian: flow.hamiltonian,
+        gradient: flow.gradient,
+        rhs: flow.rhs,
+        output: flow.output,
+    })
+}
+
+/// The configuration-dependent maps between velocities and reduced momenta.
+struct Maps {
+    velocity_map: Matrix,
+    metric_inverse: Matrix,
+    metric: Matrix,
+    projection: Matrix,
+    momentum_map: Matrix,
+}
+
+impl Maps {
+    /// `g^-1 h^T`, `gbar_inv = h g^-1 h^T`, `gbar`, `P = gbar h g^-1` and `P g`.
+    fn of(model: &Model, h: &Matrix) -> Result<Maps, MatrixError> {
+        let atoms = model.store.atoms();
+        let g_inverse = model.mass_matrix.inverse(atoms)?;
+        let velocity_map = g_inverse.mul(&h.transpose(), atoms)?;
+        let metric_inverse = h.mul(&velocity_map, atoms)?;
+        let metric = metric_inverse.inverse(atoms)?;
+        let projection = metric.mul(h, atoms)?.mul(&g_inverse, atoms)?;
+        let momentum_map = projection.mul(&model.mass_matrix, atoms)?;
+        Ok(Maps {
+            velocity_map,
+            metric_inverse,
+            metric,
+            projection,
+            momentum_map,
+        })
+    }
+}
+
+/// The energy and the port-Hamiltonian flow it generates.
+struct Flow {
+    hamiltonian: RationalFunction,
+    gradient: Vec<RationalFunction>,
+    rhs: Vec<RationalFunction>,
+    output: Vec<RationalFunction>,
+}
+
+impl Flow {
+    /// `Hbar`, `dHbar/dx`, `Jbar dHbar/dx + Bbar u` and `Bbar^T dHbar/dx`.
+    fn of(
+        model: &mut Model,
+        maps: &Maps,
+        structure: &Matrix,
+        input_matrix: &Matrix,
+        momenta: &[SymbolId],
+        inputs: &[SymbolId],
+    ) -> Result<Flow, PortHamiltonianError> {
+        let alpha = column_of_symbols(model, momenta)?;
+        let u = column_of_symbols(model, inputs)?;
+        let atoms = model.store.atoms().clone();
+        let hamiltonian = quadratic_form(&alpha, &maps.metric_inverse, &atoms)?
+            .scale(&Rational::new(1, 2).unwrap_or(Rational::ONE))
+            .add(&model.potential_energy, &atoms);
+        let mut state = model.coordinate_symbols();
+        state.extend(momenta);
+        let gradient = model
+            .store
+            .jacobian(std::slice::from_ref(&hamiltonian), &state)?
+            .transpose();
+        let atoms = model.store.atoms().clone();
+        let rhs = structure
+            .mul(&gradient, &atoms)?
+            .add(&input_matrix.mul(&u, &atoms)?, &atoms)?;
+        let output = input_matrix.transpose().mul(&gradient, &atoms)?;
+        Ok(Flow {
+            hamiltonian,
+            gradient: gradient.entries().to_vec(),
+            rhs: rhs.entries().to_vec(),
+            output: output.entries().to_vec(),
+        })
+    }
+}
+
+/// `(h, names, declared)`: the declared basis, or `h = (g X)^T = X^T g`
+/// named `alpha1..alphak`.
+fn momentum_basis(
+    model: &Model,
+    basis: &DistributionBasis,
+) -> Result<(Matrix, Vec<String>, bool), MatrixError> {
+    if let Some(declared) = &model.momentum_basis {
+        let names = declared.names.iter().map(|d| d.name.clone()).collect();
+        return Ok((declared.rows.clone(), names, true));
+    }
+    let h = basis
+        .fields
+        .transpose()
+        .mul(&model.mass_matrix, model.store.atoms())?;
+    let names = (1..=h.rows()).map(|i| format!("alpha{i}")).collect();
+    Ok((h, names, false))
+}
+
+/// The symbol called `name` if it is new or already of this kind, else a
+/// primed variant (`name'`, `name''`, ...) that is: an input or momentum
+/// never captures a parameter or coordinate of the same name.
+fn fresh_symbol(model: &mut Model, name: &str, kind: SymbolKind) -> SymbolId {
+    let mut candidate = name.to_string();
+    loop {
+        let symbol = model.store.declare(&candidate, kind);
+        if model.store.symbol_info(symbol).kind == kind {
+            return symbol;
+        }
+        candidate.push('\'');
+    }
+}
+
+/// The column of the symbols as polynomials.
+fn column_of_symbols(model: &mut Model, symbols: &[SymbolId]) -> Result<Matrix, MatrixError> {
+    let entries = symbols
+        .iter()
+        .map(|&s| RationalFunction::from_poly(Poly::atom(model.store.symbol_atom(s))))
+        .collect();
+    Matrix::new(symbols.len(), 1, entries)
+}
+
+/// `Gamma = sum_c alpha_c P W^c P^T` with `W^c_jl = d h^c_l/d q_j - d h^c_j/d q_l`,
+/// so that `Gamma_ab = alpha_c dh^c(P^T e_a, P^T e_b)`.
+fn gyroscopic(
+    model: &mut Model,
+    h: &Matrix,
+    projection: &Matrix,
+    alpha: &Matrix,
+) -> Result<Matrix, MatrixError> {
+    let coordinates = model.coordinate_symbols();
+    let k = h.rows();
+    let mut gamma = Matrix::zeros(k, k);
+    for c in 0..k {
+        let row: Vec<RationalFunction> = (0..h.columns()).map(|l| h.get(c, l).clone()).collect();
+        // jacobian (l, j) = d h^c_l / d q_j, so W^c = jacobian^T - jacobian
+        let jacobian = model.store.jacobian(&row, &coordinates)?;
+        let atoms = model.store.atoms().clone();
+        let exterior = jacobian.transpose().sub(&jacobian, &atoms)?;
+        if exterior.is_zero() {
+            continue;
+        }
+        let term = projection
+            .mul(&exterior, &atoms)?
+            .mul(&projection.transpose(), &atoms)?;
+        gamma = gamma.add(&scaled(&term, alpha.get(c, 0), &atoms), &atoms)?;
+    }
+    Ok(gamma)
+}
+
+fn scaled(matrix: &Matrix, factor: &RationalFunction, atoms: &Atoms) -> Matrix {
+    let mut result = Matrix::zeros(matrix.rows(), matrix.columns());
+    for i in 0..matrix.rows() {
+        for j in 0..matrix.columns() {
+            result.set(i, j, matrix.get(i, j).mul(factor, atoms));
+        }
+    }
+    result
+}
+
+/// `Jbar = [[0, P^T], [-P, Gamma]]`.
+fn structure_matrix(projection: &Matrix, gyroscopic: &Matrix) -> Matrix {
+    let (k, n) = (projection.rows(), projection.columns());
+    let mut structure = Matrix::zeros(n + k, n + k);
+    for a in 0..k {
+        for j in 0..n {
+            structure.set(j, n + a, projection.get(a, j).clone());
+            structure.set(n + a, j, projection.get(a, j).neg());
+        }
+        for b in 0..k {
+            structure.set(n + a, n + b, gyroscopic.get(a, b).clone());
+        }
+    }
+    structure
+}
+
+/// Fails unless `Jbar + Jbar^T` is exactly zero.
+fn prove_skew(structure: &Matrix, atoms: &Atoms) -> Result<(), PortHamiltonianError> {
+    let sum = structure.add(&structure.transpose(), atoms)?;
+    let size = sum.rows();
+    match (0..size * size).find(|&at| !sum.get(at / size, at % size).is_zero()) {
+        Some(at) => Err(PortHamiltonianError::NotSkew {
+            row: at / size,
+            column: at % size,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// `Bbar = [0; P B]`, s x p.
+fn reduced_input_matrix(model: &Model, projection: &Matrix) -> Result<Matrix, MatrixError> {
+    let (n, k, p) = (model.n(), projection.rows(), model.p());
+    let reduced = projection.mul(&model.input_matrix, model.store.atoms())?;
+    let mut bbar = Matrix::zeros(n + k, p);
+    for a in 0..k {
+        for j in 0..p {
+            bbar.set(n + a, j, reduced.get(a, j).clone());
+        }
+    }
+    Ok(bbar)
+}
+
+/// `v^T M v` for a column `v`.
+fn quadratic_form(v: &Matrix, m: &Matrix, atoms: &Atoms) -> Result<RationalFunction, MatrixError> {
+    let product = v.transpose().mul(&m.mul(v, atoms)?, atoms)?;
+    Ok(product.get(0, 0).clone())
+}
+
+/// True when no entry depends on a coordinate (exact derivatives).
+fn is_constant(model: &mut Model, matrix: &Matrix) -> Result<bool, MatrixError> {
+    let coordinates = model.coordinate_symbols();
+    let derivatives = model.store.jacobian(matrix.entries(), &coordinates)?;
+    Ok(derivatives.is_zero())
+}
+
+/// True when every off-diagonal entry is exactly zero.
+fn is_diagonal(matrix: &Matrix) -> bool {
+    (0..matrix.rows()).all(|i| (0..matrix.columns()).all(|j| i == j || matrix.get(i, j).is_zero()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{PortHamiltonian, PortHamiltonianError, derive, prove_skew};
+    use crate::derive::constraints::distribution_basis;
+    use crate::model::{Model, check};
+    use crate::sym::{Matrix, Poly, RationalFunction};
+    use crate::syntax::parse_str;
+
+    const SLEIGH: &str = include_str!("../../../models/sleigh.model");
+
+    /// The snakeboard with its momentum basis removed: the tool picks its own.
+    fn snakeboard_without_basis() -> String {
+        let fixture = crate::fixtures::SNAKEBOARD;
+        let start = fixture.find("    momentum_basis").expect("declared");
+        let end = fixture.find("    symmetry").expect("declared");
+        format!("{}{}", &fixture[..start], &fixture[end..])
+    }
+
+    fn sources() -> [String; 3] {
+        [
+            crate::fixtures::SNAKEBOARD.to_string(),
+            snakeboard_without_basis(),
+            SLEIGH.to_string(),
+        ]
+    }
+
+    fn derived(source: &str) -> (Model, PortHamiltonian) {
+        let mut model = check(&parse_str(source).expect("parses")).expect("checks");
+        let basis = distribution_basis(&mut model).expect("regular at the defaults");
+        let reduced = derive(&mut model, &basis).expect("derives");
+        (model, reduced)
+    }
+
+    fn parameter(model: &mut Model, name: &str) -> RationalFunction {
+        let symbol = model
+            .parameters
+            .iter()
+            .find(|p| p.variable.declared.name == name)
+            .expect("declared")
+            .variable
+            .symbol;
+        RationalFunction::from_poly(Poly::atom(model.store.symbol_atom(symbol)))
+    }
+
+    #[test]
+    fn the_snakeboard_metric_is_exactly_diag_m_jt_jw() {
+        let (mut model, reduced) = derived(crate::fixtures::SNAKEBOARD);
+        let mut expected = Matrix::zeros(3, 3);
+        for (i, name) in ["m", "jt", "jw"].into_iter().enumerate() {
+            expected.set(i, i, parameter(&mut model, name));
+        }
+        assert_eq!(reduced.metric, expected);
+        assert!(reduced.metric_constant && reduced.metric_diagonal);
+        assert!(reduced.declared_basis);
+        assert_eq!(reduced.momentum_names, ["group", "torso", "wheels"]);
+    }
+
+    #[test]
+    fn the_snakeboard_has_no_gyroscopic_terms() {
+        let (_, reduced) = derived(crate::fixtures::SNAKEBOARD);
+        assert!(reduced.gyroscopic.is_zero());
+    }
+
+    #[test]
+    fn the_projection_is_a_left_inverse_of_the_basis() {
+        for source in sources() {
+            let (model, reduced) = derived(&source);
+            let product = reduced
+                .projection
+                .mul(&reduced.basis.transpose(), model.store.atoms())
+                .expect("fits");
+            assert_eq!(product, Matrix::identity(reduced.momenta.len()));
+        }
+    }
+
+    #[test]
+    fn the_structure_matrix_is_exactly_skew() {
+        for source in sources() {
+            let (model, reduced) = derived(&source);
+            let atoms = model.store.atoms();
+            assert!(reduced.structure.is_skew(atoms));
+            let sum = reduced
+                .structure
+                .add(&reduced.structure.transpose(), atoms)
+                .expect("fits");
+            assert!(sum.is_zero());
+        }
+    }
+
+    #[test]
+    fn a_matrix_that_is_not_skew_is_reported() {
+        let mut lopsided = Matrix::zeros(2, 2);
+        lopsided.set(0, 1, RationalFunction::one());
+        let atoms = crate::sym::Atoms::default();
+        assert_eq!(
+            prove_skew(&lopsided, &atoms),
+            Err(PortHamiltonianError::NotSkew { row: 0, column: 1 })
+        );
+        assert_eq!(
+            prove_skew(
+                &Matrix::identity(2)
+                    .neg()
+                    .add(&Matrix::identity(2), &atoms)
+                    .unwrap(),
+                &atoms
+            ),
+            Ok(())
+        );
+    }
+
+    /// The tool's own basis for the sleigh, `h = (g X)^T` with
+    /// `X = [(1, tan theta, 0), (0, 0, 1)]` (y is the dependent speed at theta = 0).
+    #[test]
+    fn the_sleigh_gets_the_tools_basis_and_its_facts_are_recorded() {
+        let (mut model, reduced) = derived(SLEIGH);
+        assert!(!reduced.declared_basis);
+        assert_eq!(reduced.momentum_names, ["alpha1", "alpha2"]);
+        for (name, matrix) in [
+            ("h", &reduced.basis),
+            ("gbar", &reduced.metric),
+            ("Gamma", &reduced.gyroscopic),
+        ] {
+            for (i, entry) in matrix.entries().iter().enumerate() {
+                let expression = model.store.expression_of(entry);
+                println!("sleigh {name}[{i}] = {}", model.store.display(expression));
+            }
+        }
+        println!(
+            "sleigh gbar constant: {}, diagonal: {}",
+            reduced.metric_constant, reduced.metric_diagonal
+        );
+        assert!(
+            !reduced.metric_constant,
+            "gbar = X^T g X carries 1/cos(theta)^2"
+        );
+        assert!(
+            !reduced.gyroscopic.is_zero(),
+            "the sleigh's momenta are gyroscopically coupled"
+        );
+    }
+
+    #[test]
+    fn the_snakeboard_without_a_basis_gets_the_tools() {
+        let (mut model, reduced) = derived(&snakeboard_without_basis());
+        assert!(!reduced.declared_basis);
+        assert_eq!(reduced.momentum_names, ["alpha1", "alpha2", "alpha3"]);
+        for (name, matrix) in [("gbar", &reduced.metric), ("Gamma", &reduced.gyroscopic)] {
+            for (i, entry) in matrix.entries().iter().enumerate() {
+                let expression = model.store.expression_of(entry);
+                println!(
+                    "snakeboard (own basis) {name}[{i}] = {}",
+                    model.store.display(expression)
+                );
+            }
+        }
+        assert!(!reduced.metric_constant && !reduced.metric_diagonal);
+        assert!(!reduced.gyroscopic.is_zero());
+    }
+
+    #[test]
+    fn momenta_of_inputs_never_capture_a_parameter() {
+        let source = crate::fixtures::SNAKEBOARD.replace("u_torso = psi", "m = psi");
+        let (model, reduced) = derived(&source);
+        let input = model.store.symbol_info(reduced.inputs[0]);
+        assert_eq!(input.name, "m'");
+        assert_eq!(input.kind, crate::sym::SymbolKind::Auxiliary);
+    }
+}

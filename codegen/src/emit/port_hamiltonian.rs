@@ -1,0 +1,626 @@
+//! The reduced port-Hamiltonian items (MATH.md section 3,
+//! [`crate::derive::port_hamiltonian`]): with the state `x = (q, alpha)` of
+//! size `s = n + k`,
+//!
+//! ```text
+//! momenta(q, qdot)              alpha = P g qdot
+//! velocities(q, alpha)          qdot = g^-1 h^T alpha
+//! hamiltonian(x)                Hbar = 1/2 alpha^T gbar_inv alpha + V
+//! hamiltonian_gradient(x)       dHbar/dx
+//! structure_matrix(x)           Jbar = [[0, P^T], [-P, Gamma]]
+//! input_matrix(x)               Bbar = [0; P B]
+//! reduced_rhs(x, u)             xdot = Jbar dHbar/dx + Bbar u
+//! reduced_rhs_jacobian(x, u)    d xdot / dx
+//! output(x)                     y = Bbar^T dHbar/dx
+//! ```
+//!
+//! Where an output is a product of derived matrices, two forms are lowered:
+//! the expanded normal form, and the structured sum of products of the
+//! factors' entries (for the gradient and the Jacobian, the structured form
+//! differentiated as an expression). The one with fewer operations is
+//! emitted: expanded normal forms are often longer, and lose accuracy to
+//! cancellation. The snakeboard's `reduced_rhs` is the structured form (16
+//! operations against 20), the sleigh's the expanded one (19 against 29).
+
+use super::report::Section;
+use super::{
+    Argument, Function, coordinates, f64_type, function_body, internal, matrix_literal, velocities,
+};
+use crate::derive::constraints::distribution_basis;
+use crate::derive::port_hamiltonian::{PortHamiltonian, derive};
+use crate::diagnostic::Diagnostics;
+use crate::ir;
+use crate::model::Model;
+use crate::sym::{ExprId, Matrix, Rational, RationalFunction, SymbolId};
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
+
+/// The nine functions, in the order they are documented, and the report's
+/// section on the reduced form.
+pub(super) fn functions(model: &mut Model) -> Result<(Vec<Function>, Section), Diagnostics> {
+    let basis = distribution_basis(model).map_err(|e| internal(model, e))?;
+    let reduced = derive(model, &basis).map_err(|e| internal(model, e))?;
+    let section = report_section(model, &reduced);
+    let emitters: [Emitter; 9] = [
+        momenta,
+        velocities_of_momenta,
+        hamiltonian,
+        hamiltonian_gradient,
+        structure_matrix,
+        input_matrix,
+        reduced_rhs,
+        reduced_rhs_jacobian,
+        output,
+    ];
+    let functions = emitters
+        .iter()
+        .map(|emit| emit(model, &reduced))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((functions, section))
+}
+
+/// What the report says of the reduced form (MATH.md section 3).
+fn report_section(model: &mut Model, reduced: &PortHamiltonian) -> Section {
+    let mut section = Section::new("Reduced port-Hamiltonian form (Duindam & Stramigioli)");
+    let origin = if reduced.declared_basis {
+        "declared"
+    } else {
+        "the tool's own, h = (g X)^T"
+    };
+    section.line(format!(
+        "momentum basis: {origin}; momenta {}",
+        reduced.momentum_names.join(", ")
+    ));
+    let yes_no = |flag: bool| if flag { "yes" } else { "no" };
+    section.line(format!(
+        "gbar = (h g^-1 h^T)^-1 constant: {}, diagonal: {}",
+        yes_no(reduced.metric_constant),
+        yes_no(reduced.metric_diagonal)
+    ));
+    let gbar = reduced.metric.to_expressions(&mut model.store);
+    let k = reduced.momenta.len();
+    for (i, row) in gbar.chunks(k.max(1)).enumerate() {
+        let entries: Vec<String> = row
+            .iter()
+            .map(|&e| model.store.display(e).to_string())
+            .collect();
+        section.line(format!("  gbar row {}: [{}]", i + 1, entries.join(", ")));
+    }
+    section.line(format!(
+        "Gamma = 0: {}; Jbar skew-symmetric: yes (decided exactly)",
+        yes_no(reduced.gyroscopic.is_zero())
+    ));
+    section
+}
+
+type Emitter = fn(&mut Model, &PortHamiltonian) -> Result<Function, Diagnostics>;
+
+/// What an emitted function looks like from outside.
+struct Signature {
+    name: &'static str,
+    doc: String,
+    arguments: Vec<Argument>,
+    returns: TokenStream,
+}
+
+/// The function computing `outputs`, assembled into its return value by `assemble`.
+fn item(
+    model: &Model,
+    signature: Signature,
+    outputs: &[ExprId],
+    assemble: impl Fn(&[TokenStream]) -> TokenStream,
+) -> Result<Function, Diagnostics> {
+    let body = function_body(model, &signature.arguments, outputs, assemble)?;
+    let f64 = f64_type();
+    let parameters = signature.arguments.iter().map(|argument| {
+        let name = body.argument(argument.name);
+        let length = argument.symbols.len();
+        quote!(#name: &[#f64; #length])
+    });
+    let (doc, returns, statements) = (&signature.doc, &signature.returns, &body.statements);
+    let name = Ident::new(signature.name, Span::call_site());
+    let item = quote! {
+        #[doc = #doc]
+        pub fn #name(&self, #(#parameters),*) -> #returns {
+            #statements
+        }
+    };
+    Ok(Function {
+        name: signature.name,
+        item,
+        operations: body.operations,
+    })
+}
+
+// ----- arguments and shapes --------------------------------------------------
+
+fn momenta_argument(reduced: &PortHamiltonian) -> Argument {
+    Argument {
+        name: "alpha",
+        symbols: reduced.momenta.clone(),
+    }
+}
+
+fn state_argument(model: &Model, reduced: &PortHamiltonian) -> Argument {
+    Argument {
+        name: "x",
+        symbols: reduced.state(model),
+    }
+}
+
+fn inputs_argument(reduced: &PortHamiltonian) -> Argument {
+    Argument {
+        name: "u",
+        symbols: reduced.inputs.clone(),
+    }
+}
+
+fn vector_type(length: usize) -> TokenStream {
+    let f64 = f64_type();
+    quote!([#f64; #length])
+}
+
+fn matrix_type(rows: usize, columns: usize) -> TokenStream {
+    let f64 = f64_type();
+    quote!([[#f64; #columns]; #rows])
+}
+
+fn vector_literal(values: &[TokenStream]) -> TokenStream {
+    quote!([#(#values),*])
+}
+
+/// A `rows x columns` array literal, also when `columns` is 0.
+fn rows_literal(values: &[TokenStream], rows: usize, columns: usize) -> TokenStream {
+    if columns == 0 {
+        let empty = (0..rows).map(|_| quote!([]));
+        return quote!([#(#empty),*]);
+    }
+    matrix_literal(values, columns)
+}
+
+/// `x = (q_1, ..., q_n, alpha_1, ..., alpha_k)` by name, for the docs.
+fn state_names(model: &Model, reduced: &PortHamiltonian) -> String {
+    let names: Vec<&str> = model
+        .coordinates
+        .iter()
+        .map(|c| c.declared.name.as_str())
+        .chain(reduced.momentum_names.iter().map(String::as_str))
+        .collect();
+    format!("`x = ({})`", names.join(", "))
+}
+
+/// `u = (u_1, ..., u_p)` by name, for the docs.
+fn input_names(model: &Model) -> String {
+    if model.inputs.is_empty() {
+        return "`u` (the model has none)".to_string();
+    }
+    let names: Vec<&str> = model.inputs.iter().map(|i| i.name.as_str()).collect();
+    format!("`u = ({})`", names.join(", "))
+}
+
+// ----- expressions ------------------------------------------------------------
+
+fn expressions_of(model: &mut Model, forms: &[RationalFunction]) -> Vec<ExprId> {
+    forms
+        .iter()
+        .map(|form| model.store.expression_of(form))
+        .collect()
+}
+
+fn symbol_expressions(model: &mut Model, symbols: &[SymbolId]) -> Vec<ExprId> {
+    symbols.iter().map(|&s| model.store.symbol(s)).collect()
+}
+
+/// `matrix * column` as sums of products of the entries' expressions, unexpanded.
+fn structured_product(model: &mut Model, matrix: &Matrix, column: &[ExprId]) -> Vec<ExprId> {
+    (0..matrix.rows())
+        .map(|i| {
+            let terms: Vec<ExprId> = (0..matrix.columns())
+                .filter(|&j| !matrix.get(i, j).is_zero())
+                .map(|j| {
+                    let entry = model.store.expression_of(matrix.get(i, j));
+                    model.store.mul2(entry, column[j])
+                })
+                .collect();
+            model.store.add(&terms)
+        })
+        .collect()
+}
+
+/// `matrix * column` expanded to normal forms, as expressions.
+fn expanded_product(
+    model: &mut Model,
+    matrix: &Matrix,
+    column: &[RationalFunction],
+) -> Result<Vec<ExprId>, Diagnostics> {
+    let column = Matrix::new(column.len(), 1, column.to_vec()).map_err(|e| internal(model, e))?;
+    let atoms = model.store.atoms().clone();
+    let product = matrix
+        .mul(&column, &atoms)
+        .map_err(|e| internal(model, e))?;
+    Ok(expressions_of(model, product.entries()))
+}
+
+fn symbol_forms(model: &mut Model, symbols: &[SymbolId]) -> Vec<RationalFunction> {
+    symbols
+        .iter()
+        .map(|&s| {
+            let atom = model.store.symbol_atom(s);
+            RationalFunction::from_poly(crate::sym::Poly::atom(atom))
+        })
+        .collect()
+}
+
+/// The candidate with the fewest operations once lowered (the first on ties).
+fn cheapest(
+    model: &Model,
+    arguments: &[Argument],
+    candidates: Vec<Vec<ExprId>>,
+) -> Result<Vec<ExprId>, Diagnostics> {
+    let mut inputs: Vec<SymbolId> = arguments
+        .iter()
+        .flat_map(|a| a.symbols.iter().copied())
+        .collect();
+    inputs.extend(model.parameter_symbols());
+    let mut best: Option<(u64, Vec<ExprId>)> = None;
+    for candidate in candidates {
+        let program =
+            ir::lower(&model.store, &inputs, &candidate).map_err(|e| internal(model, e))?;
+        let cost = program.operation_count().after_cse;
+        if best.as_ref().is_none_or(|(lowest, _)| cost < *lowest) {
+            best = Some((cost, candidate));
+        }
+    }
+    Ok(best.map(|(_, outputs)| outputs).unwrap_or_default())
+}
+
+// ----- the items --------------------------------------------------------------
+
+fn momenta(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+    let (n, k) = (model.n(), reduced.momenta.len());
+    let qdot_expressions = symbol_expressions(model, &model.velocities.clone());
+    let qdot_forms = symbol_forms(model, &model.velocities.clone());
+    let candidates = vec![
+        structured_product(model, &reduced.momentum_map, &qdot_expressions),
+        expanded_product(model, &reduced.momentum_map, &qdot_forms)?,
+    ];
+    let arguments = vec![coordinates(model), velocities(model)];
+    let outputs = cheapest(model, &arguments, candidates)?;
+    let signature = Signature {
+        name: "momenta",
+        doc: format!(
+            "The reduced momenta `alpha = P g qdot` ({}) of a velocity `qdot` allowed by the \
+             constraints, `{n}` velocities to `{k}` momenta.",
+            reduced.momentum_names.join(", ")
+        ),
+        arguments,
+        returns: vector_type(k),
+    };
+    item(model, signature, &outputs, vector_literal)
+}
+
+fn velocities_of_momenta(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+) -> Result<Function, Diagnostics> {
+    let n = model.n();
+    let alpha_expressions = symbol_expressions(model, &reduced.momenta);
+    let alpha_forms = symbol_forms(model, &reduced.momenta);
+    let candidates = vec![
+        structured_product(model, &reduced.velocity_map, &alpha_expressions),
+        expanded_product(model, &reduced.velocity_map, &alpha_forms)?,
+    ];
+    let arguments = vec![coordinates(model), momenta_argument(reduced)];
+    let outputs = cheapest(model, &arguments, candidates)?;
+    let signature = Signature {
+        name: "velocities",
+        doc: "The velocities `qdot = g^-1 h^T alpha` of reduced momenta `alpha`: they satisfy \
+              the constraints, and `momenta` maps them back to `alpha`."
+            .to_string(),
+        arguments,
+        returns: vector_type(n),
+    };
+    item(model, signature, &outputs, vector_literal)
+}
+
+/// `1/2 alpha . (gbar_inv alpha) + V`, unexpanded.
+fn structured_hamiltonian(model: &mut Model, reduced: &PortHamiltonian) -> ExprId {
+    let alpha = symbol_expressions(model, &reduced.momenta);
+    let metric_alpha = structured_product(model, &reduced.metric_inverse, &alpha);
+    let terms: Vec<ExprId> = alpha
+        .iter()
+        .zip(&metric_alpha)
+        .map(|(&a, &b)| model.store.mul2(a, b))
+        .collect();
+    let twice_kinetic = model.store.add(&terms);
+    let half = model
+        .store
+        .number(Rational::new(1, 2).unwrap_or(Rational::ONE));
+    let kinetic = model.store.mul2(half, twice_kinetic);
+    let potential = model.store.expression_of(&model.potential_energy);
+    model.store.add2(kinetic, potential)
+}
+
+fn hamiltonian(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+    let arguments = vec![state_argument(model, reduced)];
+    let candidates = vec![
+        vec![structured_hamiltonian(model, reduced)],
+        expressions_of(model, std::slice::from_ref(&reduced.hamiltonian)),
+    ];
+    let outputs = cheapest(model, &arguments, candidates)?;
+    let signature = Signature {
+        name: "hamiltonian",
+        doc: format!(
+            "The reduced energy `Hbar = 1/2 alpha^T gbar_inv alpha + V(q)` at the state {}.",
+            state_names(model, reduced)
+        ),
+        arguments,
+        returns: f64_type(),
+    };
+    item(model, signature, &outputs, |values| quote!(#(#values)*))
+}
+
+fn hamiltonian_gradient(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+) -> Result<Function, Diagnostics> {
+    let s = reduced.gradient.len();
+    let energy = structured_hamiltonian(model, reduced);
+    let structured: Vec<ExprId> = reduced
+        .state(model)
+        .into_iter()
+        .map(|x| model.store.derivative(energy, x))
+        .collect();
+    let expanded = expressions_of(model, &reduced.gradient);
+    let arguments = vec![state_argument(model, reduced)];
+    let outputs = cheapest(model, &arguments, vec![structured, expanded])?;
+    let signature = Signature {
+        name: "hamiltonian_gradient",
+        doc: format!(
+            "The gradient `dHbar/dx` of the reduced energy at the state {}.",
+            state_names(model, reduced)
+        ),
+        arguments,
+        returns: vector_type(s),
+    };
+    item(model, signature, &outputs, vector_literal)
+}
+
+fn structure_matrix(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+    let s = reduced.structure.rows();
+    let outputs = expressions_of(model, reduced.structure.entries());
+    let signature = Signature {
+        name: "structure_matrix",
+        doc: format!(
+            "The skew-symmetric structure matrix `Jbar = [[0, P^T], [-P, Gamma]]` at the state {}.",
+            state_names(model, reduced)
+        ),
+        arguments: vec![state_argument(model, reduced)],
+        returns: matrix_type(s, s),
+    };
+    item(model, signature, &outputs, |values| {
+        matrix_literal(values, s)
+    })
+}
+
+fn input_matrix(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+    let (s, p) = (reduced.input_matrix.rows(), reduced.input_matrix.columns());
+    let outputs = expressions_of(model, reduced.input_matrix.entries());
+    let signature = Signature {
+        name: "input_matrix",
+        doc: format!(
+            "The reduced input matrix `Bbar = [0; P B]` at the state {}.",
+            state_names(model, reduced)
+        ),
+        arguments: vec![state_argument(model, reduced)],
+        returns: matrix_type(s, p),
+    };
+    item(model, signature, &outputs, |values| {
+        rows_literal(values, s, p)
+    })
+}
+
+/// The structured right-hand side `Jbar dHbar/dx + Bbar u`, unexpanded.
+fn structured_rhs(model: &mut Model, reduced: &PortHamiltonian) -> Vec<ExprId> {
+    let gradient = expressions_of(model, &reduced.gradient);
+    let u = symbol_expressions(model, &reduced.inputs);
+    let flow = structured_product(model, &reduced.structure, &gradient);
+    let forcing = structured_product(model, &reduced.input_matrix, &u);
+    flow.into_iter()
+        .zip(forcing)
+        .map(|(a, b)| model.store.add2(a, b))
+        .collect()
+}
+
+fn reduced_rhs(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+    let s = reduced.rhs.len();
+    let arguments = vec![state_argument(model, reduced), inputs_argument(reduced)];
+    let candidates = vec![
+        structured_rhs(model, reduced),
+        expressions_of(model, &reduced.rhs),
+    ];
+    let outputs = cheapest(model, &arguments, candidates)?;
+    let signature = Signature {
+        name: "reduced_rhs",
+        doc: format!(
+            "The reduced equations of motion `xdot = Jbar dHbar/dx + Bbar u` at the state {} \
+             and inputs {}; no constraints or multipliers remain.",
+            state_names(model, reduced),
+            input_names(model)
+        ),
+        arguments,
+        returns: vector_type(s),
+    };
+    item(model, signature, &outputs, vector_literal)
+}
+
+fn reduced_rhs_jacobian(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+) -> Result<Function, Diagnostics> {
+    let s = reduced.rhs.len();
+    let state = reduced.state(model);
+    let expanded = model
+        .store
+        .jacobian(&reduced.rhs, &state)
+        .map_err(|e| internal(model, e))?;
+    let expanded = expressions_of(model, expanded.entries());
+    let rhs = structured_rhs(model, reduced);
+    let structured: Vec<ExprId> = rhs
+        .iter()
+        .flat_map(|&f| state.iter().map(move |&x| (f, x)))
+        .map(|(f, x)| model.store.derivative(f, x))
+        .collect();
+    let arguments = vec![state_argument(model, reduced), inputs_argument(reduced)];
+    let outputs = cheapest(model, &arguments, vec![structured, expanded])?;
+    let signature = Signature {
+        name: "reduced_rhs_jacobian",
+        doc: format!(
+            "The Jacobian `d xdot / dx` of `reduced_rhs` at the state {} and inputs `u`, \
+             derived symbolically: row i holds the derivatives of `xdot_i`.",
+            state_names(model, reduced)
+        ),
+        arguments,
+        returns: matrix_type(s, s),
+    };
+    item(model, signature, &outputs, |values| {
+        matrix_literal(values, s)
+    })
+}
+
+fn output(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+    let p = reduced.output.len();
+    let gradient = expressions_of(model, &reduced.gradient);
+    let transposed = reduced.input_matrix.transpose();
+    let arguments = vec![state_argument(model, reduced)];
+    let candidates = vec![
+        structured_product(model, &transposed, &gradient),
+        expressions_of(model, &reduced.output),
+    ];
+    let outputs = cheapest(model, &arguments, candidates)?;
+    let signature = Signature {
+        name: "output",
+        doc: format!(
+            "The power-conjugate output `y = Bbar^T dHbar/dx` (equal to `B^T qdot`) at the state \
+             {}: `dHbar/dt = y . u`.",
+            state_names(model, reduced)
+        ),
+        arguments,
+        returns: vector_type(p),
+    };
+    item(model, signature, &outputs, vector_literal)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::check;
+    use crate::syntax::parse_str;
+
+    const SLEIGH: &str = include_str!("../../../models/sleigh.model");
+
+    fn derived(source: &str) -> (Model, PortHamiltonian) {
+        let mut model = check(&parse_str(source).expect("parses")).expect("checks");
+        let basis = distribution_basis(&mut model).expect("regular at the defaults");
+        let reduced = derive(&mut model, &basis).expect("derives");
+        (model, reduced)
+    }
+
+    fn cost(model: &Model, arguments: &[Argument], outputs: &[ExprId]) -> u64 {
+        let mut inputs: Vec<SymbolId> = arguments
+            .iter()
+            .flat_map(|a| a.symbols.iter().copied())
+            .collect();
+        inputs.extend(model.parameter_symbols());
+        ir::lower(&model.store, &inputs, outputs)
+            .expect("lowers")
+            .operation_count()
+            .after_cse
+    }
+
+    /// (structured, expanded) operation counts of `reduced_rhs` and of its Jacobian.
+    fn rhs_costs(model: &mut Model, reduced: &PortHamiltonian) -> [(u64, u64); 2] {
+        let arguments = vec![state_argument(model, reduced), inputs_argument(reduced)];
+        let structured = structured_rhs(model, reduced);
+        let expanded = expressions_of(model, &reduced.rhs);
+        let state = reduced.state(model);
+        let jacobian = model.store.jacobian(&reduced.rhs, &state).expect("fits");
+        let expanded_jacobian = expressions_of(model, jacobian.entries());
+        let structured_jacobian: Vec<ExprId> = structured
+            .iter()
+            .flat_map(|&f| state.iter().map(move |&x| (f, x)))
+            .map(|(f, x)| model.store.derivative(f, x))
+            .collect();
+        [
+            (
+                cost(model, &arguments, &structured),
+                cost(model, &arguments, &expanded),
+            ),
+            (
+                cost(model, &arguments, &structured_jacobian),
+                cost(model, &arguments, &expanded_jacobian),
+            ),
+        ]
+    }
+
+    #[test]
+    fn the_cheaper_form_of_each_product_is_emitted() {
+        for (name, source) in [
+            ("snakeboard", crate::fixtures::SNAKEBOARD),
+            ("sleigh", SLEIGH),
+        ] {
+            let (mut model, reduced) = derived(source);
+            let [rhs, jacobian] = rhs_costs(&mut model, &reduced);
+            println!(
+                "{name}: reduced_rhs structured {} expanded {}",
+                rhs.0, rhs.1
+            );
+            println!(
+                "{name}: reduced_rhs_jacobian structured {} expanded {}",
+                jacobian.0, jacobian.1
+            );
+            let arguments = vec![state_argument(&model, &reduced), inputs_argument(&reduced)];
+            let candidates = vec![
+                structured_rhs(&mut model, &reduced),
+                expressions_of(&mut model, &reduced.rhs),
+            ];
+            let chosen = cheapest(&model, &arguments, candidates).expect("lowers");
+            assert_eq!(cost(&model, &arguments, &chosen), rhs.0.min(rhs.1));
+        }
+    }
+
+    #[test]
+    fn every_item_has_the_interface_signature() {
+        let mut model =
+            check(&parse_str(crate::fixtures::SNAKEBOARD).expect("parses")).expect("checks");
+        let items: Vec<String> = functions(&mut model)
+            .expect("emits")
+            .0
+            .iter()
+            .map(|function| function.item.to_string().replace(' ', ""))
+            .collect();
+        let f64 = "::core::primitive::f64";
+        let expected = [
+            format!("pubfnmomenta(&self,q:&[{f64};5usize],qdot:&[{f64};5usize])->[{f64};3usize]"),
+            format!(
+                "pubfnvelocities(&self,q:&[{f64};5usize],alpha:&[{f64};3usize])->[{f64};5usize]"
+            ),
+            format!("pubfnhamiltonian(&self,x:&[{f64};8usize])->{f64}"),
+            format!("pubfnhamiltonian_gradient(&self,x:&[{f64};8usize])->[{f64};8usize]"),
+            format!("pubfnstructure_matrix(&self,x:&[{f64};8usize])->[[{f64};8usize];8usize]"),
+            format!("pubfninput_matrix(&self,x:&[{f64};8usize])->[[{f64};2usize];8usize]"),
+            format!("pubfnreduced_rhs(&self,x:&[{f64};8usize],u:&[{f64};2usize])->[{f64};8usize]"),
+            format!(
+                "pubfnreduced_rhs_jacobian(&self,x:&[{f64};8usize],u:&[{f64};2usize])->[[{f64};8usize];8usize]"
+            ),
+            format!("pubfnoutput(&self,x:&[{f64};8usize])->[{f64};2usize]"),
+        ];
+        assert_eq!(items.len(), expected.len());
+        for (item, signature) in items.iter().zip(&expected) {
+            assert!(
+                item.contains(signature.as_str()),
+                "{signature} not in {item}"
+            );
+        }
+    }
+}
