@@ -6,11 +6,16 @@
 
 mod common;
 
-use chaplygin_models::{sleigh::Sleigh, snakeboard::Snakeboard};
+use chaplygin_models::{
+    differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
+    snakeboard::Snakeboard,
+};
 use common::{Random, check_reduced_model, rk4};
 
 reduced_model!(Snakeboard);
 reduced_model!(Sleigh);
+reduced_model!(RollingDisk);
+reduced_model!(DifferentialDrive);
 
 /// phi away from +-pi/2, where the paper's basis of D degenerates.
 fn snakeboard_configuration(random: &mut Random) -> Vec<f64> {
@@ -47,6 +52,26 @@ fn the_sleighs_reduced_items_are_consistent() {
     };
     check_reduced_model(&sleigh, 3, &sleigh_configuration);
     check_reduced_model(&Sleigh::default(), 4, &sleigh_configuration);
+}
+
+/// The heading (coordinate 2) away from +-pi/2, where the tool's bases for
+/// the disk and the robot, with `dot(x)` independent, may divide by `cos theta`.
+fn heading_configuration(n: usize) -> impl Fn(&mut Random) -> Vec<f64> {
+    move |random| {
+        let mut q = random.vector(n, -3.0, 3.0);
+        q[2] = random.uniform(-1.4, 1.4);
+        q
+    }
+}
+
+#[test]
+fn the_rolling_disks_reduced_items_are_consistent() {
+    check_reduced_model(&RollingDisk::default(), 5, &heading_configuration(4));
+}
+
+#[test]
+fn the_differential_drives_reduced_items_are_consistent() {
+    check_reduced_model(&DifferentialDrive::default(), 6, &heading_configuration(5));
 }
 
 /// The classical sleigh (blade speed v, turning rate w; Bloch, "Nonholonomic
