@@ -143,6 +143,23 @@ fn the_report_states_the_growth_vector_and_the_classification() {
     );
 }
 
+/// MATH.md 3.1: with the paper's momentum basis, `gbar = diag(m, Jt, Jw)`
+/// (constant and diagonal) and `Gamma = 0`.
+#[test]
+fn the_report_states_the_papers_reduced_metric() {
+    let report = Snakeboard::REPORT;
+    for line in [
+        "momentum basis: declared; momenta group, torso, wheels",
+        "gbar = (h g^-1 h^T)^-1 constant: yes, diagonal: yes",
+        "gbar row 1: [m, 0, 0]",
+        "gbar row 2: [0, jt, 0]",
+        "gbar row 3: [0, 0, jw]",
+        "Gamma = 0: yes",
+    ] {
+        assert!(report.contains(line), "missing `{line}` in\n{report}");
+    }
+}
+
 /// Every generated function has its operation counts in the report, and
 /// sharing subexpressions never costs more than the expanded trees.
 #[test]
