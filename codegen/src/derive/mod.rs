@@ -3,3 +3,4 @@
 //! One module per formulation, each stating its equation and citing its source.
 
 pub mod constraints;
+pub mod lagrange_dalembert;

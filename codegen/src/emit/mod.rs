@@ -9,6 +9,7 @@
 //! energy(q, qdot)                 T + V = 1/2 qdot^T g qdot + V(q)
 //! constraint_matrix(q)            A(q)
 //! constraint_residual(q, qdot)    A(q) qdot
+//! acceleration(q, qdot, u)        (qddot, lambda), Lagrange-d'Alembert
 //! ```
 //!
 //! Each function body is one [`crate::ir::Program`]: straight-line `let`s over
@@ -17,6 +18,7 @@
 //! under `#![deny(warnings)]` whatever the caller has in scope.
 
 mod kinematics;
+mod lagrange_dalembert;
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::ir::{self, Op};
@@ -37,12 +39,14 @@ pub fn model_items(model: &mut Model) -> Result<TokenStream, Diagnostics> {
     let definition = parameter_struct(model);
     let constants = constants(model);
     let functions = kinematics::functions(model)?;
+    let acceleration = lagrange_dalembert::acceleration(model)?;
     let name = &model.name;
     Ok(quote! {
         #definition
         impl #name {
             #constants
             #(#functions)*
+            #acceleration
         }
     })
 }
