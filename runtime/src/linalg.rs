@@ -66,13 +66,12 @@ fn eliminate_below<const M: usize>(a: &mut [[f64; M]; M], b: &mut [f64; M], k: u
 fn back_substitute<const M: usize>(a: &[[f64; M]; M], b: &mut [f64; M]) {
     for i in (0..M).rev() {
         let (head, solved) = b.split_at_mut(i + 1);
-        let known: f64 = a[i]
+        let reduced = a[i]
             .iter()
             .skip(i + 1)
             .zip(solved.iter())
-            .map(|(entry, x)| entry * x)
-            .sum();
-        head[i] = (head[i] - known) / a[i][i];
+            .fold(head[i], |rest, (entry, x)| rest - entry * x);
+        head[i] = reduced / a[i][i];
     }
 }
 
@@ -108,7 +107,10 @@ mod tests {
 
     #[test]
     fn singular_systems_give_nan_not_panics() {
-        let x = solve([[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]], [1.0; 3]);
+        let x = solve(
+            [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]],
+            [1.0; 3],
+        );
         assert!(x.iter().all(|v| v.is_nan()), "{x:?}");
         assert!(solve([[0.0]], [1.0])[0].is_nan());
         assert_eq!(solve::<0>([], []), [0.0; 0]);

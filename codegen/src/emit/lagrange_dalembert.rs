@@ -19,6 +19,9 @@ pub(super) fn acceleration(model: &mut Model) -> Result<TokenStream, Diagnostics
     acceleration_with(model, &derivation, strategy)
 }
 
+/// Builds the returned `(qddot, lambda)` from the emitted outputs, given n and c.
+type Assembly = fn(&[TokenStream], usize, usize) -> TokenStream;
+
 /// `acceleration` with the given strategy.
 pub(crate) fn acceleration_with(
     model: &mut Model,
@@ -26,7 +29,7 @@ pub(crate) fn acceleration_with(
     strategy: Strategy,
 ) -> Result<TokenStream, Diagnostics> {
     let (n, c, p) = (model.n(), model.c(), model.p());
-    let (outputs, assemble): (_, fn(&[TokenStream], usize, usize) -> TokenStream) = match strategy {
+    let (outputs, assemble): (_, Assembly) = match strategy {
         Strategy::Symbolic => (derivation.closed_form.outputs(model), closed_form),
         Strategy::Numeric => (derivation.saddle_point.outputs(model), saddle_point),
     };
@@ -46,11 +49,20 @@ pub(crate) fn acceleration_with(
         body.argument("u"),
     );
     let statements = body.statements;
+    let method = match strategy {
+        Strategy::Symbolic => "Computed in closed form from exact symbolic inverses.",
+        Strategy::Numeric => {
+            "Computed by solving `[[g, A^T], [A, 0]] [qddot; -lambda] = [B u - C - dV/dq; -Adot qdot]` \
+             with `chaplygin::runtime::linalg::solve` (NaN where the system is singular)."
+        }
+    };
     Ok(quote! {
         /// The Lagrange-d'Alembert equations solved for the accelerations and the
         /// constraint forces: `(qddot, lambda)` with
         /// `g qddot + C(q, qdot) + dV/dq = A^T lambda + B u` and
         /// `A qddot + Adot qdot = 0`, `lambda` for the constraint rows as declared.
+        ///
+        #[doc = #method]
         pub fn acceleration(
             &self,
             #q: &[#f64; #n],
@@ -95,5 +107,32 @@ fn saddle_point(values: &[TokenStream], n: usize, c: usize) -> TokenStream {
             [#(#force,)* #(#drift),*],
         );
         ([#(#accelerations),*], [#(#multipliers),*])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::acceleration_with;
+    use crate::derive::lagrange_dalembert::{Strategy, derive};
+    use crate::model::check;
+    use crate::syntax::parse_str;
+
+    /// Either strategy, forced, emits one valid method; only the numeric one
+    /// calls the runtime's solver.
+    #[test]
+    fn both_strategies_emit_a_method() {
+        let mut model =
+            check(&parse_str(crate::fixtures::SNAKEBOARD).expect("parses")).expect("checks");
+        let derivation = derive(&mut model).expect("derives");
+        for strategy in [Strategy::Symbolic, Strategy::Numeric] {
+            let tokens = acceleration_with(&mut model, &derivation, strategy).expect("emits");
+            let method: syn::ImplItemFn = syn::parse2(tokens.clone()).expect("a method");
+            assert_eq!(method.sig.ident, "acceleration");
+            assert_eq!(method.sig.inputs.len(), 4);
+            let calls_solver = tokens
+                .to_string()
+                .contains(":: chaplygin :: runtime :: linalg :: solve :: < 7usize >");
+            assert_eq!(calls_solver, strategy == Strategy::Numeric, "{strategy:?}");
+        }
     }
 }
