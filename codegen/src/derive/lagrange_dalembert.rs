@@ -1,7 +1,7 @@
 //! The Lagrange-d'Alembert equations with multipliers (MATH.md section 2;
 //! Moore, "Nonholonomic Constraints", the chapter's dynamical equations with
 //! Lagrange multipliers; Bloch, Baillieul, Crouch & Marsden, *Nonholonomic
-//! Mechanics and Control*, section 5.2):
+//! Mechanics and Control*, chapter 5, the Lagrange-d'Alembert principle):
 //!
 //! ```text
 //! g(q) qddot + C(q, qdot) + dV/dq = A(q)^T lambda + B(q) u
@@ -26,13 +26,15 @@
 //!
 //! The cheaper one after common subexpressions are shared is chosen
 //! ([`LagrangeDalembert::strategy`]); the numeric count adds the run-time
-//! solve's operations ([`numeric_solve_operations`]).
+//! solve's operations ([`numeric_solve_operations`]). Exact inverses grow
+//! quickly with the size of a dense block (a 6 x 6 coupled metric with trig
+//! entries does not finish in minutes), so the closed form is only derived
+//! when every diagonal block of `g`, and `c`, are at most
+//! [`CLOSED_FORM_LIMIT`]; otherwise the numeric strategy is taken outright.
 
 use crate::ir::{self, IrError};
 use crate::model::Model;
-use crate::sym::{
-    ExprId, Matrix, MatrixError, Poly, RationalFunction, SymError, SymbolId, SymbolKind,
-};
+use crate::sym::{ExprId, Matrix, MatrixError, Poly, RationalFunction, SymbolId, SymbolKind};
 
 /// How `acceleration` computes `(qddot, lambda)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,16 +72,17 @@ pub struct SaddlePointSystem {
 pub struct LagrangeDalembert {
     /// The input symbols `u`, named as the model's inputs.
     pub inputs: Vec<SymbolId>,
-    /// The closed-form solution.
-    pub closed_form: ClosedForm,
+    /// The closed-form solution, when [`CLOSED_FORM_LIMIT`] allowed deriving it.
+    pub closed_form: Option<ClosedForm>,
     /// The run-time system.
     pub saddle_point: SaddlePointSystem,
-    /// Operations of the closed form after common subexpressions are shared.
-    pub symbolic_operations: u64,
+    /// Operations of the closed form after common subexpressions are shared
+    /// (`None` when it was not derived).
+    pub symbolic_operations: Option<u64>,
     /// Operations of the system's pieces after common subexpressions are
     /// shared, plus the run-time solve and the negation of `mu`.
     pub numeric_operations: u64,
-    /// The cheaper of the two (symbolic on a tie).
+    /// The cheaper of the two (symbolic on a tie; numeric without a closed form).
     pub strategy: Strategy,
 }
 
@@ -95,28 +98,35 @@ pub enum DerivationError {
     Ir(#[from] IrError),
 }
 
-impl From<SymError> for DerivationError {
-    fn from(error: SymError) -> DerivationError {
-        DerivationError::Matrix(error.into())
-    }
-}
+/// The largest diagonal block of `g`, and the largest `c`, for which the
+/// closed form is derived.
+pub const CLOSED_FORM_LIMIT: usize = 4;
 
-/// Derives both solutions and chooses the cheaper.
+/// Derives both solutions (the closed form within [`CLOSED_FORM_LIMIT`]) and
+/// chooses the cheaper.
 pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
     let inputs = declare_inputs(model);
     let terms = Terms::of(model, &inputs)?;
-    let closed_form = terms.closed_form(model)?;
     let saddle_point = terms.saddle_point(model);
-    let closed_form_outputs = closed_form.outputs(model);
     let saddle_point_outputs = saddle_point.outputs(model);
-    let symbolic_operations = operations(model, &inputs, &closed_form_outputs)?;
     let numeric_operations = operations(model, &inputs, &saddle_point_outputs)?
         + numeric_solve_operations(model.n() + model.c())
         + model.c() as u64;
-    let strategy = if symbolic_operations <= numeric_operations {
-        Strategy::Symbolic
+    let closed_form = if closed_form_is_tractable(model) {
+        Some(terms.closed_form(model)?)
     } else {
-        Strategy::Numeric
+        None
+    };
+    let symbolic_operations = match &closed_form {
+        Some(closed_form) => {
+            let outputs = closed_form.outputs(model);
+            Some(operations(model, &inputs, &outputs)?)
+        }
+        None => None,
+    };
+    let strategy = match symbolic_operations {
+        Some(symbolic) if symbolic <= numeric_operations => Strategy::Symbolic,
+        _ => Strategy::Numeric,
     };
     Ok(LagrangeDalembert {
         inputs,
@@ -138,6 +148,18 @@ pub fn numeric_solve_operations(m: usize) -> u64 {
     let m = m as u64;
     let elimination: u64 = (0..m).map(|r| r * (2 * r + 3)).sum();
     elimination + m * m
+}
+
+/// Whether every diagonal block of `g`, and `c`, are within [`CLOSED_FORM_LIMIT`].
+fn closed_form_is_tractable(model: &Model) -> bool {
+    let largest_block = model
+        .mass_matrix
+        .diagonal_blocks()
+        .iter()
+        .map(Vec::len)
+        .max()
+        .unwrap_or(0);
+    largest_block <= CLOSED_FORM_LIMIT && model.c() <= CLOSED_FORM_LIMIT
 }
 
 /// `u`: one auxiliary symbol per input, named as declared.
@@ -295,6 +317,22 @@ mod tests {
     use std::collections::HashMap;
 
     const SLEIGH: &str = include_str!("../../../models/sleigh.model");
+    const CHAIN: &str = r#"
+pub struct Chain {
+    coordinates: [x, y, theta, a1, a2, a3],
+    parameters: [m = 1.0, l = 0.7, k = 2.0],
+    kinetic_energy: m/2*(dot(x)^2 + dot(y)^2) + m/2*dot(theta)^2
+        + m/2*((dot(x) - l*sin(theta + a1)*(dot(theta) + dot(a1)))^2
+            + (dot(y) + l*cos(theta + a1)*(dot(theta) + dot(a1)))^2)
+        + m/2*((dot(x) - l*sin(theta + a2)*(dot(theta) + dot(a2)))^2
+            + (dot(y) + l*cos(theta + a2)*(dot(theta) + dot(a2)))^2)
+        + m/2*((dot(x) - l*sin(theta + a3)*(dot(theta) + dot(a3)))^2
+            + (dot(y) + l*cos(theta + a3)*(dot(theta) + dot(a3)))^2),
+    potential_energy: k/2*(a1^2 + a2^2 + a3^2),
+    constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y), locked = dot(a3) - dot(a1)],
+    inputs: [s1 = a1, s2 = a2],
+}
+"#;
     const TOWED: &str = r#"
 pub struct Towed {
     coordinates: [x, y, theta, alpha],
@@ -320,7 +358,8 @@ pub struct Towed {
         for source in [crate::fixtures::SNAKEBOARD, SLEIGH] {
             let (model, derivation) = derived(source);
             let atoms = model.store.atoms();
-            let (system, solution) = (&derivation.saddle_point, &derivation.closed_form);
+            let system = &derivation.saddle_point;
+            let solution = derivation.closed_form.as_ref().expect("derived");
             let a = &system.constraint_matrix;
             let balance = system
                 .mass_matrix
@@ -399,16 +438,15 @@ pub struct Towed {
 
     fn assert_strategies_agree<const M: usize>(source: &str) {
         let (mut model, derivation) = derived(source);
+        let closed_form = derivation.closed_form.as_ref().expect("derived");
         for seed in 0..20 {
             let values = random_point(&model, &derivation.inputs, seed);
             let value_of = |s: SymbolId| values[&s];
-            let mut symbolic = derivation
-                .closed_form
+            let mut symbolic = closed_form
                 .accelerations
                 .evaluate(&mut model.store, &value_of);
             symbolic.extend(
-                derivation
-                    .closed_form
+                closed_form
                     .multipliers
                     .evaluate(&mut model.store, &value_of),
             );
@@ -455,10 +493,24 @@ pub struct Towed {
             let (_, d) = derived(source);
             assert_eq!(
                 d.strategy, strategy,
-                "{} vs {}",
+                "{:?} vs {}",
                 d.symbolic_operations, d.numeric_operations
             );
         }
         assert_strategies_agree::<5>(TOWED);
+    }
+
+    /// A sleigh towing three pendulums: one dense 6 x 6 block of `g`, past
+    /// the limit, so no closed form is attempted (it would not finish).
+    #[test]
+    fn a_large_dense_metric_goes_numeric_without_a_closed_form() {
+        let (model, d) = derived(CHAIN);
+        assert_eq!(
+            model.mass_matrix.diagonal_blocks(),
+            [vec![0, 1, 2, 3, 4, 5]]
+        );
+        assert!(d.closed_form.is_none() && d.symbolic_operations.is_none());
+        assert_eq!(d.strategy, Strategy::Numeric);
+        assert!(d.numeric_operations > numeric_solve_operations(8));
     }
 }

@@ -30,7 +30,13 @@ pub(crate) fn acceleration_with(
 ) -> Result<TokenStream, Diagnostics> {
     let (n, c, p) = (model.n(), model.c(), model.p());
     let (outputs, assemble): (_, Assembly) = match strategy {
-        Strategy::Symbolic => (derivation.closed_form.outputs(model), closed_form),
+        Strategy::Symbolic => {
+            let solution = derivation
+                .closed_form
+                .as_ref()
+                .ok_or_else(|| internal(model, "the closed form was not derived"))?;
+            (solution.outputs(model), closed_form)
+        }
         Strategy::Numeric => (derivation.saddle_point.outputs(model), saddle_point),
     };
     let arguments = [
