@@ -26,6 +26,7 @@ fn a_model_file_becomes_rust_source() {
     let source = std::fs::read_to_string(&written[0]).expect("read");
     assert!(source.contains("pub struct Sleigh"));
     assert!(source.contains("fn constraint_residual"));
+    assert!(source.contains("fn acceleration"));
 }
 
 #[test]

@@ -30,9 +30,25 @@ mod shadowed {
             inputs: [push = r],
         }
     }
+
+    chaplygin::model! {
+        /// A sleigh towing a spring-held pendulum: its coupled metric makes
+        /// `acceleration` solve at run time through `::chaplygin::runtime`.
+        pub struct Towed {
+            coordinates: [x, y, theta, alpha],
+            parameters: [m = 1.0, inertia = 0.1, a = 0.5, mp = 0.3, l = 0.7, k = 2.0],
+            kinetic_energy: m/2*((dot(x) - a*sin(theta)*dot(theta))^2
+                + (dot(y) + a*cos(theta)*dot(theta))^2) + inertia/2*dot(theta)^2
+                + mp/2*((dot(x) - l*sin(theta + alpha)*(dot(theta) + dot(alpha)))^2
+                + (dot(y) + l*cos(theta + alpha)*(dot(theta) + dot(alpha)))^2),
+            potential_energy: k/2*alpha^2,
+            constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
+            inputs: [steer = alpha],
+        }
+    }
 }
 
-use shadowed::Rail;
+use shadowed::{Rail, Towed};
 
 #[test]
 fn generated_items_work_amid_shadowed_names() {
@@ -46,4 +62,36 @@ fn generated_items_work_amid_shadowed_names() {
     assert!((rail.energy(&q, &qdot) - expected).abs() < 1e-12);
     assert_eq!(rail.constraint_residual(&q, &[0.4, 0.7]), [0.7]);
     assert_eq!(Rail::CONSTRAINTS, ["fixed_angle"]);
+}
+
+/// Rail by hand: `m rddot - m r thetadot^2 + m g sin(theta) = push` and
+/// `m r^2 thetaddot + 2 m r rdot thetadot + m g r cos(theta) = lambda`, with
+/// `thetaddot = 0`.
+#[test]
+fn acceleration_works_amid_shadowed_names() {
+    let rail = Rail::default();
+    let (q, qdot, push) = ([1.5, 0.3], [0.4, 0.0], 3.0);
+    let ([rddot, thetaddot], [lambda]) = rail.acceleration(&q, &qdot, &[push]);
+    assert!((rddot - (push / 2.0 - 9.81 * 0.3f64.sin())).abs() < 1e-12);
+    assert_eq!(thetaddot, 0.0);
+    assert!((lambda - 2.0 * 9.81 * 1.5 * 0.3f64.cos()).abs() < 1e-12);
+}
+
+/// At rest the towed sleigh's run-time solve balances
+/// `g qddot = B u - dV/dq + A^T lambda` (`dV/dq = (0, 0, 0, k alpha)`) with `A qddot = 0`.
+#[test]
+fn the_run_time_solve_works_amid_shadowed_names() {
+    let towed = Towed::default();
+    let (q, steer) = ([0.3, -0.2, 0.5, 0.4], 1.5);
+    let (qddot, [lambda]) = towed.acceleration(&q, &[0.0; 4], &[steer]);
+    let (g, [a]) = (towed.mass_matrix(&q), towed.constraint_matrix(&q));
+    for i in 0..4 {
+        let inertial: f64 = (0..4).map(|j| g[i][j] * qddot[j]).sum();
+        let applied = if i == 3 { steer - towed.k * q[3] } else { 0.0 };
+        assert!(
+            (inertial - applied - a[i] * lambda).abs() < 1e-12,
+            "row {i}"
+        );
+    }
+    assert!(towed.constraint_residual(&q, &qddot)[0].abs() < 1e-12);
 }

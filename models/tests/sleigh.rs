@@ -57,3 +57,36 @@ proptest! {
         prop_assert!((s.constraint_residual(&q, &sideways)[0] - 1.0).abs() <= 1e-14);
     }
 }
+
+/// The classical reduced equations with v the speed along the blade and
+/// omega the turning rate. In the body frame the centre of mass moves with
+/// (v, a omega); with no force along the blade, m (vdot - a omega^2) = 0; the
+/// lateral blade force F gives m (a omegadot + v omega) = F and, acting a
+/// behind the centre of mass, I omegadot = -a F. Hence
+/// vdot = a omega^2 and omegadot = -m a v omega / (I + m a^2).
+fn reduced_rates(s: &Sleigh, v: f64, omega: f64) -> (f64, f64) {
+    (
+        s.a * omega * omega,
+        -s.m * s.a * v * omega / (s.inertia + s.m * s.a * s.a),
+    )
+}
+
+proptest! {
+    #[test]
+    fn acceleration_reproduces_the_reduced_equations(
+        s in sleigh(),
+        q in prop::array::uniform3(-4.0f64..4.0),
+        v in -3.0f64..3.0,
+        omega in -3.0f64..3.0,
+    ) {
+        let (sin, cos) = q[2].sin_cos();
+        let qdot = [v * cos, v * sin, omega];
+        let ([xddot, yddot, thetaddot], _) = s.acceleration(&q, &qdot, &[]);
+        // v = cos(theta) xdot + sin(theta) ydot, so
+        // vdot = cos xddot + sin yddot + omega (-sin xdot + cos ydot)
+        let vdot = cos * xddot + sin * yddot + omega * (-sin * qdot[0] + cos * qdot[1]);
+        let (expected_vdot, expected_omegadot) = reduced_rates(&s, v, omega);
+        prop_assert!((vdot - expected_vdot).abs() <= 1e-12 * (1.0 + expected_vdot.abs()), "{vdot} vs {expected_vdot}");
+        prop_assert!((thetaddot - expected_omegadot).abs() <= 1e-12 * (1.0 + expected_omegadot.abs()), "{thetaddot} vs {expected_omegadot}");
+    }
+}

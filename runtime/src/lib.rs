@@ -1,1 +1,3 @@
 //! The Chaplygin runtime: what generated models plug into.
+
+pub mod linalg;

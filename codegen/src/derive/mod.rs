@@ -3,4 +3,5 @@
 //! One module per formulation, each stating its equation and citing its source.
 
 pub mod constraints;
+pub mod lagrange_dalembert;
 pub mod port_hamiltonian;

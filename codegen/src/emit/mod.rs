@@ -9,6 +9,7 @@
 //! energy(q, qdot)                 T + V = 1/2 qdot^T g qdot + V(q)
 //! constraint_matrix(q)            A(q)
 //! constraint_residual(q, qdot)    A(q) qdot
+//! acceleration(q, qdot, u)        (qddot, lambda), Lagrange-d'Alembert
 //! REPORT                          the derivation report (see [`report`])
 //! ```
 //!
@@ -21,6 +22,7 @@
 //! under `#![deny(warnings)]` whatever the caller has in scope.
 
 mod kinematics;
+mod lagrange_dalembert;
 mod port_hamiltonian;
 pub mod report;
 
@@ -54,9 +56,12 @@ pub fn model_items(
     let definition = parameter_struct(model);
     let constants = constants(model);
     let mut functions = kinematics::functions(model)?;
+    let (acceleration, solve_report) = lagrange_dalembert::acceleration(model)?;
+    functions.push(acceleration);
     let (reduced, reduced_report) = port_hamiltonian::functions(model)?;
     functions.extend(reduced);
-    let report = report_constant(model, constraints, reduced_report, &functions);
+    let sections = [solve_report, reduced_report];
+    let report = report_constant(model, constraints, sections, &functions);
     let items = functions.iter().map(|f| &f.item);
     let name = &model.name;
     Ok(quote! {
@@ -72,12 +77,14 @@ pub fn model_items(
 fn report_constant(
     model: &mut Model,
     constraints: &ConstraintAnalysis,
-    reduced: report::Section,
+    derivations: [report::Section; 2],
     functions: &[Function],
 ) -> TokenStream {
     let mut report = report::Report::new(model.name.to_string());
     report.push(report::constraints(model, constraints));
-    report.push(reduced);
+    for section in derivations {
+        report.push(section);
+    }
     report.push(report::operations(functions));
     let text = report.render();
     quote! {

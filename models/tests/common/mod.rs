@@ -1,10 +1,13 @@
-//! Shared checks of the reduced port-Hamiltonian items, for every model.
+//! Shared test support: checks of the reduced port-Hamiltonian items for
+//! every model, and a test model with a dense metric ([`Towed`]).
 //!
 //! [`Reduced`] views a generated model's items through slices so that one
 //! generic check serves every model; [`reduced_model!`] implements it for a
 //! generated struct.
 
 #![allow(dead_code)]
+
+pub mod towed;
 
 /// The reduced port-Hamiltonian items of a generated model, on slices.
 pub trait Reduced {

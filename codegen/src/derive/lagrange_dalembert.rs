@@ -1,0 +1,516 @@
+//! The Lagrange-d'Alembert equations with multipliers (MATH.md section 2;
+//! Moore, "Nonholonomic Constraints", the chapter's dynamical equations with
+//! Lagrange multipliers; Bloch, Baillieul, Crouch & Marsden, *Nonholonomic
+//! Mechanics and Control*, chapter 5, the Lagrange-d'Alembert principle):
+//!
+//! ```text
+//! g(q) qddot + C(q, qdot) + dV/dq = A(q)^T lambda + B(q) u
+//! A(q) qddot + Adot(q, qdot) qdot = 0
+//! C_i        = sum_jk (dg_ij/dq_k - 1/2 dg_jk/dq_i) qdot_j qdot_k
+//! Adot qdot  = sum_k d(A qdot)/dq_k qdot_k
+//! ```
+//!
+//! `C` is computed as `d(g qdot)/dq qdot - dT/dq` with `T = 1/2 qdot^T g qdot`,
+//! the same sum regrouped. `lambda` are the constraint forces for the rows of
+//! `A` exactly as declared. Two ways to solve for `(qddot, lambda)`:
+//!
+//! - **symbolic**: with exact inverses (block by block, [`Matrix::solve`]),
+//!   `lambda = (A g^-1 A^T)^-1 (A g^-1 (C + dV/dq - B u) - Adot qdot)` and
+//!   `qddot = g^-1 (B u - C - dV/dq + A^T lambda)`;
+//! - **numeric**: emit `g`, `A`, `f = B u - C - dV/dq` and `-Adot qdot`, and
+//!   solve the (n + c) x (n + c) system
+//!   `[[g, A^T], [A, 0]] [qddot; mu] = [f; -Adot qdot]` at run time by
+//!   Gaussian elimination with partial pivoting; `lambda = -mu` (the
+//!   symmetric form of `[[g, -A^T], [A, 0]] [qddot; lambda]`, which saves
+//!   negating `A^T`).
+//!
+//! The cheaper one after common subexpressions are shared is chosen
+//! ([`LagrangeDalembert::strategy`]); the numeric count adds the run-time
+//! solve's operations ([`numeric_solve_operations`]). Exact inverses grow
+//! quickly with the size of a dense block (a 6 x 6 coupled metric with trig
+//! entries does not finish in minutes), so the closed form is only derived
+//! when every diagonal block of `g`, and `c`, are at most
+//! [`CLOSED_FORM_LIMIT`]; otherwise the numeric strategy is taken outright.
+
+use crate::ir::{self, IrError};
+use crate::model::Model;
+use crate::sym::{ExprId, Matrix, MatrixError, Poly, RationalFunction, SymbolId, SymbolKind};
+
+/// How `acceleration` computes `(qddot, lambda)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategy {
+    /// Closed-form expressions from exact symbolic inverses.
+    Symbolic,
+    /// The saddle-point system assembled and solved at run time.
+    Numeric,
+}
+
+/// The closed-form solution, as n x 1 and c x 1 columns.
+#[derive(Clone, Debug)]
+pub struct ClosedForm {
+    /// `qddot(q, qdot, u)`.
+    pub accelerations: Matrix,
+    /// `lambda(q, qdot, u)`, one per declared constraint row.
+    pub multipliers: Matrix,
+}
+
+/// The pieces of `[[g, A^T], [A, 0]] [qddot; -lambda] = [force; drift]`.
+#[derive(Clone, Debug)]
+pub struct SaddlePointSystem {
+    /// `g(q)`, n x n.
+    pub mass_matrix: Matrix,
+    /// `A(q)`, c x n.
+    pub constraint_matrix: Matrix,
+    /// `B u - C - dV/dq`, n x 1.
+    pub force: Matrix,
+    /// `-Adot qdot`, c x 1.
+    pub drift: Matrix,
+}
+
+/// The derived equations, both solutions, and which one is emitted.
+#[derive(Clone, Debug)]
+pub struct LagrangeDalembert {
+    /// The input symbols `u`, named as the model's inputs.
+    pub inputs: Vec<SymbolId>,
+    /// The closed-form solution, when [`CLOSED_FORM_LIMIT`] allowed deriving it.
+    pub closed_form: Option<ClosedForm>,
+    /// The run-time system.
+    pub saddle_point: SaddlePointSystem,
+    /// Operations of the closed form after common subexpressions are shared
+    /// (`None` when it was not derived).
+    pub symbolic_operations: Option<u64>,
+    /// Operations of the system's pieces after common subexpressions are
+    /// shared, plus the run-time solve and the negation of `mu`.
+    pub numeric_operations: u64,
+    /// The cheaper of the two (symbolic on a tie; numeric without a closed form).
+    pub strategy: Strategy,
+}
+
+/// Why the derivation failed (an internal error: checked models have a
+/// positive definite `g` and full-rank `A`).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum DerivationError {
+    /// A symbolic matrix operation failed.
+    #[error(transparent)]
+    Matrix(#[from] MatrixError),
+    /// Lowering for the operation count failed.
+    #[error(transparent)]
+    Ir(#[from] IrError),
+}
+
+/// The largest diagonal block of `g`, and the largest `c`, for which the
+/// closed form is derived.
+pub const CLOSED_FORM_LIMIT: usize = 4;
+
+/// Derives both solutions (the closed form within [`CLOSED_FORM_LIMIT`]) and
+/// chooses the cheaper.
+pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
+    let inputs = declare_inputs(model);
+    let terms = Terms::of(model, &inputs)?;
+    let saddle_point = terms.saddle_point(model);
+    let saddle_point_outputs = saddle_point.outputs(model);
+    let numeric_operations = operations(model, &inputs, &saddle_point_outputs)?
+        + numeric_solve_operations(model.n() + model.c())
+        + model.c() as u64;
+    let closed_form = if closed_form_is_tractable(model) {
+        Some(terms.closed_form(model)?)
+    } else {
+        None
+    };
+    let symbolic_operations = match &closed_form {
+        Some(closed_form) => {
+            let outputs = closed_form.outputs(model);
+            Some(operations(model, &inputs, &outputs)?)
+        }
+        None => None,
+    };
+    let strategy = match symbolic_operations {
+        Some(symbolic) if symbolic <= numeric_operations => Strategy::Symbolic,
+        _ => Strategy::Numeric,
+    };
+    Ok(LagrangeDalembert {
+        inputs,
+        closed_form,
+        saddle_point,
+        symbolic_operations,
+        numeric_operations,
+        strategy,
+    })
+}
+
+/// Operations of Gaussian elimination with partial pivoting and back
+/// substitution on an m x m system with one right-hand side, as
+/// `chaplygin_runtime::linalg::solve` performs them (comparisons not
+/// counted): eliminating below pivot k costs, for each of the `r = m-1-k`
+/// rows, one division and `r + 1` multiply-subtracts; back substitution
+/// costs `m^2`. The leading term is `m^3/3` multiply-adds.
+pub fn numeric_solve_operations(m: usize) -> u64 {
+    let m = m as u64;
+    let elimination: u64 = (0..m).map(|r| r * (2 * r + 3)).sum();
+    elimination + m * m
+}
+
+/// Whether every diagonal block of `g`, and `c`, are within [`CLOSED_FORM_LIMIT`].
+fn closed_form_is_tractable(model: &Model) -> bool {
+    let largest_block = model
+        .mass_matrix
+        .diagonal_blocks()
+        .iter()
+        .map(Vec::len)
+        .max()
+        .unwrap_or(0);
+    largest_block <= CLOSED_FORM_LIMIT && model.c() <= CLOSED_FORM_LIMIT
+}
+
+/// `u`: one auxiliary symbol per input, named as declared.
+fn declare_inputs(model: &mut Model) -> Vec<SymbolId> {
+    model
+        .inputs
+        .iter()
+        .map(|input| model.store.declare(&input.name, SymbolKind::Auxiliary))
+        .collect()
+}
+
+/// The operation count of `outputs` after common subexpressions are shared.
+fn operations(model: &Model, inputs: &[SymbolId], outputs: &[ExprId]) -> Result<u64, IrError> {
+    let mut arguments = model.coordinate_symbols();
+    arguments.extend(&model.velocities);
+    arguments.extend(inputs);
+    arguments.extend(model.parameter_symbols());
+    let program = ir::lower(&model.store, &arguments, outputs)?;
+    Ok(program.operation_count().after_cse)
+}
+
+/// The terms of the equations, as columns.
+struct Terms {
+    /// `B u - C - dV/dq`, n x 1.
+    force: Matrix,
+    /// `Adot qdot`, c x 1.
+    constraint_drift: Matrix,
+}
+
+impl Terms {
+    fn of(model: &mut Model, inputs: &[SymbolId]) -> Result<Terms, DerivationError> {
+        let atoms = model.store.atoms().clone();
+        let velocity = symbol_column(model, &model.velocities.clone())?;
+        let input = symbol_column(model, inputs)?;
+        let applied = model.input_matrix.mul(&input, &atoms)?;
+        let coriolis = coriolis(model, &velocity)?;
+        let gradient = potential_gradient(model)?;
+        let force = applied.sub(&coriolis, &atoms)?.sub(&gradient, &atoms)?;
+        let residual = model.constraint_matrix.mul(&velocity, &atoms)?;
+        let constraint_drift = directional_derivative(model, &residual, &velocity)?;
+        Ok(Terms {
+            force,
+            constraint_drift,
+        })
+    }
+
+    /// `lambda = (A g^-1 A^T)^-1 (-A g^-1 f - Adot qdot)`, `qddot = g^-1 (f + A^T lambda)`.
+    fn closed_form(&self, model: &Model) -> Result<ClosedForm, MatrixError> {
+        let atoms = model.store.atoms();
+        let (g, a) = (&model.mass_matrix, &model.constraint_matrix);
+        let a_transpose = a.transpose();
+        let g_inverse_a_transpose = g.solve(&a_transpose, atoms)?;
+        let g_inverse_force = g.solve(&self.force, atoms)?;
+        let schur = a.mul(&g_inverse_a_transpose, atoms)?;
+        let schur_rhs = a
+            .mul(&g_inverse_force, atoms)?
+            .add(&self.constraint_drift, atoms)?
+            .neg();
+        let multipliers = schur.solve(&schur_rhs, atoms)?;
+        let accelerations =
+            g_inverse_force.add(&g_inverse_a_transpose.mul(&multipliers, atoms)?, atoms)?;
+        Ok(ClosedForm {
+            accelerations,
+            multipliers,
+        })
+    }
+
+    fn saddle_point(&self, model: &Model) -> SaddlePointSystem {
+        SaddlePointSystem {
+            mass_matrix: model.mass_matrix.clone(),
+            constraint_matrix: model.constraint_matrix.clone(),
+            force: self.force.clone(),
+            drift: self.constraint_drift.neg(),
+        }
+    }
+}
+
+impl ClosedForm {
+    /// `qddot` then `lambda`, as expressions.
+    pub fn outputs(&self, model: &mut Model) -> Vec<ExprId> {
+        let mut outputs = self.accelerations.to_expressions(&mut model.store);
+        outputs.extend(self.multipliers.to_expressions(&mut model.store));
+        outputs
+    }
+}
+
+impl SaddlePointSystem {
+    /// `g` and `A` row-major, then `force`, then `drift`, as expressions.
+    pub fn outputs(&self, model: &mut Model) -> Vec<ExprId> {
+        [
+            &self.mass_matrix,
+            &self.constraint_matrix,
+            &self.force,
+            &self.drift,
+        ]
+        .into_iter()
+        .flat_map(|m| m.to_expressions(&mut model.store))
+        .collect()
+    }
+}
+
+/// The column of the given symbols.
+fn symbol_column(model: &mut Model, symbols: &[SymbolId]) -> Result<Matrix, MatrixError> {
+    let entries: Vec<RationalFunction> = symbols
+        .iter()
+        .map(|&s| RationalFunction::from_poly(Poly::atom(model.store.symbol_atom(s))))
+        .collect();
+    Matrix::new(entries.len(), 1, entries)
+}
+
+/// `C = d(g qdot)/dq qdot - dT/dq`.
+fn coriolis(model: &mut Model, velocity: &Matrix) -> Result<Matrix, DerivationError> {
+    let atoms = model.store.atoms().clone();
+    let momentum = model.mass_matrix.mul(velocity, &atoms)?;
+    let transport = directional_derivative(model, &momentum, velocity)?;
+    let kinetic = model.kinetic_energy.clone();
+    let kinetic_gradient = gradient(model, &kinetic)?;
+    Ok(transport.sub(&kinetic_gradient, &model.store.atoms().clone())?)
+}
+
+/// `dV/dq` as a column.
+fn potential_gradient(model: &mut Model) -> Result<Matrix, DerivationError> {
+    let potential = model.potential_energy.clone();
+    gradient(model, &potential)
+}
+
+/// `d f/dq` as an n x 1 column.
+fn gradient(model: &mut Model, f: &RationalFunction) -> Result<Matrix, DerivationError> {
+    let coordinates = model.coordinate_symbols();
+    let row = model
+        .store
+        .jacobian(std::slice::from_ref(f), &coordinates)?;
+    Ok(row.transpose())
+}
+
+/// `sum_k d column/dq_k qdot_k`: the rate of change of `column(q)` along `qdot`.
+fn directional_derivative(
+    model: &mut Model,
+    column: &Matrix,
+    velocity: &Matrix,
+) -> Result<Matrix, DerivationError> {
+    let coordinates = model.coordinate_symbols();
+    let jacobian = model.store.jacobian(column.entries(), &coordinates)?;
+    Ok(jacobian.mul(velocity, &model.store.atoms().clone())?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{LagrangeDalembert, Strategy, derive, numeric_solve_operations};
+    use crate::model::{Model, check};
+    use crate::sym::SymbolId;
+    use crate::sym::zero::SplitMix;
+    use crate::syntax::parse_str;
+    use chaplygin_runtime::linalg::solve;
+    use std::collections::HashMap;
+
+    const SLEIGH: &str = include_str!("../../../models/sleigh.model");
+    const CHAIN: &str = r#"
+pub struct Chain {
+    coordinates: [x, y, theta, a1, a2, a3],
+    parameters: [m = 1.0, l = 0.7, k = 2.0],
+    kinetic_energy: m/2*(dot(x)^2 + dot(y)^2) + m/2*dot(theta)^2
+        + m/2*((dot(x) - l*sin(theta + a1)*(dot(theta) + dot(a1)))^2
+            + (dot(y) + l*cos(theta + a1)*(dot(theta) + dot(a1)))^2)
+        + m/2*((dot(x) - l*sin(theta + a2)*(dot(theta) + dot(a2)))^2
+            + (dot(y) + l*cos(theta + a2)*(dot(theta) + dot(a2)))^2)
+        + m/2*((dot(x) - l*sin(theta + a3)*(dot(theta) + dot(a3)))^2
+            + (dot(y) + l*cos(theta + a3)*(dot(theta) + dot(a3)))^2),
+    potential_energy: k/2*(a1^2 + a2^2 + a3^2),
+    constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y), locked = dot(a3) - dot(a1)],
+    inputs: [s1 = a1, s2 = a2],
+}
+"#;
+    const TOWED: &str = r#"
+pub struct Towed {
+    coordinates: [x, y, theta, alpha],
+    parameters: [m = 1.0, inertia = 0.1, a = 0.5, mp = 0.3, l = 0.7, k = 2.0],
+    kinetic_energy: m/2*((dot(x) - a*sin(theta)*dot(theta))^2
+        + (dot(y) + a*cos(theta)*dot(theta))^2) + inertia/2*dot(theta)^2
+        + mp/2*((dot(x) - l*sin(theta + alpha)*(dot(theta) + dot(alpha)))^2
+        + (dot(y) + l*cos(theta + alpha)*(dot(theta) + dot(alpha)))^2),
+    potential_energy: k/2*alpha^2,
+    constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
+    inputs: [steer = alpha],
+}
+"#;
+
+    fn derived(source: &str) -> (Model, LagrangeDalembert) {
+        let mut model = check(&parse_str(source).expect("parses")).expect("checks");
+        let derivation = derive(&mut model).expect("derives");
+        (model, derivation)
+    }
+
+    #[test]
+    fn the_closed_form_solves_the_equations_exactly() {
+        for source in [crate::fixtures::SNAKEBOARD, SLEIGH] {
+            let (model, derivation) = derived(source);
+            let atoms = model.store.atoms();
+            let system = &derivation.saddle_point;
+            let solution = derivation.closed_form.as_ref().expect("derived");
+            let a = &system.constraint_matrix;
+            let balance = system
+                .mass_matrix
+                .mul(&solution.accelerations, atoms)
+                .and_then(|m| m.sub(&a.transpose().mul(&solution.multipliers, atoms)?, atoms))
+                .and_then(|m| m.sub(&system.force, atoms))
+                .expect("fits");
+            assert!(balance.is_zero(), "g qddot - A^T lambda - f must vanish");
+            let acceleration_constraint = a
+                .mul(&solution.accelerations, atoms)
+                .and_then(|m| m.sub(&system.drift, atoms))
+                .expect("fits");
+            assert!(
+                acceleration_constraint.is_zero(),
+                "A qddot + Adot qdot must vanish"
+            );
+        }
+    }
+
+    /// Random coordinates, velocities and inputs; parameters at their defaults.
+    fn random_point(model: &Model, inputs: &[SymbolId], seed: u64) -> HashMap<SymbolId, f64> {
+        let mut random = SplitMix::new(seed);
+        let mut values: HashMap<SymbolId, f64> = model
+            .parameters
+            .iter()
+            .map(|p| (p.variable.symbol, p.default.to_f64()))
+            .collect();
+        for &symbol in model
+            .coordinate_symbols()
+            .iter()
+            .chain(&model.velocities)
+            .chain(inputs)
+        {
+            values.insert(symbol, random.uniform(-2.0, 2.0));
+        }
+        values
+    }
+
+    /// `(qddot, lambda)` from the saddle-point pieces solved by the runtime.
+    fn numeric_solution<const M: usize>(
+        model: &mut Model,
+        derivation: &LagrangeDalembert,
+        values: &HashMap<SymbolId, f64>,
+    ) -> Vec<f64> {
+        let (n, c) = (model.n(), model.c());
+        assert_eq!(n + c, M);
+        let value_of = |s: SymbolId| values[&s];
+        let system = &derivation.saddle_point;
+        let g = system.mass_matrix.evaluate(&mut model.store, &value_of);
+        let a = system
+            .constraint_matrix
+            .evaluate(&mut model.store, &value_of);
+        let force = system.force.evaluate(&mut model.store, &value_of);
+        let drift = system.drift.evaluate(&mut model.store, &value_of);
+        let mut matrix = [[0.0; M]; M];
+        for i in 0..n {
+            matrix[i][..n].copy_from_slice(&g[i * n..(i + 1) * n]);
+        }
+        for r in 0..c {
+            for j in 0..n {
+                matrix[n + r][j] = a[r * n + j];
+                matrix[j][n + r] = a[r * n + j];
+            }
+        }
+        let mut rhs = [0.0; M];
+        rhs[..n].copy_from_slice(&force);
+        rhs[n..].copy_from_slice(&drift);
+        let solution = solve(matrix, rhs);
+        let (accelerations, mu) = solution.split_at(n);
+        accelerations
+            .iter()
+            .copied()
+            .chain(mu.iter().map(|m| -m))
+            .collect()
+    }
+
+    fn assert_strategies_agree<const M: usize>(source: &str) {
+        let (mut model, derivation) = derived(source);
+        let closed_form = derivation.closed_form.as_ref().expect("derived");
+        for seed in 0..20 {
+            let values = random_point(&model, &derivation.inputs, seed);
+            let value_of = |s: SymbolId| values[&s];
+            let mut symbolic = closed_form
+                .accelerations
+                .evaluate(&mut model.store, &value_of);
+            symbolic.extend(
+                closed_form
+                    .multipliers
+                    .evaluate(&mut model.store, &value_of),
+            );
+            let numeric = numeric_solution::<M>(&mut model, &derivation, &values);
+            for (s, n) in symbolic.iter().zip(&numeric) {
+                assert!(
+                    (s - n).abs() <= 1e-10 * (1.0 + s.abs()),
+                    "seed {seed}: {symbolic:?} vs {numeric:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn both_strategies_agree_on_the_snakeboard_and_the_sleigh() {
+        assert_strategies_agree::<7>(crate::fixtures::SNAKEBOARD);
+        assert_strategies_agree::<4>(SLEIGH);
+    }
+
+    #[test]
+    fn the_solve_is_counted_as_the_runtime_performs_it() {
+        // 1x1: one division. 2x2: factor, two multiply-subtracts, then
+        // x1 = b1/a11 and x0 = (b0 - a01 x1)/a00.
+        assert_eq!(numeric_solve_operations(0), 0);
+        assert_eq!(numeric_solve_operations(1), 1);
+        assert_eq!(numeric_solve_operations(2), 1 + 2 * 2 + 1 + 3);
+        // leading term m^3/3 multiply-adds = 2 m^3/3 operations
+        let m = 300u64;
+        let ratio = numeric_solve_operations(m as usize) as f64 / (2 * m * m * m / 3) as f64;
+        assert!((ratio - 1.0).abs() < 0.01, "{ratio}");
+    }
+
+    #[test]
+    fn the_cheaper_strategy_is_chosen() {
+        // counts after CSE (closed form; pieces + solve of n + c + negations):
+        // the snakeboard's block-diagonal metric inverts cheaply, the towed
+        // sleigh's dense coupled metric does not.
+        let expected = [
+            (crate::fixtures::SNAKEBOARD, Strategy::Symbolic),
+            (SLEIGH, Strategy::Symbolic),
+            (TOWED, Strategy::Numeric),
+        ];
+        for (source, strategy) in expected {
+            let (_, d) = derived(source);
+            assert_eq!(
+                d.strategy, strategy,
+                "{:?} vs {}",
+                d.symbolic_operations, d.numeric_operations
+            );
+        }
+        assert_strategies_agree::<5>(TOWED);
+    }
+
+    /// A sleigh towing three pendulums: one dense 6 x 6 block of `g`, past
+    /// the limit, so no closed form is attempted (it would not finish).
+    #[test]
+    fn a_large_dense_metric_goes_numeric_without_a_closed_form() {
+        let (model, d) = derived(CHAIN);
+        assert_eq!(
+            model.mass_matrix.diagonal_blocks(),
+            [vec![0, 1, 2, 3, 4, 5]]
+        );
+        assert!(d.closed_form.is_none() && d.symbolic_operations.is_none());
+        assert_eq!(d.strategy, Strategy::Numeric);
+        assert!(d.numeric_operations > numeric_solve_operations(8));
+    }
+}
