@@ -7,7 +7,10 @@
 
 mod common;
 
-use chaplygin_models::{sleigh::Sleigh, snakeboard::Snakeboard};
+use chaplygin_models::{
+    differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
+    snakeboard::Snakeboard,
+};
 use common::towed::Towed;
 use proptest::prelude::*;
 
@@ -61,6 +64,8 @@ macro_rules! dynamics {
 dynamics!(Snakeboard, 5, 2, 2, acting_on: [3, 4]);
 dynamics!(Sleigh, 3, 1, 0, acting_on: []);
 dynamics!(Towed, 4, 1, 1, acting_on: [3]);
+dynamics!(RollingDisk, 4, 2, 2, acting_on: [2, 3]);
+dynamics!(DifferentialDrive, 5, 3, 2, acting_on: [3, 4]);
 
 chaplygin::model! {
     /// The snakeboard with its front constraint row written twice as large.
@@ -270,6 +275,24 @@ proptest! {
     }
 
     /// Doubling a row halves its multiplier and changes nothing else.
+    #[test]
+    fn rolling_disk_dynamics_balance(
+        q in prop::array::uniform4(-3.0f64..3.0),
+        v in prop::array::uniform4(-2.0f64..2.0),
+        u in prop::array::uniform2(-2.0f64..2.0),
+    ) {
+        check_point(&RollingDisk::default(), &q, &v, &u)?;
+    }
+
+    #[test]
+    fn differential_drive_dynamics_balance(
+        q in prop::array::uniform5(-3.0f64..3.0),
+        v in prop::array::uniform5(-2.0f64..2.0),
+        u in prop::array::uniform2(-2.0f64..2.0),
+    ) {
+        check_point(&DifferentialDrive::default(), &q, &v, &u)?;
+    }
+
     #[test]
     fn multipliers_belong_to_the_rows_as_declared(
         q in prop::array::uniform5(-3.0f64..3.0),
