@@ -13,6 +13,15 @@ pub mod snakeboard {
     //! The snakeboard: a board on two wheel pairs whose steering angles are
     //! coupled (`phi` front, `-phi` back), with a rotor (the rider's torso, `psi`).
     //! Coordinates `(x, y, theta, psi, phi)`, total inertia `J = Jt + m r^2`.
+    //!
+    //! Singular configurations: at `phi = +-pi/2` the wheel axes are parallel
+    //! and the two constraint rows become dependent. The accelerations of
+    //! `acceleration` stay well defined (they are continuous there), but the
+    //! individual constraint forces are not: only their combination along the
+    //! common row is, and the `lambda` returned at exactly `phi = +-pi/2` is one
+    //! split of it. The tool's basis of D (`tan(phi)`, `1/cos(phi)`) also
+    //! degenerates there, while the reduced form with the paper's momentum
+    //! basis stays regular (its `gbar` is constant).
     chaplygin::model! {
         /// Snakeboard with J = Jt + m r^2 (Duindam & Stramigioli 2004).
         pub struct Snakeboard {
