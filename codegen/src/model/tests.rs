@@ -229,3 +229,18 @@ fn the_group_must_preserve_the_lagrangian_and_the_constraints() {
         "translation(x) * translation(y)",
     ));
 }
+
+/// The regular momentum basis the sleigh's documentation recommends,
+/// `(g X)^T` for `X = (cos, sin, 0), (0, 0, 1)`, spans g(D) exactly.
+#[test]
+fn the_sleighs_documented_momentum_basis_is_accepted() {
+    let source = sleigh_with("0", BLADE, SLEIGH_T, "se2(x, y, theta)").replace(
+        "symmetry:",
+        "momentum_basis: [forward = [cos(theta), sin(theta), 0], \
+         turning = [-m*a*sin(theta), m*a*cos(theta), inertia + m*a^2]], symmetry:",
+    );
+    let model = checked(&source);
+    assert_eq!(model.momentum_basis.expect("declared").names.len(), 2);
+    let wrong = source.replace("inertia + m*a^2]]", "inertia]]");
+    assert!(errors(&wrong).contains("momentum-basis row `turning` is not in g(D)"));
+}
