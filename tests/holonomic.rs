@@ -19,7 +19,7 @@ fn an_integrable_constraint_compiles_and_is_reported_holonomic() {
     assert!(report.contains("classification: holonomic"), "{report}");
     assert!(report.contains("growth vector (2)"), "{report}");
     assert!(report.contains("level not exact"), "{report}");
-    // and the motion stays on the surface: x y + z is conserved by the flow
+    // a velocity tangent to the surface (d(x y + z) = 0) satisfies the constraint
     let surface = Surface::default();
     let q = [0.3, -0.4, 0.2];
     let qdot = [0.5, 0.1, -(-0.4 * 0.5 + 0.3 * 0.1)];
