@@ -1,3 +1,14 @@
 //! The Chaplygin runtime: what generated models plug into.
+//!
+//! - [`system`]: the traits a generated model implements
+//!   ([`system::ReducedPortHamiltonian`], [`system::LagrangeDalembert`]) and
+//!   adapters turning a model and its input into an [`system::OdeSystem`];
+//! - [`integrate`]: integrators over any [`system::OdeSystem`] (RK4,
+//!   Dormand-Prince 5(4), the implicit midpoint rule);
+//! - [`linalg`]: dense linear algebra on the stack.
 
+pub mod integrate;
 pub mod linalg;
+pub mod system;
+
+pub use integrate::Error;

@@ -1,0 +1,226 @@
+//! The Dormand-Prince 5(4) embedded Runge-Kutta pair with step size control
+//! (Dormand & Prince, "A family of embedded Runge-Kutta formulae", J. Comput.
+//! Appl. Math. 6, 1980; coefficients and controller as in Hairer, Nørsett &
+//! Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., 1993,
+//! section II.4, table 4.6 and the code DOPRI5).
+//!
+//! Order 5, propagated with local extrapolation; the embedded order-4
+//! solution estimates the local error. A step is accepted when the error,
+//! scaled per component by `atol + rtol max(|x_i|, |X_i|)`, has RMS norm at
+//! most 1; the next step is `h min(5, max(0.2, 0.9 err^(-1/5)))` (no growth
+//! right after a rejection). Seven stages, the last reused as the first of
+//! the next step (FSAL). It conserves linear invariants; the global error of
+//! other quantities is roughly proportional to the tolerance.
+
+use super::{Error, combine, finite};
+use crate::system::OdeSystem;
+
+/// Dormand-Prince 5(4) with its tolerances and limits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DormandPrince {
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance.
+    pub atol: f64,
+    /// Smallest step size allowed (absolute value).
+    pub min_step: f64,
+    /// Steps allowed per call of [`DormandPrince::integrate`], accepted and
+    /// rejected.
+    pub max_steps: usize,
+}
+
+impl Default for DormandPrince {
+    /// `rtol = atol = 1e-8`, `min_step = 1e-14`, `max_steps = 10^6`.
+    fn default() -> Self {
+        Self {
+            rtol: 1e-8,
+            atol: 1e-8,
+            min_step: 1e-14,
+            max_steps: 1_000_000,
+        }
+    }
+}
+
+/// The end of an adaptive integration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solution<const D: usize> {
+    /// The state at the final time.
+    pub x: [f64; D],
+    /// Accepted steps.
+    pub accepted: usize,
+    /// Rejected steps.
+    pub rejected: usize,
+}
+
+const C: [f64; 6] = [1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+const A2: [f64; 1] = [1.0 / 5.0];
+const A3: [f64; 2] = [3.0 / 40.0, 9.0 / 40.0];
+const A4: [f64; 3] = [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0];
+const A5: [f64; 4] = [
+    19372.0 / 6561.0,
+    -25360.0 / 2187.0,
+    64448.0 / 6561.0,
+    -212.0 / 729.0,
+];
+const A6: [f64; 5] = [
+    9017.0 / 3168.0,
+    -355.0 / 33.0,
+    46732.0 / 5247.0,
+    49.0 / 176.0,
+    -5103.0 / 18656.0,
+];
+/// The order-5 weights (also the seventh stage's row).
+const B: [f64; 6] = [
+    35.0 / 384.0,
+    0.0,
+    500.0 / 1113.0,
+    125.0 / 192.0,
+    -2187.0 / 6784.0,
+    11.0 / 84.0,
+];
+/// Order-5 minus order-4 weights, for the seven stages.
+const E: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+
+/// One trial step: the order-5 state and the derivative there.
+struct Trial<const D: usize> {
+    x: [f64; D],
+    f: [f64; D],
+    error: f64,
+}
+
+impl DormandPrince {
+    /// Integrates from `x0` at `t0` to `t1` (forward or backward).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] when an accepted state is not finite;
+    /// [`Error::StepSizeUnderflow`] when the step needed falls below
+    /// `min_step` (or below round-off of `t`); [`Error::TooManySteps`].
+    pub fn integrate<S: OdeSystem<D>, const D: usize>(
+        &self,
+        system: &S,
+        (t0, x0): (f64, [f64; D]),
+        t1: f64,
+    ) -> Result<Solution<D>, Error> {
+        let (mut t, mut x) = (t0, finite(t0, x0)?);
+        let mut f = system.rhs(t, &x);
+        let mut h = self.initial_step(&x, &f, t1 - t0);
+        let (mut accepted, mut rejected, mut just_rejected) = (0, 0, false);
+        while (t1 - t) * (t1 - t0).signum() > 0.0 {
+            if accepted + rejected >= self.max_steps {
+                return Err(Error::TooManySteps {
+                    t,
+                    steps: accepted + rejected,
+                    state: x.to_vec(),
+                });
+            }
+            if h.abs() < self.min_step.max(16.0 * f64::EPSILON * t.abs()) {
+                return Err(Error::StepSizeUnderflow {
+                    t,
+                    h,
+                    state: x.to_vec(),
+                });
+            }
+            let last = (t + h - t1) * h.signum() >= 0.0;
+            let step = if last { t1 - t } else { h };
+            let trial = self.trial(system, t, &x, &f, step);
+            let error = if trial.error.is_nan() {
+                f64::INFINITY
+            } else {
+                trial.error
+            };
+            if error <= 1.0 {
+                (t, x, f) = (
+                    if last { t1 } else { t + step },
+                    finite(t + step, trial.x)?,
+                    trial.f,
+                );
+                accepted += 1;
+            } else {
+                rejected += 1;
+            }
+            let growth = if just_rejected { 1.0 } else { 5.0 };
+            h = step * (0.9 * error.powf(-0.2)).clamp(0.2, growth);
+            just_rejected = error > 1.0;
+        }
+        Ok(Solution {
+            x,
+            accepted,
+            rejected,
+        })
+    }
+
+    /// A first step `0.01 |x| / |f|` (RMS norms scaled by the tolerances;
+    /// Hairer, Nørsett & Wanner, section II.4), at most the whole span.
+    fn initial_step<const D: usize>(&self, x: &[f64; D], f: &[f64; D], span: f64) -> f64 {
+        let (dx, df) = (self.scaled_norm(x, x, x), self.scaled_norm(f, x, x));
+        let h = if dx < 1e-5 || df < 1e-5 {
+            1e-6
+        } else {
+            0.01 * dx / df
+        };
+        h.min(span.abs()) * span.signum()
+    }
+
+    /// The RMS norm of `v` scaled by `atol + rtol max(|x_i|, |y_i|)`.
+    fn scaled_norm<const D: usize>(&self, v: &[f64; D], x: &[f64; D], y: &[f64; D]) -> f64 {
+        let sum: f64 = (0..D)
+            .map(|i| (v[i] / (self.atol + self.rtol * x[i].abs().max(y[i].abs()))).powi(2))
+            .sum();
+        (sum / D.max(1) as f64).sqrt()
+    }
+
+    /// The six new stages of a step of size `h`, the order-5 state and its
+    /// scaled error estimate.
+    fn trial<S: OdeSystem<D>, const D: usize>(
+        &self,
+        system: &S,
+        t: f64,
+        x: &[f64; D],
+        k1: &[f64; D],
+        h: f64,
+    ) -> Trial<D> {
+        let k2 = system.rhs(t + C[0] * h, &combine(x, h, &[(A2[0], k1)]));
+        let k3 = system.rhs(t + C[1] * h, &combine(x, h, &[(A3[0], k1), (A3[1], &k2)]));
+        let y4 = combine(x, h, &[(A4[0], k1), (A4[1], &k2), (A4[2], &k3)]);
+        let k4 = system.rhs(t + C[2] * h, &y4);
+        let y5 = combine(
+            x,
+            h,
+            &[(A5[0], k1), (A5[1], &k2), (A5[2], &k3), (A5[3], &k4)],
+        );
+        let k5 = system.rhs(t + C[3] * h, &y5);
+        let six = [
+            (A6[0], k1),
+            (A6[1], &k2),
+            (A6[2], &k3),
+            (A6[3], &k4),
+            (A6[4], &k5),
+        ];
+        let k6 = system.rhs(t + C[4] * h, &combine(x, h, &six));
+        let stages = [
+            (B[0], k1),
+            (B[2], &k3),
+            (B[3], &k4),
+            (B[4], &k5),
+            (B[5], &k6),
+        ];
+        let next = combine(x, h, &stages);
+        let k7 = system.rhs(t + C[5] * h, &next);
+        let all = [k1, &k2, &k3, &k4, &k5, &k6, &k7];
+        let difference: [f64; D] =
+            core::array::from_fn(|i| h * (0..7).map(|s| E[s] * all[s][i]).sum::<f64>());
+        Trial {
+            error: self.scaled_norm(&difference, x, &next),
+            x: next,
+            f: k7,
+        }
+    }
+}

@@ -1,0 +1,133 @@
+//! Integrators over any [`OdeSystem`].
+//!
+//! | method | module | order | conserves |
+//! |---|---|---|---|
+//! | classical Runge-Kutta | [`rk4`] | 4 | linear invariants |
+//! | Dormand-Prince 5(4), adaptive | [`dormand_prince`] | 5 | linear invariants |
+//! | implicit midpoint, Newton | [`midpoint`] | 2 | quadratic invariants; `H` of `xdot = J(x) dH/dx` for quadratic `H`, skew `J` |
+//!
+//! Fixed-step methods implement [`FixedStep`] and run with
+//! [`integrate_fixed`]. Steps work on fixed-size arrays on the stack and do
+//! not allocate; only a returned [`Error`] allocates (a copy of the state).
+
+pub mod dormand_prince;
+pub mod midpoint;
+pub mod rk4;
+
+pub use dormand_prince::DormandPrince;
+pub use midpoint::Midpoint;
+pub use rk4::Rk4;
+
+use crate::system::OdeSystem;
+
+/// Why an integration stopped.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum Error {
+    /// The state became NaN or infinite.
+    #[error("non-finite state at t = {t}: {state:?}")]
+    NonFinite {
+        /// Time of the non-finite state.
+        t: f64,
+        /// The non-finite state.
+        state: Vec<f64>,
+    },
+    /// Newton's method of an implicit step did not converge.
+    #[error(
+        "Newton's method did not converge in the step from t = {t} (h = {h}): \
+         last update {update:e} after {iterations} iterations, state {state:?}"
+    )]
+    NewtonFailure {
+        /// Time at the start of the step.
+        t: f64,
+        /// The step size.
+        h: f64,
+        /// Iterations made.
+        iterations: usize,
+        /// Largest entry of the last Newton update.
+        update: f64,
+        /// The state at the start of the step.
+        state: Vec<f64>,
+    },
+    /// An adaptive method needed a step below its minimum to meet its tolerance.
+    #[error("step size underflow at t = {t}: h = {h:e}, state {state:?}")]
+    StepSizeUnderflow {
+        /// Time at which the step failed.
+        t: f64,
+        /// The rejected step size.
+        h: f64,
+        /// The state at time `t`.
+        state: Vec<f64>,
+    },
+    /// An adaptive method reached its maximum number of steps.
+    #[error("{steps} steps taken by t = {t} without reaching the end, state {state:?}")]
+    TooManySteps {
+        /// Time reached.
+        t: f64,
+        /// Steps taken (accepted and rejected).
+        steps: usize,
+        /// The state at time `t`.
+        state: Vec<f64>,
+    },
+}
+
+/// A one-step method with a fixed step size, for systems of type `S`.
+pub trait FixedStep<S, const D: usize> {
+    /// The state at `t + h` from the state `x` at `t`.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] when the new state is not finite; the method's own
+    /// failures (e.g. [`Error::NewtonFailure`]).
+    fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error>;
+}
+
+/// Takes `steps` steps of size `h` from `x0` at `t0`, calling
+/// `observe(t, x)` after each; returns the final state.
+///
+/// # Errors
+/// The first error of a step.
+pub fn integrate_fixed<S, M, const D: usize>(
+    method: &M,
+    system: &S,
+    (t0, x0): (f64, [f64; D]),
+    h: f64,
+    steps: usize,
+    mut observe: impl FnMut(f64, &[f64; D]),
+) -> Result<[f64; D], Error>
+where
+    S: OdeSystem<D>,
+    M: FixedStep<S, D>,
+{
+    let mut x = x0;
+    for i in 0..steps {
+        let t = t0 + i as f64 * h;
+        x = method.step(system, t, &x, h)?;
+        observe(t + h, &x);
+    }
+    Ok(x)
+}
+
+/// `x` itself when all its entries are finite, else [`Error::NonFinite`].
+pub(crate) fn finite<const D: usize>(t: f64, x: [f64; D]) -> Result<[f64; D], Error> {
+    if x.iter().all(|v| v.is_finite()) {
+        Ok(x)
+    } else {
+        Err(Error::NonFinite {
+            t,
+            state: x.to_vec(),
+        })
+    }
+}
+
+/// `x + h sum_i b_i k_i`.
+pub(crate) fn combine<const D: usize>(
+    x: &[f64; D],
+    h: f64,
+    terms: &[(f64, &[f64; D])],
+) -> [f64; D] {
+    core::array::from_fn(|i| x[i] + h * terms.iter().map(|(b, k)| b * k[i]).sum::<f64>())
+}
+
+/// The largest absolute entry.
+pub(crate) fn max_norm<const D: usize>(x: &[f64; D]) -> f64 {
+    x.iter().fold(0.0, |m, v| m.max(v.abs()))
+}

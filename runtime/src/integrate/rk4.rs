@@ -1,0 +1,33 @@
+//! The classical fourth-order Runge-Kutta method (Kutta 1901; Hairer, Nørsett
+//! & Wanner, *Solving Ordinary Differential Equations I*, 2nd ed., 1993,
+//! section II.1, table 1.2).
+//!
+//! Order 4: the global error after a fixed time is `O(h^4)`. Explicit, four
+//! evaluations of `f` per step. It conserves linear invariants exactly, but
+//! not quadratic ones: the energy of a conservative system drifts, by
+//! `O(h^4)` per unit time.
+
+use super::{Error, FixedStep, combine, finite};
+use crate::system::OdeSystem;
+
+/// The classical Runge-Kutta method of order 4.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Rk4;
+
+impl<S: OdeSystem<D>, const D: usize> FixedStep<S, D> for Rk4 {
+    fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error> {
+        let half = h / 2.0;
+        let k1 = system.rhs(t, x);
+        let k2 = system.rhs(t + half, &combine(x, half, &[(1.0, &k1)]));
+        let k3 = system.rhs(t + half, &combine(x, half, &[(1.0, &k2)]));
+        let k4 = system.rhs(t + h, &combine(x, h, &[(1.0, &k3)]));
+        let sixth = 1.0 / 6.0;
+        let terms = [
+            (sixth, &k1),
+            (2.0 * sixth, &k2),
+            (2.0 * sixth, &k3),
+            (sixth, &k4),
+        ];
+        finite(t + h, combine(x, h, &terms))
+    }
+}

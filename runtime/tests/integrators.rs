@@ -1,0 +1,173 @@
+//! The integrators against closed-form solutions: measured convergence
+//! orders on the harmonic oscillator, Dormand-Prince's global error against
+//! its tolerance, exact energy of the midpoint rule, and the structured
+//! errors on a solution that blows up in finite time.
+
+use chaplygin_runtime::Error;
+use chaplygin_runtime::integrate::{DormandPrince, FixedStep, Midpoint, Rk4, integrate_fixed};
+use chaplygin_runtime::system::{Energy, Jacobian, OdeSystem};
+
+/// `qdot = p, pdot = -q`, `H = (q^2 + p^2)/2`: a skew structure with a
+/// quadratic energy; from `(q0, p0)` the solution is
+/// `q = q0 cos t + p0 sin t`, `p = p0 cos t - q0 sin t`.
+struct Oscillator;
+
+impl OdeSystem<2> for Oscillator {
+    fn rhs(&self, _t: f64, x: &[f64; 2]) -> [f64; 2] {
+        [x[1], -x[0]]
+    }
+}
+
+impl Jacobian<2> for Oscillator {
+    fn jacobian(&self, _t: f64, _x: &[f64; 2]) -> [[f64; 2]; 2] {
+        [[0.0, 1.0], [-1.0, 0.0]]
+    }
+}
+
+impl Energy<2> for Oscillator {
+    fn energy(&self, x: &[f64; 2]) -> f64 {
+        (x[0] * x[0] + x[1] * x[1]) / 2.0
+    }
+}
+
+const X0: [f64; 2] = [1.0, 0.5];
+
+fn exact(t: f64) -> [f64; 2] {
+    let (s, c) = t.sin_cos();
+    [X0[0] * c + X0[1] * s, X0[1] * c - X0[0] * s]
+}
+
+fn distance(a: &[f64; 2], b: &[f64; 2]) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+/// `xdot = x^2`, `x(0) = 1`: `x = 1/(1 - t)`, infinite at `t = 1`.
+struct BlowUp;
+
+impl OdeSystem<1> for BlowUp {
+    fn rhs(&self, _t: f64, x: &[f64; 1]) -> [f64; 1] {
+        [x[0] * x[0]]
+    }
+}
+
+impl Jacobian<1> for BlowUp {
+    fn jacobian(&self, _t: f64, x: &[f64; 1]) -> [[f64; 1]; 1] {
+        [[2.0 * x[0]]]
+    }
+}
+
+/// Global errors at `t = 2` for `h = 0.2 / 2^i`, and the slopes of
+/// `log2(error)` between successive halvings.
+fn measured_orders<M: FixedStep<Oscillator, 2>>(method: &M) -> ([f64; 4], [f64; 3]) {
+    let errors: [f64; 4] = core::array::from_fn(|i| {
+        let steps = 10 << i;
+        let h = 2.0 / steps as f64;
+        let end = integrate_fixed(method, &Oscillator, (0.0, X0), h, steps, |_, _| {}).unwrap();
+        distance(&end, &exact(2.0))
+    });
+    let slopes = core::array::from_fn(|i| (errors[i] / errors[i + 1]).log2());
+    (errors, slopes)
+}
+
+#[test]
+fn rk4_converges_with_order_4() {
+    let (errors, slopes) = measured_orders(&Rk4);
+    println!("RK4 errors {errors:?}, orders {slopes:.4?}");
+    for slope in slopes {
+        assert!((slope - 4.0).abs() <= 0.2, "{slopes:?}");
+    }
+}
+
+#[test]
+fn midpoint_converges_with_order_2_and_keeps_the_energy() {
+    let (errors, slopes) = measured_orders(&Midpoint::default());
+    println!("midpoint errors {errors:?}, orders {slopes:.4?}");
+    for slope in slopes {
+        assert!((slope - 2.0).abs() <= 0.1, "{slopes:?}");
+    }
+    let h0 = Oscillator.energy(&X0);
+    let mut worst = 0.0f64;
+    let observe = |_: f64, x: &[f64; 2]| worst = worst.max((Oscillator.energy(x) - h0).abs() / h0);
+    integrate_fixed(
+        &Midpoint::default(),
+        &Oscillator,
+        (0.0, X0),
+        0.1,
+        10_000,
+        observe,
+    )
+    .unwrap();
+    println!("midpoint: relative energy error over 10^4 steps {worst:.3e}");
+    assert!(worst <= 1e-13, "{worst:e}");
+}
+
+#[test]
+fn dormand_prince_global_error_tracks_its_tolerance() {
+    let mut previous = f64::INFINITY;
+    for tolerance in [1e-4, 1e-6, 1e-8, 1e-10] {
+        let method = DormandPrince {
+            rtol: tolerance,
+            atol: tolerance,
+            ..Default::default()
+        };
+        let end = method.integrate(&Oscillator, (0.0, X0), 10.0).unwrap();
+        let error = distance(&end.x, &exact(10.0));
+        println!(
+            "Dormand-Prince tol {tolerance:e}: error {error:.3e} ({:.2} tol), {} accepted, {} rejected",
+            error / tolerance,
+            end.accepted,
+            end.rejected
+        );
+        // within a decade of the tolerance, and proportional to it: 100 times
+        // tighter gives at least 50 times smaller
+        assert!(
+            error <= 10.0 * tolerance && error < previous / 50.0,
+            "{error:e}"
+        );
+        previous = error;
+    }
+}
+
+#[test]
+fn dormand_prince_integrates_backward() {
+    let method = DormandPrince {
+        rtol: 1e-10,
+        atol: 1e-10,
+        ..Default::default()
+    };
+    let end = method.integrate(&Oscillator, (0.0, X0), -3.0).unwrap();
+    assert!(distance(&end.x, &exact(-3.0)) <= 1e-9, "{:?}", end.x);
+}
+
+#[test]
+fn a_blow_up_gives_structured_errors() {
+    let error = integrate_fixed(&Rk4, &BlowUp, (0.0, [1.0]), 0.1, 20, |_, _| {}).unwrap_err();
+    assert!(
+        matches!(error, Error::NonFinite { t, .. } if t > 1.0 && t <= 2.0 + 1e-12),
+        "{error}"
+    );
+    let error = DormandPrince::default()
+        .integrate(&BlowUp, (0.0, [1.0]), 2.0)
+        .unwrap_err();
+    assert!(
+        matches!(error, Error::StepSizeUnderflow { t, .. } | Error::NonFinite { t, .. } if (t - 1.0).abs() < 1e-2),
+        "{error}"
+    );
+    let one = Midpoint {
+        max_iterations: 1,
+        ..Default::default()
+    };
+    let error = one.step(&BlowUp, 0.0, &[1.0], 0.1).unwrap_err();
+    assert!(
+        matches!(error, Error::NewtonFailure { iterations: 1, .. }),
+        "{error}"
+    );
+    // the midpoint rule has no solution past the blow-up: Newton fails
+    let error = Midpoint::default()
+        .step(&BlowUp, 0.0, &[1.0], 3.0)
+        .unwrap_err();
+    assert!(
+        matches!(error, Error::NewtonFailure { .. } | Error::NonFinite { .. }),
+        "{error}"
+    );
+}
