@@ -1,10 +1,12 @@
-//! Generated functions allocate nothing: a counting global allocator sees
-//! zero allocations across 10^4 calls of each (counted per thread, so tests
+//! Generated functions and the runtime's integrator steps allocate nothing:
+//! a counting global allocator sees zero allocations across 10^4 calls of each (counted per thread, so tests
 //! running in parallel do not see each other's allocations). Non-finite input gives
 //! non-finite output, without a panic.
 
 mod common;
 
+use chaplygin::runtime::integrate::{DormandPrince, FixedStep, Midpoint, Rk4};
+use chaplygin::runtime::system::{Dalembert, Reduced};
 use chaplygin_models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
     snakeboard::Snakeboard,
@@ -180,4 +182,37 @@ fn non_finite_input_gives_non_finite_acceleration() {
             "{qddot:?} {lambda:?}"
         );
     }
+}
+
+#[test]
+fn integrator_steps_do_not_allocate() {
+    let board = Snakeboard::default();
+    let reduced = Reduced::constant(&board, [0.1, -0.2]);
+    // phi'' = -0.4 cos t from rest at phi = 0.3: phi stays in [-0.5, 0.3]
+    let dalembert = Dalembert::new(&board, |t: f64| [0.1 * t.sin(), -0.02 * t.cos()]);
+    let tight = DormandPrince {
+        rtol: 1e-10,
+        atol: 1e-10,
+        ..Default::default()
+    };
+    let (mut x, mut y) = (
+        [0.1, -0.2, 0.3, 0.0, 0.3, 1.0, 0.5, 0.025],
+        [0.1, -0.2, 0.3, 0.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0],
+    );
+    let counted = allocations(|| {
+        for i in 0..10_000 {
+            let t = i as f64 * 1e-3;
+            x = Rk4.step(&reduced, t, black_box(&x), 1e-3).unwrap();
+            x = Midpoint::default()
+                .step(&reduced, t, black_box(&x), 1e-3)
+                .unwrap();
+            y = Rk4.step(&dalembert, t, black_box(&y), 1e-3).unwrap();
+        }
+        x = tight
+            .integrate(&reduced, (0.0, black_box(x)), 1.0)
+            .unwrap()
+            .x;
+    });
+    assert_eq!(counted, 0);
+    assert!(x.iter().chain(&y).all(|v| v.is_finite()), "{x:?} {y:?}");
 }

@@ -14,7 +14,8 @@
 //! ```
 //!
 //! and the reduced port-Hamiltonian items of `port_hamiltonian` (MATH.md
-//! section 3).
+//! section 3), and the impls of the runtime's formulation traits (`traits`)
+//! through which the runtime's integrators run the model.
 //!
 //! Each function body is one [`crate::ir::Program`]: straight-line `let`s over
 //! `f64` with common subexpressions shared, no allocation, no panics, types
@@ -25,6 +26,7 @@ mod kinematics;
 mod lagrange_dalembert;
 mod port_hamiltonian;
 pub mod report;
+mod traits;
 
 use crate::derive::constraints::ConstraintAnalysis;
 use crate::diagnostic::{Diagnostic, Diagnostics};
@@ -64,6 +66,7 @@ pub fn model_items(
     let report = report_constant(model, constraints, sections, &functions);
     let items = functions.iter().map(|f| &f.item);
     let name = &model.name;
+    let implementations = traits::implementations(model);
     Ok(quote! {
         #definition
         impl #name {
@@ -71,6 +74,7 @@ pub fn model_items(
             #report
             #(#items)*
         }
+        #implementations
     })
 }
 

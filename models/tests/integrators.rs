@@ -1,0 +1,208 @@
+//! The runtime's integrators on generated models, through the formulation
+//! traits the generated code implements: the implicit midpoint rule keeps the
+//! energy of the snakeboard under the energy-based controller of MATH.md 3.2
+//! where RK4 drifts, and the reduced and the Lagrange-d'Alembert formulations
+//! give the same trajectory.
+//!
+//! (With zero input the reduced snakeboard's momenta are constant, MATH.md
+//! 3.1, so `Hbar` is kept exactly by every method: the closed loop is the
+//! first case where conservation tells the methods apart.)
+
+use chaplygin::runtime::integrate::{DormandPrince, FixedStep, Midpoint, Rk4, integrate_fixed};
+use chaplygin::runtime::system::{Dalembert, Energy, Jacobian, OdeSystem, Reduced};
+use chaplygin_models::snakeboard::Snakeboard;
+
+const N: usize = Snakeboard::N;
+const S: usize = Snakeboard::S;
+
+/// The reduced state at `q = (0.1, -0.2, 0.3, 0, 0.3)` with momenta
+/// `alpha = (1, 0.5, 0.025)` (the wheels turning at `phidot = 0.5`).
+fn start() -> [f64; S] {
+    [0.1, -0.2, 0.3, 0.0, 0.3, 1.0, 0.5, 0.025]
+}
+
+/// The snakeboard under the energy-based controller of MATH.md 3.2, with
+/// state `z = (q, alpha, xt, xw)`: `u1 = -a sin(phi) kt xt`, `u2 = -kw xw`,
+/// `xtdot = a sin(phi) psidot`, `xwdot = phidot`. The closed loop is
+/// `zdot = Jc(z) dHc/dz` with `Jc` skew and the quadratic energy
+/// `Hbar + kt xt^2/2 + kw xw^2/2`.
+struct ClosedLoop {
+    board: Snakeboard,
+    a: f64,
+    kt: f64,
+    kw: f64,
+}
+
+const D: usize = S + 2;
+
+impl ClosedLoop {
+    fn split(z: &[f64; D]) -> [f64; S] {
+        core::array::from_fn(|i| z[i])
+    }
+
+    fn input(&self, z: &[f64; D]) -> [f64; 2] {
+        [-self.a * z[4].sin() * self.kt * z[S], -self.kw * z[S + 1]]
+    }
+}
+
+impl OdeSystem<D> for ClosedLoop {
+    fn rhs(&self, _t: f64, z: &[f64; D]) -> [f64; D] {
+        let f = self.board.reduced_rhs(&Self::split(z), &self.input(z));
+        let controller = [self.a * z[4].sin() * f[3], f[4]];
+        core::array::from_fn(|i| if i < S { f[i] } else { controller[i - S] })
+    }
+}
+
+impl Jacobian<D> for ClosedLoop {
+    /// `d f/dx + B du/dz` for the board's rows; the controller's rows follow
+    /// from those of `psidot` and `phidot`, which do not depend on `u`.
+    fn jacobian(&self, _t: f64, z: &[f64; D]) -> [[f64; D]; D] {
+        let x = Self::split(z);
+        let u = self.input(z);
+        let (fx, b) = (
+            self.board.reduced_rhs_jacobian(&x, &u),
+            self.board.input_matrix(&x),
+        );
+        let (sin, cos) = z[4].sin_cos();
+        let mut du = [[0.0; D]; 2];
+        du[0][4] = -self.a * cos * self.kt * z[S];
+        du[0][S] = -self.a * sin * self.kt;
+        du[1][S + 1] = -self.kw;
+        let mut jac = [[0.0; D]; D];
+        for i in 0..S {
+            for j in 0..D {
+                let through_u = b[i][0] * du[0][j] + b[i][1] * du[1][j];
+                jac[i][j] = if j < S { fx[i][j] } else { 0.0 } + through_u;
+            }
+        }
+        let psidot = self.board.reduced_rhs(&x, &u)[3];
+        jac[S] = core::array::from_fn(|j| self.a * sin * jac[3][j]);
+        jac[S][4] += self.a * cos * psidot;
+        jac[S + 1] = jac[4];
+        jac
+    }
+}
+
+impl Energy<D> for ClosedLoop {
+    fn energy(&self, z: &[f64; D]) -> f64 {
+        let springs = self.kt * z[S] * z[S] / 2.0 + self.kw * z[S + 1] * z[S + 1] / 2.0;
+        self.board.hamiltonian(&Self::split(z)) + springs
+    }
+}
+
+/// At rest at `phi = 0.2` with energy in both springs (`xt = 1`, `xw = 0.5`).
+const CLOSED_LOOP: ClosedLoop = ClosedLoop {
+    board: Snakeboard {
+        m: 1.0,
+        r: 0.5,
+        jt: 0.3,
+        jw: 0.05,
+    },
+    a: 1.0,
+    kt: 2.0,
+    kw: 1.0,
+};
+const AT_REST: [f64; D] = [0.0, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0, 1.0, 0.5];
+
+#[test]
+fn the_closed_loop_jacobian_matches_central_differences() {
+    let z = [0.1, -0.2, 0.3, 0.4, 0.5, 0.7, -0.3, 0.1, 0.8, -0.4];
+    let jac = CLOSED_LOOP.jacobian(0.0, &z);
+    let eps = 1e-6;
+    for j in 0..D {
+        let shifted = |s: f64| {
+            let mut w = z;
+            w[j] += s;
+            CLOSED_LOOP.rhs(0.0, &w)
+        };
+        let (plus, minus) = (shifted(eps), shifted(-eps));
+        for i in 0..D {
+            let difference = (plus[i] - minus[i]) / (2.0 * eps);
+            assert!(
+                (jac[i][j] - difference).abs() <= 1e-8,
+                "({i}, {j}): {} vs {difference}",
+                jac[i][j]
+            );
+        }
+    }
+}
+
+/// The largest relative change of the closed loop's energy over `steps`
+/// steps of `h` from [`AT_REST`], and the group momentum `alpha1` at `t = 10`.
+fn energy_drift<M: FixedStep<ClosedLoop, D>>(method: &M, h: f64, steps: usize) -> (f64, f64) {
+    let h0 = CLOSED_LOOP.energy(&AT_REST);
+    let (mut worst, mut alpha1) = (0.0f64, f64::NAN);
+    let observe = |t: f64, z: &[f64; D]| {
+        worst = worst.max((CLOSED_LOOP.energy(z) - h0).abs() / h0);
+        if (t - 10.0).abs() < h / 2.0 {
+            alpha1 = z[5];
+        }
+    };
+    integrate_fixed(method, &CLOSED_LOOP, (0.0, AT_REST), h, steps, observe).unwrap();
+    (worst, alpha1)
+}
+
+#[test]
+fn midpoint_keeps_the_closed_loop_energy_where_rk4_drifts() {
+    assert_eq!(CLOSED_LOOP.board, Snakeboard::default());
+    let (h, steps) = (0.01, 100_000);
+    let (midpoint, alpha1) = energy_drift(&Midpoint::default(), h, steps);
+    let (rk4, _) = energy_drift(&Rk4, h, steps);
+    println!(
+        "closed-loop snakeboard, h = {h}, {steps} steps: relative energy error \
+         midpoint {midpoint:.3e}, RK4 {rk4:.3e}; alpha1(10) = {alpha1:.4}"
+    );
+    assert!(midpoint <= 1e-12, "{midpoint:e}");
+    assert!(rk4 >= 1e4 * midpoint, "{rk4:e}");
+    // alpha1dot = (a kt / r) sin(phi)^2 xt >= 0 while xt > 0 (MATH.md 3.2)
+    assert!(
+        alpha1 > 0.1,
+        "energy flows into the group momentum: {alpha1}"
+    );
+}
+
+/// `u(t) = (0.2 cos t, -0.05 sin 2t)`: with `jw = 0.05` the wheels obey
+/// `phi'' = -sin 2t`, so from `phi = 0.3`, `phidot = 0.5` they follow
+/// `phi = 0.3 + sin(2t)/4`, away from the singular `phi = +-pi/2`.
+fn input(t: f64) -> [f64; 2] {
+    [0.2 * t.cos(), -0.05 * (2.0 * t).sin()]
+}
+
+#[test]
+fn reduced_and_lagrange_dalembert_trajectories_agree() {
+    let board = Snakeboard::default();
+    let reduced = Reduced::new(&board, input);
+    let dalembert = Dalembert::new(&board, input);
+    let method = DormandPrince {
+        rtol: 1e-12,
+        atol: 1e-12,
+        ..Default::default()
+    };
+    let mut x = start();
+    let q0: [f64; N] = core::array::from_fn(|i| x[i]);
+    let v0 = board.velocities(&q0, &[x[5], x[6], x[7]]);
+    let mut y: [f64; 2 * N] = core::array::from_fn(|i| if i < N { q0[i] } else { v0[i - N] });
+    let mut worst = 0.0f64;
+    for i in 0..20 {
+        let (t0, t1) = (0.5 * i as f64, 0.5 * (i + 1) as f64);
+        x = method.integrate(&reduced, (t0, x), t1).unwrap().x;
+        y = method.integrate(&dalembert, (t0, y), t1).unwrap().x;
+        let phi = 0.3 + (2.0 * t1).sin() / 4.0;
+        assert!(
+            (x[4] - phi).abs() <= 1e-9 && (y[4] - phi).abs() <= 1e-9,
+            "{x:?} {y:?}"
+        );
+        for k in 0..N {
+            worst = worst.max((x[k] - y[k]).abs());
+        }
+    }
+    println!(
+        "snakeboard over 10 s: largest |q_reduced - q_lagrange_dalembert| {worst:.3e}; q(10) = {:?}",
+        &x[..N]
+    );
+    assert!(worst <= 1e-8, "{worst:e}");
+    assert!(
+        x[..2].iter().any(|v| v.abs() > 0.5),
+        "the board moves: {x:?}"
+    );
+}
