@@ -4,7 +4,9 @@
 //! errors on a solution that blows up in finite time.
 
 use chaplygin_runtime::Error;
-use chaplygin_runtime::integrate::{DormandPrince, FixedStep, Midpoint, Rk4, integrate_fixed};
+use chaplygin_runtime::integrate::{
+    DenseStep, DormandPrince, FixedStep, Midpoint, Rk4, integrate_fixed,
+};
 use chaplygin_runtime::system::{Energy, Jacobian, OdeSystem};
 
 /// `qdot = p, pdot = -q`, `H = (q^2 + p^2)/2`: a skew structure with a
@@ -33,8 +35,13 @@ impl Energy<2> for Oscillator {
 const X0: [f64; 2] = [1.0, 0.5];
 
 fn exact(t: f64) -> [f64; 2] {
+    flow(&X0, t)
+}
+
+/// The state a time `t` after `x`.
+fn flow(x: &[f64; 2], t: f64) -> [f64; 2] {
     let (s, c) = t.sin_cos();
-    [X0[0] * c + X0[1] * s, X0[1] * c - X0[0] * s]
+    [x[0] * c + x[1] * s, x[1] * c - x[0] * s]
 }
 
 fn distance(a: &[f64; 2], b: &[f64; 2]) -> f64 {
@@ -169,5 +176,43 @@ fn a_blow_up_gives_structured_errors() {
     assert!(
         matches!(error, Error::NewtonFailure { .. } | Error::NonFinite { .. }),
         "{error}"
+    );
+}
+
+#[test]
+fn dormand_prince_dense_output_follows_the_solution_between_steps() {
+    let tolerance = 1e-8;
+    let method = DormandPrince {
+        rtol: tolerance,
+        atol: tolerance,
+        ..Default::default()
+    };
+    let (mut worst, mut local, mut covered) = (0.0f64, 0.0f64, 0.0);
+    let observe = |step: &DenseStep<2>| {
+        assert_eq!(step.start(), covered, "steps follow each other");
+        covered = step.end();
+        let first = step.at(step.start());
+        for i in 0..=10 {
+            let t = step.start() + (step.end() - step.start()) * f64::from(i) / 10.0;
+            worst = worst.max(distance(&step.at(t), &exact(t)));
+            // against the exact solution through the step's own start
+            local = local.max(distance(&step.at(t), &flow(&first, t - step.start())));
+        }
+    };
+    let end = method
+        .integrate_with(&Oscillator, (0.0, X0), 10.0, observe)
+        .unwrap();
+    println!(
+        "dense output, tol {tolerance:e}: largest error between steps {worst:.3e}, \
+         largest error within one step {local:.3e}"
+    );
+    assert_eq!(covered, 10.0);
+    assert!(
+        worst <= 10.0 * tolerance && local <= tolerance,
+        "{worst:e} {local:e}"
+    );
+    assert!(
+        distance(&end.x, &exact(10.0)) <= worst,
+        "the ends are among the points checked"
     );
 }

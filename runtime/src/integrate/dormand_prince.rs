@@ -9,7 +9,9 @@
 //! scaled per component by `atol + rtol max(|x_i|, |X_i|)`, has RMS norm at
 //! most 1; the next step is `h min(5, max(0.2, 0.9 err^(-1/5)))` (no growth
 //! right after a rejection). Seven stages, the last reused as the first of
-//! the next step (FSAL). It conserves linear invariants; the global error of
+//! the next step (FSAL). Each accepted step has a continuous extension of
+//! order 4 ([`DenseStep`], Hairer, Nørsett & Wanner, section II.6), for
+//! output between steps. It conserves linear invariants; the global error of
 //! other quantities is roughly proportional to the tolerance.
 
 use super::{Error, combine, finite};
@@ -89,11 +91,74 @@ const E: [f64; 7] = [
     -1.0 / 40.0,
 ];
 
-/// One trial step: the order-5 state and the derivative there.
+/// Weights of the stages in the dense output's last coefficient (Hairer,
+/// Nørsett & Wanner, section II.6; the code DOPRI5). `k2` has weight 0.
+const DENSE: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+
+/// One trial step: the seven stages, the order-5 state and the scaled error
+/// estimate.
 struct Trial<const D: usize> {
+    stages: [[f64; D]; 7],
     x: [f64; D],
-    f: [f64; D],
     error: f64,
+}
+
+/// An accepted step with its continuous extension of order 4 (Dormand &
+/// Prince 1986 via Hairer, Nørsett & Wanner, section II.6): a quartic in
+/// `theta = (t - start)/h` through both end states, exact in `f` at both ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DenseStep<const D: usize> {
+    start: f64,
+    h: f64,
+    coefficients: [[f64; D]; 5],
+}
+
+impl<const D: usize> DenseStep<D> {
+    fn new(start: f64, h: f64, x: &[f64; D], trial: &Trial<D>) -> Self {
+        let k = &trial.stages;
+        let difference: [f64; D] = core::array::from_fn(|i| trial.x[i] - x[i]);
+        let at_start: [f64; D] = core::array::from_fn(|i| h * k[0][i] - difference[i]);
+        let coefficients = [
+            *x,
+            difference,
+            at_start,
+            core::array::from_fn(|i| difference[i] - h * k[6][i] - at_start[i]),
+            core::array::from_fn(|i| h * (0..7).map(|s| DENSE[s] * k[s][i]).sum::<f64>()),
+        ];
+        Self {
+            start,
+            h,
+            coefficients,
+        }
+    }
+
+    /// The time at the start of the step.
+    pub fn start(&self) -> f64 {
+        self.start
+    }
+
+    /// The time at the end of the step.
+    pub fn end(&self) -> f64 {
+        self.start + self.h
+    }
+
+    /// The interpolated state at time `t`, meant for `t` within the step.
+    pub fn at(&self, t: f64) -> [f64; D] {
+        let theta = (t - self.start) / self.h;
+        let rest = 1.0 - theta;
+        let [r1, r2, r3, r4, r5] = &self.coefficients;
+        core::array::from_fn(|i| {
+            r1[i] + theta * (r2[i] + rest * (r3[i] + theta * (r4[i] + rest * r5[i])))
+        })
+    }
 }
 
 impl DormandPrince {
@@ -106,28 +171,30 @@ impl DormandPrince {
     pub fn integrate<S: OdeSystem<D>, const D: usize>(
         &self,
         system: &S,
+        start: (f64, [f64; D]),
+        t1: f64,
+    ) -> Result<Solution<D>, Error> {
+        self.integrate_with(system, start, t1, |_| {})
+    }
+
+    /// [`DormandPrince::integrate`], calling `observe` with every accepted
+    /// step and its continuous extension, in order.
+    ///
+    /// # Errors
+    /// As [`DormandPrince::integrate`].
+    pub fn integrate_with<S: OdeSystem<D>, const D: usize>(
+        &self,
+        system: &S,
         (t0, x0): (f64, [f64; D]),
         t1: f64,
+        mut observe: impl FnMut(&DenseStep<D>),
     ) -> Result<Solution<D>, Error> {
         let (mut t, mut x) = (t0, finite(t0, x0)?);
         let mut f = system.rhs(t, &x);
         let mut h = self.initial_step(&x, &f, t1 - t0);
         let (mut accepted, mut rejected, mut just_rejected) = (0, 0, false);
         while (t1 - t) * (t1 - t0).signum() > 0.0 {
-            if accepted + rejected >= self.max_steps {
-                return Err(Error::TooManySteps {
-                    t,
-                    steps: accepted + rejected,
-                    state: x.to_vec(),
-                });
-            }
-            if h.abs() < self.min_step.max(16.0 * f64::EPSILON * t.abs()) {
-                return Err(Error::StepSizeUnderflow {
-                    t,
-                    h,
-                    state: x.to_vec(),
-                });
-            }
+            self.check_step(t, h, &x, accepted + rejected)?;
             let last = (t + h - t1) * h.signum() >= 0.0;
             let step = if last { t1 - t } else { h };
             let trial = self.trial(system, t, &x, &f, step);
@@ -137,11 +204,9 @@ impl DormandPrince {
                 trial.error
             };
             if error <= 1.0 {
-                (t, x, f) = (
-                    if last { t1 } else { t + step },
-                    finite(t + step, trial.x)?,
-                    trial.f,
-                );
+                observe(&DenseStep::new(t, step, &x, &trial));
+                t = if last { t1 } else { t + step };
+                (x, f) = (finite(t, trial.x)?, trial.stages[6]);
                 accepted += 1;
             } else {
                 rejected += 1;
@@ -155,6 +220,31 @@ impl DormandPrince {
             accepted,
             rejected,
         })
+    }
+
+    /// Whether another step of size `h` at `t` is allowed.
+    fn check_step<const D: usize>(
+        &self,
+        t: f64,
+        h: f64,
+        x: &[f64; D],
+        steps: usize,
+    ) -> Result<(), Error> {
+        if steps >= self.max_steps {
+            return Err(Error::TooManySteps {
+                t,
+                steps,
+                state: x.to_vec(),
+            });
+        }
+        if h.abs() < self.min_step.max(16.0 * f64::EPSILON * t.abs()) {
+            return Err(Error::StepSizeUnderflow {
+                t,
+                h,
+                state: x.to_vec(),
+            });
+        }
+        Ok(())
     }
 
     /// A first step `0.01 |x| / |f|` (RMS norms scaled by the tolerances;
@@ -219,8 +309,8 @@ impl DormandPrince {
             core::array::from_fn(|i| h * (0..7).map(|s| E[s] * all[s][i]).sum::<f64>());
         Trial {
             error: self.scaled_norm(&difference, x, &next),
+            stages: [*k1, k2, k3, k4, k5, k6, k7],
             x: next,
-            f: k7,
         }
     }
 }

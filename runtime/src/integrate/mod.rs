@@ -3,7 +3,7 @@
 //! | method | module | order | conserves |
 //! |---|---|---|---|
 //! | classical Runge-Kutta | [`rk4`] | 4 | linear invariants |
-//! | Dormand-Prince 5(4), adaptive | [`dormand_prince`] | 5 | linear invariants |
+//! | Dormand-Prince 5(4), adaptive, dense output of order 4 | [`dormand_prince`] | 5 | linear invariants |
 //! | implicit midpoint, Newton | [`midpoint`] | 2 | quadratic invariants; `H` of `xdot = J(x) dH/dx` for quadratic `H`, skew `J` |
 //!
 //! Fixed-step methods implement [`FixedStep`] and run with
@@ -14,7 +14,7 @@ pub mod dormand_prince;
 pub mod midpoint;
 pub mod rk4;
 
-pub use dormand_prince::DormandPrince;
+pub use dormand_prince::{DenseStep, DormandPrince};
 pub use midpoint::Midpoint;
 pub use rk4::Rk4;
 
