@@ -216,3 +216,26 @@ fn dormand_prince_dense_output_follows_the_solution_between_steps() {
         "the ends are among the points checked"
     );
 }
+
+#[test]
+fn unreachable_tolerances_give_an_error_not_a_hang() {
+    let zero = DormandPrince {
+        rtol: 0.0,
+        atol: 0.0,
+        ..Default::default()
+    };
+    let error = zero.integrate(&Oscillator, (0.0, X0), 1.0).unwrap_err();
+    assert!(
+        matches!(error, Error::StepSizeUnderflow { t: 0.0, .. }),
+        "{error}"
+    );
+    let few = DormandPrince {
+        max_steps: 3,
+        ..Default::default()
+    };
+    let error = few.integrate(&Oscillator, (0.0, X0), 100.0).unwrap_err();
+    assert!(
+        matches!(error, Error::TooManySteps { steps: 3, .. }),
+        "{error}"
+    );
+}

@@ -222,7 +222,8 @@ impl DormandPrince {
         })
     }
 
-    /// Whether another step of size `h` at `t` is allowed.
+    /// Whether another step of size `h` at `t` is allowed (a NaN step, e.g.
+    /// from zero tolerances, is an underflow).
     fn check_step<const D: usize>(
         &self,
         t: f64,
@@ -237,7 +238,7 @@ impl DormandPrince {
                 state: x.to_vec(),
             });
         }
-        if h.abs() < self.min_step.max(16.0 * f64::EPSILON * t.abs()) {
+        if h.is_nan() || h.abs() < self.min_step.max(16.0 * f64::EPSILON * t.abs()) {
             return Err(Error::StepSizeUnderflow {
                 t,
                 h,
