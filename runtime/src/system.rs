@@ -109,6 +109,44 @@ where
 /// an [`OdeSystem`] in `x = (q, qdot)` of size `D = 2 N` (`D` is its own
 /// parameter because `2 * N` cannot be written in a type on stable Rust; any
 /// other `D` fails to compile).
+///
+/// ```
+/// use chaplygin_runtime::system::{Dalembert, LagrangeDalembert, OdeSystem};
+///
+/// /// A unit mass on a line, pushed by `u`: no constraints.
+/// struct Pushed;
+///
+/// impl LagrangeDalembert<1, 0, 1> for Pushed {
+///     fn acceleration(&self, _q: &[f64; 1], _qdot: &[f64; 1], u: &[f64; 1]) -> ([f64; 1], [f64; 0]) {
+///         ([u[0]], [])
+///     }
+///     fn energy(&self, _q: &[f64; 1], qdot: &[f64; 1]) -> f64 {
+///         qdot[0] * qdot[0] / 2.0
+///     }
+///     fn constraint_residual(&self, _q: &[f64; 1], _qdot: &[f64; 1]) -> [f64; 0] {
+///         []
+///     }
+/// }
+///
+/// let system = Dalembert::new(&Pushed, |t: f64| [2.0 * t]);
+/// assert_eq!(system.rhs(1.5, &[0.0, 4.0]), [4.0, 3.0]);
+/// ```
+///
+/// A state of another size does not compile:
+///
+/// ```compile_fail
+/// # use chaplygin_runtime::system::{Dalembert, LagrangeDalembert, OdeSystem};
+/// # struct Pushed;
+/// # impl LagrangeDalembert<1, 0, 1> for Pushed {
+/// #     fn acceleration(&self, _q: &[f64; 1], _qdot: &[f64; 1], u: &[f64; 1]) -> ([f64; 1], [f64; 0]) {
+/// #         ([u[0]], [])
+/// #     }
+/// #     fn energy(&self, _q: &[f64; 1], qdot: &[f64; 1]) -> f64 { qdot[0] * qdot[0] / 2.0 }
+/// #     fn constraint_residual(&self, _q: &[f64; 1], _qdot: &[f64; 1]) -> [f64; 0] { [] }
+/// # }
+/// let system = Dalembert::constant(&Pushed, [1.0]);
+/// system.rhs(0.0, &[0.0, 1.0, 2.0]);
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Dalembert<'a, M, F, const N: usize, const C: usize, const P: usize> {
     model: &'a M,
