@@ -2,7 +2,8 @@
 //! traits the generated code implements: the implicit midpoint rule keeps the
 //! energy of the snakeboard under the energy-based controller of MATH.md 3.2
 //! where RK4 drifts, and the reduced and the Lagrange-d'Alembert formulations
-//! give the same trajectory.
+//! give the same trajectory; the Chaplygin sleigh reaches its known
+//! straight-line asymptotics.
 //!
 //! (With zero input the reduced snakeboard's momenta are constant, MATH.md
 //! 3.1, so `Hbar` is kept exactly by every method: the closed loop is the
@@ -10,7 +11,7 @@
 
 use chaplygin::runtime::integrate::{DormandPrince, FixedStep, Midpoint, Rk4, integrate_fixed};
 use chaplygin::runtime::system::{Dalembert, Energy, Jacobian, OdeSystem, Reduced};
-use chaplygin_models::snakeboard::Snakeboard;
+use chaplygin_models::{sleigh::Sleigh, snakeboard::Snakeboard};
 
 const N: usize = Snakeboard::N;
 const S: usize = Snakeboard::S;
@@ -204,5 +205,43 @@ fn reduced_and_lagrange_dalembert_trajectories_agree() {
     assert!(
         x[..2].iter().any(|v| v.abs() > 0.5),
         "the board moves: {x:?}"
+    );
+}
+
+/// The Chaplygin sleigh (blade speed `v` along the heading, angular velocity
+/// `w`, centre of mass `a` ahead of the blade) obeys `vdot = a w^2`,
+/// `wdot = -m a v w / (I + m a^2)` (Bloch, *Nonholonomic Mechanics and
+/// Control*, 2003, chapter 1): the energy `m v^2/2 + (I + m a^2) w^2/2` is
+/// conserved, `w` decays to 0 and `v` grows to `sqrt(2 E / m)`, a straight
+/// line.
+#[test]
+fn the_sleigh_tends_to_a_straight_line_at_the_speed_its_energy_allows() {
+    let sleigh = Sleigh::default();
+    let system = Dalembert::constant(&sleigh, []);
+    let (theta, v, w) = (0.3f64, 0.5, 2.0);
+    let start = [0.0, 0.0, theta, v * theta.cos(), v * theta.sin(), w];
+    let energy = system.energy(&start);
+    let expected =
+        (sleigh.m * v * v + (sleigh.inertia + sleigh.m * sleigh.a.powi(2)) * w * w) / 2.0;
+    assert!((energy - expected).abs() <= 1e-14, "{energy} vs {expected}");
+    let tight = DormandPrince {
+        rtol: 1e-11,
+        atol: 1e-11,
+        ..Default::default()
+    };
+    let end = tight.integrate(&system, (0.0, start), 40.0).unwrap().x;
+    let speed = end[3] * end[2].cos() + end[4] * end[2].sin();
+    let limit = (2.0 * energy / sleigh.m).sqrt();
+    println!(
+        "sleigh at t = 40: w = {:.3e}, v = {speed:.12} (limit {limit:.12}), energy error {:.3e}",
+        end[5],
+        (system.energy(&end) - energy).abs() / energy
+    );
+    assert!(end[5].abs() <= 1e-9, "{end:?}");
+    assert!((speed - limit).abs() <= 1e-8, "{speed} vs {limit}");
+    assert!((system.energy(&end) - energy).abs() <= 1e-9 * energy);
+    assert!(
+        sleigh.constraint_residual(&[end[0], end[1], end[2]], &[end[3], end[4], end[5]])[0].abs()
+            <= 1e-8
     );
 }
