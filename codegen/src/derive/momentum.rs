@@ -1,0 +1,449 @@
+//! Symmetry reduction: the nonholonomic momentum equation
+//! (Bloch, Krishnaprasad, Marsden & Murray, "Nonholonomic mechanical systems
+//! with symmetry", 1996; Koon & Marsden, "The geometric structure of
+//! nonholonomic mechanics", equations (1.1)-(1.3); MATH.md section 4).
+//!
+//! For `G = SE(2)` acting on `(x, y, theta)`, with shape `r` the remaining
+//! coordinates, the body velocity is
+//! `xi = (cos th xdot + sin th ydot, -sin th xdot + cos th ydot, thdot)`.
+//! The Lagrangian and the constraints are G-invariant (checked exactly when
+//! the model is checked), so the reduced Lagrangian and the body-frame
+//! constraints are the model's at the group identity `x = y = theta = 0`,
+//! where `qdot = (xi, rdot)`:
+//!
+//! ```text
+//! l(r, xi, rdot) = 1/2 (xi, rdot)^T M(0, r) (xi, rdot),   dl/dxi = II(r) xi + M_gr(r) rdot
+//! A_xi(r) xi + A_r(r) rdot = 0                              (A(0, r) split by columns)
+//! S = {xi : A_xi xi = 0}, basis rows e_1(r)..e_mp(r)
+//! xi = -A_nh(r) rdot + e(r)^T Omega,   A_xi A_nh = A_r,   < dl/dxi(-A_nh rdot, rdot), e_i > = 0
+//! I(r) = e II e^T,   p_i = < dl/dxi, e_i >,   so p = I Omega (the horizontal part carries none)
+//! pdot_i = < dl/dxi, [xi, e_i] + (de_i/dr) rdot >,   with xi = -A_nh rdot + e^T I^-1 p  (1.1)
+//! [(a1, b1, w1), (a2, b2, w2)] = (w2 b1 - w1 b2, w1 a2 - w2 a1, 0)
+//! pdot_i = rdot^T H^i rdot + rdot^T K^i p + p^T D^i p                                    (1.2)
+//! ```
+//!
+//! The coefficient tensors are exact second derivatives of `pdot_i`, and the
+//! derivation proves that the quadratic form they define is `pdot_i`.
+//! In configuration terms the momentum is `p_i = h_i . M(q) qdot` with
+//! `h_i = (R(theta) e_i, 0)`, `R` the planar rotation acting on `(x, y)`.
+//!
+//! Normalization of `e`: start from the null-space vectors `v` of `A_xi` from
+//! its reduced row echelon form (1 in a free column); for each non-zero entry
+//! `v_j`, divide by it and multiply by the least common multiple of the
+//! entries' denominators; keep the candidate of least total size (number of
+//! terms in normal form), the first one on ties. Every entry is then a
+//! polynomial in the shape's atoms and the parameters. For the snakeboard
+//! this gives `e = (r cos phi, 0, sin phi)`, `r` times MATH.md 4.1's, so
+//! `p = r p_4.1` and `pdot = r pdot_4.1`.
+//!
+//! The shape velocities must be free: when the constraints restrict `rdot`
+//! on their own (`A_xi` rows dependent where `A_r`'s are not), the model is
+//! not of the principal kind the momentum equation is stated for.
+
+use super::port_hamiltonian::{column_of_symbols, fresh_symbol};
+use crate::model::{GroupFactor, Model};
+use crate::sym::{
+    Atoms, ExprId, Function, Matrix, MatrixError, Rational, RationalFunction, SymError, SymbolId,
+    SymbolKind,
+};
+use std::collections::HashMap;
+
+/// The momentum equation's coefficients for one momentum `p_i`.
+#[derive(Clone, Debug)]
+pub struct Coefficients {
+    /// `H^i`, nr x nr, symmetric.
+    pub shape: Matrix,
+    /// `K^i`, nr x mp.
+    pub mixed: Matrix,
+    /// `D^i`, mp x mp, symmetric.
+    pub momentum: Matrix,
+}
+
+/// The reduced momentum form: every matrix in exact normal form.
+#[derive(Clone, Debug)]
+pub struct Momentum {
+    /// Indices of the shape coordinates `r`, in declared order.
+    pub shape: Vec<usize>,
+    /// The shape velocities `rdot` (the model's velocity symbols).
+    pub shape_velocities: Vec<SymbolId>,
+    /// The momenta `p1..pmp`.
+    pub momenta: Vec<SymbolId>,
+    /// `e(r)`, mp x 3: a basis of S as rows.
+    pub basis: Matrix,
+    /// `II(r)`, 3 x 3: the body-frame inertia of the group directions.
+    pub body_inertia: Matrix,
+    /// `I(r) = e II e^T`, mp x mp.
+    pub locked_inertia: Matrix,
+    /// `A_nh(r)`, 3 x nr.
+    pub connection: Matrix,
+    /// `h M(q)`, mp x n: `p = momentum_map qdot`.
+    pub momentum_map: Matrix,
+    /// `pdot(r, rdot, p)`, mp entries.
+    pub rhs: Vec<RationalFunction>,
+    /// `xi(r, rdot, p) = -A_nh rdot + e^T I^-1 p`, 3 entries.
+    pub body_velocity: Vec<RationalFunction>,
+    /// `H^i, K^i, D^i` for each momentum.
+    pub coefficients: Vec<Coefficients>,
+}
+
+/// Why the momentum equation could not be derived.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum MomentumError {
+    /// A solve or product failed (a singular locked inertia, say).
+    #[error("momentum equation: {0}")]
+    Matrix(#[from] MatrixError),
+    /// The engine failed on an entry.
+    #[error("momentum equation: {0}")]
+    Symbolic(#[from] SymError),
+    /// The model declares no symmetry.
+    #[error("the momentum equation needs a `symmetry` declaration")]
+    NoSymmetry,
+    /// The group is not `se2(x, y, theta)` alone.
+    #[error("the momentum equation is derived for `se2(x, y, theta)` alone so far")]
+    UnsupportedGroup,
+    /// The constraints restrict the shape velocities on their own.
+    #[error(
+        "the constraints restrict the shape velocities: the momentum equation needs D + T(orbit) = TQ"
+    )]
+    ShapeConstrained,
+    /// `pdot` is not the quadratic form of its coefficients: a bug.
+    #[error("momentum equation {0} is not quadratic in the shape velocities and momenta")]
+    NotQuadratic(usize),
+}
+
+/// Derives the momentum equation and the reconstruction of `model`.
+pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
+    let group = se2_indices(model)?;
+    let shape: Vec<usize> = (0..model.n()).filter(|i| !group.contains(i)).collect();
+    let body = BodyForm::of(model, &group, &shape)?;
+    let basis = body_basis(&body.constraints_group, model.store.atoms())?;
+    let shape_velocities: Vec<SymbolId> = shape.iter().map(|&i| model.velocities[i]).collect();
+    let names: Vec<String> = (1..=basis.rows()).map(|i| format!("p{i}")).collect();
+    let momenta: Vec<SymbolId> = names
+        .iter()
+        .map(|name| fresh_symbol(model, name, SymbolKind::Momentum))
+        .collect();
+    let atoms = model.store.atoms().clone();
+    let connection = connection(&body, &basis, &atoms)?;
+    let locked_inertia = basis
+        .mul(&body.inertia, &atoms)?
+        .mul(&basis.transpose(), &atoms)?;
+    let rdot = column_of_symbols(model, &shape_velocities)?;
+    let p = column_of_symbols(model, &momenta)?;
+    let omega = locked_inertia.solve(&p, &atoms)?;
+    let xi = basis
+        .transpose()
+        .mul(&omega, &atoms)?
+        .sub(&connection.mul(&rdot, &atoms)?, &atoms)?;
+    let rhs = momentum_rhs(model, &body, &basis, &xi, &rdot, &shape)?;
+    let coefficients = rhs
+        .iter()
+        .enumerate()
+        .map(|(i, pdot)| coefficients(model, i, pdot, &shape_velocities, &momenta))
+        .collect::<Result<Vec<_>, _>>()?;
+    let momentum_map = momentum_map(model, &basis, &group)?;
+    Ok(Momentum {
+        shape,
+        shape_velocities,
+        momenta,
+        basis,
+        body_inertia: body.inertia,
+        locked_inertia,
+        connection,
+        momentum_map,
+        rhs,
+        body_velocity: xi.entries().to_vec(),
+        coefficients,
+    })
+}
+
+/// The coordinate indices `[x, y, theta]` of a lone `se2` factor.
+fn se2_indices(model: &Model) -> Result<[usize; 3], MomentumError> {
+    let symmetry = model.symmetry.as_ref().ok_or(MomentumError::NoSymmetry)?;
+    match symmetry.factors.as_slice() {
+        [GroupFactor::Se2 { x, y, theta }] => Ok([*x, *y, *theta]),
+        _ => Err(MomentumError::UnsupportedGroup),
+    }
+}
+
+/// The model at the group identity, split into group and shape blocks.
+struct BodyForm {
+    /// `II`, 3 x 3.
+    inertia: Matrix,
+    /// `M_gr`, 3 x nr.
+    coupling: Matrix,
+    /// `A_xi`, c x 3.
+    constraints_group: Matrix,
+    /// `A_r`, c x nr.
+    constraints_shape: Matrix,
+}
+
+impl BodyForm {
+    fn of(model: &mut Model, group: &[usize; 3], shape: &[usize]) -> Result<BodyForm, SymError> {
+        let identity: HashMap<SymbolId, ExprId> = group
+            .iter()
+            .map(|&i| (model.coordinates[i].symbol, model.store.integer(0)))
+            .collect();
+        let mass = at(model, &model.mass_matrix.clone(), &identity)?;
+        let constraints = at(model, &model.constraint_matrix.clone(), &identity)?;
+        let rows: Vec<usize> = (0..constraints.rows()).collect();
+        Ok(BodyForm {
+            inertia: mass.submatrix(group, group),
+            coupling: mass.submatrix(group, shape),
+            constraints_group: constraints.submatrix(&rows, group),
+            constraints_shape: constraints.submatrix(&rows, shape),
+        })
+    }
+}
+
+/// `matrix` with the symbols replaced, in normal form.
+fn at(
+    model: &mut Model,
+    matrix: &Matrix,
+    replacements: &HashMap<SymbolId, ExprId>,
+) -> Result<Matrix, SymError> {
+    let mut result = Matrix::zeros(matrix.rows(), matrix.columns());
+    for i in 0..matrix.rows() {
+        for j in 0..matrix.columns() {
+            let expression = model.store.expression_of(matrix.get(i, j));
+            let replaced = model.store.substitute(expression, replacements)?;
+            result.set(i, j, model.store.normal(replaced)?);
+        }
+    }
+    Ok(result)
+}
+
+/// The basis of `S = {xi : A_xi xi = 0}` with the module's normalization.
+fn body_basis(constraints_group: &Matrix, atoms: &Atoms) -> Result<Matrix, MatrixError> {
+    let mut basis = constraints_group.null_space(atoms)?;
+    for i in 0..basis.rows() {
+        let row: Vec<RationalFunction> = (0..basis.columns())
+            .map(|j| basis.get(i, j).clone())
+            .collect();
+        for (j, entry) in normalized(&row, atoms).into_iter().enumerate() {
+            basis.set(i, j, entry);
+        }
+    }
+    Ok(basis)
+}
+
+/// Of the vectors `v / v_j` (one per non-zero entry) with their denominators
+/// cleared, the one of least total size; the first on ties.
+fn normalized(vector: &[RationalFunction], atoms: &Atoms) -> Vec<RationalFunction> {
+    vector
+        .iter()
+        .filter_map(|pivot| {
+            let scaled: Option<Vec<RationalFunction>> =
+                vector.iter().map(|entry| entry.div(pivot, atoms)).collect();
+            scaled.map(|scaled| cleared(&scaled, atoms))
+        })
+        .min_by_key(|candidate| candidate.iter().map(RationalFunction::size).sum::<usize>())
+        .unwrap_or_else(|| vector.to_vec())
+}
+
+/// `vector` times the least common multiple of its entries' denominators.
+fn cleared(vector: &[RationalFunction], atoms: &Atoms) -> Vec<RationalFunction> {
+    let mut scale = RationalFunction::one();
+    for entry in vector {
+        let scaled = entry.mul(&scale, atoms);
+        if let Some(denominator) = scaled.reciprocal_of_denominator().inverse(atoms) {
+            scale = scale.mul(&denominator, atoms);
+        }
+    }
+    vector
+        .iter()
+        .map(|entry| entry.mul(&scale, atoms))
+        .collect()
+}
+
+/// `A_nh`: the horizontal velocity `-A_nh rdot` satisfies the independent
+/// rows of the body constraints and carries no momentum; fails when the
+/// remaining constraint rows then fail (shape velocities constrained).
+fn connection(body: &BodyForm, basis: &Matrix, atoms: &Atoms) -> Result<Matrix, MomentumError> {
+    let independent = independent_rows(&body.constraints_group, atoms);
+    let group_rows: Vec<usize> = (0..3).collect();
+    let shape_columns: Vec<usize> = (0..body.coupling.columns()).collect();
+    let system = stack(
+        &body.constraints_group.submatrix(&independent, &group_rows),
+        &basis.mul(&body.inertia, atoms)?,
+    );
+    let rhs = stack(
+        &body
+            .constraints_shape
+            .submatrix(&independent, &shape_columns),
+        &basis.mul(&body.coupling, atoms)?,
+    );
+    if system.rows() != 3 {
+        return Err(MomentumError::ShapeConstrained);
+    }
+    let connection = system.solve(&rhs, atoms)?;
+    let residual = body
+        .constraints_group
+        .mul(&connection, atoms)?
+        .sub(&body.constraints_shape, atoms)?;
+    if !residual.is_zero() {
+        return Err(MomentumError::ShapeConstrained);
+    }
+    Ok(connection)
+}
+
+/// Indices of a maximal set of independent rows, chosen greedily in order.
+fn independent_rows(matrix: &Matrix, atoms: &Atoms) -> Vec<usize> {
+    let columns: Vec<usize> = (0..matrix.columns()).collect();
+    let mut chosen = Vec::new();
+    for i in 0..matrix.rows() {
+        chosen.push(i);
+        if matrix.submatrix(&chosen, &columns).rank(atoms) < chosen.len() {
+            chosen.pop();
+        }
+    }
+    chosen
+}
+
+/// `top` above `bottom` (same number of columns).
+fn stack(top: &Matrix, bottom: &Matrix) -> Matrix {
+    let mut result = Matrix::zeros(top.rows() + bottom.rows(), top.columns());
+    for j in 0..top.columns() {
+        for i in 0..top.rows() {
+            result.set(i, j, top.get(i, j).clone());
+        }
+        for i in 0..bottom.rows() {
+            result.set(top.rows() + i, j, bottom.get(i, j).clone());
+        }
+    }
+    result
+}
+
+/// `pdot_i = < II xi + M_gr rdot, [xi, e_i] + (de_i/dr) rdot >`.
+fn momentum_rhs(
+    model: &mut Model,
+    body: &BodyForm,
+    basis: &Matrix,
+    xi: &Matrix,
+    rdot: &Matrix,
+    shape: &[usize],
+) -> Result<Vec<RationalFunction>, MatrixError> {
+    let shape_symbols: Vec<SymbolId> = shape.iter().map(|&i| model.coordinates[i].symbol).collect();
+    let atoms = model.store.atoms().clone();
+    let mu = body
+        .inertia
+        .mul(xi, &atoms)?
+        .add(&body.coupling.mul(rdot, &atoms)?, &atoms)?;
+    let mut rhs = Vec::with_capacity(basis.rows());
+    for i in 0..basis.rows() {
+        let e: Vec<RationalFunction> = (0..3).map(|j| basis.get(i, j).clone()).collect();
+        let rate = model
+            .store
+            .jacobian(&e, &shape_symbols)?
+            .mul(rdot, &atoms)?;
+        let direction =
+            Matrix::new(3, 1, bracket(xi.entries(), &e, &atoms).to_vec())?.add(&rate, &atoms)?;
+        rhs.push(mu.transpose().mul(&direction, &atoms)?.get(0, 0).clone());
+    }
+    Ok(rhs)
+}
+
+/// The se(2) bracket `[(a1,b1,w1),(a2,b2,w2)] = (w2 b1 - w1 b2, w1 a2 - w2 a1, 0)`.
+fn bracket(
+    first: &[RationalFunction],
+    second: &[RationalFunction],
+    atoms: &Atoms,
+) -> [RationalFunction; 3] {
+    let (a1, b1, w1) = (&first[0], &first[1], &first[2]);
+    let (a2, b2, w2) = (&second[0], &second[1], &second[2]);
+    [
+        w2.mul(b1, atoms).sub(&w1.mul(b2, atoms), atoms),
+        w1.mul(a2, atoms).sub(&w2.mul(a1, atoms), atoms),
+        RationalFunction::zero(),
+    ]
+}
+
+/// `H^i, K^i, D^i` by exact second derivatives, proven to reproduce `pdot_i`.
+fn coefficients(
+    model: &mut Model,
+    index: usize,
+    pdot: &RationalFunction,
+    rdot: &[SymbolId],
+    momenta: &[SymbolId],
+) -> Result<Coefficients, MomentumError> {
+    let half = Rational::new(1, 2).unwrap_or(Rational::ONE);
+    let by_rdot = model.store.jacobian(std::slice::from_ref(pdot), rdot)?;
+    let by_p = model.store.jacobian(std::slice::from_ref(pdot), momenta)?;
+    let shape = halved(model.store.jacobian(by_rdot.entries(), rdot)?, &half);
+    let mixed = model.store.jacobian(by_rdot.entries(), momenta)?;
+    let momentum = halved(model.store.jacobian(by_p.entries(), momenta)?, &half);
+    let atoms = model.store.atoms().clone();
+    let rdot_column = column_of_symbols(model, rdot)?;
+    let p_column = column_of_symbols(model, momenta)?;
+    let form = quadratic(&rdot_column, &shape, &rdot_column, &atoms)?
+        .add(&quadratic(&rdot_column, &mixed, &p_column, &atoms)?, &atoms)
+        .add(&quadratic(&p_column, &momentum, &p_column, &atoms)?, &atoms);
+    if !form.sub(pdot, &atoms).is_zero() {
+        return Err(MomentumError::NotQuadratic(index));
+    }
+    Ok(Coefficients {
+        shape,
+        mixed,
+        momentum,
+    })
+}
+
+fn halved(matrix: Matrix, half: &Rational) -> Matrix {
+    let mut result = matrix.clone();
+    for i in 0..matrix.rows() {
+        for j in 0..matrix.columns() {
+            result.set(i, j, matrix.get(i, j).scale(half));
+        }
+    }
+    result
+}
+
+/// `left^T matrix right` for columns `left`, `right`.
+fn quadratic(
+    left: &Matrix,
+    matrix: &Matrix,
+    right: &Matrix,
+    atoms: &Atoms,
+) -> Result<RationalFunction, MatrixError> {
+    if left.rows() == 0 || right.rows() == 0 {
+        return Ok(RationalFunction::zero());
+    }
+    Ok(left
+        .transpose()
+        .mul(matrix, atoms)?
+        .mul(right, atoms)?
+        .get(0, 0)
+        .clone())
+}
+
+/// `h M(q)` with `h_i = (R(theta) e_i, 0)`.
+fn momentum_map(
+    model: &mut Model,
+    basis: &Matrix,
+    group: &[usize; 3],
+) -> Result<Matrix, MomentumError> {
+    let theta = model.store.symbol(model.coordinates[group[2]].symbol);
+    let cos = model.store.apply(Function::Cos, theta)?;
+    let sin = model.store.apply(Function::Sin, theta)?;
+    let (cos, sin) = (model.store.normal(cos)?, model.store.normal(sin)?);
+    let atoms = model.store.atoms().clone();
+    let mut h = Matrix::zeros(basis.rows(), model.n());
+    for i in 0..basis.rows() {
+        let (a, b) = (basis.get(i, 0), basis.get(i, 1));
+        h.set(
+            i,
+            group[0],
+            cos.mul(a, &atoms).sub(&sin.mul(b, &atoms), &atoms),
+        );
+        h.set(
+            i,
+            group[1],
+            sin.mul(a, &atoms).add(&cos.mul(b, &atoms), &atoms),
+        );
+        h.set(i, group[2], basis.get(i, 2).clone());
+    }
+    Ok(h.mul(&model.mass_matrix, &atoms)?)
+}
+
+#[cfg(test)]
+mod tests;
