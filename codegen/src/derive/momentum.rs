@@ -76,8 +76,8 @@ pub struct Momentum {
     pub locked_inertia: Matrix,
     /// `A_nh(r)`, 3 x nr.
     pub connection: Matrix,
-    /// `h M(q)`, mp x n: `p = momentum_map qdot`.
-    pub momentum_map: Matrix,
+    /// `p(q, qdot) = h M(q) qdot`, mp entries.
+    pub momentum: Vec<RationalFunction>,
     /// `pdot(r, rdot, p)`, mp entries.
     pub rhs: Vec<RationalFunction>,
     /// `xi(r, rdot, p) = -A_nh rdot + e^T I^-1 p`, 3 entries.
@@ -123,13 +123,13 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         .iter()
         .map(|name| fresh_symbol(model, name, SymbolKind::Momentum))
         .collect();
+    let rdot = column_of_symbols(model, &shape_velocities)?;
+    let p = column_of_symbols(model, &momenta)?;
     let atoms = model.store.atoms().clone();
     let connection = connection(&body, &basis, &atoms)?;
     let locked_inertia = basis
         .mul(&body.inertia, &atoms)?
         .mul(&basis.transpose(), &atoms)?;
-    let rdot = column_of_symbols(model, &shape_velocities)?;
-    let p = column_of_symbols(model, &momenta)?;
     let omega = locked_inertia.solve(&p, &atoms)?;
     let xi = basis
         .transpose()
@@ -141,7 +141,7 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         .enumerate()
         .map(|(i, pdot)| coefficients(model, i, pdot, &shape_velocities, &momenta))
         .collect::<Result<Vec<_>, _>>()?;
-    let momentum_map = momentum_map(model, &basis, &group)?;
+    let momentum = momentum_of_state(model, &basis, &group)?;
     Ok(Momentum {
         shape,
         shape_velocities,
@@ -150,7 +150,7 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         body_inertia: body.inertia,
         locked_inertia,
         connection,
-        momentum_map,
+        momentum,
         rhs,
         body_velocity: xi.entries().to_vec(),
         coefficients,
@@ -416,12 +416,13 @@ fn quadratic(
         .clone())
 }
 
-/// `h M(q)` with `h_i = (R(theta) e_i, 0)`.
-fn momentum_map(
+/// `p(q, qdot) = h M(q) qdot` with `h_i = (R(theta) e_i, 0)`.
+fn momentum_of_state(
     model: &mut Model,
     basis: &Matrix,
     group: &[usize; 3],
-) -> Result<Matrix, MomentumError> {
+) -> Result<Vec<RationalFunction>, MomentumError> {
+    let qdot = column_of_symbols(model, &model.velocities.clone())?;
     let theta = model.store.symbol(model.coordinates[group[2]].symbol);
     let cos = model.store.apply(Function::Cos, theta)?;
     let sin = model.store.apply(Function::Sin, theta)?;
@@ -442,7 +443,8 @@ fn momentum_map(
         );
         h.set(i, group[2], basis.get(i, 2).clone());
     }
-    Ok(h.mul(&model.mass_matrix, &atoms)?)
+    let momentum = h.mul(&model.mass_matrix, &atoms)?.mul(&qdot, &atoms)?;
+    Ok(momentum.entries().to_vec())
 }
 
 #[cfg(test)]

@@ -96,15 +96,15 @@ fn report_section(model: &mut Model, reduced: &PortHamiltonian) -> Section {
 type Emitter = fn(&mut Model, &PortHamiltonian) -> Result<Function, Diagnostics>;
 
 /// What an emitted function looks like from outside.
-struct Signature {
-    name: &'static str,
-    doc: String,
-    arguments: Vec<Argument>,
-    returns: TokenStream,
+pub(super) struct Signature {
+    pub(super) name: &'static str,
+    pub(super) doc: String,
+    pub(super) arguments: Vec<Argument>,
+    pub(super) returns: TokenStream,
 }
 
 /// The function computing `outputs`, assembled into its return value by `assemble`.
-fn item(
+pub(super) fn item(
     model: &Model,
     signature: Signature,
     outputs: &[ExprId],
@@ -155,7 +155,7 @@ fn inputs_argument(reduced: &PortHamiltonian) -> Argument {
     }
 }
 
-fn vector_type(length: usize) -> TokenStream {
+pub(super) fn vector_type(length: usize) -> TokenStream {
     let f64 = f64_type();
     quote!([#f64; #length])
 }
@@ -165,7 +165,7 @@ fn matrix_type(rows: usize, columns: usize) -> TokenStream {
     quote!([[#f64; #columns]; #rows])
 }
 
-fn vector_literal(values: &[TokenStream]) -> TokenStream {
+pub(super) fn vector_literal(values: &[TokenStream]) -> TokenStream {
     quote!([#(#values),*])
 }
 

@@ -130,8 +130,7 @@ fn snakeboard_momentum_of_the_state() {
             .collect();
         values.extend(model.velocities.iter().copied().zip(qdot.iter().copied()));
         let at = point(&model, &values);
-        let map = momentum.momentum_map.evaluate(&mut model.store, &at);
-        let p: f64 = map.iter().zip(&qdot).map(|(a, b)| a * b).sum();
+        let p = evaluate(&mut model, &momentum.momentum, &at)[0];
         let (theta, phi) = (q[2], q[4]);
         let hand = phi.cos() * m * (theta.cos() * qdot[0] + theta.sin() * qdot[1])
             + phi.sin() / r * (j * qdot[2] + jt * qdot[3]);

@@ -1,0 +1,162 @@
+//! The momentum-equation items of a model with a symmetry (MATH.md section 4,
+//! [`crate::derive::momentum`]): with the shape `r` (the coordinates the group
+//! does not act on, nr of them) and the momenta `p` (mp of them),
+//!
+//! ```text
+//! momentum(q, qdot)              p = h(q) M(q) qdot,  h_i = (R(theta) e_i(r), 0)
+//! momentum_rhs(r, rdot, p)       pdot = rdot^T H rdot + rdot^T K p + p^T D p
+//! body_velocity(r, rdot, p)      xi = -A_nh(r) rdot + e(r)^T I(r)^-1 p
+//! ```
+//!
+//! and a report section with the basis `e(r)` and the coefficient tensors.
+//! Only `se2(x, y, theta)` alone is derived so far; for other groups the
+//! report says so and no items are emitted.
+
+use super::port_hamiltonian::{Signature, item, vector_literal, vector_type};
+use super::report::Section;
+use super::{Argument, Function, coordinates, velocities};
+use crate::derive::momentum::{Momentum, MomentumError, derive};
+use crate::diagnostic::{Diagnostic, Diagnostics};
+use crate::model::Model;
+use crate::sym::{Matrix, RationalFunction};
+
+const TITLE: &str =
+    "Momentum equation (Bloch-Krishnaprasad-Marsden-Murray; Koon & Marsden 1.1-1.2)";
+
+/// The three functions and the report's section; none when the group is not
+/// derived yet.
+pub(super) fn functions(model: &mut Model) -> Result<(Vec<Function>, Section), Diagnostics> {
+    let momentum = match derive(model) {
+        Ok(momentum) => momentum,
+        Err(MomentumError::UnsupportedGroup) => {
+            let mut section = Section::new(TITLE);
+            section.line("not derived: only se2(x, y, theta) alone is supported so far");
+            return Ok((Vec::new(), section));
+        }
+        Err(error) => return Err(refused(model, error)),
+    };
+    let section = report_section(model, &momentum);
+    let functions = vec![
+        momentum_of_state(model, &momentum)?,
+        momentum_rhs(model, &momentum)?,
+        body_velocity(model, &momentum)?,
+    ];
+    Ok((functions, section))
+}
+
+/// The derivation's failure, on the symmetry declaration.
+fn refused(model: &Model, error: MomentumError) -> Diagnostics {
+    let span = model
+        .symmetry
+        .as_ref()
+        .map_or(model.name.span(), |symmetry| symmetry.span);
+    Diagnostic::new(span, error.to_string()).into()
+}
+
+fn report_section(model: &mut Model, momentum: &Momentum) -> Section {
+    let mut section = Section::new(TITLE);
+    let shape: Vec<&str> = momentum
+        .shape
+        .iter()
+        .map(|&i| model.coordinates[i].declared.name.as_str())
+        .collect();
+    section.line(format!(
+        "shape r = ({}); momenta p1..p{}",
+        shape.join(", "),
+        momentum.momenta.len()
+    ));
+    matrix_lines(model, &mut section, "e", &momentum.basis);
+    for (i, tensors) in momentum.coefficients.iter().enumerate() {
+        let i = i + 1;
+        matrix_lines(model, &mut section, &format!("H{i}"), &tensors.shape);
+        matrix_lines(model, &mut section, &format!("K{i}"), &tensors.mixed);
+        matrix_lines(model, &mut section, &format!("D{i}"), &tensors.momentum);
+    }
+    section
+}
+
+/// One line per row of `matrix`: `  name row i: [..]`.
+fn matrix_lines(model: &mut Model, section: &mut Section, name: &str, matrix: &Matrix) {
+    let entries = matrix.to_expressions(&mut model.store);
+    for (i, row) in entries.chunks(matrix.columns().max(1)).enumerate() {
+        let shown: Vec<String> = row
+            .iter()
+            .map(|&e| model.store.display(e).to_string())
+            .collect();
+        section.line(format!("  {name} row {}: [{}]", i + 1, shown.join(", ")));
+    }
+}
+
+fn shape_argument(model: &Model, momentum: &Momentum) -> Argument {
+    Argument {
+        name: "r",
+        symbols: momentum
+            .shape
+            .iter()
+            .map(|&i| model.coordinates[i].symbol)
+            .collect(),
+    }
+}
+
+fn reduced_arguments(model: &Model, momentum: &Momentum) -> Vec<Argument> {
+    vec![
+        shape_argument(model, momentum),
+        Argument {
+            name: "rdot",
+            symbols: momentum.shape_velocities.clone(),
+        },
+        Argument {
+            name: "p",
+            symbols: momentum.momenta.clone(),
+        },
+    ]
+}
+
+/// An item returning the vector `entries`.
+fn vector_item(
+    model: &mut Model,
+    signature: Signature,
+    entries: &[RationalFunction],
+) -> Result<Function, Diagnostics> {
+    let outputs: Vec<_> = entries
+        .iter()
+        .map(|entry| model.store.expression_of(entry))
+        .collect();
+    item(model, signature, &outputs, vector_literal)
+}
+
+fn momentum_of_state(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let signature = Signature {
+        name: "momentum",
+        doc: "The nonholonomic momentum `p_i = <dL/dqdot, h_i(q)>`, `h_i = (R(theta) e_i(r), 0)` \
+              (MATH.md section 4; the basis `e` is printed in `REPORT`)."
+            .to_string(),
+        arguments: vec![coordinates(model), velocities(model)],
+        returns: vector_type(momentum.momenta.len()),
+    };
+    vector_item(model, signature, &momentum.momentum)
+}
+
+fn momentum_rhs(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let signature = Signature {
+        name: "momentum_rhs",
+        doc: "The momentum equation `pdot = rdot^T H rdot + rdot^T K p + p^T D p` \
+              (Koon & Marsden 1.2; `H`, `K`, `D` are printed in `REPORT`)."
+            .to_string(),
+        arguments: reduced_arguments(model, momentum),
+        returns: vector_type(momentum.momenta.len()),
+    };
+    vector_item(model, signature, &momentum.rhs)
+}
+
+fn body_velocity(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let signature = Signature {
+        name: "body_velocity",
+        doc: "The reconstruction `xi = g^-1 gdot = -A_nh(r) rdot + e(r)^T I(r)^-1 p` \
+              (Koon & Marsden 1.1), `xi = (v1, v2, omega)` in the body frame."
+            .to_string(),
+        arguments: reduced_arguments(model, momentum),
+        returns: vector_type(3),
+    };
+    vector_item(model, signature, &momentum.body_velocity)
+}

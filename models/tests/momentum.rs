@@ -1,0 +1,224 @@
+//! The momentum-equation items (MATH.md section 4): the snakeboard against the
+//! hand derivation of MATH.md 4.1, and for every built-in model with a
+//! symmetry, the momentum of trajectories of `acceleration` against
+//! `momentum_rhs`.
+
+mod common;
+
+use chaplygin_models::differential_drive::DifferentialDrive;
+use chaplygin_models::rolling_disk::RollingDisk;
+use chaplygin_models::sleigh::Sleigh;
+use chaplygin_models::snakeboard::Snakeboard;
+use common::{Random, rk4};
+
+fn close(actual: f64, expected: f64, tolerance: f64, what: &str) {
+    assert!(
+        (actual - expected).abs() <= tolerance * (1.0 + expected.abs()),
+        "{what}: {actual} vs {expected}"
+    );
+}
+
+/// The tool's basis is `e = (r cos phi, 0, sin phi) = r e_4.1` (REPORT), so
+/// with the constant `f = r` of MATH.md 4.1's rule, `p = r p_4.1` and
+/// `pdot = r pdot_4.1`.
+#[test]
+fn snakeboard_matches_the_hand_derivation() {
+    let b = Snakeboard::default();
+    let mut random = Random::new(41);
+    for _ in 0..1000 {
+        let r = [random.uniform(-3.0, 3.0), random.uniform(-3.0, 3.0)];
+        let rdot = [random.uniform(-2.0, 2.0), random.uniform(-2.0, 2.0)];
+        let p = [random.uniform(-2.0, 2.0)];
+        let (sin, cos) = r[1].sin_cos();
+        let (psidot, phidot, p_hand) = (rdot[0], rdot[1], p[0] / b.r);
+        let delta = b.m * b.r * b.r + b.jt * sin * sin;
+        let pdot_hand = b.m * b.r * b.jt * cos / delta * psidot * phidot
+            + b.jt * sin * cos / delta * phidot * p_hand;
+        close(
+            b.momentum_rhs(&r, &rdot, &p)[0],
+            b.r * pdot_hand,
+            1e-12,
+            "pdot",
+        );
+        let v1 = b.r * cos * (b.r * p_hand - b.jt * sin * psidot) / delta;
+        let xi = b.body_velocity(&r, &rdot, &p);
+        for (actual, expected) in xi.iter().zip([v1, 0.0, v1 * sin / cos / b.r]) {
+            close(*actual, expected, 1e-12, "xi");
+        }
+    }
+}
+
+/// On D, `p_4.1 = alpha1 + (sin phi / r) alpha2` with the declared momenta
+/// `alpha = (group, torso, wheels)` (MATH.md 4.1), so `p = r p_4.1`.
+#[test]
+fn snakeboard_momentum_on_d() {
+    let b = Snakeboard::default();
+    let mut random = Random::new(42);
+    for _ in 0..1000 {
+        let q: [f64; 5] = std::array::from_fn(|_| random.uniform(-3.0, 3.0));
+        let alpha: [f64; 3] = std::array::from_fn(|_| random.uniform(-2.0, 2.0));
+        let qdot = b.velocities(&q, &alpha);
+        let expected = b.r * (alpha[0] + q[4].sin() / b.r * alpha[1]);
+        close(b.momentum(&q, &qdot)[0], expected, 1e-12, "p");
+    }
+}
+
+/// `H = r [[0, h], [h, 0]]`, `h = m r Jt cos phi / (2 Delta)`, `K = (0, Jt sin phi cos phi / Delta)`,
+/// `D = 0` (MATH.md 4.1 with `f = r`), as printed: `jt cos(phi)^2 - jt - m r^2 = -Delta`.
+#[test]
+fn snakeboard_report_states_h_k_d() {
+    let report = Snakeboard::REPORT;
+    for line in [
+        "shape r = (psi, phi); momenta p1..p1",
+        "e row 1: [r*cos(phi), 0, sin(phi)]",
+        "H1 row 1: [0, (-1/2)*jt*m*r^2*cos(phi)/(jt*cos(phi)^2 - jt - m*r^2)]",
+        "H1 row 2: [(-1/2)*jt*m*r^2*cos(phi)/(jt*cos(phi)^2 - jt - m*r^2), 0]",
+        "K1 row 1: [0]",
+        "K1 row 2: [-jt*cos(phi)*sin(phi)/(jt*cos(phi)^2 - jt - m*r^2)]",
+        "D1 row 1: [0]",
+    ] {
+        assert!(report.contains(line), "{line} in {report}");
+    }
+}
+
+/// A function of `(q, qdot)`.
+type OfState<'a> = dyn Fn(&[f64], &[f64]) -> Vec<f64> + 'a;
+/// A function of `(r, rdot, p)`.
+type OfReduced<'a> = dyn Fn(&[f64], &[f64], &[f64]) -> Vec<f64> + 'a;
+
+/// Along a trajectory of `acceleration` (u = 0) from `velocities(q, alpha)`,
+/// `p(t) = momentum(q, qdot)` satisfies `momentum_rhs` by central differences.
+/// The step is small because the snakeboard's wheels spin fast (`phidot`
+/// about 18 rad/s here): the differences' error is `dt^2 p''' / 6`.
+fn momentum_follows_trajectory(
+    n: usize,
+    shape: &[usize],
+    acceleration: &OfState<'_>,
+    momentum: &OfState<'_>,
+    rhs: &OfReduced<'_>,
+    start: &[f64],
+) {
+    let field = |_: f64, x: &[f64]| -> Vec<f64> {
+        let (q, qdot) = x.split_at(n);
+        let mut derivative = qdot.to_vec();
+        derivative.extend(acceleration(q, qdot));
+        derivative
+    };
+    let (dt, steps) = (2.5e-5, 80_000);
+    let states = rk4(&field, start, dt, steps);
+    let momenta: Vec<Vec<f64>> = states.iter().map(|x| momentum(&x[..n], &x[n..])).collect();
+    for at in (1..steps).step_by(997) {
+        let (q, qdot) = states[at].split_at(n);
+        let r: Vec<f64> = shape.iter().map(|&i| q[i]).collect();
+        let rdot: Vec<f64> = shape.iter().map(|&i| qdot[i]).collect();
+        let expected = rhs(&r, &rdot, &momenta[at]);
+        for (i, expected) in expected.iter().enumerate() {
+            let difference = (momenta[at + 1][i] - momenta[at - 1][i]) / (2.0 * dt);
+            close(difference, *expected, 1e-7, "pdot");
+        }
+    }
+}
+
+fn start(q: &[f64], qdot: &[f64]) -> Vec<f64> {
+    q.iter().chain(qdot).copied().collect()
+}
+
+#[test]
+fn snakeboard_momentum_along_trajectories() {
+    let b = Snakeboard::default();
+    let q = [0.1, -0.2, 0.3, 0.4, 0.5];
+    momentum_follows_trajectory(
+        5,
+        &[3, 4],
+        &|q, qdot| {
+            b.acceleration(q.try_into().unwrap(), qdot.try_into().unwrap(), &[0.0; 2])
+                .0
+                .to_vec()
+        },
+        &|q, qdot| {
+            b.momentum(q.try_into().unwrap(), qdot.try_into().unwrap())
+                .to_vec()
+        },
+        &|r, rdot, p| {
+            b.momentum_rhs(
+                r.try_into().unwrap(),
+                rdot.try_into().unwrap(),
+                p.try_into().unwrap(),
+            )
+            .to_vec()
+        },
+        &start(&q, &b.velocities(&q, &[0.7, -0.4, 0.9])),
+    );
+}
+
+#[test]
+fn sleigh_momentum_along_trajectories() {
+    let s = Sleigh::default();
+    let q = [0.1, -0.2, 0.3];
+    momentum_follows_trajectory(
+        3,
+        &[],
+        &|q, qdot| {
+            s.acceleration(q.try_into().unwrap(), qdot.try_into().unwrap(), &[])
+                .0
+                .to_vec()
+        },
+        &|q, qdot| {
+            s.momentum(q.try_into().unwrap(), qdot.try_into().unwrap())
+                .to_vec()
+        },
+        &|r, rdot, p| {
+            s.momentum_rhs(
+                r.try_into().unwrap(),
+                rdot.try_into().unwrap(),
+                p.try_into().unwrap(),
+            )
+            .to_vec()
+        },
+        &start(&q, &s.velocities(&q, &[0.7, -0.4])),
+    );
+}
+
+#[test]
+fn rolling_disk_momentum_along_trajectories() {
+    let d = RollingDisk::default();
+    let q = [0.1, -0.2, 0.3, 0.4];
+    momentum_follows_trajectory(
+        4,
+        &[3],
+        &|q, qdot| {
+            d.acceleration(q.try_into().unwrap(), qdot.try_into().unwrap(), &[0.0; 2])
+                .0
+                .to_vec()
+        },
+        &|q, qdot| {
+            d.momentum(q.try_into().unwrap(), qdot.try_into().unwrap())
+                .to_vec()
+        },
+        &|r, rdot, p| {
+            d.momentum_rhs(
+                r.try_into().unwrap(),
+                rdot.try_into().unwrap(),
+                p.try_into().unwrap(),
+            )
+            .to_vec()
+        },
+        &start(&q, &d.velocities(&q, &[0.7, -0.4])),
+    );
+}
+
+/// The differential drive's constraints fix every group velocity: S = 0, no momenta.
+#[test]
+fn differential_drive_has_no_momentum() {
+    let d = DifferentialDrive::default();
+    let q = [0.1, -0.2, 0.3, 0.4, 0.5];
+    let qdot = d.velocities(&q, &[0.7, -0.4]);
+    let none: [f64; 0] = d.momentum(&q, &qdot);
+    assert!(none.is_empty());
+    let xi = d.body_velocity(&[0.4, 0.5], &[qdot[3], qdot[4]], &[]);
+    let (sin, cos) = q[2].sin_cos();
+    let world = [cos * xi[0] - sin * xi[1], sin * xi[0] + cos * xi[1], xi[2]];
+    for (actual, expected) in world.iter().zip(&qdot[..3]) {
+        close(*actual, *expected, 1e-12, "reconstruction");
+    }
+}
