@@ -3,13 +3,14 @@
 //! with symmetry", 1996; Koon & Marsden, "The geometric structure of
 //! nonholonomic mechanics", equations (1.1)-(1.3); MATH.md section 4).
 //!
-//! For `G = SE(2)` acting on `(x, y, theta)`, with shape `r` the remaining
-//! coordinates, the body velocity is
-//! `xi = (cos th xdot + sin th ydot, -sin th xdot + cos th ydot, thdot)`.
-//! The Lagrangian and the constraints are G-invariant (checked exactly when
-//! the model is checked), so the reduced Lagrangian and the body-frame
-//! constraints are the model's at the group identity `x = y = theta = 0`,
-//! where `qdot = (xi, rdot)`:
+//! For `G` a product of `se2(x, y, theta)` and abelian `translation(q)`,
+//! `rotation(q)` factors, with shape `r` the remaining coordinates, the body
+//! velocity `xi` has one entry per group coordinate, factor by factor:
+//! `(cos th xdot + sin th ydot, -sin th xdot + cos th ydot, thdot)` for `se2`,
+//! `qdot` for an abelian factor. The Lagrangian and the constraints are
+//! G-invariant (checked exactly when the model is checked), so the reduced
+//! Lagrangian and the body-frame constraints are the model's at the group
+//! identity (every group coordinate 0), where `qdot = (xi, rdot)`:
 //!
 //! ```text
 //! l(r, xi, rdot) = 1/2 (xi, rdot)^T M(0, r) (xi, rdot),   dl/dxi = II(r) xi + M_gr(r) rdot
@@ -18,14 +19,15 @@
 //! xi = -A_nh(r) rdot + e(r)^T Omega,   A_xi A_nh = A_r,   < dl/dxi(-A_nh rdot, rdot), e_i > = 0
 //! I(r) = e II e^T,   p_i = < dl/dxi, e_i >,   so p = I Omega (the horizontal part carries none)
 //! pdot_i = < dl/dxi, [xi, e_i] + (de_i/dr) rdot >,   with xi = -A_nh rdot + e^T I^-1 p  (1.1)
-//! [(a1, b1, w1), (a2, b2, w2)] = (w2 b1 - w1 b2, w1 a2 - w2 a1, 0)
+//! [(a1, b1, w1), (a2, b2, w2)] = (w2 b1 - w1 b2, w1 a2 - w2 a1, 0)   on each se(2) factor, 0 on abelian ones
 //! pdot_i = rdot^T H^i rdot + rdot^T K^i p + p^T D^i p                                    (1.2)
 //! ```
 //!
 //! The coefficient tensors are exact second derivatives of `pdot_i`, and the
 //! derivation proves that the quadratic form they define is `pdot_i`.
-//! In configuration terms the momentum is `p_i = h_i . M(q) qdot` with
-//! `h_i = (R(theta) e_i, 0)`, `R` the planar rotation acting on `(x, y)`.
+//! In configuration terms the momentum is `p_i = h_i . M(q) qdot` with `h_i`
+//! equal to `e_i` on the group coordinates, each se(2) factor's `(v1, v2)`
+//! part rotated by `R(theta)`, and 0 on the shape.
 //!
 //! Normalization of `e`: start from the null-space vectors `v` of `A_xi` from
 //! its reduced row echelon form (1 in a free column); for each non-zero entry
@@ -68,19 +70,19 @@ pub struct Momentum {
     pub shape_velocities: Vec<SymbolId>,
     /// The momenta `p1..pmp`.
     pub momenta: Vec<SymbolId>,
-    /// `e(r)`, mp x 3: a basis of S as rows.
+    /// `e(r)`, mp x dg (dg the group's dimension): a basis of S as rows.
     pub basis: Matrix,
-    /// `II(r)`, 3 x 3: the body-frame inertia of the group directions.
+    /// `II(r)`, dg x dg: the body-frame inertia of the group directions.
     pub body_inertia: Matrix,
     /// `I(r) = e II e^T`, mp x mp.
     pub locked_inertia: Matrix,
-    /// `A_nh(r)`, 3 x nr.
+    /// `A_nh(r)`, dg x nr.
     pub connection: Matrix,
     /// `p(q, qdot) = h M(q) qdot`, mp entries.
     pub momentum: Vec<RationalFunction>,
     /// `pdot(r, rdot, p)`, mp entries.
     pub rhs: Vec<RationalFunction>,
-    /// `xi(r, rdot, p) = -A_nh rdot + e^T I^-1 p`, 3 entries.
+    /// `xi(r, rdot, p) = -A_nh rdot + e^T I^-1 p`, dg entries.
     pub body_velocity: Vec<RationalFunction>,
     /// `H^i, K^i, D^i` for each momentum.
     pub coefficients: Vec<Coefficients>,
@@ -98,9 +100,6 @@ pub enum MomentumError {
     /// The model declares no symmetry.
     #[error("the momentum equation needs a `symmetry` declaration")]
     NoSymmetry,
-    /// The group is not `se2(x, y, theta)` alone.
-    #[error("the momentum equation is derived for `se2(x, y, theta)` alone so far")]
-    UnsupportedGroup,
     /// The constraints restrict the shape velocities on their own.
     #[error(
         "the constraints restrict the shape velocities: the momentum equation needs D + T(orbit) = TQ"
@@ -113,7 +112,13 @@ pub enum MomentumError {
 
 /// Derives the momentum equation and the reconstruction of `model`.
 pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
-    let group = se2_indices(model)?;
+    let factors = model
+        .symmetry
+        .as_ref()
+        .ok_or(MomentumError::NoSymmetry)?
+        .factors
+        .clone();
+    let group = group_coordinates(&factors);
     let shape: Vec<usize> = (0..model.n()).filter(|i| !group.contains(i)).collect();
     let body = BodyForm::of(model, &group, &shape)?;
     let basis = body_basis(&body.constraints_group, model.store.atoms())?;
@@ -135,13 +140,13 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         .transpose()
         .mul(&omega, &atoms)?
         .sub(&connection.mul(&rdot, &atoms)?, &atoms)?;
-    let rhs = momentum_rhs(model, &body, &basis, &xi, &rdot, &shape)?;
+    let rhs = momentum_rhs(model, &body, &basis, &xi, &rdot, &shape, &factors)?;
     let coefficients = rhs
         .iter()
         .enumerate()
         .map(|(i, pdot)| coefficients(model, i, pdot, &shape_velocities, &momenta))
         .collect::<Result<Vec<_>, _>>()?;
-    let momentum = momentum_of_state(model, &basis, &group)?;
+    let momentum = momentum_of_state(model, &basis, &factors, &group)?;
     Ok(Momentum {
         shape,
         shape_velocities,
@@ -157,20 +162,40 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
     })
 }
 
-/// The coordinate indices `[x, y, theta]` of a lone `se2` factor.
-fn se2_indices(model: &Model) -> Result<[usize; 3], MomentumError> {
-    let symmetry = model.symmetry.as_ref().ok_or(MomentumError::NoSymmetry)?;
-    match symmetry.factors.as_slice() {
-        [GroupFactor::Se2 { x, y, theta }] => Ok([*x, *y, *theta]),
-        _ => Err(MomentumError::UnsupportedGroup),
+/// The group coordinates, factor by factor: `x, y, theta` for `se2`, the
+/// coordinate for an abelian factor. The body velocity `xi` has this layout.
+fn group_coordinates(factors: &[GroupFactor]) -> Vec<usize> {
+    factors
+        .iter()
+        .flat_map(|factor| match *factor {
+            GroupFactor::Se2 { x, y, theta } => vec![x, y, theta],
+            GroupFactor::Translation(q) | GroupFactor::Rotation(q) => vec![q],
+        })
+        .collect()
+}
+
+/// For each `se2` factor: where its `(v1, v2, omega)` start in `xi`, and the
+/// coordinate index of its `theta`.
+fn se2_blocks(factors: &[GroupFactor]) -> Vec<(usize, usize)> {
+    let mut offset = 0;
+    let mut blocks = Vec::new();
+    for factor in factors {
+        match *factor {
+            GroupFactor::Se2 { theta, .. } => {
+                blocks.push((offset, theta));
+                offset += 3;
+            }
+            GroupFactor::Translation(_) | GroupFactor::Rotation(_) => offset += 1,
+        }
     }
+    blocks
 }
 
 /// The model at the group identity, split into group and shape blocks.
 struct BodyForm {
-    /// `II`, 3 x 3.
+    /// `II`, dg x dg.
     inertia: Matrix,
-    /// `M_gr`, 3 x nr.
+    /// `M_gr`, dg x nr.
     coupling: Matrix,
     /// `A_xi`, c x 3.
     constraints_group: Matrix,
@@ -179,7 +204,7 @@ struct BodyForm {
 }
 
 impl BodyForm {
-    fn of(model: &mut Model, group: &[usize; 3], shape: &[usize]) -> Result<BodyForm, SymError> {
+    fn of(model: &mut Model, group: &[usize], shape: &[usize]) -> Result<BodyForm, SymError> {
         let identity: HashMap<SymbolId, ExprId> = group
             .iter()
             .map(|&i| (model.coordinates[i].symbol, model.store.integer(0)))
@@ -261,7 +286,7 @@ fn cleared(vector: &[RationalFunction], atoms: &Atoms) -> Vec<RationalFunction> 
 /// remaining constraint rows then fail (shape velocities constrained).
 fn connection(body: &BodyForm, basis: &Matrix, atoms: &Atoms) -> Result<Matrix, MomentumError> {
     let independent = independent_rows(&body.constraints_group, atoms);
-    let group_rows: Vec<usize> = (0..3).collect();
+    let group_rows: Vec<usize> = (0..basis.columns()).collect();
     let shape_columns: Vec<usize> = (0..body.coupling.columns()).collect();
     let system = stack(
         &body.constraints_group.submatrix(&independent, &group_rows),
@@ -273,7 +298,7 @@ fn connection(body: &BodyForm, basis: &Matrix, atoms: &Atoms) -> Result<Matrix, 
             .submatrix(&independent, &shape_columns),
         &basis.mul(&body.coupling, atoms)?,
     );
-    if system.rows() != 3 {
+    if system.rows() != basis.columns() {
         return Err(MomentumError::ShapeConstrained);
     }
     let connection = system.solve(&rhs, atoms)?;
@@ -322,6 +347,7 @@ fn momentum_rhs(
     xi: &Matrix,
     rdot: &Matrix,
     shape: &[usize],
+    factors: &[GroupFactor],
 ) -> Result<Vec<RationalFunction>, MatrixError> {
     let shape_symbols: Vec<SymbolId> = shape.iter().map(|&i| model.coordinates[i].symbol).collect();
     let atoms = model.store.atoms().clone();
@@ -331,31 +357,36 @@ fn momentum_rhs(
         .add(&body.coupling.mul(rdot, &atoms)?, &atoms)?;
     let mut rhs = Vec::with_capacity(basis.rows());
     for i in 0..basis.rows() {
-        let e: Vec<RationalFunction> = (0..3).map(|j| basis.get(i, j).clone()).collect();
+        let e: Vec<RationalFunction> = (0..basis.columns())
+            .map(|j| basis.get(i, j).clone())
+            .collect();
         let rate = model
             .store
             .jacobian(&e, &shape_symbols)?
             .mul(rdot, &atoms)?;
-        let direction =
-            Matrix::new(3, 1, bracket(xi.entries(), &e, &atoms).to_vec())?.add(&rate, &atoms)?;
+        let direction = Matrix::new(e.len(), 1, bracket(xi.entries(), &e, factors, &atoms))?
+            .add(&rate, &atoms)?;
         rhs.push(mu.transpose().mul(&direction, &atoms)?.get(0, 0).clone());
     }
     Ok(rhs)
 }
 
-/// The se(2) bracket `[(a1,b1,w1),(a2,b2,w2)] = (w2 b1 - w1 b2, w1 a2 - w2 a1, 0)`.
+/// The bracket of the product algebra: zero on abelian factors, and on each
+/// se(2) factor `[(a1,b1,w1),(a2,b2,w2)] = (w2 b1 - w1 b2, w1 a2 - w2 a1, 0)`.
 fn bracket(
     first: &[RationalFunction],
     second: &[RationalFunction],
+    factors: &[GroupFactor],
     atoms: &Atoms,
-) -> [RationalFunction; 3] {
-    let (a1, b1, w1) = (&first[0], &first[1], &first[2]);
-    let (a2, b2, w2) = (&second[0], &second[1], &second[2]);
-    [
-        w2.mul(b1, atoms).sub(&w1.mul(b2, atoms), atoms),
-        w1.mul(a2, atoms).sub(&w2.mul(a1, atoms), atoms),
-        RationalFunction::zero(),
-    ]
+) -> Vec<RationalFunction> {
+    let mut result = vec![RationalFunction::zero(); first.len()];
+    for (o, _) in se2_blocks(factors) {
+        let (a1, b1, w1) = (&first[o], &first[o + 1], &first[o + 2]);
+        let (a2, b2, w2) = (&second[o], &second[o + 1], &second[o + 2]);
+        result[o] = w2.mul(b1, atoms).sub(&w1.mul(b2, atoms), atoms);
+        result[o + 1] = w1.mul(a2, atoms).sub(&w2.mul(a1, atoms), atoms);
+    }
+    result
 }
 
 /// `H^i, K^i, D^i` by exact second derivatives, proven to reproduce `pdot_i`.
@@ -416,33 +447,36 @@ fn quadratic(
         .clone())
 }
 
-/// `p(q, qdot) = h M(q) qdot` with `h_i = (R(theta) e_i, 0)`.
+/// `p(q, qdot) = h M(q) qdot`: `h_i` is `e_i` on the group coordinates, each
+/// se(2) factor's `(v1, v2)` part rotated by `R(theta)`, and 0 on the shape.
 fn momentum_of_state(
     model: &mut Model,
     basis: &Matrix,
-    group: &[usize; 3],
+    factors: &[GroupFactor],
+    group: &[usize],
 ) -> Result<Vec<RationalFunction>, MomentumError> {
     let qdot = column_of_symbols(model, &model.velocities.clone())?;
-    let theta = model.store.symbol(model.coordinates[group[2]].symbol);
-    let cos = model.store.apply(Function::Cos, theta)?;
-    let sin = model.store.apply(Function::Sin, theta)?;
-    let (cos, sin) = (model.store.normal(cos)?, model.store.normal(sin)?);
-    let atoms = model.store.atoms().clone();
     let mut h = Matrix::zeros(basis.rows(), model.n());
     for i in 0..basis.rows() {
-        let (a, b) = (basis.get(i, 0), basis.get(i, 1));
-        h.set(
-            i,
-            group[0],
-            cos.mul(a, &atoms).sub(&sin.mul(b, &atoms), &atoms),
-        );
-        h.set(
-            i,
-            group[1],
-            sin.mul(a, &atoms).add(&cos.mul(b, &atoms), &atoms),
-        );
-        h.set(i, group[2], basis.get(i, 2).clone());
+        for (j, &coordinate) in group.iter().enumerate() {
+            h.set(i, coordinate, basis.get(i, j).clone());
+        }
     }
+    for (o, theta) in se2_blocks(factors) {
+        let theta = model.store.symbol(model.coordinates[theta].symbol);
+        let cos = model.store.apply(Function::Cos, theta)?;
+        let sin = model.store.apply(Function::Sin, theta)?;
+        let (cos, sin) = (model.store.normal(cos)?, model.store.normal(sin)?);
+        let atoms = model.store.atoms().clone();
+        for i in 0..basis.rows() {
+            let (a, b) = (basis.get(i, o), basis.get(i, o + 1));
+            let x = cos.mul(a, &atoms).sub(&sin.mul(b, &atoms), &atoms);
+            let y = sin.mul(a, &atoms).add(&cos.mul(b, &atoms), &atoms);
+            h.set(i, group[o], x);
+            h.set(i, group[o + 1], y);
+        }
+    }
+    let atoms = model.store.atoms().clone();
     let momentum = h.mul(&model.mass_matrix, &atoms)?.mul(&qdot, &atoms)?;
     Ok(momentum.entries().to_vec())
 }

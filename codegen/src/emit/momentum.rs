@@ -9,8 +9,8 @@
 //! ```
 //!
 //! and a report section with the basis `e(r)` and the coefficient tensors.
-//! Only `se2(x, y, theta)` alone is derived so far; for other groups the
-//! report says so and no items are emitted.
+//! `xi` has one entry per group coordinate, factor by factor (`(v1, v2,
+//! omega)` for `se2`, the velocity for `translation` and `rotation`).
 
 use super::port_hamiltonian::{Signature, item, vector_literal, vector_type};
 use super::report::Section;
@@ -23,18 +23,9 @@ use crate::sym::{Matrix, RationalFunction};
 const TITLE: &str =
     "Momentum equation (Bloch-Krishnaprasad-Marsden-Murray; Koon & Marsden 1.1-1.2)";
 
-/// The three functions and the report's section; none when the group is not
-/// derived yet.
+/// The three functions and the report's section.
 pub(super) fn functions(model: &mut Model) -> Result<(Vec<Function>, Section), Diagnostics> {
-    let momentum = match derive(model) {
-        Ok(momentum) => momentum,
-        Err(MomentumError::UnsupportedGroup) => {
-            let mut section = Section::new(TITLE);
-            section.line("not derived: only se2(x, y, theta) alone is supported so far");
-            return Ok((Vec::new(), section));
-        }
-        Err(error) => return Err(refused(model, error)),
-    };
+    let momentum = derive(model).map_err(|error| refused(model, error))?;
     let section = report_section(model, &momentum);
     let functions = vec![
         momentum_of_state(model, &momentum)?,
@@ -153,10 +144,11 @@ fn body_velocity(model: &mut Model, momentum: &Momentum) -> Result<Function, Dia
     let signature = Signature {
         name: "body_velocity",
         doc: "The reconstruction `xi = g^-1 gdot = -A_nh(r) rdot + e(r)^T I(r)^-1 p` \
-              (Koon & Marsden 1.1), `xi = (v1, v2, omega)` in the body frame."
+              (Koon & Marsden 1.1), in the body frame: `(v1, v2, omega)` for `se2`, \
+              the velocity for an abelian factor, factor by factor."
             .to_string(),
         arguments: reduced_arguments(model, momentum),
-        returns: vector_type(3),
+        returns: vector_type(momentum.basis.columns()),
     };
     vector_item(model, signature, &momentum.body_velocity)
 }

@@ -172,3 +172,110 @@ fn a_model_without_symmetry_is_refused() {
     let mut model = check(&parse_str(&source).expect("parses")).expect("checks");
     assert_eq!(derive(&mut model).err(), Some(MomentumError::NoSymmetry));
 }
+
+/// The sleigh with the abelian group of translations: shape `theta`, S spanned
+/// by `e = (cos theta, sin theta)` (the blade's direction). By hand, on D:
+/// `p = m (cos theta xdot + sin theta ydot)`, the horizontal part is zero,
+/// `pdot = m a thetadot^2` (H = m a, K = 0, D = 0), `xi = e p / m`.
+#[test]
+fn sleigh_under_translations() {
+    let source = SLEIGH.replace("se2(x, y, theta)", "translation(x) * translation(y)");
+    let (mut model, momentum) = derived(&source);
+    let (m, a) = (1.0, 0.5);
+    assert_eq!(momentum.shape, vec![coordinate(&model, "theta")]);
+    assert!(momentum.connection.is_zero());
+    let mut random = SplitMix::new(8);
+    for _ in 0..1000 {
+        let q: Vec<f64> = (0..3).map(|_| random.uniform(-3.0, 3.0)).collect();
+        let qdot: Vec<f64> = (0..3).map(|_| random.uniform(-2.0, 2.0)).collect();
+        let p = random.uniform(-2.0, 2.0);
+        let mut values: Vec<(SymbolId, f64)> = model
+            .coordinates
+            .iter()
+            .map(|c| c.symbol)
+            .zip(q.iter().copied())
+            .collect();
+        values.extend(model.velocities.iter().copied().zip(qdot.iter().copied()));
+        values.push((momentum.momenta[0], p));
+        let at = point(&model, &values);
+        let (sin, cos) = q[2].sin_cos();
+        let expected = m * (cos * qdot[0] + sin * qdot[1]);
+        close(
+            evaluate(&mut model, &momentum.momentum, &at)[0],
+            expected,
+            "p",
+        );
+        close(
+            evaluate(&mut model, &momentum.rhs, &at)[0],
+            m * a * qdot[2] * qdot[2],
+            "pdot",
+        );
+        let xi = evaluate(&mut model, &momentum.body_velocity, &at);
+        close(xi[0], cos * p / m, "xdot");
+        close(xi[1], sin * p / m, "ydot");
+        let shape = momentum.coefficients[0]
+            .shape
+            .evaluate(&mut model.store, &at);
+        close(shape[0], m * a, "H");
+    }
+    assert!(momentum.coefficients[0].mixed.is_zero());
+    assert!(momentum.coefficients[0].momentum.is_zero());
+}
+
+/// The vertical rolling disk (m = 1, R = 0.5, J_axle = 0.125, J_vertical =
+/// 0.0625) under `se2(x, y, theta) * rotation(phi)`: no shape, S spanned by
+/// `(0, 0, 1, 0)` (turning) and `(R, 0, 0, 1)` (rolling). By hand, both
+/// momenta are conserved: `p1 = J_vertical thetadot`,
+/// `p2 = m R (cos theta xdot + sin theta ydot) + J_axle phidot`, and
+/// `xi = (R nu, 0, p1 / J_vertical, nu)` with `nu = p2 / (m R^2 + J_axle)`.
+#[test]
+fn rolling_disk_under_se2_and_rotation() {
+    let source = r#"
+        pub struct RollingDisk {
+            coordinates: [x, y, theta, phi],
+            parameters: [m = 1.0, r = 0.5, j_axle = 0.125, j_vertical = 0.0625],
+            kinetic_energy: m/2*(dot(x)^2 + dot(y)^2) + j_axle/2*dot(phi)^2
+                + j_vertical/2*dot(theta)^2,
+            potential_energy: 0,
+            constraints: [
+                roll_x = dot(x) - r*cos(theta)*dot(phi),
+                roll_y = dot(y) - r*sin(theta)*dot(phi),
+            ],
+            inputs: [u_steer = theta, u_drive = phi],
+            symmetry: se2(x, y, theta) * rotation(phi),
+        }
+    "#;
+    let (mut model, momentum) = derived(source);
+    let (m, r, j_axle, j_vertical) = (1.0, 0.5, 0.125, 0.0625);
+    assert!(momentum.shape.is_empty());
+    assert_eq!(momentum.momenta.len(), 2);
+    assert!(momentum.rhs.iter().all(RationalFunction::is_zero));
+    let mut random = SplitMix::new(9);
+    for _ in 0..1000 {
+        let q: Vec<f64> = (0..4).map(|_| random.uniform(-3.0, 3.0)).collect();
+        let qdot: Vec<f64> = (0..4).map(|_| random.uniform(-2.0, 2.0)).collect();
+        let p = [random.uniform(-2.0, 2.0), random.uniform(-2.0, 2.0)];
+        let mut values: Vec<(SymbolId, f64)> = model
+            .coordinates
+            .iter()
+            .map(|c| c.symbol)
+            .zip(q.iter().copied())
+            .collect();
+        values.extend(model.velocities.iter().copied().zip(qdot.iter().copied()));
+        values.extend(momentum.momenta.iter().copied().zip(p));
+        let at = point(&model, &values);
+        let (sin, cos) = q[2].sin_cos();
+        let state = evaluate(&mut model, &momentum.momentum, &at);
+        close(state[0], j_vertical * qdot[2], "p1");
+        close(
+            state[1],
+            m * r * (cos * qdot[0] + sin * qdot[1]) + j_axle * qdot[3],
+            "p2",
+        );
+        let nu = p[1] / (m * r * r + j_axle);
+        let xi = evaluate(&mut model, &momentum.body_velocity, &at);
+        for (actual, expected) in xi.iter().zip([r * nu, 0.0, p[0] / j_vertical, nu]) {
+            close(*actual, expected, "xi");
+        }
+    }
+}
