@@ -215,10 +215,202 @@ fn differential_drive_has_no_momentum() {
     let qdot = d.velocities(&q, &[0.7, -0.4]);
     let none: [f64; 0] = d.momentum(&q, &qdot);
     assert!(none.is_empty());
-    let xi = d.body_velocity(&[0.4, 0.5], &[qdot[3], qdot[4]], &[]);
-    let (sin, cos) = q[2].sin_cos();
-    let world = [cos * xi[0] - sin * xi[1], sin * xi[0] + cos * xi[1], xi[2]];
-    for (actual, expected) in world.iter().zip(&qdot[..3]) {
-        close(*actual, *expected, 1e-12, "reconstruction");
+}
+
+/// A function of `(r, rdot, p, u)`.
+type OfReducedWithInputs<'a> = dyn Fn(&[f64], &[f64], &[f64], &[f64]) -> Vec<f64> + 'a;
+
+/// A model's items on slices, for the checks shared by every model.
+struct Items<'a> {
+    n: usize,
+    shape: &'a [usize],
+    velocities: &'a OfState<'a>,
+    momentum: &'a OfState<'a>,
+    body_velocity: &'a OfReduced<'a>,
+    acceleration: &'a OfReduced<'a>,
+    shape_acceleration: &'a OfReducedWithInputs<'a>,
+}
+
+/// At random states on D (`qdot = velocities(q, alpha)`) and random inputs:
+/// `body_velocity` rotated by `theta` is `(xdot, ydot, thetadot)`, and
+/// `shape_acceleration` is the shape rows of `acceleration` (the group
+/// coordinates are the first three, `se2(x, y, theta)`).
+fn reconstruction_and_shape_equations(items: &Items, k: usize, p: usize) {
+    let mut random = Random::new(43);
+    for _ in 0..1000 {
+        let q: Vec<f64> = (0..items.n).map(|_| random.uniform(-3.0, 3.0)).collect();
+        let alpha: Vec<f64> = (0..k).map(|_| random.uniform(-2.0, 2.0)).collect();
+        let u: Vec<f64> = (0..p).map(|_| random.uniform(-2.0, 2.0)).collect();
+        let qdot = (items.velocities)(&q, &alpha);
+        let momentum = (items.momentum)(&q, &qdot);
+        let r: Vec<f64> = items.shape.iter().map(|&i| q[i]).collect();
+        let rdot: Vec<f64> = items.shape.iter().map(|&i| qdot[i]).collect();
+        let xi = (items.body_velocity)(&r, &rdot, &momentum);
+        let (sin, cos) = q[2].sin_cos();
+        let world = [cos * xi[0] - sin * xi[1], sin * xi[0] + cos * xi[1], xi[2]];
+        for (actual, expected) in world.iter().zip(&qdot[..3]) {
+            close(*actual, *expected, 1e-12, "reconstruction");
+        }
+        let qddot = (items.acceleration)(&q, &qdot, &u);
+        let shape = (items.shape_acceleration)(&r, &rdot, &momentum, &u);
+        for (actual, &i) in shape.iter().zip(items.shape) {
+            close(*actual, qddot[i], 1e-12, "shape acceleration");
+        }
     }
+}
+
+#[test]
+fn snakeboard_reconstruction_and_shape_equations() {
+    let b = Snakeboard::default();
+    let items = Items {
+        n: 5,
+        shape: &[3, 4],
+        velocities: &|q, a| {
+            b.velocities(q.try_into().unwrap(), a.try_into().unwrap())
+                .to_vec()
+        },
+        momentum: &|q, v| {
+            b.momentum(q.try_into().unwrap(), v.try_into().unwrap())
+                .to_vec()
+        },
+        body_velocity: &|r, v, p| {
+            let (r, v, p) = (
+                r.try_into().unwrap(),
+                v.try_into().unwrap(),
+                p.try_into().unwrap(),
+            );
+            b.body_velocity(r, v, p).to_vec()
+        },
+        acceleration: &|q, v, u| {
+            let (q, v, u) = (
+                q.try_into().unwrap(),
+                v.try_into().unwrap(),
+                u.try_into().unwrap(),
+            );
+            b.acceleration(q, v, u).0.to_vec()
+        },
+        shape_acceleration: &|r, v, p, u| {
+            let (r, v) = (r.try_into().unwrap(), v.try_into().unwrap());
+            let (p, u) = (p.try_into().unwrap(), u.try_into().unwrap());
+            b.shape_acceleration(r, v, p, u).to_vec()
+        },
+    };
+    reconstruction_and_shape_equations(&items, 3, 2);
+}
+
+#[test]
+fn sleigh_reconstruction() {
+    let s = Sleigh::default();
+    let items = Items {
+        n: 3,
+        shape: &[],
+        velocities: &|q, a| {
+            s.velocities(q.try_into().unwrap(), a.try_into().unwrap())
+                .to_vec()
+        },
+        momentum: &|q, v| {
+            s.momentum(q.try_into().unwrap(), v.try_into().unwrap())
+                .to_vec()
+        },
+        body_velocity: &|r, v, p| {
+            let (r, v, p) = (
+                r.try_into().unwrap(),
+                v.try_into().unwrap(),
+                p.try_into().unwrap(),
+            );
+            s.body_velocity(r, v, p).to_vec()
+        },
+        acceleration: &|q, v, u| {
+            let (q, v, u) = (
+                q.try_into().unwrap(),
+                v.try_into().unwrap(),
+                u.try_into().unwrap(),
+            );
+            s.acceleration(q, v, u).0.to_vec()
+        },
+        shape_acceleration: &|r, v, p, u| {
+            let (r, v) = (r.try_into().unwrap(), v.try_into().unwrap());
+            let (p, u) = (p.try_into().unwrap(), u.try_into().unwrap());
+            s.shape_acceleration(r, v, p, u).to_vec()
+        },
+    };
+    reconstruction_and_shape_equations(&items, 2, 0);
+}
+
+#[test]
+fn rolling_disk_reconstruction_and_shape_equations() {
+    let d = RollingDisk::default();
+    let items = Items {
+        n: 4,
+        shape: &[3],
+        velocities: &|q, a| {
+            d.velocities(q.try_into().unwrap(), a.try_into().unwrap())
+                .to_vec()
+        },
+        momentum: &|q, v| {
+            d.momentum(q.try_into().unwrap(), v.try_into().unwrap())
+                .to_vec()
+        },
+        body_velocity: &|r, v, p| {
+            let (r, v, p) = (
+                r.try_into().unwrap(),
+                v.try_into().unwrap(),
+                p.try_into().unwrap(),
+            );
+            d.body_velocity(r, v, p).to_vec()
+        },
+        acceleration: &|q, v, u| {
+            let (q, v, u) = (
+                q.try_into().unwrap(),
+                v.try_into().unwrap(),
+                u.try_into().unwrap(),
+            );
+            d.acceleration(q, v, u).0.to_vec()
+        },
+        shape_acceleration: &|r, v, p, u| {
+            let (r, v) = (r.try_into().unwrap(), v.try_into().unwrap());
+            let (p, u) = (p.try_into().unwrap(), u.try_into().unwrap());
+            d.shape_acceleration(r, v, p, u).to_vec()
+        },
+    };
+    reconstruction_and_shape_equations(&items, 2, 2);
+}
+
+#[test]
+fn differential_drive_reconstruction_and_shape_equations() {
+    let d = DifferentialDrive::default();
+    let items = Items {
+        n: 5,
+        shape: &[3, 4],
+        velocities: &|q, a| {
+            d.velocities(q.try_into().unwrap(), a.try_into().unwrap())
+                .to_vec()
+        },
+        momentum: &|q, v| {
+            d.momentum(q.try_into().unwrap(), v.try_into().unwrap())
+                .to_vec()
+        },
+        body_velocity: &|r, v, p| {
+            let (r, v, p) = (
+                r.try_into().unwrap(),
+                v.try_into().unwrap(),
+                p.try_into().unwrap(),
+            );
+            d.body_velocity(r, v, p).to_vec()
+        },
+        acceleration: &|q, v, u| {
+            let (q, v, u) = (
+                q.try_into().unwrap(),
+                v.try_into().unwrap(),
+                u.try_into().unwrap(),
+            );
+            d.acceleration(q, v, u).0.to_vec()
+        },
+        shape_acceleration: &|r, v, p, u| {
+            let (r, v) = (r.try_into().unwrap(), v.try_into().unwrap());
+            let (p, u) = (p.try_into().unwrap(), u.try_into().unwrap());
+            d.shape_acceleration(r, v, p, u).to_vec()
+        },
+    };
+    reconstruction_and_shape_equations(&items, 2, 2);
 }

@@ -197,7 +197,7 @@ struct BodyForm {
     inertia: Matrix,
     /// `M_gr`, dg x nr.
     coupling: Matrix,
-    /// `A_xi`, c x 3.
+    /// `A_xi`, c x dg.
     constraints_group: Matrix,
     /// `A_r`, c x nr.
     constraints_shape: Matrix,

@@ -64,7 +64,7 @@ pub fn model_items(
     functions.extend(reduced);
     let mut sections = vec![solve_report, reduced_report];
     if model.symmetry.is_some() {
-        let (reduction, reduction_report) = momentum::functions(model)?;
+        let (reduction, reduction_report) = momentum::functions(model, &functions)?;
         functions.extend(reduction);
         sections.push(reduction_report);
     }

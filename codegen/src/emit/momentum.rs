@@ -6,7 +6,14 @@
 //! momentum(q, qdot)              p = h(q) M(q) qdot,  h_i = (R(theta) e_i(r), 0)
 //! momentum_rhs(r, rdot, p)       pdot = rdot^T H rdot + rdot^T K p + p^T D p
 //! body_velocity(r, rdot, p)      xi = -A_nh(r) rdot + e(r)^T I(r)^-1 p
+//! shape_acceleration(r, rdot, p, u)
+//!                                the shape rows of `acceleration` at the group
+//!                                identity with qdot = (xi, rdot)    (1.3)
 //! ```
+//!
+//! `shape_acceleration` calls `body_velocity` and `acceleration` (by
+//! invariance, section 2's shape rows do not depend on the group element);
+//! its operation count is the sum of theirs.
 //!
 //! and a report section with the basis `e(r)` and the coefficient tensors.
 //! `xi` has one entry per group coordinate, factor by factor (`(v1, v2,
@@ -14,23 +21,37 @@
 
 use super::port_hamiltonian::{Signature, item, vector_literal, vector_type};
 use super::report::Section;
-use super::{Argument, Function, coordinates, velocities};
+use super::{Argument, Function, coordinates, f64_type, internal, velocities};
 use crate::derive::momentum::{Momentum, MomentumError, derive};
 use crate::diagnostic::{Diagnostic, Diagnostics};
+use crate::ir::OperationCount;
 use crate::model::Model;
 use crate::sym::{Matrix, RationalFunction};
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
 
 const TITLE: &str =
     "Momentum equation (Bloch-Krishnaprasad-Marsden-Murray; Koon & Marsden 1.1-1.2)";
 
-/// The three functions and the report's section.
-pub(super) fn functions(model: &mut Model) -> Result<(Vec<Function>, Section), Diagnostics> {
+/// The four functions and the report's section; `emitted` are the items
+/// emitted before (`acceleration` among them).
+pub(super) fn functions(
+    model: &mut Model,
+    emitted: &[Function],
+) -> Result<(Vec<Function>, Section), Diagnostics> {
     let momentum = derive(model).map_err(|error| refused(model, error))?;
     let section = report_section(model, &momentum);
+    let reconstruction = body_velocity(model, &momentum)?;
+    let acceleration = emitted
+        .iter()
+        .find(|f| f.name == "acceleration")
+        .ok_or_else(|| internal(model, "`acceleration` was not emitted"))?;
+    let shape = shape_acceleration(model, &momentum, &reconstruction, acceleration);
     let functions = vec![
         momentum_of_state(model, &momentum)?,
         momentum_rhs(model, &momentum)?,
-        body_velocity(model, &momentum)?,
+        reconstruction,
+        shape,
     ];
     Ok((functions, section))
 }
@@ -151,4 +172,77 @@ fn body_velocity(model: &mut Model, momentum: &Momentum) -> Result<Function, Dia
         returns: vector_type(momentum.basis.columns()),
     };
     vector_item(model, signature, &momentum.body_velocity)
+}
+
+/// `shape_acceleration(r, rdot, p, u)`: `acceleration` at
+/// `q = (0, r)`, `qdot = (xi(r, rdot, p), rdot)`, its shape rows.
+fn shape_acceleration(
+    model: &Model,
+    momentum: &Momentum,
+    reconstruction: &Function,
+    acceleration: &Function,
+) -> Function {
+    let f64 = f64_type();
+    let (n, nr, mp, p) = (
+        model.n(),
+        momentum.shape.len(),
+        momentum.momenta.len(),
+        model.p(),
+    );
+    let mut q: Vec<TokenStream> = vec![quote!(0.0); n];
+    let mut qdot = q.clone();
+    let mut group = 0;
+    for i in 0..n {
+        match momentum.shape.iter().position(|&s| s == i) {
+            Some(a) => {
+                let a = Literal::usize_unsuffixed(a);
+                q[i] = quote!(r[#a]);
+                qdot[i] = quote!(rdot[#a]);
+            }
+            None => {
+                let j = Literal::usize_unsuffixed(group);
+                qdot[i] = quote!(xi[#j]);
+                group += 1;
+            }
+        }
+    }
+    let rows = momentum.shape.iter().map(|&i| Literal::usize_unsuffixed(i));
+    let body = if nr == 0 {
+        quote!([])
+    } else {
+        quote! {
+            let xi = self.body_velocity(r, rdot, p);
+            let (qddot, _) = self.acceleration(&[#(#q),*], &[#(#qdot),*], u);
+            [#(qddot[#rows]),*]
+        }
+    };
+    let names = if nr == 0 {
+        [quote!(_r), quote!(_rdot), quote!(_p), quote!(_u)]
+    } else {
+        [quote!(r), quote!(rdot), quote!(p), quote!(u)]
+    };
+    let [r, rdot, p_name, u] = names;
+    let item = quote! {
+        /// The shape equations (Koon & Marsden 1.3): the shape rows of
+        /// `acceleration` at the group identity with the reconstructed
+        /// velocity `qdot = (body_velocity(r, rdot, p), rdot)` and inputs `u`.
+        pub fn shape_acceleration(
+            &self,
+            #r: &[#f64; #nr],
+            #rdot: &[#f64; #nr],
+            #p_name: &[#f64; #mp],
+            #u: &[#f64; #p],
+        ) -> [#f64; #nr] {
+            #body
+        }
+    };
+    let operations = OperationCount {
+        before_cse: reconstruction.operations.before_cse + acceleration.operations.before_cse,
+        after_cse: reconstruction.operations.after_cse + acceleration.operations.after_cse,
+    };
+    Function {
+        name: "shape_acceleration",
+        item,
+        operations,
+    }
 }
