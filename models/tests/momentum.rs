@@ -227,6 +227,7 @@ struct Items<'a> {
     velocities: &'a OfState<'a>,
     momentum: &'a OfState<'a>,
     body_velocity: &'a OfReduced<'a>,
+    momentum_rhs: &'a OfReduced<'a>,
     acceleration: &'a OfReduced<'a>,
     shape_acceleration: &'a OfReducedWithInputs<'a>,
 }
@@ -259,6 +260,58 @@ fn reconstruction_and_shape_equations(items: &Items, k: usize, p: usize) {
     }
 }
 
+/// From `q0 = (0.1, -0.2, 0.3, ...)`, `qdot0 = velocities(q0, alpha)` and
+/// constant inputs `u` (none along S: the momentum equation has no input
+/// term), integrating `(g, r, rdot, p)` with `gdot = R(theta) xi`,
+/// `rddot = shape_acceleration`, `pdot = momentum_rhs` reproduces the
+/// configuration of `acceleration`'s trajectory to 1e-8 over 5 s (RK4,
+/// both with the same small step).
+fn reduced_reproduces_full(items: &Items, alpha: &[f64], u: &[f64]) {
+    let n = items.n;
+    let nr = items.shape.len();
+    let q0: Vec<f64> = (0..n)
+        .map(|i| 0.1 * (i as f64 + 1.0) * if i % 2 == 0 { 1.0 } else { -1.0 })
+        .collect();
+    let qdot0 = (items.velocities)(&q0, alpha);
+    let full = |_: f64, x: &[f64]| -> Vec<f64> {
+        let (q, qdot) = x.split_at(n);
+        let mut derivative = qdot.to_vec();
+        derivative.extend((items.acceleration)(q, qdot, u));
+        derivative
+    };
+    let reduced = |_: f64, x: &[f64]| -> Vec<f64> {
+        let (g, rest) = x.split_at(3);
+        let (r, rest) = rest.split_at(nr);
+        let (rdot, p) = rest.split_at(nr);
+        let xi = (items.body_velocity)(r, rdot, p);
+        let (sin, cos) = g[2].sin_cos();
+        let mut derivative = vec![cos * xi[0] - sin * xi[1], sin * xi[0] + cos * xi[1], xi[2]];
+        derivative.extend(rdot);
+        derivative.extend((items.shape_acceleration)(r, rdot, p, u));
+        derivative.extend((items.momentum_rhs)(r, rdot, p));
+        derivative
+    };
+    let mut start = q0[..3].to_vec();
+    start.extend(items.shape.iter().map(|&i| q0[i]));
+    start.extend(items.shape.iter().map(|&i| qdot0[i]));
+    start.extend((items.momentum)(&q0, &qdot0));
+    let (dt, steps) = (1e-4, 50_000);
+    let full_states = rk4(&full, &start_of(&q0, &qdot0), dt, steps);
+    let reduced_states = rk4(&reduced, &start, dt, steps);
+    for (f, r) in full_states.iter().zip(&reduced_states).step_by(1250) {
+        for (i, expected) in f[..3].iter().enumerate() {
+            close(r[i], *expected, 1e-8, "group");
+        }
+        for (a, &i) in items.shape.iter().enumerate() {
+            close(r[3 + a], f[i], 1e-8, "shape");
+        }
+    }
+}
+
+fn start_of(q: &[f64], qdot: &[f64]) -> Vec<f64> {
+    q.iter().chain(qdot).copied().collect()
+}
+
 #[test]
 fn snakeboard_reconstruction_and_shape_equations() {
     let b = Snakeboard::default();
@@ -281,6 +334,14 @@ fn snakeboard_reconstruction_and_shape_equations() {
             );
             b.body_velocity(r, v, p).to_vec()
         },
+        momentum_rhs: &|r, v, p| {
+            let (r, v, p) = (
+                r.try_into().unwrap(),
+                v.try_into().unwrap(),
+                p.try_into().unwrap(),
+            );
+            b.momentum_rhs(r, v, p).to_vec()
+        },
         acceleration: &|q, v, u| {
             let (q, v, u) = (
                 q.try_into().unwrap(),
@@ -296,6 +357,7 @@ fn snakeboard_reconstruction_and_shape_equations() {
         },
     };
     reconstruction_and_shape_equations(&items, 3, 2);
+    reduced_reproduces_full(&items, &[0.7, -0.4, 0.9], &[0.3, -0.2]);
 }
 
 #[test]
@@ -320,6 +382,14 @@ fn sleigh_reconstruction() {
             );
             s.body_velocity(r, v, p).to_vec()
         },
+        momentum_rhs: &|r, v, p| {
+            let (r, v, p) = (
+                r.try_into().unwrap(),
+                v.try_into().unwrap(),
+                p.try_into().unwrap(),
+            );
+            s.momentum_rhs(r, v, p).to_vec()
+        },
         acceleration: &|q, v, u| {
             let (q, v, u) = (
                 q.try_into().unwrap(),
@@ -335,6 +405,7 @@ fn sleigh_reconstruction() {
         },
     };
     reconstruction_and_shape_equations(&items, 2, 0);
+    reduced_reproduces_full(&items, &[0.7, -0.4], &[]);
 }
 
 #[test]
@@ -359,6 +430,14 @@ fn rolling_disk_reconstruction_and_shape_equations() {
             );
             d.body_velocity(r, v, p).to_vec()
         },
+        momentum_rhs: &|r, v, p| {
+            let (r, v, p) = (
+                r.try_into().unwrap(),
+                v.try_into().unwrap(),
+                p.try_into().unwrap(),
+            );
+            d.momentum_rhs(r, v, p).to_vec()
+        },
         acceleration: &|q, v, u| {
             let (q, v, u) = (
                 q.try_into().unwrap(),
@@ -374,6 +453,7 @@ fn rolling_disk_reconstruction_and_shape_equations() {
         },
     };
     reconstruction_and_shape_equations(&items, 2, 2);
+    reduced_reproduces_full(&items, &[0.7, -0.4], &[0.0, 0.3]);
 }
 
 #[test]
@@ -398,6 +478,14 @@ fn differential_drive_reconstruction_and_shape_equations() {
             );
             d.body_velocity(r, v, p).to_vec()
         },
+        momentum_rhs: &|r, v, p| {
+            let (r, v, p) = (
+                r.try_into().unwrap(),
+                v.try_into().unwrap(),
+                p.try_into().unwrap(),
+            );
+            d.momentum_rhs(r, v, p).to_vec()
+        },
         acceleration: &|q, v, u| {
             let (q, v, u) = (
                 q.try_into().unwrap(),
@@ -413,4 +501,5 @@ fn differential_drive_reconstruction_and_shape_equations() {
         },
     };
     reconstruction_and_shape_equations(&items, 2, 2);
+    reduced_reproduces_full(&items, &[0.7, -0.4], &[0.3, -0.2]);
 }
