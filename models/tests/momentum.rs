@@ -76,6 +76,7 @@ fn snakeboard_report_states_h_k_d() {
         "K1 row 1: [0]",
         "K1 row 2: [-jt*cos(phi)*sin(phi)/(jt*cos(phi)^2 - jt - m*r^2)]",
         "D1 row 1: [0]",
+        "inputs enter the momentum equation: no (h B = 0)",
     ] {
         assert!(report.contains(line), "{line} in {report}");
     }
@@ -228,6 +229,8 @@ struct Items<'a> {
     momentum: &'a OfState<'a>,
     body_velocity: &'a OfReduced<'a>,
     momentum_rhs: &'a OfReduced<'a>,
+    /// `momentum_input_matrix(q) u` from `(q, u)`.
+    input_term: &'a OfState<'a>,
     acceleration: &'a OfReduced<'a>,
     shape_acceleration: &'a OfReducedWithInputs<'a>,
 }
@@ -261,9 +264,9 @@ fn reconstruction_and_shape_equations(items: &Items, k: usize, p: usize) {
 }
 
 /// From `q0 = (0.1, -0.2, 0.3, ...)`, `qdot0 = velocities(q0, alpha)` and
-/// constant inputs `u` (none along S: the momentum equation has no input
-/// term), integrating `(g, r, rdot, p)` with `gdot = R(theta) xi`,
-/// `rddot = shape_acceleration`, `pdot = momentum_rhs` reproduces the
+/// constant inputs `u`, integrating `(g, r, rdot, p)` with
+/// `gdot = R(theta) xi`, `rddot = shape_acceleration`,
+/// `pdot = momentum_rhs + momentum_input_matrix(q) u` reproduces the
 /// configuration of `acceleration`'s trajectory to 1e-8 over 5 s (RK4,
 /// both with the same small step).
 fn reduced_reproduces_full(items: &Items, alpha: &[f64], u: &[f64]) {
@@ -288,7 +291,14 @@ fn reduced_reproduces_full(items: &Items, alpha: &[f64], u: &[f64]) {
         let mut derivative = vec![cos * xi[0] - sin * xi[1], sin * xi[0] + cos * xi[1], xi[2]];
         derivative.extend(rdot);
         derivative.extend((items.shape_acceleration)(r, rdot, p, u));
-        derivative.extend((items.momentum_rhs)(r, rdot, p));
+        let mut q = vec![0.0; n];
+        q[..3].copy_from_slice(g);
+        for (a, &i) in items.shape.iter().enumerate() {
+            q[i] = r[a];
+        }
+        let forced = (items.input_term)(&q, u);
+        let unforced = (items.momentum_rhs)(r, rdot, p);
+        derivative.extend(unforced.iter().zip(&forced).map(|(a, b)| a + b));
         derivative
     };
     let mut start = q0[..3].to_vec();
@@ -342,6 +352,13 @@ fn snakeboard_reconstruction_and_shape_equations() {
             );
             b.momentum_rhs(r, v, p).to_vec()
         },
+        input_term: &|q, u| {
+            let matrix = b.momentum_input_matrix(q.try_into().unwrap());
+            matrix
+                .iter()
+                .map(|row| row.iter().zip(u).map(|(a, b)| a * b).sum())
+                .collect()
+        },
         acceleration: &|q, v, u| {
             let (q, v, u) = (
                 q.try_into().unwrap(),
@@ -389,6 +406,13 @@ fn sleigh_reconstruction() {
                 p.try_into().unwrap(),
             );
             s.momentum_rhs(r, v, p).to_vec()
+        },
+        input_term: &|q, u| {
+            let matrix = s.momentum_input_matrix(q.try_into().unwrap());
+            matrix
+                .iter()
+                .map(|row| row.iter().zip(u).map(|(a, b)| a * b).sum())
+                .collect()
         },
         acceleration: &|q, v, u| {
             let (q, v, u) = (
@@ -438,6 +462,13 @@ fn rolling_disk_reconstruction_and_shape_equations() {
             );
             d.momentum_rhs(r, v, p).to_vec()
         },
+        input_term: &|q, u| {
+            let matrix = d.momentum_input_matrix(q.try_into().unwrap());
+            matrix
+                .iter()
+                .map(|row| row.iter().zip(u).map(|(a, b)| a * b).sum())
+                .collect()
+        },
         acceleration: &|q, v, u| {
             let (q, v, u) = (
                 q.try_into().unwrap(),
@@ -453,7 +484,7 @@ fn rolling_disk_reconstruction_and_shape_equations() {
         },
     };
     reconstruction_and_shape_equations(&items, 2, 2);
-    reduced_reproduces_full(&items, &[0.7, -0.4], &[0.0, 0.3]);
+    reduced_reproduces_full(&items, &[0.7, -0.4], &[0.2, 0.3]);
 }
 
 #[test]
@@ -485,6 +516,13 @@ fn differential_drive_reconstruction_and_shape_equations() {
                 p.try_into().unwrap(),
             );
             d.momentum_rhs(r, v, p).to_vec()
+        },
+        input_term: &|q, u| {
+            let matrix = d.momentum_input_matrix(q.try_into().unwrap());
+            matrix
+                .iter()
+                .map(|row| row.iter().zip(u).map(|(a, b)| a * b).sum())
+                .collect()
         },
         acceleration: &|q, v, u| {
             let (q, v, u) = (

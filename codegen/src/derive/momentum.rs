@@ -20,7 +20,7 @@
 //! I(r) = e II e^T,   p_i = < dl/dxi, e_i >,   so p = I Omega (the horizontal part carries none)
 //! pdot_i = < dl/dxi, [xi, e_i] + (de_i/dr) rdot >,   with xi = -A_nh rdot + e^T I^-1 p  (1.1)
 //! [(a1, b1, w1), (a2, b2, w2)] = (w2 b1 - w1 b2, w1 a2 - w2 a1, 0)   on each se(2) factor, 0 on abelian ones
-//! pdot_i = rdot^T H^i rdot + rdot^T K^i p + p^T D^i p                                    (1.2)
+//! pdot_i = rdot^T H^i rdot + rdot^T K^i p + p^T D^i p  (+ h_i(q) B(q) u with inputs)     (1.2)
 //! ```
 //!
 //! The coefficient tensors are exact second derivatives of `pdot_i`, and the
@@ -86,6 +86,10 @@ pub struct Momentum {
     pub body_velocity: Vec<RationalFunction>,
     /// `H^i, K^i, D^i` for each momentum.
     pub coefficients: Vec<Coefficients>,
+    /// `h(q) B(q)`, mp x p: the inputs' contribution `pdot += h B u` (the
+    /// input forces paired with `h_i`); `rhs` is the unforced equation. Zero
+    /// when the inputs act on the shape only.
+    pub input_coupling: Matrix,
 }
 
 /// Why the momentum equation could not be derived.
@@ -146,7 +150,11 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         .enumerate()
         .map(|(i, pdot)| coefficients(model, i, pdot, &shape_velocities, &momenta))
         .collect::<Result<Vec<_>, _>>()?;
-    let momentum = momentum_of_state(model, &basis, &factors, &group)?;
+    let h = spatial_basis(model, &basis, &factors, &group)?;
+    let qdot = column_of_symbols(model, &model.velocities.clone())?;
+    let atoms = model.store.atoms().clone();
+    let momentum = h.mul(&model.mass_matrix, &atoms)?.mul(&qdot, &atoms)?;
+    let input_coupling = h.mul(&model.input_matrix, &atoms)?;
     Ok(Momentum {
         shape,
         shape_velocities,
@@ -155,10 +163,11 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         body_inertia: body.inertia,
         locked_inertia,
         connection,
-        momentum,
+        momentum: momentum.entries().to_vec(),
         rhs,
         body_velocity: xi.entries().to_vec(),
         coefficients,
+        input_coupling,
     })
 }
 
@@ -211,6 +220,7 @@ impl BodyForm {
             .collect();
         let mass = at(model, &model.mass_matrix.clone(), &identity)?;
         let constraints = at(model, &model.constraint_matrix.clone(), &identity)?;
+
         let rows: Vec<usize> = (0..constraints.rows()).collect();
         Ok(BodyForm {
             inertia: mass.submatrix(group, group),
@@ -447,15 +457,15 @@ fn quadratic(
         .clone())
 }
 
-/// `p(q, qdot) = h M(q) qdot`: `h_i` is `e_i` on the group coordinates, each
-/// se(2) factor's `(v1, v2)` part rotated by `R(theta)`, and 0 on the shape.
-fn momentum_of_state(
+/// `h(q)`, mp x n: `h_i` is `e_i` on the group coordinates, each se(2)
+/// factor's `(v1, v2)` part rotated by `R(theta)`, and 0 on the shape, so
+/// that `p = h M(q) qdot`.
+fn spatial_basis(
     model: &mut Model,
     basis: &Matrix,
     factors: &[GroupFactor],
     group: &[usize],
-) -> Result<Vec<RationalFunction>, MomentumError> {
-    let qdot = column_of_symbols(model, &model.velocities.clone())?;
+) -> Result<Matrix, SymError> {
     let mut h = Matrix::zeros(basis.rows(), model.n());
     for i in 0..basis.rows() {
         for (j, &coordinate) in group.iter().enumerate() {
@@ -476,9 +486,7 @@ fn momentum_of_state(
             h.set(i, group[o + 1], y);
         }
     }
-    let atoms = model.store.atoms().clone();
-    let momentum = h.mul(&model.mass_matrix, &atoms)?.mul(&qdot, &atoms)?;
-    Ok(momentum.entries().to_vec())
+    Ok(h)
 }
 
 #[cfg(test)]

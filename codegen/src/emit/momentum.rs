@@ -4,7 +4,8 @@
 //!
 //! ```text
 //! momentum(q, qdot)              p = h(q) M(q) qdot,  h_i = (R(theta) e_i(r), 0)
-//! momentum_rhs(r, rdot, p)       pdot = rdot^T H rdot + rdot^T K p + p^T D p
+//! momentum_rhs(r, rdot, p)       pdot = rdot^T H rdot + rdot^T K p + p^T D p  (unforced)
+//! momentum_input_matrix(q)       h(q) B(q): with inputs, pdot += momentum_input_matrix(q) u
 //! body_velocity(r, rdot, p)      xi = -A_nh(r) rdot + e(r)^T I(r)^-1 p
 //! shape_acceleration(r, rdot, p, u)
 //!                                the shape rows of `acceleration` at the group
@@ -19,7 +20,9 @@
 //! `xi` has one entry per group coordinate, factor by factor (`(v1, v2,
 //! omega)` for `se2`, the velocity for `translation` and `rotation`).
 
-use super::port_hamiltonian::{Signature, item, vector_literal, vector_type};
+use super::port_hamiltonian::{
+    Signature, item, matrix_type, rows_literal, vector_literal, vector_type,
+};
 use super::report::Section;
 use super::{Argument, Function, coordinates, f64_type, internal, velocities};
 use crate::derive::momentum::{Momentum, MomentumError, derive};
@@ -33,7 +36,7 @@ use quote::quote;
 const TITLE: &str =
     "Momentum equation (Bloch-Krishnaprasad-Marsden-Murray; Koon & Marsden 1.1-1.2)";
 
-/// The four functions and the report's section; `emitted` are the items
+/// The five functions and the report's section; `emitted` are the items
 /// emitted before (`acceleration` among them).
 pub(super) fn functions(
     model: &mut Model,
@@ -50,6 +53,7 @@ pub(super) fn functions(
     let functions = vec![
         momentum_of_state(model, &momentum)?,
         momentum_rhs(model, &momentum)?,
+        momentum_input_matrix(model, &momentum)?,
         reconstruction,
         shape,
     ];
@@ -83,6 +87,12 @@ fn report_section(model: &mut Model, momentum: &Momentum) -> Section {
         matrix_lines(model, &mut section, &format!("H{i}"), &tensors.shape);
         matrix_lines(model, &mut section, &format!("K{i}"), &tensors.mixed);
         matrix_lines(model, &mut section, &format!("D{i}"), &tensors.momentum);
+    }
+    if momentum.input_coupling.is_zero() {
+        section.line("inputs enter the momentum equation: no (h B = 0)");
+    } else {
+        section.line("inputs enter the momentum equation: yes, pdot += (h B) u");
+        matrix_lines(model, &mut section, "h B", &momentum.input_coupling);
     }
     section
 }
@@ -153,7 +163,8 @@ fn momentum_rhs(model: &mut Model, momentum: &Momentum) -> Result<Function, Diag
     let signature = Signature {
         name: "momentum_rhs",
         doc: "The momentum equation `pdot = rdot^T H rdot + rdot^T K p + p^T D p` \
-              (Koon & Marsden 1.2; `H`, `K`, `D` are printed in `REPORT`)."
+              (Koon & Marsden 1.2; `H`, `K`, `D` are printed in `REPORT`), without inputs: \
+              add `momentum_input_matrix(q) u`."
             .to_string(),
         arguments: reduced_arguments(model, momentum),
         returns: vector_type(momentum.momenta.len()),
@@ -245,4 +256,25 @@ fn shape_acceleration(
         item,
         operations,
     }
+}
+
+fn momentum_input_matrix(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let coupling = &momentum.input_coupling;
+    let (mp, p) = (coupling.rows(), coupling.columns());
+    let outputs: Vec<_> = coupling
+        .entries()
+        .iter()
+        .map(|entry| model.store.expression_of(entry))
+        .collect();
+    let signature = Signature {
+        name: "momentum_input_matrix",
+        doc: "`h(q) B(q)`, mp x p: the inputs' term of the momentum equation, \
+              `pdot = momentum_rhs(r, rdot, p) + momentum_input_matrix(q) u`."
+            .to_string(),
+        arguments: vec![coordinates(model)],
+        returns: matrix_type(mp, p),
+    };
+    item(model, signature, &outputs, |values| {
+        rows_literal(values, mp, p)
+    })
 }

@@ -160,7 +160,7 @@ pub(super) fn vector_type(length: usize) -> TokenStream {
     quote!([#f64; #length])
 }
 
-fn matrix_type(rows: usize, columns: usize) -> TokenStream {
+pub(super) fn matrix_type(rows: usize, columns: usize) -> TokenStream {
     let f64 = f64_type();
     quote!([[#f64; #columns]; #rows])
 }
@@ -170,7 +170,7 @@ pub(super) fn vector_literal(values: &[TokenStream]) -> TokenStream {
 }
 
 /// A `rows x columns` array literal, also when `columns` is 0.
-fn rows_literal(values: &[TokenStream], rows: usize, columns: usize) -> TokenStream {
+pub(super) fn rows_literal(values: &[TokenStream], rows: usize, columns: usize) -> TokenStream {
     if columns == 0 {
         let empty = (0..rows).map(|_| quote!([]));
         return quote!([#(#empty),*]);

@@ -60,6 +60,10 @@ fn snakeboard_matches_the_hand_derivation() {
     let [psi, phi] = [coordinate(&model, "psi"), coordinate(&model, "phi")];
     assert_eq!(momentum.shape, vec![psi, phi]);
     assert_eq!(momentum.momenta.len(), 1);
+    assert!(
+        momentum.input_coupling.is_zero(),
+        "the inputs act on the shape"
+    );
     let mut random = SplitMix::new(5);
     for _ in 0..1000 {
         let (phi_value, psidot, phidot, p) = (
@@ -228,6 +232,7 @@ fn sleigh_under_translations() {
 /// momenta are conserved: `p1 = J_vertical thetadot`,
 /// `p2 = m R (cos theta xdot + sin theta ydot) + J_axle phidot`, and
 /// `xi = (R nu, 0, p1 / J_vertical, nu)` with `nu = p2 / (m R^2 + J_axle)`.
+/// With the inputs (torques on `theta` and `phi`), `pdot = h B u = u`.
 #[test]
 fn rolling_disk_under_se2_and_rotation() {
     let source = r#"
@@ -250,6 +255,11 @@ fn rolling_disk_under_se2_and_rotation() {
     assert!(momentum.shape.is_empty());
     assert_eq!(momentum.momenta.len(), 2);
     assert!(momentum.rhs.iter().all(RationalFunction::is_zero));
+    assert_eq!(
+        momentum.input_coupling,
+        Matrix::identity(2),
+        "the steering torque drives p1, the driving torque p2"
+    );
     let mut random = SplitMix::new(9);
     for _ in 0..1000 {
         let q: Vec<f64> = (0..4).map(|_| random.uniform(-3.0, 3.0)).collect();
