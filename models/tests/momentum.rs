@@ -48,6 +48,33 @@ fn snakeboard_matches_the_hand_derivation() {
     }
 }
 
+/// From MATH.md 4.1 at `p = 0`: `xi = v1 (1, 0, tan(phi) / r)` with
+/// `v1 = -r cos phi Jt sin phi psidot / Delta`, so `A_nh = [[r Jt sin phi cos phi / Delta, 0],
+/// [0, 0], [Jt sin^2 phi / Delta, 0]]`; the locked inertia of `e = r e_4.1` is
+/// `r^2 (m cos^2 phi + J sin^2 phi / r^2) = Delta`.
+#[test]
+fn snakeboard_connection_and_locked_inertia() {
+    let b = Snakeboard::default();
+    let mut random = Random::new(44);
+    for _ in 0..1000 {
+        let r = [random.uniform(-3.0, 3.0), random.uniform(-3.0, 3.0)];
+        let (sin, cos) = r[1].sin_cos();
+        let delta = b.m * b.r * b.r + b.jt * sin * sin;
+        let connection = b.nonholonomic_connection(&r);
+        let expected = [
+            [b.r * b.jt * sin * cos / delta, 0.0],
+            [0.0, 0.0],
+            [b.jt * sin * sin / delta, 0.0],
+        ];
+        for (row, expected_row) in connection.iter().zip(&expected) {
+            for (actual, expected) in row.iter().zip(expected_row) {
+                close(*actual, *expected, 1e-12, "A_nh");
+            }
+        }
+        close(b.locked_inertia(&r)[0][0], delta, 1e-12, "I");
+    }
+}
+
 /// On D, `p_4.1 = alpha1 + (sin phi / r) alpha2` with the declared momenta
 /// `alpha = (group, torso, wheels)` (MATH.md 4.1), so `p = r p_4.1`.
 #[test]

@@ -6,6 +6,8 @@
 //! momentum(q, qdot)              p = h(q) M(q) qdot,  h_i = (R(theta) e_i(r), 0)
 //! momentum_rhs(r, rdot, p)       pdot = rdot^T H rdot + rdot^T K p + p^T D p  (unforced)
 //! momentum_input_matrix(q)       h(q) B(q): with inputs, pdot += momentum_input_matrix(q) u
+//! nonholonomic_connection(r)     A_nh(r), dg x nr
+//! locked_inertia(r)              I(r) = e II e^T, mp x mp
 //! body_velocity(r, rdot, p)      xi = -A_nh(r) rdot + e(r)^T I(r)^-1 p
 //! shape_acceleration(r, rdot, p, u)
 //!                                the shape rows of `acceleration` at the group
@@ -36,7 +38,7 @@ use quote::quote;
 const TITLE: &str =
     "Momentum equation (Bloch-Krishnaprasad-Marsden-Murray; Koon & Marsden 1.1-1.2)";
 
-/// The five functions and the report's section; `emitted` are the items
+/// The seven functions and the report's section; `emitted` are the items
 /// emitted before (`acceleration` among them).
 pub(super) fn functions(
     model: &mut Model,
@@ -54,6 +56,22 @@ pub(super) fn functions(
         momentum_of_state(model, &momentum)?,
         momentum_rhs(model, &momentum)?,
         momentum_input_matrix(model, &momentum)?,
+        shape_matrix(
+            model,
+            &momentum,
+            "nonholonomic_connection",
+            "The nonholonomic connection `A_nh(r)`: the horizontal body velocity is \
+             `-A_nh(r) rdot` (Koon & Marsden 1.1); the geometric phase of a shape loop is \
+             built from it.",
+            &momentum.connection,
+        )?,
+        shape_matrix(
+            model,
+            &momentum,
+            "locked_inertia",
+            "The locked inertia `I(r) = e II e^T` on S: `p = I(r) Omega`.",
+            &momentum.locked_inertia,
+        )?,
         reconstruction,
         shape,
     ];
@@ -259,22 +277,50 @@ fn shape_acceleration(
 }
 
 fn momentum_input_matrix(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
-    let coupling = &momentum.input_coupling;
-    let (mp, p) = (coupling.rows(), coupling.columns());
-    let outputs: Vec<_> = coupling
-        .entries()
-        .iter()
-        .map(|entry| model.store.expression_of(entry))
-        .collect();
     let signature = Signature {
         name: "momentum_input_matrix",
         doc: "`h(q) B(q)`, mp x p: the inputs' term of the momentum equation, \
               `pdot = momentum_rhs(r, rdot, p) + momentum_input_matrix(q) u`."
             .to_string(),
         arguments: vec![coordinates(model)],
-        returns: matrix_type(mp, p),
+        returns: matrix_type(
+            momentum.input_coupling.rows(),
+            momentum.input_coupling.columns(),
+        ),
     };
+    matrix_item(model, signature, &momentum.input_coupling)
+}
+
+/// An item of the shape `r` returning `matrix`.
+fn shape_matrix(
+    model: &mut Model,
+    momentum: &Momentum,
+    name: &'static str,
+    doc: &str,
+    matrix: &Matrix,
+) -> Result<Function, Diagnostics> {
+    let signature = Signature {
+        name,
+        doc: doc.to_string(),
+        arguments: vec![shape_argument(model, momentum)],
+        returns: matrix_type(matrix.rows(), matrix.columns()),
+    };
+    matrix_item(model, signature, matrix)
+}
+
+/// An item returning `matrix`.
+fn matrix_item(
+    model: &mut Model,
+    signature: Signature,
+    matrix: &Matrix,
+) -> Result<Function, Diagnostics> {
+    let (rows, columns) = (matrix.rows(), matrix.columns());
+    let outputs: Vec<_> = matrix
+        .entries()
+        .iter()
+        .map(|entry| model.store.expression_of(entry))
+        .collect();
     item(model, signature, &outputs, |values| {
-        rows_literal(values, mp, p)
+        rows_literal(values, rows, columns)
     })
 }
