@@ -629,3 +629,31 @@ fn snakeboard_gait_displacement_matches_full_simulation() {
     }
     close(last[3], r0[0], 1e-8, "the gait closes");
 }
+
+/// The sleigh has no shape: its momentum equation is the Euler-Poincare-Suslov
+/// system `pdot = p^T D p`, which conserves the energy `1/2 p^T I^-1 p`
+/// (`I = locked_inertia`), here to 1e-10 over 5 s of RK4, and equals the
+/// energy of the configuration-space state it reconstructs.
+#[test]
+fn sleigh_reduced_energy_is_conserved() {
+    let s = Sleigh::default();
+    let inertia = s.locked_inertia(&[]);
+    let energy = |p: &[f64]| {
+        let omega = chaplygin::runtime::linalg::solve(inertia, [p[0], p[1]]);
+        0.5 * (p[0] * omega[0] + p[1] * omega[1])
+    };
+    let q = [0.1, -0.2, 0.3];
+    let qdot = s.velocities(&q, &[0.7, -0.4]);
+    let p0 = s.momentum(&q, &qdot);
+    close(
+        energy(&p0),
+        s.energy(&q, &qdot),
+        1e-12,
+        "energy of the state",
+    );
+    let field = |_: f64, p: &[f64]| s.momentum_rhs(&[], &[], &[p[0], p[1]]).to_vec();
+    let states = rk4(&field, &p0, 1e-3, 5000);
+    for p in states.iter().step_by(500) {
+        close(energy(p), energy(&p0), 1e-10, "energy");
+    }
+}
