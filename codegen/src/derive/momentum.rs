@@ -127,10 +127,8 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
     let body = BodyForm::of(model, &group, &shape)?;
     let basis = body_basis(&body.constraints_group, model.store.atoms())?;
     let shape_velocities: Vec<SymbolId> = shape.iter().map(|&i| model.velocities[i]).collect();
-    let names: Vec<String> = (1..=basis.rows()).map(|i| format!("p{i}")).collect();
-    let momenta: Vec<SymbolId> = names
-        .iter()
-        .map(|name| fresh_symbol(model, name, SymbolKind::Momentum))
+    let momenta: Vec<SymbolId> = (1..=basis.rows())
+        .map(|i| fresh_symbol(model, &format!("p{i}"), SymbolKind::Momentum))
         .collect();
     let rdot = column_of_symbols(model, &shape_velocities)?;
     let p = column_of_symbols(model, &momenta)?;
@@ -139,22 +137,14 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
     let locked_inertia = basis
         .mul(&body.inertia, &atoms)?
         .mul(&basis.transpose(), &atoms)?;
-    let omega = locked_inertia.solve(&p, &atoms)?;
-    let xi = basis
-        .transpose()
-        .mul(&omega, &atoms)?
-        .sub(&connection.mul(&rdot, &atoms)?, &atoms)?;
+    let xi = reconstruction(&basis, &locked_inertia, &connection, &rdot, &p, &atoms)?;
     let rhs = momentum_rhs(model, &body, &basis, &xi, &rdot, &shape, &factors)?;
     let coefficients = rhs
         .iter()
         .enumerate()
         .map(|(i, pdot)| coefficients(model, i, pdot, &shape_velocities, &momenta))
         .collect::<Result<Vec<_>, _>>()?;
-    let h = spatial_basis(model, &basis, &factors, &group)?;
-    let qdot = column_of_symbols(model, &model.velocities.clone())?;
-    let atoms = model.store.atoms().clone();
-    let momentum = h.mul(&model.mass_matrix, &atoms)?.mul(&qdot, &atoms)?;
-    let input_coupling = h.mul(&model.input_matrix, &atoms)?;
+    let (momentum, input_coupling) = configuration_terms(model, &basis, &factors, &group)?;
     Ok(Momentum {
         shape,
         shape_velocities,
@@ -163,12 +153,28 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         body_inertia: body.inertia,
         locked_inertia,
         connection,
-        momentum: momentum.entries().to_vec(),
+        momentum,
         rhs,
         body_velocity: xi.entries().to_vec(),
         coefficients,
         input_coupling,
     })
+}
+
+/// `xi = -A_nh rdot + e^T I^-1 p` (Koon & Marsden 1.1).
+fn reconstruction(
+    basis: &Matrix,
+    locked_inertia: &Matrix,
+    connection: &Matrix,
+    rdot: &Matrix,
+    p: &Matrix,
+    atoms: &Atoms,
+) -> Result<Matrix, MatrixError> {
+    let omega = locked_inertia.solve(p, atoms)?;
+    basis
+        .transpose()
+        .mul(&omega, atoms)?
+        .sub(&connection.mul(rdot, atoms)?, atoms)
 }
 
 /// The group coordinates, factor by factor: `x, y, theta` for `se2`, the
@@ -455,6 +461,21 @@ fn quadratic(
         .mul(right, atoms)?
         .get(0, 0)
         .clone())
+}
+
+/// `p(q, qdot) = h M qdot` and the inputs' term `h B`.
+fn configuration_terms(
+    model: &mut Model,
+    basis: &Matrix,
+    factors: &[GroupFactor],
+    group: &[usize],
+) -> Result<(Vec<RationalFunction>, Matrix), MomentumError> {
+    let h = spatial_basis(model, basis, factors, group)?;
+    let qdot = column_of_symbols(model, &model.velocities.clone())?;
+    let atoms = model.store.atoms().clone();
+    let momentum = h.mul(&model.mass_matrix, &atoms)?.mul(&qdot, &atoms)?;
+    let input_coupling = h.mul(&model.input_matrix, &atoms)?;
+    Ok((momentum.entries().to_vec(), input_coupling))
 }
 
 /// `h(q)`, mp x n: `h_i` is `e_i` on the group coordinates, each se(2)
