@@ -243,6 +243,13 @@ fn differential_drive_has_no_momentum() {
     let qdot = d.velocities(&q, &[0.7, -0.4]);
     let none: [f64; 0] = d.momentum(&q, &qdot);
     assert!(none.is_empty());
+    let line =
+        "shape r = (phi_r, phi_l); momenta none (S = 0: the constraints fix every group velocity)";
+    assert!(
+        DifferentialDrive::REPORT.contains(line),
+        "{}",
+        DifferentialDrive::REPORT
+    );
 }
 
 /// A function of `(r, rdot, p, u)`.

@@ -94,10 +94,13 @@ fn report_section(model: &mut Model, momentum: &Momentum) -> Section {
         .iter()
         .map(|&i| model.coordinates[i].declared.name.as_str())
         .collect();
+    let momenta = match momentum.momenta.len() {
+        0 => "none (S = 0: the constraints fix every group velocity)".to_string(),
+        count => format!("p1..p{count}"),
+    };
     section.line(format!(
-        "shape r = ({}); momenta p1..p{}",
-        shape.join(", "),
-        momentum.momenta.len()
+        "shape r = ({}); momenta {momenta}",
+        shape.join(", ")
     ));
     matrix_lines(model, &mut section, "e", &momentum.basis);
     for (i, tensors) in momentum.coefficients.iter().enumerate() {
