@@ -4,4 +4,5 @@
 
 pub mod constraints;
 pub mod lagrange_dalembert;
+pub mod momentum;
 pub mod port_hamiltonian;

@@ -249,7 +249,7 @@ fn momentum_basis(
 /// The symbol called `name` if it is new or already of this kind, else a
 /// primed variant (`name'`, `name''`, ...) that is: an input or momentum
 /// never captures a parameter or coordinate of the same name.
-fn fresh_symbol(model: &mut Model, name: &str, kind: SymbolKind) -> SymbolId {
+pub(super) fn fresh_symbol(model: &mut Model, name: &str, kind: SymbolKind) -> SymbolId {
     let mut candidate = name.to_string();
     loop {
         let symbol = model.store.declare(&candidate, kind);
@@ -261,7 +261,10 @@ fn fresh_symbol(model: &mut Model, name: &str, kind: SymbolKind) -> SymbolId {
 }
 
 /// The column of the symbols as polynomials.
-fn column_of_symbols(model: &mut Model, symbols: &[SymbolId]) -> Result<Matrix, MatrixError> {
+pub(super) fn column_of_symbols(
+    model: &mut Model,
+    symbols: &[SymbolId],
+) -> Result<Matrix, MatrixError> {
     let entries = symbols
         .iter()
         .map(|&s| RationalFunction::from_poly(Poly::atom(model.store.symbol_atom(s))))

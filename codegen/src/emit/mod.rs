@@ -14,8 +14,10 @@
 //! ```
 //!
 //! and the reduced port-Hamiltonian items of `port_hamiltonian` (MATH.md
-//! section 3), and the impls of the runtime's formulation traits (`traits`)
-//! through which the runtime's integrators run the model.
+//! section 3), for a model with a symmetry the momentum-equation items of
+//! `momentum` (MATH.md section 4), and the impls of the runtime's
+//! formulation traits (`traits`) through which the runtime's integrators run
+//! the model.
 //!
 //! Each function body is one [`crate::ir::Program`]: straight-line `let`s over
 //! `f64` with common subexpressions shared, no allocation, no panics, types
@@ -24,6 +26,7 @@
 
 mod kinematics;
 mod lagrange_dalembert;
+mod momentum;
 mod port_hamiltonian;
 pub mod report;
 mod traits;
@@ -62,7 +65,12 @@ pub fn model_items(
     functions.push(acceleration);
     let (reduced, reduced_report) = port_hamiltonian::functions(model)?;
     functions.extend(reduced);
-    let sections = [solve_report, reduced_report];
+    let mut sections = vec![solve_report, reduced_report];
+    if model.symmetry.is_some() {
+        let (reduction, reduction_report) = momentum::functions(model, &functions)?;
+        functions.extend(reduction);
+        sections.push(reduction_report);
+    }
     let report = report_constant(model, constraints, sections, &functions);
     let items = functions.iter().map(|f| &f.item);
     let name = &model.name;
@@ -81,7 +89,7 @@ pub fn model_items(
 fn report_constant(
     model: &mut Model,
     constraints: &ConstraintAnalysis,
-    derivations: [report::Section; 2],
+    derivations: Vec<report::Section>,
     functions: &[Function],
 ) -> TokenStream {
     let mut report = report::Report::new(model.name.to_string());
@@ -94,7 +102,8 @@ fn report_constant(
     quote! {
         /// The derivation report: sizes, the basis of D, integrability,
         /// growth vector, classification, the reduced port-Hamiltonian
-        /// form's metric and structure, operation counts.
+        /// form's metric and structure, the momentum equation's
+        /// coefficients (with a symmetry), operation counts.
         pub const REPORT: &'static ::core::primitive::str = #text;
     }
 }

@@ -96,15 +96,15 @@ fn report_section(model: &mut Model, reduced: &PortHamiltonian) -> Section {
 type Emitter = fn(&mut Model, &PortHamiltonian) -> Result<Function, Diagnostics>;
 
 /// What an emitted function looks like from outside.
-struct Signature {
-    name: &'static str,
-    doc: String,
-    arguments: Vec<Argument>,
-    returns: TokenStream,
+pub(super) struct Signature {
+    pub(super) name: &'static str,
+    pub(super) doc: String,
+    pub(super) arguments: Vec<Argument>,
+    pub(super) returns: TokenStream,
 }
 
 /// The function computing `outputs`, assembled into its return value by `assemble`.
-fn item(
+pub(super) fn item(
     model: &Model,
     signature: Signature,
     outputs: &[ExprId],
@@ -155,22 +155,22 @@ fn inputs_argument(reduced: &PortHamiltonian) -> Argument {
     }
 }
 
-fn vector_type(length: usize) -> TokenStream {
+pub(super) fn vector_type(length: usize) -> TokenStream {
     let f64 = f64_type();
     quote!([#f64; #length])
 }
 
-fn matrix_type(rows: usize, columns: usize) -> TokenStream {
+pub(super) fn matrix_type(rows: usize, columns: usize) -> TokenStream {
     let f64 = f64_type();
     quote!([[#f64; #columns]; #rows])
 }
 
-fn vector_literal(values: &[TokenStream]) -> TokenStream {
+pub(super) fn vector_literal(values: &[TokenStream]) -> TokenStream {
     quote!([#(#values),*])
 }
 
 /// A `rows x columns` array literal, also when `columns` is 0.
-fn rows_literal(values: &[TokenStream], rows: usize, columns: usize) -> TokenStream {
+pub(super) fn rows_literal(values: &[TokenStream], rows: usize, columns: usize) -> TokenStream {
     if columns == 0 {
         let empty = (0..rows).map(|_| quote!([]));
         return quote!([#(#empty),*]);

@@ -254,7 +254,8 @@ impl Matrix {
         blocks
     }
 
-    fn submatrix(&self, rows: &[usize], columns: &[usize]) -> Matrix {
+    /// The entries at the given rows and columns, in that order.
+    pub fn submatrix(&self, rows: &[usize], columns: &[usize]) -> Matrix {
         let mut entries = Vec::with_capacity(rows.len() * columns.len());
         for &i in rows {
             for &j in columns {

@@ -1,0 +1,329 @@
+//! The momentum-equation items of a model with a symmetry (MATH.md section 4,
+//! [`crate::derive::momentum`]): with the shape `r` (the coordinates the group
+//! does not act on, nr of them) and the momenta `p` (mp of them),
+//!
+//! ```text
+//! momentum(q, qdot)              p = h(q) M(q) qdot,  h_i = (R(theta) e_i(r), 0)
+//! momentum_rhs(r, rdot, p)       pdot = rdot^T H rdot + rdot^T K p + p^T D p  (unforced)
+//! momentum_input_matrix(q)       h(q) B(q): with inputs, pdot += momentum_input_matrix(q) u
+//! nonholonomic_connection(r)     A_nh(r), dg x nr
+//! locked_inertia(r)              I(r) = e II e^T, mp x mp
+//! body_velocity(r, rdot, p)      xi = -A_nh(r) rdot + e(r)^T I(r)^-1 p
+//! shape_acceleration(r, rdot, p, u)
+//!                                the shape rows of `acceleration` at the group
+//!                                identity with qdot = (xi, rdot)    (1.3)
+//! ```
+//!
+//! `shape_acceleration` calls `body_velocity` and `acceleration` (by
+//! invariance, section 2's shape rows do not depend on the group element);
+//! its operation count is the sum of theirs.
+//!
+//! and a report section with the basis `e(r)` and the coefficient tensors.
+//! `xi` has one entry per group coordinate, factor by factor (`(v1, v2,
+//! omega)` for `se2`, the velocity for `translation` and `rotation`).
+
+use super::port_hamiltonian::{
+    Signature, item, matrix_type, rows_literal, vector_literal, vector_type,
+};
+use super::report::Section;
+use super::{Argument, Function, coordinates, f64_type, internal, velocities};
+use crate::derive::momentum::{Momentum, MomentumError, derive};
+use crate::diagnostic::{Diagnostic, Diagnostics};
+use crate::ir::OperationCount;
+use crate::model::Model;
+use crate::sym::{Matrix, RationalFunction};
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+const TITLE: &str =
+    "Momentum equation (Bloch-Krishnaprasad-Marsden-Murray; Koon & Marsden 1.1-1.2)";
+
+/// The seven functions and the report's section; `emitted` are the items
+/// emitted before (`acceleration` among them).
+pub(super) fn functions(
+    model: &mut Model,
+    emitted: &[Function],
+) -> Result<(Vec<Function>, Section), Diagnostics> {
+    let momentum = derive(model).map_err(|error| refused(model, error))?;
+    let section = report_section(model, &momentum);
+    let reconstruction = body_velocity(model, &momentum)?;
+    let acceleration = emitted
+        .iter()
+        .find(|f| f.name == "acceleration")
+        .ok_or_else(|| internal(model, "`acceleration` was not emitted"))?;
+    let shape = shape_acceleration(model, &momentum, &reconstruction, acceleration);
+    let functions = vec![
+        momentum_of_state(model, &momentum)?,
+        momentum_rhs(model, &momentum)?,
+        momentum_input_matrix(model, &momentum)?,
+        shape_matrix(
+            model,
+            &momentum,
+            "nonholonomic_connection",
+            "The nonholonomic connection `A_nh(r)`: the horizontal body velocity is \
+             `-A_nh(r) rdot` (Koon & Marsden 1.1); the geometric phase of a shape loop is \
+             built from it.",
+            &momentum.connection,
+        )?,
+        shape_matrix(
+            model,
+            &momentum,
+            "locked_inertia",
+            "The locked inertia `I(r) = e II e^T` on S: `p = I(r) Omega`.",
+            &momentum.locked_inertia,
+        )?,
+        reconstruction,
+        shape,
+    ];
+    Ok((functions, section))
+}
+
+/// The derivation's failure, on the symmetry declaration.
+fn refused(model: &Model, error: MomentumError) -> Diagnostics {
+    let span = model
+        .symmetry
+        .as_ref()
+        .map_or(model.name.span(), |symmetry| symmetry.span);
+    Diagnostic::new(span, error.to_string()).into()
+}
+
+fn report_section(model: &mut Model, momentum: &Momentum) -> Section {
+    let mut section = Section::new(TITLE);
+    let shape: Vec<&str> = momentum
+        .shape
+        .iter()
+        .map(|&i| model.coordinates[i].declared.name.as_str())
+        .collect();
+    let momenta = match momentum.momenta.len() {
+        0 => "none (S = 0: the constraints fix every group velocity)".to_string(),
+        count => format!("p1..p{count}"),
+    };
+    section.line(format!(
+        "shape r = ({}); momenta {momenta}",
+        shape.join(", ")
+    ));
+    matrix_lines(model, &mut section, "e", &momentum.basis);
+    for (i, tensors) in momentum.coefficients.iter().enumerate() {
+        let i = i + 1;
+        matrix_lines(model, &mut section, &format!("H{i}"), &tensors.shape);
+        matrix_lines(model, &mut section, &format!("K{i}"), &tensors.mixed);
+        matrix_lines(model, &mut section, &format!("D{i}"), &tensors.momentum);
+    }
+    if momentum.input_coupling.is_zero() {
+        section.line("inputs enter the momentum equation: no (h B = 0)");
+    } else {
+        section.line("inputs enter the momentum equation: yes, pdot += (h B) u");
+        matrix_lines(model, &mut section, "h B", &momentum.input_coupling);
+    }
+    section
+}
+
+/// One line per row of `matrix`: `  name row i: [..]`.
+fn matrix_lines(model: &mut Model, section: &mut Section, name: &str, matrix: &Matrix) {
+    let entries = matrix.to_expressions(&mut model.store);
+    for (i, row) in entries.chunks(matrix.columns().max(1)).enumerate() {
+        let shown: Vec<String> = row
+            .iter()
+            .map(|&e| model.store.display(e).to_string())
+            .collect();
+        section.line(format!("  {name} row {}: [{}]", i + 1, shown.join(", ")));
+    }
+}
+
+fn shape_argument(model: &Model, momentum: &Momentum) -> Argument {
+    Argument {
+        name: "r",
+        symbols: momentum
+            .shape
+            .iter()
+            .map(|&i| model.coordinates[i].symbol)
+            .collect(),
+    }
+}
+
+fn reduced_arguments(model: &Model, momentum: &Momentum) -> Vec<Argument> {
+    vec![
+        shape_argument(model, momentum),
+        Argument {
+            name: "rdot",
+            symbols: momentum.shape_velocities.clone(),
+        },
+        Argument {
+            name: "p",
+            symbols: momentum.momenta.clone(),
+        },
+    ]
+}
+
+/// An item returning the vector `entries`.
+fn vector_item(
+    model: &mut Model,
+    signature: Signature,
+    entries: &[RationalFunction],
+) -> Result<Function, Diagnostics> {
+    let outputs: Vec<_> = entries
+        .iter()
+        .map(|entry| model.store.expression_of(entry))
+        .collect();
+    item(model, signature, &outputs, vector_literal)
+}
+
+fn momentum_of_state(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let signature = Signature {
+        name: "momentum",
+        doc: "The nonholonomic momentum `p_i = <dL/dqdot, h_i(q)>`, `h_i = (R(theta) e_i(r), 0)` \
+              (MATH.md section 4; the basis `e` is printed in `REPORT`)."
+            .to_string(),
+        arguments: vec![coordinates(model), velocities(model)],
+        returns: vector_type(momentum.momenta.len()),
+    };
+    vector_item(model, signature, &momentum.momentum)
+}
+
+fn momentum_rhs(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let signature = Signature {
+        name: "momentum_rhs",
+        doc: "The momentum equation `pdot = rdot^T H rdot + rdot^T K p + p^T D p` \
+              (Koon & Marsden 1.2; `H`, `K`, `D` are printed in `REPORT`), without inputs: \
+              add `momentum_input_matrix(q) u`."
+            .to_string(),
+        arguments: reduced_arguments(model, momentum),
+        returns: vector_type(momentum.momenta.len()),
+    };
+    vector_item(model, signature, &momentum.rhs)
+}
+
+fn body_velocity(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let signature = Signature {
+        name: "body_velocity",
+        doc: "The reconstruction `xi = g^-1 gdot = -A_nh(r) rdot + e(r)^T I(r)^-1 p` \
+              (Koon & Marsden 1.1), in the body frame: `(v1, v2, omega)` for `se2`, \
+              the velocity for an abelian factor, factor by factor."
+            .to_string(),
+        arguments: reduced_arguments(model, momentum),
+        returns: vector_type(momentum.basis.columns()),
+    };
+    vector_item(model, signature, &momentum.body_velocity)
+}
+
+/// `shape_acceleration(r, rdot, p, u)`: `acceleration` at
+/// `q = (0, r)`, `qdot = (xi(r, rdot, p), rdot)`, its shape rows.
+fn shape_acceleration(
+    model: &Model,
+    momentum: &Momentum,
+    reconstruction: &Function,
+    acceleration: &Function,
+) -> Function {
+    let f64 = f64_type();
+    let (n, nr, mp, p) = (
+        model.n(),
+        momentum.shape.len(),
+        momentum.momenta.len(),
+        model.p(),
+    );
+    let mut q: Vec<TokenStream> = vec![quote!(0.0); n];
+    let mut qdot = q.clone();
+    let mut group = 0;
+    for i in 0..n {
+        match momentum.shape.iter().position(|&s| s == i) {
+            Some(a) => {
+                let a = Literal::usize_unsuffixed(a);
+                q[i] = quote!(r[#a]);
+                qdot[i] = quote!(rdot[#a]);
+            }
+            None => {
+                let j = Literal::usize_unsuffixed(group);
+                qdot[i] = quote!(xi[#j]);
+                group += 1;
+            }
+        }
+    }
+    let rows = momentum.shape.iter().map(|&i| Literal::usize_unsuffixed(i));
+    let body = if nr == 0 {
+        quote!([])
+    } else {
+        quote! {
+            let xi = self.body_velocity(r, rdot, p);
+            let (qddot, _) = self.acceleration(&[#(#q),*], &[#(#qdot),*], u);
+            [#(qddot[#rows]),*]
+        }
+    };
+    let names = if nr == 0 {
+        [quote!(_r), quote!(_rdot), quote!(_p), quote!(_u)]
+    } else {
+        [quote!(r), quote!(rdot), quote!(p), quote!(u)]
+    };
+    let [r, rdot, p_name, u] = names;
+    let item = quote! {
+        /// The shape equations (Koon & Marsden 1.3): the shape rows of
+        /// `acceleration` at the group identity with the reconstructed
+        /// velocity `qdot = (body_velocity(r, rdot, p), rdot)` and inputs `u`.
+        pub fn shape_acceleration(
+            &self,
+            #r: &[#f64; #nr],
+            #rdot: &[#f64; #nr],
+            #p_name: &[#f64; #mp],
+            #u: &[#f64; #p],
+        ) -> [#f64; #nr] {
+            #body
+        }
+    };
+    let operations = OperationCount {
+        before_cse: reconstruction.operations.before_cse + acceleration.operations.before_cse,
+        after_cse: reconstruction.operations.after_cse + acceleration.operations.after_cse,
+    };
+    Function {
+        name: "shape_acceleration",
+        item,
+        operations,
+    }
+}
+
+fn momentum_input_matrix(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let signature = Signature {
+        name: "momentum_input_matrix",
+        doc: "`h(q) B(q)`, mp x p: the inputs' term of the momentum equation, \
+              `pdot = momentum_rhs(r, rdot, p) + momentum_input_matrix(q) u`."
+            .to_string(),
+        arguments: vec![coordinates(model)],
+        returns: matrix_type(
+            momentum.input_coupling.rows(),
+            momentum.input_coupling.columns(),
+        ),
+    };
+    matrix_item(model, signature, &momentum.input_coupling)
+}
+
+/// An item of the shape `r` returning `matrix`.
+fn shape_matrix(
+    model: &mut Model,
+    momentum: &Momentum,
+    name: &'static str,
+    doc: &str,
+    matrix: &Matrix,
+) -> Result<Function, Diagnostics> {
+    let signature = Signature {
+        name,
+        doc: doc.to_string(),
+        arguments: vec![shape_argument(model, momentum)],
+        returns: matrix_type(matrix.rows(), matrix.columns()),
+    };
+    matrix_item(model, signature, matrix)
+}
+
+/// An item returning `matrix`.
+fn matrix_item(
+    model: &mut Model,
+    signature: Signature,
+    matrix: &Matrix,
+) -> Result<Function, Diagnostics> {
+    let (rows, columns) = (matrix.rows(), matrix.columns());
+    let outputs: Vec<_> = matrix
+        .entries()
+        .iter()
+        .map(|entry| model.store.expression_of(entry))
+        .collect();
+    item(model, signature, &outputs, |values| {
+        rows_literal(values, rows, columns)
+    })
+}
