@@ -18,9 +18,8 @@ fn close(actual: f64, expected: f64, tolerance: f64, what: &str) {
     );
 }
 
-/// The tool's basis is `e = (r cos phi, 0, sin phi) = r e_4.1` (REPORT), so
-/// with the constant `f = r` of MATH.md 4.1's rule, `p = r p_4.1` and
-/// `pdot = r pdot_4.1`.
+/// The tool's basis is MATH.md 4.1's `e = (cos phi, 0, sin phi / r)` (REPORT),
+/// so `p` and `pdot` are 4.1's hand-derived ones.
 #[test]
 fn snakeboard_matches_the_hand_derivation() {
     let b = Snakeboard::default();
@@ -30,16 +29,11 @@ fn snakeboard_matches_the_hand_derivation() {
         let rdot = [random.uniform(-2.0, 2.0), random.uniform(-2.0, 2.0)];
         let p = [random.uniform(-2.0, 2.0)];
         let (sin, cos) = r[1].sin_cos();
-        let (psidot, phidot, p_hand) = (rdot[0], rdot[1], p[0] / b.r);
+        let (psidot, phidot, p_hand) = (rdot[0], rdot[1], p[0]);
         let delta = b.m * b.r * b.r + b.jt * sin * sin;
         let pdot_hand = b.m * b.r * b.jt * cos / delta * psidot * phidot
             + b.jt * sin * cos / delta * phidot * p_hand;
-        close(
-            b.momentum_rhs(&r, &rdot, &p)[0],
-            b.r * pdot_hand,
-            1e-12,
-            "pdot",
-        );
+        close(b.momentum_rhs(&r, &rdot, &p)[0], pdot_hand, 1e-12, "pdot");
         let v1 = b.r * cos * (b.r * p_hand - b.jt * sin * psidot) / delta;
         let xi = b.body_velocity(&r, &rdot, &p);
         for (actual, expected) in xi.iter().zip([v1, 0.0, v1 * sin / cos / b.r]) {
@@ -50,8 +44,8 @@ fn snakeboard_matches_the_hand_derivation() {
 
 /// From MATH.md 4.1 at `p = 0`: `xi = v1 (1, 0, tan(phi) / r)` with
 /// `v1 = -r cos phi Jt sin phi psidot / Delta`, so `A_nh = [[r Jt sin phi cos phi / Delta, 0],
-/// [0, 0], [Jt sin^2 phi / Delta, 0]]`; the locked inertia of `e = r e_4.1` is
-/// `r^2 (m cos^2 phi + J sin^2 phi / r^2) = Delta`.
+/// [0, 0], [Jt sin^2 phi / Delta, 0]]`; the locked inertia of `e_4.1` is
+/// `m cos^2 phi + J sin^2 phi / r^2 = Delta / r^2`.
 #[test]
 fn snakeboard_connection_and_locked_inertia() {
     let b = Snakeboard::default();
@@ -71,12 +65,12 @@ fn snakeboard_connection_and_locked_inertia() {
                 close(*actual, *expected, 1e-12, "A_nh");
             }
         }
-        close(b.locked_inertia(&r)[0][0], delta, 1e-12, "I");
+        close(b.locked_inertia(&r)[0][0], delta / (b.r * b.r), 1e-12, "I");
     }
 }
 
 /// On D, `p_4.1 = alpha1 + (sin phi / r) alpha2` with the declared momenta
-/// `alpha = (group, torso, wheels)` (MATH.md 4.1), so `p = r p_4.1`.
+/// `alpha = (group, torso, wheels)` (MATH.md 4.1).
 #[test]
 fn snakeboard_momentum_on_d() {
     let b = Snakeboard::default();
@@ -85,21 +79,21 @@ fn snakeboard_momentum_on_d() {
         let q: [f64; 5] = std::array::from_fn(|_| random.uniform(-3.0, 3.0));
         let alpha: [f64; 3] = std::array::from_fn(|_| random.uniform(-2.0, 2.0));
         let qdot = b.velocities(&q, &alpha);
-        let expected = b.r * (alpha[0] + q[4].sin() / b.r * alpha[1]);
+        let expected = alpha[0] + q[4].sin() / b.r * alpha[1];
         close(b.momentum(&q, &qdot)[0], expected, 1e-12, "p");
     }
 }
 
-/// `H = r [[0, h], [h, 0]]`, `h = m r Jt cos phi / (2 Delta)`, `K = (0, Jt sin phi cos phi / Delta)`,
-/// `D = 0` (MATH.md 4.1 with `f = r`), as printed: `jt cos(phi)^2 - jt - m r^2 = -Delta`.
+/// `H = [[0, h], [h, 0]]`, `h = m r Jt cos phi / (2 Delta)`, `K = (0, Jt sin phi cos phi / Delta)`,
+/// `D = 0` (MATH.md 4.1), as printed: `jt cos(phi)^2 - jt - m r^2 = -Delta`.
 #[test]
 fn snakeboard_report_states_h_k_d() {
     let report = Snakeboard::REPORT;
     for line in [
         "shape r = (psi, phi); momenta p1..p1",
-        "e row 1: [r*cos(phi), 0, sin(phi)]",
-        "H1 row 1: [0, (-1/2)*jt*m*r^2*cos(phi)/(jt*cos(phi)^2 - jt - m*r^2)]",
-        "H1 row 2: [(-1/2)*jt*m*r^2*cos(phi)/(jt*cos(phi)^2 - jt - m*r^2), 0]",
+        "e row 1: [cos(phi), 0, sin(phi)/r]",
+        "H1 row 1: [0, (-1/2)*jt*m*r*cos(phi)/(jt*cos(phi)^2 - jt - m*r^2)]",
+        "H1 row 2: [(-1/2)*jt*m*r*cos(phi)/(jt*cos(phi)^2 - jt - m*r^2), 0]",
         "K1 row 1: [0]",
         "K1 row 2: [-jt*cos(phi)*sin(phi)/(jt*cos(phi)^2 - jt - m*r^2)]",
         "D1 row 1: [0]",

@@ -34,14 +34,18 @@
 //! `v_j`, divide by it and multiply by the least common multiple of the
 //! entries' denominators; keep the candidate of least total size (number of
 //! terms in normal form), the first one on ties. Every entry is then a
-//! polynomial in the shape's atoms and the parameters. For the snakeboard
-//! this gives `e = (r cos phi, 0, sin phi)`, `r` times MATH.md 4.1's, so
-//! `p = r p_4.1` and `pdot = r pdot_4.1`.
+//! polynomial in the shape's atoms and the parameters. Finally each vector
+//! is divided by a constant, its largest entry at the default configuration
+//! evaluated exactly there (a function of the parameters), so that entry is
+//! 1 at q = 0. For the snakeboard the first step gives
+//! `(r cos phi, 0, sin phi)` and the last `e = (cos phi, 0, sin phi / r)`,
+//! MATH.md 4.1's normalization.
 //!
 //! The shape velocities must be free: when the constraints restrict `rdot`
 //! on their own (`A_xi` rows dependent where `A_r`'s are not), the model is
 //! not of the principal kind the momentum equation is stated for.
 
+use super::constraints::default_point;
 use super::port_hamiltonian::{column_of_symbols, fresh_symbol};
 use crate::model::{GroupFactor, Model};
 use crate::sym::{
@@ -126,6 +130,7 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
     let shape: Vec<usize> = (0..model.n()).filter(|i| !group.contains(i)).collect();
     let body = BodyForm::of(model, &group, &shape)?;
     let basis = body_basis(&body.constraints_group, model.store.atoms())?;
+    let basis = unit_at_defaults(model, &basis)?;
     let shape_velocities: Vec<SymbolId> = shape.iter().map(|&i| model.velocities[i]).collect();
     let momenta: Vec<SymbolId> = (1..=basis.rows())
         .map(|i| fresh_symbol(model, &format!("p{i}"), SymbolKind::Momentum))
@@ -266,6 +271,41 @@ fn body_basis(constraints_group: &Matrix, atoms: &Atoms) -> Result<Matrix, Matri
         }
     }
     Ok(basis)
+}
+
+/// Each basis vector divided by a constant (a function of the parameters
+/// only): its entry of largest magnitude at the default configuration
+/// (coordinates 0, parameters at their defaults), evaluated there exactly.
+/// That entry is then 1 at q = 0 for every parameter value.
+fn unit_at_defaults(model: &mut Model, basis: &Matrix) -> Result<Matrix, SymError> {
+    let defaults = default_point(model);
+    let at_zero: HashMap<SymbolId, ExprId> = model
+        .coordinate_symbols()
+        .into_iter()
+        .map(|q| (q, model.store.integer(0)))
+        .collect();
+    let mut scaled = basis.clone();
+    for i in 0..basis.rows() {
+        let values: Vec<f64> = (0..basis.columns())
+            .map(|j| model.store.evaluate_normal(basis.get(i, j), &defaults))
+            .collect();
+        let Some(largest) = (0..values.len())
+            .filter(|&j| values[j].is_finite())
+            .max_by(|&a, &b| values[a].abs().total_cmp(&values[b].abs()))
+        else {
+            continue;
+        };
+        let entry = model.store.expression_of(basis.get(i, largest));
+        let constant = model.store.substitute(entry, &at_zero)?;
+        let constant = model.store.normal(constant)?;
+        let atoms = model.store.atoms().clone();
+        for j in 0..basis.columns() {
+            if let Some(value) = basis.get(i, j).div(&constant, &atoms) {
+                scaled.set(i, j, value);
+            }
+        }
+    }
+    Ok(scaled)
 }
 
 /// Of the vectors `v / v_j` (one per non-zero entry) with their denominators

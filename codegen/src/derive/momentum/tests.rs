@@ -50,8 +50,7 @@ fn close(actual: f64, expected: f64, what: &str) {
 }
 
 /// Snakeboard (m = 1, r = 0.5, jt = 0.3 by default): the tool's basis is
-/// `e = (r cos phi, 0, sin phi) = f e_4.1` with the constant `f = r`, so
-/// `p = f p_4.1` and `pdot = f pdot_4.1`; MATH.md 4.1's hand-derived
+/// MATH.md 4.1's `e = (cos phi, 0, sin phi / r)`, and its hand-derived
 /// momentum equation, reconstruction and coefficient tensors follow.
 #[test]
 fn snakeboard_matches_the_hand_derivation() {
@@ -84,19 +83,18 @@ fn snakeboard_matches_the_hand_derivation() {
         );
         let (sin, cos) = phi_value.sin_cos();
         let basis = momentum.basis.evaluate(&mut model.store, &at);
-        for (actual, expected) in basis.iter().zip([r * cos, 0.0, sin]) {
+        for (actual, expected) in basis.iter().zip([cos, 0.0, sin / r]) {
             close(*actual, expected, "e");
         }
-        let p_hand = p / r;
         let delta = m * r * r + jt * sin * sin;
         let pdot_hand =
-            m * r * jt * cos / delta * psidot * phidot + jt * sin * cos / delta * phidot * p_hand;
+            m * r * jt * cos / delta * psidot * phidot + jt * sin * cos / delta * phidot * p;
         close(
             evaluate(&mut model, &momentum.rhs, &at)[0],
-            r * pdot_hand,
+            pdot_hand,
             "pdot",
         );
-        let v1 = r * cos * (r * p_hand - jt * sin * psidot) / delta;
+        let v1 = r * cos * (r * p - jt * sin * psidot) / delta;
         let xi = evaluate(&mut model, &momentum.body_velocity, &at);
         for (actual, expected) in xi.iter().zip([v1, 0.0, v1 * sin / cos / r]) {
             close(*actual, expected, "xi");
@@ -104,7 +102,7 @@ fn snakeboard_matches_the_hand_derivation() {
         let h = m * r * jt * cos / (2.0 * delta);
         let tensors = &momentum.coefficients[0];
         let shape = tensors.shape.evaluate(&mut model.store, &at);
-        for (actual, expected) in shape.iter().zip([0.0, r * h, r * h, 0.0]) {
+        for (actual, expected) in shape.iter().zip([0.0, h, h, 0.0]) {
             close(*actual, expected, "H");
         }
         let mixed = tensors.mixed.evaluate(&mut model.store, &at);
@@ -116,7 +114,7 @@ fn snakeboard_matches_the_hand_derivation() {
 }
 
 /// `p = <dL/dqdot, cos phi cos theta d_x + cos phi sin theta d_y + (sin phi / r) d_theta>`
-/// (MATH.md 4.1), times the normalization factor `r`, from the Lagrangian by hand.
+/// (MATH.md 4.1), from the Lagrangian by hand.
 #[test]
 fn snakeboard_momentum_of_the_state() {
     let (mut model, momentum) = derived(crate::fixtures::SNAKEBOARD);
@@ -138,7 +136,7 @@ fn snakeboard_momentum_of_the_state() {
         let (theta, phi) = (q[2], q[4]);
         let hand = phi.cos() * m * (theta.cos() * qdot[0] + theta.sin() * qdot[1])
             + phi.sin() / r * (j * qdot[2] + jt * qdot[3]);
-        close(p, r * hand, "p");
+        close(p, hand, "p");
     }
 }
 
