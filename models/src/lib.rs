@@ -7,7 +7,11 @@
 //! - [`rolling_disk::RollingDisk`]: the vertical rolling disk (Bloch,
 //!   *Nonholonomic Mechanics and Control*, 2003, chapter 1);
 //! - [`differential_drive::DifferentialDrive`]: a two-wheeled robot with
-//!   spinning wheels.
+//!   spinning wheels;
+//! - [`energy_control`]: the paper's energy-based snakeboard controller and
+//!   its closed loop with the reduced snakeboard (MATH.md 3.2).
+
+pub mod energy_control;
 
 pub mod snakeboard {
     //! The snakeboard: a board on two wheel pairs whose steering angles are

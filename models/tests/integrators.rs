@@ -11,6 +11,7 @@
 
 use chaplygin::runtime::integrate::{DormandPrince, FixedStep, Midpoint, Rk4, integrate_fixed};
 use chaplygin::runtime::system::{Dalembert, Energy, Jacobian, OdeSystem, Reduced};
+use chaplygin_models::energy_control::{CLOSED_LOOP_STATE, ClosedLoop, EnergyController};
 use chaplygin_models::{sleigh::Sleigh, snakeboard::Snakeboard};
 
 const N: usize = Snakeboard::N;
@@ -22,76 +23,9 @@ fn start() -> [f64; S] {
     [0.1, -0.2, 0.3, 0.0, 0.3, 1.0, 0.5, 0.025]
 }
 
-/// The snakeboard under the energy-based controller of MATH.md 3.2, with
-/// state `z = (q, alpha, xt, xw)`: `u1 = -a sin(phi) kt xt`, `u2 = -kw xw`,
-/// `xtdot = a sin(phi) psidot`, `xwdot = phidot`. The closed loop is
-/// `zdot = Jc(z) dHc/dz` with `Jc` skew and the quadratic energy
-/// `Hbar + kt xt^2/2 + kw xw^2/2`.
-struct ClosedLoop {
-    board: Snakeboard,
-    a: f64,
-    kt: f64,
-    kw: f64,
-}
+const D: usize = CLOSED_LOOP_STATE;
 
-const D: usize = S + 2;
-
-impl ClosedLoop {
-    fn split(z: &[f64; D]) -> [f64; S] {
-        core::array::from_fn(|i| z[i])
-    }
-
-    fn input(&self, z: &[f64; D]) -> [f64; 2] {
-        [-self.a * z[4].sin() * self.kt * z[S], -self.kw * z[S + 1]]
-    }
-}
-
-impl OdeSystem<D> for ClosedLoop {
-    fn rhs(&self, _t: f64, z: &[f64; D]) -> [f64; D] {
-        let f = self.board.reduced_rhs(&Self::split(z), &self.input(z));
-        let controller = [self.a * z[4].sin() * f[3], f[4]];
-        core::array::from_fn(|i| if i < S { f[i] } else { controller[i - S] })
-    }
-}
-
-impl Jacobian<D> for ClosedLoop {
-    /// `d f/dx + B du/dz` for the board's rows; the controller's rows follow
-    /// from those of `psidot` and `phidot`, which do not depend on `u`.
-    fn jacobian(&self, _t: f64, z: &[f64; D]) -> [[f64; D]; D] {
-        let x = Self::split(z);
-        let u = self.input(z);
-        let (fx, b) = (
-            self.board.reduced_rhs_jacobian(&x, &u),
-            self.board.input_matrix(&x),
-        );
-        let (sin, cos) = z[4].sin_cos();
-        let mut du = [[0.0; D]; 2];
-        du[0][4] = -self.a * cos * self.kt * z[S];
-        du[0][S] = -self.a * sin * self.kt;
-        du[1][S + 1] = -self.kw;
-        let mut jac = [[0.0; D]; D];
-        for i in 0..S {
-            for j in 0..D {
-                let through_u = b[i][0] * du[0][j] + b[i][1] * du[1][j];
-                jac[i][j] = if j < S { fx[i][j] } else { 0.0 } + through_u;
-            }
-        }
-        let psidot = self.board.reduced_rhs(&x, &u)[3];
-        jac[S] = core::array::from_fn(|j| self.a * sin * jac[3][j]);
-        jac[S][4] += self.a * cos * psidot;
-        jac[S + 1] = jac[4];
-        jac
-    }
-}
-
-impl Energy<D> for ClosedLoop {
-    fn energy(&self, z: &[f64; D]) -> f64 {
-        let springs = self.kt * z[S] * z[S] / 2.0 + self.kw * z[S + 1] * z[S + 1] / 2.0;
-        self.board.hamiltonian(&Self::split(z)) + springs
-    }
-}
-
-/// At rest at `phi = 0.2` with energy in both springs (`xt = 1`, `xw = 0.5`).
+/// The closed loop of MATH.md 3.2 with the default board.
 const CLOSED_LOOP: ClosedLoop = ClosedLoop {
     board: Snakeboard {
         m: 1.0,
@@ -99,10 +33,13 @@ const CLOSED_LOOP: ClosedLoop = ClosedLoop {
         jt: 0.3,
         jw: 0.05,
     },
-    a: 1.0,
-    kt: 2.0,
-    kw: 1.0,
+    controller: EnergyController {
+        a: 1.0,
+        kt: 2.0,
+        kw: 1.0,
+    },
 };
+/// At rest at `phi = 0.2` with energy in both springs (`xt = 1`, `xw = 0.5`).
 const AT_REST: [f64; D] = [0.0, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0, 1.0, 0.5];
 
 #[test]
@@ -155,6 +92,11 @@ fn midpoint_keeps_the_closed_loop_energy_where_rk4_drifts() {
     );
     assert!(midpoint <= 1e-12, "{midpoint:e}");
     assert!(rk4 >= 1e4 * midpoint, "{rk4:e}");
+    // the state builder places the springs after the board's state
+    assert_eq!(
+        ClosedLoop::state(&[0.0, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0], 1.0, 0.5),
+        AT_REST
+    );
     // alpha1dot = (a kt / r) sin(phi)^2 xt >= 0 while xt > 0 (MATH.md 3.2)
     assert!(
         alpha1 > 0.1,
@@ -243,5 +185,34 @@ fn the_sleigh_tends_to_a_straight_line_at_the_speed_its_energy_allows() {
     assert!(
         sleigh.constraint_residual(&[end[0], end[1], end[2]], &[end[3], end[4], end[5]])[0].abs()
             <= 1e-8
+    );
+}
+
+/// MATH.md 3.2: the wheel pair `(alpha3, xw)` exchanges no energy with the
+/// rest, so `alpha3^2/(2 Jw) + kw xw^2/2` is constant along the closed loop
+/// (the midpoint rule keeps this quadratic invariant too), while the
+/// torso spring's energy `kt xt^2/2` does flow into `alpha1`.
+#[test]
+fn the_wheel_pair_keeps_its_own_energy() {
+    let wheels0 = CLOSED_LOOP.wheel_energy(&AT_REST);
+    let (mut worst, mut torso_spring_change) = (0.0f64, 0.0f64);
+    let torso0 = 2.0 * AT_REST[S] * AT_REST[S] / 2.0;
+    let observe = |_t: f64, z: &[f64; D]| {
+        worst = worst.max((CLOSED_LOOP.wheel_energy(z) - wheels0).abs() / wheels0);
+        torso_spring_change = torso_spring_change.max((2.0 * z[S] * z[S] / 2.0 - torso0).abs());
+    };
+    integrate_fixed(
+        &Midpoint::default(),
+        &CLOSED_LOOP,
+        (0.0, AT_REST),
+        0.01,
+        2000,
+        observe,
+    )
+    .unwrap();
+    assert!(worst <= 1e-12, "wheel-pair energy changed by {worst:e}");
+    assert!(
+        torso_spring_change > 0.1,
+        "the torso spring exchanges energy: {torso_spring_change}"
     );
 }
