@@ -249,6 +249,62 @@ fn differential_drive_has_no_momentum() {
 /// A function of `(r, rdot, p, u)`.
 type OfReducedWithInputs<'a> = dyn Fn(&[f64], &[f64], &[f64], &[f64]) -> Vec<f64> + 'a;
 
+/// The [`Items`] of a generated model `$model` with `$n` coordinates whose
+/// shape coordinates are `$shape`.
+macro_rules! items {
+    ($model:expr, $n:expr, $shape:expr) => {{
+        let d = &$model;
+        Items {
+            n: $n,
+            shape: $shape,
+            velocities: &|q, a| {
+                d.velocities(q.try_into().unwrap(), a.try_into().unwrap())
+                    .to_vec()
+            },
+            momentum: &|q, v| {
+                d.momentum(q.try_into().unwrap(), v.try_into().unwrap())
+                    .to_vec()
+            },
+            body_velocity: &|r, v, p| {
+                let (r, v, p) = (
+                    r.try_into().unwrap(),
+                    v.try_into().unwrap(),
+                    p.try_into().unwrap(),
+                );
+                d.body_velocity(r, v, p).to_vec()
+            },
+            momentum_rhs: &|r, v, p| {
+                let (r, v, p) = (
+                    r.try_into().unwrap(),
+                    v.try_into().unwrap(),
+                    p.try_into().unwrap(),
+                );
+                d.momentum_rhs(r, v, p).to_vec()
+            },
+            input_term: &|q, u| {
+                let matrix = d.momentum_input_matrix(q.try_into().unwrap());
+                matrix
+                    .iter()
+                    .map(|row| row.iter().zip(u).map(|(a, b)| a * b).sum())
+                    .collect()
+            },
+            acceleration: &|q, v, u| {
+                let (q, v, u) = (
+                    q.try_into().unwrap(),
+                    v.try_into().unwrap(),
+                    u.try_into().unwrap(),
+                );
+                d.acceleration(q, v, u).0.to_vec()
+            },
+            shape_acceleration: &|r, v, p, u| {
+                let (r, v) = (r.try_into().unwrap(), v.try_into().unwrap());
+                let (p, u) = (p.try_into().unwrap(), u.try_into().unwrap());
+                d.shape_acceleration(r, v, p, u).to_vec()
+            },
+        }
+    }};
+}
+
 /// A model's items on slices, for the checks shared by every model.
 struct Items<'a> {
     n: usize,
@@ -353,54 +409,7 @@ fn start_of(q: &[f64], qdot: &[f64]) -> Vec<f64> {
 #[test]
 fn snakeboard_reconstruction_and_shape_equations() {
     let b = Snakeboard::default();
-    let items = Items {
-        n: 5,
-        shape: &[3, 4],
-        velocities: &|q, a| {
-            b.velocities(q.try_into().unwrap(), a.try_into().unwrap())
-                .to_vec()
-        },
-        momentum: &|q, v| {
-            b.momentum(q.try_into().unwrap(), v.try_into().unwrap())
-                .to_vec()
-        },
-        body_velocity: &|r, v, p| {
-            let (r, v, p) = (
-                r.try_into().unwrap(),
-                v.try_into().unwrap(),
-                p.try_into().unwrap(),
-            );
-            b.body_velocity(r, v, p).to_vec()
-        },
-        momentum_rhs: &|r, v, p| {
-            let (r, v, p) = (
-                r.try_into().unwrap(),
-                v.try_into().unwrap(),
-                p.try_into().unwrap(),
-            );
-            b.momentum_rhs(r, v, p).to_vec()
-        },
-        input_term: &|q, u| {
-            let matrix = b.momentum_input_matrix(q.try_into().unwrap());
-            matrix
-                .iter()
-                .map(|row| row.iter().zip(u).map(|(a, b)| a * b).sum())
-                .collect()
-        },
-        acceleration: &|q, v, u| {
-            let (q, v, u) = (
-                q.try_into().unwrap(),
-                v.try_into().unwrap(),
-                u.try_into().unwrap(),
-            );
-            b.acceleration(q, v, u).0.to_vec()
-        },
-        shape_acceleration: &|r, v, p, u| {
-            let (r, v) = (r.try_into().unwrap(), v.try_into().unwrap());
-            let (p, u) = (p.try_into().unwrap(), u.try_into().unwrap());
-            b.shape_acceleration(r, v, p, u).to_vec()
-        },
-    };
+    let items = items!(b, 5, &[3, 4]);
     reconstruction_and_shape_equations(&items, 3, 2);
     reduced_reproduces_full(&items, &[0.7, -0.4, 0.9], &[0.3, -0.2]);
 }
@@ -408,54 +417,7 @@ fn snakeboard_reconstruction_and_shape_equations() {
 #[test]
 fn sleigh_reconstruction() {
     let s = Sleigh::default();
-    let items = Items {
-        n: 3,
-        shape: &[],
-        velocities: &|q, a| {
-            s.velocities(q.try_into().unwrap(), a.try_into().unwrap())
-                .to_vec()
-        },
-        momentum: &|q, v| {
-            s.momentum(q.try_into().unwrap(), v.try_into().unwrap())
-                .to_vec()
-        },
-        body_velocity: &|r, v, p| {
-            let (r, v, p) = (
-                r.try_into().unwrap(),
-                v.try_into().unwrap(),
-                p.try_into().unwrap(),
-            );
-            s.body_velocity(r, v, p).to_vec()
-        },
-        momentum_rhs: &|r, v, p| {
-            let (r, v, p) = (
-                r.try_into().unwrap(),
-                v.try_into().unwrap(),
-                p.try_into().unwrap(),
-            );
-            s.momentum_rhs(r, v, p).to_vec()
-        },
-        input_term: &|q, u| {
-            let matrix = s.momentum_input_matrix(q.try_into().unwrap());
-            matrix
-                .iter()
-                .map(|row| row.iter().zip(u).map(|(a, b)| a * b).sum())
-                .collect()
-        },
-        acceleration: &|q, v, u| {
-            let (q, v, u) = (
-                q.try_into().unwrap(),
-                v.try_into().unwrap(),
-                u.try_into().unwrap(),
-            );
-            s.acceleration(q, v, u).0.to_vec()
-        },
-        shape_acceleration: &|r, v, p, u| {
-            let (r, v) = (r.try_into().unwrap(), v.try_into().unwrap());
-            let (p, u) = (p.try_into().unwrap(), u.try_into().unwrap());
-            s.shape_acceleration(r, v, p, u).to_vec()
-        },
-    };
+    let items = items!(s, 3, &[]);
     reconstruction_and_shape_equations(&items, 2, 0);
     reduced_reproduces_full(&items, &[0.7, -0.4], &[]);
 }
@@ -463,54 +425,7 @@ fn sleigh_reconstruction() {
 #[test]
 fn rolling_disk_reconstruction_and_shape_equations() {
     let d = RollingDisk::default();
-    let items = Items {
-        n: 4,
-        shape: &[3],
-        velocities: &|q, a| {
-            d.velocities(q.try_into().unwrap(), a.try_into().unwrap())
-                .to_vec()
-        },
-        momentum: &|q, v| {
-            d.momentum(q.try_into().unwrap(), v.try_into().unwrap())
-                .to_vec()
-        },
-        body_velocity: &|r, v, p| {
-            let (r, v, p) = (
-                r.try_into().unwrap(),
-                v.try_into().unwrap(),
-                p.try_into().unwrap(),
-            );
-            d.body_velocity(r, v, p).to_vec()
-        },
-        momentum_rhs: &|r, v, p| {
-            let (r, v, p) = (
-                r.try_into().unwrap(),
-                v.try_into().unwrap(),
-                p.try_into().unwrap(),
-            );
-            d.momentum_rhs(r, v, p).to_vec()
-        },
-        input_term: &|q, u| {
-            let matrix = d.momentum_input_matrix(q.try_into().unwrap());
-            matrix
-                .iter()
-                .map(|row| row.iter().zip(u).map(|(a, b)| a * b).sum())
-                .collect()
-        },
-        acceleration: &|q, v, u| {
-            let (q, v, u) = (
-                q.try_into().unwrap(),
-                v.try_into().unwrap(),
-                u.try_into().unwrap(),
-            );
-            d.acceleration(q, v, u).0.to_vec()
-        },
-        shape_acceleration: &|r, v, p, u| {
-            let (r, v) = (r.try_into().unwrap(), v.try_into().unwrap());
-            let (p, u) = (p.try_into().unwrap(), u.try_into().unwrap());
-            d.shape_acceleration(r, v, p, u).to_vec()
-        },
-    };
+    let items = items!(d, 4, &[3]);
     reconstruction_and_shape_equations(&items, 2, 2);
     reduced_reproduces_full(&items, &[0.7, -0.4], &[0.2, 0.3]);
 }
@@ -518,54 +433,7 @@ fn rolling_disk_reconstruction_and_shape_equations() {
 #[test]
 fn differential_drive_reconstruction_and_shape_equations() {
     let d = DifferentialDrive::default();
-    let items = Items {
-        n: 5,
-        shape: &[3, 4],
-        velocities: &|q, a| {
-            d.velocities(q.try_into().unwrap(), a.try_into().unwrap())
-                .to_vec()
-        },
-        momentum: &|q, v| {
-            d.momentum(q.try_into().unwrap(), v.try_into().unwrap())
-                .to_vec()
-        },
-        body_velocity: &|r, v, p| {
-            let (r, v, p) = (
-                r.try_into().unwrap(),
-                v.try_into().unwrap(),
-                p.try_into().unwrap(),
-            );
-            d.body_velocity(r, v, p).to_vec()
-        },
-        momentum_rhs: &|r, v, p| {
-            let (r, v, p) = (
-                r.try_into().unwrap(),
-                v.try_into().unwrap(),
-                p.try_into().unwrap(),
-            );
-            d.momentum_rhs(r, v, p).to_vec()
-        },
-        input_term: &|q, u| {
-            let matrix = d.momentum_input_matrix(q.try_into().unwrap());
-            matrix
-                .iter()
-                .map(|row| row.iter().zip(u).map(|(a, b)| a * b).sum())
-                .collect()
-        },
-        acceleration: &|q, v, u| {
-            let (q, v, u) = (
-                q.try_into().unwrap(),
-                v.try_into().unwrap(),
-                u.try_into().unwrap(),
-            );
-            d.acceleration(q, v, u).0.to_vec()
-        },
-        shape_acceleration: &|r, v, p, u| {
-            let (r, v) = (r.try_into().unwrap(), v.try_into().unwrap());
-            let (p, u) = (p.try_into().unwrap(), u.try_into().unwrap());
-            d.shape_acceleration(r, v, p, u).to_vec()
-        },
-    };
+    let items = items!(d, 5, &[3, 4]);
     reconstruction_and_shape_equations(&items, 2, 2);
     reduced_reproduces_full(&items, &[0.7, -0.4], &[0.3, -0.2]);
 }
