@@ -24,8 +24,12 @@ pub mod snakeboard {
     //! individual constraint forces are not: only their combination along the
     //! common row is, and the `lambda` returned at exactly `phi = +-pi/2` is one
     //! split of it. The tool's basis of D (`tan(phi)`, `1/cos(phi)`) also
-    //! degenerates there, while the reduced form with the paper's momentum
-    //! basis stays regular (its `gbar` is constant).
+    //! degenerates there. The reduced equations with the paper's momentum
+    //! basis stay finite (its `gbar` is constant), but D gains a dimension
+    //! there, which the three momenta no longer span: the runtime's
+    //! regularity measure `det[A; V^T]` (`ReducedPortHamiltonian::regularity`)
+    //! vanishes and changes sign at `phi = +-pi/2`, and a simulation stops
+    //! there with `SimulationError::Singular`.
     chaplygin::model! {
         /// Snakeboard with J = Jt + m r^2 (Duindam & Stramigioli 2004).
         pub struct Snakeboard {

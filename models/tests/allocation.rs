@@ -5,8 +5,9 @@
 
 mod common;
 
-use chaplygin::runtime::integrate::{DormandPrince, FixedStep, Midpoint, Rk4};
-use chaplygin::runtime::system::{Dalembert, Reduced};
+use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4};
+use chaplygin::runtime::system::{Dalembert, Reduced, ReducedPortHamiltonian};
+use chaplygin_models::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin_models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
     snakeboard::Snakeboard,
@@ -199,6 +200,15 @@ fn integrator_steps_do_not_allocate() {
         [0.1, -0.2, 0.3, 0.0, 0.3, 1.0, 0.5, 0.025],
         [0.1, -0.2, 0.3, 0.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0],
     );
+    let closed_loop = ClosedLoop::new(
+        board,
+        EnergyController {
+            a: 1.0,
+            kt: 2.0,
+            kw: 1.0,
+        },
+    );
+    let mut z = closed_loop_state(&[0.0, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0], 1.0, 0.5);
     let counted = allocations(|| {
         for i in 0..10_000 {
             let t = i as f64 * 1e-3;
@@ -207,6 +217,14 @@ fn integrator_steps_do_not_allocate() {
                 .step(&reduced, t, black_box(&x), 1e-3)
                 .unwrap();
             y = Rk4.step(&dalembert, t, black_box(&y), 1e-3).unwrap();
+            z = Midpoint::default()
+                .step(&closed_loop, t, black_box(&z), 1e-3)
+                .unwrap();
+            z = DiscreteGradient::default()
+                .step(&closed_loop, t, black_box(&z), 1e-3)
+                .unwrap();
+            black_box(board.regularity(black_box(&x)));
+            black_box(board.constraint_violation(black_box(&x)));
         }
         x = tight
             .integrate(&reduced, (0.0, black_box(x)), 1.0)
@@ -214,5 +232,8 @@ fn integrator_steps_do_not_allocate() {
             .x;
     });
     assert_eq!(counted, 0);
-    assert!(x.iter().chain(&y).all(|v| v.is_finite()), "{x:?} {y:?}");
+    assert!(
+        x.iter().chain(&y).chain(&z).all(|v| v.is_finite()),
+        "{x:?} {y:?} {z:?}"
+    );
 }

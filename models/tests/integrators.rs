@@ -11,7 +11,9 @@
 
 use chaplygin::runtime::integrate::{DormandPrince, FixedStep, Midpoint, Rk4, integrate_fixed};
 use chaplygin::runtime::system::{Dalembert, Energy, Jacobian, OdeSystem, Reduced};
-use chaplygin_models::energy_control::{CLOSED_LOOP_STATE, ClosedLoop, EnergyController};
+use chaplygin_models::energy_control::{
+    CLOSED_LOOP_STATE, ClosedLoop, EnergyController, closed_loop_state, wheel_energy,
+};
 use chaplygin_models::{sleigh::Sleigh, snakeboard::Snakeboard};
 
 const N: usize = Snakeboard::N;
@@ -27,7 +29,7 @@ const D: usize = CLOSED_LOOP_STATE;
 
 /// The closed loop of MATH.md 3.2 with the default board.
 const CLOSED_LOOP: ClosedLoop = ClosedLoop {
-    board: Snakeboard {
+    plant: Snakeboard {
         m: 1.0,
         r: 0.5,
         jt: 0.3,
@@ -82,7 +84,7 @@ fn energy_drift<M: FixedStep<ClosedLoop, D>>(method: &M, h: f64, steps: usize) -
 
 #[test]
 fn midpoint_keeps_the_closed_loop_energy_where_rk4_drifts() {
-    assert_eq!(CLOSED_LOOP.board, Snakeboard::default());
+    assert_eq!(CLOSED_LOOP.plant, Snakeboard::default());
     let (h, steps) = (0.01, 100_000);
     let (midpoint, alpha1) = energy_drift(&Midpoint::default(), h, steps);
     let (rk4, _) = energy_drift(&Rk4, h, steps);
@@ -94,7 +96,7 @@ fn midpoint_keeps_the_closed_loop_energy_where_rk4_drifts() {
     assert!(rk4 >= 1e4 * midpoint, "{rk4:e}");
     // the state builder places the springs after the board's state
     assert_eq!(
-        ClosedLoop::state(&[0.0, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0], 1.0, 0.5),
+        closed_loop_state(&[0.0, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0], 1.0, 0.5),
         AT_REST
     );
     // alpha1dot = (a kt / r) sin(phi)^2 xt >= 0 while xt > 0 (MATH.md 3.2)
@@ -194,11 +196,11 @@ fn the_sleigh_tends_to_a_straight_line_at_the_speed_its_energy_allows() {
 /// torso spring's energy `kt xt^2/2` does flow into `alpha1`.
 #[test]
 fn the_wheel_pair_keeps_its_own_energy() {
-    let wheels0 = CLOSED_LOOP.wheel_energy(&AT_REST);
+    let wheels0 = wheel_energy(&CLOSED_LOOP, &AT_REST);
     let (mut worst, mut torso_spring_change) = (0.0f64, 0.0f64);
     let torso0 = 2.0 * AT_REST[S] * AT_REST[S] / 2.0;
     let observe = |_t: f64, z: &[f64; D]| {
-        worst = worst.max((CLOSED_LOOP.wheel_energy(z) - wheels0).abs() / wheels0);
+        worst = worst.max((wheel_energy(&CLOSED_LOOP, z) - wheels0).abs() / wheels0);
         torso_spring_change = torso_spring_change.max((2.0 * z[S] * z[S] / 2.0 - torso0).abs());
     };
     integrate_fixed(

@@ -3,15 +3,25 @@
 //! - [`system`]: the traits a generated model implements
 //!   ([`system::ReducedPortHamiltonian`], [`system::LagrangeDalembert`]) and
 //!   adapters turning a model and its input into an [`system::OdeSystem`];
+//! - [`control`]: controllers, plain (`u = f(t, x)`) and port-Hamiltonian
+//!   (with their own state and energy, interconnected power-conservingly);
 //! - [`integrate`]: integrators over any [`system::OdeSystem`] (RK4,
-//!   Dormand-Prince 5(4), the implicit midpoint rule);
+//!   Dormand-Prince 5(4), the implicit midpoint rule, Gonzalez's discrete
+//!   gradient);
+//! - [`monitor`]: where a formulation degenerates;
+//! - [`simulate`]: the simulation loop (integrator, span, step, regularity
+//!   checks, recording) and [`record`]: where its rows go (memory, CSV);
 //! - [`linalg`]: dense linear algebra on the stack;
 //! - [`phase`]: the group displacement over one period of a shape gait, split
 //!   into its geometric and dynamic parts.
 
+pub mod control;
 pub mod integrate;
 pub mod linalg;
+pub mod monitor;
 pub mod phase;
+pub mod record;
+pub mod simulate;
 pub mod system;
 
 pub use integrate::Error;

@@ -75,6 +75,53 @@ fn back_substitute<const M: usize>(a: &[[f64; M]; M], b: &mut [f64; M]) {
     }
 }
 
+/// The determinant of `a` by Gaussian elimination with partial pivoting:
+/// the product of the pivots, with the sign of the row permutation.
+///
+/// ```
+/// use chaplygin_runtime::linalg::determinant;
+/// assert_eq!(determinant([[0.0, 2.0], [3.0, 1.0]]), -6.0);
+/// assert_eq!(determinant([[1.0, 2.0], [2.0, 4.0]]), 0.0);
+/// ```
+pub fn determinant<const M: usize>(mut a: [[f64; M]; M]) -> f64 {
+    let mut product = 1.0;
+    let mut b = [0.0; M];
+    for k in 0..M {
+        let pivot_row = largest_below(&a, k);
+        if pivot_row != k {
+            a.swap(k, pivot_row);
+            product = -product;
+        }
+        if a[k][k] == 0.0 {
+            return 0.0;
+        }
+        product *= a[k][k];
+        eliminate_below(&mut a, &mut b, k);
+    }
+    product
+}
+
+/// The Jacobian `df/dx` of `f: R^D -> R^R` at `x` by central differences,
+/// with the step `eps^(1/3) max(1, |x_j|)` (error of order `eps^(2/3)`
+/// relative: about 4e-11 for smooth `f`).
+pub fn central_difference_jacobian<const D: usize, const R: usize>(
+    f: impl Fn(&[f64; D]) -> [f64; R],
+    x: &[f64; D],
+) -> [[f64; D]; R] {
+    let mut jacobian = [[0.0; D]; R];
+    for j in 0..D {
+        let step = f64::EPSILON.cbrt() * x[j].abs().max(1.0);
+        let (mut plus, mut minus) = (*x, *x);
+        plus[j] += step;
+        minus[j] -= step;
+        let (f_plus, f_minus) = (f(&plus), f(&minus));
+        for (row, (up, down)) in jacobian.iter_mut().zip(f_plus.iter().zip(&f_minus)) {
+            row[j] = (up - down) / (plus[j] - minus[j]);
+        }
+    }
+    jacobian
+}
+
 #[cfg(test)]
 mod tests {
     use super::solve;

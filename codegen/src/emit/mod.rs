@@ -173,6 +173,8 @@ fn constants(model: &Model) -> TokenStream {
     let (inputs_type, inputs) = names(model.inputs.iter().map(|i| i.name.as_str()).collect());
     let (constraints_type, constraints) =
         names(model.constraints.iter().map(|c| c.name.as_str()).collect());
+    let momentum_names = crate::derive::port_hamiltonian::momentum_names(model);
+    let (momenta_type, momenta) = names(momentum_names.iter().map(String::as_str).collect());
     let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
     let s = n + k;
     quote! {
@@ -184,6 +186,9 @@ fn constants(model: &Model) -> TokenStream {
         pub const INPUTS: #inputs_type = #inputs;
         /// The constraints, in declared order.
         pub const CONSTRAINTS: #constraints_type = #constraints;
+        /// The momenta `alpha` of the reduced state `x = (q, alpha)`: the
+        /// declared momentum basis's row names, else `alpha1, ..., alphak`.
+        pub const MOMENTA: #momenta_type = #momenta;
         /// Number of coordinates `n`.
         pub const N: ::core::primitive::usize = #n;
         /// Number of constraints `c`.

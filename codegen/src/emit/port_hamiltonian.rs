@@ -12,6 +12,7 @@
 //! reduced_rhs(x, u)             xdot = Jbar dHbar/dx + Bbar u
 //! reduced_rhs_jacobian(x, u)    d xdot / dx
 //! output(x)                     y = Bbar^T dHbar/dx
+//! output_jacobian(x)            dy/dx
 //! ```
 //!
 //! Where an output is a product of derived matrices, two forms are lowered:
@@ -35,13 +36,13 @@ use crate::sym::{ExprId, Matrix, Rational, RationalFunction, SymbolId};
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 
-/// The nine functions, in the order they are documented, and the report's
+/// The ten functions, in the order they are documented, and the report's
 /// section on the reduced form.
 pub(super) fn functions(model: &mut Model) -> Result<(Vec<Function>, Section), Diagnostics> {
     let basis = distribution_basis(model).map_err(|e| internal(model, e))?;
     let reduced = derive(model, &basis).map_err(|e| internal(model, e))?;
     let section = report_section(model, &reduced);
-    let emitters: [Emitter; 9] = [
+    let emitters: [Emitter; 10] = [
         momenta,
         velocities_of_momenta,
         hamiltonian,
@@ -51,6 +52,7 @@ pub(super) fn functions(model: &mut Model) -> Result<(Vec<Function>, Section), D
         reduced_rhs,
         reduced_rhs_jacobian,
         output,
+        output_jacobian,
     ];
     let functions = emitters
         .iter()
@@ -488,15 +490,20 @@ fn reduced_rhs_jacobian(
     })
 }
 
-fn output(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
-    let p = reduced.output.len();
+/// The two forms of `y`: structured `Bbar^T dHbar/dx`, and expanded.
+fn output_forms(model: &mut Model, reduced: &PortHamiltonian) -> [Vec<ExprId>; 2] {
     let gradient = expressions_of(model, &reduced.gradient);
     let transposed = reduced.input_matrix.transpose();
-    let arguments = vec![state_argument(model, reduced)];
-    let candidates = vec![
+    [
         structured_product(model, &transposed, &gradient),
         expressions_of(model, &reduced.output),
-    ];
+    ]
+}
+
+fn output(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+    let p = reduced.output.len();
+    let arguments = vec![state_argument(model, reduced)];
+    let candidates = output_forms(model, reduced).to_vec();
     let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "output",
@@ -509,6 +516,35 @@ fn output(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diag
         returns: vector_type(p),
     };
     item(model, signature, &outputs, vector_literal)
+}
+
+fn output_jacobian(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+    let (p, s) = (reduced.output.len(), reduced.rhs.len());
+    let state = reduced.state(model);
+    let candidates = output_forms(model, reduced)
+        .iter()
+        .map(|form| {
+            form.iter()
+                .flat_map(|&y| state.iter().map(move |&x| (y, x)))
+                .map(|(y, x)| model.store.derivative(y, x))
+                .collect()
+        })
+        .collect();
+    let arguments = vec![state_argument(model, reduced)];
+    let outputs = cheapest(model, &arguments, candidates)?;
+    let signature = Signature {
+        name: "output_jacobian",
+        doc: format!(
+            "The Jacobian `dy/dx` of `output` at the state {}, derived symbolically: row i \
+             holds the derivatives of `y_i`.",
+            state_names(model, reduced)
+        ),
+        arguments,
+        returns: matrix_type(p, s),
+    };
+    item(model, signature, &outputs, |values| {
+        rows_literal(values, p, s)
+    })
 }
 
 #[cfg(test)]
@@ -614,6 +650,7 @@ mod tests {
                 "pubfnreduced_rhs_jacobian(&self,x:&[{f64};8usize],u:&[{f64};2usize])->[[{f64};8usize];8usize]"
             ),
             format!("pubfnoutput(&self,x:&[{f64};8usize])->[{f64};2usize]"),
+            format!("pubfnoutput_jacobian(&self,x:&[{f64};8usize])->[[{f64};8usize];2usize]"),
         ];
         assert_eq!(items.len(), expected.len());
         for (item, signature) in items.iter().zip(&expected) {

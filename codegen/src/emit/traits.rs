@@ -1,20 +1,28 @@
 //! Implementations of the runtime's formulation traits
-//! (`::chaplygin::runtime::system::ReducedPortHamiltonian` and
-//! `LagrangeDalembert`) for the generated struct, so that every integrator of
-//! the runtime runs on it. Each method forwards to the inherent item of the
-//! same name (inherent items take precedence in `Type::item` paths).
+//! (`::chaplygin::runtime::system::ReducedPortHamiltonian`,
+//! `LagrangeDalembert` and `ModelNames`) for the generated struct, so that
+//! every integrator of the runtime runs on it. Each method forwards to the
+//! inherent item of the same name (inherent items take precedence in
+//! `Type::item` paths); the regularity measures call
+//! `::chaplygin::runtime::monitor` with the model's sizes.
 
 use super::f64_type;
 use crate::model::Model;
 use proc_macro2::TokenStream;
 use quote::quote;
 
-/// The two trait impls of `model`'s struct.
+/// The runtime trait impls of `model`'s struct.
 pub(crate) fn implementations(model: &Model) -> TokenStream {
     let name = &model.name;
     let f64 = f64_type();
-    let (n, c, p) = (model.n(), model.c(), model.p());
-    let s = n + model.k();
+    let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
+    let s = n + k;
+    let velocities_of_state = quote! {{
+        let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
+        let alpha: [#f64; #k] = ::core::array::from_fn(|i| x[#n + i]);
+        let qdot = #name::velocities(self, &q, &alpha);
+        (q, qdot)
+    }};
     let system = quote!(::chaplygin::runtime::system);
     quote! {
         impl #system::ReducedPortHamiltonian<#s, #p> for #name {
@@ -30,9 +38,42 @@ pub(crate) fn implementations(model: &Model) -> TokenStream {
             fn hamiltonian_gradient(&self, x: &[#f64; #s]) -> [#f64; #s] {
                 #name::hamiltonian_gradient(self, x)
             }
+            fn structure_matrix(&self, x: &[#f64; #s]) -> [[#f64; #s]; #s] {
+                #name::structure_matrix(self, x)
+            }
+            fn input_matrix(&self, x: &[#f64; #s]) -> [[#f64; #p]; #s] {
+                #name::input_matrix(self, x)
+            }
             fn output(&self, x: &[#f64; #s]) -> [#f64; #p] {
                 #name::output(self, x)
             }
+            fn output_jacobian(&self, x: &[#f64; #s]) -> [[#f64; #s]; #p] {
+                #name::output_jacobian(self, x)
+            }
+            fn constraint_violation(&self, x: &[#f64; #s]) -> #f64 {
+                let (q, qdot) = #velocities_of_state;
+                #name::constraint_residual(self, &q, &qdot)
+                    .iter()
+                    .fold(0.0, |worst: #f64, r| worst.max(r.abs()))
+            }
+            fn regularity(&self, x: &[#f64; #s]) -> #f64 {
+                let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
+                let basis: [[#f64; #n]; #k] = ::core::array::from_fn(|j| {
+                    let unit: [#f64; #k] = ::core::array::from_fn(|i| #f64::from(i == j));
+                    #name::velocities(self, &q, &unit)
+                });
+                ::chaplygin::runtime::monitor::reduced_regularity(
+                    &#name::constraint_matrix(self, &q),
+                    &basis,
+                )
+            }
+        }
+
+        impl #system::ModelNames for #name {
+            const COORDINATES: &'static [&'static ::core::primitive::str] = &#name::COORDINATES;
+            const MOMENTA: &'static [&'static ::core::primitive::str] = &#name::MOMENTA;
+            const INPUTS: &'static [&'static ::core::primitive::str] = &#name::INPUTS;
+            const CONSTRAINTS: &'static [&'static ::core::primitive::str] = &#name::CONSTRAINTS;
         }
 
         impl #system::LagrangeDalembert<#n, #c, #p> for #name {
@@ -49,6 +90,12 @@ pub(crate) fn implementations(model: &Model) -> TokenStream {
             }
             fn constraint_residual(&self, q: &[#f64; #n], qdot: &[#f64; #n]) -> [#f64; #c] {
                 #name::constraint_residual(self, q, qdot)
+            }
+            fn constraint_regularity(&self, q: &[#f64; #n]) -> #f64 {
+                ::chaplygin::runtime::monitor::constraint_regularity(
+                    &#name::mass_matrix(self, q),
+                    &#name::constraint_matrix(self, q),
+                )
             }
         }
     }

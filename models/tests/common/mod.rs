@@ -27,6 +27,7 @@ pub trait Reduced {
     fn reduced_rhs(&self, x: &[f64], u: &[f64]) -> Vec<f64>;
     fn reduced_rhs_jacobian(&self, x: &[f64], u: &[f64]) -> Vec<Vec<f64>>;
     fn output(&self, x: &[f64]) -> Vec<f64>;
+    fn output_jacobian(&self, x: &[f64]) -> Vec<Vec<f64>>;
 }
 
 /// Implements [`Reduced`] for a generated model by forwarding to its items.
@@ -77,6 +78,12 @@ macro_rules! reduced_model {
             }
             fn output(&self, x: &[f64]) -> Vec<f64> {
                 <$model>::output(self, x.try_into().unwrap()).to_vec()
+            }
+            fn output_jacobian(&self, x: &[f64]) -> Vec<Vec<f64>> {
+                <$model>::output_jacobian(self, x.try_into().unwrap())
+                    .iter()
+                    .map(|r| r.to_vec())
+                    .collect()
             }
         }
     };
@@ -153,6 +160,7 @@ pub fn check_reduced_model<M: Reduced>(
         power_balance_holds(model, &s);
         gradient_matches_central_differences(model, &s);
         jacobian_matches_central_differences(model, &s);
+        output_jacobian_matches_central_differences(model, &s);
     }
 }
 
@@ -229,14 +237,24 @@ pub fn gradient_matches_central_differences<M: Reduced>(model: &M, s: &Sample) {
 pub fn jacobian_matches_central_differences<M: Reduced>(model: &M, s: &Sample) {
     let jacobian = model.reduced_rhs_jacobian(&s.x, &s.u);
     let rhs = |x: &[f64]| model.reduced_rhs(x, &s.u);
-    let scale = max_abs(&model.reduced_rhs(&s.x, &s.u)).max(1.0);
-    for j in 0..s.x.len() {
-        let numeric = central_difference(&rhs, &s.x, j);
-        for (i, (value, row)) in numeric.iter().zip(&jacobian).enumerate() {
+    check_jacobian("xdot", &jacobian, &rhs, &s.x);
+}
+
+pub fn output_jacobian_matches_central_differences<M: Reduced>(model: &M, s: &Sample) {
+    let jacobian = model.output_jacobian(&s.x);
+    check_jacobian("y", &jacobian, &|x: &[f64]| model.output(x), &s.x);
+}
+
+/// Each column of `jacobian` against central differences of `f` at `x`.
+fn check_jacobian(name: &str, jacobian: &[Vec<f64>], f: &dyn Fn(&[f64]) -> Vec<f64>, x: &[f64]) {
+    let scale = max_abs(&f(x)).max(1.0);
+    for j in 0..x.len() {
+        let numeric = central_difference(f, x, j);
+        for (i, (value, row)) in numeric.iter().zip(jacobian).enumerate() {
             let tolerance = 1e-6 * (row[j].abs() + scale);
             assert!(
                 (value - row[j]).abs() <= tolerance,
-                "d xdot[{i}]/dx[{j}] {} vs {value}",
+                "d {name}[{i}]/dx[{j}] {} vs {value}",
                 row[j]
             );
         }

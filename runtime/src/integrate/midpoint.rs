@@ -18,8 +18,8 @@
 //! reduced port-Hamiltonian form with zero input and a constant metric, e.g.
 //! the snakeboard in the paper's momentum basis.)
 
-use super::{Error, FixedStep, finite, max_norm};
-use crate::linalg::solve;
+use super::newton::{Settings, identity_minus, solve_root};
+use super::{Error, FixedStep, finite, newton_failure};
 use crate::system::Jacobian;
 
 /// The implicit midpoint rule with its Newton iteration's settings.
@@ -47,47 +47,17 @@ impl<S: Jacobian<D>, const D: usize> FixedStep<S, D> for Midpoint {
     fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error> {
         let (tm, half) = (t + h / 2.0, h / 2.0);
         let euler = system.rhs(t, x);
-        let mut m: [f64; D] = core::array::from_fn(|i| x[i] + half * euler[i]);
-        let (mut update, mut iterations) = (f64::INFINITY, 0);
-        while iterations < self.max_iterations {
-            iterations += 1;
-            let delta = newton_update(system, tm, half, x, &m);
-            update = max_norm(&delta);
-            for (mi, di) in m.iter_mut().zip(delta) {
-                *mi -= di;
-            }
-            if update <= self.tolerance * max_norm(&m).max(1.0) {
-                return finite(t + h, core::array::from_fn(|i| 2.0 * m[i] - x[i]));
-            }
-            if !update.is_finite() {
-                break;
-            }
-        }
-        Err(Error::NewtonFailure {
-            t,
-            h,
-            iterations,
-            update,
-            state: x.to_vec(),
+        let start: [f64; D] = core::array::from_fn(|i| x[i] + half * euler[i]);
+        let settings = Settings {
+            tolerance: self.tolerance,
+            max_iterations: self.max_iterations,
+        };
+        let midpoint = solve_root(start, settings, |m| {
+            let f = system.rhs(tm, m);
+            let g = core::array::from_fn(|i| m[i] - x[i] - half * f[i]);
+            (g, identity_minus(half, system.jacobian(tm, m)))
         })
+        .map_err(|diverged| newton_failure(diverged, t, h, x))?;
+        finite(t + h, core::array::from_fn(|i| 2.0 * midpoint[i] - x[i]))
     }
-}
-
-/// The Newton update `(I - half df/dx)^-1 g(m)`, `g(m) = m - x - half f(tm, m)`.
-fn newton_update<S: Jacobian<D>, const D: usize>(
-    system: &S,
-    tm: f64,
-    half: f64,
-    x: &[f64; D],
-    m: &[f64; D],
-) -> [f64; D] {
-    let f = system.rhs(tm, m);
-    let g = core::array::from_fn(|i| m[i] - x[i] - half * f[i]);
-    let mut dg = system.jacobian(tm, m);
-    for (i, row) in dg.iter_mut().enumerate() {
-        for (j, entry) in row.iter_mut().enumerate() {
-            *entry = f64::from(u8::from(i == j)) - half * *entry;
-        }
-    }
-    solve(dg, g)
 }

@@ -5,15 +5,19 @@
 //! | classical Runge-Kutta | [`rk4`] | 4 | linear invariants |
 //! | Dormand-Prince 5(4), adaptive, dense output of order 4 | [`dormand_prince`] | 5 | linear invariants |
 //! | implicit midpoint, Newton | [`midpoint`] | 2 | quadratic invariants; `H` of `xdot = J(x) dH/dx` for quadratic `H`, skew `J` |
+//! | Gonzalez discrete gradient, Newton | [`discrete_gradient`] | 2 | `H` of `xdot = J(x) dH/dx` for any `H`, skew `J`; the power balance `H(X) - H(x) = h dH . F` with forcing |
 //!
 //! Fixed-step methods implement [`FixedStep`] and run with
 //! [`integrate_fixed`]. Steps work on fixed-size arrays on the stack and do
 //! not allocate; only a returned [`Error`] allocates (a copy of the state).
 
+pub mod discrete_gradient;
 pub mod dormand_prince;
 pub mod midpoint;
+mod newton;
 pub mod rk4;
 
+pub use discrete_gradient::DiscreteGradient;
 pub use dormand_prince::{DenseStep, DormandPrince};
 pub use midpoint::Midpoint;
 pub use rk4::Rk4;
@@ -104,6 +108,22 @@ where
         observe(t + h, &x);
     }
     Ok(x)
+}
+
+/// [`Error::NewtonFailure`] for the step of size `h` from `x` at `t`.
+pub(crate) fn newton_failure<const D: usize>(
+    diverged: newton::Diverged,
+    t: f64,
+    h: f64,
+    x: &[f64; D],
+) -> Error {
+    Error::NewtonFailure {
+        t,
+        h,
+        iterations: diverged.iterations,
+        update: diverged.update,
+        state: x.to_vec(),
+    }
 }
 
 /// `x` itself when all its entries are finite, else [`Error::NonFinite`].

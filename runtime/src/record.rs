@@ -1,0 +1,132 @@
+//! Recording a simulation: a header of column names, then one row of numbers
+//! per recorded time, in the layout of the `chaplygin simulate` command's
+//! `trajectory.csv`: `t`, the coordinates by name, the rest of the state by
+//! name (`dot(q)`, the momenta, controller states), the inputs by name,
+//! `energy` (the total stored energy, controller included) and
+//! `constraint_residual` (the largest `|A(q) qdot|`).
+//!
+//! A [`Table`] keeps the rows in memory; a [`CsvRecorder`] writes them as CSV
+//! (numbers printed as the shortest decimal that reads back to the same
+//! `f64`, so the same run writes the same bytes).
+
+use std::io;
+
+/// Where a simulation's rows go.
+pub trait Recorder {
+    /// Called once, first, with the column names.
+    ///
+    /// # Errors
+    /// An I/O error of the destination.
+    fn start(&mut self, columns: &[String]) -> io::Result<()>;
+
+    /// One row, as many values as there are columns.
+    ///
+    /// # Errors
+    /// An I/O error of the destination.
+    fn record(&mut self, row: &[f64]) -> io::Result<()>;
+
+    /// Called once at the end, also when the simulation stops with an
+    /// error, so that what was recorded is complete and flushed.
+    ///
+    /// # Errors
+    /// An I/O error of the destination.
+    fn finish(&mut self) -> io::Result<()>;
+}
+
+/// Rows kept in memory.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Table {
+    /// The column names.
+    pub columns: Vec<String>,
+    /// The rows, each with one value per column.
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl Table {
+    /// An empty table.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The values of the column called `name`, if there is one.
+    pub fn column(&self, name: &str) -> Option<Vec<f64>> {
+        let index = self.columns.iter().position(|c| c == name)?;
+        Some(self.rows.iter().map(|row| row[index]).collect())
+    }
+}
+
+impl Recorder for Table {
+    fn start(&mut self, columns: &[String]) -> io::Result<()> {
+        self.columns = columns.to_vec();
+        self.rows.clear();
+        Ok(())
+    }
+
+    fn record(&mut self, row: &[f64]) -> io::Result<()> {
+        self.rows.push(row.to_vec());
+        Ok(())
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Rows written as CSV with a header row.
+#[derive(Debug)]
+pub struct CsvRecorder<W: io::Write> {
+    writer: csv::Writer<W>,
+    field: String,
+}
+
+impl<W: io::Write> CsvRecorder<W> {
+    /// CSV into `destination`.
+    pub fn new(destination: W) -> Self {
+        Self {
+            writer: csv::Writer::from_writer(destination),
+            field: String::new(),
+        }
+    }
+
+    /// The destination, after flushing what was written.
+    ///
+    /// # Errors
+    /// When flushing fails.
+    pub fn into_inner(self) -> io::Result<W> {
+        self.writer
+            .into_inner()
+            .map_err(|error| io::Error::other(error.to_string()))
+    }
+}
+
+impl CsvRecorder<io::BufWriter<std::fs::File>> {
+    /// CSV into a new file at `path` (replacing one that is there).
+    ///
+    /// # Errors
+    /// When the file cannot be created.
+    pub fn create(path: impl AsRef<std::path::Path>) -> io::Result<Self> {
+        Ok(Self::new(io::BufWriter::new(std::fs::File::create(path)?)))
+    }
+}
+
+impl<W: io::Write> Recorder for CsvRecorder<W> {
+    fn start(&mut self, columns: &[String]) -> io::Result<()> {
+        self.writer.write_record(columns).map_err(io::Error::from)
+    }
+
+    fn record(&mut self, row: &[f64]) -> io::Result<()> {
+        use std::fmt::Write;
+        for value in row {
+            self.field.clear();
+            write!(self.field, "{value}").map_err(io::Error::other)?;
+            self.writer.write_field(&self.field)?;
+        }
+        self.writer
+            .write_record(None::<&[u8]>)
+            .map_err(io::Error::from)
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        self.writer.flush()
+    }
+}
