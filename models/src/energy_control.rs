@@ -26,7 +26,7 @@
 //! [`Jacobian`]: chaplygin::runtime::system::Jacobian
 //! [`Energy`]: chaplygin::runtime::system::Energy
 
-use crate::snakeboard::Snakeboard;
+use super::snakeboard::Snakeboard;
 use chaplygin::runtime::control::{Interconnection, PortHamiltonianController};
 
 /// The reduced snakeboard's state size `s = n + k`.

@@ -92,6 +92,23 @@ pub trait LagrangeDalembert<const N: usize, const C: usize, const P: usize> {
     fn constraint_regularity(&self, q: &[f64; N]) -> f64;
 }
 
+/// The map between velocities and the reduced momenta `alpha` (MATH.md
+/// section 3): `N` coordinates, `K` momenta. Generated models implement it.
+pub trait Momenta<const N: usize, const K: usize> {
+    /// `alpha = P g qdot` of a velocity allowed by the constraints.
+    fn momenta(&self, q: &[f64; N], qdot: &[f64; N]) -> [f64; K];
+    /// `qdot = g^-1 h^T alpha`.
+    fn velocities(&self, q: &[f64; N], alpha: &[f64; K]) -> [f64; N];
+}
+
+/// A generated model's parameters, by name.
+pub trait Parameters {
+    /// The parameters, in declared order.
+    const PARAMETERS: &'static [&'static str];
+    /// The parameter called `name`, if there is one.
+    fn parameter_mut(&mut self, name: &str) -> Option<&mut f64>;
+}
+
 /// The names a generated model declares, in order.
 pub trait ModelNames {
     /// The coordinates `q`.

@@ -17,6 +17,14 @@ pub(crate) fn implementations(model: &Model) -> TokenStream {
     let f64 = f64_type();
     let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
     let s = n + k;
+    let parameter_names = model
+        .parameters
+        .iter()
+        .map(|p| p.variable.declared.name.as_str());
+    let parameter_fields = model
+        .parameters
+        .iter()
+        .map(|p| proc_macro2::Ident::new(&p.variable.declared.name, proc_macro2::Span::call_site()));
     let velocities_of_state = quote! {{
         let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
         let alpha: [#f64; #k] = ::core::array::from_fn(|i| x[#n + i]);
@@ -66,6 +74,28 @@ pub(crate) fn implementations(model: &Model) -> TokenStream {
                     &#name::constraint_matrix(self, &q),
                     &basis,
                 )
+            }
+        }
+
+        impl #system::Momenta<#n, #k> for #name {
+            fn momenta(&self, q: &[#f64; #n], qdot: &[#f64; #n]) -> [#f64; #k] {
+                #name::momenta(self, q, qdot)
+            }
+            fn velocities(&self, q: &[#f64; #n], alpha: &[#f64; #k]) -> [#f64; #n] {
+                #name::velocities(self, q, alpha)
+            }
+        }
+
+        impl #system::Parameters for #name {
+            const PARAMETERS: &'static [&'static ::core::primitive::str] = &#name::PARAMETERS;
+            fn parameter_mut(
+                &mut self,
+                name: &::core::primitive::str,
+            ) -> ::core::option::Option<&mut #f64> {
+                match name {
+                    #(#parameter_names => ::core::option::Option::Some(&mut self.#parameter_fields),)*
+                    _ => ::core::option::Option::None,
+                }
             }
         }
 
