@@ -52,11 +52,11 @@ pub trait Observed<const D: usize>: Energy<D> {
 }
 
 /// The reduced form's measure (see [`crate::monitor::reduced_regularity`]).
-const REDUCED: &str = "reduced form's det[A; V^T] (constraint rows and momentum basis)";
+pub const REDUCED: &str = "reduced form's det[A; V^T] (constraint rows and momentum basis)";
 
 /// The Lagrange-d'Alembert form's measure (see
 /// [`crate::monitor::constraint_regularity`]).
-const MULTIPLIERS: &str = "multiplier system's Gram matrix A g^-1 A^T";
+pub const MULTIPLIERS: &str = "multiplier system's Gram matrix A g^-1 A^T";
 
 fn owned(names: &[&str]) -> Vec<String> {
     names.iter().map(|name| name.to_string()).collect()

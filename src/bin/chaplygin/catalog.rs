@@ -1,0 +1,195 @@
+//! The built-in models: their names, sources, default motions, and the
+//! listing of `chaplygin list`.
+
+use crate::models::{
+    differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
+    snakeboard::Snakeboard,
+};
+
+/// Which compiled model a built-in name stands for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Compiled {
+    /// [`Snakeboard`].
+    Snakeboard,
+    /// [`Sleigh`].
+    Sleigh,
+    /// [`RollingDisk`].
+    RollingDisk,
+    /// [`DifferentialDrive`].
+    DifferentialDrive,
+}
+
+/// A built-in model.
+#[derive(Clone, Copy, Debug)]
+pub struct BuiltIn {
+    /// Its name on the command line.
+    pub name: &'static str,
+    /// What it is.
+    pub about: &'static str,
+    /// Its model-language source.
+    pub source: &'static str,
+    /// The compiled model.
+    pub compiled: Compiled,
+    /// The default configuration.
+    pub q: &'static [f64],
+    /// The default momenta `alpha` (the default motion is
+    /// `velocities(q, alpha)`).
+    pub alpha: &'static [f64],
+}
+
+/// The built-in models.
+pub const BUILT_IN: [BuiltIn; 4] = [
+    BuiltIn {
+        name: "snakeboard",
+        about: "snakeboard of Duindam & Stramigioli (2004), paper's momentum basis",
+        source: include_str!("../../../models/snakeboard.model"),
+        compiled: Compiled::Snakeboard,
+        q: &[0.0, 0.0, 0.0, 0.0, 0.3],
+        alpha: &[1.0, 0.5, 0.025],
+    },
+    BuiltIn {
+        name: "sleigh",
+        about: "Chaplygin sleigh: a knife edge with the centre of mass ahead of it",
+        source: include_str!("../../../models/sleigh.model"),
+        compiled: Compiled::Sleigh,
+        q: &[0.0, 0.0, -0.5],
+        alpha: &[1.0, 0.5],
+    },
+    BuiltIn {
+        name: "rolling-disk",
+        about: "vertical disk rolling without slipping (Bloch 2003, chapter 1)",
+        source: include_str!("../../../models/rolling_disk.model"),
+        compiled: Compiled::RollingDisk,
+        q: &[0.0, 0.0, 0.0, 0.0],
+        alpha: &[0.5, 0.2],
+    },
+    BuiltIn {
+        name: "differential-drive",
+        about: "two-wheeled differential-drive robot",
+        source: include_str!("../../../models/differential_drive.model"),
+        compiled: Compiled::DifferentialDrive,
+        q: &[0.0, 0.0, 0.0, 0.0, 0.0],
+        alpha: &[0.2, 0.1],
+    },
+];
+
+/// The built-in model called `name`.
+pub fn built_in(name: &str) -> Option<&'static BuiltIn> {
+    BUILT_IN.iter().find(|model| model.name == name)
+}
+
+/// The names of the built-in models, comma-separated.
+pub fn names() -> String {
+    let names: Vec<&str> = BUILT_IN.iter().map(|model| model.name).collect();
+    names.join(", ")
+}
+
+/// The classification line of a derivation report.
+fn classification(report: &str) -> &str {
+    report
+        .lines()
+        .find_map(|line| line.trim().strip_prefix("classification: "))
+        .unwrap_or("unknown")
+}
+
+/// Sizes `(n, c, k, p)` and the report of a compiled model.
+fn facts(compiled: Compiled) -> ([usize; 4], &'static str) {
+    match compiled {
+        Compiled::Snakeboard => (
+            [Snakeboard::N, Snakeboard::C, Snakeboard::K, Snakeboard::P],
+            Snakeboard::REPORT,
+        ),
+        Compiled::Sleigh => ([Sleigh::N, Sleigh::C, Sleigh::K, Sleigh::P], Sleigh::REPORT),
+        Compiled::RollingDisk => (
+            [RollingDisk::N, RollingDisk::C, RollingDisk::K, RollingDisk::P],
+            RollingDisk::REPORT,
+        ),
+        Compiled::DifferentialDrive => (
+            [
+                DifferentialDrive::N,
+                DifferentialDrive::C,
+                DifferentialDrive::K,
+                DifferentialDrive::P,
+            ],
+            DifferentialDrive::REPORT,
+        ),
+    }
+}
+
+/// The table printed by `chaplygin list`.
+pub fn listing() -> String {
+    let mut text = format!(
+        "{:<20} {:>2} {:>2} {:>2} {:>2}  {:<30} {}\n",
+        "model", "n", "c", "k", "p", "classification", "about"
+    );
+    for model in &BUILT_IN {
+        let ([n, c, k, p], report) = facts(model.compiled);
+        text.push_str(&format!(
+            "{:<20} {n:>2} {c:>2} {k:>2} {p:>2}  {:<30} {}\n",
+            model.name,
+            classification(report),
+            model.about
+        ));
+    }
+    text
+}
+
+/// What MODEL on the command line names.
+pub enum Source {
+    /// A built-in model.
+    BuiltIn(&'static BuiltIn),
+    /// A `.model` file and its text.
+    File {
+        /// The path as given.
+        path: String,
+        /// The file's text.
+        text: String,
+    },
+}
+
+/// MODEL is neither a built-in model nor a readable file.
+#[derive(Debug, thiserror::Error)]
+#[error("unknown model `{name}`: not a built-in model ({known}) nor a readable .model file")]
+pub struct UnknownModel {
+    /// What was given.
+    pub name: String,
+    /// The built-in names.
+    pub known: String,
+}
+
+/// The built-in model called `model`, else the file at that path.
+///
+/// # Errors
+/// [`UnknownModel`] when it is neither.
+pub fn lookup(model: &str) -> Result<Source, UnknownModel> {
+    if let Some(built_in) = built_in(model) {
+        return Ok(Source::BuiltIn(built_in));
+    }
+    std::fs::read_to_string(model)
+        .map(|text| Source::File {
+            path: model.to_string(),
+            text,
+        })
+        .map_err(|_| UnknownModel {
+            name: model.to_string(),
+            known: names(),
+        })
+}
+
+impl Source {
+    /// The model-language text.
+    pub fn text(&self) -> &str {
+        match self {
+            Source::BuiltIn(built_in) => built_in.source,
+            Source::File { text, .. } => text,
+        }
+    }
+
+    /// The name errors are reported against (`file:line:col`).
+    pub fn file_name(&self) -> String {
+        match self {
+            Source::BuiltIn(built_in) => format!("{}.model", built_in.name),
+            Source::File { path, .. } => path.clone(),
+        }
+    }
+}

@@ -1,0 +1,219 @@
+//! One formulation of one model, closed by its controller, seen through
+//! slices, so that compiled models and models interpreted from a `.model`
+//! file run through the same simulation loop.
+//!
+//! [`Formulation`] is the object-safe view; [`Typed`] gives it to any
+//! fixed-size runtime system; [`Sized`] turns it back into a fixed-size
+//! runtime system of dimension `D`, chosen at run time by [`with_dimension!`].
+
+use chaplygin::runtime::simulate::{Observed, Regularity};
+use chaplygin::runtime::system::{Energy, Jacobian, OdeSystem, Structured};
+
+/// A closed system `xdot = f(t, x)` with what the simulation loop observes.
+pub trait Formulation {
+    /// The names of the state's entries (their number is the dimension).
+    fn state_names(&self) -> Vec<String>;
+    /// The names of the inputs.
+    fn input_names(&self) -> Vec<String>;
+    /// `f(t, x)` into `xdot`.
+    fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]);
+    /// `df/dx` into `jacobian`, row-major.
+    fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]);
+    /// The stored energy.
+    fn energy(&self, x: &[f64]) -> f64;
+    /// Whether [`Formulation::structure`] is available.
+    fn is_structured(&self) -> bool;
+    /// `f = J dH/dx + F`: `J` (row-major), `dH/dx` and `F`.
+    fn structure(&self, t: f64, x: &[f64], j: &mut [f64], gradient: &mut [f64], forcing: &mut [f64]);
+    /// The inputs applied at `(t, x)`.
+    fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]);
+    /// The largest `|A(q) qdot|`.
+    fn constraint_residual(&self, x: &[f64]) -> f64;
+    /// The regularity measure.
+    fn regularity(&self, x: &[f64]) -> Regularity;
+}
+
+/// The structured form of a `D`-dimensional system, when it has one.
+type StructureOf<T, const D: usize> = fn(&T, f64, &[f64; D]) -> ([[f64; D]; D], [f64; D], [f64; D]);
+
+/// A fixed-size runtime system as a [`Formulation`].
+pub struct Typed<T, const D: usize> {
+    system: T,
+    structure: Option<StructureOf<T, D>>,
+}
+
+impl<T: Observed<D> + Jacobian<D>, const D: usize> Typed<T, D> {
+    /// `system`, without a structured form.
+    pub fn plain(system: T) -> Self {
+        Self {
+            system,
+            structure: None,
+        }
+    }
+}
+
+impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Typed<T, D> {
+    /// `system` with its structured form.
+    pub fn structured(system: T) -> Self {
+        Self {
+            system,
+            structure: Some(|system, t, x| {
+                (
+                    system.structure_matrix(x),
+                    system.energy_gradient(x),
+                    system.forcing(t, x),
+                )
+            }),
+        }
+    }
+}
+
+fn array<const D: usize>(x: &[f64]) -> [f64; D] {
+    core::array::from_fn(|i| x[i])
+}
+
+fn flatten<const D: usize>(matrix: &[[f64; D]; D], into: &mut [f64]) {
+    into.copy_from_slice(matrix.as_flattened());
+}
+
+impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
+    fn state_names(&self) -> Vec<String> {
+        self.system.state_names()
+    }
+
+    fn input_names(&self) -> Vec<String> {
+        self.system.input_names()
+    }
+
+    fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
+        xdot.copy_from_slice(&self.system.rhs(t, &array(x)));
+    }
+
+    fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
+        flatten(&self.system.jacobian(t, &array(x)), jacobian);
+    }
+
+    fn energy(&self, x: &[f64]) -> f64 {
+        self.system.energy(&array(x))
+    }
+
+    fn is_structured(&self) -> bool {
+        self.structure.is_some()
+    }
+
+    fn structure(&self, t: f64, x: &[f64], j: &mut [f64], gradient: &mut [f64], forcing: &mut [f64]) {
+        if let Some(structure) = self.structure {
+            let (matrix, g, f) = structure(&self.system, t, &array(x));
+            flatten(&matrix, j);
+            gradient.copy_from_slice(&g);
+            forcing.copy_from_slice(&f);
+        }
+    }
+
+    fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
+        self.system.inputs(t, &array(x), inputs);
+    }
+
+    fn constraint_residual(&self, x: &[f64]) -> f64 {
+        self.system.constraint_residual(&array(x))
+    }
+
+    fn regularity(&self, x: &[f64]) -> Regularity {
+        self.system.regularity(&array(x))
+    }
+}
+
+/// A [`Formulation`] of dimension `D` as a fixed-size runtime system.
+pub struct Sized<'a, const D: usize>(pub &'a dyn Formulation);
+
+impl<const D: usize> OdeSystem<D> for Sized<'_, D> {
+    fn rhs(&self, t: f64, x: &[f64; D]) -> [f64; D] {
+        let mut xdot = [0.0; D];
+        self.0.rhs(t, x, &mut xdot);
+        xdot
+    }
+}
+
+impl<const D: usize> Jacobian<D> for Sized<'_, D> {
+    fn jacobian(&self, t: f64, x: &[f64; D]) -> [[f64; D]; D] {
+        let mut jacobian = [[0.0; D]; D];
+        self.0.jacobian(t, x, jacobian.as_flattened_mut());
+        jacobian
+    }
+}
+
+impl<const D: usize> Energy<D> for Sized<'_, D> {
+    fn energy(&self, x: &[f64; D]) -> f64 {
+        self.0.energy(x)
+    }
+}
+
+impl<const D: usize> Sized<'_, D> {
+    /// `(J, dH/dx, F)` at `(t, x)`.
+    fn structure_at(&self, t: f64, x: &[f64; D]) -> ([[f64; D]; D], [f64; D], [f64; D]) {
+        let (mut j, mut gradient, mut forcing) = ([[0.0; D]; D], [0.0; D], [0.0; D]);
+        self.0
+            .structure(t, x, j.as_flattened_mut(), &mut gradient, &mut forcing);
+        (j, gradient, forcing)
+    }
+}
+
+impl<const D: usize> Structured<D> for Sized<'_, D> {
+    fn structure_matrix(&self, x: &[f64; D]) -> [[f64; D]; D] {
+        self.structure_at(0.0, x).0
+    }
+
+    fn energy_gradient(&self, x: &[f64; D]) -> [f64; D] {
+        self.structure_at(0.0, x).1
+    }
+
+    fn forcing(&self, t: f64, x: &[f64; D]) -> [f64; D] {
+        self.structure_at(t, x).2
+    }
+}
+
+impl<const D: usize> Observed<D> for Sized<'_, D> {
+    fn state_names(&self) -> Vec<String> {
+        self.0.state_names()
+    }
+
+    fn input_names(&self) -> Vec<String> {
+        self.0.input_names()
+    }
+
+    fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
+        self.0.inputs(t, x, inputs);
+    }
+
+    fn constraint_residual(&self, x: &[f64; D]) -> f64 {
+        self.0.constraint_residual(x)
+    }
+
+    fn regularity(&self, x: &[f64; D]) -> Regularity {
+        self.0.regularity(x)
+    }
+}
+
+/// The largest state dimension [`with_dimension!`] handles.
+pub const MAX_DIMENSION: usize = 32;
+
+/// Evaluates `$body` with the const `$d: usize` equal to the run-time
+/// `$dimension` (1 to [`MAX_DIMENSION`]), or `$otherwise` when it is out of
+/// that range.
+macro_rules! with_dimension {
+    ($dimension:expr, $d:ident => $body:expr, _ => $otherwise:expr) => {
+        with_dimension!(@arms $dimension, $d, $body, $otherwise;
+            1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32)
+    };
+    (@arms $dimension:expr, $d:ident, $body:expr, $otherwise:expr; $($n:literal)*) => {
+        match $dimension {
+            $($n => {
+                const $d: usize = $n;
+                $body
+            })*
+            _ => $otherwise,
+        }
+    };
+}
+
+pub(crate) use with_dimension;

@@ -1,0 +1,40 @@
+//! `chaplygin`: the command line of Chaplygin (INTERFACE.md section 3).
+//!
+//! ```text
+//! chaplygin list
+//! chaplygin derive MODEL [--format text|latex|json]
+//! chaplygin simulate MODEL [--formulation reduced|lagrange] [--integrator rk4|dopri5|midpoint|discrete-gradient]
+//!                          [--controller none|energy] [--t-end T] [--dt H] [--out DIR]
+//!                          [--param NAME=VALUE]... [--initial NAME=VALUE]... [--input NAME=VALUE]...
+//! ```
+//!
+//! MODEL is a built-in model's name or the path of a `.model` file, which
+//! runs through the IR interpreter without recompiling. Every failure is one
+//! line on standard error and a non-zero exit status.
+
+mod catalog;
+mod derive;
+mod formulation;
+mod options;
+mod simulate;
+
+/// The built-in models, compiled from the models crate's sources (this
+/// package cannot depend on that crate, which depends on it); the command
+/// line uses part of each model's API.
+#[path = "../../../models/src/lib.rs"]
+#[allow(dead_code)]
+mod models;
+
+use clap::Parser;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let command = options::Command::parse();
+    match command.run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error}");
+            ExitCode::FAILURE
+        }
+    }
+}
