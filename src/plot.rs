@@ -435,6 +435,40 @@ impl<T, E: std::error::Error + Send + Sync> Drawn<T> for Result<T, DrawingAreaEr
     }
 }
 
+/// The result of drawing on a chart, before [`Drawn::drawn`].
+type DrawResult =
+    Result<(), DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>>;
+
+/// Marks a curve's first and last finite points: the start as a wide green
+/// disc, the end as a narrower red one on top, so that both show where
+/// they coincide.
+fn draw_ends<CT: CoordTranslate>(
+    chart: &mut ChartContext<'_, BitMapBackend<'_>, CT>,
+    [start, end]: [Option<CT::From>; 2],
+) -> DrawResult {
+    for (point, name, color, radius) in [(start, "start", GREEN, 9), (end, "end", RED, 5)] {
+        chart
+            .draw_series(point.map(|p| Circle::new(p, radius, color.filled())))?
+            .label(name)
+            .legend(move |(x, y)| Circle::new((x + 10, y), radius, color.filled()));
+    }
+    Ok(())
+}
+
+/// The legend of the labelled series, in `corner`.
+fn draw_legend<'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, BitMapBackend<'a>, CT>,
+    corner: SeriesLabelPosition,
+) -> DrawResult {
+    chart
+        .configure_series_labels()
+        .position(corner)
+        .label_font(label_style())
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+}
+
 /// The text style of titles.
 fn title_style() -> TextStyle<'static> {
     ("sans-serif", 26).into_font().into()
@@ -445,17 +479,22 @@ fn label_style() -> TextStyle<'static> {
     ("sans-serif", 18).into_font().into()
 }
 
+/// The smallest and the largest finite value (infinities when none).
+fn finite_bounds(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), v| {
+            (low.min(v), high.max(v))
+        })
+}
+
 /// The range of the finite values, widened by `pad` of its span on each
 /// side; a single value `v` gets `v -/+ max(|v|/10, 1)` instead.
 ///
 /// The caller guarantees at least one finite value.
 fn padded_range(values: impl IntoIterator<Item = f64>, pad: f64) -> Range<f64> {
-    let (low, high) = values
-        .into_iter()
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v), hi.max(v))
-        });
+    let (low, high) = finite_bounds(values);
     let span = high - low;
     if span > 0.0 {
         (low - pad * span)..(high + pad * span)
@@ -465,6 +504,27 @@ fn padded_range(values: impl IntoIterator<Item = f64>, pad: f64) -> Range<f64> {
     }
 }
 
+/// Tick labels for an axis over `range` with plotters' default of at most
+/// ten labels: ticks are then at least a tenth of the span apart, so that
+/// many decimals suffice; no label reads `-0`.
+fn tick_labels(range: &Range<f64>) -> impl Fn(&f64) -> String + use<> {
+    let decimals = (-((range.end - range.start) / 10.0).log10().floor()).clamp(0.0, 12.0);
+    let scale = 10f64.powf(decimals);
+    move |value| {
+        format!(
+            "{:.*}",
+            decimals as usize,
+            (value * scale).round() / scale + 0.0
+        )
+    }
+}
+
+/// The range of length `span` with the same centre as `range`.
+fn centred(range: Range<f64>, span: f64) -> Range<f64> {
+    let centre = (range.start + range.end) / 2.0;
+    (centre - span / 2.0)..(centre + span / 2.0)
+}
+
 /// The maximal runs of consecutive finite points, each drawn as one curve.
 fn finite_runs<P: Copy>(points: &[P], finite: impl Fn(&P) -> bool) -> impl Iterator<Item = &[P]> {
     points
@@ -472,14 +532,17 @@ fn finite_runs<P: Copy>(points: &[P], finite: impl Fn(&P) -> bool) -> impl Itera
         .filter(|run| !run.is_empty())
 }
 
-/// The corner of the plot holding the fewest points: where the legend
-/// hides the least.
+/// The corner of the plot whose legend-sized box (40% of the width, 30% of
+/// the height) holds the fewest points: where the legend hides the least.
 fn emptiest_corner(points: &[(f64, f64)], x: &Range<f64>, y: &Range<f64>) -> SeriesLabelPosition {
-    let middle = ((x.start + x.end) / 2.0, (y.start + y.end) / 2.0);
+    let (width, height) = (0.4 * (x.end - x.start), 0.3 * (y.end - y.start));
     let count = |right: bool, upper: bool| {
+        let left_edge = if right { x.end - width } else { x.start };
+        let bottom_edge = if upper { y.end - height } else { y.start };
         points
             .iter()
-            .filter(|p| (p.0 > middle.0) == right && (p.1 > middle.1) == upper)
+            .filter(|(px, _)| (left_edge..left_edge + width).contains(px))
+            .filter(|(_, py)| (bottom_edge..bottom_edge + height).contains(py))
             .count()
     };
     [
@@ -507,6 +570,24 @@ mod tests {
     fn padded_range_of_a_single_value_is_centred_on_it() {
         assert_eq!(padded_range([20.0, 20.0], 0.1), 18.0..22.0);
         assert_eq!(padded_range([0.0], 0.1), -1.0..1.0);
+    }
+
+    #[test]
+    fn tick_labels_have_the_decimals_of_a_tenth_of_the_span() {
+        let path = tick_labels(&(-0.15..1.5));
+        assert_eq!(
+            [path(&-1e-17), path(&0.2), path(&1.4)],
+            ["0.0", "0.2", "1.4"]
+        );
+        let time = tick_labels(&(0.0..30.0));
+        assert_eq!([time(&5.0), time(&25.0)], ["5", "25"]);
+    }
+
+    #[test]
+    fn the_legend_goes_where_no_points_are() {
+        let points = [(0.1, 0.1), (0.9, 0.9), (0.1, 0.9), (0.5, 0.5)];
+        let corner = emptiest_corner(&points, &(0.0..1.0), &(0.0..1.0));
+        assert_eq!(corner, SeriesLabelPosition::LowerRight);
     }
 
     #[test]

@@ -12,12 +12,15 @@
 //! `alpha2` in depth, and states the largest `|H - E0| / E0` along the run.
 
 use super::{
-    Drawn, Figure4, PlotError, PlotSpec, canvas, finite_runs, label_style, padded_range,
-    title_style,
+    DrawResult, Drawn, Figure4, PlotError, PlotSpec, canvas, centred, draw_ends, draw_legend,
+    finite_runs, label_style, padded_range, title_style,
 };
+use plotters::coord::ranged3d::Cartesian3d;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
+use std::ops::Range;
 use std::path::Path;
 
 /// Circles of constant `xt` in the wireframe.
@@ -75,11 +78,31 @@ fn wireframe((a1, a2, a3): Point) -> Vec<Vec<Point>> {
     parallels.chain(meridians).collect()
 }
 
+/// The ranges widened about their centres to the longest span, so that
+/// the projection keeps the ellipsoid's proportions.
+fn equal_spans(ranges: [Range<f64>; 3]) -> [Range<f64>; 3] {
+    let span = ranges
+        .iter()
+        .fold(0.0f64, |span, range| span.max(range.end - range.start));
+    ranges.map(|range| centred(range, span))
+}
+
 /// Plotting coordinates of a point: `alpha1` across, `xt` up, `alpha2` in
 /// depth.
 fn plotted((alpha1, alpha2, xt): Point) -> Point {
     (alpha1, xt, alpha2)
 }
+
+/// The 3-D chart of Figure 4, in plotting coordinates.
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    BitMapBackend<'b>,
+    Cartesian3d<RangedCoordf64, RangedCoordf64, RangedCoordf64>,
+>;
+
+/// How far the drawn coordinate axes reach beyond the ellipsoid, as a
+/// fraction of its semi-axes.
+const AXIS_REACH: f64 = 1.25;
 
 /// Draws `figure4.png` from the spec's columns.
 pub(super) fn draw(
@@ -93,24 +116,8 @@ pub(super) fn draw(
     let curve: Vec<Point> = (0..alpha1.len())
         .map(|i| (alpha1[i], alpha2[i], xt[i]))
         .collect();
-    let finite = |p: &Point| p.0.is_finite() && p.1.is_finite() && p.2.is_finite();
-    let initial = curve
-        .iter()
-        .copied()
-        .find(finite)
-        .unwrap_or((0.0, 0.0, 0.0));
+    let initial = curve.iter().copied().find(finite).unwrap_or_default();
     let energy = figure4.energy(initial);
-    let (scale, deviation) = if energy > 0.0 {
-        (energy, "|H - E0| / E0")
-    } else {
-        (1.0, "|H - E0|")
-    };
-    let worst = curve
-        .iter()
-        .filter(|p| finite(p))
-        .fold(0.0f64, |worst, &p| {
-            worst.max((figure4.energy(p) - energy).abs() / scale)
-        });
     let axes = figure4.semi_axes(energy);
     let root = canvas(file, spec.size)?;
     let area = root
@@ -119,18 +126,26 @@ pub(super) fn draw(
             title_style(),
         )
         .drawn(file)?;
-    let range =
-        |values: &[f64], axis: f64| padded_range(values.iter().copied().chain([-axis, axis]), 0.05);
+    let reach = |values: &[f64], axis: f64| {
+        padded_range(
+            values
+                .iter()
+                .copied()
+                .chain([-AXIS_REACH * axis, AXIS_REACH * axis]),
+            0.02,
+        )
+    };
+    let [across, up, depth] = equal_spans([
+        reach(alpha1, axes.0),
+        reach(xt, axes.2),
+        reach(alpha2, axes.1),
+    ]);
     let mut chart = ChartBuilder::on(&area)
         .margin(20)
-        .build_cartesian_3d(
-            range(alpha1, axes.0),
-            range(xt, axes.2),
-            range(alpha2, axes.1),
-        )
+        .build_cartesian_3d(across, up, depth)
         .drawn(file)?;
     chart.with_projection(|mut projection| {
-        projection.yaw = 0.7;
+        projection.yaw = -0.7;
         projection.pitch = 0.35;
         projection.scale = 0.8;
         projection.into_matrix()
@@ -142,60 +157,95 @@ pub(super) fn draw(
         .max_light_lines(4)
         .draw()
         .drawn(file)?;
-    let wire_style = RGBColor(150, 150, 150).stroke_width(1);
+    draw_axis_names(&mut chart, spec, figure4, axes).drawn(file)?;
+    draw_ellipsoid(&mut chart, figure4, energy).drawn(file)?;
+    draw_trajectory(&mut chart, figure4, &curve, energy).drawn(file)?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperLeft).drawn(file)?;
+    root.present().drawn(file)
+}
+
+/// Whether every coordinate of a point is finite.
+fn finite(point: &Point) -> bool {
+    point.0.is_finite() && point.1.is_finite() && point.2.is_finite()
+}
+
+/// The coordinate axes through the ellipsoid's centre, each named at its
+/// positive end.
+fn draw_axis_names(
+    chart: &mut Chart<'_, '_>,
+    spec: &PlotSpec,
+    figure4: &Figure4,
+    (a1, a2, a3): Point,
+) -> DrawResult {
+    let name = |paper: &str, column: &str| match spec.label(column) {
+        label if column == paper => label,
+        label => format!("{paper} ({label})"),
+    };
+    let names = [
+        ((a1, 0.0, 0.0), name("alpha1", &figure4.alpha1)),
+        ((0.0, a2, 0.0), name("alpha2", &figure4.alpha2)),
+        ((0.0, 0.0, a3), name("xt", &figure4.xt)),
+    ];
+    let style = BLACK.mix(0.6).stroke_width(1);
+    chart.draw_series(names.iter().map(|((x, y, z), _)| {
+        let tip = (AXIS_REACH * x, AXIS_REACH * y, AXIS_REACH * z);
+        PathElement::new(vec![plotted((-x, -y, -z)), plotted(tip)], style)
+    }))?;
+    chart.draw_series(names.into_iter().map(|((x, y, z), name)| {
+        let tip = (AXIS_REACH * x, AXIS_REACH * y, AXIS_REACH * z);
+        Text::new(name, plotted(tip), label_style())
+    }))?;
+    Ok(())
+}
+
+/// The wireframe of the ellipsoid `H = energy`, labelled with its
+/// parameters.
+fn draw_ellipsoid(chart: &mut Chart<'_, '_>, figure4: &Figure4, energy: f64) -> DrawResult {
+    let style = RGBColor(150, 150, 150).stroke_width(1);
+    let lines = wireframe(figure4.semi_axes(energy)).into_iter();
+    let Figure4 { m, jt, kt, .. } = *figure4;
     chart
-        .draw_series(wireframe(axes).into_iter().map(|line| {
-            PathElement::new(
-                line.into_iter().map(plotted).collect::<Vec<_>>(),
-                wire_style,
-            )
-        }))
-        .drawn(file)?
-        .label(format!("H = E0 = {energy:.4}"))
-        .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 20, py)], wire_style));
-    let curve_style = BLUE.stroke_width(2);
+        .draw_series(lines.map(|line| {
+            PathElement::new(line.into_iter().map(plotted).collect::<Vec<_>>(), style)
+        }))?
+        .label(format!(
+            "H = E0 = {energy:.4}  (m = {m}, Jt = {jt}, kt = {kt})"
+        ))
+        .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 20, py)], style));
+    Ok(())
+}
+
+/// The curve `(alpha1, alpha2, xt)(t)`, labelled with its largest
+/// deviation from the ellipsoid, and its start and end.
+fn draw_trajectory(
+    chart: &mut Chart<'_, '_>,
+    figure4: &Figure4,
+    curve: &[Point],
+    energy: f64,
+) -> DrawResult {
+    let (scale, deviation) = if energy > 0.0 {
+        (energy, "|H - E0| / E0")
+    } else {
+        (1.0, "|H - E0|")
+    };
+    let worst = curve
+        .iter()
+        .filter(|p| finite(p))
+        .fold(0.0f64, |worst, &p| {
+            worst.max((figure4.energy(p) - energy).abs() / scale)
+        });
+    let style = BLUE.stroke_width(2);
     chart
-        .draw_series(finite_runs(&curve, finite).map(|run| {
-            PathElement::new(
-                run.iter().copied().map(plotted).collect::<Vec<_>>(),
-                curve_style,
-            )
-        }))
-        .drawn(file)?
+        .draw_series(finite_runs(curve, finite).map(|run| {
+            PathElement::new(run.iter().copied().map(plotted).collect::<Vec<_>>(), style)
+        }))?
         .label(format!("trajectory, max {deviation} = {worst:.1e}"))
-        .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 20, py)], curve_style));
+        .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 20, py)], style));
     let ends = [
         curve.iter().copied().find(finite),
         curve.iter().copied().rev().find(finite),
     ];
-    for (point, name, color) in [(ends[0], "start", GREEN), (ends[1], "end", RED)] {
-        chart
-            .draw_series(point.map(|p| Circle::new(plotted(p), 6, color.filled())))
-            .drawn(file)?
-            .label(name)
-            .legend(move |(px, py)| Circle::new((px + 10, py), 6, color.filled()));
-    }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font(label_style())
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()
-        .drawn(file)?;
-    let note = format!(
-        "across: {}, up: {}, depth: {}  (m = {}, Jt = {}, kt = {})",
-        spec.label(&figure4.alpha1),
-        spec.label(&figure4.xt),
-        spec.label(&figure4.alpha2),
-        figure4.m,
-        figure4.jt,
-        figure4.kt
-    );
-    let (_, height) = root.dim_in_pixel();
-    root.draw_text(&note, &label_style(), (20, height as i32 - 30))
-        .drawn(file)?;
-    root.present().drawn(file)
+    draw_ends(chart, ends.map(|end| end.map(plotted)))
 }
 
 #[cfg(test)]

@@ -4,8 +4,8 @@
 //! end marked.
 
 use super::{
-    Drawn, PlanarPath, PlotError, PlotSpec, canvas, emptiest_corner, finite_runs, label_style,
-    padded_range, title_style,
+    Drawn, PlanarPath, PlotError, PlotSpec, canvas, centred, draw_ends, draw_legend,
+    emptiest_corner, finite_runs, label_style, padded_range, tick_labels, title_style,
 };
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -47,6 +47,7 @@ pub(super) fn draw(
     );
     let arrow = ARROW_LENGTH * (x_range.end - x_range.start).max(y_range.end - y_range.start);
     let legend_corner = emptiest_corner(&points, &x_range, &y_range);
+    let (x_labels, y_labels) = (tick_labels(&x_range), tick_labels(&y_range));
     let mut chart = chart_builder(&area)
         .build_cartesian_2d(x_range, y_range)
         .drawn(file)?;
@@ -54,6 +55,8 @@ pub(super) fn draw(
         .configure_mesh()
         .x_desc(spec.label(&planar.x))
         .y_desc(spec.label(&planar.y))
+        .x_label_formatter(&x_labels)
+        .y_label_formatter(&y_labels)
         .axis_desc_style(label_style())
         .label_style(label_style())
         .draw()
@@ -89,25 +92,11 @@ pub(super) fn draw(
             .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 20, py)], arrow_style));
     }
     let ends = [
-        points.iter().find(|p| finite(p)),
-        points.iter().rev().find(|p| finite(p)),
+        points.iter().copied().find(finite),
+        points.iter().copied().rev().find(finite),
     ];
-    for (point, name, color) in [(ends[0], "start", GREEN), (ends[1], "end", RED)] {
-        let marker = move |at| Circle::new(at, 7, color.filled());
-        chart
-            .draw_series(point.map(|&p| marker(p)))
-            .drawn(file)?
-            .label(name)
-            .legend(move |(px, py)| Circle::new((px + 10, py), 6, color.filled()));
-    }
-    chart
-        .configure_series_labels()
-        .position(legend_corner)
-        .label_font(label_style())
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()
-        .drawn(file)?;
+    draw_ends(&mut chart, ends).drawn(file)?;
+    draw_legend(&mut chart, legend_corner).drawn(file)?;
     root.present().drawn(file)
 }
 
@@ -132,12 +121,6 @@ fn equal_scale(x: Range<f64>, y: Range<f64>, pixels: (u32, u32)) -> (Range<f64>,
         centred(x, per_pixel * width),
         centred(y, per_pixel * height),
     )
-}
-
-/// The range of length `span` with the same centre as `range`.
-fn centred(range: Range<f64>, span: f64) -> Range<f64> {
-    let centre = (range.start + range.end) / 2.0;
-    (centre - span / 2.0)..(centre + span / 2.0)
 }
 
 /// The rows between heading arrows: about [`HEADING_ARROWS`] arrows.

@@ -7,11 +7,11 @@
 //! values below [`RESIDUAL_FLOOR`] raised to it.
 
 use super::{
-    Drawn, PlotError, PlotSpec, RESIDUAL_FLOOR, canvas, finite_runs, label_style, padded_range,
-    title_style,
+    Drawn, PlotError, PlotSpec, RESIDUAL_FLOOR, canvas, finite_bounds, finite_runs, label_style,
+    padded_range, tick_labels, title_style,
 };
-use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
+use std::ops::Range;
 use std::path::Path;
 
 /// The energy error of each sample, and whether it is relative.
@@ -84,7 +84,9 @@ pub(super) fn draw_energy(
     draw_against_time(file, spec, time, panel, y_range)
 }
 
-/// Draws `constraint_residual.png` for the column `name`.
+/// Draws `constraint_residual.png` for the column `name`: plotters' own
+/// logarithmic axis loses its ticks below machine epsilon, so the decimal
+/// logarithm is drawn on a linear axis labelled in powers of ten.
 pub(super) fn draw_residual(
     file: &Path,
     spec: &PlotSpec,
@@ -92,31 +94,35 @@ pub(super) fn draw_residual(
     time: &[f64],
     residual: &[f64],
 ) -> Result<(), PlotError> {
-    let floored: Vec<f64> = residual
+    let decades: Vec<f64> = residual
         .iter()
-        .map(|r| r.abs().max(RESIDUAL_FLOOR))
+        .map(|r| r.abs().max(RESIDUAL_FLOOR).log10())
         .collect();
-    let clamped = residual.iter().any(|r| r.abs() < RESIDUAL_FLOOR);
-    let worst = floored
+    let worst = residual
         .iter()
         .filter(|r| r.is_finite())
-        .fold(0.0, |worst: f64, r| worst.max(*r));
-    let mut y_desc = format!("|{}| (log scale)", spec.label(name));
-    if clamped {
+        .fold(0.0, |worst: f64, r| worst.max(r.abs()));
+    let mut y_desc = format!("|{}| (log scale", spec.label(name));
+    if residual.iter().any(|r| r.abs() < RESIDUAL_FLOOR) {
         y_desc.push_str(&format!(
-            "; values below {RESIDUAL_FLOOR:.0e}, zeros included, drawn at it"
+            "; below {RESIDUAL_FLOOR:.0e} drawn at {RESIDUAL_FLOOR:.0e}"
         ));
     }
-    let caption = format!("Constraint residual: max {worst:.2e}");
-    let decades = padded_range(floored.iter().map(|r| r.log10()), 0.05);
-    let y_range = (10f64.powf(decades.start)..10f64.powf(decades.end)).log_scale();
+    y_desc.push(')');
     let panel = Panel {
-        caption,
+        caption: format!("Constraint residual: max {worst:.2e}"),
         y_desc,
-        values: &floored,
-        y_format: &|v: &f64| format!("{v:.0e}"),
+        values: &decades,
+        y_format: &|decade: &f64| format!("{:.0e}", 10f64.powf(*decade)),
     };
-    draw_against_time(file, spec, time, panel, y_range)
+    draw_against_time(file, spec, time, panel, whole_decades(&decades))
+}
+
+/// The decades from below the smallest to above the largest finite value
+/// (at least one), widened by 5% so that curves clear the frame.
+fn whole_decades(decades: &[f64]) -> Range<f64> {
+    let (low, high) = finite_bounds(decades.iter().copied());
+    padded_range([low.floor(), high.ceil().max(low.floor() + 1.0)], 0.05)
 }
 
 /// What one plot against time shows.
@@ -132,17 +138,13 @@ struct Panel<'a> {
 }
 
 /// Draws the panel's values against `time` on the y axis `y_range`.
-fn draw_against_time<Y>(
+fn draw_against_time(
     file: &Path,
     spec: &PlotSpec,
     time: &[f64],
     panel: Panel<'_>,
-    y_range: Y,
-) -> Result<(), PlotError>
-where
-    Y: AsRangedCoord<Value = f64>,
-    Y::CoordDescType: ValueFormatter<f64>,
-{
+    y_range: Range<f64>,
+) -> Result<(), PlotError> {
     let points: Vec<(f64, f64)> = time
         .iter()
         .copied()
@@ -150,15 +152,18 @@ where
         .collect();
     let root = canvas(file, spec.size)?;
     let area = root.titled(&panel.caption, title_style()).drawn(file)?;
+    let time_range = padded_range(time.iter().copied(), 0.0);
+    let time_labels = tick_labels(&time_range);
     let mut chart = ChartBuilder::on(&area)
         .margin(20)
         .x_label_area_size(60)
         .y_label_area_size(100)
-        .build_cartesian_2d(padded_range(time.iter().copied(), 0.0), y_range)
+        .build_cartesian_2d(time_range, y_range)
         .drawn(file)?;
     chart
         .configure_mesh()
         .x_desc(spec.label(&spec.time))
+        .x_label_formatter(&time_labels)
         .y_desc(panel.y_desc)
         .y_label_formatter(panel.y_format)
         .axis_desc_style(label_style())
@@ -168,7 +173,7 @@ where
     let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
     chart
         .draw_series(
-            finite_runs(&points, finite).map(|run| PathElement::new(run, BLUE.stroke_width(2))),
+            finite_runs(&points, finite).map(|run| PathElement::new(run, BLUE.stroke_width(1))),
         )
         .drawn(file)?;
     root.present().drawn(file)
@@ -188,6 +193,18 @@ mod tests {
             assert!((error - expected).abs() < 1e-15, "{error} vs {expected}");
         }
         assert!((energy.worst() - 0.1).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_residual_axis_spans_whole_decades() {
+        let range = whole_decades(&[-17.3, -15.2, f64::NAN]);
+        assert!((range.start - (-18.15)).abs() < 1e-12, "{range:?}");
+        assert!((range.end - (-14.85)).abs() < 1e-12, "{range:?}");
+        let flat = whole_decades(&[-18.0, -18.0]);
+        assert!(
+            (flat.start - (-18.05)).abs() < 1e-12 && (flat.end - (-16.95)).abs() < 1e-12,
+            "{flat:?}"
+        );
     }
 
     #[test]
