@@ -44,8 +44,9 @@ pub const RESIDUAL_FLOOR: f64 = 1e-18;
 /// The font every plot's text uses, registered as plotters' `sans-serif`.
 const FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
 
-/// Smallest image edge, in pixels, that leaves room for titles and labels.
-const MIN_EDGE: u32 = 200;
+/// The image edges allowed, in pixels: room for titles and labels at the
+/// low end, a bounded pixel buffer at the high end.
+const EDGES: std::ops::RangeInclusive<u32> = 200..=8192;
 
 /// A trajectory, row-major: one row per sample, one value per column.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -159,7 +160,7 @@ pub struct PlotSpec {
     pub figure4: Option<Figure4>,
     /// Units by column name, shown in axis labels as `name [unit]`.
     pub units: BTreeMap<String, String>,
-    /// Image width and height in pixels, each at least 200.
+    /// Image width and height in pixels, each from 200 to 8192.
     pub size: (u32, u32),
 }
 
@@ -245,8 +246,8 @@ impl PlotSpec {
     /// Checks the image size and Figure 4's parameters.
     fn validate(&self) -> Result<(), PlotError> {
         let (width, height) = self.size;
-        if width < MIN_EDGE || height < MIN_EDGE {
-            return Err(PlotError::ImageTooSmall { width, height });
+        if !(EDGES.contains(&width) && EDGES.contains(&height)) {
+            return Err(PlotError::ImageSize { width, height });
         }
         let Some(figure4) = &self.figure4 else {
             return Ok(());
@@ -298,9 +299,13 @@ pub enum PlotError {
         /// The column.
         name: String,
     },
-    /// The image is too small for titles and labels.
-    #[error("image size {width}x{height} is below the minimum of {MIN_EDGE} pixels per edge")]
-    ImageTooSmall {
+    /// The image is too small for titles and labels, or too large.
+    #[error(
+        "image size {width}x{height}: each edge must be {} to {} pixels",
+        EDGES.start(),
+        EDGES.end()
+    )]
+    ImageSize {
         /// Requested width in pixels.
         width: u32,
         /// Requested height in pixels.

@@ -4,10 +4,11 @@
 //! end marked.
 
 use super::{
-    Drawn, PlanarPath, PlotError, PlotSpec, canvas, centred, draw_ends, draw_legend,
+    DrawResult, Drawn, PlanarPath, PlotError, PlotSpec, canvas, centred, draw_ends, draw_legend,
     emptiest_corner, finite_runs, label_style, padded_range, tick_labels, title_style,
 };
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -69,27 +70,15 @@ pub(super) fn draw(
         .label("path")
         .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 20, py)], path_style));
     if let Some(heading) = &planar.heading {
-        let marks = heading_marks(&points, &columns[heading]);
+        let unit = spec.units.get(&spec.time).map(|unit| format!(" {unit}"));
         let interval = mark_interval(&columns[&spec.time]);
-        let unit = spec
-            .units
-            .get(&spec.time)
-            .map(|unit| format!(" {unit}"))
-            .unwrap_or_default();
-        let arrow_style = BLACK.stroke_width(1);
-        chart
-            .draw_series(
-                marks
-                    .iter()
-                    .flat_map(|&mark| arrow_strokes(mark, arrow))
-                    .map(|stroke| PathElement::new(stroke, arrow_style)),
-            )
-            .drawn(file)?
-            .label(format!(
-                "heading, every {}{unit}",
-                format_interval(interval)
-            ))
-            .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 20, py)], arrow_style));
+        let label = format!(
+            "heading, every {}{}",
+            format_interval(interval),
+            unit.unwrap_or_default()
+        );
+        let marks = heading_marks(&points, &columns[heading]);
+        draw_heading_arrows(&mut chart, &marks, arrow, label).drawn(file)?;
     }
     let ends = [
         points.iter().copied().find(finite),
@@ -98,6 +87,26 @@ pub(super) fn draw(
     draw_ends(&mut chart, ends).drawn(file)?;
     draw_legend(&mut chart, legend_corner).drawn(file)?;
     root.present().drawn(file)
+}
+
+/// Arrows of `length` at the marks `(position, heading)`.
+fn draw_heading_arrows(
+    chart: &mut ChartContext<'_, BitMapBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    marks: &[((f64, f64), f64)],
+    length: f64,
+    label: String,
+) -> DrawResult {
+    let style = BLACK.stroke_width(1);
+    chart
+        .draw_series(
+            marks
+                .iter()
+                .flat_map(|&mark| arrow_strokes(mark, length))
+                .map(|stroke| PathElement::new(stroke, style)),
+        )?
+        .label(label)
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+    Ok(())
 }
 
 /// The layout of the path chart: margins and label areas.
