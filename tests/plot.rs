@@ -93,6 +93,51 @@ fn png_size(file: &Path) -> (u32, u32) {
     (word(16), word(20))
 }
 
+/// The number of pixels of exactly this colour in a PNG.
+fn pixels_of(file: &Path, color: [u8; 3]) -> usize {
+    let decoder = png::Decoder::new(std::fs::File::open(file).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buffer = vec![0; reader.output_buffer_size()];
+    let frame = reader.next_frame(&mut buffer).unwrap();
+    assert_eq!(frame.color_type, png::ColorType::Rgb, "{}", file.display());
+    buffer[..frame.buffer_size()]
+        .chunks_exact(3)
+        .filter(|pixel| *pixel == color)
+        .count()
+}
+
+const BLUE: [u8; 3] = [0, 0, 255];
+const GREEN: [u8; 3] = [0, 255, 0];
+const RED: [u8; 3] = [255, 0, 0];
+
+#[test]
+fn the_curves_and_their_ends_are_drawn() {
+    let dir = scratch("pixels");
+    let spec = PlotSpec::default().with_figure4(figure4());
+    let written = write_plots(&trajectory(400), &spec, &dir).unwrap();
+    let [path, energy, residual, figure4] = [0, 1, 2, 3].map(|i| written[i].as_path());
+    for file in [path, figure4] {
+        let (curve, start, end) = (
+            pixels_of(file, BLUE),
+            pixels_of(file, GREEN),
+            pixels_of(file, RED),
+        );
+        // a 2-pixel curve hundreds of pixels long; discs of radius 9 and 5,
+        // the end's drawn over the start's (the synthetic curves are closed)
+        assert!(curve > 1000, "{}: {curve} curve pixels", file.display());
+        assert!(
+            start > 100 && end > 30,
+            "{}: start {start}, end {end}",
+            file.display()
+        );
+    }
+    for file in [energy, residual] {
+        let curve = pixels_of(file, BLUE);
+        assert!(curve > 500, "{}: {curve} curve pixels", file.display());
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
 #[test]
 fn every_plot_is_a_png_of_the_requested_size() {
     let dir = scratch("all");
