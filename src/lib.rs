@@ -14,6 +14,9 @@
 pub use chaplygin_macros::model;
 pub use chaplygin_runtime as runtime;
 
+#[cfg(feature = "cli")]
+pub mod plot;
+
 /// The README's examples, compiled and run as doctests.
 #[doc = include_str!("../README.md")]
 #[cfg(doctest)]
