@@ -2,6 +2,7 @@
 
 pub mod diff;
 pub mod eval;
+pub mod latex;
 pub mod expr;
 pub mod matrix;
 pub mod normal;
