@@ -129,6 +129,7 @@ pub(super) fn item(
         name: signature.name,
         item,
         operations: body.operations,
+        lowered: Some(body.lowered),
     })
 }
 
