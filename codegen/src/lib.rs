@@ -18,6 +18,7 @@ mod build;
 pub mod derive;
 pub mod diagnostic;
 pub mod emit;
+pub mod interpret;
 pub mod ir;
 pub mod model;
 pub mod sym;

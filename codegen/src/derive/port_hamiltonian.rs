@@ -235,15 +235,22 @@ fn momentum_basis(
     basis: &DistributionBasis,
 ) -> Result<(Matrix, Vec<String>, bool), MatrixError> {
     if let Some(declared) = &model.momentum_basis {
-        let names = declared.names.iter().map(|d| d.name.clone()).collect();
-        return Ok((declared.rows.clone(), names, true));
+        return Ok((declared.rows.clone(), momentum_names(model), true));
     }
     let h = basis
         .fields
         .transpose()
         .mul(&model.mass_matrix, model.store.atoms())?;
-    let names = (1..=h.rows()).map(|i| format!("alpha{i}")).collect();
-    Ok((h, names, false))
+    Ok((h, momentum_names(model), false))
+}
+
+/// The names of the reduced momenta: the declared basis rows', else
+/// `alpha1..alphak` for the tool's own basis `h = (g X)^T` (k rows).
+pub fn momentum_names(model: &Model) -> Vec<String> {
+    match &model.momentum_basis {
+        Some(declared) => declared.names.iter().map(|d| d.name.clone()).collect(),
+        None => (1..=model.k()).map(|i| format!("alpha{i}")).collect(),
+    }
 }
 
 /// The symbol called `name` if it is new or already of this kind, else a
