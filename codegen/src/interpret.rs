@@ -161,14 +161,22 @@ impl InterpretedModel {
             .into_iter()
             .filter_map(|function| {
                 let name = function.name;
-                function.lowered.map(|lowered| Interpreted { name, lowered })
+                function
+                    .lowered
+                    .map(|lowered| Interpreted { name, lowered })
             })
             .collect();
         let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
         let defaults = model.parameter_defaults();
         Ok(InterpretedModel {
             names: names(&model),
-            sizes: Sizes { n, c, k, p, s: n + k },
+            sizes: Sizes {
+                n,
+                c,
+                k,
+                p,
+                s: n + k,
+            },
             parameters: defaults.clone(),
             defaults,
             functions,
@@ -234,13 +242,14 @@ impl InterpretedModel {
             })?;
         let lowered = &function.lowered;
         let inputs = self.inputs(function.name, &lowered.arguments, arguments)?;
-        let outputs = lowered
-            .program
-            .evaluate_vec(&inputs)
-            .map_err(|source| CallError::Program {
-                function: name.to_string(),
-                source,
-            })?;
+        let outputs =
+            lowered
+                .program
+                .evaluate_vec(&inputs)
+                .map_err(|source| CallError::Program {
+                    function: name.to_string(),
+                    source,
+                })?;
         Ok(match lowered.assembly {
             Assembly::Values => outputs,
             Assembly::SaddlePoint => self.solve_saddle_point(&outputs),

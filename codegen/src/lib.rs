@@ -17,6 +17,7 @@
 mod build;
 pub mod derive;
 pub mod diagnostic;
+pub mod document;
 pub mod emit;
 pub mod interpret;
 pub mod ir;

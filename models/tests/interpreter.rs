@@ -28,7 +28,8 @@ fn macro_body(file: &str, name: &str) -> String {
     let text = std::fs::read_to_string(file).expect("readable source");
     let declaration = format!("pub struct {name} {{");
     let at = text.find(&declaration).expect("the model is declared");
-    let open = text[..at].rfind("chaplygin::model! {").expect("in a macro") + "chaplygin::model! ".len();
+    let open =
+        text[..at].rfind("chaplygin::model! {").expect("in a macro") + "chaplygin::model! ".len();
     let mut depth = 0;
     for (offset, character) in text[open..].char_indices() {
         match character {
@@ -100,7 +101,10 @@ macro_rules! differential_test {
             let mut interpreted =
                 InterpretedModel::from_source(&source(stringify!($model))).expect("compiles");
             let mut compiled = $model::default();
-            assert_eq!(interpreted.parameter_values(), interpreted.parameter_defaults());
+            assert_eq!(
+                interpreted.parameter_values(),
+                interpreted.parameter_defaults()
+            );
             let sizes = interpreted.sizes();
             assert_eq!(
                 (sizes.n, sizes.c, sizes.k, sizes.p, sizes.s),
@@ -122,12 +126,13 @@ macro_rules! differential_test {
                         .expect("declared");
                 }
                 for _ in 0..STATES {
-                    compare::<{ $model::N }, { $model::C }, { $model::P }, { $model::S }, { $model::K }>(
-                        &compiled,
-                        &interpreted,
-                        &mut random,
-                        &mut agreement,
-                    );
+                    compare::<
+                        { $model::N },
+                        { $model::C },
+                        { $model::P },
+                        { $model::S },
+                        { $model::K },
+                    >(&compiled, &interpreted, &mut random, &mut agreement);
                 }
             }
             println!(
@@ -138,7 +143,9 @@ macro_rules! differential_test {
             );
         }
 
-        impl Items<{ $model::N }, { $model::C }, { $model::P }, { $model::S }, { $model::K }> for $model {
+        impl Items<{ $model::N }, { $model::C }, { $model::P }, { $model::S }, { $model::K }>
+            for $model
+        {
             fn items(
                 &self,
                 q: &[f64; $model::N],
@@ -152,16 +159,28 @@ macro_rules! differential_test {
                     ("mass_matrix", self.mass_matrix(q).concat()),
                     ("energy", vec![self.energy(q, qdot)]),
                     ("constraint_matrix", self.constraint_matrix(q).concat()),
-                    ("constraint_residual", self.constraint_residual(q, qdot).to_vec()),
-                    ("acceleration", [qddot.as_slice(), lambda.as_slice()].concat()),
+                    (
+                        "constraint_residual",
+                        self.constraint_residual(q, qdot).to_vec(),
+                    ),
+                    (
+                        "acceleration",
+                        [qddot.as_slice(), lambda.as_slice()].concat(),
+                    ),
                     ("momenta", self.momenta(q, qdot).to_vec()),
                     ("velocities", self.velocities(q, alpha).to_vec()),
                     ("hamiltonian", vec![self.hamiltonian(x)]),
-                    ("hamiltonian_gradient", self.hamiltonian_gradient(x).to_vec()),
+                    (
+                        "hamiltonian_gradient",
+                        self.hamiltonian_gradient(x).to_vec(),
+                    ),
                     ("structure_matrix", self.structure_matrix(x).concat()),
                     ("input_matrix", self.input_matrix(x).concat()),
                     ("reduced_rhs", self.reduced_rhs(x, u).to_vec()),
-                    ("reduced_rhs_jacobian", self.reduced_rhs_jacobian(x, u).concat()),
+                    (
+                        "reduced_rhs_jacobian",
+                        self.reduced_rhs_jacobian(x, u).concat(),
+                    ),
                     ("output", self.output(x).to_vec()),
                 ]
             }
@@ -228,8 +247,16 @@ fn compare<const N: usize, const C: usize, const P: usize, const S: usize, const
 differential_test!(snakeboard_interpreted_as_compiled, Snakeboard, jt);
 differential_test!(sleigh_interpreted_as_compiled, Sleigh, a);
 differential_test!(rolling_disk_interpreted_as_compiled, RollingDisk, m);
-differential_test!(differential_drive_interpreted_as_compiled, DifferentialDrive, m);
-differential_test!(towed_interpreted_as_compiled_through_the_run_time_solve, Towed, l);
+differential_test!(
+    differential_drive_interpreted_as_compiled,
+    DifferentialDrive,
+    m
+);
+differential_test!(
+    towed_interpreted_as_compiled_through_the_run_time_solve,
+    Towed,
+    l
+);
 
 #[test]
 fn the_towed_model_takes_the_run_time_solve() {

@@ -32,7 +32,9 @@ pub fn solve<const M: usize>(mut a: [[f64; M]; M], mut b: [f64; M]) -> [f64; M] 
 
 /// The matrix of [`solve_in_place`] does not have `rows * rows` entries.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("a right-hand side of {rows} entries needs a {rows} x {rows} matrix, found {found} entries")]
+#[error(
+    "a right-hand side of {rows} entries needs a {rows} x {rows} matrix, found {found} entries"
+)]
 pub struct SizeMismatch {
     /// The length of the right-hand side.
     pub rows: usize,

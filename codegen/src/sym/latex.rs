@@ -84,15 +84,21 @@ impl Store {
     /// A `rows x columns` matrix of expressions (row-major `entries`) as a
     /// `bmatrix`: `\begin{bmatrix} a & b \\ c & d \end{bmatrix}`.
     pub fn latex_matrix(&self, entries: &[ExprId], columns: usize) -> String {
-        let rows: Vec<String> = entries
-            .chunks(columns.max(1))
-            .map(|row| {
-                let cells: Vec<String> = row.iter().map(|&e| self.latex(e)).collect();
-                cells.join(" & ")
-            })
-            .collect();
-        format!("\\begin{{bmatrix}} {} \\end{{bmatrix}}", rows.join(" \\\\ "))
+        let cells: Vec<String> = entries.iter().map(|&e| self.latex(e)).collect();
+        bmatrix(&cells, columns)
     }
+}
+
+/// Cells already in LaTeX (row-major, `columns` per row) as a `bmatrix`.
+pub fn bmatrix(cells: &[String], columns: usize) -> String {
+    let rows: Vec<String> = cells
+        .chunks(columns.max(1))
+        .map(|row| row.join(" & "))
+        .collect();
+    format!(
+        "\\begin{{bmatrix}} {} \\end{{bmatrix}}",
+        rows.join(" \\\\ ")
+    )
 }
 
 /// A symbol's name as LaTeX: base and subscript, Greek letters as macros
@@ -101,6 +107,21 @@ pub fn latex_name(name: &str) -> String {
     match split_name(name) {
         (base, Some(subscript)) => format!("{}_{{{}}}", latex_word(base), latex_word(subscript)),
         (base, None) => latex_word(base),
+    }
+}
+
+/// The time derivative of the quantity `name`, the dot on its base
+/// (`theta1` -> `\dot{\theta}_{1}`, `x` -> `\dot{x}`).
+pub fn latex_rate(name: &str) -> String {
+    match split_name(name) {
+        (base, Some(subscript)) => {
+            format!(
+                "\\dot{{{}}}_{{{}}}",
+                latex_word(base),
+                latex_word(subscript)
+            )
+        }
+        (base, None) => format!("\\dot{{{}}}", latex_word(base)),
     }
 }
 
@@ -181,9 +202,7 @@ impl Latex<'_> {
                 let (coefficient, rest) = self.coefficient(factors);
                 self.product(&coefficient, rest)
             }
-            Node::Pow(_, exponent) if exponent.is_negative() => {
-                self.product(&Rational::ONE, &[id])
-            }
+            Node::Pow(_, exponent) if exponent.is_negative() => self.product(&Rational::ONE, &[id]),
             Node::Pow(base, exponent) => self.power(*base, exponent),
             Node::Call(function, argument) => {
                 format!("\\{}{}", function.name(), self.argument(*argument))
@@ -195,13 +214,7 @@ impl Latex<'_> {
         let info = self.store.symbol_info(symbol);
         match info.kind {
             SymbolKind::Velocity(coordinate) => {
-                let name = &self.store.symbol_info(coordinate).name;
-                match split_name(name) {
-                    (base, Some(subscript)) => {
-                        format!("\\dot{{{}}}_{{{}}}", latex_word(base), latex_word(subscript))
-                    }
-                    (base, None) => format!("\\dot{{{}}}", latex_word(base)),
-                }
+                latex_rate(&self.store.symbol_info(coordinate).name)
             }
             _ => latex_name(&info.name),
         }
@@ -260,11 +273,10 @@ impl Latex<'_> {
     fn product(&self, coefficient: &Rational, factors: &[ExprId]) -> String {
         let sign = if coefficient.is_negative() { "-" } else { "" };
         let magnitude = coefficient.abs();
-        let (below, above): (Vec<ExprId>, Vec<ExprId>) = factors
-            .iter()
-            .partition(|&&f| matches!(self.store.node(f), Node::Pow(_, e) if e.is_negative()));
-        let (calls, plain): (Vec<ExprId>, Vec<ExprId>) =
-            above.into_iter().partition(|&f| self.is_call(f));
+        let (below, above): (Vec<ExprId>, Vec<ExprId>) = self
+            .calls_last(factors)
+            .into_iter()
+            .partition(|&f| matches!(self.store.node(f), Node::Pow(_, e) if e.is_negative()));
         let mut numerator: Vec<String> = Vec::new();
         if !magnitude.numerator().is_one() {
             numerator.push(magnitude.numerator().to_string());
@@ -273,7 +285,7 @@ impl Latex<'_> {
         if !magnitude.denominator().is_one() {
             denominator.push(magnitude.denominator().to_string());
         }
-        let numerator_factors: Vec<ExprId> = plain.into_iter().chain(calls).collect();
+        let numerator_factors = above;
         let alone = |count: usize| if count == 1 { 0 } else { PRODUCT + 1 };
         let numerator_context = alone(numerator.len() + numerator_factors.len());
         let denominator_context = alone(denominator.len() + below.len());
@@ -301,13 +313,16 @@ impl Latex<'_> {
         }
     }
 
-    /// A call, or a power of one (`\sin^{2}\phi`): written after the other factors.
-    fn is_call(&self, factor: ExprId) -> bool {
-        match self.store.node(factor) {
+    /// The factors with the calls and their powers (`\sin^{2}\phi`,
+    /// `\frac{1}{\cos\phi}`) moved after the others, each group in order.
+    fn calls_last(&self, factors: &[ExprId]) -> Vec<ExprId> {
+        let is_call = |factor: &ExprId| match self.store.node(*factor) {
             Node::Call(..) => true,
             Node::Pow(base, _) => matches!(self.store.node(*base), Node::Call(..)),
             _ => false,
-        }
+        };
+        let (calls, plain): (Vec<ExprId>, Vec<ExprId>) = factors.iter().partition(|f| is_call(f));
+        plain.into_iter().chain(calls).collect()
     }
 
     /// A power with a non-negative exponent; `\sqrt` for one half.
@@ -487,7 +502,10 @@ mod tests {
         assert_eq!(f.latex(shifted), "-r + 2 (x + m)^{2}");
         let over_sum = f.store.div(r, sum).expect("nonzero");
         assert_eq!(f.latex(over_sum), "\\frac{r}{x + m}");
-        let three_halves = f.store.pow(x, Rational::new(3, 2).expect("valid")).expect("defined");
+        let three_halves = f
+            .store
+            .pow(x, Rational::new(3, 2).expect("valid"))
+            .expect("defined");
         assert_eq!(f.latex(three_halves), "x^{\\frac{3}{2}}");
     }
 

@@ -2,8 +2,8 @@
 
 pub mod diff;
 pub mod eval;
-pub mod latex;
 pub mod expr;
+pub mod latex;
 pub mod matrix;
 pub mod normal;
 pub mod number;
