@@ -93,6 +93,14 @@ struct Equation {
     rhs: Printed,
 }
 
+/// A named `rows x columns` matrix, entries row-major.
+struct Table {
+    symbol: Printed,
+    rows: usize,
+    columns: usize,
+    entries: Vec<Printed>,
+}
+
 /// What a section holds; `key` names the item in JSON.
 enum Item {
     /// A plain value: a name list, a size, a flag, a classification;
@@ -109,14 +117,8 @@ enum Item {
         symbol: Printed,
         value: Printed,
     },
-    /// A named matrix, entries row-major.
-    Matrix {
-        key: String,
-        symbol: Printed,
-        rows: usize,
-        columns: usize,
-        entries: Vec<Printed>,
-    },
+    /// A named matrix.
+    Matrix { key: String, matrix: Table },
     /// A system of equations.
     Equations { key: String, lines: Vec<Equation> },
     /// Preformatted text.
@@ -226,10 +228,12 @@ fn matrix_item(model: &mut Model, key: &str, symbol: Printed, matrix: &Matrix) -
     let entries = matrix.to_expressions(&mut model.store);
     Item::Matrix {
         key: key.to_string(),
-        symbol,
-        rows: matrix.rows(),
-        columns: matrix.columns(),
-        entries: entries.iter().map(|&e| printed(model, e)).collect(),
+        matrix: Table {
+            symbol,
+            rows: matrix.rows(),
+            columns: matrix.columns(),
+            entries: entries.iter().map(|&e| printed(model, e)).collect(),
+        },
     }
 }
 
@@ -327,18 +331,18 @@ fn constraints_section(model: &mut Model, analysis: &ConstraintAnalysis) -> Sect
         speeds(&analysis.basis.dependent),
         speeds(&analysis.basis.independent),
     );
-    let exact_rows: Vec<Value> = model
+    let (exact_rows, exact_text): (Vec<Value>, Vec<String>) = model
         .constraints
         .iter()
         .zip(&analysis.exact_rows)
-        .map(|(row, &exact)| json!({"constraint": row.name, "exact": exact}))
-        .collect();
-    let exact_text: Vec<String> = model
-        .constraints
-        .iter()
-        .zip(&analysis.exact_rows)
-        .map(|(row, &exact)| format!("{} {}", row.name, if exact { "exact" } else { "not exact" }))
-        .collect();
+        .map(|(row, &exact)| {
+            let verdict = if exact { "exact" } else { "not exact" };
+            (
+                json!({"constraint": row.name, "exact": exact}),
+                format!("{} {verdict}", row.name),
+            )
+        })
+        .unzip();
     let growth: Vec<String> = analysis.growth.iter().map(usize::to_string).collect();
     let reachable = analysis.growth.last().copied().unwrap_or(model.n());
     Section {

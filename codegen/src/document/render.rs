@@ -19,7 +19,7 @@
 //! verbatim    the text
 //! ```
 
-use super::{Document, Equation, Item, Printed};
+use super::{Document, Equation, Item, Printed, Table};
 use crate::sym::latex::bmatrix;
 use serde_json::{Map, Value, json};
 use std::fmt::Write;
@@ -47,10 +47,13 @@ fn text_item(out: &mut String, item: &Item) {
             let _ = writeln!(out, "  {} = {}", symbol.text, value.text);
         }
         Item::Matrix {
-            symbol,
-            rows,
-            columns,
-            entries,
+            matrix:
+                Table {
+                    symbol,
+                    rows,
+                    columns,
+                    entries,
+                },
             ..
         } => {
             if entries.is_empty() {
@@ -86,7 +89,7 @@ pub(super) fn latex(document: &Document) -> String {
         .iter()
         .flat_map(|s| &s.items)
         .filter_map(|item| match item {
-            Item::Matrix { columns, .. } => Some(*columns),
+            Item::Matrix { matrix, .. } => Some(matrix.columns),
             _ => None,
         })
         .fold(DEFAULT_MATRIX_COLUMNS, usize::max);
@@ -124,18 +127,12 @@ fn latex_item(out: &mut String, item: &Item) {
         Item::Expression { symbol, value, .. } => {
             let _ = writeln!(out, "\\[ {} = {} \\]", symbol.latex, value.latex);
         }
-        Item::Matrix {
-            symbol,
-            columns,
-            entries,
-            ..
-        } => {
-            let cells: Vec<String> = entries.iter().map(|e| e.latex.clone()).collect();
+        Item::Matrix { matrix, .. } => {
             let _ = writeln!(
                 out,
                 "\\[ {} = {} \\]",
-                symbol.latex,
-                bmatrix(&cells, *columns)
+                matrix.symbol.latex,
+                matrix.bmatrix()
             );
         }
         Item::Equations { lines, .. } => {
@@ -152,6 +149,13 @@ fn latex_item(out: &mut String, item: &Item) {
         Item::Verbatim { text, .. } => {
             let _ = writeln!(out, "\\begin{{verbatim}}\n{text}\\end{{verbatim}}");
         }
+    }
+}
+
+impl Table {
+    fn bmatrix(&self) -> String {
+        let cells: Vec<String> = self.entries.iter().map(|e| e.latex.clone()).collect();
+        bmatrix(&cells, self.columns)
     }
 }
 
@@ -206,27 +210,21 @@ fn json_item(item: &Item) -> Value {
         Item::Expression { symbol, value, .. } => {
             json!({"symbol": symbol.text, "text": value.text, "latex": value.latex})
         }
-        Item::Matrix {
-            symbol,
-            rows,
-            columns,
-            entries,
-            ..
-        } => {
+        Item::Matrix { matrix, .. } => {
             let table = |pick: fn(&Printed) -> &String| -> Value {
-                entries
-                    .chunks((*columns).max(1))
+                matrix
+                    .entries
+                    .chunks(matrix.columns.max(1))
                     .map(|row| row.iter().map(|e| json!(pick(e))).collect::<Value>())
                     .collect()
             };
-            let cells: Vec<String> = entries.iter().map(|e| e.latex.clone()).collect();
             json!({
-                "symbol": symbol.text,
-                "rows": rows,
-                "columns": columns,
+                "symbol": matrix.symbol.text,
+                "rows": matrix.rows,
+                "columns": matrix.columns,
                 "text": table(|e| &e.text),
                 "latex": table(|e| &e.latex),
-                "bmatrix": bmatrix(&cells, *columns),
+                "bmatrix": matrix.bmatrix(),
             })
         }
         Item::Equations { lines, .. } => lines

@@ -2,16 +2,7 @@ use super::{Format, derive_document};
 use crate::fixtures::SNAKEBOARD;
 use serde_json::Value;
 
-const SLEIGH: &str = r#"
-pub struct Sleigh {
-    coordinates: [x, y, theta],
-    parameters: [m = 1.0, inertia = 0.1, a = 0.5],
-    kinetic_energy: m/2*((dot(x) - a*sin(theta)*dot(theta))^2
-        + (dot(y) + a*cos(theta)*dot(theta))^2) + inertia/2*dot(theta)^2,
-    constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
-    symmetry: se2(x, y, theta),
-}
-"#;
+const SLEIGH: &str = include_str!("../../../models/sleigh.model");
 
 /// A free particle in the plane: no constraints, no symmetry.
 const PARTICLE: &str = r#"
