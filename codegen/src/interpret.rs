@@ -18,13 +18,14 @@
 //! constant exponent as a product chain while the interpreter calls the
 //! library `powi`.
 //!
-//! With a symmetry, the momentum items whose bodies are single programs are
-//! available through [`InterpretedModel::call`] (`momentum`,
-//! `momentum_rhs`, `momentum_input_matrix`, `nonholonomic_connection`,
-//! `locked_inertia`, `body_velocity`); `shape_acceleration`, which the
-//! emitted code composes from two other items, is not.
+//! With a symmetry, the momentum items are available through
+//! [`InterpretedModel::call`] (`momentum`, `momentum_rhs`,
+//! `momentum_input_matrix`, `nonholonomic_connection`, `locked_inertia`,
+//! `body_velocity`), and [`InterpretedModel::shape_acceleration`] composes
+//! `body_velocity` and `acceleration` as the emitted code does.
 
 use crate::derive::constraints::analyse;
+use crate::derive::momentum::group_coordinates;
 use crate::derive::port_hamiltonian::momentum_names;
 use crate::diagnostic::Diagnostics;
 use crate::emit::{self, Assembly, Lowered};
@@ -129,6 +130,8 @@ pub struct InterpretedModel {
     parameters: Vec<f64>,
     functions: Vec<Interpreted>,
     report: String,
+    /// With a symmetry, the coordinates the group acts on.
+    group: Option<Vec<usize>>,
 }
 
 impl std::fmt::Debug for InterpretedModel {
@@ -181,6 +184,10 @@ impl InterpretedModel {
             defaults,
             functions,
             report: emitted.report,
+            group: model
+                .symmetry
+                .as_ref()
+                .map(|symmetry| group_coordinates(&symmetry.factors)),
         })
     }
 
@@ -227,6 +234,14 @@ impl InterpretedModel {
     /// The names of the interpreted functions, in emission order.
     pub fn functions(&self) -> impl Iterator<Item = &'static str> + '_ {
         self.functions.iter().map(|f| f.name)
+    }
+
+    /// The arguments of the function `name`: each array's name and length, in order.
+    pub fn arguments(&self, name: &str) -> Option<Vec<(&'static str, usize)>> {
+        self.functions
+            .iter()
+            .find(|f| f.name == name)
+            .map(|f| f.lowered.arguments.clone())
     }
 
     /// The function `name` at the argument slices, in its argument order;
@@ -388,6 +403,40 @@ impl InterpretedModel {
     /// The output `y = Bbar^T dHbar/dx`.
     pub fn output(&self, x: &[f64]) -> Result<Vec<f64>, CallError> {
         self.call("output", &[x])
+    }
+
+    /// The shape equations (Koon & Marsden 1.3): the shape rows of
+    /// `acceleration` at the group identity (group coordinates 0, shape
+    /// coordinates `r`) with the velocity `rdot` on the shape and
+    /// `body_velocity(r, rdot, p)` on the group coordinates, in coordinate
+    /// order, as the emitted `shape_acceleration` assembles it.
+    pub fn shape_acceleration(
+        &self,
+        r: &[f64],
+        rdot: &[f64],
+        p: &[f64],
+        u: &[f64],
+    ) -> Result<Vec<f64>, CallError> {
+        let group = self
+            .group
+            .as_ref()
+            .ok_or_else(|| CallError::UnknownFunction {
+                name: "shape_acceleration".to_string(),
+            })?;
+        let xi = self.call("body_velocity", &[r, rdot, p])?;
+        let n = self.sizes.n;
+        let shape: Vec<usize> = (0..n).filter(|i| !group.contains(i)).collect();
+        let (mut q, mut qdot) = (vec![0.0; n], vec![0.0; n]);
+        for (a, &i) in shape.iter().enumerate() {
+            q[i] = r[a];
+            qdot[i] = rdot[a];
+        }
+        let group_velocities = (0..n).filter(|i| !shape.contains(i));
+        for (velocity, i) in xi.iter().zip(group_velocities) {
+            qdot[i] = *velocity;
+        }
+        let (qddot, _) = self.acceleration(&q, &qdot, u)?;
+        Ok(shape.iter().map(|&i| qddot[i]).collect())
     }
 }
 

@@ -1,7 +1,8 @@
 //! The IR interpreter of a model text against the compiled model: every
 //! built-in model (and the dense test model `Towed`, whose `acceleration`
 //! is the run-time saddle-point solve) at pseudo-random states, with the
-//! default parameters and with one parameter changed.
+//! default parameters and with one parameter changed; the momentum items of
+//! the built-in models, which all declare a symmetry, likewise.
 //!
 //! The interpreter runs the very programs the compiled bodies were emitted
 //! from, with the same `f64` operations and the same elimination, so the
@@ -244,6 +245,108 @@ fn compare<const N: usize, const C: usize, const P: usize, const S: usize, const
     }
 }
 
+/// Compares the momentum items of the compiled `$model` (which has a
+/// symmetry) with the interpreter's, at default parameters and with
+/// `$parameter` scaled by 1.3.
+macro_rules! momentum_test {
+    ($test:ident, $model:ident, $parameter:ident) => {
+        #[test]
+        fn $test() {
+            let mut interpreted =
+                InterpretedModel::from_source(&source(stringify!($model))).expect("compiles");
+            let mut compiled = $model::default();
+            let mut agreement = Agreement::default();
+            let mut random = Random(0x2545_f491_4f6c_dd1d);
+            for round in 0..2 {
+                if round == 1 {
+                    let value = 1.3 * compiled.$parameter;
+                    compiled.$parameter = value;
+                    interpreted
+                        .set_parameter(stringify!($parameter), value)
+                        .expect("declared");
+                }
+                for _ in 0..STATES {
+                    let (q, qdot, u, r, rdot, p) = (
+                        random.array(),
+                        random.array(),
+                        random.array(),
+                        random.array(),
+                        random.array(),
+                        random.array(),
+                    );
+                    let expected = [
+                        ("momentum", compiled.momentum(&q, &qdot).to_vec()),
+                        (
+                            "momentum_rhs",
+                            compiled.momentum_rhs(&r, &rdot, &p).to_vec(),
+                        ),
+                        (
+                            "momentum_input_matrix",
+                            compiled.momentum_input_matrix(&q).concat(),
+                        ),
+                        (
+                            "nonholonomic_connection",
+                            compiled.nonholonomic_connection(&r).concat(),
+                        ),
+                        ("locked_inertia", compiled.locked_inertia(&r).concat()),
+                        (
+                            "body_velocity",
+                            compiled.body_velocity(&r, &rdot, &p).to_vec(),
+                        ),
+                    ];
+                    let arguments: [&[&[f64]]; 6] = [
+                        &[&q, &qdot],
+                        &[&r, &rdot, &p],
+                        &[&q],
+                        &[&r],
+                        &[&r],
+                        &[&r, &rdot, &p],
+                    ];
+                    for ((name, values), arguments) in expected.iter().zip(arguments) {
+                        let found = interpreted.call(name, arguments).expect("evaluates");
+                        agreement.check(name, values, &found);
+                    }
+                    let shape = interpreted
+                        .shape_acceleration(&r, &rdot, &p, &u)
+                        .expect("evaluates");
+                    agreement.check(
+                        "shape_acceleration",
+                        &compiled.shape_acceleration(&r, &rdot, &p, &u),
+                        &shape,
+                    );
+                }
+            }
+            println!(
+                "{} momentum items: {} entries within {TOLERANCE:e}, {} bit-identical",
+                stringify!($model),
+                agreement.compared,
+                agreement.identical
+            );
+        }
+    };
+}
+
+momentum_test!(
+    snakeboard_momentum_items_interpreted_as_compiled,
+    Snakeboard,
+    r
+);
+momentum_test!(
+    sleigh_momentum_items_interpreted_as_compiled,
+    Sleigh,
+    inertia
+);
+momentum_test!(
+    rolling_disk_momentum_items_interpreted_as_compiled,
+    RollingDisk,
+    r
+);
+momentum_test!(
+    differential_drive_momentum_items_interpreted_as_compiled,
+    DifferentialDrive,
+    b
+);
+
 differential_test!(snakeboard_interpreted_as_compiled, Snakeboard, jt);
 differential_test!(sleigh_interpreted_as_compiled, Sleigh, a);
 differential_test!(rolling_disk_interpreted_as_compiled, RollingDisk, m);
@@ -286,6 +389,15 @@ fn wrong_lengths_and_names_are_structured_errors() {
     assert!(matches!(
         sleigh.call("warp_drive", &[]),
         Err(CallError::UnknownFunction { .. })
+    ));
+    let towed = InterpretedModel::from_source(&source("Towed")).expect("compiles");
+    assert!(matches!(
+        towed.shape_acceleration(&[0.0], &[0.0], &[0.0], &[0.0]),
+        Err(CallError::UnknownFunction { .. })
+    ));
+    assert!(matches!(
+        sleigh.shape_acceleration(&[], &[], &[0.0], &[]),
+        Err(CallError::ArgumentLength { .. })
     ));
     let error = sleigh.set_parameter("mass", 2.0).expect_err("not declared");
     assert_eq!(error.name, "mass");
