@@ -13,10 +13,11 @@
 //! runs each operation with the `f64` method the emitted code calls, and the
 //! run-time saddle-point solve of `acceleration` is
 //! [`chaplygin_runtime::linalg::solve_in_place`], the elimination the
-//! emitted code's `solve` runs. Results can still differ from the compiled
-//! model in the last bits where the compiler evaluates `powi` with a
-//! constant exponent as a product chain while the interpreter calls the
-//! library `powi`.
+//! emitted code's `solve` runs. For the built-in models the results are
+//! bit-identical to the compiled ones (`models/tests/interpreter.rs`);
+//! that is not promised in general, since an optimizing compiler may
+//! evaluate `powi` with a constant exponent as a product chain where the
+//! interpreter calls the library `powi`.
 //!
 //! With a symmetry, the momentum items are available through
 //! [`InterpretedModel::call`] (`momentum`, `momentum_rhs`,
@@ -24,14 +25,13 @@
 //! `body_velocity`), and [`InterpretedModel::shape_acceleration`] composes
 //! `body_velocity` and `acceleration` as the emitted code does.
 
-use crate::derive::constraints::analyse;
+use crate::analysed_model;
 use crate::derive::momentum::group_coordinates;
 use crate::derive::port_hamiltonian::momentum_names;
 use crate::diagnostic::Diagnostics;
 use crate::emit::{self, Assembly, Lowered};
 use crate::ir::IrError;
-use crate::model::{self, Model};
-use crate::syntax::parse_str;
+use crate::model::Model;
 use chaplygin_runtime::linalg::solve_in_place;
 
 /// The names of a model and its sizes.
@@ -142,15 +142,6 @@ impl std::fmt::Debug for InterpretedModel {
             .field("parameters", &self.parameters)
             .finish_non_exhaustive()
     }
-}
-
-/// A model text checked and analysed, as both doors do before emitting.
-pub(crate) fn analysed_model(
-    source: &str,
-) -> Result<(Model, crate::derive::constraints::ConstraintAnalysis), Diagnostics> {
-    let mut model = model::check(&parse_str(source)?)?;
-    let constraints = analyse(&mut model)?;
-    Ok((model, constraints))
 }
 
 impl InterpretedModel {
@@ -456,5 +447,48 @@ fn names(model: &Model) -> Names {
         inputs: declared(&model.inputs),
         constraints: declared(&model.constraints),
         momenta: momentum_names(model),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::InterpretedModel;
+    use crate::fixtures::SNAKEBOARD;
+
+    /// MATH.md 3.1 at a state, with `m` and `jt` changed from their defaults:
+    /// `xdot = (alpha1/m) cos phi cos theta`, `ydot = (alpha1/m) cos phi sin theta`,
+    /// `thetadot = alpha1 sin phi / (m r)`, `psidot = alpha2/Jt - alpha1 sin phi / (m r)`,
+    /// `phidot = alpha3/Jw`, `alpha1dot = -(sin phi / r) u1`, `alpha2dot = u1`,
+    /// `alpha3dot = u2`.
+    #[test]
+    fn the_snakeboard_reduced_equations_are_those_of_math_3_1() {
+        let mut snakeboard = InterpretedModel::from_source(SNAKEBOARD).expect("compiles");
+        snakeboard.set_parameter("m", 2.5).expect("declared");
+        snakeboard.set_parameter("jt", 0.7).expect("declared");
+        let (m, r, jt, jw) = (2.5, 0.5, 0.7, 0.05);
+        let (theta, phi) = (0.4f64, -0.9f64);
+        let (a1, a2, a3) = (1.3, -0.6, 0.8);
+        let (u1, u2) = (0.25, -1.5);
+        let x = [0.1, -0.2, theta, 0.3, phi, a1, a2, a3];
+        let expected = [
+            a1 / m * phi.cos() * theta.cos(),
+            a1 / m * phi.cos() * theta.sin(),
+            a1 * phi.sin() / (m * r),
+            a2 / jt - a1 * phi.sin() / (m * r),
+            a3 / jw,
+            -(phi.sin() / r) * u1,
+            u1,
+            u2,
+        ];
+        let found = snakeboard.reduced_rhs(&x, &[u1, u2]).expect("evaluates");
+        for (i, (f, e)) in found.iter().zip(expected).enumerate() {
+            assert!((f - e).abs() <= 1e-14 * e.abs().max(1.0), "{i}: {f} vs {e}");
+        }
+        assert_eq!(snakeboard.parameter_values(), [2.5, 0.5, 0.7, 0.05]);
+        assert_eq!(snakeboard.parameter_defaults(), [1.0, 0.5, 0.3, 0.05]);
+        assert_eq!(snakeboard.names().momenta, ["group", "torso", "wheels"]);
+        let hamiltonian = snakeboard.hamiltonian(&x).expect("evaluates");
+        let energy = a1 * a1 / (2.0 * m) + a2 * a2 / (2.0 * jt) + a3 * a3 / (2.0 * jw);
+        assert!((hamiltonian - energy).abs() <= 1e-14 * energy);
     }
 }

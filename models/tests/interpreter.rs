@@ -8,7 +8,7 @@
 //! from, with the same `f64` operations and the same elimination, so the
 //! values agree; the tolerance is 1e-13 relative to the largest entry of
 //! each result, and the test prints how many entries are bit-identical (all
-//! of them in a debug build). Bit-identity is not asserted: an optimizing
+//! of them, in debug and in release builds, when this test was written). Bit-identity is not asserted: an optimizing
 //! compiler may expand `powi` with a constant exponent into a product chain,
 //! which the interpreter's library `powi` need not match in the last bit.
 

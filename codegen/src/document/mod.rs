@@ -33,13 +33,13 @@
 
 mod render;
 
+use crate::analysed_model;
 use crate::derive::constraints::{ConstraintAnalysis, distribution_basis};
 use crate::derive::lagrange_dalembert::{self, LagrangeDalembert};
 use crate::derive::momentum::{self, Momentum};
 use crate::derive::port_hamiltonian::{self, PortHamiltonian};
 use crate::diagnostic::Diagnostics;
 use crate::emit::{self, internal};
-use crate::interpret::analysed_model;
 use crate::model::Model;
 use crate::sym::latex::latex_rate;
 use crate::sym::{ExprId, Matrix, SymbolId};
@@ -54,6 +54,24 @@ pub enum Format {
     Latex,
     /// A JSON object (see the module documentation).
     Json,
+}
+
+/// A format name that is not `text`, `latex` or `json`.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown document format `{0}`: expected `text`, `latex` or `json`")]
+pub struct UnknownFormat(pub String);
+
+impl std::str::FromStr for Format {
+    type Err = UnknownFormat;
+
+    fn from_str(name: &str) -> Result<Format, UnknownFormat> {
+        match name {
+            "text" => Ok(Format::Text),
+            "latex" => Ok(Format::Latex),
+            "json" => Ok(Format::Json),
+            _ => Err(UnknownFormat(name.to_string())),
+        }
+    }
 }
 
 /// The derivation document of the model text (the text

@@ -1,4 +1,4 @@
-use super::{Format, derive_document};
+use super::{Format, UnknownFormat, derive_document};
 use crate::fixtures::SNAKEBOARD;
 use serde_json::Value;
 
@@ -156,4 +156,12 @@ fn a_broken_model_is_its_diagnostics() {
     let broken = SLEIGH.replace("dot(x) - a", "dot(z) - a");
     let diagnostics = derive_document(&broken, Format::Text).expect_err("z is not declared");
     assert!(diagnostics.render("sleigh.model").contains("sleigh.model:"));
+}
+
+#[test]
+fn formats_are_named_as_on_the_command_line() {
+    assert_eq!("text".parse(), Ok(Format::Text));
+    assert_eq!("latex".parse(), Ok(Format::Latex));
+    assert_eq!("json".parse(), Ok(Format::Json));
+    assert_eq!("pdf".parse::<Format>(), Err(UnknownFormat("pdf".into())));
 }
