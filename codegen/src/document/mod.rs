@@ -29,7 +29,16 @@
 //! ([`crate::sym::Store::latex`]). The JSON object has one member per
 //! section (`names`, `sizes`, `constraints`, `lagrange_dalembert`,
 //! `port_hamiltonian`, `momentum` (null without a symmetry), `report`),
-//! each an object of the items described in [`render`].
+//! each an object of its items by key:
+//!
+//! ```text
+//! fact        the value: a string, number, boolean, or array
+//! expression  {"symbol": "V", "text": "...", "latex": "..."}
+//! matrix      {"symbol": "g", "rows": r, "columns": c, "text": [[...], ...],
+//!              "latex": [[...], ...], "bmatrix": "\begin{bmatrix}...\end{bmatrix}"}
+//! equations   [{"lhs": {"text", "latex"}, "rhs": {"text", "latex"}}, ...]
+//! verbatim    the text (the report: `"report": {"text": "..."}`)
+//! ```
 
 mod render;
 

@@ -8,16 +8,8 @@
 //! display math, equations in `align*`, the report `verbatim`.
 //!
 //! JSON: `{"model": name, <section key>: {<item key>: item, ...}, ...}` with
-//! `"momentum": null` when the model has no symmetry. An item is
-//!
-//! ```text
-//! fact        the value: a string, number, boolean, or array
-//! expression  {"symbol": "V", "text": "...", "latex": "..."}
-//! matrix      {"symbol": "g", "rows": r, "columns": c,
-//!              "text": [[...], ...], "latex": [[...], ...], "bmatrix": "\begin{bmatrix}...\end{bmatrix}"}
-//! equations   [{"lhs": {"text", "latex"}, "rhs": {"text", "latex"}}, ...]
-//! verbatim    the text
-//! ```
+//! `"momentum": null` when the model has no symmetry, the items as the
+//! documentation of [`super`] lays them out.
 
 use super::{Document, Equation, Item, Printed, Table};
 use crate::sym::latex::bmatrix;
