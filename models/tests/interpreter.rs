@@ -91,6 +91,35 @@ impl Agreement {
             self.identical += usize::from(a.to_bits() == b.to_bits());
         }
     }
+
+    fn report(&self, what: &str) {
+        println!(
+            "{what}: {} entries within {TOLERANCE:e}, {} bit-identical",
+            self.compared, self.identical
+        );
+    }
+}
+
+/// Runs `check` at `STATES` states with the default parameters, then again
+/// with the parameter `name` (the field `parameter` of the compiled model)
+/// scaled by 1.3 in both models.
+fn at_both_parameter_values<M>(
+    compiled: &mut M,
+    interpreted: &mut InterpretedModel,
+    name: &str,
+    parameter: fn(&mut M) -> &mut f64,
+    mut check: impl FnMut(&M, &InterpretedModel),
+) {
+    for round in 0..2 {
+        if round == 1 {
+            let value = 1.3 * *parameter(compiled);
+            *parameter(compiled) = value;
+            interpreted.set_parameter(name, value).expect("declared");
+        }
+        for _ in 0..STATES {
+            check(compiled, interpreted);
+        }
+    }
 }
 
 /// Compares every item of the compiled `$model` with the interpreter of its
@@ -118,30 +147,22 @@ macro_rules! differential_test {
             assert_eq!(interpreted.report(), $model::REPORT);
             let mut agreement = Agreement::default();
             let mut random = Random(0x9e37_79b9_7f4a_7c15);
-            for round in 0..2 {
-                if round == 1 {
-                    let value = 1.3 * compiled.$parameter;
-                    compiled.$parameter = value;
-                    interpreted
-                        .set_parameter(stringify!($parameter), value)
-                        .expect("declared");
-                }
-                for _ in 0..STATES {
+            at_both_parameter_values(
+                &mut compiled,
+                &mut interpreted,
+                stringify!($parameter),
+                |model| &mut model.$parameter,
+                |compiled, interpreted| {
                     compare::<
                         { $model::N },
                         { $model::C },
                         { $model::P },
                         { $model::S },
                         { $model::K },
-                    >(&compiled, &interpreted, &mut random, &mut agreement);
-                }
-            }
-            println!(
-                "{}: {} entries within {TOLERANCE:e}, {} bit-identical",
-                stringify!($model),
-                agreement.compared,
-                agreement.identical
+                    >(compiled, interpreted, &mut random, &mut agreement)
+                },
             );
+            agreement.report(stringify!($model));
         }
 
         impl Items<{ $model::N }, { $model::C }, { $model::P }, { $model::S }, { $model::K }>
@@ -257,15 +278,12 @@ macro_rules! momentum_test {
             let mut compiled = $model::default();
             let mut agreement = Agreement::default();
             let mut random = Random(0x2545_f491_4f6c_dd1d);
-            for round in 0..2 {
-                if round == 1 {
-                    let value = 1.3 * compiled.$parameter;
-                    compiled.$parameter = value;
-                    interpreted
-                        .set_parameter(stringify!($parameter), value)
-                        .expect("declared");
-                }
-                for _ in 0..STATES {
+            at_both_parameter_values(
+                &mut compiled,
+                &mut interpreted,
+                stringify!($parameter),
+                |model| &mut model.$parameter,
+                |compiled, interpreted| {
                     let (q, qdot, u, r, rdot, p) = (
                         random.array(),
                         random.array(),
@@ -314,14 +332,9 @@ macro_rules! momentum_test {
                         &compiled.shape_acceleration(&r, &rdot, &p, &u),
                         &shape,
                     );
-                }
-            }
-            println!(
-                "{} momentum items: {} entries within {TOLERANCE:e}, {} bit-identical",
-                stringify!($model),
-                agreement.compared,
-                agreement.identical
+                },
             );
+            agreement.report(concat!(stringify!($model), " momentum items"));
         }
     };
 }
