@@ -7,9 +7,11 @@ fn main() {
         return;
     }
     let models = ["snakeboard", "sleigh", "rolling_disk", "differential_drive"];
-    let builder = models.iter().fold(chaplygin_codegen::Builder::new(), |b, m| {
-        b.model_file(format!("models/{m}.model"))
-    });
+    let builder = models
+        .iter()
+        .fold(chaplygin_codegen::Builder::new(), |b, m| {
+            b.model_file(format!("models/{m}.model"))
+        });
     if let Err(error) = builder.write_to_out_dir() {
         eprintln!("{error}");
         std::process::exit(1);

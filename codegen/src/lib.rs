@@ -10,14 +10,18 @@
 //! expressions to straight-line code with common subexpressions shared, which
 //! [`emit`] splices into allocation-free Rust. [`expand`] is what the
 //! `chaplygin::model!` macro calls; [`Builder`] is the build-script door for
-//! `.model` files.
+//! `.model` files. [`document`] lays out a model's derivation as text, LaTeX
+//! or JSON; [`interpret`] runs a model text through the IR interpreter
+//! without compiling Rust.
 
 #![warn(missing_docs)]
 
 mod build;
 pub mod derive;
 pub mod diagnostic;
+pub mod document;
 pub mod emit;
+pub mod interpret;
 pub mod ir;
 pub mod model;
 pub mod sym;
@@ -42,6 +46,15 @@ pub fn expand(tokens: TokenStream) -> TokenStream {
 /// [`expand`], keeping the diagnostics.
 pub fn try_expand(tokens: TokenStream) -> Result<TokenStream, diagnostic::Diagnostics> {
     compile(&syntax::parse(tokens)?)
+}
+
+/// A model text parsed, checked and analysed, as both doors do before emitting.
+pub(crate) fn analysed_model(
+    source: &str,
+) -> Result<(model::Model, derive::constraints::ConstraintAnalysis), diagnostic::Diagnostics> {
+    let mut model = model::check(&syntax::parse_str(source)?)?;
+    let constraints = derive::constraints::analyse(&mut model)?;
+    Ok((model, constraints))
 }
 
 /// A parsed model's items: checked, analysed, emitted (both doors).

@@ -18,7 +18,7 @@
 //!   its Hadamard ratio `det(A g^-1 A^T) / prod_i (A g^-1 A^T)_ii`, in
 //!   `[0, 1]`, zero exactly where the rows of `A` are dependent.
 
-use crate::linalg::{determinant, solve};
+use crate::linalg::{determinant_in_place, solve};
 
 /// `det[A; V^T] / (prod |A_i| prod |V_j|)` (see the module documentation);
 /// `N = C + K`.
@@ -40,13 +40,22 @@ pub fn reduced_regularity<const N: usize, const C: usize, const K: usize>(
             "C constraint rows and K basis vectors make N rows"
         )
     };
-    let rows: [[f64; N]; N] =
+    let mut rows: [[f64; N]; N] =
         core::array::from_fn(|i| if i < C { constraints[i] } else { basis[i - C] });
-    let scale: f64 = rows.iter().map(norm).product();
+    reduced_regularity_in_place(rows.as_flattened_mut(), N)
+}
+
+/// [`reduced_regularity`] on slices: `rows` holds the `n x n` matrix
+/// `[A; V^T]` in row-major order (overwritten).
+pub fn reduced_regularity_in_place(rows: &mut [f64], n: usize) -> f64 {
+    let scale: f64 = rows
+        .chunks(n.max(1))
+        .map(|row| row.iter().map(|v| v * v).sum::<f64>().sqrt())
+        .product();
     if scale == 0.0 {
         return 0.0;
     }
-    determinant(rows) / scale
+    determinant_in_place(rows, n) / scale
 }
 
 /// `det(A g^-1 A^T) / prod_i (A g^-1 A^T)_ii` for the mass matrix `g` and the
@@ -63,19 +72,21 @@ pub fn constraint_regularity<const N: usize, const C: usize>(
     constraints: &[[f64; N]; C],
 ) -> f64 {
     let inverse_rows: [[f64; N]; C] = core::array::from_fn(|i| solve(*mass_matrix, constraints[i]));
-    let gram: [[f64; C]; C] =
+    let mut gram: [[f64; C]; C] =
         core::array::from_fn(|i| core::array::from_fn(|j| dot(&constraints[i], &inverse_rows[j])));
-    let diagonal: f64 = (0..C).map(|i| gram[i][i]).product();
+    gram_regularity_in_place(gram.as_flattened_mut(), C)
+}
+
+/// The Hadamard ratio `det(G) / prod_i G_ii` of the `c x c` Gram matrix `G`
+/// in row-major order (overwritten); 1 for `c = 0`.
+pub fn gram_regularity_in_place(gram: &mut [f64], c: usize) -> f64 {
+    let diagonal: f64 = (0..c).map(|i| gram[i * c + i]).product();
     if diagonal == 0.0 {
         return 0.0;
     }
-    determinant(gram) / diagonal
+    determinant_in_place(gram, c) / diagonal
 }
 
 fn dot<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-fn norm<const N: usize>(a: &[f64; N]) -> f64 {
-    dot(a, a).sqrt()
 }

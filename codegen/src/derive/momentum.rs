@@ -184,7 +184,7 @@ fn reconstruction(
 
 /// The group coordinates, factor by factor: `x, y, theta` for `se2`, the
 /// coordinate for an abelian factor. The body velocity `xi` has this layout.
-fn group_coordinates(factors: &[GroupFactor]) -> Vec<usize> {
+pub(crate) fn group_coordinates(factors: &[GroupFactor]) -> Vec<usize> {
     factors
         .iter()
         .flat_map(|factor| match *factor {

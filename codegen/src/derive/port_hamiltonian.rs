@@ -244,9 +244,9 @@ fn momentum_basis(
     Ok((h, momentum_names(model), false))
 }
 
-/// The names of the momenta `alpha`: the declared momentum basis's row
-/// names, else `alpha1, ..., alphak`.
-pub(crate) fn momentum_names(model: &Model) -> Vec<String> {
+/// The names of the reduced momenta: the declared basis rows', else
+/// `alpha1..alphak` for the tool's own basis `h = (g X)^T` (k rows).
+pub fn momentum_names(model: &Model) -> Vec<String> {
     match &model.momentum_basis {
         Some(declared) => declared.names.iter().map(|d| d.name.clone()).collect(),
         None => (1..=model.k()).map(|i| format!("alpha{i}")).collect(),

@@ -28,7 +28,7 @@ fn mass_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
     })?;
     let f64 = f64_type();
     let q = body.argument("q");
-    let (statements, operations) = (body.statements, body.operations);
+    let (statements, operations, lowered) = (body.statements, body.operations, body.lowered);
     let item = quote! {
         /// The mass matrix `g(q)`.
         pub fn mass_matrix(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #n] {
@@ -39,6 +39,7 @@ fn mass_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
         name: "mass_matrix",
         item,
         operations,
+        lowered: Some(lowered),
     })
 }
 
@@ -51,7 +52,7 @@ fn energy(model: &mut Model) -> Result<Function, Diagnostics> {
     let body = function_body(model, &arguments, &outputs, |values| quote!(#(#values)*))?;
     let f64 = f64_type();
     let (q, qdot) = (body.argument("q"), body.argument("qdot"));
-    let (statements, operations) = (body.statements, body.operations);
+    let (statements, operations, lowered) = (body.statements, body.operations, body.lowered);
     let item = quote! {
         /// The total energy `T + V`.
         pub fn energy(&self, #q: &[#f64; #n], #qdot: &[#f64; #n]) -> #f64 {
@@ -62,6 +63,7 @@ fn energy(model: &mut Model) -> Result<Function, Diagnostics> {
         name: "energy",
         item,
         operations,
+        lowered: Some(lowered),
     })
 }
 
@@ -73,7 +75,7 @@ fn constraint_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
     })?;
     let f64 = f64_type();
     let q = body.argument("q");
-    let (statements, operations) = (body.statements, body.operations);
+    let (statements, operations, lowered) = (body.statements, body.operations, body.lowered);
     let item = quote! {
         /// The constraint rows `A(q)`, in declared order: allowed velocities satisfy `A(q) qdot = 0`.
         pub fn constraint_matrix(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #c] {
@@ -84,6 +86,7 @@ fn constraint_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
         name: "constraint_matrix",
         item,
         operations,
+        lowered: Some(lowered),
     })
 }
 
@@ -113,7 +116,7 @@ fn constraint_residual(model: &mut Model) -> Result<Function, Diagnostics> {
     let body = function_body(model, &arguments, &outputs, |values| quote!([#(#values),*]))?;
     let f64 = f64_type();
     let (q, qdot) = (body.argument("q"), body.argument("qdot"));
-    let (statements, operations) = (body.statements, body.operations);
+    let (statements, operations, lowered) = (body.statements, body.operations, body.lowered);
     let item = quote! {
         /// The constraint residual `A(q) qdot`: zero for allowed velocities.
         pub fn constraint_residual(&self, #q: &[#f64; #n], #qdot: &[#f64; #n]) -> [#f64; #c] {
@@ -124,5 +127,6 @@ fn constraint_residual(model: &mut Model) -> Result<Function, Diagnostics> {
         name: "constraint_residual",
         item,
         operations,
+        lowered: Some(lowered),
     })
 }

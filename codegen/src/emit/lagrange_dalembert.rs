@@ -74,7 +74,10 @@ pub(crate) fn acceleration_with(
         body.argument("qdot"),
         body.argument("u"),
     );
-    let (statements, operations) = (body.statements, body.operations);
+    let (statements, operations, mut lowered) = (body.statements, body.operations, body.lowered);
+    if strategy == Strategy::Numeric {
+        lowered.assembly = super::Assembly::SaddlePoint;
+    }
     let method = match strategy {
         Strategy::Symbolic => "Computed in closed form from exact symbolic inverses.",
         Strategy::Numeric => {
@@ -102,6 +105,7 @@ pub(crate) fn acceleration_with(
         name: "acceleration",
         item,
         operations,
+        lowered: Some(lowered),
     })
 }
 

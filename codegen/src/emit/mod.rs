@@ -46,11 +46,41 @@ pub(crate) struct Argument {
     pub(crate) symbols: Vec<SymbolId>,
 }
 
-/// One emitted function: its name, its item, and its operation counts.
+/// One emitted function: its name, its item, its operation counts, and the
+/// program its body was emitted from (none for a body that calls other
+/// items).
 pub(crate) struct Function {
     pub(crate) name: &'static str,
     pub(crate) item: TokenStream,
     pub(crate) operations: OperationCount,
+    pub(crate) lowered: Option<Lowered>,
+}
+
+/// The program of a function body and its layout: input slots are the
+/// elements of each argument array in order, then the parameters in
+/// declared order; `outputs` are the expressions it computes.
+pub(crate) struct Lowered {
+    pub(crate) program: ir::Program,
+    pub(crate) arguments: Vec<(&'static str, usize)>,
+    pub(crate) outputs: Vec<ExprId>,
+    pub(crate) assembly: Assembly,
+}
+
+/// How a body turns its program's outputs into the returned value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Assembly {
+    /// The outputs are the returned entries, in row-major order.
+    Values,
+    /// The outputs are `g`, `A`, the force and the drift of the
+    /// saddle-point system, solved at run time (`acceleration`).
+    SaddlePoint,
+}
+
+/// A model's items, its emitted functions and its report text.
+pub(crate) struct Emitted {
+    pub(crate) items: TokenStream,
+    pub(crate) functions: Vec<Function>,
+    pub(crate) report: String,
 }
 
 /// The Rust items of a checked and analysed model.
@@ -58,6 +88,14 @@ pub fn model_items(
     model: &mut Model,
     constraints: &ConstraintAnalysis,
 ) -> Result<TokenStream, Diagnostics> {
+    emit(model, constraints).map(|emitted| emitted.items)
+}
+
+/// [`model_items`], keeping the functions and the report.
+pub(crate) fn emit(
+    model: &mut Model,
+    constraints: &ConstraintAnalysis,
+) -> Result<Emitted, Diagnostics> {
     let definition = parameter_struct(model);
     let constants = constants(model);
     let mut functions = kinematics::functions(model)?;
@@ -71,34 +109,43 @@ pub fn model_items(
         functions.extend(reduction);
         sections.push(reduction_report);
     }
-    let report = report_constant(model, constraints, sections, &functions);
+    let report = report_text(model, constraints, sections, &functions);
+    let report_item = report_constant(&report);
     let items = functions.iter().map(|f| &f.item);
     let name = &model.name;
     let implementations = traits::implementations(model);
-    Ok(quote! {
+    let items = quote! {
         #definition
         impl #name {
             #constants
-            #report
+            #report_item
             #(#items)*
         }
         #implementations
+    };
+    Ok(Emitted {
+        items,
+        functions,
+        report,
     })
 }
 
-fn report_constant(
+fn report_text(
     model: &mut Model,
     constraints: &ConstraintAnalysis,
     derivations: Vec<report::Section>,
     functions: &[Function],
-) -> TokenStream {
+) -> String {
     let mut report = report::Report::new(model.name.to_string());
     report.push(report::constraints(model, constraints));
     for section in derivations {
         report.push(section);
     }
     report.push(report::operations(functions));
-    let text = report.render();
+    report.render()
+}
+
+fn report_constant(text: &str) -> TokenStream {
     quote! {
         /// The derivation report: sizes, the basis of D, integrability,
         /// growth vector, classification, the reduced port-Hamiltonian
@@ -225,10 +272,12 @@ pub(crate) fn matrix_literal(values: &[TokenStream], columns: usize) -> TokenStr
     quote!([#(#rows),*])
 }
 
-/// A function body, which argument arrays it reads, and what it costs.
+/// A function body, which argument arrays it reads, what it costs, and
+/// its program.
 pub(crate) struct Body {
     pub(crate) statements: TokenStream,
     pub(crate) operations: OperationCount,
+    pub(crate) lowered: Lowered,
     used: Vec<&'static str>,
 }
 
@@ -284,9 +333,20 @@ pub(crate) fn function_body(
     used.dedup();
     let statements = emitted.statements;
     let value = result(&emitted.outputs);
+    let operations = program.operation_count();
+    let lowered = Lowered {
+        program,
+        arguments: arguments
+            .iter()
+            .map(|argument| (argument.name, argument.symbols.len()))
+            .collect(),
+        outputs: outputs.to_vec(),
+        assembly: Assembly::Values,
+    };
     Ok(Body {
         statements: quote!(#statements #value),
-        operations: program.operation_count(),
+        operations,
+        lowered,
         used,
     })
 }

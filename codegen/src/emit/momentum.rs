@@ -276,6 +276,7 @@ fn shape_acceleration(
         name: "shape_acceleration",
         item,
         operations,
+        lowered: None,
     }
 }
 

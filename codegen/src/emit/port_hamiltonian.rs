@@ -131,6 +131,7 @@ pub(super) fn item(
         name: signature.name,
         item,
         operations: body.operations,
+        lowered: Some(body.lowered),
     })
 }
 

@@ -21,10 +21,9 @@ pub(crate) fn implementations(model: &Model) -> TokenStream {
         .parameters
         .iter()
         .map(|p| p.variable.declared.name.as_str());
-    let parameter_fields = model
-        .parameters
-        .iter()
-        .map(|p| proc_macro2::Ident::new(&p.variable.declared.name, proc_macro2::Span::call_site()));
+    let parameter_fields = model.parameters.iter().map(|p| {
+        proc_macro2::Ident::new(&p.variable.declared.name, proc_macro2::Span::call_site())
+    });
     let velocities_of_state = quote! {{
         let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
         let alpha: [#f64; #k] = ::core::array::from_fn(|i| x[#n + i]);

@@ -3,6 +3,7 @@
 pub mod diff;
 pub mod eval;
 pub mod expr;
+pub mod latex;
 pub mod matrix;
 pub mod normal;
 pub mod number;

@@ -101,7 +101,12 @@ fn facts(compiled: Compiled) -> ([usize; 4], &'static str) {
         ),
         Compiled::Sleigh => ([Sleigh::N, Sleigh::C, Sleigh::K, Sleigh::P], Sleigh::REPORT),
         Compiled::RollingDisk => (
-            [RollingDisk::N, RollingDisk::C, RollingDisk::K, RollingDisk::P],
+            [
+                RollingDisk::N,
+                RollingDisk::C,
+                RollingDisk::K,
+                RollingDisk::P,
+            ],
             RollingDisk::REPORT,
         ),
         Compiled::DifferentialDrive => (

@@ -39,6 +39,13 @@ pub struct Rejected(pub String);
 /// An unknown model, or the model's diagnostics.
 pub fn document(model: &str, format: Format) -> Result<String, Box<dyn Error>> {
     let source = catalog::lookup(model)?;
-    derive_document(source.text(), format.into())
-        .map_err(|diagnostics| Rejected(diagnostics.render(&source.file_name()).trim_end().to_string()).into())
+    derive_document(source.text(), format.into()).map_err(|diagnostics| {
+        Rejected(
+            diagnostics
+                .render(&source.file_name())
+                .trim_end()
+                .to_string(),
+        )
+        .into()
+    })
 }

@@ -24,7 +24,14 @@ pub trait Formulation {
     /// Whether [`Formulation::structure`] is available.
     fn is_structured(&self) -> bool;
     /// `f = J dH/dx + F`: `J` (row-major), `dH/dx` and `F`.
-    fn structure(&self, t: f64, x: &[f64], j: &mut [f64], gradient: &mut [f64], forcing: &mut [f64]);
+    fn structure(
+        &self,
+        t: f64,
+        x: &[f64],
+        j: &mut [f64],
+        gradient: &mut [f64],
+        forcing: &mut [f64],
+    );
     /// The inputs applied at `(t, x)`.
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]);
     /// The largest `|A(q) qdot|`.
@@ -101,7 +108,14 @@ impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
         self.structure.is_some()
     }
 
-    fn structure(&self, t: f64, x: &[f64], j: &mut [f64], gradient: &mut [f64], forcing: &mut [f64]) {
+    fn structure(
+        &self,
+        t: f64,
+        x: &[f64],
+        j: &mut [f64],
+        gradient: &mut [f64],
+        forcing: &mut [f64],
+    ) {
         if let Some(structure) = self.structure {
             let (matrix, g, f) = structure(&self.system, t, &array(x));
             flatten(&matrix, j);

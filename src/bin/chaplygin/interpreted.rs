@@ -49,7 +49,12 @@ fn residual(model: &InterpretedModel, q: &[f64], qdot: &[f64]) -> f64 {
 impl Formulation for InterpretedReduced {
     fn state_names(&self) -> Vec<String> {
         let names = self.model.names();
-        names.coordinates.iter().chain(&names.momenta).cloned().collect()
+        names
+            .coordinates
+            .iter()
+            .chain(&names.momenta)
+            .cloned()
+            .collect()
     }
 
     fn input_names(&self) -> Vec<String> {
@@ -72,7 +77,14 @@ impl Formulation for InterpretedReduced {
         true
     }
 
-    fn structure(&self, _t: f64, x: &[f64], j: &mut [f64], gradient: &mut [f64], forcing: &mut [f64]) {
+    fn structure(
+        &self,
+        _t: f64,
+        x: &[f64],
+        j: &mut [f64],
+        gradient: &mut [f64],
+        forcing: &mut [f64],
+    ) {
         j.copy_from_slice(&evaluated(self.model.structure_matrix(x)));
         gradient.copy_from_slice(&evaluated(self.model.hamiltonian_gradient(x)));
         let b = evaluated(self.model.input_matrix(x));
@@ -177,8 +189,10 @@ impl Formulation for InterpretedDalembert {
             .chunks(sizes.n)
             .map(|row| {
                 let (mut matrix, mut solution) = (g.clone(), row.to_vec());
-                solve_in_place(&mut matrix, &mut solution);
-                solution
+                match solve_in_place(&mut matrix, &mut solution) {
+                    Ok(()) => solution,
+                    Err(_) => vec![f64::NAN; sizes.n],
+                }
             })
             .collect();
         let mut gram: Vec<f64> = a

@@ -15,6 +15,7 @@
 mod catalog;
 mod derive;
 mod formulation;
+mod interpreted;
 mod options;
 mod simulate;
 

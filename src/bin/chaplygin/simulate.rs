@@ -6,15 +6,15 @@
 
 use crate::catalog::{self, BuiltIn, Compiled, Source};
 use crate::derive::Rejected;
-use crate::interpreted::{InterpretedDalembert, InterpretedReduced};
-use chaplygin_codegen::interpret::InterpretedModel;
 use crate::formulation::{Formulation, Sized, Typed, with_dimension};
+use crate::interpreted::{InterpretedDalembert, InterpretedReduced};
 use crate::models::energy_control::{ClosedLoop, EnergyController};
 use crate::models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
     snakeboard::Snakeboard,
 };
 use crate::options::{Controller, Formulation as Kind, Integrator, SimulateArgs};
+use chaplygin::plot;
 use chaplygin::runtime::control::Constant;
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, Rk4};
 use chaplygin::runtime::record::{CsvRecorder, Recorder, Table};
@@ -22,6 +22,7 @@ use chaplygin::runtime::simulate::{Advance, Simulation, Summary};
 use chaplygin::runtime::system::{
     Dalembert, LagrangeDalembert, ModelNames, Momenta, Parameters, Reduced, ReducedPortHamiltonian,
 };
+use chaplygin_codegen::interpret::InterpretedModel;
 use std::error::Error;
 use std::io;
 use std::time::{Duration, Instant};
@@ -166,7 +167,15 @@ where
 }
 
 /// A compiled model with constant inputs, in either formulation.
-fn compiled<M, const N: usize, const C: usize, const K: usize, const P: usize, const S: usize, const D: usize>(
+fn compiled<
+    M,
+    const N: usize,
+    const C: usize,
+    const K: usize,
+    const P: usize,
+    const S: usize,
+    const D: usize,
+>(
     built_in: &BuiltIn,
     args: &SimulateArgs,
 ) -> Result<(), Box<dyn Error>>
@@ -185,11 +194,21 @@ where
         Kind::Reduced => {
             let alpha = model.momenta(&array(&start.q), &array(&start.qdot));
             let x0: Vec<f64> = start.q.iter().chain(&alpha).copied().collect();
-            execute(&Typed::<_, S>::structured(Reduced::new(&model, u)), &x0, args, None)
+            execute(
+                &Typed::<_, S>::structured(Reduced::new(&model, u)),
+                &x0,
+                args,
+                None,
+            )
         }
         Kind::Lagrange => {
             let x0: Vec<f64> = start.q.iter().chain(&start.qdot).copied().collect();
-            execute(&Typed::<_, D>::plain(Dalembert::new(&model, u)), &x0, args, None)
+            execute(
+                &Typed::<_, D>::plain(Dalembert::new(&model, u)),
+                &x0,
+                args,
+                None,
+            )
         }
     }
 }
@@ -239,26 +258,28 @@ fn energy_controlled(built_in: &BuiltIn, args: &SimulateArgs) -> Result<(), Box<
         &mut [("xt", &mut xt), ("xw", &mut xw)],
     )?;
     let alpha = board.momenta(&array(&start.q), &array(&start.qdot));
-    let x0: Vec<f64> = start.q.iter().chain(&alpha).chain(&[xt, xw]).copied().collect();
+    let x0: Vec<f64> = start
+        .q
+        .iter()
+        .chain(&alpha)
+        .chain(&[xt, xw])
+        .copied()
+        .collect();
     let closed_loop = ClosedLoop::new(board, controller);
-    let figure4 = Figure4 {
+    let figure4 = plot::Figure4 {
+        alpha1: "group".into(),
+        alpha2: "torso".into(),
+        xt: "xt".into(),
         m: board.m,
         jt: board.jt,
         kt: controller.kt,
     };
-    execute(&Typed::<_, 10>::structured(closed_loop), &x0, args, Some(figure4))
-}
-
-/// The data of the paper's Figure 4: the constant-energy ellipsoid
-/// `alpha1^2/(2m) + alpha2^2/(2Jt) + kt xt^2/2`.
-#[derive(Clone, Copy, Debug)]
-pub struct Figure4 {
-    /// The board's mass.
-    pub m: f64,
-    /// The torso's inertia.
-    pub jt: f64,
-    /// The torso spring's stiffness.
-    pub kt: f64,
+    execute(
+        &Typed::<_, 10>::structured(closed_loop),
+        &x0,
+        args,
+        Some(figure4),
+    )
 }
 
 fn array<const N: usize>(values: &[f64]) -> [f64; N] {
@@ -313,6 +334,9 @@ struct Start {
     qdot: Vec<f64>,
 }
 
+/// `A(q) qdot` from `(q, qdot)`.
+type Residual<'a> = dyn Fn(&[f64], &[f64]) -> Vec<f64> + 'a;
+
 /// What the initial state is checked and completed with.
 struct Kinematics<'a> {
     coordinates: &'a [&'a str],
@@ -321,7 +345,7 @@ struct Kinematics<'a> {
     /// The default velocity at a configuration.
     default_motion: &'a dyn Fn(&[f64]) -> Vec<f64>,
     /// `A(q) qdot`.
-    residual: &'a dyn Fn(&[f64], &[f64]) -> Vec<f64>,
+    residual: &'a Residual<'a>,
 }
 
 /// The initial state from the defaults and `--initial` (coordinates,
@@ -338,7 +362,10 @@ fn initial_state(
     for (name, value) in given {
         if let Some(i) = coordinates.iter().position(|c| c == name) {
             q[i] = *value;
-        } else if let Some(i) = coordinates.iter().position(|c| name == &format!("dot({c})")) {
+        } else if let Some(i) = coordinates
+            .iter()
+            .position(|c| name == &format!("dot({c})"))
+        {
             velocities.get_or_insert_with(|| vec![0.0; coordinates.len()])[i] = *value;
         } else if let Some((_, state)) = controller_states.iter_mut().find(|(n, _)| n == name) {
             **state = *value;
@@ -347,13 +374,24 @@ fn initial_state(
         }
     }
     let qdot = velocities.unwrap_or_else(|| (kinematics.default_motion)(&q));
-    check_constraints(kinematics.constraints, &(kinematics.residual)(&q, &qdot), &qdot)?;
+    check_constraints(
+        kinematics.constraints,
+        &(kinematics.residual)(&q, &qdot),
+        &qdot,
+    )?;
     Ok(Start { q, qdot })
 }
 
 /// [`initial_state`] for a compiled model, whose default motion is
 /// `velocities(q, alpha)` with the built-in default momenta.
-fn compiled_start<M, const N: usize, const C: usize, const K: usize, const P: usize, const S: usize>(
+fn compiled_start<
+    M,
+    const N: usize,
+    const C: usize,
+    const K: usize,
+    const P: usize,
+    const S: usize,
+>(
     model: &M,
     built_in: &BuiltIn,
     args: &SimulateArgs,
@@ -376,7 +414,11 @@ where
     )
 }
 
-fn unknown_initial(name: &str, coordinates: &[&str], controller_states: &[(&str, &mut f64)]) -> InputError {
+fn unknown_initial(
+    name: &str,
+    coordinates: &[&str],
+    controller_states: &[(&str, &mut f64)],
+) -> InputError {
     let velocities = coordinates.iter().map(|c| format!("dot({c})"));
     let known: Vec<String> = coordinates
         .iter()
@@ -437,7 +479,7 @@ fn execute(
     formulation: &dyn Formulation,
     x0: &[f64],
     args: &SimulateArgs,
-    figure4: Option<Figure4>,
+    figure4: Option<plot::Figure4>,
 ) -> Result<(), Box<dyn Error>> {
     if args.integrator == Integrator::DiscreteGradient && !formulation.is_structured() {
         return Err(InputError::Unsupported(
@@ -455,7 +497,7 @@ fn execute(
             crate::formulation::MAX_DIMENSION
         )).into()));
     let Both(_, table) = recorder;
-    let plots = crate::plot::write(&table, &args.out, figure4);
+    let plots = write_plots(&table, &args.out, figure4);
     let report = outcome?;
     println!("{report}");
     println!("wrote {}", csv_path.display());
@@ -463,6 +505,28 @@ fn execute(
         println!("wrote {}", plot.display());
     }
     Ok(())
+}
+
+/// The plots of what was recorded (`chaplygin::plot`), Figure 4 with
+/// `figure4`.
+fn write_plots(
+    table: &Table,
+    out: &std::path::Path,
+    figure4: Option<plot::Figure4>,
+) -> Result<Vec<std::path::PathBuf>, plot::PlotError> {
+    if table.rows.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut plotted = plot::Table::new(table.columns.clone())?;
+    for row in &table.rows {
+        plotted.push_row(row.clone())?;
+    }
+    let spec = plot::PlotSpec::for_table(&plotted);
+    let spec = match figure4 {
+        Some(figure4) => spec.with_figure4(figure4),
+        None => spec,
+    };
+    plot::write_plots(&plotted, &spec, out)
 }
 
 /// What a finished run prints.
@@ -522,7 +586,10 @@ fn run_with<M, const D: usize>(
 where
     M: for<'a> Advance<Sized<'a, D>, D>,
 {
-    let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::hidden());
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(1000),
+        indicatif::ProgressDrawTarget::hidden(),
+    );
     let started = Instant::now();
     let progress = |fraction: f64| {
         if bar.is_hidden() && started.elapsed() > Duration::from_secs(1) {

@@ -1,0 +1,494 @@
+//! A model run without compiling Rust: the programs of the emitted functions,
+//! interpreted.
+//!
+//! [`InterpretedModel::from_source`] runs the stages [`crate::generate`]
+//! runs (parse, check, constraint analysis, emission) and keeps, for each
+//! emitted function, the [`crate::ir::Program`] its body was emitted from.
+//! Its methods have the meaning of the generated methods of the same name
+//! (README, "What a model compiles into"), on slices instead of arrays:
+//! `q`, `qdot` of length n, `u` of length p, `x = (q, alpha)` of length
+//! s = n + k, `alpha` of length k; matrices are returned row-major.
+//!
+//! The programs are evaluated by [`crate::ir::Program::evaluate`], which
+//! runs each operation with the `f64` method the emitted code calls, and the
+//! run-time saddle-point solve of `acceleration` is
+//! [`chaplygin_runtime::linalg::solve_in_place`], the elimination the
+//! emitted code's `solve` runs. For the built-in models the results are
+//! bit-identical to the compiled ones (`models/tests/interpreter.rs`);
+//! that is not promised in general, since an optimizing compiler may
+//! evaluate `powi` with a constant exponent as a product chain where the
+//! interpreter calls the library `powi`.
+//!
+//! With a symmetry, the momentum items are available through
+//! [`InterpretedModel::call`] (`momentum`, `momentum_rhs`,
+//! `momentum_input_matrix`, `nonholonomic_connection`, `locked_inertia`,
+//! `body_velocity`), and [`InterpretedModel::shape_acceleration`] composes
+//! `body_velocity` and `acceleration` as the emitted code does.
+
+use crate::analysed_model;
+use crate::derive::momentum::group_coordinates;
+use crate::derive::port_hamiltonian::momentum_names;
+use crate::diagnostic::Diagnostics;
+use crate::emit::{self, Assembly, Lowered};
+use crate::ir::IrError;
+use crate::model::Model;
+use chaplygin_runtime::linalg::solve_in_place;
+
+/// The names of a model and its sizes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Names {
+    /// The coordinates `q`, in order.
+    pub coordinates: Vec<String>,
+    /// The parameters, in order.
+    pub parameters: Vec<String>,
+    /// The inputs `u`, in order.
+    pub inputs: Vec<String>,
+    /// The constraints, in declared order.
+    pub constraints: Vec<String>,
+    /// The reduced momenta `alpha` (the momentum basis rows).
+    pub momenta: Vec<String>,
+}
+
+/// The sizes of a model: `n` coordinates, `c` constraints, `k = n - c`,
+/// `p` inputs, the reduced state's `s = n + k`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sizes {
+    /// Coordinates.
+    pub n: usize,
+    /// Constraints.
+    pub c: usize,
+    /// Degrees of freedom in velocity.
+    pub k: usize,
+    /// Inputs.
+    pub p: usize,
+    /// Reduced state.
+    pub s: usize,
+}
+
+/// [`InterpretedModel::set_parameter`] was given a name the model does not declare.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown parameter `{name}`; the model's parameters are {known:?}")]
+pub struct UnknownParameter {
+    /// The name given.
+    pub name: String,
+    /// The model's parameters.
+    pub known: Vec<String>,
+}
+
+/// A failed call of an interpreted function.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum CallError {
+    /// The model has no function of that name (the momentum items need a symmetry).
+    #[error("the model has no interpreted function `{name}`")]
+    UnknownFunction {
+        /// The name asked for.
+        name: String,
+    },
+    /// The number of argument slices differs from the function's.
+    #[error("`{function}` takes {expected} arguments, found {found}")]
+    ArgumentCount {
+        /// The function.
+        function: String,
+        /// Its number of arguments.
+        expected: usize,
+        /// The number given.
+        found: usize,
+    },
+    /// An argument slice has the wrong length.
+    #[error("argument `{argument}` of `{function}` has {expected} entries, found {found}")]
+    ArgumentLength {
+        /// The function.
+        function: String,
+        /// The argument (`q`, `qdot`, `u`, `x`, `alpha`, ...).
+        argument: String,
+        /// Its length.
+        expected: usize,
+        /// The length given.
+        found: usize,
+    },
+    /// The program itself refused the evaluation (a bug of the interpreter).
+    #[error("`{function}`: {source}")]
+    Program {
+        /// The function.
+        function: String,
+        /// What the program reported.
+        source: IrError,
+    },
+}
+
+/// One emitted function's name and program.
+struct Interpreted {
+    name: &'static str,
+    lowered: Lowered,
+}
+
+/// A model's emitted functions, interpreted (see the module documentation).
+pub struct InterpretedModel {
+    names: Names,
+    sizes: Sizes,
+    defaults: Vec<f64>,
+    parameters: Vec<f64>,
+    functions: Vec<Interpreted>,
+    report: String,
+    /// With a symmetry, the coordinates the group acts on.
+    group: Option<Vec<usize>>,
+}
+
+impl std::fmt::Debug for InterpretedModel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("InterpretedModel")
+            .field("names", &self.names)
+            .field("sizes", &self.sizes)
+            .field("parameters", &self.parameters)
+            .finish_non_exhaustive()
+    }
+}
+
+impl InterpretedModel {
+    /// Parses, checks, analyses and emits the model text (the text
+    /// [`crate::generate`] takes), keeping the functions' programs.
+    pub fn from_source(source: &str) -> Result<InterpretedModel, Diagnostics> {
+        let (mut model, constraints) = analysed_model(source)?;
+        let emitted = emit::emit(&mut model, &constraints)?;
+        let functions = emitted
+            .functions
+            .into_iter()
+            .filter_map(|function| {
+                let name = function.name;
+                function
+                    .lowered
+                    .map(|lowered| Interpreted { name, lowered })
+            })
+            .collect();
+        let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
+        let defaults = model.parameter_defaults();
+        Ok(InterpretedModel {
+            names: names(&model),
+            sizes: Sizes {
+                n,
+                c,
+                k,
+                p,
+                s: n + k,
+            },
+            parameters: defaults.clone(),
+            defaults,
+            functions,
+            report: emitted.report,
+            group: model
+                .symmetry
+                .as_ref()
+                .map(|symmetry| group_coordinates(&symmetry.factors)),
+        })
+    }
+
+    /// The names of the coordinates, parameters, inputs, constraints and momenta.
+    pub fn names(&self) -> &Names {
+        &self.names
+    }
+
+    /// The sizes n, c, k, p, s.
+    pub fn sizes(&self) -> Sizes {
+        self.sizes
+    }
+
+    /// The derivation report, the generated `REPORT`.
+    pub fn report(&self) -> &str {
+        &self.report
+    }
+
+    /// The declared defaults of the parameters, in order.
+    pub fn parameter_defaults(&self) -> &[f64] {
+        &self.defaults
+    }
+
+    /// The current parameter values, in order.
+    pub fn parameter_values(&self) -> &[f64] {
+        &self.parameters
+    }
+
+    /// Sets the parameter `name` to `value`.
+    pub fn set_parameter(&mut self, name: &str, value: f64) -> Result<(), UnknownParameter> {
+        let index = self
+            .names
+            .parameters
+            .iter()
+            .position(|p| p == name)
+            .ok_or_else(|| UnknownParameter {
+                name: name.to_string(),
+                known: self.names.parameters.clone(),
+            })?;
+        self.parameters[index] = value;
+        Ok(())
+    }
+
+    /// The names of the interpreted functions, in emission order.
+    pub fn functions(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.functions.iter().map(|f| f.name)
+    }
+
+    /// The arguments of the function `name`: each array's name and length, in order.
+    pub fn arguments(&self, name: &str) -> Option<Vec<(&'static str, usize)>> {
+        self.functions
+            .iter()
+            .find(|f| f.name == name)
+            .map(|f| f.lowered.arguments.clone())
+    }
+
+    /// The function `name` at the argument slices, in its argument order;
+    /// a matrix is returned row-major. `acceleration` returns `qddot` then
+    /// `lambda`.
+    pub fn call(&self, name: &str, arguments: &[&[f64]]) -> Result<Vec<f64>, CallError> {
+        let function = self
+            .functions
+            .iter()
+            .find(|f| f.name == name)
+            .ok_or_else(|| CallError::UnknownFunction {
+                name: name.to_string(),
+            })?;
+        let lowered = &function.lowered;
+        let inputs = self.inputs(function.name, &lowered.arguments, arguments)?;
+        let outputs =
+            lowered
+                .program
+                .evaluate_vec(&inputs)
+                .map_err(|source| CallError::Program {
+                    function: name.to_string(),
+                    source,
+                })?;
+        Ok(match lowered.assembly {
+            Assembly::Values => outputs,
+            Assembly::SaddlePoint => self.solve_saddle_point(&outputs),
+        })
+    }
+
+    /// The program's inputs: the arguments, checked, then the parameters.
+    fn inputs(
+        &self,
+        function: &str,
+        layout: &[(&'static str, usize)],
+        arguments: &[&[f64]],
+    ) -> Result<Vec<f64>, CallError> {
+        if layout.len() != arguments.len() {
+            return Err(CallError::ArgumentCount {
+                function: function.to_string(),
+                expected: layout.len(),
+                found: arguments.len(),
+            });
+        }
+        let mut inputs = Vec::new();
+        for (&(argument, expected), values) in layout.iter().zip(arguments) {
+            if values.len() != expected {
+                return Err(CallError::ArgumentLength {
+                    function: function.to_string(),
+                    argument: argument.to_string(),
+                    expected,
+                    found: values.len(),
+                });
+            }
+            inputs.extend_from_slice(values);
+        }
+        inputs.extend_from_slice(&self.parameters);
+        Ok(inputs)
+    }
+
+    /// `(qddot, lambda)` from `g`, `A`, the force and the drift:
+    /// `[[g, A^T], [A, 0]] [qddot; -lambda] = [force; drift]`, assembled and
+    /// negated as the emitted `acceleration` does.
+    fn solve_saddle_point(&self, outputs: &[f64]) -> Vec<f64> {
+        let (n, c) = (self.sizes.n, self.sizes.c);
+        let (g, rest) = outputs.split_at(n * n);
+        let (a, rest) = rest.split_at(c * n);
+        let size = n + c;
+        let mut matrix = Vec::with_capacity(size * size);
+        for i in 0..n {
+            matrix.extend_from_slice(&g[i * n..(i + 1) * n]);
+            matrix.extend((0..c).map(|r| a[r * n + i]));
+        }
+        for r in 0..c {
+            matrix.extend_from_slice(&a[r * n..(r + 1) * n]);
+            matrix.extend(std::iter::repeat_n(0.0, c));
+        }
+        let mut solution = rest.to_vec();
+        if solve_in_place(&mut matrix, &mut solution).is_err() {
+            solution = vec![f64::NAN; size];
+        }
+        for multiplier in &mut solution[n..] {
+            *multiplier = -*multiplier;
+        }
+        solution
+    }
+
+    /// The mass matrix `g(q)`, n x n.
+    pub fn mass_matrix(&self, q: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("mass_matrix", &[q])
+    }
+
+    /// The total energy `T + V`.
+    pub fn energy(&self, q: &[f64], qdot: &[f64]) -> Result<f64, CallError> {
+        self.call("energy", &[q, qdot]).map(|values| values[0])
+    }
+
+    /// The constraint rows `A(q)`, c x n.
+    pub fn constraint_matrix(&self, q: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("constraint_matrix", &[q])
+    }
+
+    /// The constraint residual `A(q) qdot`.
+    pub fn constraint_residual(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("constraint_residual", &[q, qdot])
+    }
+
+    /// The Lagrange-d'Alembert accelerations and multipliers `(qddot, lambda)`.
+    pub fn acceleration(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        u: &[f64],
+    ) -> Result<(Vec<f64>, Vec<f64>), CallError> {
+        let mut values = self.call("acceleration", &[q, qdot, u])?;
+        let multipliers = values.split_off(self.sizes.n);
+        Ok((values, multipliers))
+    }
+
+    /// The reduced momenta `alpha = P g qdot`.
+    pub fn momenta(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("momenta", &[q, qdot])
+    }
+
+    /// The velocities `qdot = g^-1 h^T alpha`.
+    pub fn velocities(&self, q: &[f64], alpha: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("velocities", &[q, alpha])
+    }
+
+    /// The reduced energy `Hbar(x)`.
+    pub fn hamiltonian(&self, x: &[f64]) -> Result<f64, CallError> {
+        self.call("hamiltonian", &[x]).map(|values| values[0])
+    }
+
+    /// The gradient `dHbar/dx`.
+    pub fn hamiltonian_gradient(&self, x: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("hamiltonian_gradient", &[x])
+    }
+
+    /// The structure matrix `Jbar(x)`, s x s.
+    pub fn structure_matrix(&self, x: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("structure_matrix", &[x])
+    }
+
+    /// The reduced input matrix `Bbar(x)`, s x p.
+    pub fn input_matrix(&self, x: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("input_matrix", &[x])
+    }
+
+    /// The reduced equations `xdot = Jbar dHbar/dx + Bbar u`.
+    pub fn reduced_rhs(&self, x: &[f64], u: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("reduced_rhs", &[x, u])
+    }
+
+    /// Their Jacobian `d xdot / dx`, s x s.
+    pub fn reduced_rhs_jacobian(&self, x: &[f64], u: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("reduced_rhs_jacobian", &[x, u])
+    }
+
+    /// The output `y = Bbar^T dHbar/dx`.
+    pub fn output(&self, x: &[f64]) -> Result<Vec<f64>, CallError> {
+        self.call("output", &[x])
+    }
+
+    /// The shape equations (Koon & Marsden 1.3): the shape rows of
+    /// `acceleration` at the group identity (group coordinates 0, shape
+    /// coordinates `r`) with the velocity `rdot` on the shape and
+    /// `body_velocity(r, rdot, p)` on the group coordinates, in coordinate
+    /// order, as the emitted `shape_acceleration` assembles it.
+    pub fn shape_acceleration(
+        &self,
+        r: &[f64],
+        rdot: &[f64],
+        p: &[f64],
+        u: &[f64],
+    ) -> Result<Vec<f64>, CallError> {
+        let group = self
+            .group
+            .as_ref()
+            .ok_or_else(|| CallError::UnknownFunction {
+                name: "shape_acceleration".to_string(),
+            })?;
+        let xi = self.call("body_velocity", &[r, rdot, p])?;
+        let n = self.sizes.n;
+        let shape: Vec<usize> = (0..n).filter(|i| !group.contains(i)).collect();
+        let (mut q, mut qdot) = (vec![0.0; n], vec![0.0; n]);
+        for (a, &i) in shape.iter().enumerate() {
+            q[i] = r[a];
+            qdot[i] = rdot[a];
+        }
+        let group_velocities = (0..n).filter(|i| !shape.contains(i));
+        for (velocity, i) in xi.iter().zip(group_velocities) {
+            qdot[i] = *velocity;
+        }
+        let (qddot, _) = self.acceleration(&q, &qdot, u)?;
+        Ok(shape.iter().map(|&i| qddot[i]).collect())
+    }
+}
+
+fn names(model: &Model) -> Names {
+    let declared = |list: &[crate::model::Declared]| list.iter().map(|d| d.name.clone()).collect();
+    Names {
+        coordinates: model
+            .coordinates
+            .iter()
+            .map(|c| c.declared.name.clone())
+            .collect(),
+        parameters: model
+            .parameters
+            .iter()
+            .map(|p| p.variable.declared.name.clone())
+            .collect(),
+        inputs: declared(&model.inputs),
+        constraints: declared(&model.constraints),
+        momenta: momentum_names(model),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::InterpretedModel;
+    use crate::fixtures::SNAKEBOARD;
+
+    /// MATH.md 3.1 at a state, with `m` and `jt` changed from their defaults:
+    /// `xdot = (alpha1/m) cos phi cos theta`, `ydot = (alpha1/m) cos phi sin theta`,
+    /// `thetadot = alpha1 sin phi / (m r)`, `psidot = alpha2/Jt - alpha1 sin phi / (m r)`,
+    /// `phidot = alpha3/Jw`, `alpha1dot = -(sin phi / r) u1`, `alpha2dot = u1`,
+    /// `alpha3dot = u2`.
+    #[test]
+    fn the_snakeboard_reduced_equations_are_those_of_math_3_1() {
+        let mut snakeboard = InterpretedModel::from_source(SNAKEBOARD).expect("compiles");
+        snakeboard.set_parameter("m", 2.5).expect("declared");
+        snakeboard.set_parameter("jt", 0.7).expect("declared");
+        let (m, r, jt, jw) = (2.5, 0.5, 0.7, 0.05);
+        let (theta, phi) = (0.4f64, -0.9f64);
+        let (a1, a2, a3) = (1.3, -0.6, 0.8);
+        let (u1, u2) = (0.25, -1.5);
+        let x = [0.1, -0.2, theta, 0.3, phi, a1, a2, a3];
+        let expected = [
+            a1 / m * phi.cos() * theta.cos(),
+            a1 / m * phi.cos() * theta.sin(),
+            a1 * phi.sin() / (m * r),
+            a2 / jt - a1 * phi.sin() / (m * r),
+            a3 / jw,
+            -(phi.sin() / r) * u1,
+            u1,
+            u2,
+        ];
+        let found = snakeboard.reduced_rhs(&x, &[u1, u2]).expect("evaluates");
+        for (i, (f, e)) in found.iter().zip(expected).enumerate() {
+            assert!((f - e).abs() <= 1e-14 * e.abs().max(1.0), "{i}: {f} vs {e}");
+        }
+        assert_eq!(snakeboard.parameter_values(), [2.5, 0.5, 0.7, 0.05]);
+        assert_eq!(snakeboard.parameter_defaults(), [1.0, 0.5, 0.3, 0.05]);
+        assert_eq!(snakeboard.names().momenta, ["group", "torso", "wheels"]);
+        let hamiltonian = snakeboard.hamiltonian(&x).expect("evaluates");
+        let energy = a1 * a1 / (2.0 * m) + a2 * a2 / (2.0 * jt) + a3 * a3 / (2.0 * jw);
+        assert!((hamiltonian - energy).abs() <= 1e-14 * energy);
+    }
+}

@@ -1,0 +1,267 @@
+//! The `chaplygin` binary run as a user runs it: `list`, `derive`,
+//! `simulate` (the CSV's header and energy, a `.model` file against the
+//! compiled built-in model, determinism, the plots), and bad input (one line
+//! on standard error, a non-zero exit, the CSV written so far kept valid).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn chaplygin(arguments: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_chaplygin"))
+        .args(arguments)
+        .output()
+        .expect("the binary runs")
+}
+
+fn stdout(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// A fresh directory for one test's output.
+fn scratch(name: &str) -> PathBuf {
+    let directory =
+        std::env::temp_dir().join(format!("chaplygin-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&directory);
+    directory
+}
+
+/// The header and the rows of a CSV file, each row as long as the header.
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path).expect("the CSV exists");
+    let mut lines = text.lines();
+    let header: Vec<String> = lines
+        .next()
+        .expect("a header")
+        .split(',')
+        .map(String::from)
+        .collect();
+    let rows: Vec<Vec<f64>> = lines
+        .map(|line| {
+            line.split(',')
+                .map(|v| v.parse().expect("a number"))
+                .collect()
+        })
+        .collect();
+    assert!(
+        rows.iter().all(|row| row.len() == header.len()),
+        "ragged CSV"
+    );
+    (header, rows)
+}
+
+/// Asserts a failed run with exactly one line on standard error containing
+/// every one of `needles`.
+fn assert_one_line_error(output: &Output, needles: &[&str]) {
+    assert!(!output.status.success(), "succeeded: {}", stdout(output));
+    let message = stderr(output);
+    assert_eq!(message.trim_end().lines().count(), 1, "{message}");
+    for needle in needles {
+        assert!(message.contains(needle), "`{needle}` not in {message}");
+    }
+}
+
+#[test]
+fn list_names_the_built_in_models() {
+    let output = chaplygin(&["list"]);
+    assert!(output.status.success());
+    let text = stdout(&output);
+    for model in ["snakeboard", "sleigh", "rolling-disk", "differential-drive"] {
+        assert!(text.contains(model), "{model} missing from {text}");
+    }
+    assert!(text.contains("completely nonholonomic"), "{text}");
+}
+
+#[test]
+fn derive_prints_the_reduced_equations_in_latex() {
+    let output = chaplygin(&["derive", "snakeboard", "--format", "latex"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let latex = stdout(&output);
+    // MATH.md 3.1: alpha1dot = -(sin(phi)/r) u1, alpha2dot = u1, alpha3dot = u2
+    for equation in [
+        r"\dot{\mathrm{group}} &= -\frac{u_{\mathrm{torso}} \sin\phi}{r}",
+        r"\dot{\mathrm{torso}} &= u_{\mathrm{torso}}",
+        r"\dot{\mathrm{wheels}} &= u_{\mathrm{wheels}}",
+    ] {
+        assert!(latex.contains(equation), "{equation} not in the document");
+    }
+    let json = stdout(&chaplygin(&["derive", "sleigh", "--format", "json"]));
+    assert!(json.trim_start().starts_with('{') && json.contains("\"constraints\""));
+}
+
+#[test]
+fn the_controlled_snakeboard_keeps_its_energy_in_the_csv() {
+    let out = scratch("energy");
+    let output = chaplygin(&[
+        "simulate",
+        "snakeboard",
+        "--controller",
+        "energy",
+        "--integrator",
+        "midpoint",
+        "--t-end",
+        "20",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let (header, rows) = read_csv(&out.join("trajectory.csv"));
+    assert_eq!(
+        header.join(","),
+        "t,x,y,theta,psi,phi,group,torso,wheels,xt,xw,u_torso,u_wheels,energy,constraint_residual"
+    );
+    assert_eq!(rows.len(), 2001);
+    let energy0 = rows[0][13];
+    for row in &rows {
+        assert!(
+            (row[13] - energy0).abs() <= 1e-10 * energy0,
+            "{} vs {energy0}",
+            row[13]
+        );
+    }
+    // alpha1 grows from rest (MATH.md 3.2)
+    assert_eq!(rows[0][6], 0.0);
+    assert!(rows.iter().any(|row| row[6] > 0.1));
+    let summary = stdout(&output);
+    assert!(summary.contains("energy drift") && summary.contains("max constraint residual"));
+    for plot in [
+        "path.png",
+        "energy.png",
+        "constraint_residual.png",
+        "figure4.png",
+    ] {
+        let bytes = std::fs::read(out.join(plot)).expect("the plot exists");
+        assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{plot}");
+    }
+}
+
+#[test]
+fn a_model_file_runs_the_same_trajectory_as_the_compiled_model() {
+    let (compiled, interpreted) = (scratch("compiled"), scratch("interpreted"));
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
+    // theta = 0, y' = 0 and theta' = x' tan(phi) / r satisfy both wheel constraints
+    let common = [
+        "--initial",
+        "phi=0.4",
+        "--initial",
+        "dot(x)=1",
+        "--initial",
+        "dot(theta)=0.8455864374763236",
+        "--initial",
+        "dot(psi)=0.3",
+        "--initial",
+        "dot(phi)=0.2",
+        "--input",
+        "u_torso=0.05",
+        "--t-end",
+        "5",
+    ];
+    for (model, out) in [("snakeboard", &compiled), (file, &interpreted)] {
+        let mut arguments = vec!["simulate", model, "--out", out.to_str().unwrap()];
+        arguments.extend(common);
+        let output = chaplygin(&arguments);
+        assert!(output.status.success(), "{model}: {}", stderr(&output));
+    }
+    let (header, rows) = read_csv(&compiled.join("trajectory.csv"));
+    let (other_header, other_rows) = read_csv(&interpreted.join("trajectory.csv"));
+    assert_eq!(header, other_header);
+    assert_eq!(rows.len(), other_rows.len());
+    for (row, other) in rows.iter().zip(&other_rows) {
+        for (a, b) in row.iter().zip(other) {
+            assert!(
+                (a - b).abs() <= 1e-12 * a.abs().max(1.0),
+                "{a} vs {b} at t = {}",
+                row[0]
+            );
+        }
+    }
+}
+
+#[test]
+fn the_same_command_writes_the_same_bytes() {
+    let csv = |name: &str| {
+        let out = scratch(name);
+        let output = chaplygin(&[
+            "simulate",
+            "sleigh",
+            "--integrator",
+            "dopri5",
+            "--t-end",
+            "3",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        std::fs::read(out.join("trajectory.csv")).unwrap()
+    };
+    assert_eq!(csv("first"), csv("second"));
+}
+
+#[test]
+fn bad_input_is_one_line_and_a_failure() {
+    assert_one_line_error(
+        &chaplygin(&["simulate", "unicycle"]),
+        &["unknown model `unicycle`", "snakeboard"],
+    );
+    assert_one_line_error(
+        &chaplygin(&["simulate", "snakeboard", "--param", "mass=2"]),
+        &["unknown parameter `mass`", "jw"],
+    );
+    assert_one_line_error(
+        &chaplygin(&[
+            "simulate",
+            "sleigh",
+            "--initial",
+            "theta=0",
+            "--initial",
+            "dot(y)=1",
+        ]),
+        &["violates constraint `blade`", "1e0"],
+    );
+    assert_one_line_error(
+        &chaplygin(&["simulate", "sleigh", "--initial", "speed=1"]),
+        &["unknown initial value `speed`", "dot(theta)"],
+    );
+    assert_one_line_error(
+        &chaplygin(&["simulate", "sleigh", "--controller", "energy"]),
+        &["energy controller"],
+    );
+    assert!(
+        !chaplygin(&["simulate", "snakeboard", "--integrator", "euler"])
+            .status
+            .success()
+    );
+}
+
+#[test]
+fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
+    let out = scratch("singular");
+    // phi'' = u_wheels / jw = 1 from phi = 1.2, phidot = 0.5: phi reaches pi/2 near t = 0.5
+    let output = chaplygin(&[
+        "simulate",
+        "snakeboard",
+        "--initial",
+        "phi=1.2",
+        "--input",
+        "u_wheels=0.05",
+        "--integrator",
+        "rk4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_one_line_error(
+        &output,
+        &[
+            "singular configuration at t = 0.",
+            "phi = 1.57",
+            "det[A; V^T]",
+        ],
+    );
+    let (header, rows) = read_csv(&out.join("trajectory.csv"));
+    assert_eq!(header.len(), 1 + 8 + 2 + 2);
+    assert!(rows.len() > 10 && rows.iter().flatten().all(|v| v.is_finite()));
+    assert!(rows.last().unwrap()[0] < 0.6);
+}
