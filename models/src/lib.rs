@@ -16,6 +16,8 @@
 //! - [`energy_control`]: the paper's energy-based snakeboard controller and
 //!   its closed loop with the reduced snakeboard (MATH.md 3.2).
 
+#![warn(missing_docs)]
+
 pub mod energy_control;
 
 pub mod snakeboard {

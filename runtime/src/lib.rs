@@ -15,6 +15,8 @@
 //! - [`phase`]: the group displacement over one period of a shape gait, split
 //!   into its geometric and dynamic parts.
 
+#![warn(missing_docs)]
+
 pub mod control;
 pub mod integrate;
 pub mod linalg;

@@ -7,7 +7,8 @@
 //!
 //! A [`Table`] keeps the rows in memory; a [`CsvRecorder`] writes them as CSV
 //! (numbers printed as the shortest decimal that reads back to the same
-//! `f64`, so the same run writes the same bytes).
+//! `f64`, in scientific notation below `1e-5` and from `1e16`, so the same
+//! run writes the same bytes).
 
 use std::io;
 
@@ -109,16 +110,27 @@ impl CsvRecorder<io::BufWriter<std::fs::File>> {
     }
 }
 
+/// The shortest decimal that reads back to `value`: positional for
+/// magnitudes from `1e-5` to below `1e16` (and zero), scientific otherwise.
+fn write_number(field: &mut String, value: f64) -> std::fmt::Result {
+    use std::fmt::Write;
+    let magnitude = value.abs();
+    if value == 0.0 || (1e-5..1e16).contains(&magnitude) || !value.is_finite() {
+        write!(field, "{value}")
+    } else {
+        write!(field, "{value:e}")
+    }
+}
+
 impl<W: io::Write> Recorder for CsvRecorder<W> {
     fn start(&mut self, columns: &[String]) -> io::Result<()> {
         self.writer.write_record(columns).map_err(io::Error::from)
     }
 
     fn record(&mut self, row: &[f64]) -> io::Result<()> {
-        use std::fmt::Write;
         for value in row {
             self.field.clear();
-            write!(self.field, "{value}").map_err(io::Error::other)?;
+            write_number(&mut self.field, *value).map_err(io::Error::other)?;
             self.writer.write_field(&self.field)?;
         }
         self.writer
@@ -128,5 +140,35 @@ impl<W: io::Write> Recorder for CsvRecorder<W> {
 
     fn finish(&mut self) -> io::Result<()> {
         self.writer.flush()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_read_back_exactly() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            0.1,
+            5.551115123125783e-17,
+            -2.5e20,
+            123456.789,
+            1e-5,
+        ];
+        let mut csv = CsvRecorder::new(Vec::new());
+        csv.start(&vec!["v".to_string(); 8]).unwrap();
+        csv.record(&values).unwrap();
+        let text = String::from_utf8(csv.into_inner().unwrap()).unwrap();
+        let row = text.lines().nth(1).unwrap();
+        assert_eq!(
+            row,
+            "0,-0,1,0.1,5.551115123125783e-17,-2.5e20,123456.789,0.00001"
+        );
+        let parsed: Vec<f64> = row.split(',').map(|v| v.parse().unwrap()).collect();
+        assert_eq!(parsed, values);
     }
 }

@@ -1,5 +1,7 @@
 //! The `model!` procedural macro: a thin shim over [`chaplygin_codegen::expand`].
 
+#![warn(missing_docs)]
+
 /// Declares a mechanical model and generates its simulator items.
 ///
 /// See the `chaplygin` crate for the language and the generated API.
