@@ -27,7 +27,7 @@
 /// The model text of the N-link wheeled snake with `links` links (the
 /// module documentation states its mechanics); the struct is named
 /// `Snake{links}`. With no links the kinetic energy is zero and the
-/// compiler rejects the model (its mass matrix is not positive definite).
+/// compiler rejects the model (its kinetic energy is not quadratic in the velocities).
 pub fn n_link_snake(links: usize) -> String {
     let coordinates: Vec<String> = ["x".to_string(), "y".to_string()]
         .into_iter()
