@@ -198,9 +198,12 @@ fn print_row(row: &Row) {
     );
 }
 
+/// A measured quantity of a row, by name.
+type Quantity = (&'static str, fn(&Row) -> f64);
+
 /// The least-squares slope of `ln(value)` against `ln(N)` for each quantity.
 fn print_slopes(rows: &[Row]) {
-    let quantities: [(&str, fn(&Row) -> f64); 8] = [
+    let quantities: [Quantity; 8] = [
         ("derivation time", |r| r.derivation_seconds),
         ("acceleration ops before CSE", |r| {
             r.acceleration_operations.0
