@@ -1,14 +1,27 @@
-//! Generates the models declared in `.model` files.
+//! Generates the models declared in `.model` files, and the two-link
+//! wheeled snake from the text `snake::n_link_snake` writes.
+
+#[path = "src/snake.rs"]
+mod snake;
 
 fn main() {
-    if let Err(error) = chaplygin_codegen::Builder::new()
+    if let Err(error) = generate() {
+        eprintln!("{error}");
+        std::process::exit(1);
+    }
+}
+
+fn generate() -> Result<(), Box<dyn std::error::Error>> {
+    chaplygin_codegen::Builder::new()
         .model_file("snakeboard.model")
         .model_file("sleigh.model")
         .model_file("rolling_disk.model")
         .model_file("differential_drive.model")
-        .write_to_out_dir()
-    {
-        eprintln!("{error}");
-        std::process::exit(1);
-    }
+        .write_to_out_dir()?;
+    println!("cargo:rerun-if-changed=src/snake.rs");
+    let out_dir = std::path::PathBuf::from(std::env::var("OUT_DIR")?);
+    let code = chaplygin_codegen::generate(&snake::n_link_snake(2))
+        .map_err(|diagnostics| diagnostics.render("n_link_snake(2)"))?;
+    std::fs::write(out_dir.join("snake2.rs"), code)?;
+    Ok(())
 }

@@ -23,7 +23,7 @@ mod simulate;
 /// package cannot depend on that crate, which depends on it); the command
 /// line uses part of each model's API.
 #[path = "../../../models/src/lib.rs"]
-#[allow(dead_code)]
+#[allow(dead_code, unused_imports)]
 mod models;
 
 use clap::Parser;
