@@ -126,8 +126,12 @@ pub fn derive(
         .map(|input| fresh_symbol(model, &input.name, SymbolKind::Auxiliary))
         .collect();
     let alpha = column_of_symbols(model, &momenta)?;
-    let maps = Maps::of(model, &h)?;
-    let gyroscopic = gyroscopic(model, &h, &maps.projection, &alpha)?;
+    let maps = if declared_basis {
+        Maps::of(model, &h)?
+    } else {
+        Maps::of_own_basis(model, &basis.fields, &h)?
+    };
+    let gyroscopic = gyroscopic(model, &h, &maps, &alpha)?;
     let structure = structure_matrix(&maps.projection, &gyroscopic);
     prove_skew(&structure, model.store.atoms())?;
     let input_matrix = reduced_input_matrix(model, &maps.projection)?;
@@ -174,6 +178,30 @@ impl Maps {
         let metric = metric_inverse.inverse(atoms)?;
         let projection = metric.mul(h, atoms)?.mul(&g_inverse, atoms)?;
         let momentum_map = projection.mul(&model.mass_matrix, atoms)?;
+        Ok(Maps {
+            velocity_map,
+            metric_inverse,
+            metric,
+            projection,
+            momentum_map,
+        })
+    }
+}
+
+impl Maps {
+    /// [`Maps::of`] for the tool's own basis `h = X^T g` of a basis `X` of
+    /// D, without inverting `g`: `g^-1 h^T = X`, `gbar_inv = X^T g X`,
+    /// `P = gbar X^T` and `P g = gbar h`. Only the `k x k` matrix
+    /// `X^T g X` is inverted, where `Maps::of` inverts the `n x n` `g` (for a
+    /// dense trigonometric `g`, e.g. a chain of links, the difference
+    /// between seconds and hours).
+    fn of_own_basis(model: &Model, fields: &Matrix, h: &Matrix) -> Result<Maps, MatrixError> {
+        let atoms = model.store.atoms();
+        let velocity_map = fields.clone();
+        let metric_inverse = h.mul(fields, atoms)?;
+        let metric = metric_inverse.inverse(atoms)?;
+        let projection = metric.mul(&fields.transpose(), atoms)?;
+        let momentum_map = metric.mul(h, atoms)?;
         Ok(Maps {
             velocity_map,
             metric_inverse,
@@ -281,15 +309,21 @@ pub(super) fn column_of_symbols(
 
 /// `Gamma = sum_c alpha_c P W^c P^T` with `W^c_jl = d h^c_l/d q_j - d h^c_j/d q_l`,
 /// so that `Gamma_ab = alpha_c dh^c(P^T e_a, P^T e_b)`.
+///
+/// With `P = gbar h g^-1 = gbar V^T` (`V = g^-1 h^T`, `g` symmetric) it is
+/// computed as `gbar (sum_c alpha_c V^T W^c V) gbar`: the `k x k` sum first,
+/// one sandwich by `gbar` last, so the large common denominator of `gbar`
+/// enters once instead of through every `n x n` product.
 fn gyroscopic(
     model: &mut Model,
     h: &Matrix,
-    projection: &Matrix,
+    maps: &Maps,
     alpha: &Matrix,
 ) -> Result<Matrix, MatrixError> {
     let coordinates = model.coordinate_symbols();
     let k = h.rows();
-    let mut gamma = Matrix::zeros(k, k);
+    let velocity_map = &maps.velocity_map;
+    let mut inner = Matrix::zeros(k, k);
     for c in 0..k {
         let row: Vec<RationalFunction> = (0..h.columns()).map(|l| h.get(c, l).clone()).collect();
         // jacobian (l, j) = d h^c_l / d q_j, so W^c = jacobian^T - jacobian
@@ -299,12 +333,17 @@ fn gyroscopic(
         if exterior.is_zero() {
             continue;
         }
-        let term = projection
+        let term = velocity_map
+            .transpose()
             .mul(&exterior, &atoms)?
-            .mul(&projection.transpose(), &atoms)?;
-        gamma = gamma.add(&scaled(&term, alpha.get(c, 0), &atoms), &atoms)?;
+            .mul(velocity_map, &atoms)?;
+        inner = inner.add(&scaled(&term, alpha.get(c, 0), &atoms), &atoms)?;
     }
-    Ok(gamma)
+    let atoms = model.store.atoms();
+    if inner.is_zero() {
+        return Ok(inner);
+    }
+    maps.metric.mul(&inner, atoms)?.mul(&maps.metric, atoms)
 }
 
 fn scaled(matrix: &Matrix, factor: &RationalFunction, atoms: &Atoms) -> Matrix {
