@@ -26,7 +26,7 @@ pub mod syntax;
 #[cfg(test)]
 mod fixtures;
 
-pub use build::{BuildError, Builder, generate};
+pub use build::{BuildError, Builder, generate, generate_within};
 
 use proc_macro2::TokenStream;
 
@@ -44,9 +44,38 @@ pub fn try_expand(tokens: TokenStream) -> Result<TokenStream, diagnostic::Diagno
     compile(&syntax::parse(tokens)?)
 }
 
-/// A parsed model's items: checked, analysed, emitted (both doors).
+/// A parsed model's items: checked, analysed, emitted (both doors), within
+/// the default derivation budget ([`sym::budget`]).
 fn compile(syntax: &syntax::ModelSyntax) -> Result<TokenStream, diagnostic::Diagnostics> {
-    let mut model = model::check(syntax)?;
-    let constraints = derive::constraints::analyse(&mut model)?;
-    emit::model_items(&mut model, &constraints)
+    compile_within(syntax, sym::Budget::default())
+}
+
+/// [`compile`] within `budget`. When the budget runs out, the result is one
+/// diagnostic stating it: on the first expression whose normal form ran out,
+/// or on the model's name when the derivations after the checks ran out.
+fn compile_within(
+    syntax: &syntax::ModelSyntax,
+    budget: sym::Budget,
+) -> Result<TokenStream, diagnostic::Diagnostics> {
+    let outcome = model::check_within(syntax, budget.clone()).and_then(|mut model| {
+        let constraints = derive::constraints::analyse(&mut model)?;
+        emit::model_items(&mut model, &constraints)
+    });
+    if !budget.is_exhausted() {
+        return outcome;
+    }
+    let message = sym::SymError::BudgetExceeded {
+        limit: budget.limit(),
+    }
+    .to_string();
+    let span = outcome
+        .err()
+        .and_then(|diagnostics| {
+            diagnostics
+                .iter()
+                .find(|diagnostic| diagnostic.message == message)
+                .map(|diagnostic| diagnostic.span)
+        })
+        .unwrap_or_else(|| syntax.name.span());
+    Err(diagnostic::Diagnostic::new(span, message).into())
 }

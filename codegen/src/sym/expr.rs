@@ -141,6 +141,17 @@ pub enum SymError {
         /// The application, printed.
         expr: String,
     },
+    /// The normal form needed more polynomial term products than the
+    /// derivation budget allows ([`super::budget`]).
+    #[error(
+        "derivation budget exceeded: the normal form needs more than {limit} polynomial \
+         term products (the limit); simplify the model, e.g. avoid high powers of sums \
+         of sines and cosines"
+    )]
+    BudgetExceeded {
+        /// The limit that was exceeded.
+        limit: u64,
+    },
 }
 
 /// The expression arena with its symbol table.
@@ -168,6 +179,19 @@ impl Store {
     /// An empty store.
     pub fn new() -> Store {
         Store::default()
+    }
+
+    /// An empty store whose normal forms are charged to `budget`.
+    pub fn with_budget(budget: super::Budget) -> Store {
+        Store {
+            atoms: super::poly::Atoms::with_budget(budget),
+            ..Store::default()
+        }
+    }
+
+    /// The derivation budget of this store.
+    pub fn budget(&self) -> &super::Budget {
+        self.atoms.budget()
     }
 
     /// The node behind an id.

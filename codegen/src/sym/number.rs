@@ -108,6 +108,15 @@ impl Rational {
         }
     }
 
+    /// The size in 64-bit words (1 for a value held in two `i64`s): the
+    /// scale of the cost of arithmetic on it.
+    pub fn words(&self) -> u64 {
+        match &self.0 {
+            Repr::Small(..) => 1,
+            Repr::Big(value) => (value.numer().bits() + value.denom().bits()) / 64 + 1,
+        }
+    }
+
     /// The nearest `f64`.
     pub fn to_f64(&self) -> f64 {
         match &self.0 {
