@@ -7,8 +7,8 @@
 #![no_main]
 
 use chaplygin_codegen::sym::{
-    Atom, AtomId, Budget, ExprId, Function, Node, Poly, Rational, RationalFunction, Store, SymbolId,
-    SymbolKind,
+    Atom, AtomId, Budget, ExprId, Function, Node, Poly, Rational, RationalFunction, Store,
+    SymbolId, SymbolKind,
 };
 use libfuzzer_sys::fuzz_target;
 
@@ -69,11 +69,15 @@ fuzz_target!(|data: &[u8]| {
 /// True when every atom is a symbol or the sine or cosine of a symbol: then
 /// each atom's value is one correctly rounded library call away from exact.
 fn exact_class(store: &Store, form: &RationalFunction) -> bool {
-    form.atoms().iter().all(|&atom| match store.atoms().get(atom) {
-        Atom::Symbol(_) => true,
-        Atom::Sin(argument) | Atom::Cos(argument) => matches!(store.node(*argument), Node::Symbol(_)),
-        Atom::Kernel(_) => false,
-    })
+    form.atoms()
+        .iter()
+        .all(|&atom| match store.atoms().get(atom) {
+            Atom::Symbol(_) => true,
+            Atom::Sin(argument) | Atom::Cos(argument) => {
+                matches!(store.node(*argument), Node::Symbol(_))
+            }
+            Atom::Kernel(_) => false,
+        })
 }
 
 /// The value of an atom of the exact class at [`POINT`].
@@ -153,7 +157,8 @@ fn build(store: &mut Store, symbols: &[SymbolId; 3], data: &[u8]) -> Option<Expr
                 store.pow(base, Rational::integer(exponent)).ok()?
             }
             7..=9 => {
-                let function = [Function::Sin, Function::Cos, Function::Tan][usize::from(op % 11 - 7)];
+                let function =
+                    [Function::Sin, Function::Cos, Function::Tan][usize::from(op % 11 - 7)];
                 let operand = stack.pop()?;
                 store.apply(function, operand).ok()?
             }
