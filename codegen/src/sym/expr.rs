@@ -141,6 +141,15 @@ pub enum SymError {
         /// The application, printed.
         expr: String,
     },
+    /// An integer power of a constant too large to compute exactly.
+    #[error(
+        "a constant power with about {bits} bits (the limit is {MAX_CONSTANT_BITS}); \
+         write a smaller number"
+    )]
+    ConstantTooLarge {
+        /// The estimated size of the power in bits.
+        bits: u64,
+    },
     /// The normal form needed more polynomial term products than the
     /// derivation budget allows ([`super::budget`]).
     #[error(
@@ -153,6 +162,10 @@ pub enum SymError {
         limit: u64,
     },
 }
+
+/// The largest integer power of a constant folded, in bits (about 20,000
+/// decimal digits); larger powers are rejected rather than computed.
+pub const MAX_CONSTANT_BITS: u64 = 1 << 16;
 
 /// The expression arena with its symbol table.
 #[derive(Default, Clone)]
@@ -503,6 +516,12 @@ impl Store {
             return Err(SymError::DivisionByZero {
                 expr: "0".to_string(),
             });
+        }
+        if let Some(n) = exponent.to_i64() {
+            let bits = value.bits().saturating_mul(n.unsigned_abs());
+            if bits > MAX_CONSTANT_BITS && value.abs() != Rational::ONE {
+                return Err(SymError::ConstantTooLarge { bits });
+            }
         }
         if let Some(folded) = exponent.to_i64().and_then(|n| value.powi(n)) {
             return Ok(self.number(folded));

@@ -108,12 +108,19 @@ impl Rational {
         }
     }
 
-    /// The size in 64-bit words (1 for a value held in two `i64`s): the
-    /// scale of the cost of arithmetic on it.
+    /// The size in 64-bit words: the scale of the cost of arithmetic on it.
     pub fn words(&self) -> u64 {
+        self.bits() / 64 + 1
+    }
+
+    /// The bits of the numerator and the denominator together.
+    pub fn bits(&self) -> u64 {
         match &self.0 {
-            Repr::Small(..) => 1,
-            Repr::Big(value) => (value.numer().bits() + value.denom().bits()) / 64 + 1,
+            Repr::Small(n, d) => {
+                u64::from(64 - n.unsigned_abs().leading_zeros())
+                    + u64::from(64 - d.unsigned_abs().leading_zeros())
+            }
+            Repr::Big(value) => value.numer().bits() + value.denom().bits(),
         }
     }
 
