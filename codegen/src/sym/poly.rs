@@ -432,7 +432,9 @@ impl Poly {
         result
     }
 
-    /// Replaces every `sin^e` with `e >= 2` by `sin^(e mod 2) (1 - cos^2)^(e div 2)`.
+    /// Replaces every `sin^e` with `e >= 2` by `sin^(e mod 2) (1 - cos^2)^(e div 2)`,
+    /// charging the terms each expansion step creates to the budget of `atoms`
+    /// (zero once it is spent).
     pub fn reduce_trig(self, atoms: &Atoms) -> Poly {
         let needs_reduction = |m: &Monomial| {
             m.0.iter()
@@ -451,6 +453,9 @@ impl Poly {
                         let one_minus_cos2 = Poly::constant(Rational::ONE)
                             .sub(&Poly::term(Monomial::power(cosine, 2), Rational::ONE));
                         for _ in 0..exponent / 2 {
+                            if !atoms.budget().charge(2 * expansion.len() as u64) {
+                                return Poly::zero();
+                            }
                             expansion = expansion.mul_unreduced(&one_minus_cos2);
                         }
                         if exponent % 2 == 1 {
