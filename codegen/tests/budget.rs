@@ -59,7 +59,7 @@ fn an_exploding_normal_form_is_one_diagnostic_stating_the_limit() {
 }
 
 #[test]
-fn the_same_model_fits_a_budget_one_product_larger_than_it_uses() {
+fn a_budget_of_exactly_the_measured_use_suffices_and_one_less_does_not() {
     let (_, sleigh) = &support::models::built_in()[3];
     let measured = Budget::default();
     assert!(generate_within(sleigh, measured.clone()).is_ok());
