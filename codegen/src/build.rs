@@ -12,6 +12,7 @@
 //! Errors carry the file, line and column of the offending token.
 
 use crate::diagnostic::Diagnostics;
+use crate::sym::Budget;
 use std::path::{Path, PathBuf};
 
 /// Reads `.model` files and writes the generated Rust next to the build's output.
@@ -97,8 +98,15 @@ impl Builder {
     }
 }
 
-/// The Rust source generated for the text of a `.model` file.
+/// The Rust source generated for the text of a `.model` file, within the
+/// default derivation budget ([`crate::sym::budget`]).
 pub fn generate(source: &str) -> Result<String, Diagnostics> {
-    let items = crate::compile(&crate::syntax::parse_str(source)?)?;
+    generate_within(source, Budget::default())
+}
+
+/// [`generate`] charging the derivation to `budget`, which afterwards tells
+/// how much of it the model used.
+pub fn generate_within(source: &str, budget: Budget) -> Result<String, Diagnostics> {
+    let items = crate::compile_within(&crate::syntax::parse_str(source)?, budget)?;
     Ok(items.to_string())
 }

@@ -25,13 +25,13 @@
 //! `body_velocity`), and [`InterpretedModel::shape_acceleration`] composes
 //! `body_velocity` and `acceleration` as the emitted code does.
 
-use crate::analysed_model;
 use crate::derive::momentum::group_coordinates;
 use crate::derive::port_hamiltonian::momentum_names;
 use crate::diagnostic::Diagnostics;
 use crate::emit::{self, Assembly, Lowered};
 use crate::ir::IrError;
 use crate::model::Model;
+use crate::{analysed_model, over_budget};
 use chaplygin_runtime::linalg::solve_in_place;
 
 /// The names of a model and its sizes.
@@ -149,7 +149,9 @@ impl InterpretedModel {
     /// [`crate::generate`] takes), keeping the functions' programs.
     pub fn from_source(source: &str) -> Result<InterpretedModel, Diagnostics> {
         let (mut model, constraints) = analysed_model(source)?;
-        let emitted = emit::emit(&mut model, &constraints)?;
+        let emitted = emit::emit(&mut model, &constraints);
+        over_budget(&model)?;
+        let emitted = emitted?;
         let functions = emitted
             .functions
             .into_iter()

@@ -30,7 +30,7 @@ pub mod syntax;
 #[cfg(test)]
 mod fixtures;
 
-pub use build::{BuildError, Builder, generate};
+pub use build::{BuildError, Builder, generate, generate_within};
 
 use proc_macro2::TokenStream;
 
@@ -48,18 +48,78 @@ pub fn try_expand(tokens: TokenStream) -> Result<TokenStream, diagnostic::Diagno
     compile(&syntax::parse(tokens)?)
 }
 
-/// A model text parsed, checked and analysed, as both doors do before emitting.
+/// A model text parsed, checked and analysed within the default derivation
+/// budget, as both doors do before emitting. The model's store keeps
+/// charging that budget: callers deriving more check [`over_budget`].
 pub(crate) fn analysed_model(
     source: &str,
 ) -> Result<(model::Model, derive::constraints::ConstraintAnalysis), diagnostic::Diagnostics> {
-    let mut model = model::check(&syntax::parse_str(source)?)?;
-    let constraints = derive::constraints::analyse(&mut model)?;
-    Ok((model, constraints))
+    let syntax = syntax::parse_str(source)?;
+    let budget = sym::Budget::default();
+    let outcome = model::check_within(&syntax, budget.clone()).and_then(|mut model| {
+        let constraints = derive::constraints::analyse(&mut model)?;
+        Ok((model, constraints))
+    });
+    within_budget(&syntax, &budget, outcome)
 }
 
-/// A parsed model's items: checked, analysed, emitted (both doors).
+/// The budget diagnostic, on the model's name, when the derivations on
+/// `model` after [`analysed_model`] spent its budget.
+pub(crate) fn over_budget(model: &model::Model) -> Result<(), diagnostic::Diagnostics> {
+    let budget = model.store.budget();
+    if !budget.is_exhausted() {
+        return Ok(());
+    }
+    let message = sym::SymError::BudgetExceeded {
+        limit: budget.limit(),
+    }
+    .to_string();
+    Err(diagnostic::Diagnostic::new(model.name.span(), message).into())
+}
+
+/// A parsed model's items: checked, analysed, emitted (both doors), within
+/// the default derivation budget ([`sym::budget`]).
 fn compile(syntax: &syntax::ModelSyntax) -> Result<TokenStream, diagnostic::Diagnostics> {
-    let mut model = model::check(syntax)?;
-    let constraints = derive::constraints::analyse(&mut model)?;
-    emit::model_items(&mut model, &constraints)
+    compile_within(syntax, sym::Budget::default())
+}
+
+/// [`compile`] within `budget`. When the budget runs out, the result is one
+/// diagnostic stating it: on the first expression whose normal form ran out,
+/// or on the model's name when the derivations after the checks ran out.
+fn compile_within(
+    syntax: &syntax::ModelSyntax,
+    budget: sym::Budget,
+) -> Result<TokenStream, diagnostic::Diagnostics> {
+    let outcome = model::check_within(syntax, budget.clone()).and_then(|mut model| {
+        let constraints = derive::constraints::analyse(&mut model)?;
+        emit::model_items(&mut model, &constraints)
+    });
+    within_budget(syntax, &budget, outcome)
+}
+
+/// `outcome`, or, when `budget` ran out, one diagnostic stating it: on the
+/// first expression whose normal form ran out, or on the model's name when
+/// the derivations after the checks ran out.
+fn within_budget<T>(
+    syntax: &syntax::ModelSyntax,
+    budget: &sym::Budget,
+    outcome: Result<T, diagnostic::Diagnostics>,
+) -> Result<T, diagnostic::Diagnostics> {
+    if !budget.is_exhausted() {
+        return outcome;
+    }
+    let message = sym::SymError::BudgetExceeded {
+        limit: budget.limit(),
+    }
+    .to_string();
+    let span = outcome
+        .err()
+        .and_then(|diagnostics| {
+            diagnostics
+                .iter()
+                .find(|diagnostic| diagnostic.message == message)
+                .map(|diagnostic| diagnostic.span)
+        })
+        .unwrap_or_else(|| syntax.name.span());
+    Err(diagnostic::Diagnostic::new(span, message).into())
 }

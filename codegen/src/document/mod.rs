@@ -42,7 +42,6 @@
 
 mod render;
 
-use crate::analysed_model;
 use crate::derive::constraints::{ConstraintAnalysis, distribution_basis};
 use crate::derive::lagrange_dalembert::{self, LagrangeDalembert};
 use crate::derive::momentum::{self, Momentum};
@@ -52,6 +51,7 @@ use crate::emit::{self, internal};
 use crate::model::Model;
 use crate::sym::latex::latex_rate;
 use crate::sym::{ExprId, Matrix, SymbolId};
+use crate::{analysed_model, over_budget};
 use serde_json::{Value, json};
 
 /// The output format of [`derive_document`].
@@ -155,31 +155,39 @@ enum Item {
 impl Document {
     fn derive(source: &str) -> Result<Document, Diagnostics> {
         let (mut model, constraints) = analysed_model(source)?;
-        let emitted = emit::emit(&mut model, &constraints)?;
+        let document = Self::derive_analysed(&mut model, &constraints);
+        over_budget(&model)?;
+        document
+    }
+
+    fn derive_analysed(
+        model: &mut Model,
+        constraints: &ConstraintAnalysis,
+    ) -> Result<Document, Diagnostics> {
+        let emitted = emit::emit(model, constraints)?;
         let rhs = emitted
             .functions
             .iter()
             .find(|f| f.name == "reduced_rhs")
             .and_then(|f| f.lowered.as_ref())
             .map(|lowered| lowered.outputs.clone())
-            .ok_or_else(|| internal(&model, "`reduced_rhs` was not emitted"))?;
-        let dalembert = lagrange_dalembert::derive(&mut model).map_err(|e| internal(&model, e))?;
-        let basis = distribution_basis(&mut model).map_err(|e| internal(&model, e))?;
-        let reduced =
-            port_hamiltonian::derive(&mut model, &basis).map_err(|e| internal(&model, e))?;
+            .ok_or_else(|| internal(model, "`reduced_rhs` was not emitted"))?;
+        let dalembert = lagrange_dalembert::derive(model).map_err(|e| internal(model, e))?;
+        let basis = distribution_basis(model).map_err(|e| internal(model, e))?;
+        let reduced = port_hamiltonian::derive(model, &basis).map_err(|e| internal(model, e))?;
         let momentum = match model.symmetry {
-            Some(_) => Some(momentum::derive(&mut model).map_err(|e| internal(&model, e))?),
+            Some(_) => Some(momentum::derive(model).map_err(|e| internal(model, e))?),
             None => None,
         };
         let mut sections = vec![
-            names_section(&model, &reduced),
-            sizes_section(&model),
-            constraints_section(&mut model, &constraints),
-            dalembert_section(&mut model, &dalembert),
-            reduced_section(&mut model, &reduced, &rhs),
+            names_section(model, &reduced),
+            sizes_section(model),
+            constraints_section(model, constraints),
+            dalembert_section(model, &dalembert),
+            reduced_section(model, &reduced, &rhs),
         ];
         if let Some(momentum) = &momentum {
-            sections.push(momentum_section(&mut model, momentum, &dalembert.inputs));
+            sections.push(momentum_section(model, momentum, &dalembert.inputs));
         }
         sections.push(Section {
             key: "report",

@@ -12,7 +12,9 @@ use super::lower::{Binding, FUNCTIONS, Lowerer, Scope};
 use super::{Declared, GroupFactor, Model, MomentumBasis, Options, Parameter, Symmetry, Variable};
 use crate::diagnostic::Diagnostics;
 use crate::sym::zero::SplitMix;
-use crate::sym::{Atom, ExprId, Matrix, Rational, RationalFunction, Store, SymbolId, SymbolKind};
+use crate::sym::{
+    Atom, Budget, ExprId, Matrix, Rational, RationalFunction, Store, SymbolId, SymbolKind,
+};
 use crate::syntax::{BinaryOperator, Expr, Item, List, ModelSyntax, Section, Value};
 use proc_macro2::Span;
 use std::collections::HashMap;
@@ -46,7 +48,15 @@ const DEFINITENESS_SAMPLES: usize = 24;
 
 /// Checks a parsed model and builds its symbolic form.
 pub fn check(syntax: &ModelSyntax) -> Result<Model, Diagnostics> {
-    let mut checker = Checker::default();
+    check_within(syntax, Budget::default())
+}
+
+/// [`check`], charging the model's normal forms to `budget`.
+pub fn check_within(syntax: &ModelSyntax, budget: Budget) -> Result<Model, Diagnostics> {
+    let mut checker = Checker {
+        store: Store::with_budget(budget),
+        ..Checker::default()
+    };
     let sections = checker.sections(syntax);
     if !sections.contains_key("coordinates") {
         // Every expression would mention undeclared names: report the cause only.

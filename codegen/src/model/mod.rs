@@ -14,7 +14,7 @@ mod lower;
 #[cfg(test)]
 mod tests;
 
-pub use check::check;
+pub use check::{check, check_within};
 
 use crate::sym::{Matrix, Rational, RationalFunction, Store, SymbolId};
 use proc_macro2::{Ident, Span, TokenStream};

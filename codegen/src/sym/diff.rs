@@ -168,10 +168,12 @@ impl Store {
                 }
             }
         }
-        let polynomial = polynomial_terms
-            .iter()
-            .fold(Poly::zero(), |acc, p| acc.add(p))
-            .reduce_trig(&self.atoms);
+        let polynomial = Poly::from_terms(
+            polynomial_terms
+                .iter()
+                .flat_map(|p| p.terms().iter().cloned()),
+        )
+        .reduce_trig(&self.atoms);
         Ok(RationalFunction::from_poly(polynomial).add(&rational, &self.atoms))
     }
 

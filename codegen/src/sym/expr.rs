@@ -141,7 +141,31 @@ pub enum SymError {
         /// The application, printed.
         expr: String,
     },
+    /// An integer power of a constant too large to compute exactly.
+    #[error(
+        "a constant power with about {bits} bits (the limit is {MAX_CONSTANT_BITS}); \
+         write a smaller number"
+    )]
+    ConstantTooLarge {
+        /// The estimated size of the power in bits.
+        bits: u64,
+    },
+    /// The normal form needed more polynomial term products than the
+    /// derivation budget allows ([`super::budget`]).
+    #[error(
+        "derivation budget exceeded: the normal form needs more than {limit} polynomial \
+         term products (the limit); simplify the model, e.g. avoid high powers of sums \
+         of sines and cosines"
+    )]
+    BudgetExceeded {
+        /// The limit that was exceeded.
+        limit: u64,
+    },
 }
+
+/// The largest integer power of a constant folded, in bits (about 20,000
+/// decimal digits); larger powers are rejected rather than computed.
+pub const MAX_CONSTANT_BITS: u64 = 1 << 16;
 
 /// The expression arena with its symbol table.
 #[derive(Default, Clone)]
@@ -168,6 +192,19 @@ impl Store {
     /// An empty store.
     pub fn new() -> Store {
         Store::default()
+    }
+
+    /// An empty store whose normal forms are charged to `budget`.
+    pub fn with_budget(budget: super::Budget) -> Store {
+        Store {
+            atoms: super::poly::Atoms::with_budget(budget),
+            ..Store::default()
+        }
+    }
+
+    /// The derivation budget of this store.
+    pub fn budget(&self) -> &super::Budget {
+        self.atoms.budget()
     }
 
     /// The node behind an id.
@@ -479,6 +516,12 @@ impl Store {
             return Err(SymError::DivisionByZero {
                 expr: "0".to_string(),
             });
+        }
+        if let Some(n) = exponent.to_i64() {
+            let bits = value.bits().saturating_mul(n.unsigned_abs());
+            if bits > MAX_CONSTANT_BITS && value.abs() != Rational::ONE {
+                return Err(SymError::ConstantTooLarge { bits });
+            }
         }
         if let Some(folded) = exponent.to_i64().and_then(|n| value.powi(n)) {
             return Ok(self.number(folded));

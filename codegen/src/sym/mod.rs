@@ -1,5 +1,6 @@
 //! The symbolic engine.
 
+pub mod budget;
 pub mod diff;
 pub mod eval;
 pub mod expr;
@@ -10,6 +11,7 @@ pub mod number;
 pub mod poly;
 pub mod zero;
 
+pub use budget::{Budget, DEFAULT_DERIVATION_BUDGET};
 pub use expr::{ExprId, Function, Node, Store, SymError, Symbol, SymbolId, SymbolKind};
 pub use matrix::{Matrix, MatrixError};
 pub use normal::RationalFunction;

@@ -132,7 +132,14 @@ impl RationalFunction {
     }
 
     /// `self + other` over the least common multiple of the factored denominators.
+    ///
+    /// Charges the budget of `atoms` the terms of both numerators (a sum of
+    /// many terms, folded, is quadratic in their count).
     pub fn add(&self, other: &RationalFunction, atoms: &Atoms) -> RationalFunction {
+        let merged = self.numerator.len() + other.numerator.len();
+        if !atoms.budget().charge(merged as u64) {
+            return RationalFunction::zero();
+        }
         if other.is_zero() {
             return self.clone();
         }
@@ -144,7 +151,7 @@ impl RationalFunction {
                 numerator: self.numerator.add(&other.numerator),
                 denominator: self.denominator.clone(),
             }
-            .cancelled();
+            .cancelled(atoms);
         }
         let common = lcm(&self.denominator, &other.denominator);
         let left = self
@@ -157,7 +164,7 @@ impl RationalFunction {
             numerator: left.add(&right),
             denominator: common,
         }
-        .cancelled()
+        .cancelled(atoms)
     }
 
     /// `self - other`.
@@ -170,13 +177,13 @@ impl RationalFunction {
         if self.is_zero() || other.is_zero() {
             return RationalFunction::zero();
         }
-        let (left, other_denominator) = cancel(&self.numerator, &other.denominator);
-        let (right, own_denominator) = cancel(&other.numerator, &self.denominator);
+        let (left, other_denominator) = cancel(&self.numerator, &other.denominator, atoms);
+        let (right, own_denominator) = cancel(&other.numerator, &self.denominator, atoms);
         RationalFunction {
             numerator: left.mul(&right, atoms),
             denominator: merge(&own_denominator, &other_denominator),
         }
-        .cancelled()
+        .cancelled(atoms)
     }
 
     /// `1 / self`, or an error when `self` is exactly zero.
@@ -186,13 +193,13 @@ impl RationalFunction {
         }
         let (cleared, conjugates) = clear_sines(&self.numerator, atoms);
         let numerator = conjugates.mul(&self.denominator_product(atoms), atoms);
-        let (coefficient, factors) = factorize(&cleared, &self.denominator);
+        let (coefficient, factors) = factorize(&cleared, &self.denominator, atoms);
         Some(
             RationalFunction {
                 numerator: numerator.scale(&coefficient.recip()?),
                 denominator: factors,
             }
-            .cancelled(),
+            .cancelled(atoms),
         )
     }
 
@@ -224,11 +231,11 @@ impl RationalFunction {
     }
 
     /// Removes every denominator factor that divides the numerator.
-    fn cancelled(self) -> RationalFunction {
+    fn cancelled(self, atoms: &Atoms) -> RationalFunction {
         if self.numerator.is_zero() {
             return RationalFunction::zero();
         }
-        let (numerator, denominator) = cancel(&self.numerator, &self.denominator);
+        let (numerator, denominator) = cancel(&self.numerator, &self.denominator, atoms);
         RationalFunction {
             numerator,
             denominator,
@@ -247,13 +254,17 @@ impl RationalFunction {
 }
 
 /// Cancels denominator factors that divide `numerator` exactly.
-fn cancel(numerator: &Poly, denominator: &[(Poly, u32)]) -> (Poly, Vec<(Poly, u32)>) {
+fn cancel(
+    numerator: &Poly,
+    denominator: &[(Poly, u32)],
+    atoms: &Atoms,
+) -> (Poly, Vec<(Poly, u32)>) {
     let mut numerator = numerator.clone();
     let mut kept = Vec::with_capacity(denominator.len());
     for (factor, multiplicity) in denominator {
         let mut remaining = *multiplicity;
         while remaining > 0 && might_divide(factor, &numerator) {
-            match numerator.div_exact(factor) {
+            match numerator.div_exact(factor, atoms.budget()) {
                 Some(quotient) => {
                     numerator = quotient;
                     remaining -= 1;
@@ -341,7 +352,7 @@ fn clear_sines(p: &Poly, atoms: &Atoms) -> (Poly, Poly) {
 /// Splits a non-zero, sine-free polynomial into a constant times monic factors:
 /// single-atom factors for its monomial content, then known factors (those of
 /// `known`) divided out, then the monic remainder.
-fn factorize(p: &Poly, known: &[(Poly, u32)]) -> (Rational, Vec<(Poly, u32)>) {
+fn factorize(p: &Poly, known: &[(Poly, u32)], atoms: &Atoms) -> (Rational, Vec<(Poly, u32)>) {
     let content = p.monomial_content();
     let mut rest = p.div_monomial(&content);
     let mut factors: Vec<(Poly, u32)> = content
@@ -352,7 +363,7 @@ fn factorize(p: &Poly, known: &[(Poly, u32)]) -> (Rational, Vec<(Poly, u32)>) {
     for (factor, _) in known {
         let mut found = 0;
         while rest.len() > 1 && might_divide(factor, &rest) {
-            match rest.div_exact(factor) {
+            match rest.div_exact(factor, atoms.budget()) {
                 Some(quotient) => {
                     rest = quotient;
                     found += 1;
@@ -374,17 +385,34 @@ fn factorize(p: &Poly, known: &[(Poly, u32)]) -> (Rational, Vec<(Poly, u32)>) {
 
 impl Store {
     /// The normal form of an expression (memoized).
+    ///
+    /// Fails with [`SymError::BudgetExceeded`] once the store's derivation
+    /// budget is spent, here or in an earlier computation.
     pub fn normal(&mut self, id: ExprId) -> Result<RationalFunction, SymError> {
+        self.within_budget()?;
         if let Some(found) = self.normal_forms.get(&id) {
             return Ok(found.clone());
         }
         for node in self.reachable(&[id]) {
             if !self.normal_forms.contains_key(&node) {
-                let form = self.normal_of_node(node)?;
-                self.normal_forms.insert(node, form);
+                let form = self.normal_of_node(node);
+                self.within_budget()?;
+                self.normal_forms.insert(node, form?);
             }
         }
         Ok(self.normal_forms[&id].clone())
+    }
+
+    /// `Err(BudgetExceeded)` once the derivation budget is spent.
+    fn within_budget(&self) -> Result<(), SymError> {
+        let budget = self.atoms.budget();
+        if budget.is_exhausted() {
+            Err(SymError::BudgetExceeded {
+                limit: budget.limit(),
+            })
+        } else {
+            Ok(())
+        }
     }
 
     /// The expression rebuilt from its normal form.

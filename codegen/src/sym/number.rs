@@ -108,6 +108,22 @@ impl Rational {
         }
     }
 
+    /// The size in 64-bit words: the scale of the cost of arithmetic on it.
+    pub fn words(&self) -> u64 {
+        self.bits() / 64 + 1
+    }
+
+    /// The bits of the numerator and the denominator together.
+    pub fn bits(&self) -> u64 {
+        match &self.0 {
+            Repr::Small(n, d) => {
+                u64::from(64 - n.unsigned_abs().leading_zeros())
+                    + u64::from(64 - d.unsigned_abs().leading_zeros())
+            }
+            Repr::Big(value) => value.numer().bits() + value.denom().bits(),
+        }
+    }
+
     /// The nearest `f64`.
     pub fn to_f64(&self) -> f64 {
         match &self.0 {

@@ -9,6 +9,7 @@
 //! independent symbols exactly when their term lists are equal (the monomials
 //! `s^e * c^k * ...` with `e <= 1` form a basis of `Q[s, c]/(s^2 + c^2 - 1)`).
 
+use super::budget::Budget;
 use super::expr::{ExprId, SymbolId};
 use super::number::Rational;
 use std::cmp::Ordering;
@@ -31,15 +32,30 @@ pub enum Atom {
     Kernel(ExprId),
 }
 
-/// The interned atoms, each sine paired with the cosine of the same argument.
+/// The interned atoms, each sine paired with the cosine of the same argument,
+/// and the derivation budget that products over them are charged to.
 #[derive(Clone, Default, Debug)]
 pub struct Atoms {
     list: Vec<Atom>,
     index: HashMap<Atom, AtomId>,
     cosine_partner: HashMap<AtomId, AtomId>,
+    budget: Budget,
 }
 
 impl Atoms {
+    /// An empty table charging its products to `budget`.
+    pub fn with_budget(budget: Budget) -> Atoms {
+        Atoms {
+            budget,
+            ..Atoms::default()
+        }
+    }
+
+    /// The budget products are charged to (shared by every copy of the table).
+    pub fn budget(&self) -> &Budget {
+        &self.budget
+    }
+
     /// The atom behind a handle.
     pub fn get(&self, id: AtomId) -> &Atom {
         &self.list[id.0 as usize]
@@ -387,9 +403,24 @@ impl Poly {
         )
     }
 
-    /// `self * other`, reduced by `sin^2 = 1 - cos^2`.
+    /// `self * other`, reduced by `sin^2 = 1 - cos^2`; zero once the budget
+    /// of `atoms` is spent. The product is charged `self.len() * other.len()`
+    /// term products, each weighted by the sizes in words of the largest
+    /// coefficients (big coefficients make each product slower).
     pub fn mul(&self, other: &Poly, atoms: &Atoms) -> Poly {
+        let products = (self.len() as u64)
+            .saturating_mul(other.len() as u64)
+            .saturating_mul(self.coefficient_words())
+            .saturating_mul(other.coefficient_words());
+        if !atoms.budget().charge(products) {
+            return Poly::zero();
+        }
         self.mul_unreduced(other).reduce_trig(atoms)
+    }
+
+    /// The size in words of the largest coefficient (1 for zero).
+    fn coefficient_words(&self) -> u64 {
+        self.terms.iter().map(|(_, c)| c.words()).max().unwrap_or(1)
     }
 
     /// `self^n`.
@@ -401,7 +432,9 @@ impl Poly {
         result
     }
 
-    /// Replaces every `sin^e` with `e >= 2` by `sin^(e mod 2) (1 - cos^2)^(e div 2)`.
+    /// Replaces every `sin^e` with `e >= 2` by `sin^(e mod 2) (1 - cos^2)^(e div 2)`,
+    /// charging the terms each expansion step creates to the budget of `atoms`
+    /// (zero once it is spent).
     pub fn reduce_trig(self, atoms: &Atoms) -> Poly {
         let needs_reduction = |m: &Monomial| {
             m.0.iter()
@@ -420,6 +453,9 @@ impl Poly {
                         let one_minus_cos2 = Poly::constant(Rational::ONE)
                             .sub(&Poly::term(Monomial::power(cosine, 2), Rational::ONE));
                         for _ in 0..exponent / 2 {
+                            if !atoms.budget().charge(2 * expansion.len() as u64) {
+                                return Poly::zero();
+                            }
                             expansion = expansion.mul_unreduced(&one_minus_cos2);
                         }
                         if exponent % 2 == 1 {
@@ -459,8 +495,9 @@ impl Poly {
 
     /// `self / divisor` when the division is exact. The divisor must contain no
     /// sine (then no reduction can occur and polynomial division is division in
-    /// the trigonometric ring).
-    pub fn div_exact(&self, divisor: &Poly) -> Option<Poly> {
+    /// the trigonometric ring). Each step charges `budget` the terms of the
+    /// remainder it rewrites; `None` once the budget is spent.
+    pub fn div_exact(&self, divisor: &Poly, budget: &Budget) -> Option<Poly> {
         let (lead_monomial, lead_coefficient) = divisor.leading()?;
         if let Some(c) = divisor.as_constant() {
             return Some(self.scale(&c.recip()?));
@@ -468,6 +505,9 @@ impl Poly {
         let mut remainder = self.clone();
         let mut quotient = Vec::new();
         while let Some((monomial, coefficient)) = remainder.leading() {
+            if !budget.charge((remainder.len() + divisor.len()) as u64) {
+                return None;
+            }
             let factor = monomial.div(lead_monomial)?;
             let c = coefficient.div(lead_coefficient)?;
             remainder = remainder.sub(&divisor.mul_term(&factor, &c));
@@ -569,8 +609,8 @@ mod tests {
         let a = Poly::atom(m).add(&Poly::atom(c));
         let b = Poly::atom(s).add(&Poly::constant(Rational::integer(3)));
         let product = a.mul(&b, &atoms);
-        assert_eq!(product.div_exact(&a), Some(b.clone()));
-        assert_eq!(b.div_exact(&a), None);
+        assert_eq!(product.div_exact(&a, atoms.budget()), Some(b.clone()));
+        assert_eq!(b.div_exact(&a, atoms.budget()), None);
         assert_eq!(
             Poly::atom(m).mul(&Poly::atom(m), &atoms).monomial_content(),
             Monomial::power(m, 2)

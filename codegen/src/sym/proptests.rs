@@ -1,7 +1,7 @@
 //! Property tests on random expression trees: the normal form keeps the
 //! value, and both derivatives agree with central finite differences.
 
-use super::{Decision, ExprId, Function, Rational, Store, SymbolId, SymbolKind};
+use super::{Budget, Decision, ExprId, Function, Rational, Store, SymError, SymbolId, SymbolKind};
 use proptest::prelude::*;
 
 /// A recipe for a random expression over `x`, `y` (coordinates) and `m` (parameter).
@@ -58,7 +58,11 @@ struct Built {
 }
 
 fn build(recipe: &Recipe) -> Built {
-    let mut store = Store::new();
+    build_within(recipe, Budget::default())
+}
+
+fn build_within(recipe: &Recipe, budget: Budget) -> Built {
+    let mut store = Store::with_budget(budget);
     let symbols = [
         store.declare("x", SymbolKind::Coordinate),
         store.declare("y", SymbolKind::Coordinate),
@@ -198,6 +202,28 @@ proptest! {
         prop_assert!(test.is_zero, "{:?}", test);
         if !recipe_has_kernels(&r) {
             prop_assert_eq!(test.decided_by, Decision::NormalForm);
+        }
+    }
+
+    /// A budget never changes a normal form: within any limit the result is
+    /// the unlimited one or `BudgetExceeded`, and the unlimited run's count
+    /// is exactly the smallest limit that suffices.
+    #[test]
+    fn a_budget_gives_the_normal_form_or_budget_exceeded(r in recipe(), share in 0.0f64..1.0) {
+        let unlimited = Budget::new(u64::MAX / 2);
+        let mut reference = build_within(&r, unlimited.clone());
+        let expected = reference.store.normal(reference.root).expect("recipes are well defined");
+        let limit = (unlimited.used() as f64 * share) as u64;
+        let mut limited = build_within(&r, Budget::new(limit));
+        match limited.store.normal(limited.root) {
+            Ok(form) => {
+                prop_assert_eq!(form, expected);
+                prop_assert!(limit >= unlimited.used());
+            }
+            Err(error) => {
+                prop_assert_eq!(error, SymError::BudgetExceeded { limit });
+                prop_assert!(limit < unlimited.used());
+            }
         }
     }
 }

@@ -1,0 +1,172 @@
+//! Random expressions built from the fuzz bytes by a small stack machine
+//! (symbols `x`, `y`, `m`, small rationals, `+ - * /`, integer powers,
+//! `sin`, `cos`, `tan`) through the normal form: a rational function or a
+//! symbolic error, never a panic; and where the expression and its normal
+//! form both evaluate to finite numbers at a fixed point, they agree.
+
+#![no_main]
+
+use chaplygin_codegen::sym::{
+    Atom, AtomId, Budget, ExprId, Function, Node, Poly, Rational, RationalFunction, Store,
+    SymbolId, SymbolKind,
+};
+use libfuzzer_sys::fuzz_target;
+
+/// The evaluation point: generic values, away from the zeros of `cos`.
+const POINT: [f64; 3] = [0.7, -1.3, 2.1];
+
+/// A small budget keeps each input fast; exceeding it is an accepted outcome.
+const BUDGET: u64 = 200_000;
+
+/// At most this many operands on the stack.
+const STACK_LIMIT: usize = 32;
+
+fuzz_target!(|data: &[u8]| {
+    let mut store = Store::with_budget(Budget::new(BUDGET));
+    let symbols = [
+        store.declare("x", SymbolKind::Coordinate),
+        store.declare("y", SymbolKind::Coordinate),
+        store.declare("m", SymbolKind::Parameter),
+    ];
+    let Some(root) = build(&mut store, &symbols, data) else {
+        return;
+    };
+    let Ok(form) = store.normal(root) else {
+        return;
+    };
+    let value_of = |symbol: SymbolId| POINT[symbols.iter().position(|&s| s == symbol).unwrap_or(0)];
+    let tree = store.evaluate(root, &value_of);
+    let normal = store.evaluate_normal(&form, &value_of);
+    if !tree.is_finite() || !normal.is_finite() || !exact_class(&store, &form) {
+        return;
+    }
+    let atom_value = |atom: AtomId| atom_value(&store, &symbols, atom);
+    // Evaluating a polynomial in floating point gives a relative error of at
+    // most about (terms + degree) * f64::EPSILON times its condition number
+    // `sum |terms| / |value|`; the error of a quotient is the sum of those of
+    // its factors, each times its multiplicity. The tree's own evaluation
+    // adds its own, of the same order for the small trees built here. A
+    // relative 1e-9 per unit of condition leaves a margin of more than 1e4
+    // over that bound for polynomials of up to a few hundred terms, and still
+    // catches any wrong coefficient (a change by a rational multiple of a
+    // monomial's value, far above the bound at a generic point). The tree's
+    // rounding is bounded the same way by its largest intermediate value.
+    let condition = condition(form.numerator(), &atom_value)
+        + form
+            .denominator()
+            .iter()
+            .map(|(factor, k)| f64::from(*k) * condition(factor, &atom_value))
+            .sum::<f64>();
+    let tolerance = 1e-9
+        * ((1.0 + condition) * normal.abs()).max(largest_intermediate(&store, root, &value_of));
+    assert!(
+        (tree - normal).abs() <= tolerance,
+        "tree {tree} != normal form {normal} (tolerance {tolerance}) for {}",
+        store.display(root)
+    );
+});
+
+/// True when every atom is a symbol or the sine or cosine of a symbol: then
+/// each atom's value is one correctly rounded library call away from exact.
+fn exact_class(store: &Store, form: &RationalFunction) -> bool {
+    form.atoms()
+        .iter()
+        .all(|&atom| match store.atoms().get(atom) {
+            Atom::Symbol(_) => true,
+            Atom::Sin(argument) | Atom::Cos(argument) => {
+                matches!(store.node(*argument), Node::Symbol(_))
+            }
+            Atom::Kernel(_) => false,
+        })
+}
+
+/// The value of an atom of the exact class at [`POINT`].
+fn atom_value(store: &Store, symbols: &[SymbolId; 3], atom: AtomId) -> f64 {
+    let at = |symbol: &SymbolId| POINT[symbols.iter().position(|s| s == symbol).unwrap_or(0)];
+    let of_argument = |argument: &ExprId| match store.node(*argument) {
+        Node::Symbol(symbol) => at(symbol),
+        _ => f64::NAN,
+    };
+    match store.atoms().get(atom) {
+        Atom::Symbol(symbol) => at(symbol),
+        Atom::Sin(argument) => of_argument(argument).sin(),
+        Atom::Cos(argument) => of_argument(argument).cos(),
+        Atom::Kernel(_) => f64::NAN,
+    }
+}
+
+/// `sum |c m(point)| / |p(point)|`: how much rounding in the terms is magnified.
+fn condition(p: &Poly, atom_value: &dyn Fn(AtomId) -> f64) -> f64 {
+    let magnitude: f64 = p
+        .terms()
+        .iter()
+        .map(|(monomial, coefficient)| {
+            monomial
+                .factors()
+                .iter()
+                .fold(coefficient.to_f64().abs(), |product, &(atom, exponent)| {
+                    product * atom_value(atom).abs().powi(exponent as i32)
+                })
+        })
+        .sum();
+    if magnitude == 0.0 {
+        return 0.0;
+    }
+    magnitude / p.evaluate(atom_value).abs()
+}
+
+/// The largest magnitude of any sub-expression's value.
+fn largest_intermediate(store: &Store, root: ExprId, value_of: &dyn Fn(SymbolId) -> f64) -> f64 {
+    let nodes = store.reachable(&[root]);
+    store
+        .evaluate_many(&nodes, value_of)
+        .into_iter()
+        .map(f64::abs)
+        .fold(0.0, f64::max)
+}
+
+/// Runs the bytes as stack-machine instructions; the top of the stack is the
+/// expression. `None` when the bytes build nothing or an operation is
+/// rejected (a division by an exact zero).
+fn build(store: &mut Store, symbols: &[SymbolId; 3], data: &[u8]) -> Option<ExprId> {
+    let mut stack: Vec<ExprId> = Vec::new();
+    let mut bytes = data.iter().copied();
+    while let Some(op) = bytes.next() {
+        let argument = bytes.next().unwrap_or(0);
+        let pushed = match op % 11 {
+            0 => store.symbol(symbols[usize::from(argument % 3)]),
+            1 => {
+                let numerator = i64::from(argument % 17) - 8;
+                let denominator = i64::from(argument / 17 % 4) + 1;
+                store.number(Rational::new(numerator, denominator)?)
+            }
+            2..=5 => {
+                let (Some(b), Some(a)) = (stack.pop(), stack.pop()) else {
+                    continue;
+                };
+                match op % 11 {
+                    2 => store.add2(a, b),
+                    3 => store.sub(a, b),
+                    4 => store.mul2(a, b),
+                    _ => store.div(a, b).ok()?,
+                }
+            }
+            6 => {
+                let base = stack.pop()?;
+                let exponent = i64::from(argument % 9) - 3;
+                store.pow(base, Rational::integer(exponent)).ok()?
+            }
+            7..=9 => {
+                let function =
+                    [Function::Sin, Function::Cos, Function::Tan][usize::from(op % 11 - 7)];
+                let operand = stack.pop()?;
+                store.apply(function, operand).ok()?
+            }
+            _ => *stack.last()?,
+        };
+        if stack.len() < STACK_LIMIT {
+            stack.push(pushed);
+        }
+    }
+    stack.pop()
+}
