@@ -265,3 +265,89 @@ fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
     assert!(rows.len() > 10 && rows.iter().flatten().all(|v| v.is_finite()));
     assert!(rows.last().unwrap()[0] < 0.6);
 }
+
+/// The snakeboard's coordinates from the momentum formulation (an ODE in
+/// `(q, rdot, p)`) follow the Lagrange-d'Alembert run (in `(q, qdot)`) to
+/// dopri5's accuracy.
+#[test]
+fn the_momentum_formulation_follows_the_lagrange_run() {
+    let run = |formulation: &str| {
+        let out = scratch(&format!("formulation-{formulation}"));
+        let output = chaplygin(&[
+            "simulate",
+            "snakeboard",
+            "--formulation",
+            formulation,
+            "--integrator",
+            "dopri5",
+            "--initial",
+            "phi=0.4",
+            "--initial",
+            "dot(x)=1",
+            "--initial",
+            "dot(theta)=0.8455864374763236",
+            "--initial",
+            "dot(psi)=0.3",
+            "--input",
+            "u_torso=0.05",
+            "--t-end",
+            "5",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(
+            output.status.success(),
+            "{formulation}: {}",
+            stderr(&output)
+        );
+        read_csv(&out.join("trajectory.csv"))
+    };
+    let (lagrange_header, lagrange) = run("lagrange");
+    let (momentum_header, momentum) = run("momentum");
+    assert!(momentum_header.iter().any(|name| name == "dot(phi)"));
+    assert!(momentum_header.iter().any(|name| name == "p1"));
+    assert_eq!(lagrange.len(), momentum.len());
+    for coordinate in ["t", "x", "y", "theta", "psi", "phi"] {
+        let column = |header: &[String]| header.iter().position(|name| name == coordinate).unwrap();
+        let (a, b) = (column(&lagrange_header), column(&momentum_header));
+        for (row, other) in lagrange.iter().zip(&momentum) {
+            assert!(
+                (row[a] - other[b]).abs() <= 1e-6,
+                "{coordinate}: {} vs {} at t = {}",
+                row[a],
+                other[b],
+                row[0]
+            );
+        }
+    }
+}
+
+/// The momentum formulation of a `.model` file: refused in one line, saying
+/// why (no symmetry, or not through the interpreter).
+#[test]
+fn the_momentum_formulation_of_a_model_file_is_refused() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
+    assert_one_line_error(
+        &chaplygin(&["simulate", file, "--formulation", "momentum"]),
+        &["momentum formulation", "--formulation lagrange"],
+    );
+    let source = std::fs::read_to_string(file).unwrap();
+    let without_symmetry: String = source
+        .lines()
+        .filter(|line| !line.trim_start().starts_with("symmetry:"))
+        .map(|line| format!("{line}\n"))
+        .collect();
+    let directory = scratch("no-symmetry");
+    std::fs::create_dir_all(&directory).unwrap();
+    let path = directory.join("sleigh.model");
+    std::fs::write(&path, without_symmetry).unwrap();
+    assert_one_line_error(
+        &chaplygin(&[
+            "simulate",
+            path.to_str().unwrap(),
+            "--formulation",
+            "momentum",
+        ]),
+        &["declares no symmetry"],
+    );
+}

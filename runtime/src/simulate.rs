@@ -19,8 +19,8 @@ use crate::control::{Controller, Interconnection, PortHamiltonianController};
 use crate::integrate::{self, DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4};
 use crate::record::Recorder;
 use crate::system::{
-    Dalembert, Energy, LagrangeDalembert, ModelNames, OdeSystem, Reduced, ReducedPortHamiltonian,
-    split,
+    Dalembert, Energy, LagrangeDalembert, ModelNames, Momentum, MomentumEquations, OdeSystem,
+    Reduced, ReducedPortHamiltonian, split,
 };
 
 /// A regularity measure's value at a state, and what it measures.
@@ -122,6 +122,55 @@ where
 
     fn regularity(&self, x: &[f64; D]) -> Regularity {
         let (q, _) = split::<N, D>(x);
+        Regularity {
+            quantity: MULTIPLIERS,
+            value: self.model().constraint_regularity(&q),
+            signed: false,
+        }
+    }
+}
+
+impl<
+    M,
+    F,
+    const N: usize,
+    const R: usize,
+    const K: usize,
+    const C: usize,
+    const P: usize,
+    const D: usize,
+> Observed<D> for Momentum<'_, M, F, N, R, K, C, P>
+where
+    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P> + ModelNames,
+    F: Controller<D, P>,
+{
+    /// The coordinates, `dot(r)` for the shape velocities, `p1..pK`.
+    fn state_names(&self) -> Vec<String> {
+        let shape_velocities = M::SHAPE.map(|i| format!("dot({})", M::COORDINATES[i]));
+        let momenta = (1..=K).map(|i| format!("p{i}"));
+        owned(M::COORDINATES)
+            .into_iter()
+            .chain(shape_velocities)
+            .chain(momenta)
+            .collect()
+    }
+
+    fn input_names(&self) -> Vec<String> {
+        owned(M::INPUTS)
+    }
+
+    fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
+        inputs.copy_from_slice(&self.controller().input(t, x));
+    }
+
+    fn constraint_residual(&self, x: &[f64; D]) -> f64 {
+        let (q, qdot) = self.configuration_velocity(x);
+        let residual = self.model().constraint_residual(&q, &qdot);
+        residual.iter().fold(0.0, |worst, r| worst.max(r.abs()))
+    }
+
+    fn regularity(&self, x: &[f64; D]) -> Regularity {
+        let q: [f64; N] = core::array::from_fn(|i| x[i]);
         Regularity {
             quantity: MULTIPLIERS,
             value: self.model().constraint_regularity(&q),

@@ -7,7 +7,9 @@
 //! model implements [`ReducedPortHamiltonian`] (the reduced flow in
 //! `x = (q, alpha)`, MATH.md section 3), [`LagrangeDalembert`] (the
 //! equations with multipliers in `(q, qdot)`, MATH.md section 2) and
-//! [`ModelNames`]; [`Reduced`] and [`Dalembert`] close either with a
+//! [`ModelNames`], and with a symmetry [`MomentumEquations`] (the momentum
+//! equation and reconstruction in `x = (q, rdot, p)`, MATH.md section 4);
+//! [`Reduced`], [`Dalembert`] and [`Momentum`] close them with a
 //! [`Controller`] (a constant, an open-loop `u(t)`, or a feedback `u(t, x)`)
 //! into an [`OdeSystem`].
 
@@ -99,6 +101,43 @@ pub trait Momenta<const N: usize, const K: usize> {
     fn momenta(&self, q: &[f64; N], qdot: &[f64; N]) -> [f64; K];
     /// `qdot = g^-1 h^T alpha`.
     fn velocities(&self, q: &[f64; N], alpha: &[f64; K]) -> [f64; N];
+}
+
+/// The momentum equation of a model with a symmetry (MATH.md section 4):
+/// `N` coordinates, of which `R` are the shape `r` (those the group does not
+/// act on), `K` momenta `p`, `P` inputs. Generated models with a `symmetry`
+/// implement it.
+///
+/// ```text
+/// pdot = momentum_rhs(r, rdot, p) + momentum_input_matrix(q) u
+/// rddot = shape_acceleration(r, rdot, p, u)
+/// qdot = reconstructed_velocity(q, rdot, p)
+/// ```
+pub trait MomentumEquations<const N: usize, const R: usize, const K: usize, const P: usize> {
+    /// The indices of the shape coordinates in `q`, in declared order.
+    const SHAPE: [usize; R];
+    /// The momenta `p = h(q) M(q) qdot` of a velocity.
+    fn momentum(&self, q: &[f64; N], qdot: &[f64; N]) -> [f64; K];
+    /// The unforced momentum equation's right-hand side.
+    fn momentum_rhs(&self, r: &[f64; R], rdot: &[f64; R], p: &[f64; K]) -> [f64; K];
+    /// `h(q) B(q)`: the inputs' term of the momentum equation.
+    fn momentum_input_matrix(&self, q: &[f64; N]) -> [[f64; P]; K];
+    /// The shape accelerations `rddot` at `(r, rdot, p)` and inputs `u`.
+    fn shape_acceleration(
+        &self,
+        r: &[f64; R],
+        rdot: &[f64; R],
+        p: &[f64; K],
+        u: &[f64; P],
+    ) -> [f64; R];
+    /// The velocity `qdot` of the whole configuration: the reconstructed
+    /// body velocity moved to the coordinates' frame on the group
+    /// (`R(theta) (v1, v2)` and `omega` for `se2`), `rdot` on the shape.
+    fn reconstructed_velocity(&self, q: &[f64; N], rdot: &[f64; R], p: &[f64; K]) -> [f64; N];
+    /// The shape coordinates `r` of `q`.
+    fn shape(q: &[f64; N]) -> [f64; R] {
+        Self::SHAPE.map(|i| q[i])
+    }
 }
 
 /// A generated model's parameters, by name.
@@ -348,5 +387,189 @@ where
     fn energy(&self, x: &[f64; D]) -> f64 {
         let (q, qdot) = split::<N, D>(x);
         self.model.energy(&q, &qdot)
+    }
+}
+
+/// A model's momentum equation closed by a [`Controller`]: an
+/// [`OdeSystem`] in `x = (q, rdot, p)` (all `N` coordinates in declared
+/// order, the `R` shape velocities, the `K` momenta) of size
+/// `D = N + R + K` (its own parameter, as for [`Dalembert`]; any other `D`
+/// fails to compile):
+///
+/// ```text
+/// qdot  = reconstructed_velocity(q, rdot, p)
+/// rddot = shape_acceleration(r, rdot, p, u)
+/// pdot  = momentum_rhs(r, rdot, p) + momentum_input_matrix(q) u
+/// ```
+///
+/// Its energy, constraint residual and regularity are the
+/// [`LagrangeDalembert`] ones at the reconstructed velocity (`C`
+/// constraints).
+#[derive(Clone, Copy, Debug)]
+pub struct Momentum<
+    'a,
+    M,
+    F,
+    const N: usize,
+    const R: usize,
+    const K: usize,
+    const C: usize,
+    const P: usize,
+> {
+    model: &'a M,
+    controller: F,
+}
+
+impl<'a, M, F, const N: usize, const R: usize, const K: usize, const C: usize, const P: usize>
+    Momentum<'a, M, F, N, R, K, C, P>
+where
+    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
+{
+    /// `model` driven by `controller`: a [`Constant`], a closure `u(t)`,
+    /// or a [`crate::control::Feedback`] `u(t, x)` of `x = (q, rdot, p)`.
+    pub fn new(model: &'a M, controller: F) -> Self {
+        Self { model, controller }
+    }
+
+    /// The model.
+    pub fn model(&self) -> &'a M {
+        self.model
+    }
+
+    /// The controller.
+    pub fn controller(&self) -> &F {
+        &self.controller
+    }
+
+    /// The state `(q, rdot, p)` of the configuration `q` moving with
+    /// `qdot` (a velocity the constraints allow).
+    pub fn initial_state<const D: usize>(&self, q: &[f64; N], qdot: &[f64; N]) -> [f64; D] {
+        let rdot = M::shape(qdot);
+        let p = self.model.momentum(q, qdot);
+        join(q, &rdot, &p)
+    }
+
+    /// The configuration `q` and the reconstructed velocity `qdot` at `x`.
+    pub fn configuration_velocity<const D: usize>(&self, x: &[f64; D]) -> ([f64; N], [f64; N]) {
+        let (q, rdot, p) = split_momentum::<N, R, K, D>(x);
+        let qdot = self.model.reconstructed_velocity(&q, &rdot, &p);
+        (q, qdot)
+    }
+}
+
+impl<'a, M, const N: usize, const R: usize, const K: usize, const C: usize, const P: usize>
+    Momentum<'a, M, Constant<P>, N, R, K, C, P>
+where
+    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
+{
+    /// `model` driven by the constant input `u`.
+    pub fn constant(model: &'a M, u: [f64; P]) -> Self {
+        Self::new(model, Constant(u))
+    }
+}
+
+/// Splits `x = (q, rdot, p)` of size `D = N + R + K`.
+fn split_momentum<const N: usize, const R: usize, const K: usize, const D: usize>(
+    x: &[f64; D],
+) -> ([f64; N], [f64; R], [f64; K]) {
+    const {
+        assert!(
+            D == N + R + K,
+            "the state (q, rdot, p) has D = N + R + K entries"
+        )
+    };
+    (
+        core::array::from_fn(|i| x[i]),
+        core::array::from_fn(|i| x[N + i]),
+        core::array::from_fn(|i| x[N + R + i]),
+    )
+}
+
+/// Joins `(q, rdot, p)` into a state of size `D = N + R + K`.
+fn join<const N: usize, const R: usize, const K: usize, const D: usize>(
+    q: &[f64; N],
+    rdot: &[f64; R],
+    p: &[f64; K],
+) -> [f64; D] {
+    const {
+        assert!(
+            D == N + R + K,
+            "the state (q, rdot, p) has D = N + R + K entries"
+        )
+    };
+    core::array::from_fn(|i| match i {
+        i if i < N => q[i],
+        i if i < N + R => rdot[i - N],
+        i => p[i - N - R],
+    })
+}
+
+impl<
+    M,
+    F,
+    const N: usize,
+    const R: usize,
+    const K: usize,
+    const C: usize,
+    const P: usize,
+    const D: usize,
+> OdeSystem<D> for Momentum<'_, M, F, N, R, K, C, P>
+where
+    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
+    F: Controller<D, P>,
+{
+    fn rhs(&self, t: f64, x: &[f64; D]) -> [f64; D] {
+        let (q, rdot, p) = split_momentum::<N, R, K, D>(x);
+        let u = self.controller.input(t, x);
+        let r = M::shape(&q);
+        let qdot = self.model.reconstructed_velocity(&q, &rdot, &p);
+        let rddot = self.model.shape_acceleration(&r, &rdot, &p, &u);
+        let unforced = self.model.momentum_rhs(&r, &rdot, &p);
+        let input_matrix = self.model.momentum_input_matrix(&q);
+        let pdot: [f64; K] = core::array::from_fn(|i| {
+            unforced[i] + (0..P).map(|l| input_matrix[i][l] * u[l]).sum::<f64>()
+        });
+        join(&qdot, &rddot, &pdot)
+    }
+}
+
+impl<
+    M,
+    F,
+    const N: usize,
+    const R: usize,
+    const K: usize,
+    const C: usize,
+    const P: usize,
+    const D: usize,
+> Jacobian<D> for Momentum<'_, M, F, N, R, K, C, P>
+where
+    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
+    F: Controller<D, P>,
+{
+    /// Central differences of [`OdeSystem::rhs`], as for [`Dalembert`].
+    fn jacobian(&self, t: f64, x: &[f64; D]) -> [[f64; D]; D] {
+        crate::linalg::central_difference_jacobian(|x| self.rhs(t, x), x)
+    }
+}
+
+impl<
+    M,
+    F,
+    const N: usize,
+    const R: usize,
+    const K: usize,
+    const C: usize,
+    const P: usize,
+    const D: usize,
+> Energy<D> for Momentum<'_, M, F, N, R, K, C, P>
+where
+    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
+    F: Controller<D, P>,
+{
+    /// The energy `T + V` at the reconstructed velocity.
+    fn energy(&self, x: &[f64; D]) -> f64 {
+        let (q, qdot) = self.configuration_velocity(x);
+        LagrangeDalembert::energy(self.model, &q, &qdot)
     }
 }

@@ -1,14 +1,16 @@
 //! Implementations of the runtime's formulation traits
 //! (`::chaplygin::runtime::system::ReducedPortHamiltonian`,
-//! `LagrangeDalembert` and `ModelNames`) for the generated struct, so that
+//! `LagrangeDalembert`, `ModelNames`, and with a symmetry
+//! `MomentumEquations`) for the generated struct, so that
 //! every integrator of the runtime runs on it. Each method forwards to the
 //! inherent item of the same name (inherent items take precedence in
 //! `Type::item` paths); the regularity measures call
 //! `::chaplygin::runtime::monitor` with the model's sizes.
 
 use super::f64_type;
-use crate::model::Model;
-use proc_macro2::TokenStream;
+use crate::derive::momentum::group_coordinates;
+use crate::model::{GroupFactor, Model, Symmetry};
+use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
 /// The runtime trait impls of `model`'s struct.
@@ -31,7 +33,13 @@ pub(crate) fn implementations(model: &Model) -> TokenStream {
         (q, qdot)
     }};
     let system = quote!(::chaplygin::runtime::system);
+    let momentum_equations = model
+        .symmetry
+        .as_ref()
+        .map(|symmetry| momentum_equations(model, symmetry));
     quote! {
+        #momentum_equations
+
         impl #system::ReducedPortHamiltonian<#s, #p> for #name {
             fn reduced_rhs(&self, x: &[#f64; #s], u: &[#f64; #p]) -> [#f64; #s] {
                 #name::reduced_rhs(self, x, u)
@@ -128,4 +136,94 @@ pub(crate) fn implementations(model: &Model) -> TokenStream {
             }
         }
     }
+}
+
+/// `MomentumEquations<n, nr, mp, p>`: the momentum items, and the
+/// reconstruction `qdot` from `body_velocity` (`R(theta) (v1, v2)` and
+/// `omega` for an `se2` factor, the velocity for an abelian one, `rdot` on
+/// the shape).
+fn momentum_equations(model: &Model, symmetry: &Symmetry) -> TokenStream {
+    let name = &model.name;
+    let f64 = f64_type();
+    let (n, p) = (model.n(), model.p());
+    let group = group_coordinates(&symmetry.factors);
+    let shape: Vec<usize> = (0..n).filter(|i| !group.contains(i)).collect();
+    // The momenta span the group directions the constraints allow: the
+    // derivation refuses constraints that restrict the shape velocities, so
+    // the c constraint rows are independent on the group's dg directions.
+    let (nr, mp) = (shape.len(), group.len() - model.c());
+    let shape_indices = shape.iter().map(|&i| Literal::usize_unsuffixed(i));
+    let group_velocities = group_velocities(&symmetry.factors);
+    let shape_velocities = shape.iter().enumerate().map(|(a, &i)| {
+        let (a, i) = (Literal::usize_unsuffixed(a), Literal::usize_unsuffixed(i));
+        quote!(qdot[#i] = rdot[#a];)
+    });
+    let system = quote!(::chaplygin::runtime::system);
+    quote! {
+        impl #system::MomentumEquations<#n, #nr, #mp, #p> for #name {
+            const SHAPE: [::core::primitive::usize; #nr] = [#(#shape_indices),*];
+            fn momentum(&self, q: &[#f64; #n], qdot: &[#f64; #n]) -> [#f64; #mp] {
+                #name::momentum(self, q, qdot)
+            }
+            fn momentum_rhs(&self, r: &[#f64; #nr], rdot: &[#f64; #nr], p: &[#f64; #mp]) -> [#f64; #mp] {
+                #name::momentum_rhs(self, r, rdot, p)
+            }
+            fn momentum_input_matrix(&self, q: &[#f64; #n]) -> [[#f64; #p]; #mp] {
+                #name::momentum_input_matrix(self, q)
+            }
+            fn shape_acceleration(
+                &self,
+                r: &[#f64; #nr],
+                rdot: &[#f64; #nr],
+                p: &[#f64; #mp],
+                u: &[#f64; #p],
+            ) -> [#f64; #nr] {
+                #name::shape_acceleration(self, r, rdot, p, u)
+            }
+            fn reconstructed_velocity(
+                &self,
+                q: &[#f64; #n],
+                rdot: &[#f64; #nr],
+                p: &[#f64; #mp],
+            ) -> [#f64; #n] {
+                let r = <Self as #system::MomentumEquations<#n, #nr, #mp, #p>>::shape(q);
+                let xi = #name::body_velocity(self, &r, rdot, p);
+                let mut qdot = [0.0; #n];
+                #(#group_velocities)*
+                #(#shape_velocities)*
+                qdot
+            }
+        }
+    }
+}
+
+/// The statements setting the group coordinates' `qdot` from the body
+/// velocity `xi`, factor by factor.
+fn group_velocities(factors: &[GroupFactor]) -> Vec<TokenStream> {
+    let mut offset = 0;
+    factors
+        .iter()
+        .map(|factor| {
+            let at = |i: usize| Literal::usize_unsuffixed(i);
+            let first = at(offset);
+            match *factor {
+                GroupFactor::Se2 { x, y, theta } => {
+                    let (second, third) = (at(offset + 1), at(offset + 2));
+                    let (x, y, theta) = (at(x), at(y), at(theta));
+                    offset += 3;
+                    quote! {
+                        let (sin, cos) = q[#theta].sin_cos();
+                        qdot[#x] = cos * xi[#first] - sin * xi[#second];
+                        qdot[#y] = sin * xi[#first] + cos * xi[#second];
+                        qdot[#theta] = xi[#third];
+                    }
+                }
+                GroupFactor::Translation(i) | GroupFactor::Rotation(i) => {
+                    let i = at(i);
+                    offset += 1;
+                    quote!(qdot[#i] = xi[#first];)
+                }
+            }
+        })
+        .collect()
 }

@@ -73,6 +73,9 @@ pub enum Formulation {
     Reduced,
     /// The Lagrange-d'Alembert equations in `(q, qdot)`.
     Lagrange,
+    /// The momentum equation and reconstruction in `(q, rdot, p)` (models
+    /// with a symmetry).
+    Momentum,
 }
 
 /// Which integrator runs.

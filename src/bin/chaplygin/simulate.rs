@@ -20,7 +20,8 @@ use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, R
 use chaplygin::runtime::record::{CsvRecorder, Recorder, Table};
 use chaplygin::runtime::simulate::{Advance, Simulation, Summary};
 use chaplygin::runtime::system::{
-    Dalembert, LagrangeDalembert, ModelNames, Momenta, Parameters, Reduced, ReducedPortHamiltonian,
+    Dalembert, LagrangeDalembert, ModelNames, Momenta, Momentum, MomentumEquations, Parameters,
+    Reduced, ReducedPortHamiltonian,
 };
 use chaplygin_codegen::interpret::InterpretedModel;
 use std::error::Error;
@@ -84,11 +85,11 @@ pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
         Compiled::Snakeboard if args.controller == Controller::Energy => {
             energy_controlled(model, args)
         }
-        Compiled::Snakeboard => compiled::<Snakeboard, 5, 2, 3, 2, 8, 10>(model, args),
-        Compiled::Sleigh => compiled::<Sleigh, 3, 1, 2, 0, 5, 6>(model, args),
-        Compiled::RollingDisk => compiled::<RollingDisk, 4, 2, 2, 2, 6, 8>(model, args),
+        Compiled::Snakeboard => compiled::<Snakeboard, 5, 2, 3, 2, 8, 10, 2, 1, 8>(model, args),
+        Compiled::Sleigh => compiled::<Sleigh, 3, 1, 2, 0, 5, 6, 0, 2, 5>(model, args),
+        Compiled::RollingDisk => compiled::<RollingDisk, 4, 2, 2, 2, 6, 8, 1, 1, 6>(model, args),
         Compiled::DifferentialDrive => {
-            compiled::<DifferentialDrive, 5, 3, 2, 2, 7, 10>(model, args)
+            compiled::<DifferentialDrive, 5, 3, 2, 2, 7, 10, 2, 0, 7>(model, args)
         }
     }
 }
@@ -132,6 +133,22 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
             let x0: Vec<f64> = start.q.iter().chain(&start.qdot).copied().collect();
             execute(&InterpretedDalembert { model, inputs }, &x0, args, None)
         }
+        Kind::Momentum => Err(interpreted_momentum(path, &model).into()),
+    }
+}
+
+/// The momentum formulation needs a symmetry, and runs on the compiled
+/// models only.
+fn interpreted_momentum(path: &str, model: &InterpretedModel) -> InputError {
+    if model.functions().any(|name| name == "momentum_rhs") {
+        InputError::Unsupported(format!(
+            "the momentum formulation runs on the built-in models; `{path}` takes \
+             `--formulation reduced` or `--formulation lagrange`"
+        ))
+    } else {
+        InputError::Unsupported(format!(
+            "`{path}` declares no symmetry: the momentum formulation needs one"
+        ))
     }
 }
 
@@ -166,7 +183,9 @@ where
 {
 }
 
-/// A compiled model with constant inputs, in either formulation.
+/// A compiled model with constant inputs, in any formulation: `D = 2 N`
+/// states in `(q, qdot)`; `R` shape coordinates, `MP` momenta and
+/// `DM = N + R + MP` states in `(q, rdot, p)`.
 fn compiled<
     M,
     const N: usize,
@@ -175,12 +194,15 @@ fn compiled<
     const P: usize,
     const S: usize,
     const D: usize,
+    const R: usize,
+    const MP: usize,
+    const DM: usize,
 >(
     built_in: &BuiltIn,
     args: &SimulateArgs,
 ) -> Result<(), Box<dyn Error>>
 where
-    M: CompiledModel<N, C, K, P, S>,
+    M: CompiledModel<N, C, K, P, S> + MomentumEquations<N, R, MP, P>,
 {
     if args.controller == Controller::Energy {
         return Err(no_controller(built_in.name).into());
@@ -209,6 +231,11 @@ where
                 args,
                 None,
             )
+        }
+        Kind::Momentum => {
+            let system = Momentum::new(&model, u);
+            let x0: [f64; DM] = system.initial_state(&array(&start.q), &array(&start.qdot));
+            execute(&Typed::<_, DM>::plain(system), &x0, args, None)
         }
     }
 }
