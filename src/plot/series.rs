@@ -75,11 +75,21 @@ pub(super) fn draw_energy(
     };
     let caption = format!("Energy error: E(0) = {initial:.6e}, max |error| = {worst:.2e}");
     let y_range = padded_range(error.iter().copied(), 0.05);
+    // a tick computed at zero lands a round-off away from it: a millionth
+    // of the span is zero
+    let zero = (y_range.end - y_range.start) * 1e-6;
+    let format = move |v: &f64| {
+        if v.abs() < zero {
+            "0".to_string()
+        } else {
+            format!("{v:.1e}")
+        }
+    };
     let panel = Panel {
         caption,
         y_desc,
         values: &error,
-        y_format: &|v: &f64| format!("{v:.1e}"),
+        y_format: &format,
     };
     draw_against_time(file, spec, time, panel, y_range)
 }
