@@ -1,5 +1,6 @@
-//! Generates the models declared in `.model` files, and the two-link
-//! wheeled snake from the text `snake::n_link_snake` writes.
+//! Generates the models declared in `.model` files, and the wheeled snakes
+//! of two and three links from the text `snake::n_link_snake` writes (the
+//! three-link one's reduced form is derived structured).
 
 #[path = "src/snake.rs"]
 mod snake;
@@ -20,8 +21,10 @@ fn generate() -> Result<(), Box<dyn std::error::Error>> {
         .write_to_out_dir()?;
     println!("cargo:rerun-if-changed=src/snake.rs");
     let out_dir = std::path::PathBuf::from(std::env::var("OUT_DIR")?);
-    let code = chaplygin_codegen::generate(&snake::n_link_snake(2))
-        .map_err(|diagnostics| diagnostics.render("n_link_snake(2)"))?;
-    std::fs::write(out_dir.join("snake2.rs"), code)?;
+    for links in [2, 3] {
+        let code = chaplygin_codegen::generate(&snake::n_link_snake(links))
+            .map_err(|diagnostics| diagnostics.render(&format!("n_link_snake({links})")))?;
+        std::fs::write(out_dir.join(format!("snake{links}.rs")), code)?;
+    }
     Ok(())
 }

@@ -28,6 +28,7 @@ struct Row {
     /// `(before, after)` CSE for `acceleration` and `reduced_rhs`.
     acceleration_operations: (f64, f64),
     reduced_rhs_operations: (f64, f64),
+    jacobian_operations: (f64, f64),
     compile_seconds: f64,
     acceleration_nanoseconds: f64,
     reduced_rhs_nanoseconds: f64,
@@ -79,6 +80,7 @@ fn study(links: usize, budget: f64, workspace: &Path) -> Result<Row, String> {
         derivation_seconds,
         acceleration_operations: operations(&code, "acceleration")?,
         reduced_rhs_operations: operations(&code, "reduced_rhs")?,
+        jacobian_operations: operations(&code, "reduced_rhs_jacobian")?,
         compile_seconds,
         acceleration_nanoseconds,
         reduced_rhs_nanoseconds,
@@ -185,13 +187,14 @@ fn newest_rlib(directory: &Path, prefix: &str) -> Result<PathBuf, String> {
 
 fn print_row(row: &Row) {
     println!(
-        "N = {:2}: derivation {:9.3} s | acceleration ops {:>8} -> {:>6} | reduced_rhs ops {:>8} -> {:>6} | rustc -O {:7.2} s | acceleration {:9.1} ns | reduced_rhs {:9.1} ns",
+        "N = {:2}: derivation {:9.3} s | acceleration ops {:>8} -> {:>6} | reduced_rhs ops {:>8} -> {:>6} | reduced_rhs_jacobian ops after CSE {:>7} | rustc -O {:7.2} s | acceleration {:9.1} ns | reduced_rhs {:9.1} ns",
         row.links,
         row.derivation_seconds,
         row.acceleration_operations.0,
         row.acceleration_operations.1,
         row.reduced_rhs_operations.0,
         row.reduced_rhs_operations.1,
+        row.jacobian_operations.1,
         row.compile_seconds,
         row.acceleration_nanoseconds,
         row.reduced_rhs_nanoseconds,
@@ -203,7 +206,7 @@ type Quantity = (&'static str, fn(&Row) -> f64);
 
 /// The least-squares slope of `ln(value)` against `ln(N)` for each quantity.
 fn print_slopes(rows: &[Row]) {
-    let quantities: [Quantity; 8] = [
+    let quantities: [Quantity; 9] = [
         ("derivation time", |r| r.derivation_seconds),
         ("acceleration ops before CSE", |r| {
             r.acceleration_operations.0
@@ -213,6 +216,9 @@ fn print_slopes(rows: &[Row]) {
         }),
         ("reduced_rhs ops before CSE", |r| r.reduced_rhs_operations.0),
         ("reduced_rhs ops after CSE", |r| r.reduced_rhs_operations.1),
+        ("reduced_rhs_jacobian ops after CSE", |r| {
+            r.jacobian_operations.1
+        }),
         ("rustc -O time", |r| r.compile_seconds),
         ("acceleration time per call", |r| r.acceleration_nanoseconds),
         ("reduced_rhs time per call", |r| r.reduced_rhs_nanoseconds),

@@ -190,6 +190,12 @@ fn check_point<M: Dynamics<N, C, P>, const N: usize, const C: usize, const P: us
     v: &[f64; N],
     u: &[f64; P],
 ) -> Result<(), TestCaseError> {
+    let regularity =
+        chaplygin::runtime::monitor::constraint_regularity(&model.metric(q), &model.constraints(q));
+    // Within about 1e-3 of a configuration where the rows become dependent
+    // (the snakeboard at phi = +-pi/2) the projection below loses the
+    // digits the tolerances assume; the multipliers are singular there.
+    prop_assume!(regularity > 1e-6, "near a singular configuration");
     let qdot = allowed(model, q, v);
     prop_assert!(norm(&model.residual(q, &qdot)) <= 1e-12 * (1.0 + norm(&qdot)));
     let solution = model.solve(q, &qdot, u);

@@ -29,6 +29,22 @@
 //! reaches n the constraints are completely nonholonomic and every
 //! configuration is reachable (Chow's theorem).
 //!
+//! **Large models.** The exact basis grows fast with the size of a chain
+//! (for N wheeled links, entries of `2 * 3^(N-2)` terms), and the brackets
+//! of the growth vector faster still. Each exact step is attempted on a
+//! nested derivation budget ([`crate::sym::Store::attempt`]):
+//! [`EXACT_BASIS_PRODUCTS`] for the basis, [`EXACT_ANALYSIS_PRODUCTS`] for
+//! Frobenius and the growth vector. Beyond them the basis is kept
+//! structured (the elimination written out as expressions,
+//! [`crate::sym::ExprMatrix`]) and the analysis is decided by evaluation
+//! modulo a prime at random points ([`crate::sym::modular`]): a bracket
+//! with `A [X_i, X_j] != 0` there proves D not integrable, and each rank at
+//! the point is a proved lower bound of the generic rank; "integrable" and
+//! the equality of the ranks hold with probability above `1 - 1e-15`
+//! (Schwartz-Zippel). The brackets of the growth vector are then built as
+//! expressions within [`STRUCTURED_GROWTH_NODES`] new nodes; a growth vector
+//! cut short there is reported as such ([`ConstraintAnalysis::growth_complete`]).
+//!
 //! **Moore's test.** Moore ("Nonholonomic Constraints") checks each row for
 //! exactness, `d a_i / d q_j = d a_j / d q_i`; a row that passes is the
 //! differential of a function and is holonomic. The test misses integrating
@@ -38,7 +54,17 @@
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::emit::internal;
 use crate::model::Model;
-use crate::sym::{Matrix, MatrixError, RationalFunction, SymbolId};
+use crate::sym::modular::{self, Outside, Point};
+use crate::sym::{ExprId, ExprMatrix, Matrix, MatrixError, RationalFunction, SymbolId};
+
+/// The term products the exact basis of D may take.
+pub const EXACT_BASIS_PRODUCTS: u64 = 1_000_000;
+/// The term products the exact Frobenius test, and separately the exact
+/// growth vector, may take.
+pub const EXACT_ANALYSIS_PRODUCTS: u64 = 2_000_000;
+/// The most expression nodes the brackets of a structured growth vector
+/// may add to the store.
+pub const STRUCTURED_GROWTH_NODES: usize = 400_000;
 
 /// A vector field on the coordinates: its n components.
 type Field = Vec<RationalFunction>;
@@ -55,6 +81,9 @@ pub enum Classification {
     /// stays on submanifolds of dimension `growth.last()` (some combination
     /// of the rows is holonomic, as for the differential drive).
     Nonholonomic,
+    /// D is not integrable; its growth was cut short by the budget before
+    /// it reached n or stopped, so complete nonholonomy is not decided.
+    NonholonomicGrowthOpen,
     /// The growth of D reaches n: every configuration is reachable (Chow).
     CompletelyNonholonomic,
 }
@@ -66,7 +95,34 @@ impl Classification {
             Classification::Unconstrained => "unconstrained",
             Classification::Holonomic => "holonomic",
             Classification::Nonholonomic => "nonholonomic",
+            Classification::NonholonomicGrowthOpen => {
+                "nonholonomic (complete nonholonomy not decided: the growth vector was cut short)"
+            }
             Classification::CompletelyNonholonomic => "completely nonholonomic",
+        }
+    }
+}
+
+/// How a fact of the analysis was decided.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Exactly, on normal forms.
+    NormalForm,
+    /// By evaluation modulo a prime at random points (see the module
+    /// documentation): proved where it finds a non-zero value or a rank,
+    /// probable (above `1 - 1e-15`) where it finds zeros.
+    Modular,
+}
+
+impl Method {
+    /// The method in words, as the report prints it.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Method::NormalForm => "exactly, on normal forms",
+            Method::Modular => {
+                "by evaluation modulo 2^61 - 1 at random points (non-zero values and ranks \
+                 proved; zeros probable, error below 1e-15)"
+            }
         }
     }
 }
@@ -78,12 +134,31 @@ pub struct ConstraintAnalysis {
     pub basis: DistributionBasis,
     /// `(rank D^1, rank D^2, ...)`, strictly increasing, the first entry k.
     pub growth: Vec<usize>,
+    /// False when the growth vector was cut short by the budget: later
+    /// levels were not computed.
+    pub growth_complete: bool,
+    /// How the growth vector was decided.
+    pub growth_method: Method,
     /// Frobenius: every bracket of the basis lies in D.
     pub integrable: bool,
+    /// How integrability was decided.
+    pub integrability_method: Method,
     /// The classification that follows from `integrable` and `growth`.
     pub classification: Classification,
     /// Moore's test, per constraint row in declared order: is the row exact?
     pub exact_rows: Vec<bool>,
+}
+
+/// Why the analysis failed.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum AnalysisError {
+    /// The engine failed on a matrix.
+    #[error(transparent)]
+    Matrix(#[from] MatrixError),
+    /// The model is too large for normal forms and its expressions are
+    /// outside the class evaluated modulo a prime.
+    #[error("the constraint analysis is too large for normal forms, and {0}")]
+    Undecided(#[from] Outside),
 }
 
 /// Analyses the constraints; with `#[deny_holonomic]`, integrable
@@ -94,20 +169,59 @@ pub fn analyse(model: &mut Model) -> Result<ConstraintAnalysis, Diagnostics> {
     Ok(analysis)
 }
 
-fn derive_analysis(model: &mut Model) -> Result<ConstraintAnalysis, MatrixError> {
+fn derive_analysis(model: &mut Model) -> Result<ConstraintAnalysis, AnalysisError> {
     let basis = distribution_basis(model)?;
-    let fields = columns_of(&basis.fields);
-    let integrable = is_involutive(model, &fields)?;
-    let growth = growth_vector(model, &fields)?;
-    let classification = classify(model, integrable, &growth);
+    let (integrable, integrability_method) = integrability(model, &basis)?;
+    let (growth, growth_complete, growth_method) = growth(model, &basis)?;
+    let classification = classify(model, integrable, &growth, growth_complete);
     let exact_rows = exact_rows(model)?;
     Ok(ConstraintAnalysis {
         basis,
         growth,
+        growth_complete,
+        growth_method,
         integrable,
+        integrability_method,
         classification,
         exact_rows,
     })
+}
+
+/// Frobenius, exactly when the exact basis and the brackets fit their
+/// budgets, else at random points.
+fn integrability(
+    model: &mut Model,
+    basis: &DistributionBasis,
+) -> Result<(bool, Method), AnalysisError> {
+    if let Some(fields) = &basis.fields {
+        let fields = columns_of(fields);
+        let exact = model.attempt(EXACT_ANALYSIS_PRODUCTS, |model| {
+            is_involutive(model, &fields)
+        });
+        if let Some(integrable) = exact {
+            return Ok((integrable?, Method::NormalForm));
+        }
+    }
+    Ok((is_involutive_at_points(model, basis)?, Method::Modular))
+}
+
+/// The growth vector, exactly when it fits its budget, else at a random
+/// point; `(growth, complete, method)`.
+fn growth(
+    model: &mut Model,
+    basis: &DistributionBasis,
+) -> Result<(Vec<usize>, bool, Method), AnalysisError> {
+    if let Some(fields) = &basis.fields {
+        let fields = columns_of(fields);
+        let exact = model.attempt(EXACT_ANALYSIS_PRODUCTS, |model| {
+            growth_vector(model, &fields)
+        });
+        if let Some(growth) = exact {
+            return Ok((growth?, true, Method::NormalForm));
+        }
+    }
+    let (growth, complete) = growth_vector_at_point(model, basis)?;
+    Ok((growth, complete, Method::Modular))
 }
 
 /// `#[deny_holonomic]` and integrable constraints: an error on the first
@@ -124,15 +238,17 @@ fn deny_holonomic(model: &Model, analysis: &ConstraintAnalysis) -> Result<(), Di
     Ok(())
 }
 
-fn classify(model: &Model, integrable: bool, growth: &[usize]) -> Classification {
+fn classify(model: &Model, integrable: bool, growth: &[usize], complete: bool) -> Classification {
     if model.c() == 0 {
         Classification::Unconstrained
     } else if integrable {
         Classification::Holonomic
     } else if growth.last() == Some(&model.n()) {
         Classification::CompletelyNonholonomic
-    } else {
+    } else if complete {
         Classification::Nonholonomic
+    } else {
+        Classification::NonholonomicGrowthOpen
     }
 }
 
@@ -221,6 +337,114 @@ fn bracket(
     model.store.lie_bracket(x, y, &coordinates)
 }
 
+/// Frobenius at random points: `A [X_i, X_j]` evaluated modulo a prime at
+/// two points; a non-zero value proves D not integrable.
+fn is_involutive_at_points(
+    model: &mut Model,
+    basis: &DistributionBasis,
+) -> Result<bool, AnalysisError> {
+    let fields = expression_columns(&basis.field_expressions);
+    let rows = ExprMatrix::of(&model.constraint_matrix, &mut model.store);
+    let mut products = Vec::new();
+    for (i, x) in fields.iter().enumerate() {
+        for y in &fields[i + 1..] {
+            let bracket = ExprMatrix::column(expression_bracket(model, x, y));
+            products.extend_from_slice(rows.mul(&bracket, &mut model.store)?.entries());
+        }
+    }
+    for seed in modular::SEEDS {
+        let values = model.store.evaluate_modular(&products, &Point::new(seed))?;
+        if values.iter().any(|&v| v != 0) {
+            return Ok(false);
+        }
+    }
+    Ok(true)
+}
+
+/// The growth vector from ranks at a random point, with the brackets built
+/// as expressions; `(growth, complete)`, incomplete when the brackets of
+/// the next level would exceed [`STRUCTURED_GROWTH_NODES`] new nodes.
+fn growth_vector_at_point(
+    model: &mut Model,
+    basis: &DistributionBasis,
+) -> Result<(Vec<usize>, bool), AnalysisError> {
+    let start = model.store.len();
+    let point = Point::new(modular::SEEDS[0]);
+    let fields = expression_columns(&basis.field_expressions);
+    let mut span = SpanAtPoint::new(model.n());
+    let mut newest = span.additions(model, &point, fields.clone())?;
+    let mut growth = vec![span.rank()];
+    while span.rank() < model.n() && !newest.is_empty() {
+        let mut brackets = Vec::with_capacity(fields.len() * newest.len());
+        for x in &fields {
+            for y in &newest {
+                if model.store.len() - start > STRUCTURED_GROWTH_NODES {
+                    return Ok((growth, false));
+                }
+                brackets.push(expression_bracket(model, x, y));
+            }
+        }
+        newest = span.additions(model, &point, brackets)?;
+        if newest.is_empty() {
+            break;
+        }
+        growth.push(span.rank());
+    }
+    Ok((growth, true))
+}
+
+/// Fields kept for their values at a point, which are independent there.
+struct SpanAtPoint {
+    n: usize,
+    values: Vec<u64>,
+}
+
+impl SpanAtPoint {
+    fn new(n: usize) -> SpanAtPoint {
+        SpanAtPoint {
+            n,
+            values: Vec::new(),
+        }
+    }
+
+    fn rank(&self) -> usize {
+        self.values.len() / self.n.max(1)
+    }
+
+    /// Keeps each candidate whose value at `point` raises the rank; returns those.
+    fn additions(
+        &mut self,
+        model: &Model,
+        point: &Point,
+        candidates: Vec<Vec<ExprId>>,
+    ) -> Result<Vec<Vec<ExprId>>, Outside> {
+        let mut added = Vec::new();
+        for candidate in candidates {
+            let values = model.store.evaluate_modular(&candidate, point)?;
+            let before = self.values.len();
+            self.values.extend_from_slice(&values);
+            let fields = self.rank();
+            if modular::rank(self.values.clone(), fields, self.n) == fields {
+                added.push(candidate);
+            } else {
+                self.values.truncate(before);
+            }
+        }
+        Ok(added)
+    }
+}
+
+fn expression_bracket(model: &mut Model, x: &[ExprId], y: &[ExprId]) -> Vec<ExprId> {
+    let coordinates = model.coordinate_symbols();
+    model.store.lie_bracket_of_expressions(x, y, &coordinates)
+}
+
+fn expression_columns(matrix: &ExprMatrix) -> Vec<Vec<ExprId>> {
+    (0..matrix.columns())
+        .map(|j| matrix.column_entries(j))
+        .collect()
+}
+
 fn columns_of(matrix: &Matrix) -> Vec<Field> {
     (0..matrix.columns())
         .map(|j| {
@@ -250,8 +474,11 @@ fn exact_rows(model: &mut Model) -> Result<Vec<bool>, MatrixError> {
 /// A basis of the constraint distribution D and how it was chosen.
 #[derive(Clone, Debug)]
 pub struct DistributionBasis {
-    /// `X`, n x k: column j is the vector field `X_j`.
-    pub fields: Matrix,
+    /// `X`, n x k, as expressions: column j is the vector field `X_j`, the
+    /// dependent speeds written as the elimination computes them.
+    pub field_expressions: ExprMatrix,
+    /// `X` in exact normal form, when it fits [`EXACT_BASIS_PRODUCTS`].
+    pub fields: Option<Matrix>,
     /// The coordinates whose speeds are dependent (pivot columns), in row order.
     pub dependent: Vec<usize>,
     /// The coordinates whose speeds are independent, in order: `X_j` has a 1
@@ -259,13 +486,68 @@ pub struct DistributionBasis {
     pub independent: Vec<usize>,
 }
 
-/// Chooses the dependent speeds at the defaults and solves for a basis of D.
+/// Chooses the dependent speeds at the defaults and solves for a basis of
+/// D: as expressions always, in normal form within [`EXACT_BASIS_PRODUCTS`].
 pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, MatrixError> {
-    let (n, c) = (model.n(), model.c());
+    let n = model.n();
     let dependent = pivot_columns(model);
     let independent: Vec<usize> = (0..n).filter(|j| !dependent.contains(j)).collect();
-    let atoms = model.store.atoms().clone();
-    let a = &model.constraint_matrix;
+    let a = ExprMatrix::of(&model.constraint_matrix, &mut model.store);
+    let (a_r, a_s) = (
+        expression_columns_at(&a, &dependent, &mut model.store),
+        expression_columns_at(&a, &independent, &mut model.store),
+    );
+    let solved = model.store.solve_in_order(&a_r, &a_s)?;
+    let minus_one = model.store.integer(-1);
+    let a_n = solved.scale(minus_one, &mut model.store);
+    let mut field_expressions = ExprMatrix::zeros(&mut model.store, n, independent.len());
+    let one = model.store.integer(1);
+    for (k, &j) in independent.iter().enumerate() {
+        field_expressions.set(j, k, one);
+    }
+    for (row, &j) in dependent.iter().enumerate() {
+        for k in 0..independent.len() {
+            field_expressions.set(j, k, a_n.get(row, k));
+        }
+    }
+    let exact_a = &model.constraint_matrix;
+    let fields = model
+        .store
+        .attempt(EXACT_BASIS_PRODUCTS, |store| {
+            exact_fields(exact_a, &dependent, &independent, store.atoms())
+        })
+        .transpose()?;
+    Ok(DistributionBasis {
+        field_expressions,
+        fields,
+        dependent,
+        independent,
+    })
+}
+
+/// The columns `indices` of `a`, in that order.
+fn expression_columns_at(
+    a: &ExprMatrix,
+    indices: &[usize],
+    store: &mut crate::sym::Store,
+) -> ExprMatrix {
+    let mut columns = ExprMatrix::zeros(store, a.rows(), indices.len());
+    for i in 0..a.rows() {
+        for (k, &j) in indices.iter().enumerate() {
+            columns.set(i, k, a.get(i, j));
+        }
+    }
+    columns
+}
+
+/// `X = [I; -A_r^-1 A_s]` (rows permuted back) in normal form.
+fn exact_fields(
+    a: &Matrix,
+    dependent: &[usize],
+    independent: &[usize],
+    atoms: &crate::sym::Atoms,
+) -> Result<Matrix, MatrixError> {
+    let c = a.rows();
     let columns = |indices: &[usize]| {
         let mut m = Matrix::zeros(c, indices.len());
         for i in 0..c {
@@ -275,10 +557,10 @@ pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, Matrix
         }
         m
     };
-    let a_n = columns(&dependent)
-        .solve(&columns(&independent), &atoms)?
+    let a_n = columns(dependent)
+        .solve(&columns(independent), atoms)?
         .neg();
-    let mut fields = Matrix::zeros(n, independent.len());
+    let mut fields = Matrix::zeros(a.columns(), independent.len());
     for (k, &j) in independent.iter().enumerate() {
         fields.set(j, k, RationalFunction::one());
     }
@@ -287,11 +569,7 @@ pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, Matrix
             fields.set(j, k, a_n.get(row, k).clone());
         }
     }
-    Ok(DistributionBasis {
-        fields,
-        dependent,
-        independent,
-    })
+    Ok(fields)
 }
 
 /// The dependent speeds: pivots at the defaults when A has full rank there,

@@ -45,7 +45,7 @@ mod render;
 use crate::derive::constraints::{ConstraintAnalysis, distribution_basis};
 use crate::derive::lagrange_dalembert::{self, LagrangeDalembert};
 use crate::derive::momentum::{self, Momentum};
-use crate::derive::port_hamiltonian::{self, PortHamiltonian};
+use crate::derive::port_hamiltonian::{self, Exact, PortHamiltonian};
 use crate::diagnostic::Diagnostics;
 use crate::emit::{self, internal};
 use crate::model::Model;
@@ -386,22 +386,32 @@ fn constraints_section(model: &mut Model, analysis: &ConstraintAnalysis) -> Sect
         items: vec![
             names_fact("dependent_speeds", "dependent speeds", dependent),
             names_fact("independent_speeds", "independent speeds", independent),
-            matrix_item(
-                model,
-                "basis",
-                label("X = [X1 ... Xk], a basis of D", "X"),
-                &analysis.basis.fields,
-            ),
+            basis_item(model, analysis),
             flag_fact(
                 "integrable",
                 "integrable (A [X_i, X_j] = 0 for all i, j)",
                 analysis.integrable,
+            ),
+            word_fact(
+                "integrability_decided",
+                "integrability decided",
+                analysis.integrability_method.describe(),
             ),
             fact(
                 "growth_vector",
                 "growth vector",
                 json!(analysis.growth),
                 format!("({})", growth.join(", ")),
+            ),
+            flag_fact(
+                "growth_complete",
+                "growth vector complete",
+                analysis.growth_complete,
+            ),
+            word_fact(
+                "growth_decided",
+                "growth vector decided",
+                analysis.growth_method.describe(),
             ),
             word_fact(
                 "classification",
@@ -499,24 +509,25 @@ fn dalembert_section(model: &mut Model, derivation: &LagrangeDalembert) -> Secti
     }
 }
 
+/// X as a matrix when exact; a statement of how it is computed when not.
+fn basis_item(model: &mut Model, analysis: &ConstraintAnalysis) -> Item {
+    match &analysis.basis.fields {
+        Some(fields) => matrix_item(
+            model,
+            "basis",
+            label("X = [X1 ... Xk], a basis of D", "X"),
+            fields,
+        ),
+        None => word_fact(
+            "basis",
+            "X = [X1 ... Xk], a basis of D",
+            "structured: the dependent speeds by elimination of A, not expanded \
+             (the exact form exceeds its derivation budget)",
+        ),
+    }
+}
+
 fn reduced_section(model: &mut Model, reduced: &PortHamiltonian, rhs: &[ExprId]) -> Section {
-    let hamiltonian = model.store.expression_of(&reduced.hamiltonian);
-    let equations = rates(model, &reduced.state(model), rhs);
-    let matrices = [
-        ("momentum_basis", label("h", "h"), &reduced.basis),
-        ("metric", label("gbar", "\\bar{g}"), &reduced.metric),
-        ("gyroscopic", label("Gamma", "\\Gamma"), &reduced.gyroscopic),
-        (
-            "structure_matrix",
-            label("Jbar", "\\bar{J}"),
-            &reduced.structure,
-        ),
-        (
-            "input_matrix",
-            label("Bbar", "\\bar{B}"),
-            &reduced.input_matrix,
-        ),
-    ];
     let mut items = vec![
         flag_fact(
             "declared_basis",
@@ -525,9 +536,45 @@ fn reduced_section(model: &mut Model, reduced: &PortHamiltonian, rhs: &[ExprId])
         ),
         names_fact("momenta", "momenta", reduced.momentum_names.clone()),
     ];
-    for (key, symbol, matrix) in matrices {
-        items.push(matrix_item(model, key, symbol, matrix));
+    match &reduced.exact {
+        Some(exact) => items.extend(exact_items(model, reduced, exact, rhs)),
+        None => items.extend(structured_items(reduced)),
     }
+    Section {
+        key: "port_hamiltonian",
+        title: "Reduced port-Hamiltonian form (Duindam & Stramigioli)",
+        items,
+    }
+}
+
+/// The exact matrices, the energy and the reduced equations.
+fn exact_items(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    exact: &Exact,
+    rhs: &[ExprId],
+) -> Vec<Item> {
+    let hamiltonian = model.store.expression_of(&exact.hamiltonian);
+    let equations = rates(model, &reduced.state(model), rhs);
+    let matrices = [
+        ("momentum_basis", label("h", "h"), &exact.basis),
+        ("metric", label("gbar", "\\bar{g}"), &exact.metric),
+        ("gyroscopic", label("Gamma", "\\Gamma"), &exact.gyroscopic),
+        (
+            "structure_matrix",
+            label("Jbar", "\\bar{J}"),
+            &exact.structure,
+        ),
+        (
+            "input_matrix",
+            label("Bbar", "\\bar{B}"),
+            &exact.input_matrix,
+        ),
+    ];
+    let mut items: Vec<Item> = matrices
+        .into_iter()
+        .map(|(key, symbol, matrix)| matrix_item(model, key, symbol, matrix))
+        .collect();
     items.extend([
         flag_fact("metric_constant", "gbar constant", reduced.metric_constant),
         flag_fact("metric_diagonal", "gbar diagonal", reduced.metric_diagonal),
@@ -537,11 +584,28 @@ fn reduced_section(model: &mut Model, reduced: &PortHamiltonian, rhs: &[ExprId])
             lines: equations,
         },
     ]);
-    Section {
-        key: "port_hamiltonian",
-        title: "Reduced port-Hamiltonian form (Duindam & Stramigioli)",
-        items,
-    }
+    items
+}
+
+/// How the structured form computes what the exact one would print.
+fn structured_items(reduced: &PortHamiltonian) -> Vec<Item> {
+    vec![
+        word_fact(
+            "derivation",
+            "reduced form derived",
+            "structured (the exact form exceeds its derivation budget): h = X^T g, \
+             gbar_inv = X^T g X, gbar by elimination, Gamma = gbar S gbar with \
+             S_ab = alpha_c dh^c(X_a, X_b); qdot = X alpha, \
+             alphadot = gbar (-X^T dHbar/dq + S alpha + X^T B u); Jbar skew by construction",
+        ),
+        flag_fact("metric_constant", "gbar constant", reduced.metric_constant),
+        flag_fact("metric_diagonal", "gbar diagonal", reduced.metric_diagonal),
+        word_fact(
+            "metric_facts_decided",
+            "gbar facts decided",
+            reduced.facts_method.describe(),
+        ),
+    ]
 }
 
 fn momentum_section(model: &mut Model, momentum: &Momentum, inputs: &[SymbolId]) -> Section {

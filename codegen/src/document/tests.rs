@@ -29,7 +29,7 @@ fn the_snakeboard_latex_has_the_reduced_equations_of_math_3_1() {
         r"\dot{x} &= \frac{\mathrm{group} \cos\phi \cos\theta}{m}",
         r"\dot{y} &= \frac{\mathrm{group} \cos\phi \sin\theta}{m}",
         r"\dot{\theta} &= \frac{\mathrm{group} \sin\phi}{r m}",
-        r"\dot{\psi} &= -\frac{\mathrm{group} \sin\phi}{r m} + \frac{\mathrm{torso}}{\mathrm{jt}}",
+        r"\dot{\psi} &= \frac{\mathrm{torso}}{\mathrm{jt}} - \frac{\mathrm{group} \sin\phi}{r m}",
         r"\dot{\phi} &= \frac{\mathrm{wheels}}{\mathrm{jw}}",
         r"\dot{\mathrm{group}} &= -\frac{u_{\mathrm{torso}} \sin\phi}{r}",
         r"\dot{\mathrm{torso}} &= u_{\mathrm{torso}}",

@@ -15,7 +15,7 @@
 //! part of the contract users and tests read (`growth vector (3, 4, 5)`).
 
 use super::Function;
-use crate::derive::constraints::ConstraintAnalysis;
+use crate::derive::constraints::{ConstraintAnalysis, Method};
 use crate::model::Model;
 use crate::sym::RationalFunction;
 
@@ -94,25 +94,51 @@ pub(super) fn constraints(model: &mut Model, analysis: &ConstraintAnalysis) -> S
         "independent speeds: {}",
         speeds(model, &analysis.basis.independent)
     ));
-    section.line("basis of D:");
-    for j in 0..analysis.basis.fields.columns() {
-        let entries: Vec<RationalFunction> = (0..n)
-            .map(|i| analysis.basis.fields.get(i, j).clone())
-            .collect();
-        section.line(format!("  X{} = [{}]", j + 1, displayed(model, &entries)));
+    match &analysis.basis.fields {
+        Some(fields) => {
+            section.line("basis of D:");
+            for j in 0..fields.columns() {
+                let entries: Vec<RationalFunction> =
+                    (0..n).map(|i| fields.get(i, j).clone()).collect();
+                section.line(format!("  X{} = [{}]", j + 1, displayed(model, &entries)));
+            }
+        }
+        None => {
+            section.line(
+                "basis of D: structured, the dependent speeds by elimination of A \
+                 (the exact form exceeds its derivation budget)",
+            );
+        }
     }
     section.line(format!(
         "integrable (A [X_i, X_j] = 0 for all i, j): {}",
         yes_no(analysis.integrable)
     ));
+    if analysis.integrability_method == Method::Modular {
+        section.line(format!(
+            "  decided {}",
+            analysis.integrability_method.describe()
+        ));
+    }
     section.line(format!("growth vector {}", tuple(&analysis.growth)));
+    if !analysis.growth_complete {
+        section.line("  cut short: its next level exceeds the derivation budget");
+    }
+    if analysis.growth_method == Method::Modular {
+        section.line(format!("  decided {}", analysis.growth_method.describe()));
+    }
     section.line(format!(
         "classification: {}",
         analysis.classification.describe()
     ));
     if let Some(reachable) = analysis.growth.last() {
+        let bound = if analysis.growth_complete {
+            ""
+        } else {
+            "at least "
+        };
         section.line(format!(
-            "reachable dimension (last rank of the growth): {reachable} of n = {n}"
+            "reachable dimension (last rank of the growth): {bound}{reachable} of n = {n}"
         ));
     }
     section.line(format!(

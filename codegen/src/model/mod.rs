@@ -160,6 +160,15 @@ impl Model {
         self.parameters.iter().map(|p| p.variable.symbol).collect()
     }
 
+    /// Runs `work` on a derivation budget of `limit` term products nested in
+    /// the model's ([`crate::sym::Store::attempt`]): its result, or `None`
+    /// when the nested budget ran out.
+    pub fn attempt<T>(&mut self, limit: u64, work: impl FnOnce(&mut Model) -> T) -> Option<T> {
+        let trial = self.store.enter_attempt(limit);
+        let result = work(self);
+        self.store.leave_attempt(trial).then_some(result)
+    }
+
     /// The parameters' default values as `f64`, in order.
     pub fn parameter_defaults(&self) -> Vec<f64> {
         self.parameters.iter().map(|p| p.default.to_f64()).collect()

@@ -16,6 +16,11 @@
 //! the rest of the derivation finishes quickly), [`super::Store::normal`]
 //! reports [`super::SymError::BudgetExceeded`], and the compiler reports that
 //! one error instead of whatever the truncated computation concluded.
+//!
+//! A derivation that has a cheaper alternative tries the expensive one on a
+//! [`Budget::nested`] budget ([`super::Store::attempt`]): its products count
+//! against both, and when the nested limit is reached the attempt is
+//! abandoned while the outer budget goes on.
 
 use std::cell::Cell;
 use std::rc::Rc;
@@ -35,6 +40,8 @@ pub struct Budget(Rc<Counter>);
 struct Counter {
     limit: u64,
     used: Cell<u64>,
+    /// The budget this one is nested in, charged too.
+    outer: Option<Budget>,
 }
 
 impl Budget {
@@ -43,6 +50,17 @@ impl Budget {
         Budget(Rc::new(Counter {
             limit,
             used: Cell::new(0),
+            outer: None,
+        }))
+    }
+
+    /// A budget of `limit` term products inside this one: what it is
+    /// charged, this one is charged too, and it is spent when either is.
+    pub fn nested(&self, limit: u64) -> Budget {
+        Budget(Rc::new(Counter {
+            limit,
+            used: Cell::new(0),
+            outer: Some(self.clone()),
         }))
     }
 
@@ -56,18 +74,25 @@ impl Budget {
         self.0.used.get()
     }
 
-    /// True once a charge has gone beyond the limit.
+    /// True once a charge has gone beyond the limit (of this budget or of
+    /// the one it is nested in).
     pub fn is_exhausted(&self) -> bool {
-        self.used() > self.limit()
+        self.used() > self.limit() || self.0.outer.as_ref().is_some_and(Budget::is_exhausted)
     }
 
-    /// Charges `products` term products; false when the budget is (now) spent.
+    /// Charges `products` term products; false when the budget is (now)
+    /// spent. Beyond the limit nothing more is charged, to this budget or to
+    /// the one it is nested in.
     pub fn charge(&self, products: u64) -> bool {
         if self.is_exhausted() {
             return false;
         }
-        let used = self.used().saturating_add(products);
-        self.0.used.set(used.min(self.limit().saturating_add(1)));
+        let room = self.limit().saturating_add(1) - self.used();
+        let charged = products.min(room);
+        self.0.used.set(self.used() + charged);
+        if let Some(outer) = &self.0.outer {
+            outer.charge(charged);
+        }
         !self.is_exhausted()
     }
 }
@@ -76,5 +101,26 @@ impl Default for Budget {
     /// A budget of [`DEFAULT_DERIVATION_BUDGET`].
     fn default() -> Budget {
         Budget::new(DEFAULT_DERIVATION_BUDGET)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Budget;
+
+    #[test]
+    fn a_nested_budget_charges_its_outer_one_and_runs_out_alone() {
+        let outer = Budget::new(100);
+        let inner = outer.nested(10);
+        assert!(inner.charge(6));
+        assert_eq!(outer.used(), 6);
+        assert!(!inner.charge(6));
+        assert!(inner.is_exhausted());
+        assert!(!outer.is_exhausted());
+        assert_eq!(outer.used(), 6 + 5, "only what fitted the nested budget");
+        assert!(outer.charge(78));
+        let second = outer.nested(1000);
+        assert!(!second.charge(20), "the outer budget is spent");
+        assert!(outer.is_exhausted() && second.is_exhausted());
     }
 }

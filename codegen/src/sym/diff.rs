@@ -16,12 +16,18 @@ use std::collections::HashMap;
 impl Store {
     /// `d root / d symbol` as an expression.
     pub fn derivative(&mut self, root: ExprId, symbol: SymbolId) -> ExprId {
+        self.derivatives(&[root], symbol)[0]
+    }
+
+    /// `d root / d symbol` for several roots, a shared sub-expression
+    /// differentiated once for all of them.
+    pub fn derivatives(&mut self, roots: &[ExprId], symbol: SymbolId) -> Vec<ExprId> {
         let mut derivatives: HashMap<ExprId, ExprId> = HashMap::new();
-        for id in self.reachable(&[root]) {
+        for id in self.reachable(roots) {
             let derivative = self.derivative_of_node(id, symbol, &derivatives);
             derivatives.insert(id, derivative);
         }
-        derivatives[&root]
+        roots.iter().map(|root| derivatives[root]).collect()
     }
 
     fn derivative_of_node(

@@ -167,6 +167,12 @@ pub enum SymError {
 /// decimal digits); larger powers are rejected rather than computed.
 pub const MAX_CONSTANT_BITS: u64 = 1 << 16;
 
+/// A nested budget being charged instead of the store's own.
+pub(crate) struct Attempt {
+    trial: super::Budget,
+    outer: super::Budget,
+}
+
 /// The expression arena with its symbol table.
 #[derive(Default, Clone)]
 pub struct Store {
@@ -205,6 +211,32 @@ impl Store {
     /// The derivation budget of this store.
     pub fn budget(&self) -> &super::Budget {
         self.atoms.budget()
+    }
+
+    /// Runs `work` on a budget of `limit` term products nested in this
+    /// store's ([`super::Budget::nested`]): its result, or `None` when the
+    /// nested budget ran out (the result is then truncated and dropped).
+    /// The limit is cut to what this store's budget has left, so an attempt
+    /// never spends it.
+    pub fn attempt<T>(&mut self, limit: u64, work: impl FnOnce(&mut Store) -> T) -> Option<T> {
+        let trial = self.enter_attempt(limit);
+        let result = work(self);
+        self.leave_attempt(trial).then_some(result)
+    }
+
+    /// Starts charging a nested budget of `limit` (see [`Store::attempt`]).
+    pub(crate) fn enter_attempt(&mut self, limit: u64) -> Attempt {
+        let budget = self.budget();
+        let left = budget.limit().saturating_sub(budget.used());
+        let trial = budget.nested(limit.min(left.saturating_sub(1)));
+        let outer = self.atoms.replace_budget(trial.clone());
+        Attempt { trial, outer }
+    }
+
+    /// Ends an attempt: true when it stayed within its nested budget.
+    pub(crate) fn leave_attempt(&mut self, attempt: Attempt) -> bool {
+        self.atoms.replace_budget(attempt.outer);
+        !attempt.trial.is_exhausted()
     }
 
     /// The node behind an id.

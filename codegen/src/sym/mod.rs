@@ -4,8 +4,10 @@ pub mod budget;
 pub mod diff;
 pub mod eval;
 pub mod expr;
+pub mod expr_matrix;
 pub mod latex;
 pub mod matrix;
+pub mod modular;
 pub mod normal;
 pub mod number;
 pub mod poly;
@@ -13,6 +15,7 @@ pub mod zero;
 
 pub use budget::{Budget, DEFAULT_DERIVATION_BUDGET};
 pub use expr::{ExprId, Function, Node, Store, SymError, Symbol, SymbolId, SymbolKind};
+pub use expr_matrix::ExprMatrix;
 pub use matrix::{Matrix, MatrixError};
 pub use normal::RationalFunction;
 pub use number::Rational;

@@ -232,6 +232,19 @@ impl Rational {
         (root.powi(n as i64).as_ref() == Some(self)).then_some(root)
     }
 
+    /// The residue `numerator * denominator^-1` modulo the prime `modulus`
+    /// (below 2^63), or `None` when the denominator is a multiple of it.
+    pub fn residue(&self, modulus: u64) -> Option<u64> {
+        let reduce = |value: &BigInt| -> u64 {
+            let residue = value.mod_floor(&BigInt::from(modulus));
+            residue.to_u64().unwrap_or(0)
+        };
+        let big = self.to_big();
+        let (numerator, denominator) = (reduce(big.numer()), reduce(big.denom()));
+        super::modular::inverse(denominator, modulus)
+            .map(|inverse| super::modular::multiply(numerator, inverse, modulus))
+    }
+
     /// The numerator as a rational (an integer).
     pub fn numerator(&self) -> Rational {
         match &self.0 {

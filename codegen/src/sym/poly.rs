@@ -56,6 +56,12 @@ impl Atoms {
         &self.budget
     }
 
+    /// Charges this table's products to `budget` from now on; returns the
+    /// budget charged so far.
+    pub fn replace_budget(&mut self, budget: Budget) -> Budget {
+        std::mem::replace(&mut self.budget, budget)
+    }
+
     /// The atom behind a handle.
     pub fn get(&self, id: AtomId) -> &Atom {
         &self.list[id.0 as usize]

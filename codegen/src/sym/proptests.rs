@@ -228,6 +228,34 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 200,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x6d0d_0a17),
+        ..ProptestConfig::default()
+    })]
+
+    /// Evaluation modulo a prime agrees with the normal form: an expression
+    /// and its normal form have the same residue at a random point, and the
+    /// residue is zero exactly when the normal form is.
+    #[test]
+    fn modular_values_agree_with_the_normal_form(r in recipe(), seed in 0u64..1000) {
+        let mut built = build(&r);
+        let point = super::modular::Point::new(seed);
+        let original = built.store.evaluate_modular(&[built.root], &point);
+        prop_assume!(original.is_ok(), "outside the class");
+        let original = original.unwrap_or_default();
+        let form = built.store.normal(built.root).expect("recipes are well defined");
+        let simplified = built.store.expression_of(&form);
+        match built.store.evaluate_modular(&[simplified], &point) {
+            Ok(value) => prop_assert_eq!(value, original.clone()),
+            Err(super::modular::Outside::Undefined { .. }) => {}
+            Err(outside) => prop_assert!(false, "the normal form left the class: {outside}"),
+        }
+        prop_assert_eq!(form.is_zero(), original[0] == 0);
+    }
+}
+
 /// True when the recipe uses `sqrt` or `exp`, whose kernels lie outside the
 /// exact class (e.g. `sqrt(u)^2 = u` is not applied by the normal form).
 fn recipe_has_kernels(recipe: &Recipe) -> bool {

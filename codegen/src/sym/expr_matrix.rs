@@ -1,0 +1,386 @@
+//! Matrices of expressions: the structured counterpart of [`Matrix`].
+//!
+//! Entries are [`ExprId`]s of the store's DAG. Products, sums and solves
+//! build new nodes over the entries without expanding them, so shared
+//! sub-expressions stay shared and sizes grow with the number of operations,
+//! not with the number of terms of an expanded normal form (the basis of
+//! the allowed velocities of a chain of N wheeled links has entries of about
+//! `2 * 3^(N-2)` terms when expanded, against `O(N^2)` nodes here). Nothing
+//! is decided here: an entry is known to be zero only when it is the
+//! constant 0.
+//!
+//! [`Store::solve_in_order`] is Gaussian elimination whose pivots are fixed
+//! in advance, the `i`-th on the diagonal: the caller orders the unknowns so
+//! that the pivots do not vanish at the configurations of interest (the
+//! constraint analysis chooses them at the model's defaults). Its result is
+//! the exact solution as a rational function, written as the elimination
+//! computes it.
+
+use super::expr::{ExprId, Store, SymbolId};
+use super::matrix::{Matrix, MatrixError};
+
+/// A dense matrix of expressions, row-major.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ExprMatrix {
+    rows: usize,
+    columns: usize,
+    entries: Vec<ExprId>,
+}
+
+impl ExprMatrix {
+    /// A matrix from row-major entries.
+    pub fn new(rows: usize, columns: usize, entries: Vec<ExprId>) -> Result<Self, MatrixError> {
+        if entries.len() != rows * columns {
+            return Err(MatrixError::Shape {
+                left: (rows, columns),
+                right: (entries.len(), 1),
+            });
+        }
+        Ok(ExprMatrix {
+            rows,
+            columns,
+            entries,
+        })
+    }
+
+    /// The zero matrix.
+    pub fn zeros(store: &mut Store, rows: usize, columns: usize) -> ExprMatrix {
+        let zero = store.integer(0);
+        ExprMatrix {
+            rows,
+            columns,
+            entries: vec![zero; rows * columns],
+        }
+    }
+
+    /// The identity.
+    pub fn identity(store: &mut Store, size: usize) -> ExprMatrix {
+        let mut identity = ExprMatrix::zeros(store, size, size);
+        let one = store.integer(1);
+        for i in 0..size {
+            identity.set(i, i, one);
+        }
+        identity
+    }
+
+    /// A column of expressions.
+    pub fn column(entries: Vec<ExprId>) -> ExprMatrix {
+        ExprMatrix {
+            rows: entries.len(),
+            columns: 1,
+            entries,
+        }
+    }
+
+    /// The expressions of a matrix of normal forms.
+    pub fn of(matrix: &Matrix, store: &mut Store) -> ExprMatrix {
+        ExprMatrix {
+            rows: matrix.rows(),
+            columns: matrix.columns(),
+            entries: matrix.to_expressions(store),
+        }
+    }
+
+    /// Number of rows.
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// Number of columns.
+    pub fn columns(&self) -> usize {
+        self.columns
+    }
+
+    /// Entry `(i, j)`.
+    pub fn get(&self, i: usize, j: usize) -> ExprId {
+        self.entries[i * self.columns + j]
+    }
+
+    /// Sets entry `(i, j)`.
+    pub fn set(&mut self, i: usize, j: usize, value: ExprId) {
+        self.entries[i * self.columns + j] = value;
+    }
+
+    /// The entries, row-major.
+    pub fn entries(&self) -> &[ExprId] {
+        &self.entries
+    }
+
+    /// Column `j` as a vector.
+    pub fn column_entries(&self, j: usize) -> Vec<ExprId> {
+        (0..self.rows).map(|i| self.get(i, j)).collect()
+    }
+
+    /// The transpose.
+    pub fn transpose(&self) -> ExprMatrix {
+        let entries = (0..self.columns)
+            .flat_map(|j| (0..self.rows).map(move |i| (i, j)))
+            .map(|(i, j)| self.get(i, j))
+            .collect();
+        ExprMatrix {
+            rows: self.columns,
+            columns: self.rows,
+            entries,
+        }
+    }
+
+    /// `self * other`, each entry the sum of the products whose factors are
+    /// not the constant 0.
+    pub fn mul(&self, other: &ExprMatrix, store: &mut Store) -> Result<ExprMatrix, MatrixError> {
+        if self.columns != other.rows {
+            return Err(self.shape_error(other));
+        }
+        let mut entries = Vec::with_capacity(self.rows * other.columns);
+        for i in 0..self.rows {
+            for j in 0..other.columns {
+                let mut terms = Vec::with_capacity(self.columns);
+                for l in 0..self.columns {
+                    let (a, b) = (self.get(i, l), other.get(l, j));
+                    if !store.is_zero_constant(a) && !store.is_zero_constant(b) {
+                        terms.push(store.mul2(a, b));
+                    }
+                }
+                entries.push(store.add(&terms));
+            }
+        }
+        ExprMatrix::new(self.rows, other.columns, entries)
+    }
+
+    /// `self + other`.
+    pub fn add(&self, other: &ExprMatrix, store: &mut Store) -> Result<ExprMatrix, MatrixError> {
+        self.entrywise(other, store, |store, a, b| store.add2(a, b))
+    }
+
+    /// `self - other`.
+    pub fn sub(&self, other: &ExprMatrix, store: &mut Store) -> Result<ExprMatrix, MatrixError> {
+        self.entrywise(other, store, |store, a, b| store.sub(a, b))
+    }
+
+    /// Every entry times `factor`.
+    pub fn scale(&self, factor: ExprId, store: &mut Store) -> ExprMatrix {
+        let entries = self
+            .entries
+            .iter()
+            .map(|&e| store.mul2(factor, e))
+            .collect();
+        ExprMatrix {
+            rows: self.rows,
+            columns: self.columns,
+            entries,
+        }
+    }
+
+    /// Every entry differentiated by `symbol`.
+    pub fn derivative(&self, symbol: SymbolId, store: &mut Store) -> ExprMatrix {
+        ExprMatrix {
+            rows: self.rows,
+            columns: self.columns,
+            entries: store.derivatives(&self.entries, symbol),
+        }
+    }
+
+    fn entrywise(
+        &self,
+        other: &ExprMatrix,
+        store: &mut Store,
+        combine: impl Fn(&mut Store, ExprId, ExprId) -> ExprId,
+    ) -> Result<ExprMatrix, MatrixError> {
+        if (self.rows, self.columns) != (other.rows, other.columns) {
+            return Err(self.shape_error(other));
+        }
+        let entries = self
+            .entries
+            .iter()
+            .zip(&other.entries)
+            .map(|(&a, &b)| combine(store, a, b))
+            .collect();
+        Ok(ExprMatrix {
+            rows: self.rows,
+            columns: self.columns,
+            entries,
+        })
+    }
+
+    fn shape_error(&self, other: &ExprMatrix) -> MatrixError {
+        MatrixError::Shape {
+            left: (self.rows, self.columns),
+            right: (other.rows, other.columns),
+        }
+    }
+}
+
+impl Store {
+    /// The Lie bracket `[X, Y]_i = sum_j X_j dY_i/dq_j - Y_j dX_i/dq_j` of two
+    /// vector fields given as expressions, unexpanded.
+    pub fn lie_bracket_of_expressions(
+        &mut self,
+        x: &[ExprId],
+        y: &[ExprId],
+        coordinates: &[SymbolId],
+    ) -> Vec<ExprId> {
+        let mut terms: Vec<Vec<ExprId>> = vec![Vec::new(); x.len()];
+        for (j, &q) in coordinates.iter().enumerate() {
+            for (along, field, negate) in [(x[j], y, false), (y[j], x, true)] {
+                if self.is_zero_constant(along) {
+                    continue;
+                }
+                let derivatives = self.derivatives(field, q);
+                let factor = if negate { self.neg(along) } else { along };
+                for (i, &d) in derivatives.iter().enumerate() {
+                    if !self.is_zero_constant(d) {
+                        terms[i].push(self.mul2(factor, d));
+                    }
+                }
+            }
+        }
+        terms.iter().map(|t| self.add(t)).collect()
+    }
+
+    /// True when `id` is the constant 0.
+    pub fn is_zero_constant(&self, id: ExprId) -> bool {
+        self.as_number(id).is_some_and(|value| value.is_zero())
+    }
+
+    /// The solution `x` of `a x = b` by Gaussian elimination with the
+    /// diagonal as pivots, in order (see the module documentation). Fails
+    /// when a pivot is the constant 0.
+    pub fn solve_in_order(
+        &mut self,
+        a: &ExprMatrix,
+        b: &ExprMatrix,
+    ) -> Result<ExprMatrix, MatrixError> {
+        let size = a.rows();
+        if a.columns() != size || b.rows() != size {
+            return Err(a.shape_error(b));
+        }
+        let mut rows: Vec<Vec<ExprId>> = (0..size)
+            .map(|i| {
+                (0..size)
+                    .map(|j| a.get(i, j))
+                    .chain((0..b.columns()).map(|j| b.get(i, j)))
+                    .collect()
+            })
+            .collect();
+        for pivot in 0..size {
+            if self.is_zero_constant(rows[pivot][pivot]) {
+                return Err(MatrixError::Singular {
+                    size,
+                    column: pivot,
+                });
+            }
+            let one = self.integer(1);
+            let inverse = self.div(one, rows[pivot][pivot])?;
+            let pivot_row = rows[pivot].clone();
+            for row in &mut rows[pivot + 1..] {
+                if self.is_zero_constant(row[pivot]) {
+                    continue;
+                }
+                let factor = self.mul2(row[pivot], inverse);
+                for column in pivot + 1..pivot_row.len() {
+                    if self.is_zero_constant(pivot_row[column]) {
+                        continue;
+                    }
+                    let reduction = self.mul2(factor, pivot_row[column]);
+                    row[column] = self.sub(row[column], reduction);
+                }
+            }
+        }
+        let mut solution = ExprMatrix::zeros(self, size, b.columns());
+        for column in 0..b.columns() {
+            for i in (0..size).rev() {
+                let mut terms = vec![rows[i][size + column]];
+                for (j, &coefficient) in rows[i].iter().enumerate().take(size).skip(i + 1) {
+                    if !self.is_zero_constant(coefficient) {
+                        let known = self.mul2(coefficient, solution.get(j, column));
+                        terms.push(self.neg(known));
+                    }
+                }
+                let value = self.add(&terms);
+                let x = self.div(value, rows[i][i])?;
+                solution.set(i, column, x);
+            }
+        }
+        Ok(solution)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ExprMatrix;
+    use crate::sym::{Function, Matrix, Store, SymbolKind};
+
+    /// A 3 x 3 trigonometric system solved in order, against the exact
+    /// solve of the normal forms: equal as rational functions, and not equal
+    /// to the solution of a perturbed system.
+    #[test]
+    fn elimination_in_order_gives_the_exact_solution() {
+        let mut store = Store::new();
+        let [x, y, m] = [
+            ("x", SymbolKind::Coordinate),
+            ("y", SymbolKind::Coordinate),
+            ("m", SymbolKind::Parameter),
+        ]
+        .map(|(name, kind)| {
+            let symbol = store.declare(name, kind);
+            store.symbol(symbol)
+        });
+        let sin_x = store.apply(Function::Sin, x).expect("applies");
+        let cos_y = store.apply(Function::Cos, y).expect("applies");
+        let two = store.integer(2);
+        let m_sin = store.mul2(m, sin_x);
+        let one = store.integer(1);
+        let cos_y_plus_two = store.add2(cos_y, two);
+        let zero = store.integer(0);
+        let a = ExprMatrix::new(
+            3,
+            3,
+            vec![cos_y_plus_two, m_sin, one, sin_x, two, zero, one, cos_y, m],
+        )
+        .expect("3 x 3");
+        let b = ExprMatrix::new(3, 2, vec![one, x, zero, y, m_sin, one]).expect("3 x 2");
+        let structured = store.solve_in_order(&a, &b).expect("regular pivots");
+        let exact_a = Matrix::from_expressions(&mut store, 3, 3, a.entries()).expect("normal");
+        let exact_b = Matrix::from_expressions(&mut store, 3, 2, b.entries()).expect("normal");
+        let atoms = store.atoms().clone();
+        let exact = exact_a.solve(&exact_b, &atoms).expect("regular");
+        let found =
+            Matrix::from_expressions(&mut store, 3, 2, structured.entries()).expect("normal");
+        let atoms = store.atoms().clone();
+        // equal as rational functions: the difference is exactly zero (the
+        // two normal forms may keep different common factors)
+        assert!(found.sub(&exact, &atoms).expect("same shape").is_zero());
+        let perturbed = a.get(0, 0);
+        let mut other = a.clone();
+        other.set(0, 0, store.add2(perturbed, one));
+        let other = store.solve_in_order(&other, &b).expect("regular pivots");
+        let other = Matrix::from_expressions(&mut store, 3, 2, other.entries()).expect("normal");
+        let atoms = store.atoms().clone();
+        assert!(!other.sub(&exact, &atoms).expect("same shape").is_zero());
+    }
+
+    #[test]
+    fn a_vanishing_pivot_is_singular() {
+        let mut store = Store::new();
+        let zero = store.integer(0);
+        let one = store.integer(1);
+        let a = ExprMatrix::new(2, 2, vec![zero, one, one, zero]).expect("2 x 2");
+        let b = ExprMatrix::column(vec![one, one]);
+        assert!(store.solve_in_order(&a, &b).is_err());
+    }
+
+    #[test]
+    fn products_skip_zero_factors_and_transpose_swaps_indices() {
+        let mut store = Store::new();
+        let x = store.declare("x", SymbolKind::Coordinate);
+        let x = store.symbol(x);
+        let zero = store.integer(0);
+        let one = store.integer(1);
+        let a = ExprMatrix::new(1, 2, vec![x, zero]).expect("1 x 2");
+        let b = ExprMatrix::new(2, 1, vec![one, x]).expect("2 x 1");
+        let product = a.mul(&b, &mut store).expect("fits");
+        assert_eq!(product.entries(), [x]);
+        assert_eq!(a.transpose().entries(), [x, zero]);
+        assert_eq!(a.transpose().rows(), 2);
+        assert!(a.mul(&a, &mut store).is_err());
+    }
+}
