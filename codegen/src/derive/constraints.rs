@@ -54,7 +54,7 @@
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::emit::internal;
 use crate::model::Model;
-use crate::sym::modular::{self, Outside, Point};
+use crate::sym::modular::{self, Outside, Point, Values};
 use crate::sym::{ExprId, ExprMatrix, Matrix, MatrixError, RationalFunction, SymbolId};
 
 /// The term products the exact basis of D may take.
@@ -353,7 +353,7 @@ fn is_involutive_at_points(
         }
     }
     for seed in modular::SEEDS {
-        let values = model.store.evaluate_modular(&products, &Point::new(seed))?;
+        let values = Values::at(Point::new(seed)).of(&model.store, &products)?;
         if values.iter().any(|&v| v != 0) {
             return Ok(false);
         }
@@ -369,10 +369,9 @@ fn growth_vector_at_point(
     basis: &DistributionBasis,
 ) -> Result<(Vec<usize>, bool), AnalysisError> {
     let start = model.store.len();
-    let point = Point::new(modular::SEEDS[0]);
     let fields = expression_columns(&basis.field_expressions);
-    let mut span = SpanAtPoint::new(model.n());
-    let mut newest = span.additions(model, &point, fields.clone())?;
+    let mut span = SpanAtPoint::new(model.n(), Point::new(modular::SEEDS[0]));
+    let mut newest = span.additions(model, fields.clone())?;
     let mut growth = vec![span.rank()];
     while span.rank() < model.n() && !newest.is_empty() {
         let mut brackets = Vec::with_capacity(fields.len() * newest.len());
@@ -384,7 +383,7 @@ fn growth_vector_at_point(
                 brackets.push(expression_bracket(model, x, y));
             }
         }
-        newest = span.additions(model, &point, brackets)?;
+        newest = span.additions(model, brackets)?;
         if newest.is_empty() {
             break;
         }
@@ -396,14 +395,18 @@ fn growth_vector_at_point(
 /// Fields kept for their values at a point, which are independent there.
 struct SpanAtPoint {
     n: usize,
+    /// The kept fields' values, row after row.
     values: Vec<u64>,
+    /// The values of every node evaluated at the point.
+    at_point: Values,
 }
 
 impl SpanAtPoint {
-    fn new(n: usize) -> SpanAtPoint {
+    fn new(n: usize, point: Point) -> SpanAtPoint {
         SpanAtPoint {
             n,
             values: Vec::new(),
+            at_point: Values::at(point),
         }
     }
 
@@ -415,12 +418,11 @@ impl SpanAtPoint {
     fn additions(
         &mut self,
         model: &Model,
-        point: &Point,
         candidates: Vec<Vec<ExprId>>,
     ) -> Result<Vec<Vec<ExprId>>, Outside> {
         let mut added = Vec::new();
         for candidate in candidates {
-            let values = model.store.evaluate_modular(&candidate, point)?;
+            let values = self.at_point.of(&model.store, &candidate)?;
             let before = self.values.len();
             self.values.extend_from_slice(&values);
             let fields = self.rank();

@@ -30,7 +30,8 @@
 //! quickly with the size of a dense block (a 6 x 6 coupled metric with trig
 //! entries does not finish in minutes), so the closed form is only derived
 //! when every diagonal block of `g`, and `c`, are at most
-//! [`CLOSED_FORM_LIMIT`]; otherwise the numeric strategy is taken outright.
+//! [`CLOSED_FORM_LIMIT`], and within [`CLOSED_FORM_PRODUCTS`] term products;
+//! otherwise the numeric strategy is taken outright.
 
 use crate::ir::{self, IrError};
 use crate::model::Model;
@@ -102,8 +103,13 @@ pub enum DerivationError {
 /// closed form is derived.
 pub const CLOSED_FORM_LIMIT: usize = 4;
 
-/// Derives both solutions (the closed form within [`CLOSED_FORM_LIMIT`]) and
-/// chooses the cheaper.
+/// The term products the closed form may take (a nested budget,
+/// [`crate::sym::Store::attempt`]); beyond them only the run-time system is
+/// derived.
+pub const CLOSED_FORM_PRODUCTS: u64 = 1_000_000;
+
+/// Derives both solutions (the closed form within [`CLOSED_FORM_LIMIT`] and
+/// [`CLOSED_FORM_PRODUCTS`]) and chooses the cheaper.
 pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
     let inputs = declare_inputs(model);
     let terms = Terms::of(model, &inputs)?;
@@ -113,7 +119,9 @@ pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
         + numeric_solve_operations(model.n() + model.c())
         + model.c() as u64;
     let closed_form = if closed_form_is_tractable(model) {
-        Some(terms.closed_form(model)?)
+        model
+            .attempt(CLOSED_FORM_PRODUCTS, |model| terms.closed_form(model))
+            .transpose()?
     } else {
         None
     };

@@ -33,7 +33,7 @@ mod structured;
 
 use super::constraints::{DistributionBasis, Method};
 use crate::model::Model;
-use crate::sym::modular::{self, Outside, Point};
+use crate::sym::modular::{self, Outside, Point, Values};
 use crate::sym::{
     Atoms, ExprId, ExprMatrix, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError,
     SymbolId, SymbolKind,
@@ -41,7 +41,7 @@ use crate::sym::{
 
 /// The term products the exact reduced form with the tool's basis may
 /// take; beyond them only the structured form is derived.
-pub const EXACT_REDUCED_PRODUCTS: u64 = 3_000_000;
+pub const EXACT_REDUCED_PRODUCTS: u64 = 1_000_000;
 
 /// The reduced port-Hamiltonian model: exact normal forms, structured
 /// expressions, or both.
@@ -347,10 +347,10 @@ fn facts_at_points(
         .collect();
     let (mut constant, mut diagonal) = (true, true);
     for seed in modular::SEEDS {
-        let point = Point::new(seed);
-        let rate_values = model.store.evaluate_modular(&rates, &point)?;
+        let mut values = Values::at(Point::new(seed));
+        let rate_values = values.of(&model.store, &rates)?;
         constant &= rate_values.iter().all(|&v| v == 0);
-        let off_values = model.store.evaluate_modular(&off_diagonal, &point)?;
+        let off_values = values.of(&model.store, &off_diagonal)?;
         diagonal &= off_values.iter().all(|&v| v == 0);
     }
     Ok((constant, diagonal))

@@ -22,8 +22,8 @@
 use super::cost::{BasicPower, PowerForm, tree_cost};
 use super::{Constant, Instruction, IrError, Op, Program, Value};
 use crate::sym::{ExprId, Function, Node, Rational, Store, SymbolId};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 use std::cmp::Reverse;
-use std::collections::{HashMap, HashSet};
 
 /// Lowers `outputs` to a program whose input slot `i` holds symbol `inputs[i]`.
 ///
@@ -175,7 +175,7 @@ struct Planner<'a> {
 
 impl<'a> Planner<'a> {
     fn new(store: &'a Store, order: &[ExprId]) -> Planner<'a> {
-        let mut sharing = HashMap::new();
+        let mut sharing = HashMap::default();
         for &id in order {
             if let Node::Add(operands) | Node::Mul(operands) = store.node(id) {
                 for &operand in operands.iter() {
@@ -301,7 +301,7 @@ struct Demand {
 impl Demand {
     fn of(planner: &Planner, order: &[ExprId], outputs: &[ExprId]) -> Demand {
         let mut plain: HashSet<ExprId> = outputs.iter().copied().collect();
-        let mut magnitude = HashSet::new();
+        let mut magnitude = HashSet::default();
         for &id in order.iter().rev() {
             if !plain.contains(&id) && !magnitude.contains(&id) {
                 continue;
@@ -324,8 +324,8 @@ fn sin_cos_pairs(
     order: &[ExprId],
     plain: &HashSet<ExprId>,
 ) -> HashMap<ExprId, (ExprId, ExprId)> {
-    let mut sines = HashMap::new();
-    let mut cosines = HashMap::new();
+    let mut sines = HashMap::default();
+    let mut cosines = HashMap::default();
     for &id in order.iter().filter(|id| plain.contains(id)) {
         match store.node(id) {
             Node::Call(Function::Sin, argument) => sines.insert(*argument, id),
@@ -420,8 +420,8 @@ impl<'a> Lowering<'a> {
             planner,
             demand,
             builder: Builder::default(),
-            values: HashMap::new(),
-            magnitudes: HashMap::new(),
+            values: HashMap::default(),
+            magnitudes: HashMap::default(),
         }
     }
 

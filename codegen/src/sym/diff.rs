@@ -11,6 +11,7 @@ use super::expr::{ExprId, Function, Node, Store, SymError, SymbolId};
 use super::normal::RationalFunction;
 use super::number::Rational;
 use super::poly::{Atom, AtomId, Monomial, Poly};
+use rustc_hash::FxHashMap;
 use std::collections::HashMap;
 
 impl Store {
@@ -21,20 +22,24 @@ impl Store {
 
     /// `d root / d symbol` for several roots, a shared sub-expression
     /// differentiated once for all of them.
+    /// Derivatives are remembered per symbol, so a later call differentiates
+    /// only the nodes no earlier call reached.
     pub fn derivatives(&mut self, roots: &[ExprId], symbol: SymbolId) -> Vec<ExprId> {
-        let mut derivatives: HashMap<ExprId, ExprId> = HashMap::new();
-        for id in self.reachable(roots) {
+        let mut derivatives = self.derivative_memo.remove(&symbol).unwrap_or_default();
+        for id in self.reachable_where(roots, |id| derivatives.contains_key(&id)) {
             let derivative = self.derivative_of_node(id, symbol, &derivatives);
             derivatives.insert(id, derivative);
         }
-        roots.iter().map(|root| derivatives[root]).collect()
+        let found = roots.iter().map(|root| derivatives[root]).collect();
+        self.derivative_memo.insert(symbol, derivatives);
+        found
     }
 
     fn derivative_of_node(
         &mut self,
         id: ExprId,
         symbol: SymbolId,
-        derivatives: &HashMap<ExprId, ExprId>,
+        derivatives: &FxHashMap<ExprId, ExprId>,
     ) -> ExprId {
         let zero = self.integer(0);
         let d = |child: &ExprId| derivatives[child];
@@ -94,7 +99,7 @@ impl Store {
         root: ExprId,
         replacements: &HashMap<SymbolId, ExprId>,
     ) -> Result<ExprId, SymError> {
-        let mut rebuilt: HashMap<ExprId, ExprId> = HashMap::new();
+        let mut rebuilt: FxHashMap<ExprId, ExprId> = FxHashMap::default();
         for id in self.reachable(&[root]) {
             let new = match self.node(id).clone() {
                 Node::Symbol(s) => replacements.get(&s).copied().unwrap_or(id),

@@ -16,7 +16,8 @@ impl Store {
     /// The values of several roots, sharing the work on common sub-expressions.
     pub fn evaluate_many(&self, roots: &[ExprId], value_of: &dyn Fn(SymbolId) -> f64) -> Vec<f64> {
         let order = self.reachable(roots);
-        let mut values = std::collections::HashMap::with_capacity(order.len());
+        let mut values =
+            rustc_hash::FxHashMap::with_capacity_and_hasher(order.len(), Default::default());
         for &id in &order {
             let value = self.evaluate_node(id, &values, value_of);
             values.insert(id, value);
@@ -27,7 +28,7 @@ impl Store {
     fn evaluate_node(
         &self,
         id: ExprId,
-        values: &std::collections::HashMap<ExprId, f64>,
+        values: &rustc_hash::FxHashMap<ExprId, f64>,
         value_of: &dyn Fn(SymbolId) -> f64,
     ) -> f64 {
         match self.node(id) {

@@ -9,7 +9,7 @@
 //! exact zero tests lives in [`super::normal`].
 
 use super::number::Rational;
-use std::collections::HashMap;
+use rustc_hash::{FxHashMap as HashMap, FxHashSet};
 use std::fmt;
 
 /// Handle of an expression in a [`Store`].
@@ -183,6 +183,8 @@ pub struct Store {
     velocities: HashMap<SymbolId, SymbolId>,
     pub(crate) atoms: super::poly::Atoms,
     pub(crate) normal_forms: HashMap<ExprId, super::normal::RationalFunction>,
+    /// `d node / d symbol` of the nodes differentiated so far, per symbol.
+    pub(crate) derivative_memo: HashMap<SymbolId, HashMap<ExprId, ExprId>>,
 }
 
 impl fmt::Debug for Store {
@@ -357,7 +359,7 @@ impl Store {
     pub fn add(&mut self, terms: &[ExprId]) -> ExprId {
         let mut constant = Rational::ZERO;
         let mut coefficients: Vec<(ExprId, Rational)> = Vec::new();
-        let mut positions: HashMap<ExprId, usize> = HashMap::new();
+        let mut positions: HashMap<ExprId, usize> = HashMap::default();
         let mut pending: Vec<ExprId> = terms.to_vec();
         while let Some(term) = pending.pop() {
             match self.node(term) {
@@ -428,7 +430,7 @@ impl Store {
     pub fn mul(&mut self, factors: &[ExprId]) -> ExprId {
         let mut constant = Rational::ONE;
         let mut exponents: Vec<(ExprId, Rational)> = Vec::new();
-        let mut positions: HashMap<ExprId, usize> = HashMap::new();
+        let mut positions: HashMap<ExprId, usize> = HashMap::default();
         let mut pending: Vec<ExprId> = factors.to_vec();
         while let Some(factor) = pending.pop() {
             let (base, exponent) = match self.node(factor) {
@@ -644,6 +646,23 @@ impl Store {
         let mut found = Vec::new();
         while let Some(id) = stack.pop() {
             if std::mem::replace(&mut seen[id.index()], true) {
+                continue;
+            }
+            found.push(id);
+            stack.extend(self.children(id));
+        }
+        found.sort_unstable();
+        found
+    }
+
+    /// The nodes reachable from `roots` without passing through a node
+    /// that is `known`, children before parents (ascending ids).
+    pub fn reachable_where(&self, roots: &[ExprId], known: impl Fn(ExprId) -> bool) -> Vec<ExprId> {
+        let mut seen = FxHashSet::default();
+        let mut stack: Vec<ExprId> = roots.to_vec();
+        let mut found = Vec::new();
+        while let Some(id) = stack.pop() {
+            if known(id) || !seen.insert(id) {
                 continue;
             }
             found.push(id);

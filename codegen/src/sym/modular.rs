@@ -34,7 +34,7 @@
 //! non-linear argument) are not evaluated: [`Outside`].
 
 use super::expr::{ExprId, Function, Node, Store, SymbolId};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// The Mersenne prime `2^61 - 1`.
 pub const PRIME: u64 = (1 << 61) - 1;
@@ -106,15 +106,37 @@ fn draw(seed: u64, index: u64) -> u64 {
     (z ^ (z >> 31)) % PRIME
 }
 
+/// The values at one point of the nodes evaluated so far, so that
+/// evaluating more expressions evaluates only their new nodes.
+#[derive(Clone, Debug)]
+pub struct Values {
+    point: Point,
+    values: HashMap<ExprId, u64>,
+}
+
+impl Values {
+    /// No values yet, at `point`.
+    pub fn at(point: Point) -> Values {
+        Values {
+            point,
+            values: HashMap::default(),
+        }
+    }
+
+    /// The values of `roots` modulo [`PRIME`].
+    pub fn of(&mut self, store: &Store, roots: &[ExprId]) -> Result<Vec<u64>, Outside> {
+        for id in store.reachable_where(roots, |id| self.values.contains_key(&id)) {
+            let value = store.modular_node(id, &self.values, &self.point)?;
+            self.values.insert(id, value);
+        }
+        Ok(roots.iter().map(|root| self.values[root]).collect())
+    }
+}
+
 impl Store {
     /// The values of `roots` modulo [`PRIME`] at `point`.
     pub fn evaluate_modular(&self, roots: &[ExprId], point: &Point) -> Result<Vec<u64>, Outside> {
-        let mut values: HashMap<ExprId, u64> = HashMap::new();
-        for id in self.reachable(roots) {
-            let value = self.modular_node(id, &values, point)?;
-            values.insert(id, value);
-        }
-        Ok(roots.iter().map(|root| values[root]).collect())
+        Values::at(*point).of(self, roots)
     }
 
     fn modular_node(

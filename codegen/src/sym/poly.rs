@@ -12,8 +12,8 @@
 use super::budget::Budget;
 use super::expr::{ExprId, SymbolId};
 use super::number::Rational;
+use rustc_hash::FxHashMap as HashMap;
 use std::cmp::Ordering;
-use std::collections::HashMap;
 
 /// Handle of an atom in an [`Atoms`] table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -274,7 +274,7 @@ impl Poly {
 
     /// Builds a polynomial from terms in any order, merging equal monomials.
     pub fn from_terms(terms: impl IntoIterator<Item = (Monomial, Rational)>) -> Poly {
-        let mut collected: HashMap<Monomial, Rational> = HashMap::new();
+        let mut collected: HashMap<Monomial, Rational> = HashMap::default();
         for (monomial, coefficient) in terms {
             let entry = collected.entry(monomial).or_insert(Rational::ZERO);
             *entry = entry.add(&coefficient);
