@@ -92,6 +92,27 @@ fn derive_prints_the_reduced_equations_in_latex() {
     assert!(json.trim_start().starts_with('{') && json.contains("\"constraints\""));
 }
 
+/// The text document states MATH.md 3.1 line for line and the constraint
+/// analysis with how it was decided.
+#[test]
+fn derive_prints_the_reduced_equations_as_text() {
+    let output = chaplygin(&["derive", "snakeboard", "--format", "text"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    for line in [
+        "dot(x) = cos(phi)*cos(theta)*group/m",
+        "dot(theta) = sin(phi)*group/(r*m)",
+        "dot(group) = -sin(phi)*u_torso/r",
+        "dot(torso) = u_torso",
+        "dot(wheels) = u_wheels",
+        "growth vector: (3, 4, 5)",
+        "integrability decided: exactly, on normal forms",
+        "classification: completely nonholonomic",
+    ] {
+        assert!(text.contains(line), "`{line}` not in\n{text}");
+    }
+}
+
 #[test]
 fn the_controlled_snakeboard_keeps_its_energy_in_the_csv() {
     let out = scratch("energy");

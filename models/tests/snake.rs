@@ -324,6 +324,20 @@ macro_rules! snake_tests {
 snake_tests!(two_links, snake2, Snake2, 61);
 snake_tests!(three_links, snake3, Snake3, 71);
 
+/// Chains longer than the exact forms allow compile within the default
+/// derivation budget through the structured forms, and say so in `REPORT`.
+#[test]
+fn longer_chains_compile_within_the_default_budget() {
+    for links in 4..=5 {
+        let budget = chaplygin_codegen::sym::Budget::default();
+        let code = chaplygin_codegen::generate_within(&n_link_snake(links), budget.clone())
+            .unwrap_or_else(|d| panic!("{}", d.render(&format!("n_link_snake({links})"))));
+        println!("{links} links: {} term products", budget.used());
+        assert!(code.contains("derived structured"), "{links} links");
+        assert!(code.contains("classification: completely nonholonomic"));
+    }
+}
+
 #[test]
 fn one_link_compiles_and_no_link_is_rejected() {
     let sleigh = chaplygin_codegen::generate(&n_link_snake(1)).expect("one link compiles");

@@ -28,6 +28,21 @@
 //! velocities are `qdot = g^-1 h^T alpha` and the momenta `alpha = P g qdot`.
 //! Whether `gbar` is constant (free of the coordinates) and diagonal is
 //! decided exactly and recorded.
+//!
+//! **Exact and structured.** With a declared basis every matrix is derived
+//! in exact normal form ([`Exact`]). With the tool's basis the exact form is
+//! attempted first, on a nested budget of [`EXACT_REDUCED_PRODUCTS`] term
+//! products; when it does not fit, the form is derived [`structured`]: from
+//! the basis `X` of D as the elimination of the constraints writes it,
+//! without expanding anything ([`Forms`]), which grows with the number of
+//! operations instead of the number of expanded terms (for a chain of N
+//! wheeled links, polynomially in N instead of exponentially). Emission
+//! lowers what there is (for the exact form, both the expanded entries and
+//! the products of the matrices' entries) and emits the form with the
+//! fewest operations. Without the exact
+//! form, `Jbar` is skew by construction and the facts on `gbar` are decided
+//! at random points modulo a prime ([`crate::sym::modular`]: "not constant"
+//! and "not diagonal" proved, "constant" and "diagonal" probable).
 
 mod structured;
 
@@ -59,7 +74,8 @@ pub struct PortHamiltonian {
     /// The exact normal forms: always for a declared basis, for the tool's
     /// basis when they fit [`EXACT_REDUCED_PRODUCTS`].
     pub exact: Option<Exact>,
-    /// The structured forms ([`structured`]), for the tool's basis.
+    /// The structured forms ([`structured`]), for the tool's basis when the
+    /// exact ones do not fit.
     pub structured: Option<Forms>,
     /// `gbar` does not depend on the coordinates.
     pub metric_constant: bool,
@@ -230,8 +246,8 @@ impl Exact {
 }
 
 /// Derives the reduced port-Hamiltonian form of `model` (Theorem 1): with a
-/// declared basis exactly; with the tool's basis structured, and exactly
-/// too when that fits [`EXACT_REDUCED_PRODUCTS`].
+/// declared basis exactly; with the tool's basis exactly when that fits
+/// [`EXACT_REDUCED_PRODUCTS`], structured otherwise.
 pub fn derive(
     model: &mut Model,
     basis: &DistributionBasis,
@@ -253,8 +269,6 @@ pub fn derive(
             (Some(exact), None)
         }
         None => {
-            let structured =
-                structured::derive(model, &basis.field_expressions, &momenta, &inputs)?;
             let exact = match &basis.fields {
                 Some(fields) => model
                     .attempt(EXACT_REDUCED_PRODUCTS, |model| {
@@ -266,7 +280,14 @@ pub fn derive(
                     .transpose()?,
                 None => None,
             };
-            (exact, Some(structured))
+            match exact {
+                Some(exact) => (Some(exact), None),
+                None => {
+                    let forms =
+                        structured::derive(model, &basis.field_expressions, &momenta, &inputs)?;
+                    (None, Some(forms))
+                }
+            }
         }
     };
     let (metric_constant, metric_diagonal, facts_method) = match (&exact, &structured) {
@@ -651,7 +672,15 @@ mod tests {
     fn the_structured_form_equals_the_exact_form() {
         for source in [snakeboard_without_basis(), SLEIGH.to_string()] {
             let (mut model, reduced) = derived(&source);
-            let forms = reduced.structured.clone().expect("the tool's basis");
+            assert!(reduced.structured.is_none(), "the exact form fits");
+            let basis = distribution_basis(&mut model).expect("regular at the defaults");
+            let forms = super::structured::derive(
+                &mut model,
+                &basis.field_expressions,
+                &reduced.momenta,
+                &reduced.inputs,
+            )
+            .expect("derives");
             let exact = exact(&reduced).clone();
             let pairs: [(&str, &[ExprId], &[RationalFunction]); 9] = [
                 (

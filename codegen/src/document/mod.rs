@@ -42,7 +42,7 @@
 
 mod render;
 
-use crate::derive::constraints::{ConstraintAnalysis, distribution_basis};
+use crate::derive::constraints::ConstraintAnalysis;
 use crate::derive::lagrange_dalembert::{self, LagrangeDalembert};
 use crate::derive::momentum::{self, Momentum};
 use crate::derive::port_hamiltonian::{self, Exact, PortHamiltonian};
@@ -172,9 +172,9 @@ impl Document {
             .and_then(|f| f.lowered.as_ref())
             .map(|lowered| lowered.outputs.clone())
             .ok_or_else(|| internal(model, "`reduced_rhs` was not emitted"))?;
+        let basis = &constraints.basis;
         let dalembert = lagrange_dalembert::derive(model).map_err(|e| internal(model, e))?;
-        let basis = distribution_basis(model).map_err(|e| internal(model, e))?;
-        let reduced = port_hamiltonian::derive(model, &basis).map_err(|e| internal(model, e))?;
+        let reduced = port_hamiltonian::derive(model, basis).map_err(|e| internal(model, e))?;
         let momentum = match model.symmetry {
             Some(_) => Some(momentum::derive(model).map_err(|e| internal(model, e))?),
             None => None,

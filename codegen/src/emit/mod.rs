@@ -101,7 +101,7 @@ pub(crate) fn emit(
     let mut functions = kinematics::functions(model)?;
     let (acceleration, solve_report) = lagrange_dalembert::acceleration(model)?;
     functions.push(acceleration);
-    let (reduced, reduced_report) = port_hamiltonian::functions(model)?;
+    let (reduced, reduced_report) = port_hamiltonian::functions(model, &constraints.basis)?;
     functions.extend(reduced);
     let mut sections = vec![solve_report, reduced_report];
     if model.symmetry.is_some() {

@@ -27,7 +27,7 @@ use super::report::Section;
 use super::{
     Argument, Function, coordinates, f64_type, function_body, internal, matrix_literal, velocities,
 };
-use crate::derive::constraints::distribution_basis;
+use crate::derive::constraints::DistributionBasis;
 use crate::derive::port_hamiltonian::{Exact, Forms, PortHamiltonian, derive};
 use crate::diagnostic::Diagnostics;
 use crate::ir;
@@ -38,9 +38,14 @@ use quote::quote;
 
 /// The ten functions, in the order they are documented, and the report's
 /// section on the reduced form.
-pub(super) fn functions(model: &mut Model) -> Result<(Vec<Function>, Section), Diagnostics> {
-    let basis = distribution_basis(model).map_err(|e| internal(model, e))?;
-    let reduced = derive(model, &basis).map_err(|e| internal(model, e))?;
+pub(super) fn functions(
+    model: &mut Model,
+    basis: &DistributionBasis,
+) -> Result<(Vec<Function>, Section), Diagnostics> {
+    let reduced = derive(model, basis).map_err(|e| internal(model, e))?;
+    let forms = reduced
+        .candidate_forms(model)
+        .map_err(|e| internal(model, e))?;
     let section = report_section(model, &reduced);
     let emitters: [Emitter; 10] = [
         momenta,
@@ -56,7 +61,7 @@ pub(super) fn functions(model: &mut Model) -> Result<(Vec<Function>, Section), D
     ];
     let functions = emitters
         .iter()
-        .map(|emit| emit(model, &reduced))
+        .map(|emit| emit(model, &reduced, &forms))
         .collect::<Result<Vec<_>, _>>()?;
     Ok((functions, section))
 }
@@ -110,7 +115,7 @@ fn report_section(model: &mut Model, reduced: &PortHamiltonian) -> Section {
     section
 }
 
-type Emitter = fn(&mut Model, &PortHamiltonian) -> Result<Function, Diagnostics>;
+type Emitter = fn(&mut Model, &PortHamiltonian, &[Forms]) -> Result<Function, Diagnostics>;
 
 /// What an emitted function looks like from outside.
 pub(super) struct Signature {
@@ -283,12 +288,10 @@ fn cheapest(
 fn candidates(
     model: &mut Model,
     reduced: &PortHamiltonian,
+    forms: &[Forms],
     of_forms: impl Fn(&mut Model, &Forms) -> Result<Vec<ExprId>, Diagnostics>,
     of_exact: impl Fn(&mut Model, &Exact) -> Result<Vec<ExprId>, Diagnostics>,
 ) -> Result<Vec<Vec<ExprId>>, Diagnostics> {
-    let forms = reduced
-        .candidate_forms(model)
-        .map_err(|e| internal(model, e))?;
     let mut candidates = forms
         .iter()
         .map(|form| of_forms(model, form))
@@ -328,7 +331,11 @@ fn state_jacobian(
         .collect()
 }
 
-fn momenta(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+fn momenta(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    forms: &[Forms],
+) -> Result<Function, Diagnostics> {
     let (n, k) = (model.n(), reduced.momenta.len());
     let velocities_symbols = model.velocities.clone();
     let qdot = symbol_expressions(model, &velocities_symbols);
@@ -336,6 +343,7 @@ fn momenta(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Dia
     let candidates = candidates(
         model,
         reduced,
+        forms,
         |model, forms| product(model, &forms.momentum_map, qdot.clone()),
         |model, exact| expanded_product(model, &exact.momentum_map, &qdot_forms),
     )?;
@@ -357,6 +365,7 @@ fn momenta(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Dia
 fn velocities_of_momenta(
     model: &mut Model,
     reduced: &PortHamiltonian,
+    forms: &[Forms],
 ) -> Result<Function, Diagnostics> {
     let n = model.n();
     let alpha = symbol_expressions(model, &reduced.momenta);
@@ -364,6 +373,7 @@ fn velocities_of_momenta(
     let candidates = candidates(
         model,
         reduced,
+        forms,
         |model, forms| product(model, &forms.velocity_map, alpha.clone()),
         |model, exact| expanded_product(model, &exact.velocity_map, &alpha_forms),
     )?;
@@ -380,11 +390,16 @@ fn velocities_of_momenta(
     item(model, signature, &outputs, vector_literal)
 }
 
-fn hamiltonian(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+fn hamiltonian(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    forms: &[Forms],
+) -> Result<Function, Diagnostics> {
     let arguments = vec![state_argument(model, reduced)];
     let candidates = candidates(
         model,
         reduced,
+        forms,
         |_, forms| Ok(vec![forms.hamiltonian]),
         |model, exact| {
             Ok(expressions_of(
@@ -409,11 +424,13 @@ fn hamiltonian(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function,
 fn hamiltonian_gradient(
     model: &mut Model,
     reduced: &PortHamiltonian,
+    forms: &[Forms],
 ) -> Result<Function, Diagnostics> {
     let s = reduced.state(model).len();
     let candidates = candidates(
         model,
         reduced,
+        forms,
         |_, forms| Ok(forms.gradient.clone()),
         |model, exact| Ok(expressions_of(model, &exact.gradient)),
     )?;
@@ -431,11 +448,16 @@ fn hamiltonian_gradient(
     item(model, signature, &outputs, vector_literal)
 }
 
-fn structure_matrix(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+fn structure_matrix(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    forms: &[Forms],
+) -> Result<Function, Diagnostics> {
     let s = reduced.state(model).len();
     let candidates = candidates(
         model,
         reduced,
+        forms,
         |_, forms| Ok(forms.structure.entries().to_vec()),
         |model, exact| Ok(expressions_of(model, exact.structure.entries())),
     )?;
@@ -455,11 +477,16 @@ fn structure_matrix(model: &mut Model, reduced: &PortHamiltonian) -> Result<Func
     })
 }
 
-fn input_matrix(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+fn input_matrix(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    forms: &[Forms],
+) -> Result<Function, Diagnostics> {
     let (s, p) = (reduced.state(model).len(), reduced.inputs.len());
     let candidates = candidates(
         model,
         reduced,
+        forms,
         |_, forms| Ok(forms.input_matrix.entries().to_vec()),
         |model, exact| Ok(expressions_of(model, exact.input_matrix.entries())),
     )?;
@@ -479,12 +506,17 @@ fn input_matrix(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function
     })
 }
 
-fn reduced_rhs(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+fn reduced_rhs(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    forms: &[Forms],
+) -> Result<Function, Diagnostics> {
     let s = reduced.state(model).len();
     let arguments = vec![state_argument(model, reduced), inputs_argument(reduced)];
     let candidates = candidates(
         model,
         reduced,
+        forms,
         |_, forms| Ok(forms.rhs.clone()),
         |model, exact| Ok(expressions_of(model, &exact.rhs)),
     )?;
@@ -506,11 +538,13 @@ fn reduced_rhs(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function,
 fn reduced_rhs_jacobian(
     model: &mut Model,
     reduced: &PortHamiltonian,
+    forms: &[Forms],
 ) -> Result<Function, Diagnostics> {
     let s = reduced.state(model).len();
     let candidates = candidates(
         model,
         reduced,
+        forms,
         |model, forms| Ok(state_jacobian(model, reduced, &forms.rhs)),
         |model, exact| {
             let state = reduced.state(model);
@@ -538,12 +572,17 @@ fn reduced_rhs_jacobian(
     })
 }
 
-fn output(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+fn output(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    forms: &[Forms],
+) -> Result<Function, Diagnostics> {
     let p = reduced.inputs.len();
     let arguments = vec![state_argument(model, reduced)];
     let candidates = candidates(
         model,
         reduced,
+        forms,
         |_, forms| Ok(forms.output.clone()),
         |model, exact| Ok(expressions_of(model, &exact.output)),
     )?;
@@ -561,11 +600,16 @@ fn output(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diag
     item(model, signature, &outputs, vector_literal)
 }
 
-fn output_jacobian(model: &mut Model, reduced: &PortHamiltonian) -> Result<Function, Diagnostics> {
+fn output_jacobian(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    forms: &[Forms],
+) -> Result<Function, Diagnostics> {
     let (p, s) = (reduced.inputs.len(), reduced.state(model).len());
     let candidates = candidates(
         model,
         reduced,
+        forms,
         |model, forms| Ok(state_jacobian(model, reduced, &forms.output)),
         |model, exact| {
             let output = expressions_of(model, &exact.output);
@@ -592,6 +636,7 @@ fn output_jacobian(model: &mut Model, reduced: &PortHamiltonian) -> Result<Funct
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::derive::constraints::distribution_basis;
     use crate::model::check;
     use crate::syntax::parse_str;
 
@@ -620,9 +665,11 @@ mod tests {
     /// Jacobian: one per form, then the expanded one.
     fn rhs_costs(model: &mut Model, reduced: &PortHamiltonian) -> [Vec<u64>; 2] {
         let arguments = vec![state_argument(model, reduced), inputs_argument(reduced)];
+        let forms = reduced.candidate_forms(model).expect("forms");
         let rhs = candidates(
             model,
             reduced,
+            &forms,
             |_, forms| Ok(forms.rhs.clone()),
             |model, exact| Ok(expressions_of(model, &exact.rhs)),
         )
@@ -630,6 +677,7 @@ mod tests {
         let jacobians = candidates(
             model,
             reduced,
+            &forms,
             |model, forms| Ok(state_jacobian(model, reduced, &forms.rhs)),
             |model, exact| {
                 let state = reduced.state(model);
@@ -659,9 +707,11 @@ mod tests {
             let expected = if reduced.structured.is_some() { 3 } else { 2 };
             assert_eq!(rhs.len(), expected);
             let arguments = vec![state_argument(&model, &reduced), inputs_argument(&reduced)];
+            let forms = reduced.candidate_forms(&mut model).expect("forms");
             let candidates = candidates(
                 &mut model,
                 &reduced,
+                &forms,
                 |_, forms| Ok(forms.rhs.clone()),
                 |model, exact| Ok(expressions_of(model, &exact.rhs)),
             )
@@ -676,7 +726,8 @@ mod tests {
     fn every_item_has_the_interface_signature() {
         let mut model =
             check(&parse_str(crate::fixtures::SNAKEBOARD).expect("parses")).expect("checks");
-        let items: Vec<String> = functions(&mut model)
+        let basis = distribution_basis(&mut model).expect("regular");
+        let items: Vec<String> = functions(&mut model, &basis)
             .expect("emits")
             .0
             .iter()

@@ -9,8 +9,9 @@
 //! ```
 //!
 //! MODEL is a built-in model's name or the path of a `.model` file, which
-//! runs through the IR interpreter without recompiling. Every failure is one
-//! line on standard error and a non-zero exit status.
+//! runs through the IR interpreter without recompiling. Every failure of a
+//! run is one line on standard error and a non-zero exit status (a malformed
+//! command line gets clap's usage message).
 
 mod catalog;
 mod derive;
