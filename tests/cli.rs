@@ -101,7 +101,7 @@ fn derive_prints_the_reduced_equations_as_text() {
     let text = stdout(&output);
     for line in [
         "dot(x) = cos(phi)*cos(theta)*group/m",
-        "dot(theta) = sin(phi)*group/(r*m)",
+        "dot(theta) = sin(phi)*group/(m*r)",
         "dot(group) = -sin(phi)*u_torso/r",
         "dot(torso) = u_torso",
         "dot(wheels) = u_wheels",

@@ -10,10 +10,9 @@
 //! s = n + k, `alpha` of length k; matrices are returned row-major.
 //!
 //! The programs are evaluated by [`crate::ir::Program::evaluate`], which
-//! runs each operation with the `f64` method the emitted code calls, and the
-//! run-time saddle-point solve of `acceleration` is
-//! [`chaplygin_runtime::linalg::solve_in_place`], the elimination the
-//! emitted code's `solve` runs. For the built-in models the results are
+//! runs each operation with the `f64` method the emitted code calls (the
+//! numeric solve of `acceleration` is part of its program). For the
+//! built-in models the results are
 //! bit-identical to the compiled ones (`models/tests/interpreter.rs`);
 //! that is not promised in general, since an optimizing compiler may
 //! evaluate `powi` with a constant exponent as a product chain where the
@@ -28,11 +27,10 @@
 use crate::derive::momentum::group_coordinates;
 use crate::derive::port_hamiltonian::momentum_names;
 use crate::diagnostic::Diagnostics;
-use crate::emit::{self, Assembly, Lowered};
+use crate::emit::{self, Lowered};
 use crate::ir::IrError;
 use crate::model::Model;
 use crate::{analysed_model, over_budget};
-use chaplygin_runtime::linalg::solve_in_place;
 
 /// The names of a model and its sizes.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -250,18 +248,13 @@ impl InterpretedModel {
             })?;
         let lowered = &function.lowered;
         let inputs = self.inputs(function.name, &lowered.arguments, arguments)?;
-        let outputs =
-            lowered
-                .program
-                .evaluate_vec(&inputs)
-                .map_err(|source| CallError::Program {
-                    function: name.to_string(),
-                    source,
-                })?;
-        Ok(match lowered.assembly {
-            Assembly::Values => outputs,
-            Assembly::SaddlePoint => self.solve_saddle_point(&outputs),
-        })
+        lowered
+            .program
+            .evaluate_vec(&inputs)
+            .map_err(|source| CallError::Program {
+                function: name.to_string(),
+                source,
+            })
     }
 
     /// The program's inputs: the arguments, checked, then the parameters.
@@ -292,33 +285,6 @@ impl InterpretedModel {
         }
         inputs.extend_from_slice(&self.parameters);
         Ok(inputs)
-    }
-
-    /// `(qddot, lambda)` from `g`, `A`, the force and the drift:
-    /// `[[g, A^T], [A, 0]] [qddot; -lambda] = [force; drift]`, assembled and
-    /// negated as the emitted `acceleration` does.
-    fn solve_saddle_point(&self, outputs: &[f64]) -> Vec<f64> {
-        let (n, c) = (self.sizes.n, self.sizes.c);
-        let (g, rest) = outputs.split_at(n * n);
-        let (a, rest) = rest.split_at(c * n);
-        let size = n + c;
-        let mut matrix = Vec::with_capacity(size * size);
-        for i in 0..n {
-            matrix.extend_from_slice(&g[i * n..(i + 1) * n]);
-            matrix.extend((0..c).map(|r| a[r * n + i]));
-        }
-        for r in 0..c {
-            matrix.extend_from_slice(&a[r * n..(r + 1) * n]);
-            matrix.extend(std::iter::repeat_n(0.0, c));
-        }
-        let mut solution = rest.to_vec();
-        if solve_in_place(&mut matrix, &mut solution).is_err() {
-            solution = vec![f64::NAN; size];
-        }
-        for multiplier in &mut solution[n..] {
-            *multiplier = -*multiplier;
-        }
-        solution
     }
 
     /// The mass matrix `g(q)`, n x n.

@@ -85,17 +85,17 @@ fn snakeboard_momentum_on_d() {
 }
 
 /// `H = [[0, h], [h, 0]]`, `h = m r Jt cos phi / (2 Delta)`, `K = (0, Jt sin phi cos phi / Delta)`,
-/// `D = 0` (MATH.md 4.1), as printed: `jt cos(phi)^2 - jt - m r^2 = -Delta`.
+/// `D = 0` (MATH.md 4.1), as printed: `jt + m r^2 - jt cos(phi)^2 = Delta`.
 #[test]
 fn snakeboard_report_states_h_k_d() {
     let report = Snakeboard::REPORT;
     for line in [
         "shape r = (psi, phi); momenta p1..p1",
         "e row 1: [cos(phi), 0, sin(phi)/r]",
-        "H1 row 1: [0, (-1/2)*jt*m*r*cos(phi)/(jt*cos(phi)^2 - jt - m*r^2)]",
-        "H1 row 2: [(-1/2)*jt*m*r*cos(phi)/(jt*cos(phi)^2 - jt - m*r^2), 0]",
+        "H1 row 1: [0, (1/2)*m*r*jt*cos(phi)/(jt + m*r^2 - jt*cos(phi)^2)]",
+        "H1 row 2: [(1/2)*m*r*jt*cos(phi)/(jt + m*r^2 - jt*cos(phi)^2), 0]",
         "K1 row 1: [0]",
-        "K1 row 2: [-jt*cos(phi)*sin(phi)/(jt*cos(phi)^2 - jt - m*r^2)]",
+        "K1 row 2: [jt*cos(phi)*sin(phi)/(jt + m*r^2 - jt*cos(phi)^2)]",
         "D1 row 1: [0]",
         "inputs enter the momentum equation: no (h B = 0)",
     ] {

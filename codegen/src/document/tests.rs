@@ -28,8 +28,8 @@ fn the_snakeboard_latex_has_the_reduced_equations_of_math_3_1() {
     let equations = [
         r"\dot{x} &= \frac{\mathrm{group} \cos\phi \cos\theta}{m}",
         r"\dot{y} &= \frac{\mathrm{group} \cos\phi \sin\theta}{m}",
-        r"\dot{\theta} &= \frac{\mathrm{group} \sin\phi}{r m}",
-        r"\dot{\psi} &= \frac{\mathrm{torso}}{\mathrm{jt}} - \frac{\mathrm{group} \sin\phi}{r m}",
+        r"\dot{\theta} &= \frac{\mathrm{group} \sin\phi}{m r}",
+        r"\dot{\psi} &= \frac{\mathrm{torso}}{\mathrm{jt}} - \frac{\mathrm{group} \sin\phi}{m r}",
         r"\dot{\phi} &= \frac{\mathrm{wheels}}{\mathrm{jw}}",
         r"\dot{\mathrm{group}} &= -\frac{u_{\mathrm{torso}} \sin\phi}{r}",
         r"\dot{\mathrm{torso}} &= u_{\mathrm{torso}}",
@@ -46,11 +46,11 @@ fn the_snakeboard_latex_has_the_reduced_equations_of_math_3_1() {
 
 /// MATH.md 4.1: `pdot = (m r Jt cos phi / Delta) psidot phidot + (Jt sin
 /// phi cos phi / Delta) phidot p`, `Delta = m r^2 + Jt sin^2 phi`; the
-/// document's denominator is `Jt cos^2 phi - Jt - m r^2 = -Delta`.
+/// document's denominator is `Jt + m r^2 - Jt cos^2 phi = Delta`.
 #[test]
 fn the_snakeboard_momentum_equation_is_that_of_math_4_1() {
     let latex = document(SNAKEBOARD, Format::Latex);
-    let equation = r"\dot{p}_{1} &= \frac{-\mathrm{jt} m r \dot{\psi} \dot{\phi} \cos\phi - \mathrm{jt} \dot{\phi} p_{1} \cos\phi \sin\phi}{\mathrm{jt} \cos^{2}\phi - \mathrm{jt} - m r^{2}}";
+    let equation = r"\dot{p}_{1} &= \frac{\dot{\psi} \dot{\phi} m r \mathrm{jt} \cos\phi + \dot{\phi} \mathrm{jt} p_{1} \cos\phi \sin\phi}{\mathrm{jt} + m r^{2} - \mathrm{jt} \cos^{2}\phi}";
     assert!(latex.contains(equation), "{latex}");
     let text = document(SNAKEBOARD, Format::Text);
     assert!(

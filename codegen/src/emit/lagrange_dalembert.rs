@@ -1,16 +1,15 @@
 //! The `acceleration` item: the Lagrange-d'Alembert equations solved for
 //! `(qddot, lambda)` ([`crate::derive::lagrange_dalembert`]), either as
-//! closed-form expressions or by assembling
-//! `[[g, A^T], [A, 0]] [qddot; -lambda] = [B u - C - dV/dq; -Adot qdot]` and
-//! calling `::chaplygin::runtime::linalg::solve` (so a crate using the
-//! numeric form depends on `chaplygin` under that name).
+//! closed-form expressions or as straight-line code computing `g`, `A`,
+//! `B u - C - dV/dq` and `-Adot qdot` and then solving the saddle-point
+//! system by blocks on those numbers.
 
 use super::report::Section;
 use super::{Argument, Function, coordinates, f64_type, function_body, internal, velocities};
 use crate::derive::lagrange_dalembert::{LagrangeDalembert, Strategy, derive};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
-use proc_macro2::{Ident, Span, TokenStream};
+use proc_macro2::TokenStream;
 use quote::quote;
 
 /// `acceleration(&self, q, qdot, u)`, with the derivation's chosen strategy.
@@ -26,7 +25,10 @@ fn report_section(derivation: &LagrangeDalembert) -> Section {
     let mut section = Section::new("Lagrange-d'Alembert equations (qddot, lambda)");
     let chosen = match derivation.strategy {
         Strategy::Symbolic => "closed form (exact symbolic inverses)",
-        Strategy::Numeric => "numeric solve of the saddle-point system at run time",
+        Strategy::Numeric => {
+            "numeric solve of the saddle-point system at run time (by blocks: L D L^T of g \
+             and of A g^-1 A^T)"
+        }
     };
     section.line(format!("solve: {chosen}"));
     let symbolic = derivation
@@ -39,9 +41,6 @@ fn report_section(derivation: &LagrangeDalembert) -> Section {
     section
 }
 
-/// Builds the returned `(qddot, lambda)` from the emitted outputs, given n and c.
-type Assembly = fn(&[TokenStream], usize, usize) -> TokenStream;
-
 /// `acceleration` with the given strategy.
 pub(crate) fn acceleration_with(
     model: &mut Model,
@@ -49,15 +48,13 @@ pub(crate) fn acceleration_with(
     strategy: Strategy,
 ) -> Result<Function, Diagnostics> {
     let (n, c, p) = (model.n(), model.c(), model.p());
-    let (outputs, assemble): (_, Assembly) = match strategy {
-        Strategy::Symbolic => {
-            let solution = derivation
-                .closed_form
-                .as_ref()
-                .ok_or_else(|| internal(model, "the closed form was not derived"))?;
-            (solution.outputs(model), closed_form)
-        }
-        Strategy::Numeric => (derivation.saddle_point.outputs(model), saddle_point),
+    let outputs = match strategy {
+        Strategy::Symbolic => derivation
+            .closed_form
+            .as_ref()
+            .ok_or_else(|| internal(model, "the closed form was not derived"))?
+            .outputs(model),
+        Strategy::Numeric => derivation.numeric_solution.clone(),
     };
     let arguments = [
         coordinates(model),
@@ -67,22 +64,20 @@ pub(crate) fn acceleration_with(
             symbols: derivation.inputs.clone(),
         },
     ];
-    let body = function_body(model, &arguments, &outputs, |values| assemble(values, n, c))?;
+    let body = function_body(model, &arguments, &outputs, |values| solution(values, n))?;
     let f64 = f64_type();
     let (q, qdot, u) = (
         body.argument("q"),
         body.argument("qdot"),
         body.argument("u"),
     );
-    let (statements, operations, mut lowered) = (body.statements, body.operations, body.lowered);
-    if strategy == Strategy::Numeric {
-        lowered.assembly = super::Assembly::SaddlePoint;
-    }
+    let (statements, operations, lowered) = (body.statements, body.operations, body.lowered);
     let method = match strategy {
         Strategy::Symbolic => "Computed in closed form from exact symbolic inverses.",
         Strategy::Numeric => {
-            "Computed by solving `[[g, A^T], [A, 0]] [qddot; -lambda] = [B u - C - dV/dq; -Adot qdot]` \
-             with `chaplygin::runtime::linalg::solve` (NaN where the system is singular)."
+            "Computed by solving `g qddot = B u - C - dV/dq + A^T lambda`, `A qddot = -Adot qdot` \
+             numerically by blocks: `g = L D L^T` and the Schur complement `A g^-1 A^T` likewise \
+             (not finite where the constraint rows are dependent)."
         }
     };
     let item = quote! {
@@ -109,40 +104,10 @@ pub(crate) fn acceleration_with(
     })
 }
 
-/// `(qddot, lambda)` from the closed form's n + c values.
-fn closed_form(values: &[TokenStream], n: usize, _c: usize) -> TokenStream {
+/// `(qddot, lambda)` from the solution's n + c values.
+fn solution(values: &[TokenStream], n: usize) -> TokenStream {
     let (accelerations, multipliers) = values.split_at(n);
     quote!(([#(#accelerations),*], [#(#multipliers),*]))
-}
-
-/// Assembles and solves the saddle-point system from `g` (n*n values), `A`
-/// (c*n), the force (n) and the drift (c).
-fn saddle_point(values: &[TokenStream], n: usize, c: usize) -> TokenStream {
-    let (g, rest) = values.split_at(n * n);
-    let (a, rest) = rest.split_at(c * n);
-    let (force, drift) = rest.split_at(n);
-    let zero = quote!(0.0);
-    let g_rows = (0..n).map(|i| {
-        let transposed = (0..c).map(|r| &a[r * n + i]);
-        let row = &g[i * n..(i + 1) * n];
-        quote!([#(#row,)* #(#transposed),*])
-    });
-    let a_rows = (0..c).map(|r| {
-        let row = &a[r * n..(r + 1) * n];
-        let zeros = std::iter::repeat_n(&zero, c);
-        quote!([#(#row,)* #(#zeros),*])
-    });
-    let size = n + c;
-    let solution = Ident::new("solution", Span::mixed_site());
-    let accelerations = (0..n).map(|i| quote!(#solution[#i]));
-    let multipliers = (n..size).map(|i| quote!(-#solution[#i]));
-    quote! {
-        let #solution = ::chaplygin::runtime::linalg::solve::<#size>(
-            [#(#g_rows,)* #(#a_rows),*],
-            [#(#force,)* #(#drift),*],
-        );
-        ([#(#accelerations),*], [#(#multipliers),*])
-    }
 }
 
 #[cfg(test)]
@@ -152,8 +117,8 @@ mod tests {
     use crate::model::check;
     use crate::syntax::parse_str;
 
-    /// Either strategy, forced, emits one valid method; only the numeric one
-    /// calls the runtime's solver.
+    /// Either strategy, forced, emits one valid method, which calls no
+    /// solver: the numeric one's solve is written out.
     #[test]
     fn both_strategies_emit_a_method() {
         let mut model =
@@ -168,8 +133,8 @@ mod tests {
             assert_eq!(method.sig.inputs.len(), 4);
             let calls_solver = tokens
                 .to_string()
-                .contains(":: chaplygin :: runtime :: linalg :: solve :: < 7usize >");
-            assert_eq!(calls_solver, strategy == Strategy::Numeric, "{strategy:?}");
+                .contains(":: chaplygin :: runtime :: linalg");
+            assert!(!calls_solver, "{strategy:?}");
         }
     }
 }

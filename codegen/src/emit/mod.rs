@@ -63,17 +63,6 @@ pub(crate) struct Lowered {
     pub(crate) program: ir::Program,
     pub(crate) arguments: Vec<(&'static str, usize)>,
     pub(crate) outputs: Vec<ExprId>,
-    pub(crate) assembly: Assembly,
-}
-
-/// How a body turns its program's outputs into the returned value.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Assembly {
-    /// The outputs are the returned entries, in row-major order.
-    Values,
-    /// The outputs are `g`, `A`, the force and the drift of the
-    /// saddle-point system, solved at run time (`acceleration`).
-    SaddlePoint,
 }
 
 /// A model's items, its emitted functions and its report text.
@@ -341,7 +330,6 @@ pub(crate) fn function_body(
             .map(|argument| (argument.name, argument.symbols.len()))
             .collect(),
         outputs: outputs.to_vec(),
-        assembly: Assembly::Values,
     };
     Ok(Body {
         statements: quote!(#statements #value),

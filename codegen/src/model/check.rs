@@ -361,8 +361,13 @@ impl Checker {
             if !self.rule_fresh_name(&name, ident.span(), "coordinate") {
                 continue;
             }
+            // The nodes of the symbols are made in declaration order, so that
+            // printed products list their factors in that order however the
+            // derivations proceed.
             let symbol = self.store.declare(&name, SymbolKind::Coordinate);
-            self.store.velocity_of(symbol);
+            let velocity = self.store.velocity_of(symbol);
+            self.store.symbol(symbol);
+            self.store.symbol(velocity);
             self.scope.bind(&name, Binding::Coordinate(symbol));
             coordinates.push(Variable {
                 declared: Declared {
@@ -392,6 +397,7 @@ impl Checker {
             }
             // Declared even when its default is wrong, so its uses are not reported too.
             let symbol = self.store.declare(&declared.name, SymbolKind::Parameter);
+            self.store.symbol(symbol);
             self.scope.bind(&declared.name, Binding::Parameter(symbol));
             let Some(default) = default else { continue };
             parameters.push(Parameter {

@@ -241,6 +241,113 @@ impl Store {
         self.as_number(id).is_some_and(|value| value.is_zero())
     }
 
+    /// `a = L D L^T` for a symmetric positive definite `a` (its lower
+    /// triangle is read): the unit lower-triangular `L` and the pivots `D`,
+    /// by elimination in order,
+    /// `D_j = a_jj - sum_k<j L_jk^2 D_k`,
+    /// `L_ij = (a_ij - sum_k<j L_ik L_jk D_k) / D_j`. The pivots of a
+    /// positive definite matrix are positive, so no pivoting is needed.
+    pub fn ldl(&mut self, a: &ExprMatrix) -> Result<(ExprMatrix, Vec<ExprId>), MatrixError> {
+        let size = a.rows();
+        let mut lower = ExprMatrix::identity(self, size);
+        // scaled[i][k] = L_ik D_k
+        let mut scaled = ExprMatrix::zeros(self, size, size);
+        let mut pivots = Vec::with_capacity(size);
+        for j in 0..size {
+            let pivot = self.reduced_entry(a.get(j, j), &lower, &scaled, j, j);
+            if self.is_zero_constant(pivot) {
+                return Err(MatrixError::Singular { size, column: j });
+            }
+            let one = self.integer(1);
+            let reciprocal = self.div(one, pivot)?;
+            for i in j + 1..size {
+                let entry = self.reduced_entry(a.get(i, j), &lower, &scaled, i, j);
+                if !self.is_zero_constant(entry) {
+                    lower.set(i, j, self.mul2(entry, reciprocal));
+                    scaled.set(i, j, entry);
+                }
+            }
+            pivots.push(pivot);
+        }
+        Ok((lower, pivots))
+    }
+
+    /// `entry - sum_k<j L_ik (L_jk D_k)`, skipping the constant zeros.
+    fn reduced_entry(
+        &mut self,
+        entry: ExprId,
+        lower: &ExprMatrix,
+        scaled: &ExprMatrix,
+        i: usize,
+        j: usize,
+    ) -> ExprId {
+        let mut terms = vec![entry];
+        for k in 0..j {
+            let (l, s) = (lower.get(i, k), scaled.get(j, k));
+            if !self.is_zero_constant(l) && !self.is_zero_constant(s) {
+                let product = self.mul2(l, s);
+                terms.push(self.neg(product));
+            }
+        }
+        self.add(&terms)
+    }
+
+    /// `L^-1 b` for a unit lower-triangular `L` (forward substitution).
+    pub fn forward_substitution(&mut self, lower: &ExprMatrix, b: &ExprMatrix) -> ExprMatrix {
+        let mut x = b.clone();
+        for column in 0..b.columns() {
+            for i in 0..b.rows() {
+                let mut terms = vec![b.get(i, column)];
+                for k in 0..i {
+                    let (l, known) = (lower.get(i, k), x.get(k, column));
+                    if !self.is_zero_constant(l) && !self.is_zero_constant(known) {
+                        let product = self.mul2(l, known);
+                        terms.push(self.neg(product));
+                    }
+                }
+                x.set(i, column, self.add(&terms));
+            }
+        }
+        x
+    }
+
+    /// `L^-T b` for a unit lower-triangular `L` (back substitution).
+    pub fn back_substitution(&mut self, lower: &ExprMatrix, b: &ExprMatrix) -> ExprMatrix {
+        let mut x = b.clone();
+        for column in 0..b.columns() {
+            for i in (0..b.rows()).rev() {
+                let mut terms = vec![b.get(i, column)];
+                for k in i + 1..b.rows() {
+                    let (l, known) = (lower.get(k, i), x.get(k, column));
+                    if !self.is_zero_constant(l) && !self.is_zero_constant(known) {
+                        let product = self.mul2(l, known);
+                        terms.push(self.neg(product));
+                    }
+                }
+                x.set(i, column, self.add(&terms));
+            }
+        }
+        x
+    }
+
+    /// Row `i` of `b` divided by `pivots[i]`.
+    pub fn divide_rows(
+        &mut self,
+        b: &ExprMatrix,
+        pivots: &[ExprId],
+    ) -> Result<ExprMatrix, MatrixError> {
+        let mut x = b.clone();
+        for (i, &pivot) in pivots.iter().enumerate() {
+            for column in 0..b.columns() {
+                let entry = b.get(i, column);
+                if !self.is_zero_constant(entry) {
+                    x.set(i, column, self.div(entry, pivot)?);
+                }
+            }
+        }
+        Ok(x)
+    }
+
     /// The solution `x` of `a x = b` by Gaussian elimination with the
     /// diagonal as pivots, in order (see the module documentation). Fails
     /// when a pivot is the constant 0.
@@ -356,6 +463,62 @@ mod tests {
         let other = Matrix::from_expressions(&mut store, 3, 2, other.entries()).expect("normal");
         let atoms = store.atoms().clone();
         assert!(!other.sub(&exact, &atoms).expect("same shape").is_zero());
+    }
+
+    /// `L D L^T` of a 3 x 3 positive definite trigonometric matrix
+    /// multiplies back to it, and `L^-1`, `L^-T` invert `L` and `L^T`, as
+    /// rational functions.
+    #[test]
+    fn ldl_factors_and_substitutions_invert() {
+        let mut store = Store::new();
+        let x = store.declare("x", SymbolKind::Coordinate);
+        let x = store.symbol(x);
+        let cos_x = store.apply(Function::Cos, x).expect("applies");
+        let [one, two, three] = [1, 2, 3].map(|n| store.integer(n));
+        let zero = store.integer(0);
+        let three_plus_cos = store.add2(three, cos_x);
+        let a = ExprMatrix::new(
+            3,
+            3,
+            vec![
+                three_plus_cos,
+                cos_x,
+                one,
+                cos_x,
+                two,
+                zero,
+                one,
+                zero,
+                three,
+            ],
+        )
+        .expect("3 x 3");
+        let (lower, pivots) = store.ldl(&a).expect("positive definite");
+        let mut diagonal = ExprMatrix::zeros(&mut store, 3, 3);
+        for (i, &p) in pivots.iter().enumerate() {
+            diagonal.set(i, i, p);
+        }
+        let product = lower
+            .mul(&diagonal, &mut store)
+            .and_then(|ld| ld.mul(&lower.transpose(), &mut store))
+            .expect("fits");
+        let b = ExprMatrix::new(3, 2, vec![one, x, two, cos_x, zero, three]).expect("3 x 2");
+        let forward = store.forward_substitution(&lower, &b);
+        let back = store.back_substitution(&lower, &b);
+        let undone_forward = lower.mul(&forward, &mut store).expect("fits");
+        let undone_back = lower.transpose().mul(&back, &mut store).expect("fits");
+        for (found, expected) in [(&product, &a), (&undone_forward, &b), (&undone_back, &b)] {
+            let rows = expected.rows();
+            let columns = expected.columns();
+            let found = Matrix::from_expressions(&mut store, rows, columns, found.entries())
+                .expect("normal");
+            let expected = Matrix::from_expressions(&mut store, rows, columns, expected.entries())
+                .expect("normal");
+            let atoms = store.atoms().clone();
+            assert!(found.sub(&expected, &atoms).expect("same shape").is_zero());
+        }
+        assert_eq!(lower.get(1, 2), zero, "L is unit lower-triangular");
+        assert_eq!(lower.get(1, 1), one);
     }
 
     #[test]

@@ -1,6 +1,6 @@
-//! A test model whose dense, coupled metric makes the run-time solve the
-//! cheaper strategy for `acceleration`, so the numeric path is exercised in a
-//! crate that depends only on `chaplygin`.
+//! A test model whose dense, coupled metric makes the numeric solve (by
+//! blocks) the cheaper strategy for `acceleration` by far (177 operations
+//! against 507 for the closed form).
 
 chaplygin::model! {
     /// The Chaplygin sleigh towing a point mass `mp` on a rod of length `l`
