@@ -34,7 +34,9 @@
 //!   and fails (division by a zero pivot) exactly where the equations do.
 //!
 //! The cheaper one after common subexpressions are shared is chosen
-//! ([`LagrangeDalembert::strategy`]). Exact inverses grow
+//! ([`LagrangeDalembert::strategy`]), by the weighted cost of
+//! [`crate::ir::Program::weighted_cost`] (a division weighs four additions,
+//! a call of `sin` twenty). Exact inverses grow
 //! quickly with the size of a dense block (a 6 x 6 coupled metric with trig
 //! entries does not finish in minutes), so the closed form is only derived
 //! when every diagonal block of `g`, and `c`, are at most
@@ -96,6 +98,10 @@ pub struct LagrangeDalembert {
     /// Operations of the numeric solution (pieces and solve) after common
     /// subexpressions are shared.
     pub numeric_operations: u64,
+    /// The weighted costs ([`crate::ir::Program::weighted_cost`]) of the
+    /// closed form (when derived) and of the numeric solution, which decide
+    /// the strategy.
+    pub weighted_costs: (Option<u64>, u64),
     /// The cheaper of the two (symbolic on a tie; numeric without a closed form).
     pub strategy: Strategy,
 }
@@ -128,7 +134,7 @@ pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
     let terms = Terms::of(model, &inputs)?;
     let saddle_point = terms.saddle_point(model);
     let numeric_solution = saddle_point.solution_by_blocks(model)?;
-    let numeric_operations = operations(model, &inputs, &numeric_solution)?;
+    let (numeric_operations, numeric_weight) = operations(model, &inputs, &numeric_solution)?;
     let closed_form = if closed_form_is_tractable(model) {
         model
             .attempt(CLOSED_FORM_PRODUCTS, |model| terms.closed_form(model))
@@ -136,15 +142,17 @@ pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
     } else {
         None
     };
-    let symbolic_operations = match &closed_form {
+    let symbolic = match &closed_form {
         Some(closed_form) => {
             let outputs = closed_form.outputs(model);
             Some(operations(model, &inputs, &outputs)?)
         }
         None => None,
     };
-    let strategy = match symbolic_operations {
-        Some(symbolic) if symbolic <= numeric_operations => Strategy::Symbolic,
+    let symbolic_operations = symbolic.map(|(count, _)| count);
+    let symbolic_weight = symbolic.map(|(_, weight)| weight);
+    let strategy = match symbolic_weight {
+        Some(weight) if weight <= numeric_weight => Strategy::Symbolic,
         _ => Strategy::Numeric,
     };
     Ok(LagrangeDalembert {
@@ -154,6 +162,7 @@ pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
         numeric_solution,
         symbolic_operations,
         numeric_operations,
+        weighted_costs: (symbolic_weight, numeric_weight),
         strategy,
     })
 }
@@ -179,14 +188,19 @@ fn declare_inputs(model: &mut Model) -> Vec<SymbolId> {
         .collect()
 }
 
-/// The operation count of `outputs` after common subexpressions are shared.
-fn operations(model: &Model, inputs: &[SymbolId], outputs: &[ExprId]) -> Result<u64, IrError> {
+/// The operation count of `outputs` after common subexpressions are shared,
+/// and their weighted cost.
+fn operations(
+    model: &Model,
+    inputs: &[SymbolId],
+    outputs: &[ExprId],
+) -> Result<(u64, u64), IrError> {
     let mut arguments = model.coordinate_symbols();
     arguments.extend(&model.velocities);
     arguments.extend(inputs);
     arguments.extend(model.parameter_symbols());
     let program = ir::lower(&model.store, &arguments, outputs)?;
-    Ok(program.operation_count().after_cse)
+    Ok((program.operation_count().after_cse, program.weighted_cost()))
 }
 
 /// The terms of the equations, as columns.
@@ -529,10 +543,10 @@ pub struct Towed {
         assert_strategies_agree::<4>(SLEIGH);
     }
 
-    /// The strategy with fewer operations after CSE is emitted, the closed
-    /// form on a tie: the snakeboard's block-diagonal metric factors cheaply
-    /// (the blocks' solve beats the closed form), the towed sleigh's dense
-    /// coupled metric does not invert cheaply in closed form.
+    /// The strategy with the smaller weighted cost is emitted, the closed
+    /// form on a tie: the sleigh's and the snakeboard's closed forms are
+    /// cheap, the towed sleigh's dense coupled metric does not invert
+    /// cheaply in closed form.
     #[test]
     fn the_cheaper_strategy_is_chosen() {
         for (name, source) in [
@@ -541,12 +555,13 @@ pub struct Towed {
             ("towed", TOWED),
         ] {
             let (_, d) = derived(source);
-            let symbolic = d.symbolic_operations.expect("within the limits");
+            let (symbolic, numeric) = d.weighted_costs;
+            let symbolic = symbolic.expect("within the limits");
             println!(
-                "{name}: closed form {symbolic}, by blocks {} -> {:?}",
-                d.numeric_operations, d.strategy
+                "{name}: operations closed form {:?}, by blocks {}; weighted {symbolic}, {numeric} -> {:?}",
+                d.symbolic_operations, d.numeric_operations, d.strategy
             );
-            let expected = if symbolic <= d.numeric_operations {
+            let expected = if symbolic <= numeric {
                 Strategy::Symbolic
             } else {
                 Strategy::Numeric

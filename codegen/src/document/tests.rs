@@ -165,3 +165,18 @@ fn formats_are_named_as_on_the_command_line() {
     assert_eq!("json".parse(), Ok(Format::Json));
     assert_eq!("pdf".parse::<Format>(), Err(UnknownFormat("pdf".into())));
 }
+
+/// A chain of three wheeled links: its reduced form is structured, and the
+/// document says how it is computed instead of printing expanded matrices.
+#[test]
+fn a_structured_reduced_form_is_described_not_expanded() {
+    let text = document(&crate::fixtures::chain_of_links(3), Format::Text);
+    assert!(text.contains("reduced form derived: structured"), "{text}");
+    assert!(text.contains("gbar facts decided"), "{text}");
+    assert!(text.contains("X = [X1 ... Xk], a basis of D ="), "{text}");
+    assert!(!text.contains("Jbar ="), "{text}");
+    let json: Value =
+        serde_json::from_str(&document(&crate::fixtures::chain_of_links(3), Format::Json))
+            .expect("valid JSON");
+    assert!(json["port_hamiltonian"].is_object(), "{json}");
+}

@@ -38,6 +38,12 @@ fn report_section(derivation: &LagrangeDalembert) -> Section {
         "operations after CSE: closed form {symbolic}, numeric solve {}",
         derivation.numeric_operations
     ));
+    let (symbolic_weight, numeric_weight) = derivation.weighted_costs;
+    let symbolic_weight = symbolic_weight.map_or("-".to_string(), |w| w.to_string());
+    section.line(format!(
+        "weighted cost (a division 4, a call 20): closed form {symbolic_weight}, \
+         numeric solve {numeric_weight}"
+    ));
     section
 }
 

@@ -195,6 +195,26 @@ impl Op {
         }
     }
 
+    /// The operation's weight when choosing between forms of one function:
+    /// its throughput cost relative to an addition on a current x86-64 core,
+    /// roughly. Additions, subtractions, negations and products weigh 1;
+    /// divisions, square roots and `powi` (a chain of products) 4; calls of
+    /// the elementary functions (`sin_cos` included) 20.
+    pub fn weight(&self) -> u64 {
+        match self {
+            Op::Input(_) | Op::Constant(_) => 0,
+            Op::Add(..) | Op::Sub(..) | Op::Mul(..) | Op::Neg(_) => 1,
+            Op::Div(..) | Op::Sqrt(_) | Op::Powi(..) => 4,
+            Op::Powf(..)
+            | Op::Sin(_)
+            | Op::Cos(_)
+            | Op::Tan(_)
+            | Op::Exp(_)
+            | Op::Ln(_)
+            | Op::SinCos { .. } => 20,
+        }
+    }
+
     /// The values the operation reads, in order.
     pub fn operands(&self) -> impl Iterator<Item = Value> {
         let (first, second) = match *self {
@@ -299,6 +319,13 @@ impl Program {
     /// The number of values the instructions define.
     pub fn value_count(&self) -> usize {
         self.value_count
+    }
+
+    /// The sum of the instructions' [`Op::weight`]s: what the code
+    /// generator minimises when it chooses between forms of one function
+    /// (the operation count treats a division like an addition).
+    pub fn weighted_cost(&self) -> u64 {
+        self.instructions.iter().map(|i| i.op.weight()).sum()
     }
 
     /// Operation counts before and after common subexpressions are shared.

@@ -223,7 +223,7 @@ fn the_analysis_at_points_agrees_with_the_exact_analysis() {
 /// completely nonholonomic; the structured basis annihilates A at a point.
 #[test]
 fn a_long_chain_is_analysed_at_points() {
-    let mut chain = model(&chain_of_links(6));
+    let mut chain = model(&crate::fixtures::chain_of_links(6));
     let analysis = analyse(&mut chain).expect("analyses");
     assert_eq!(analysis.growth_method, super::Method::Modular);
     assert!(!analysis.integrable);
@@ -241,43 +241,4 @@ fn a_long_chain_is_analysed_at_points() {
         .evaluate_modular(product.entries(), &crate::sym::modular::Point::new(5))
         .expect("in the class");
     assert!(values.iter().all(|&v| v == 0), "A X = 0 at the point");
-}
-
-/// The wheeled chain of `links` links (the models crate's `n_link_snake`).
-fn chain_of_links(links: usize) -> String {
-    let coordinates: Vec<String> = ["x".to_string(), "y".to_string()]
-        .into_iter()
-        .chain((1..=links).map(|i| format!("theta{i}")))
-        .collect();
-    let mut velocities = vec!["vx1 = dot(x)".to_string(), "vy1 = dot(y)".to_string()];
-    for i in 2..=links {
-        let (a, b) = (format!("theta{}", i - 1), format!("theta{i}"));
-        velocities.push(format!(
-            "vx{i} = vx{} - l/2*(sin({a})*dot({a}) + sin({b})*dot({b}))",
-            i - 1
-        ));
-        velocities.push(format!(
-            "vy{i} = vy{} + l/2*(cos({a})*dot({a}) + cos({b})*dot({b}))",
-            i - 1
-        ));
-    }
-    let energy: Vec<String> = (1..=links)
-        .map(|i| format!("m/2*(vx{i}^2 + vy{i}^2) + j/2*dot(theta{i})^2"))
-        .collect();
-    let constraints: Vec<String> = (1..=links)
-        .map(|i| format!("wheel{i} = -sin(theta{i})*vx{i} + cos(theta{i})*vy{i}"))
-        .collect();
-    format!(
-        "pub struct Chain {{
-            coordinates: [{}],
-            parameters: [m = 1.0, l = 0.6, j = 0.03],
-            define: [{}],
-            kinetic_energy: {},
-            constraints: [{}],
-        }}",
-        coordinates.join(", "),
-        velocities.join(", "),
-        energy.join(" + "),
-        constraints.join(", ")
-    )
 }
