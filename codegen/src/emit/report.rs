@@ -148,16 +148,30 @@ pub(super) fn constraints(model: &mut Model, analysis: &ConstraintAnalysis) -> S
     section
 }
 
-/// Operation counts of each emitted function, before and after CSE.
+/// Operation counts of each emitted function, before and after CSE. Before
+/// CSE every shared node counts each time it is used (what expanding the
+/// expression would cost); counts from a billion on are written in
+/// scientific notation, and the count saturates at `u64::MAX` (1.84e19).
 pub(super) fn operations(functions: &[Function]) -> Section {
     let mut section = Section::new("Operation counts (before CSE -> after CSE)");
     for function in functions {
         section.line(format!(
             "{}: {} -> {}",
-            function.name, function.operations.before_cse, function.operations.after_cse
+            function.name,
+            count(function.operations.before_cse),
+            count(function.operations.after_cse)
         ));
     }
     section
+}
+
+/// `n` in full below a billion, else as `1.23e12`.
+fn count(n: u64) -> String {
+    if n < 1_000_000_000 {
+        n.to_string()
+    } else {
+        format!("{:.2e}", n as f64)
+    }
 }
 
 fn speeds(model: &Model, indices: &[usize]) -> String {
@@ -212,7 +226,16 @@ fn moore(model: &Model, analysis: &ConstraintAnalysis) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{Report, Section, constraints};
+    use super::{Report, Section, constraints, count};
+
+    #[test]
+    fn large_counts_are_written_in_scientific_notation() {
+        assert_eq!(count(999_999_999), "999999999");
+        assert_eq!(count(2_954_864_102_913_747_000), "2.95e18");
+        assert_eq!(count(u64::MAX), "1.84e19");
+        assert_eq!(count(7_000_000_000).parse::<f64>(), Ok(7e9));
+    }
+
     use crate::derive::constraints::analyse;
     use crate::model::check;
     use crate::syntax::parse_str;
