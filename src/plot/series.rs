@@ -74,21 +74,27 @@ pub(super) fn draw_energy(
         format!("E(t) - E(0){unit}, absolute since E(0) = 0")
     };
     let caption = format!("Energy error: E(0) = {initial:.6e}, max |error| = {worst:.2e}");
-    let y_range = padded_range(error.iter().copied(), 0.05);
-    // a tick computed at zero lands a round-off away from it: a millionth
-    // of the span is zero
-    let zero = (y_range.end - y_range.start) * 1e-6;
-    let format = move |v: &f64| {
-        if v.abs() < zero {
-            "0".to_string()
-        } else {
-            format!("{v:.1e}")
-        }
+    // plotters places the ticks of a range of 1e-15 a round-off off the
+    // round numbers: the error is drawn in units of its power of ten, so
+    // that the ticks are round and read as plain decimals
+    let exponent = if worst > 0.0 && worst.is_finite() {
+        worst.log10().floor()
+    } else {
+        0.0
     };
+    let unit = 10f64.powf(exponent);
+    let scaled: Vec<f64> = error.iter().map(|e| e / unit).collect();
+    let y_desc = if exponent == 0.0 {
+        y_desc
+    } else {
+        format!("{y_desc}, in units of 1e{exponent}")
+    };
+    let y_range = padded_range(scaled.iter().copied(), 0.05);
+    let format = tick_labels(&y_range);
     let panel = Panel {
         caption,
         y_desc,
-        values: &error,
+        values: &scaled,
         y_format: &format,
     };
     draw_against_time(file, spec, time, panel, y_range)
