@@ -47,63 +47,34 @@ pub(super) fn derive(
     momenta: &[SymbolId],
     inputs: &[SymbolId],
 ) -> Result<Forms, MatrixError> {
-    let (n, k) = (model.n(), momenta.len());
+    let n = model.n();
     let coordinates = model.coordinate_symbols();
     let store = &mut model.store;
     let g = ExprMatrix::of(&model.mass_matrix, store);
     let b = ExprMatrix::of(&model.input_matrix, store);
-    let x = fields.clone();
-    let x_transposed = x.transpose();
-    let h = x_transposed.mul(&g, store)?;
-    let metric_inverse = symmetric(&h.mul(&x, store)?);
-    let identity = ExprMatrix::identity(store, k);
-    let metric = symmetric(&store.solve_in_order(&metric_inverse, &identity)?);
-    let projection = metric.mul(&x_transposed, store)?;
-    let momentum_map = metric.mul(&h, store)?;
+    let potential = store.expression_of(&model.potential_energy);
+    let maps = Maps::of(store, fields, &g)?;
     let alpha = symbols_column(store, momenta);
     let u = symbols_column(store, inputs);
     let metric_rates: Vec<ExprMatrix> = coordinates
         .iter()
-        .map(|&q| metric_inverse.derivative(q, store))
+        .map(|&q| maps.metric_inverse.derivative(q, store))
         .collect();
-    let potential = store.expression_of(&model.potential_energy);
-    let hamiltonian = hamiltonian(store, &alpha, &metric_inverse, potential)?;
+    let hamiltonian = hamiltonian(store, &alpha, &maps.metric_inverse, potential)?;
     let mut gradient: Vec<ExprId> = coordinates
         .iter()
         .map(|&q| store.derivative(hamiltonian, q))
         .collect();
-    gradient.extend(metric_inverse.mul(&alpha, store)?.entries());
-    let core = gyroscopic_core(store, &x, &h, &metric_rates, &alpha, &coordinates)?;
-    let sandwiched = metric.mul(&core, store)?.mul(&metric, store)?;
-    let gyroscopic = skew_part(store, &sandwiched);
-    let structure = structure_matrix(store, &projection, &gyroscopic);
-    let reduced_inputs = projection.mul(&b, store)?;
-    let mut input_matrix = ExprMatrix::zeros(store, n + k, b.columns());
-    for a in 0..k {
-        for j in 0..b.columns() {
-            input_matrix.set(n + a, j, reduced_inputs.get(a, j));
-        }
-    }
-    let velocities = x.mul(&alpha, store)?;
-    let force_gradient = ExprMatrix::column(gradient[..n].to_vec());
-    let minus_one = store.integer(-1);
-    let potential_force = x_transposed
-        .mul(&force_gradient, store)?
-        .scale(minus_one, store);
-    let applied = x_transposed.mul(&b.mul(&u, store)?, store)?;
-    let gyroscopic_force = core.mul(&alpha, store)?;
-    let bracket = potential_force
-        .add(&gyroscopic_force, store)?
-        .add(&applied, store)?;
-    let momentum_rates = metric.mul(&bracket, store)?;
-    let mut rhs = velocities.entries().to_vec();
-    rhs.extend(momentum_rates.entries());
-    let output = b.transpose().mul(&velocities, store)?.entries().to_vec();
+    gradient.extend(maps.metric_inverse.mul(&alpha, store)?.entries());
+    let core = gyroscopic_core(store, &maps, &metric_rates, &alpha, &coordinates)?;
+    let structure = structure_matrix(store, &maps, &core)?;
+    let input_matrix = reduced_input_matrix(store, &maps, &b, n)?;
+    let (rhs, output) = flow(store, &maps, &core, &gradient[..n], &alpha, &u, &b)?;
     Ok(Forms {
-        velocity_map: x,
-        momentum_map,
-        metric_inverse,
-        metric,
+        velocity_map: maps.velocities,
+        momentum_map: maps.momentum_map,
+        metric_inverse: maps.metric_inverse,
+        metric: maps.metric,
         structure,
         input_matrix,
         hamiltonian,
@@ -113,16 +84,99 @@ pub(super) fn derive(
     })
 }
 
+/// The maps between velocities and momenta for `h = X^T g`.
+struct Maps {
+    /// `X`, n x k: `qdot = X alpha`.
+    velocities: ExprMatrix,
+    /// `h = X^T g`, k x n.
+    basis: ExprMatrix,
+    /// `gbar_inv = X^T g X`, symmetric as written.
+    metric_inverse: ExprMatrix,
+    /// `gbar`, by elimination, symmetric as written.
+    metric: ExprMatrix,
+    /// `P = gbar X^T`.
+    projection: ExprMatrix,
+    /// `P g = gbar h`.
+    momentum_map: ExprMatrix,
+}
+
+impl Maps {
+    fn of(store: &mut Store, fields: &ExprMatrix, g: &ExprMatrix) -> Result<Maps, MatrixError> {
+        let x_transposed = fields.transpose();
+        let basis = x_transposed.mul(g, store)?;
+        let metric_inverse = symmetric(&basis.mul(fields, store)?);
+        let identity = ExprMatrix::identity(store, fields.columns());
+        let metric = symmetric(&store.solve_in_order(&metric_inverse, &identity)?);
+        let projection = metric.mul(&x_transposed, store)?;
+        let momentum_map = metric.mul(&basis, store)?;
+        Ok(Maps {
+            velocities: fields.clone(),
+            basis,
+            metric_inverse,
+            metric,
+            projection,
+            momentum_map,
+        })
+    }
+}
+
+/// `Bbar = [0; P B]`, s x p.
+fn reduced_input_matrix(
+    store: &mut Store,
+    maps: &Maps,
+    b: &ExprMatrix,
+    n: usize,
+) -> Result<ExprMatrix, MatrixError> {
+    let reduced = maps.projection.mul(b, store)?;
+    let k = reduced.rows();
+    let mut input_matrix = ExprMatrix::zeros(store, n + k, b.columns());
+    for a in 0..k {
+        for j in 0..b.columns() {
+            input_matrix.set(n + a, j, reduced.get(a, j));
+        }
+    }
+    Ok(input_matrix)
+}
+
+/// `xdot = (X alpha, gbar (-X^T dHbar/dq + S alpha + X^T B u))` and
+/// `y = B^T X alpha`.
+fn flow(
+    store: &mut Store,
+    maps: &Maps,
+    core: &ExprMatrix,
+    force_gradient: &[ExprId],
+    alpha: &ExprMatrix,
+    u: &ExprMatrix,
+    b: &ExprMatrix,
+) -> Result<(Vec<ExprId>, Vec<ExprId>), MatrixError> {
+    let x_transposed = maps.velocities.transpose();
+    let velocities = maps.velocities.mul(alpha, store)?;
+    let minus_one = store.integer(-1);
+    let potential_force = x_transposed
+        .mul(&ExprMatrix::column(force_gradient.to_vec()), store)?
+        .scale(minus_one, store);
+    let applied = x_transposed.mul(&b.mul(u, store)?, store)?;
+    let gyroscopic_force = core.mul(alpha, store)?;
+    let bracket = potential_force
+        .add(&gyroscopic_force, store)?
+        .add(&applied, store)?;
+    let momentum_rates = maps.metric.mul(&bracket, store)?;
+    let mut rhs = velocities.entries().to_vec();
+    rhs.extend(momentum_rates.entries());
+    let output = b.transpose().mul(&velocities, store)?.entries().to_vec();
+    Ok((rhs, output))
+}
+
 /// `S_ab = sum_c alpha_c (X_a(gbar_inv_cb) - X_b(gbar_inv_ca) - (h [X_a, X_b])_c)`
 /// for `a < b`, mirrored with the opposite sign.
 fn gyroscopic_core(
     store: &mut Store,
-    x: &ExprMatrix,
-    h: &ExprMatrix,
+    maps: &Maps,
     metric_rates: &[ExprMatrix],
     alpha: &ExprMatrix,
     coordinates: &[SymbolId],
 ) -> Result<ExprMatrix, MatrixError> {
+    let (x, h) = (&maps.velocities, &maps.basis);
     let k = x.columns();
     let mut core = ExprMatrix::zeros(store, k, k);
     for a in 0..k {
@@ -210,13 +264,16 @@ fn skew_part(store: &mut Store, matrix: &ExprMatrix) -> ExprMatrix {
     skew
 }
 
-/// `Jbar = [[0, P^T], [-P, Gamma]]`, each lower entry the negation of its
-/// upper one.
+/// `Jbar = [[0, P^T], [-P, Gamma]]` with `Gamma = gbar S gbar`, each lower
+/// entry the negation of its upper one.
 fn structure_matrix(
     store: &mut Store,
-    projection: &ExprMatrix,
-    gyroscopic: &ExprMatrix,
-) -> ExprMatrix {
+    maps: &Maps,
+    core: &ExprMatrix,
+) -> Result<ExprMatrix, MatrixError> {
+    let sandwiched = maps.metric.mul(core, store)?.mul(&maps.metric, store)?;
+    let gyroscopic = skew_part(store, &sandwiched);
+    let projection = &maps.projection;
     let (k, n) = (projection.rows(), projection.columns());
     let mut structure = ExprMatrix::zeros(store, n + k, n + k);
     for a in 0..k {
@@ -229,7 +286,7 @@ fn structure_matrix(
             structure.set(n + a, n + b, gyroscopic.get(a, b));
         }
     }
-    structure
+    Ok(structure)
 }
 
 fn symbols_column(store: &mut Store, symbols: &[SymbolId]) -> ExprMatrix {
