@@ -309,21 +309,24 @@ impl SaddlePointSystem {
     }
 }
 
-/// `u^T v` for two n x c matrices, its upper triangle computed and mirrored
-/// (it is symmetric: `v` is `u` with its rows scaled).
+/// `u^T v` for two n x c matrices, symmetric because `v` is `u` with its
+/// rows scaled: the upper triangle is computed and mirrored.
 fn symmetric_product(
     store: &mut Store,
     u: &ExprMatrix,
     v: &ExprMatrix,
 ) -> Result<ExprMatrix, MatrixError> {
-    let product = u.transpose().mul(v, store)?;
-    let mut symmetric = product.clone();
-    for i in 0..product.rows() {
-        for j in 0..i {
-            symmetric.set(i, j, product.get(j, i));
+    let size = u.columns();
+    let mut product = ExprMatrix::zeros(store, size, size);
+    for i in 0..size {
+        for j in i..size {
+            let row = ExprMatrix::column(u.column_entries(i)).transpose();
+            let entry = row.mul(&ExprMatrix::column(v.column_entries(j)), store)?;
+            product.set(i, j, entry.get(0, 0));
+            product.set(j, i, entry.get(0, 0));
         }
     }
-    Ok(symmetric)
+    Ok(product)
 }
 
 /// The column of the given symbols.

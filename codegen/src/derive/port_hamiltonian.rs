@@ -71,12 +71,8 @@ pub struct PortHamiltonian {
     pub inputs: Vec<SymbolId>,
     /// True when `h` was declared, false when the tool chose `(g X)^T`.
     pub declared_basis: bool,
-    /// The exact normal forms: always for a declared basis, for the tool's
-    /// basis when they fit [`EXACT_REDUCED_PRODUCTS`].
-    pub exact: Option<Exact>,
-    /// The structured forms ([`structured`]), for the tool's basis when the
-    /// exact ones do not fit.
-    pub structured: Option<Forms>,
+    /// The derived form: exact, or structured.
+    pub form: Form,
     /// `gbar` does not depend on the coordinates.
     pub metric_constant: bool,
     /// `gbar` is diagonal.
@@ -84,6 +80,17 @@ pub struct PortHamiltonian {
     /// How the two facts were decided: on the exact forms, or at random
     /// points on the structured ones.
     pub facts_method: Method,
+}
+
+/// How the reduced form was derived.
+#[derive(Clone, Debug)]
+pub enum Form {
+    /// In exact normal form: always for a declared basis, for the tool's
+    /// basis when it fits [`EXACT_REDUCED_PRODUCTS`].
+    Exact(Exact),
+    /// Structured ([`structured`]), for the tool's basis when the exact form
+    /// does not fit.
+    Structured(Forms),
 }
 
 /// The reduced form in exact normal form.
@@ -174,15 +181,21 @@ impl PortHamiltonian {
         state
     }
 
-    /// The forms emission chooses from: the products of the exact matrices'
-    /// entries (when exact), then the structured derivation's.
-    pub fn candidate_forms(&self, model: &mut Model) -> Result<Vec<Forms>, MatrixError> {
-        let mut forms = Vec::with_capacity(2);
-        if let Some(exact) = &self.exact {
-            forms.push(exact.forms(model, &self.momenta, &self.inputs)?);
+    /// The exact form, when it was derived.
+    pub fn exact(&self) -> Option<&Exact> {
+        match &self.form {
+            Form::Exact(exact) => Some(exact),
+            Form::Structured(_) => None,
         }
-        forms.extend(self.structured.clone());
-        Ok(forms)
+    }
+
+    /// The forms as expressions: the products of the exact matrices'
+    /// entries, or the structured derivation's.
+    pub fn forms(&self, model: &mut Model) -> Result<Forms, MatrixError> {
+        match &self.form {
+            Form::Exact(exact) => exact.forms(model, &self.momenta, &self.inputs),
+            Form::Structured(forms) => Ok(forms.clone()),
+        }
     }
 }
 
@@ -263,52 +276,50 @@ pub fn derive(
         .iter()
         .map(|input| fresh_symbol(model, &input.name, SymbolKind::Auxiliary))
         .collect();
-    let (exact, structured) = match model.momentum_basis.clone() {
-        Some(declared) => {
-            let exact = derive_exact(model, &declared.rows, None, &momenta, &inputs)?;
-            (Some(exact), None)
-        }
-        None => {
-            let exact = match &basis.fields {
-                Some(fields) => model
-                    .attempt(EXACT_REDUCED_PRODUCTS, |model| {
-                        let h = fields
-                            .transpose()
-                            .mul(&model.mass_matrix, model.store.atoms())?;
-                        derive_exact(model, &h, Some(fields), &momenta, &inputs)
-                    })
-                    .transpose()?,
-                None => None,
-            };
-            match exact {
-                Some(exact) => (Some(exact), None),
-                None => {
-                    let forms =
-                        structured::derive(model, &basis.field_expressions, &momenta, &inputs)?;
-                    (None, Some(forms))
-                }
-            }
-        }
+    let exact = match (model.momentum_basis.clone(), &basis.fields) {
+        (Some(declared), _) => Some(derive_exact(
+            model,
+            &declared.rows,
+            None,
+            &momenta,
+            &inputs,
+        )?),
+        (None, Some(fields)) => model
+            .attempt(EXACT_REDUCED_PRODUCTS, |model| {
+                let h = fields
+                    .transpose()
+                    .mul(&model.mass_matrix, model.store.atoms())?;
+                derive_exact(model, &h, Some(fields), &momenta, &inputs)
+            })
+            .transpose()?,
+        (None, None) => None,
     };
-    let (metric_constant, metric_diagonal, facts_method) = match (&exact, &structured) {
-        (Some(exact), _) => (
+    let form = match exact {
+        Some(exact) => Form::Exact(exact),
+        None => Form::Structured(structured::derive(
+            model,
+            &basis.field_expressions,
+            &momenta,
+            &inputs,
+        )?),
+    };
+    let (metric_constant, metric_diagonal, facts_method) = match &form {
+        Form::Exact(exact) => (
             is_constant(model, &exact.metric)?,
             is_diagonal(&exact.metric),
             Method::NormalForm,
         ),
-        (None, Some(forms)) => {
+        Form::Structured(forms) => {
             let (constant, diagonal) = facts_at_points(model, &forms.metric_inverse)?;
             (constant, diagonal, Method::Modular)
         }
-        (None, None) => unreachable!("a declared basis is derived exactly"),
     };
     Ok(PortHamiltonian {
         momentum_names,
         momenta,
         inputs,
         declared_basis: model.momentum_basis.is_some(),
-        exact,
-        structured,
+        form,
         metric_constant,
         metric_diagonal,
         facts_method,
@@ -652,7 +663,7 @@ mod tests {
     }
 
     fn exact(reduced: &PortHamiltonian) -> &Exact {
-        reduced.exact.as_ref().expect("derived exactly")
+        reduced.exact().expect("derived exactly")
     }
 
     /// True when the expressions equal the normal forms as rational functions.
@@ -672,7 +683,7 @@ mod tests {
     fn the_structured_form_equals_the_exact_form() {
         for source in [snakeboard_without_basis(), SLEIGH.to_string()] {
             let (mut model, reduced) = derived(&source);
-            assert!(reduced.structured.is_none(), "the exact form fits");
+            assert!(reduced.exact().is_some(), "the exact form fits");
             let basis = distribution_basis(&mut model).expect("regular at the defaults");
             let forms = super::structured::derive(
                 &mut model,

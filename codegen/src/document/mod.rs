@@ -536,7 +536,7 @@ fn reduced_section(model: &mut Model, reduced: &PortHamiltonian, rhs: &[ExprId])
         ),
         names_fact("momenta", "momenta", reduced.momentum_names.clone()),
     ];
-    match &reduced.exact {
+    match reduced.exact() {
         Some(exact) => items.extend(exact_items(model, reduced, exact, rhs)),
         None => items.extend(structured_items(reduced)),
     }

@@ -43,9 +43,7 @@ pub(super) fn functions(
     basis: &DistributionBasis,
 ) -> Result<(Vec<Function>, Section), Diagnostics> {
     let reduced = derive(model, basis).map_err(|e| internal(model, e))?;
-    let forms = reduced
-        .candidate_forms(model)
-        .map_err(|e| internal(model, e))?;
+    let forms = reduced.forms(model).map_err(|e| internal(model, e))?;
     let section = report_section(model, &reduced);
     let emitters: [Emitter; 10] = [
         momenta,
@@ -84,7 +82,7 @@ fn report_section(model: &mut Model, reduced: &PortHamiltonian) -> Section {
         yes_no(reduced.metric_constant),
         yes_no(reduced.metric_diagonal)
     ));
-    match &reduced.exact {
+    match reduced.exact() {
         Some(exact) => {
             let gbar = exact.metric.to_expressions(&mut model.store);
             let k = reduced.momenta.len();
@@ -115,7 +113,7 @@ fn report_section(model: &mut Model, reduced: &PortHamiltonian) -> Section {
     section
 }
 
-type Emitter = fn(&mut Model, &PortHamiltonian, &[Forms]) -> Result<Function, Diagnostics>;
+type Emitter = fn(&mut Model, &PortHamiltonian, &Forms) -> Result<Function, Diagnostics>;
 
 /// What an emitted function looks like from outside.
 pub(super) struct Signature {
@@ -265,11 +263,7 @@ fn cheapest(
     arguments: &[Argument],
     candidates: Vec<Vec<ExprId>>,
 ) -> Result<Vec<ExprId>, Diagnostics> {
-    let mut inputs: Vec<SymbolId> = arguments
-        .iter()
-        .flat_map(|a| a.symbols.iter().copied())
-        .collect();
-    inputs.extend(model.parameter_symbols());
+    let inputs = program_inputs(model, arguments);
     let mut best: Option<(u64, Vec<ExprId>)> = None;
     for candidate in candidates {
         let program =
@@ -282,25 +276,45 @@ fn cheapest(
     Ok(best.map(|(_, outputs)| outputs).unwrap_or_default())
 }
 
+/// A program's input symbols: the arguments' elements, then the parameters.
+fn program_inputs(model: &Model, arguments: &[Argument]) -> Vec<SymbolId> {
+    let mut inputs: Vec<SymbolId> = arguments
+        .iter()
+        .flat_map(|a| a.symbols.iter().copied())
+        .collect();
+    inputs.extend(model.parameter_symbols());
+    inputs
+}
+
 // ----- the items --------------------------------------------------------------
 
-/// The candidates of an item: one per form of the reduced model (see
-/// [`PortHamiltonian::candidate_forms`]), then the expanded exact one.
+/// The candidates of an item: the form's expressions, then, for an exact
+/// form, the expanded ones.
 fn candidates(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
     of_forms: impl Fn(&mut Model, &Forms) -> Result<Vec<ExprId>, Diagnostics>,
     of_exact: impl Fn(&mut Model, &Exact) -> Result<Vec<ExprId>, Diagnostics>,
 ) -> Result<Vec<Vec<ExprId>>, Diagnostics> {
-    let mut candidates = forms
-        .iter()
-        .map(|form| of_forms(model, form))
-        .collect::<Result<Vec<_>, _>>()?;
-    if let Some(exact) = &reduced.exact {
+    let mut candidates = vec![of_forms(model, forms)?];
+    if let Some(exact) = reduced.exact() {
         candidates.push(of_exact(model, exact)?);
     }
     Ok(candidates)
+}
+
+/// The cheapest of an item's [`candidates`].
+fn chosen(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    forms: &Forms,
+    arguments: &[Argument],
+    of_forms: impl Fn(&mut Model, &Forms) -> Result<Vec<ExprId>, Diagnostics>,
+    of_exact: impl Fn(&mut Model, &Exact) -> Result<Vec<ExprId>, Diagnostics>,
+) -> Result<Vec<ExprId>, Diagnostics> {
+    let candidates = candidates(model, reduced, forms, of_forms, of_exact)?;
+    cheapest(model, arguments, candidates)
 }
 
 /// `matrix * column` of a form, as expressions.
@@ -335,21 +349,21 @@ fn state_jacobian(
 fn momenta(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
 ) -> Result<Function, Diagnostics> {
     let (n, k) = (model.n(), reduced.momenta.len());
     let velocities_symbols = model.velocities.clone();
     let qdot = symbol_expressions(model, &velocities_symbols);
     let qdot_forms = symbol_forms(model, &velocities_symbols);
-    let candidates = candidates(
+    let arguments = vec![coordinates(model), velocities(model)];
+    let outputs = chosen(
         model,
         reduced,
         forms,
+        &arguments,
         |model, forms| product(model, &forms.momentum_map, qdot.clone()),
         |model, exact| expanded_product(model, &exact.momentum_map, &qdot_forms),
     )?;
-    let arguments = vec![coordinates(model), velocities(model)];
-    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "momenta",
         doc: format!(
@@ -366,20 +380,20 @@ fn momenta(
 fn velocities_of_momenta(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
 ) -> Result<Function, Diagnostics> {
     let n = model.n();
     let alpha = symbol_expressions(model, &reduced.momenta);
     let alpha_forms = symbol_forms(model, &reduced.momenta);
-    let candidates = candidates(
+    let arguments = vec![coordinates(model), momenta_argument(reduced)];
+    let outputs = chosen(
         model,
         reduced,
         forms,
+        &arguments,
         |model, forms| product(model, &forms.velocity_map, alpha.clone()),
         |model, exact| expanded_product(model, &exact.velocity_map, &alpha_forms),
     )?;
-    let arguments = vec![coordinates(model), momenta_argument(reduced)];
-    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "velocities",
         doc: "The velocities `qdot = g^-1 h^T alpha` of reduced momenta `alpha`: they satisfy \
@@ -394,13 +408,14 @@ fn velocities_of_momenta(
 fn hamiltonian(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
 ) -> Result<Function, Diagnostics> {
     let arguments = vec![state_argument(model, reduced)];
-    let candidates = candidates(
+    let outputs = chosen(
         model,
         reduced,
         forms,
+        &arguments,
         |_, forms| Ok(vec![forms.hamiltonian]),
         |model, exact| {
             Ok(expressions_of(
@@ -409,7 +424,6 @@ fn hamiltonian(
             ))
         },
     )?;
-    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "hamiltonian",
         doc: format!(
@@ -425,18 +439,18 @@ fn hamiltonian(
 fn hamiltonian_gradient(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
 ) -> Result<Function, Diagnostics> {
     let s = reduced.state(model).len();
-    let candidates = candidates(
+    let arguments = vec![state_argument(model, reduced)];
+    let outputs = chosen(
         model,
         reduced,
         forms,
+        &arguments,
         |_, forms| Ok(forms.gradient.clone()),
         |model, exact| Ok(expressions_of(model, &exact.gradient)),
     )?;
-    let arguments = vec![state_argument(model, reduced)];
-    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "hamiltonian_gradient",
         doc: format!(
@@ -452,18 +466,18 @@ fn hamiltonian_gradient(
 fn structure_matrix(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
 ) -> Result<Function, Diagnostics> {
     let s = reduced.state(model).len();
-    let candidates = candidates(
+    let arguments = vec![state_argument(model, reduced)];
+    let outputs = chosen(
         model,
         reduced,
         forms,
+        &arguments,
         |_, forms| Ok(forms.structure.entries().to_vec()),
         |model, exact| Ok(expressions_of(model, exact.structure.entries())),
     )?;
-    let arguments = vec![state_argument(model, reduced)];
-    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "structure_matrix",
         doc: format!(
@@ -481,18 +495,18 @@ fn structure_matrix(
 fn input_matrix(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
 ) -> Result<Function, Diagnostics> {
     let (s, p) = (reduced.state(model).len(), reduced.inputs.len());
-    let candidates = candidates(
+    let arguments = vec![state_argument(model, reduced)];
+    let outputs = chosen(
         model,
         reduced,
         forms,
+        &arguments,
         |_, forms| Ok(forms.input_matrix.entries().to_vec()),
         |model, exact| Ok(expressions_of(model, exact.input_matrix.entries())),
     )?;
-    let arguments = vec![state_argument(model, reduced)];
-    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "input_matrix",
         doc: format!(
@@ -510,18 +524,18 @@ fn input_matrix(
 fn reduced_rhs(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
 ) -> Result<Function, Diagnostics> {
     let s = reduced.state(model).len();
     let arguments = vec![state_argument(model, reduced), inputs_argument(reduced)];
-    let candidates = candidates(
+    let outputs = chosen(
         model,
         reduced,
         forms,
+        &arguments,
         |_, forms| Ok(forms.rhs.clone()),
         |model, exact| Ok(expressions_of(model, &exact.rhs)),
     )?;
-    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "reduced_rhs",
         doc: format!(
@@ -539,13 +553,15 @@ fn reduced_rhs(
 fn reduced_rhs_jacobian(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
 ) -> Result<Function, Diagnostics> {
     let s = reduced.state(model).len();
-    let candidates = candidates(
+    let arguments = vec![state_argument(model, reduced), inputs_argument(reduced)];
+    let outputs = chosen(
         model,
         reduced,
         forms,
+        &arguments,
         |model, forms| Ok(state_jacobian(model, reduced, &forms.rhs)),
         |model, exact| {
             let state = reduced.state(model);
@@ -556,8 +572,6 @@ fn reduced_rhs_jacobian(
             Ok(expressions_of(model, jacobian.entries()))
         },
     )?;
-    let arguments = vec![state_argument(model, reduced), inputs_argument(reduced)];
-    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "reduced_rhs_jacobian",
         doc: format!(
@@ -576,18 +590,18 @@ fn reduced_rhs_jacobian(
 fn output(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
 ) -> Result<Function, Diagnostics> {
     let p = reduced.inputs.len();
     let arguments = vec![state_argument(model, reduced)];
-    let candidates = candidates(
+    let outputs = chosen(
         model,
         reduced,
         forms,
+        &arguments,
         |_, forms| Ok(forms.output.clone()),
         |model, exact| Ok(expressions_of(model, &exact.output)),
     )?;
-    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "output",
         doc: format!(
@@ -604,21 +618,21 @@ fn output(
 fn output_jacobian(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &[Forms],
+    forms: &Forms,
 ) -> Result<Function, Diagnostics> {
     let (p, s) = (reduced.inputs.len(), reduced.state(model).len());
-    let candidates = candidates(
+    let arguments = vec![state_argument(model, reduced)];
+    let outputs = chosen(
         model,
         reduced,
         forms,
+        &arguments,
         |model, forms| Ok(state_jacobian(model, reduced, &forms.output)),
         |model, exact| {
             let output = expressions_of(model, &exact.output);
             Ok(state_jacobian(model, reduced, &output))
         },
     )?;
-    let arguments = vec![state_argument(model, reduced)];
-    let outputs = cheapest(model, &arguments, candidates)?;
     let signature = Signature {
         name: "output_jacobian",
         doc: format!(
@@ -650,34 +664,25 @@ mod tests {
         (model, reduced)
     }
 
+    fn lowered(model: &Model, arguments: &[Argument], outputs: &[ExprId]) -> ir::Program {
+        ir::lower(&model.store, &program_inputs(model, arguments), outputs).expect("lowers")
+    }
+
     fn cost(model: &Model, arguments: &[Argument], outputs: &[ExprId]) -> u64 {
-        let mut inputs: Vec<SymbolId> = arguments
-            .iter()
-            .flat_map(|a| a.symbols.iter().copied())
-            .collect();
-        inputs.extend(model.parameter_symbols());
-        ir::lower(&model.store, &inputs, outputs)
-            .expect("lowers")
+        lowered(model, arguments, outputs)
             .operation_count()
             .after_cse
     }
 
     fn weight(model: &Model, arguments: &[Argument], outputs: &[ExprId]) -> u64 {
-        let mut inputs: Vec<SymbolId> = arguments
-            .iter()
-            .flat_map(|a| a.symbols.iter().copied())
-            .collect();
-        inputs.extend(model.parameter_symbols());
-        ir::lower(&model.store, &inputs, outputs)
-            .expect("lowers")
-            .weighted_cost()
+        lowered(model, arguments, outputs).weighted_cost()
     }
 
     /// The operation counts of the candidates of `reduced_rhs` and of its
     /// Jacobian: one per form, then the expanded one.
     fn rhs_costs(model: &mut Model, reduced: &PortHamiltonian) -> [Vec<u64>; 2] {
         let arguments = vec![state_argument(model, reduced), inputs_argument(reduced)];
-        let forms = reduced.candidate_forms(model).expect("forms");
+        let forms = reduced.forms(model).expect("forms");
         let rhs = candidates(
             model,
             reduced,
@@ -716,10 +721,10 @@ mod tests {
             let [rhs, jacobian] = rhs_costs(&mut model, &reduced);
             println!("{name}: reduced_rhs candidates {rhs:?}");
             println!("{name}: reduced_rhs_jacobian candidates {jacobian:?}");
-            let expected = if reduced.structured.is_some() { 3 } else { 2 };
+            let expected = 2;
             assert_eq!(rhs.len(), expected);
             let arguments = vec![state_argument(&model, &reduced), inputs_argument(&reduced)];
-            let forms = reduced.candidate_forms(&mut model).expect("forms");
+            let forms = reduced.forms(&mut model).expect("forms");
             let candidates = candidates(
                 &mut model,
                 &reduced,
