@@ -1145,7 +1145,7 @@ impl Checker {
     fn group_coordinates(
         &mut self,
         function: &proc_macro2::Ident,
-        arguments: &[Expr],
+        arguments: &[Value],
         coordinates: &[Variable],
         used: &mut Vec<usize>,
     ) -> Option<Vec<usize>> {
@@ -1170,7 +1170,9 @@ impl Checker {
         let mut indices = Vec::with_capacity(arity);
         for argument in arguments {
             let found = match argument {
-                Expr::Name(ident) => coordinates.iter().position(|c| *ident == c.declared.name),
+                Value::Expr(Expr::Name(ident)) => {
+                    coordinates.iter().position(|c| *ident == c.declared.name)
+                }
                 _ => None,
             };
             match found {
@@ -1180,13 +1182,13 @@ impl Checker {
                 }
                 Some(_) => {
                     self.diagnostics.error(
-                        argument.first_span(),
+                        argument.span(),
                         "a coordinate appears twice in the symmetry group",
                     );
                     return None;
                 }
                 None => {
-                    self.diagnostics.error(argument.first_span(), "a symmetry acts on coordinates: this is not one of the model's coordinates");
+                    self.diagnostics.error(argument.span(), "a symmetry acts on coordinates: this is not one of the model's coordinates");
                     return None;
                 }
             }
@@ -1232,12 +1234,25 @@ fn product_factors<'a>(expr: &'a Expr, factors: &mut Vec<&'a Expr>) {
 fn first_velocity_span(expr: &Expr) -> Option<Span> {
     match expr {
         Expr::Call { function, .. } if function == "dot" => Some(function.span()),
-        Expr::Call { arguments, .. } => arguments.iter().find_map(first_velocity_span),
-        Expr::Negate { operand, .. } => first_velocity_span(operand),
+        Expr::Call { arguments, .. } => arguments.iter().find_map(value_velocity_span),
+        Expr::Negate { operand, .. } | Expr::Field { base: operand, .. } => {
+            first_velocity_span(operand)
+        }
         Expr::Binary { left, right, .. } => {
             first_velocity_span(left).or_else(|| first_velocity_span(right))
         }
         Expr::Number { .. } | Expr::Name(_) => None,
+    }
+}
+
+/// The span of the first `dot(...)` in an expression or list.
+fn value_velocity_span(value: &Value) -> Option<Span> {
+    match value {
+        Value::Expr(expr) => first_velocity_span(expr),
+        Value::List(list) => list
+            .items
+            .iter()
+            .find_map(|item| value_velocity_span(item.value())),
     }
 }
 

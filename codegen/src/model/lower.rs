@@ -8,7 +8,7 @@
 
 use crate::diagnostic::Diagnostics;
 use crate::sym::{ExprId, Node, Rational, Store, SymError, SymbolId};
-use crate::syntax::{BinaryOperator, Expr};
+use crate::syntax::{BinaryOperator, Expr, Value};
 use proc_macro2::Span;
 use std::collections::HashMap;
 
@@ -57,6 +57,13 @@ impl Lowerer<'_> {
                 arguments,
                 ..
             } => self.call(function, arguments),
+            Expr::Field { base, field } => {
+                let message = format!(
+                    "`.{field}` selects a frame's unit vector, a vector, where a scalar belongs"
+                );
+                self.diagnostics.error(base.first_span(), message);
+                None
+            }
             Expr::Negate { operand, .. } => {
                 let operand = self.lower(operand)?;
                 Some(self.store.neg(operand))
@@ -102,7 +109,7 @@ impl Lowerer<'_> {
         }
     }
 
-    fn call(&mut self, function: &proc_macro2::Ident, arguments: &[Expr]) -> Option<ExprId> {
+    fn call(&mut self, function: &proc_macro2::Ident, arguments: &[Value]) -> Option<ExprId> {
         let name = function.to_string();
         if name == "dot" {
             return self.velocity(function, arguments);
@@ -127,19 +134,31 @@ impl Lowerer<'_> {
             );
             return None;
         };
-        let argument = self.lower(argument)?;
+        let argument = self.scalar_argument(argument)?;
         let applied = self.store.apply_named(&name, argument);
         self.report(applied, function.span())
     }
 
+    /// A function's argument, which must be a scalar expression.
+    fn scalar_argument(&mut self, argument: &Value) -> Option<ExprId> {
+        match argument {
+            Value::Expr(expr) => self.lower(expr),
+            Value::List(list) => {
+                let message = "a list `[...]` where a scalar argument belongs";
+                self.diagnostics.error(list.span, message);
+                None
+            }
+        }
+    }
+
     /// `dot(q)`: the velocity of a coordinate.
-    fn velocity(&mut self, function: &proc_macro2::Ident, arguments: &[Expr]) -> Option<ExprId> {
-        let [Expr::Name(argument)] = arguments else {
+    fn velocity(&mut self, function: &proc_macro2::Ident, arguments: &[Value]) -> Option<ExprId> {
+        let [Value::Expr(Expr::Name(argument))] = arguments else {
             // Point at the surplus argument, the one that is not a name, or `dot` itself.
             let span = match arguments {
                 [] => function.span(),
-                [only] => only.first_span(),
-                [_, surplus, ..] => surplus.first_span(),
+                [only] => only.span(),
+                [_, surplus, ..] => surplus.span(),
             };
             self.diagnostics.error(
                 span,

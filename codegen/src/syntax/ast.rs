@@ -139,14 +139,23 @@ pub enum Expr {
     /// A name: a coordinate, parameter, defined name, ... (resolved later).
     Name(Ident),
     /// `function(arguments)`: any identifier directly followed by `( ... )`,
-    /// such as `sin(x)`, `dot(q)` or `se2(x, y, theta)`.
+    /// such as `sin(x)`, `dot(q)`, `se2(x, y, theta)` or
+    /// `no_slip(wheel, contact, [ground.x, ground.y])`.
     Call {
         /// The identifier before the parentheses.
         function: Ident,
-        /// The comma-separated arguments (possibly none).
-        arguments: Vec<Expr>,
+        /// The comma-separated arguments (possibly none): expressions, or
+        /// bracketed lists such as a list of directions or a 3 x 3 matrix.
+        arguments: Vec<Value>,
         /// The span of the parenthesized group.
         span: Span,
+    },
+    /// `base.field`, such as the unit vector `ground.x` of a frame.
+    Field {
+        /// What the field is taken of.
+        base: Box<Expr>,
+        /// The identifier after the `.`.
+        field: Ident,
     },
     /// `-operand`.
     Negate {
@@ -170,7 +179,7 @@ pub enum Expr {
 
 impl Expr {
     /// The node's own token: the literal, the name, the called function's
-    /// name, the `-` of a negation, or a binary operator.
+    /// name, the field's name, the `-` of a negation, or a binary operator.
     pub fn span(&self) -> Span {
         match self {
             Expr::Number { span, .. } | Expr::Negate { span, .. } | Expr::Binary { span, .. } => {
@@ -178,6 +187,7 @@ impl Expr {
             }
             Expr::Name(name) => name.span(),
             Expr::Call { function, .. } => function.span(),
+            Expr::Field { field, .. } => field.span(),
         }
     }
 
@@ -185,7 +195,7 @@ impl Expr {
     /// a whole. A parenthesized expression starts inside its `(`.
     pub fn first_span(&self) -> Span {
         match self {
-            Expr::Binary { left, .. } => left.first_span(),
+            Expr::Binary { left, .. } | Expr::Field { base: left, .. } => left.first_span(),
             other => other.span(),
         }
     }

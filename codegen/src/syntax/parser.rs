@@ -361,8 +361,26 @@ impl Parser {
         })
     }
 
-    /// A number, a name, a call, `-operand` or `( expression )`.
+    /// A primary operand followed by any number of `.field` selections.
     fn parse_operand(&mut self, cursor: &mut Cursor) -> Option<Parsed> {
+        let mut operand = self.parse_primary(cursor)?;
+        while cursor.peek_punct('.') {
+            cursor.next_token();
+            let Some(TokenTree::Ident(field)) = cursor.peek() else {
+                return self.expected(cursor, "a field name after `.`, such as `x` in `ground.x`");
+            };
+            cursor.next_token();
+            let expr = Expr::Field {
+                base: Box::new(operand.expr),
+                field: field.clone(),
+            };
+            operand = self.node(expr, operand.depth)?;
+        }
+        Some(operand)
+    }
+
+    /// A number, a name, a call, `-operand` or `( expression )`.
+    fn parse_primary(&mut self, cursor: &mut Cursor) -> Option<Parsed> {
         let expected = "an operand (a number, a name, a call like `sin(x)`, or `( ... )`)";
         let Some(token) = cursor.peek() else {
             return self.expected(cursor, expected);
@@ -401,7 +419,7 @@ impl Parser {
             }
             TokenTree::Group(group) if group.delimiter() == Delimiter::Bracket => {
                 let message = "a list `[...]` cannot be part of an expression; \
-                               lists are whole values such as `[a, b]`";
+                               lists are whole values such as `[a, b]`, or call arguments";
                 self.diagnostics.error(group.span(), message);
                 None
             }
@@ -449,29 +467,37 @@ impl Parser {
             let close = Boundary::closing(Delimiter::Parenthesis, group.span_close());
             let message = "empty argument: expected an expression before this `,`";
             let chunks = parser.non_empty_chunks(split_at_commas(&tokens, close), message);
-            let arguments: Vec<Parsed> = chunks
+            let arguments: Vec<(Value, usize)> = chunks
                 .iter()
-                .filter_map(|chunk| {
-                    let mut cursor = chunk.cursor();
-                    let parsed = parser.parse_expression(&mut cursor, 0)?;
-                    parser.require_end_of_argument(&cursor)?;
-                    Some(parsed)
-                })
+                .filter_map(|chunk| parser.parse_argument(&mut chunk.cursor()))
                 .collect();
             if arguments.len() != chunks.len() {
                 return None;
             }
-            let depth = arguments.iter().map(|argument| argument.depth).max();
+            let depth = arguments.iter().map(|(_, depth)| *depth).max();
             let expr = Expr::Call {
                 function: function.clone(),
-                arguments: arguments
-                    .into_iter()
-                    .map(|argument| argument.expr)
-                    .collect(),
+                arguments: arguments.into_iter().map(|(value, _)| value).collect(),
                 span: group.span(),
             };
             parser.node(expr, depth.unwrap_or(0))
         })
+    }
+
+    /// One call argument with its depth: a bracketed list (counted as one
+    /// level; its nesting is bounded by [`MAX_NESTING`]) or an expression.
+    fn parse_argument(&mut self, cursor: &mut Cursor) -> Option<(Value, usize)> {
+        if let Some(TokenTree::Group(group)) = cursor.peek()
+            && group.delimiter() == Delimiter::Bracket
+        {
+            cursor.next_token();
+            let list = self.parse_list(group)?;
+            self.require_end_of_argument(cursor)?;
+            return Some((Value::List(list), 1));
+        }
+        let parsed = self.parse_expression(cursor, 0)?;
+        self.require_end_of_argument(cursor)?;
+        Some((Value::Expr(parsed.expr), parsed.depth))
     }
 
     fn require_end_of_argument(&mut self, cursor: &Cursor) -> Option<()> {

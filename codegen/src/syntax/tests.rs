@@ -13,9 +13,10 @@ fn parenthesized(expr: &Expr) -> String {
             arguments,
             ..
         } => {
-            let arguments: Vec<String> = arguments.iter().map(parenthesized).collect();
+            let arguments: Vec<String> = arguments.iter().map(printed).collect();
             format!("{function}({})", arguments.join(", "))
         }
+        Expr::Field { base, field } => format!("{}.{field}", parenthesized(base)),
         Expr::Negate { operand, .. } => format!("(-{})", parenthesized(operand)),
         Expr::Binary {
             operator,
@@ -506,7 +507,7 @@ fn misplaced_lists_and_sections_are_reported() {
     assert_eq!(
         errors("struct M { e: 2 * [1] }"),
         "m.model:1:19: error: a list `[...]` cannot be part of an expression; \
-         lists are whole values such as `[a, b]`\n"
+         lists are whole values such as `[a, b]`, or call arguments\n"
     );
     assert_eq!(
         errors("struct M { 1: x }"),
@@ -573,4 +574,37 @@ fn compile_errors_are_spanned_invocations() {
         2,
         "{text}"
     );
+}
+
+#[test]
+fn field_selection_binds_tighter_than_every_operator() {
+    assert_eq!(value_of("origin + x*ground.x"), "(origin+(x*ground.x))");
+    assert_eq!(value_of("-r*lean.z^2"), "((-r)*(lean.z^2))");
+    assert_eq!(value_of("cross(a, b).y"), "cross(a, b).y");
+    assert_eq!(value_of("(c - o).x.y"), "(c-o).x.y");
+}
+
+#[test]
+fn lists_are_call_arguments() {
+    assert_eq!(
+        value_of("no_slip(wheel, contact, [ground.x, ground.y])"),
+        "no_slip(wheel, contact, [ground.x, ground.y])"
+    );
+    assert_eq!(
+        value_of("body(b, c, m, [[1, 0, 0], [0, 2, 0], [0, 0, 3]])"),
+        "body(b, c, m, [[1, 0, 0], [0, 2, 0], [0, 0, 3]])"
+    );
+}
+
+#[test]
+fn a_field_needs_a_name_and_a_list_argument_stands_alone() {
+    let text = errors("struct M { value: ground. }");
+    assert!(text.contains("expected a field name after `.`"), "{text}");
+    let text = errors("struct M { value: f([a] + 1) }");
+    assert!(
+        text.contains("expected an operator or the end of the argument"),
+        "{text}"
+    );
+    let text = errors("struct M { value: 1 + [a] }");
+    assert!(text.contains("cannot be part of an expression"), "{text}");
 }
