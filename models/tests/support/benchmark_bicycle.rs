@@ -63,7 +63,7 @@
 
 use nalgebra::{Complex, Matrix2, Matrix3, Matrix4, Vector3};
 
-/// The 25 parameters of the paper's table 1 (and g), in SI units. Field
+/// The paper's table 1 (its 25 parameters and gravity g), in SI units. Field
 /// names are the paper's in snake case: `w, c, lam, g`, then per body
 /// `r_r = rR, m_r = mR, i_rxx = IRxx, ...`, `x_b = xB, i_bxz = IBxz, ...`,
 /// `x_h = xH, i_hxz = IHxz, ...`, `r_f = rF, i_fyy = IFyy, ...`.
@@ -319,9 +319,7 @@ impl BenchmarkParameters {
         let (complex, real): (Vec<Complex<f64>>, Vec<Complex<f64>>) =
             eigenvalues.iter().partition(|s| s.im != 0.0);
         match (complex.as_slice(), real.as_slice()) {
-            ([upper, lower], [larger, smaller])
-                if upper.im > 0.0 && *lower == upper.conj() && larger.re.is_finite() =>
-            {
+            ([upper, lower], [larger, smaller]) if upper.im > 0.0 && *lower == upper.conj() => {
                 Some(Modes {
                     weave: *upper,
                     capsize: larger.re,
