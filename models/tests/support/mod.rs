@@ -1,0 +1,3 @@
+//! Independent references shared by the models' tests.
+
+pub mod benchmark_bicycle;
