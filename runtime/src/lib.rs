@@ -11,12 +11,15 @@
 //! - [`monitor`]: where a formulation degenerates;
 //! - [`simulate`]: the simulation loop (integrator, span, step, regularity
 //!   checks, recording) and [`record`]: where its rows go (memory, CSV);
-//! - [`linalg`]: dense linear algebra on the stack;
+//! - [`linalg`]: linear algebra on nalgebra's matrices (LU, Cholesky,
+//!   eigenvalues, central-difference Jacobians), and [`arrays`]: nalgebra
+//!   values to and from the generated code's arrays;
 //! - [`phase`]: the group displacement over one period of a shape gait, split
 //!   into its geometric and dynamic parts.
 
 #![warn(missing_docs)]
 
+pub mod arrays;
 pub mod control;
 pub mod integrate;
 pub mod linalg;
@@ -27,3 +30,5 @@ pub mod simulate;
 pub mod system;
 
 pub use integrate::Error;
+/// The nalgebra the runtime is built on, for callers that name its types.
+pub use nalgebra;

@@ -17,6 +17,8 @@ use crate::options::{Controller, Formulation as Kind, Integrator, SimulateArgs};
 use chaplygin::plot;
 use chaplygin::runtime::control::Constant;
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, Rk4};
+use chaplygin::runtime::linalg::Square;
+use chaplygin::runtime::nalgebra::Const;
 use chaplygin::runtime::record::{CsvRecorder, Recorder, Table};
 use chaplygin::runtime::simulate::{Advance, Simulation, Summary};
 use chaplygin::runtime::system::{
@@ -581,7 +583,10 @@ fn integrate<const D: usize>(
     x0: &[f64],
     args: &SimulateArgs,
     recorder: &mut impl Recorder,
-) -> Result<Report, Box<dyn Error>> {
+) -> Result<Report, Box<dyn Error>>
+where
+    Const<D>: Square,
+{
     let system = Sized::<D>(formulation);
     let x0: [f64; D] = core::array::from_fn(|i| x0[i]);
     let started = Instant::now();
