@@ -3,8 +3,9 @@
 //! - [`system`]: the traits a generated model implements
 //!   ([`system::ReducedPortHamiltonian`], [`system::LagrangeDalembert`]) and
 //!   adapters turning a model and its input into an [`system::OdeSystem`];
-//! - [`control`]: controllers, plain (`u = f(t, x)`) and port-Hamiltonian
-//!   (with their own state and energy, interconnected power-conservingly);
+//! - [`law`]: plain control laws `u = f(t, x)` (constant, open-loop,
+//!   feedback); [`control`]: port-Hamiltonian controllers (with their own
+//!   state and energy, interconnected power-conservingly);
 //! - [`integrate`]: integrators over any [`system::OdeSystem`] (RK4,
 //!   Dormand-Prince 5(4), the implicit midpoint rule, Gonzalez's discrete
 //!   gradient);
@@ -22,6 +23,7 @@
 pub mod arrays;
 pub mod control;
 pub mod integrate;
+pub mod law;
 pub mod linalg;
 pub mod monitor;
 pub mod phase;

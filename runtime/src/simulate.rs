@@ -15,8 +15,9 @@
 //! rows recorded until then stay recorded and the recorder is finished
 //! (flushed) on every exit.
 
-use crate::control::{Controller, Interconnection, PortHamiltonianController};
+use crate::control::{Interconnection, PortHamiltonianController};
 use crate::integrate::{self, DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4};
+use crate::law::Controller;
 use crate::record::Recorder;
 use crate::system::{
     Dalembert, Energy, LagrangeDalembert, ModelNames, Momentum, MomentumEquations, OdeSystem,
