@@ -6,7 +6,8 @@
 //! - [`solve`] (LU) and [`solve_positive_definite`] (Cholesky): the
 //!   generated code's row-major arrays in and out (through
 //!   [`crate::arrays`]), and a structured [`MatrixError`] where nalgebra
-//!   answers a bare `None` (or, for Cholesky, nothing at all about why);
+//!   answers a bare `None`; [`cholesky`], nalgebra's factor of any size
+//!   with that error;
 //! - [`eigenvalues`]: nalgebra's `complex_eigenvalues` iterates the QR
 //!   sweeps of the real Schur form without bound (a non-finite entry makes
 //!   it loop forever) and returns the eigenvalues in the order of the

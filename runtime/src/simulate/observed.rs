@@ -44,6 +44,34 @@ pub const REDUCED: &str = "reduced form's det[A; V^T] (constraint rows and momen
 /// [`crate::monitor::constraint_regularity`]).
 pub const MULTIPLIERS: &str = "multiplier system's Gram matrix A g^-1 A^T";
 
+/// The largest `|A(q) qdot|` of the Lagrange-d'Alembert equations.
+fn largest_residual<M, const N: usize, const C: usize, const P: usize>(
+    model: &M,
+    q: &[f64; N],
+    qdot: &[f64; N],
+) -> f64
+where
+    M: LagrangeDalembert<N, C, P>,
+{
+    let residual = model.constraint_residual(q, qdot);
+    residual.iter().fold(0.0, |worst, r| worst.max(r.abs()))
+}
+
+/// The Gram matrix's measure at the configuration `q`.
+fn multiplier_regularity<M, const N: usize, const C: usize, const P: usize>(
+    model: &M,
+    q: &[f64; N],
+) -> Regularity
+where
+    M: LagrangeDalembert<N, C, P>,
+{
+    Regularity {
+        quantity: MULTIPLIERS,
+        value: model.constraint_regularity(q),
+        signed: false,
+    }
+}
+
 fn owned(names: &[&str]) -> Vec<String> {
     names.iter().map(|name| name.to_string()).collect()
 }
@@ -102,17 +130,11 @@ where
 
     fn constraint_residual(&self, x: &[f64; D]) -> f64 {
         let (q, qdot) = split::<N, D>(x);
-        let residual = self.model().constraint_residual(&q, &qdot);
-        residual.iter().fold(0.0, |worst, r| worst.max(r.abs()))
+        largest_residual(self.model(), &q, &qdot)
     }
 
     fn regularity(&self, x: &[f64; D]) -> Regularity {
-        let (q, _) = split::<N, D>(x);
-        Regularity {
-            quantity: MULTIPLIERS,
-            value: self.model().constraint_regularity(&q),
-            signed: false,
-        }
+        multiplier_regularity(self.model(), &split::<N, D>(x).0)
     }
 }
 
@@ -151,17 +173,11 @@ where
 
     fn constraint_residual(&self, x: &[f64; D]) -> f64 {
         let (q, qdot) = self.configuration_velocity(x);
-        let residual = self.model().constraint_residual(&q, &qdot);
-        residual.iter().fold(0.0, |worst, r| worst.max(r.abs()))
+        largest_residual(self.model(), &q, &qdot)
     }
 
     fn regularity(&self, x: &[f64; D]) -> Regularity {
-        let q: [f64; N] = core::array::from_fn(|i| x[i]);
-        Regularity {
-            quantity: MULTIPLIERS,
-            value: self.model().constraint_regularity(&q),
-            signed: false,
-        }
+        multiplier_regularity(self.model(), &core::array::from_fn(|i| x[i]))
     }
 }
 
