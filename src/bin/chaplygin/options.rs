@@ -1,4 +1,5 @@
-//! The command line's arguments, and what each command does with them.
+//! The command line: its commands, and what each does with its arguments
+//! (those of `simulate` are defined with it).
 
 use crate::simulate::{self, SimulateArgs};
 use crate::{catalog, derive};
