@@ -257,13 +257,12 @@ fn bad_input_is_one_line_and_a_failure() {
     );
 }
 
-#[test]
-fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
-    let out = scratch("singular");
-    // phi'' = u_wheels / jw = 1 from phi = 1.2, phidot = 0.5: phi reaches pi/2 near t = 0.5
-    let output = chaplygin(&[
+/// The snakeboard `model` from `phi = 1.2` with the wheels driven
+/// (`u_wheels = 0.05`, RK4), writing into `out`.
+fn driven_into_phi_pi_2(model: &str, out: &Path) -> Output {
+    chaplygin(&[
         "simulate",
-        "snakeboard",
+        model,
         "--initial",
         "phi=1.2",
         "--input",
@@ -272,7 +271,14 @@ fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
         "rk4",
         "--out",
         out.to_str().unwrap(),
-    ]);
+    ])
+}
+
+#[test]
+fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
+    let out = scratch("singular");
+    // phi'' = u_wheels / jw = 1 from phi = 1.2, phidot = 0.5: phi reaches pi/2 near t = 0.5
+    let output = driven_into_phi_pi_2("snakeboard", &out);
     assert_one_line_error(
         &output,
         &[
@@ -296,18 +302,7 @@ fn a_model_file_stops_at_the_singular_configuration_too() {
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
     let out = scratch("singular-file");
     // From rest at phi = 1.2, phi'' = u_wheels / jw = 1: phi = pi/2 at t = 0.86.
-    let output = chaplygin(&[
-        "simulate",
-        file,
-        "--initial",
-        "phi=1.2",
-        "--input",
-        "u_wheels=0.05",
-        "--integrator",
-        "rk4",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let output = driven_into_phi_pi_2(file, &out);
     assert_one_line_error(
         &output,
         &[
