@@ -75,6 +75,46 @@
 //! assert!((summary.state[0] - 0.5 * phi).abs() < 1e-12); // x = r phi, rolling
 //! ```
 
+//!
+//! # nalgebra
+//!
+//! The generated API speaks in arrays (`[f64; n]`, `[[f64; n]; m]` row-major,
+//! `m[i][j]` in row `i`); the runtime computes on nalgebra (re-exported as
+//! `chaplygin::runtime::nalgebra`). `chaplygin::runtime::arrays` converts
+//! between them without the transposition of nalgebra's own
+//! `From<[[T; R]; C]>`, which reads the inner arrays as columns:
+//!
+//! ```
+//! use chaplygin::runtime::arrays::matrix_from_rows;
+//! use chaplygin::runtime::linalg::{SMatrix, SVector};
+//!
+//! chaplygin::model! {
+//!     /// A knife edge: a body of mass m and inertia j about its contact point
+//!     /// offset a behind its centre of mass, which moves along its heading only.
+//!     pub struct Sleigh {
+//!         coordinates: [x, y, theta],
+//!         parameters: [m = 2.0, j = 0.5, a = 0.25],
+//!         kinetic_energy: m/2*((dot(x) - a*sin(theta)*dot(theta))^2
+//!             + (dot(y) + a*cos(theta)*dot(theta))^2) + j/2*dot(theta)^2,
+//!         constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
+//!     }
+//! }
+//!
+//! let sleigh = Sleigh::default();
+//! let q = [0.0, 0.0, 0.0];
+//! let g: SMatrix<f64, 3, 3> = matrix_from_rows(&sleigh.mass_matrix(&q));
+//! // At theta = 0 by hand: g = [[m, 0, 0], [0, m, m a], [0, m a, j + m a^2]].
+//! assert_eq!(g[(1, 2)], 0.5);
+//! let cholesky = g.cholesky().expect("a mass matrix is positive definite");
+//! // det g = m * (m (j + m a^2) - (m a)^2) = m^2 j
+//! assert!((cholesky.determinant() - 2.0).abs() < 1e-14);
+//! // The velocity of unit momentum p = g qdot = (0, 0, 1): qdot = g^-1 p.
+//! let qdot = cholesky.solve(&SVector::from([0.0, 0.0, 1.0]));
+//! assert!(((g * qdot)[2] - 1.0).abs() < 1e-15);
+//! let back: [f64; 3] = qdot.into();
+//! assert!((back[2] - 1.0 / 0.5).abs() < 1e-14); // by hand: thetadot = 1/j
+//! ```
+
 #![warn(missing_docs)]
 
 pub use chaplygin_macros::model;

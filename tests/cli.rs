@@ -257,13 +257,12 @@ fn bad_input_is_one_line_and_a_failure() {
     );
 }
 
-#[test]
-fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
-    let out = scratch("singular");
-    // phi'' = u_wheels / jw = 1 from phi = 1.2, phidot = 0.5: phi reaches pi/2 near t = 0.5
-    let output = chaplygin(&[
+/// The snakeboard `model` from `phi = 1.2` with the wheels driven
+/// (`u_wheels = 0.05`, RK4), writing into `out`.
+fn driven_into_phi_pi_2(model: &str, out: &Path) -> Output {
+    chaplygin(&[
         "simulate",
-        "snakeboard",
+        model,
         "--initial",
         "phi=1.2",
         "--input",
@@ -272,7 +271,14 @@ fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
         "rk4",
         "--out",
         out.to_str().unwrap(),
-    ]);
+    ])
+}
+
+#[test]
+fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
+    let out = scratch("singular");
+    // phi'' = u_wheels / jw = 1 from phi = 1.2, phidot = 0.5: phi reaches pi/2 near t = 0.5
+    let output = driven_into_phi_pi_2("snakeboard", &out);
     assert_one_line_error(
         &output,
         &[
@@ -285,6 +291,42 @@ fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
     assert_eq!(header.len(), 1 + 8 + 2 + 2);
     assert!(rows.len() > 10 && rows.iter().flatten().all(|v| v.is_finite()));
     assert!(rows.last().unwrap()[0] < 0.6);
+}
+
+/// A `.model` file's regularity measures (computed on run-time-sized
+/// matrices) stop the run where the snakeboard's wheel constraints become
+/// parallel, `phi = pi/2` (Duindam & Stramigioli 2004, section 3), in both
+/// formulations.
+#[test]
+fn a_model_file_stops_at_the_singular_configuration_too() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
+    let out = scratch("singular-file");
+    // From rest at phi = 1.2, phi'' = u_wheels / jw = 1: phi = pi/2 at t = 0.86.
+    let output = driven_into_phi_pi_2(file, &out);
+    assert_one_line_error(
+        &output,
+        &[
+            "singular configuration at t = 0.8",
+            "phi = 1.57",
+            "det[A; V^T]",
+        ],
+    );
+    // Started on the singular configuration, the Lagrange-d'Alembert form's
+    // Gram matrix A g^-1 A^T is singular at once.
+    let output = chaplygin(&[
+        "simulate",
+        file,
+        "--formulation",
+        "lagrange",
+        "--initial",
+        "phi=1.5707963267948966",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_one_line_error(
+        &output,
+        &["singular configuration at t = 0:", "Gram matrix A g^-1 A^T"],
+    );
 }
 
 /// The snakeboard's coordinates from the momentum formulation (an ODE in

@@ -6,8 +6,8 @@
 //! - `reduced_rhs_jacobian`: their Jacobian, differentiated by hand;
 //! - `acceleration`: the Lagrange-d'Alembert saddle-point system
 //!   `[[g, -A^T], [A, 0]] (qddot, lambda) = (B u, -Adot qdot)` (MATH.md 2;
-//!   `g` is constant, so `C = 0`), assembled by hand and solved by Gaussian
-//!   elimination with partial pivoting (`runtime::linalg::solve`).
+//!   `g` is constant, so `C = 0`), assembled by hand and solved by LU with
+//!   partial pivoting (`runtime::linalg::solve`, nalgebra's LU).
 //!
 //! Before timing, each reference is checked against the generated function
 //! at the timed states. Each comparison is measured twice in the same run:
@@ -112,7 +112,7 @@ fn hand_acceleration(
             system[5 + c][i] = rows[c][i];
         }
     }
-    right = solve(system, right);
+    right = solve(&system, &right).expect("the saddle-point system is regular off phi = +-pi/2");
     (
         [right[0], right[1], right[2], right[3], right[4]],
         [right[5], right[6]],

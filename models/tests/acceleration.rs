@@ -105,7 +105,8 @@ fn allowed<M: Dynamics<N, C, P>, const N: usize, const C: usize, const P: usize>
     let a = model.constraints(q);
     let gram: [[f64; C]; C] =
         std::array::from_fn(|i| std::array::from_fn(|j| (0..N).map(|k| a[i][k] * a[j][k]).sum()));
-    let weights = chaplygin::runtime::linalg::solve(gram, model.residual(q, v));
+    let weights = chaplygin::runtime::linalg::solve_positive_definite(&gram, &model.residual(q, v))
+        .expect("independent constraint rows: A A^T is positive definite");
     std::array::from_fn(|k| v[k] - (0..C).map(|r| a[r][k] * weights[r]).sum::<f64>())
 }
 

@@ -1,11 +1,16 @@
-//! Generated functions and the runtime's integrator steps allocate nothing:
+//! Generated functions, the runtime's integrator steps and its linear
+//! algebra on fixed sizes (nalgebra's LU, Cholesky and real Schur form)
+//! allocate nothing:
 //! a counting global allocator sees zero allocations across 10^4 calls of each (counted per thread, so tests
 //! running in parallel do not see each other's allocations). Non-finite input gives
 //! non-finite output, without a panic.
 
 mod common;
 
+use chaplygin::runtime::arrays::matrix_from_rows;
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4};
+use chaplygin::runtime::linalg::{eigenvalues, solve, solve_positive_definite};
+use chaplygin::runtime::system::LagrangeDalembert;
 use chaplygin::runtime::system::{Dalembert, Reduced, ReducedPortHamiltonian};
 use chaplygin_models::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin_models::{
@@ -246,4 +251,39 @@ fn integrator_steps_do_not_allocate() {
         x.iter().chain(&y).chain(&z).all(|v| v.is_finite()),
         "{x:?} {y:?} {z:?}"
     );
+}
+
+#[test]
+fn fixed_size_linear_algebra_does_not_allocate() {
+    let board = Snakeboard::default();
+    let dalembert = Dalembert::new(&board, |t: f64| [0.1 * t.sin(), -0.02 * t.cos()]);
+    let mut y = [0.1, -0.2, 0.3, 0.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let (mut found, mut regularity) = (0.0, 0.0);
+    let counted = allocations(|| {
+        for i in 0..10_000 {
+            let t = i as f64 * 1e-3;
+            let q = [t, -t, 0.3 + t, 0.1, 0.2 - t];
+            let g = board.mass_matrix(black_box(&q));
+            let a = board.constraint_matrix(black_box(&q));
+            let x = black_box(solve_positive_definite(&g, &q).unwrap());
+            let jacobian =
+                board.reduced_rhs_jacobian(&[t, 0.0, 0.3, 0.1, 0.2, 1.0, 0.5, t], &[t, 0.0]);
+            let shifted: [[f64; 8]; 8] = core::array::from_fn(|r| {
+                core::array::from_fn(|c| f64::from(u8::from(r == c)) - 0.1 * jacobian[r][c])
+            });
+            let z = black_box(solve(&shifted, &[1.0; 8]).unwrap());
+            let lambda = black_box(eigenvalues(matrix_from_rows(&jacobian)).unwrap());
+            regularity += board.constraint_regularity(black_box(&q));
+            found += x[0] + z[0] + lambda[0].re + a[0][0];
+            y = Midpoint::default()
+                .step(&dalembert, t, black_box(&y), 1e-3)
+                .unwrap();
+        }
+    });
+    assert_eq!(counted, 0);
+    assert!(
+        found.is_finite() && regularity > 0.0,
+        "{found} {regularity}"
+    );
+    assert!(y.iter().all(|v| v.is_finite()), "{y:?}");
 }

@@ -481,7 +481,9 @@ fn snakeboard_gait_displacement_matches_full_simulation() {
             [torso[1] - free[1], wheels[1] - free[1]],
         ];
         let wanted = gait_acceleration(t);
-        let u = chaplygin::runtime::linalg::solve(gain, [wanted[0] - free[0], wanted[1] - free[1]]);
+        let u =
+            chaplygin::runtime::linalg::solve(&gain, &[wanted[0] - free[0], wanted[1] - free[1]])
+                .expect("the inputs move the shape independently");
         let mut derivative = qdot.to_vec();
         derivative.extend(b.acceleration(&q, &qdot, &u).0);
         derivative
@@ -508,7 +510,8 @@ fn sleigh_reduced_energy_is_conserved() {
     let s = Sleigh::default();
     let inertia = s.locked_inertia(&[]);
     let energy = |p: &[f64]| {
-        let omega = chaplygin::runtime::linalg::solve(inertia, [p[0], p[1]]);
+        let omega = chaplygin::runtime::linalg::solve_positive_definite(&inertia, &[p[0], p[1]])
+            .expect("the locked inertia is positive definite");
         0.5 * (p[0] * omega[0] + p[1] * omega[1])
     };
     let q = [0.1, -0.2, 0.3];

@@ -2,7 +2,7 @@
 //!
 //! - A plain [`Controller`] computes `u = f(t, x)` from the time and the
 //!   state: a [`Constant`], an open-loop closure `u(t)`, or a state
-//!   [`Feedback`] `u(t, x)`.
+//!   [`Feedback`] `u(t, x)` (defined in [`crate::law`], re-exported here).
 //! - A [`PortHamiltonianController`] is a system of its own, with state
 //!   `xc`, energy `Hc(xc)`, a constant skew structure `Jc` and an input
 //!   matrix `Bc(x, xc)`, joined to a reduced port-Hamiltonian plant
@@ -20,60 +20,8 @@
 //!   `[[J, -G Bc^T], [Bc G^T, Jc]]`: the energy the controller takes from the
 //!   plant, `y . u`, is what it stores, so `H + Hc` is conserved.
 
-use crate::linalg::central_difference_jacobian;
+pub use crate::law::{Constant, Controller, Feedback};
 use crate::system::{Energy, Jacobian, OdeSystem, ReducedPortHamiltonian, Structured};
-
-/// A control law `u = f(t, x)` with `P` inputs on a state of size `D`.
-pub trait Controller<const D: usize, const P: usize> {
-    /// The input at time `t` and state `x`.
-    fn input(&self, t: f64, x: &[f64; D]) -> [f64; P];
-
-    /// `du/dx`: row `l` holds the derivatives of `u_l`. By default central
-    /// differences of [`Controller::input`]; implicit integrators use it in
-    /// their Newton iteration only.
-    fn input_jacobian(&self, t: f64, x: &[f64; D]) -> [[f64; D]; P] {
-        central_difference_jacobian(|x| self.input(t, x), x)
-    }
-}
-
-/// A constant input, `u(t, x) = u`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Constant<const P: usize>(pub [f64; P]);
-
-impl<const D: usize, const P: usize> Controller<D, P> for Constant<P> {
-    fn input(&self, _t: f64, _x: &[f64; D]) -> [f64; P] {
-        self.0
-    }
-
-    fn input_jacobian(&self, _t: f64, _x: &[f64; D]) -> [[f64; D]; P] {
-        [[0.0; D]; P]
-    }
-}
-
-/// An open-loop input `u(t)`: any `Fn(f64) -> [f64; P]`.
-impl<F: Fn(f64) -> [f64; P], const D: usize, const P: usize> Controller<D, P> for F {
-    fn input(&self, t: f64, _x: &[f64; D]) -> [f64; P] {
-        self(t)
-    }
-
-    fn input_jacobian(&self, _t: f64, _x: &[f64; D]) -> [[f64; D]; P] {
-        [[0.0; D]; P]
-    }
-}
-
-/// A state feedback `u(t, x)` given as a closure
-/// `Fn(f64, &[f64; D]) -> [f64; P]`; its Jacobian is taken by central
-/// differences.
-#[derive(Clone, Copy, Debug)]
-pub struct Feedback<F>(pub F);
-
-impl<F: Fn(f64, &[f64; D]) -> [f64; P], const D: usize, const P: usize> Controller<D, P>
-    for Feedback<F>
-{
-    fn input(&self, t: f64, x: &[f64; D]) -> [f64; P] {
-        (self.0)(t, x)
-    }
-}
 
 /// A port-Hamiltonian controller with `NC` states for a plant with reduced
 /// state size `S` and `P` inputs (see the module documentation).

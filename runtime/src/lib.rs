@@ -3,22 +3,27 @@
 //! - [`system`]: the traits a generated model implements
 //!   ([`system::ReducedPortHamiltonian`], [`system::LagrangeDalembert`]) and
 //!   adapters turning a model and its input into an [`system::OdeSystem`];
-//! - [`control`]: controllers, plain (`u = f(t, x)`) and port-Hamiltonian
-//!   (with their own state and energy, interconnected power-conservingly);
+//! - [`law`]: plain control laws `u = f(t, x)` (constant, open-loop,
+//!   feedback); [`control`]: port-Hamiltonian controllers (with their own
+//!   state and energy, interconnected power-conservingly);
 //! - [`integrate`]: integrators over any [`system::OdeSystem`] (RK4,
 //!   Dormand-Prince 5(4), the implicit midpoint rule, Gonzalez's discrete
 //!   gradient);
 //! - [`monitor`]: where a formulation degenerates;
 //! - [`simulate`]: the simulation loop (integrator, span, step, regularity
 //!   checks, recording) and [`record`]: where its rows go (memory, CSV);
-//! - [`linalg`]: dense linear algebra on the stack;
+//! - [`linalg`]: linear algebra on nalgebra's matrices (LU, Cholesky,
+//!   eigenvalues, central-difference Jacobians), and [`arrays`]: nalgebra
+//!   values to and from the generated code's arrays;
 //! - [`phase`]: the group displacement over one period of a shape gait, split
 //!   into its geometric and dynamic parts.
 
 #![warn(missing_docs)]
 
+pub mod arrays;
 pub mod control;
 pub mod integrate;
+pub mod law;
 pub mod linalg;
 pub mod monitor;
 pub mod phase;
@@ -27,3 +32,5 @@ pub mod simulate;
 pub mod system;
 
 pub use integrate::Error;
+/// The nalgebra the runtime is built on, for callers that name its types.
+pub use nalgebra;

@@ -1,177 +1,202 @@
-//! Dense linear algebra on the stack, for generated code.
+//! Linear algebra for the runtime, on nalgebra's matrices ([`SMatrix`] and
+//! [`SVector`] on the stack in the stepping path). nalgebra factors
+//! (LU with partial pivoting, Cholesky, the real Schur form); this module
+//! keeps only what it does not do:
 //!
-//! [`solve`] is Gaussian elimination with partial pivoting (Golub & Van Loan,
-//! *Matrix Computations*, algorithm 3.4.1) on a fixed-size system: no heap,
-//! no panics, `O(M^3)` operations (`M^3/3` multiply-adds to leading order).
-//! [`solve_in_place`] is the same elimination on slices, for systems whose
-//! size is known only at run time.
+//! - [`solve`] (LU) and [`solve_positive_definite`] (Cholesky): the
+//!   generated code's row-major arrays in and out (through
+//!   [`crate::arrays`]), and a structured [`MatrixError`] where nalgebra
+//!   answers a bare `None`; [`cholesky`], nalgebra's factor of any size
+//!   with that error;
+//! - [`eigenvalues`]: nalgebra's `complex_eigenvalues` iterates the QR
+//!   sweeps of the real Schur form without bound (a non-finite entry makes
+//!   it loop forever) and returns the eigenvalues in the order of the
+//!   diagonal blocks; here the iterations are bounded, a non-finite matrix
+//!   or a failure to converge is an error, and the order is fixed;
+//! - [`central_difference_jacobian`]: nalgebra has no numerical
+//!   differentiation.
+//!
+//! On fixed sizes none of these allocates.
 
-/// The solution `x` of `a x = b`.
-///
-/// At step `k` the row with the largest `|a_ik|`, `i >= k`, becomes the pivot
-/// row; rows below are reduced, then `x` follows by back substitution. When a
-/// pivot is exactly zero the matrix is singular and every entry of the result
-/// is NaN. NaN or infinite entries propagate to non-finite entries of the
-/// result.
-/// Nearly singular matrices are solved as they are: the result is then large
-/// and inaccurate, never an error.
-///
-/// ```
-/// use chaplygin_runtime::linalg::solve;
-/// // 2x + y = 5, x + 3y = 10
-/// let x = solve([[2.0, 1.0], [1.0, 3.0]], [5.0, 10.0]);
-/// assert!((x[0] - 1.0).abs() < 1e-15 && (x[1] - 3.0).abs() < 1e-15);
-/// assert!(solve([[1.0, 2.0], [2.0, 4.0]], [1.0, 1.0]).iter().all(|v| v.is_nan()));
-/// ```
-pub fn solve<const M: usize>(mut a: [[f64; M]; M], mut b: [f64; M]) -> [f64; M] {
-    match solve_in_place(a.as_flattened_mut(), &mut b) {
-        Ok(()) => b,
-        Err(_) => [f64::NAN; M],
-    }
-}
+use crate::arrays::matrix_from_rows;
+use nalgebra::allocator::Allocator;
+use nalgebra::{
+    Complex, Const, DefaultAllocator, Dim, DimDiff, DimMin, DimSub, OMatrix, OVector, Schur, U1,
+};
 
-/// The matrix of [`solve_in_place`] does not have `rows * rows` entries.
+pub use nalgebra::{SMatrix, SVector};
+
+/// The sizes whose square matrices nalgebra factors by LU:
+/// `Const<M>: Square` holds for `M` from 0 to 127, the sizes nalgebra names
+/// as type-level numbers. Code generic over a state size `D` that steps an
+/// implicit integrator states `where Const<D>: Square`.
+pub trait Square: DimMin<Self, Output = Self> {}
+
+impl<D: DimMin<D, Output = D>> Square for D {}
+
+/// Why a matrix could not be factored or decomposed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
-#[error(
-    "a right-hand side of {rows} entries needs a {rows} x {rows} matrix, found {found} entries"
-)]
-pub struct SizeMismatch {
-    /// The length of the right-hand side.
-    pub rows: usize,
-    /// The number of matrix entries given.
-    pub found: usize,
+pub enum MatrixError {
+    /// LU with partial pivoting met a column with no nonzero pivot.
+    #[error("the {order} x {order} matrix is singular (a zero pivot in its LU factorization)")]
+    Singular {
+        /// The number of rows and columns.
+        order: usize,
+    },
+    /// Cholesky met a pivot that is not positive (or not a number).
+    #[error(
+        "the {order} x {order} matrix is not positive definite (a pivot of its Cholesky factorization is not positive)"
+    )]
+    NotPositiveDefinite {
+        /// The number of rows and columns.
+        order: usize,
+    },
+    /// An entry is NaN or infinite.
+    #[error("the {order} x {order} matrix has a non-finite entry at row {row}, column {column}")]
+    NonFinite {
+        /// The number of rows and columns.
+        order: usize,
+        /// The entry's row, from 0.
+        row: usize,
+        /// The entry's column, from 0.
+        column: usize,
+    },
+    /// The QR sweeps of the real Schur form did not converge.
+    #[error(
+        "the real Schur form of the {order} x {order} matrix did not converge in {sweeps} QR sweeps"
+    )]
+    NotConverged {
+        /// The number of rows and columns.
+        order: usize,
+        /// The sweeps made.
+        sweeps: usize,
+    },
 }
 
-/// [`solve`] on slices: `a` is the `m x m` matrix in row-major order and
-/// `b`, of length `m`, becomes the solution `x` (all NaN when `a` is
-/// singular). The same operations in the same order as [`solve`], which
-/// calls it, so both give bit-identical results; `a` is overwritten by the
-/// elimination.
+/// The solution `x` of `a x = b` by LU with partial pivoting (Golub & Van
+/// Loan, *Matrix Computations*, algorithm 3.4.1), `a` row-major (`a[i][j]`
+/// is row `i`).
+///
+/// Only an exactly zero pivot is an error: a nearly singular matrix is
+/// solved as it is, and its solution is then large and inaccurate. NaN or
+/// infinite entries give non-finite entries in the solution.
+///
+/// # Errors
+/// [`MatrixError::Singular`] when a column has no nonzero pivot.
 ///
 /// ```
-/// use chaplygin_runtime::linalg::solve_in_place;
-/// let mut b = [5.0, 10.0];
-/// solve_in_place(&mut [2.0, 1.0, 1.0, 3.0], &mut b).unwrap();
-/// assert!((b[0] - 1.0).abs() < 1e-15 && (b[1] - 3.0).abs() < 1e-15);
-/// assert!(solve_in_place(&mut [1.0; 3], &mut b).is_err());
+/// use chaplygin_runtime::linalg::{MatrixError, solve};
+/// // 2x + y = 5, x + 3y = 10
+/// let x = solve(&[[2.0, 1.0], [1.0, 3.0]], &[5.0, 10.0]).unwrap();
+/// assert!((x[0] - 1.0).abs() < 1e-15 && (x[1] - 3.0).abs() < 1e-15);
+/// let singular = solve(&[[1.0, 2.0], [2.0, 4.0]], &[1.0, 1.0]);
+/// assert_eq!(singular, Err(MatrixError::Singular { order: 2 }));
 /// ```
-pub fn solve_in_place(a: &mut [f64], b: &mut [f64]) -> Result<(), SizeMismatch> {
-    let m = b.len();
-    if m.checked_mul(m) != Some(a.len()) {
-        return Err(SizeMismatch {
-            rows: m,
-            found: a.len(),
-        });
-    }
-    for k in 0..m {
-        let pivot_row = largest_below(a, m, k);
-        swap_rows(a, m, k, pivot_row);
-        b.swap(k, pivot_row);
-        if a[k * m + k] == 0.0 {
-            b.fill(f64::NAN);
-            return Ok(());
-        }
-        eliminate_below(a, Some(b), m, k);
-    }
-    back_substitute(a, b, m);
-    Ok(())
+pub fn solve<const M: usize>(a: &[[f64; M]; M], b: &[f64; M]) -> Result<[f64; M], MatrixError>
+where
+    Const<M>: Square,
+{
+    matrix_from_rows(a)
+        .lu()
+        .solve(&SVector::from(*b))
+        .map(Into::into)
+        .ok_or(MatrixError::Singular { order: M })
 }
 
-/// The row `i >= k` with the largest `|a_ik|` (the first on ties; NaNs
-/// compare as not larger).
-fn largest_below(a: &[f64], m: usize, k: usize) -> usize {
-    let mut best = k;
-    for i in k + 1..m {
-        if a[i * m + k].abs() > a[best * m + k].abs() {
-            best = i;
-        }
-    }
-    best
-}
-
-fn swap_rows(a: &mut [f64], m: usize, first: usize, second: usize) {
-    if first != second {
-        for j in 0..m {
-            a.swap(first * m + j, second * m + j);
-        }
-    }
-}
-
-/// Subtracts multiples of row `k` from the rows below so that column `k`
-/// vanishes under the pivot, and the same multiples of `b[k]` from the
-/// entries of `b` below (when there is a right-hand side).
-fn eliminate_below(a: &mut [f64], mut b: Option<&mut [f64]>, m: usize, k: usize) {
-    let (upper, lower) = a.split_at_mut((k + 1) * m);
-    let pivot_row = &upper[k * m..];
-    for (offset, row) in lower.chunks_exact_mut(m).enumerate() {
-        let factor = row[k] / pivot_row[k];
-        for (entry, pivot_entry) in row.iter_mut().zip(pivot_row).skip(k + 1) {
-            *entry -= factor * pivot_entry;
-        }
-        if let Some(b) = b.as_deref_mut() {
-            b[k + 1 + offset] -= factor * b[k];
-        }
-    }
-}
-
-/// Solves the upper triangular system in place: `b` becomes `x`.
-fn back_substitute(a: &[f64], b: &mut [f64], m: usize) {
-    for i in (0..m).rev() {
-        let row = &a[i * m..(i + 1) * m];
-        let (head, solved) = b.split_at_mut(i + 1);
-        let reduced = row
-            .iter()
-            .skip(i + 1)
-            .zip(solved.iter())
-            .fold(head[i], |rest, (entry, x)| rest - entry * x);
-        head[i] = reduced / row[i];
-    }
-}
-
-/// The determinant of `a` by Gaussian elimination with partial pivoting:
-/// the product of the pivots, with the sign of the row permutation.
+/// The solution `x` of `a x = b` for a symmetric positive definite `a` (a
+/// mass matrix, a Gram matrix) by Cholesky, `a = L L^T` (Golub & Van Loan,
+/// algorithm 4.2.1): half the work of [`solve`], no pivoting, and a check
+/// that `a` is positive definite. Only the lower triangle of `a` is read.
+///
+/// # Errors
+/// [`MatrixError::NotPositiveDefinite`] when a pivot is not positive.
 ///
 /// ```
-/// use chaplygin_runtime::linalg::determinant;
-/// assert_eq!(determinant([[0.0, 2.0], [3.0, 1.0]]), -6.0);
-/// assert_eq!(determinant([[1.0, 2.0], [2.0, 4.0]]), 0.0);
+/// use chaplygin_runtime::linalg::{MatrixError, solve_positive_definite};
+/// let x = solve_positive_definite(&[[4.0, 2.0], [2.0, 3.0]], &[8.0, 7.0]).unwrap();
+/// assert!((x[0] - 1.25).abs() < 1e-15 && (x[1] - 1.5).abs() < 1e-15);
+/// let indefinite = solve_positive_definite(&[[1.0, 2.0], [2.0, 1.0]], &[1.0, 1.0]);
+/// assert_eq!(indefinite, Err(MatrixError::NotPositiveDefinite { order: 2 }));
 /// ```
-pub fn determinant<const M: usize>(mut a: [[f64; M]; M]) -> f64 {
-    determinant_in_place(a.as_flattened_mut(), M)
+pub fn solve_positive_definite<const M: usize>(
+    a: &[[f64; M]; M],
+    b: &[f64; M],
+) -> Result<[f64; M], MatrixError> {
+    let factor = cholesky(matrix_from_rows(a))?;
+    Ok(factor.solve(&SVector::from(*b)).into())
 }
 
-/// [`determinant`] on slices: `a` is the `m x m` matrix in row-major order
-/// (overwritten by the elimination); NaN when it does not have `m * m`
-/// entries.
+/// The Cholesky factor of a symmetric positive definite `a` (its lower
+/// triangle read), for any size, fixed or dynamic.
+///
+/// # Errors
+/// [`MatrixError::NotPositiveDefinite`] when a pivot is not positive.
+pub fn cholesky<D: Dim>(a: OMatrix<f64, D, D>) -> Result<nalgebra::Cholesky<f64, D>, MatrixError>
+where
+    DefaultAllocator: Allocator<D, D>,
+{
+    let order = a.nrows();
+    a.cholesky()
+        .ok_or(MatrixError::NotPositiveDefinite { order })
+}
+
+/// The eigenvalues of a real square matrix, from its real Schur form
+/// `a = Q T Q^T` (Golub & Van Loan, section 7.5: Hessenberg reduction, then
+/// Francis double-shift QR sweeps): each 1 x 1 block of `T` is a real
+/// eigenvalue, each 2 x 2 block a complex conjugate pair. They are ordered
+/// by decreasing real part, then decreasing imaginary part, so a pair
+/// `a + bi, a - bi` (`b > 0`) comes in that order, its parts equal to the
+/// last bit.
+///
+/// At most `30 n` sweeps for an `n x n` matrix (LAPACK's `dhseqr` allows
+/// 30 per eigenvalue).
+///
+/// # Errors
+/// [`MatrixError::NonFinite`] for a NaN or infinite entry;
+/// [`MatrixError::NotConverged`] when the sweeps do not converge.
 ///
 /// ```
-/// use chaplygin_runtime::linalg::determinant_in_place;
-/// assert_eq!(determinant_in_place(&mut [0.0, 2.0, 3.0, 1.0], 2), -6.0);
-/// assert!(determinant_in_place(&mut [1.0; 3], 2).is_nan());
+/// use chaplygin_runtime::linalg::{SMatrix, eigenvalues};
+/// // A rotation by 90 degrees: eigenvalues i and -i.
+/// let rotation = SMatrix::<f64, 2, 2>::new(0.0, -1.0, 1.0, 0.0);
+/// let lambda = eigenvalues(rotation).unwrap();
+/// assert_eq!((lambda[0].re, lambda[0].im), (0.0, 1.0));
+/// assert_eq!((lambda[1].re, lambda[1].im), (0.0, -1.0));
 /// ```
-pub fn determinant_in_place(a: &mut [f64], m: usize) -> f64 {
-    if m.checked_mul(m) != Some(a.len()) {
-        return f64::NAN;
+pub fn eigenvalues<D>(a: OMatrix<f64, D, D>) -> Result<OVector<Complex<f64>, D>, MatrixError>
+where
+    D: Dim + DimSub<U1>,
+    DefaultAllocator:
+        Allocator<D, D> + Allocator<D> + Allocator<D, DimDiff<D, U1>> + Allocator<DimDiff<D, U1>>,
+{
+    let order = a.nrows();
+    if order == 0 {
+        // nalgebra's extraction of the eigenvalues assumes a row.
+        return Ok(OVector::from_element_generic(
+            a.shape_generic().0,
+            U1,
+            Complex::new(0.0, 0.0),
+        ));
     }
-    let mut product = 1.0;
-    for k in 0..m {
-        let pivot_row = largest_below(a, m, k);
-        if pivot_row != k {
-            swap_rows(a, m, k, pivot_row);
-            product = -product;
-        }
-        if a[k * m + k] == 0.0 {
-            return 0.0;
-        }
-        product *= a[k * m + k];
-        eliminate_below(a, None, m, k);
+    if let Some(index) = a.iter().position(|entry| !entry.is_finite()) {
+        // nalgebra stores columns one after the other.
+        let (column, row) = (index / order, index % order);
+        return Err(MatrixError::NonFinite { order, row, column });
     }
-    product
+    let sweeps = 30 * order.max(1);
+    let schur = Schur::try_new(a, f64::EPSILON, sweeps)
+        .ok_or(MatrixError::NotConverged { order, sweeps })?;
+    let mut values = schur.complex_eigenvalues();
+    values
+        .as_mut_slice()
+        .sort_by(|a, b| b.re.total_cmp(&a.re).then(b.im.total_cmp(&a.im)));
+    Ok(values)
 }
 
 /// The Jacobian `df/dx` of `f: R^D -> R^R` at `x` by central differences,
 /// with the step `eps^(1/3) max(1, |x_j|)` (error of order `eps^(2/3)`
-/// relative: about 4e-11 for smooth `f`).
+/// relative: about 4e-11 for smooth `f`). Row `i`, column `j` is
+/// `d f_i / d x_j`.
 pub fn central_difference_jacobian<const D: usize, const R: usize>(
     f: impl Fn(&[f64; D]) -> [f64; R],
     x: &[f64; D],
@@ -188,72 +213,4 @@ pub fn central_difference_jacobian<const D: usize, const R: usize>(
         }
     }
     jacobian
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{SizeMismatch, solve, solve_in_place};
-
-    #[test]
-    fn slices_of_the_wrong_size_are_an_error() {
-        let mut b = [1.0, 2.0];
-        assert_eq!(
-            solve_in_place(&mut [1.0, 0.0, 0.0], &mut b),
-            Err(SizeMismatch { rows: 2, found: 3 })
-        );
-        assert_eq!(b, [1.0, 2.0]);
-        // The hand-solved system of the next test, on slices.
-        let mut a = [0.0, 2.0, 1.0, 1.0, 1.0, 1.0, 2.0, 1.0, -1.0];
-        let mut b = [7.0, 6.0, 1.0];
-        solve_in_place(&mut a, &mut b).unwrap();
-        assert_eq!(b, [1.0, 2.0, 3.0]);
-    }
-
-    #[test]
-    fn a_hand_solved_system_needing_a_row_swap() {
-        // a_00 = 0 forces a swap at the first step; solved by hand:
-        // 0 x + 2 y + 1 z = 7, 1 x + 1 y + 1 z = 6, 2 x + 1 y - 1 z = 1  =>  (1, 2, 3)
-        let a = [[0.0, 2.0, 1.0], [1.0, 1.0, 1.0], [2.0, 1.0, -1.0]];
-        let x = solve(a, [7.0, 6.0, 1.0]);
-        assert_eq!(x, [1.0, 2.0, 3.0]);
-    }
-
-    #[test]
-    fn partial_pivoting_keeps_a_tiny_pivot_accurate() {
-        // [[eps, 1], [1, 1]] x = [1, 2]: x = (1/(1-eps), (1-2 eps)/(1-eps)).
-        let eps = 1e-20;
-        let x = solve([[eps, 1.0], [1.0, 1.0]], [1.0, 2.0]);
-        assert!((x[0] - 1.0).abs() <= 1e-15, "{x:?}");
-        assert!((x[1] - 1.0).abs() <= 1e-15, "{x:?}");
-    }
-
-    #[test]
-    fn a_saddle_point_system_with_a_zero_block() {
-        // [[2, 0, 1], [0, 4, 1], [1, 1, 0]] [a; b; m] = [0, 0, 3]:
-        // 2a = -m, 4b = -m, a + b = 3  =>  m = -4, a = 2, b = 1.
-        let a = [[2.0, 0.0, 1.0], [0.0, 4.0, 1.0], [1.0, 1.0, 0.0]];
-        assert_eq!(solve(a, [0.0, 0.0, 3.0]), [2.0, 1.0, -4.0]);
-    }
-
-    #[test]
-    fn singular_systems_give_nan_not_panics() {
-        let x = solve(
-            [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]],
-            [1.0; 3],
-        );
-        assert!(x.iter().all(|v| v.is_nan()), "{x:?}");
-        assert!(solve([[0.0]], [1.0])[0].is_nan());
-        assert_eq!(solve::<0>([], []), [0.0; 0]);
-    }
-
-    #[test]
-    fn non_finite_entries_propagate() {
-        let x = solve([[f64::NAN, 1.0], [1.0, 1.0]], [1.0, 2.0]);
-        assert!(x.iter().any(|v| !v.is_finite()), "{x:?}");
-        let x = solve([[1.0, 0.0], [0.0, 1.0]], [f64::INFINITY, 1.0]);
-        // 0 * inf = NaN in the elimination: the whole solution is non-finite.
-        assert!(x.iter().all(|v| !v.is_finite()), "{x:?}");
-        let x = solve([[f64::NAN; 2]; 2], [1.0, 1.0]);
-        assert!(x.iter().all(|v| v.is_nan()), "{x:?}");
-    }
 }

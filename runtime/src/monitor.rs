@@ -16,9 +16,20 @@
 //! - The Lagrange-d'Alembert form needs the multiplier system, with the
 //!   Gram matrix `A g^-1 A^T`, to be regular. [`constraint_regularity`] is
 //!   its Hadamard ratio `det(A g^-1 A^T) / prod_i (A g^-1 A^T)_ii`, in
-//!   `[0, 1]`, zero exactly where the rows of `A` are dependent.
+//!   `[0, 1]`, zero where the rows of `A` are dependent (up to round-off:
+//!   Cholesky of a rank-deficient Gram matrix meets a pivot of round-off
+//!   size, or a negative one and then the measure is 0).
+//!
+//! Both work on nalgebra's matrices of any size, fixed (the generated
+//! models, on the stack) or dynamic (models interpreted at run time): the
+//! determinant of `[A; V^T]` by LU with partial pivoting, the Gram matrix
+//! by Cholesky of the mass matrix `g` (symmetric positive definite), and its
+//! determinant by its own Cholesky factor, `det G = prod_i L_ii^2`.
 
-use crate::linalg::{determinant_in_place, solve};
+use crate::arrays::matrix_from_rows;
+use crate::linalg::{Square, cholesky};
+use nalgebra::allocator::Allocator;
+use nalgebra::{Const, DefaultAllocator, Dim, OMatrix};
 
 /// `det[A; V^T] / (prod |A_i| prod |V_j|)` (see the module documentation);
 /// `N = C + K`.
@@ -33,60 +44,78 @@ use crate::linalg::{determinant_in_place, solve};
 pub fn reduced_regularity<const N: usize, const C: usize, const K: usize>(
     constraints: &[[f64; N]; C],
     basis: &[[f64; N]; K],
-) -> f64 {
+) -> f64
+where
+    Const<N>: Square,
+{
     const {
         assert!(
             N == C + K,
             "C constraint rows and K basis vectors make N rows"
         )
     };
-    let mut rows: [[f64; N]; N] =
+    let rows: [[f64; N]; N] =
         core::array::from_fn(|i| if i < C { constraints[i] } else { basis[i - C] });
-    reduced_regularity_in_place(rows.as_flattened_mut(), N)
+    hadamard_ratio(matrix_from_rows(&rows))
 }
 
-/// [`reduced_regularity`] on slices: `rows` holds the `n x n` matrix
-/// `[A; V^T]` in row-major order (overwritten).
-pub fn reduced_regularity_in_place(rows: &mut [f64], n: usize) -> f64 {
-    let scale: f64 = rows
-        .chunks(n.max(1))
-        .map(|row| row.iter().map(|v| v * v).sum::<f64>().sqrt())
-        .product();
+/// `det(m) / prod_i |m_i|`, the determinant over the product of the rows'
+/// norms: at most 1 in magnitude (Hadamard's inequality), 0 when a row is
+/// zero. [`reduced_regularity`] of the matrix `[A; V^T]`.
+pub fn hadamard_ratio<D: Square>(m: OMatrix<f64, D, D>) -> f64
+where
+    DefaultAllocator: Allocator<D, D> + Allocator<D>,
+{
+    let scale: f64 = m.row_iter().map(|row| row.norm()).product();
     if scale == 0.0 {
         return 0.0;
     }
-    determinant_in_place(rows, n) / scale
+    m.determinant() / scale
 }
 
 /// `det(A g^-1 A^T) / prod_i (A g^-1 A^T)_ii` for the mass matrix `g` and the
-/// constraint rows `A` (see the module documentation); 1 without constraints.
+/// constraint rows `A` (see the module documentation); 1 without
+/// constraints, 0 when the Gram matrix or `g` itself is not positive
+/// definite (the rows of `A` are dependent, or the mass matrix degenerates
+/// and with it the whole Lagrange-d'Alembert system).
 ///
 /// ```
 /// use chaplygin_runtime::monitor::constraint_regularity;
 /// let g = [[1.0, 0.0], [0.0, 1.0]];
 /// assert_eq!(constraint_regularity(&g, &[[1.0, 0.0], [0.0, 1.0]]), 1.0);
-/// assert_eq!(constraint_regularity(&g, &[[1.0, 1.0], [2.0, 2.0]]), 0.0);
+/// // Dependent rows: zero up to round-off.
+/// assert!(constraint_regularity(&g, &[[1.0, 1.0], [2.0, 2.0]]).abs() < 1e-15);
+/// // A mass matrix that is not positive definite.
+/// assert_eq!(constraint_regularity(&[[1.0, 0.0], [0.0, -1.0]], &[[1.0, 0.0]]), 0.0);
 /// ```
 pub fn constraint_regularity<const N: usize, const C: usize>(
     mass_matrix: &[[f64; N]; N],
     constraints: &[[f64; N]; C],
 ) -> f64 {
-    let inverse_rows: [[f64; N]; C] = core::array::from_fn(|i| solve(*mass_matrix, constraints[i]));
-    let mut gram: [[f64; C]; C] =
-        core::array::from_fn(|i| core::array::from_fn(|j| dot(&constraints[i], &inverse_rows[j])));
-    gram_regularity_in_place(gram.as_flattened_mut(), C)
+    gram_regularity(
+        matrix_from_rows(mass_matrix),
+        &matrix_from_rows(constraints),
+    )
 }
 
-/// The Hadamard ratio `det(G) / prod_i G_ii` of the `c x c` Gram matrix `G`
-/// in row-major order (overwritten); 1 for `c = 0`.
-pub fn gram_regularity_in_place(gram: &mut [f64], c: usize) -> f64 {
-    let diagonal: f64 = (0..c).map(|i| gram[i * c + i]).product();
-    if diagonal == 0.0 {
+/// [`constraint_regularity`] on nalgebra matrices of any size: `g` is
+/// `n x n`, `a` is `c x n`.
+pub fn gram_regularity<N: Dim, C: Dim>(g: OMatrix<f64, N, N>, a: &OMatrix<f64, C, N>) -> f64
+where
+    DefaultAllocator:
+        Allocator<N, N> + Allocator<C, N> + Allocator<N, C> + Allocator<C, C> + Allocator<C>,
+{
+    let Ok(g) = cholesky(g) else {
         return 0.0;
+    };
+    let gram = a * g.solve(&a.transpose());
+    let diagonal = gram.diagonal();
+    match cholesky(gram) {
+        Ok(factor) => factor
+            .l_dirty()
+            .diagonal()
+            .zip_map(&diagonal, |l, g| l * l / g)
+            .product(),
+        Err(_) => 0.0,
     }
-    determinant_in_place(gram, c) / diagonal
-}
-
-fn dot<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }

@@ -13,8 +13,8 @@
 //! [`Controller`] (a constant, an open-loop `u(t)`, or a feedback `u(t, x)`)
 //! into an [`OdeSystem`].
 
-pub use crate::control::Constant;
-use crate::control::Controller;
+pub use crate::law::Constant;
+use crate::law::Controller;
 
 /// A first-order system `xdot = f(t, x)` in `D` states.
 pub trait OdeSystem<const D: usize> {
@@ -170,7 +170,7 @@ pub struct Reduced<'a, M, F, const P: usize> {
 
 impl<'a, M, F, const P: usize> Reduced<'a, M, F, P> {
     /// `model` driven by `controller`: a [`Constant`], a closure `u(t)`,
-    /// or a [`crate::control::Feedback`] `u(t, x)`.
+    /// or a [`crate::law::Feedback`] `u(t, x)`.
     pub fn new(model: &'a M, controller: F) -> Self {
         Self { model, controller }
     }
@@ -313,7 +313,7 @@ where
     M: LagrangeDalembert<N, C, P>,
 {
     /// `model` driven by `controller`: a [`Constant`], a closure `u(t)`,
-    /// or a [`crate::control::Feedback`] `u(t, x)` of `x = (q, qdot)`.
+    /// or a [`crate::law::Feedback`] `u(t, x)` of `x = (q, qdot)`.
     pub fn new(model: &'a M, controller: F) -> Self {
         Self { model, controller }
     }
@@ -426,7 +426,7 @@ where
     M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
 {
     /// `model` driven by `controller`: a [`Constant`], a closure `u(t)`,
-    /// or a [`crate::control::Feedback`] `u(t, x)` of `x = (q, rdot, p)`.
+    /// or a [`crate::law::Feedback`] `u(t, x)` of `x = (q, rdot, p)`.
     pub fn new(model: &'a M, controller: F) -> Self {
         Self { model, controller }
     }

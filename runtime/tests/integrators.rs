@@ -63,6 +63,22 @@ impl Jacobian<1> for BlowUp {
     }
 }
 
+/// `xdot = a x`: the midpoint rule's step `X = x (1 + h a/2) / (1 - h a/2)`
+/// has a pole at `h a = 2`, where Newton's matrix `1 - h a/2` is zero.
+struct Growth(f64);
+
+impl OdeSystem<1> for Growth {
+    fn rhs(&self, _t: f64, x: &[f64; 1]) -> [f64; 1] {
+        [self.0 * x[0]]
+    }
+}
+
+impl Jacobian<1> for Growth {
+    fn jacobian(&self, _t: f64, _x: &[f64; 1]) -> [[f64; 1]; 1] {
+        [[self.0]]
+    }
+}
+
 /// Global errors at `t = 2` for `h = 0.2 / 2^i`, and the slopes of
 /// `log2(error)` between successive halvings.
 fn measured_orders<M: FixedStep<Oscillator, 2>>(method: &M) -> ([f64; 4], [f64; 3]) {
@@ -177,6 +193,32 @@ fn a_blow_up_gives_structured_errors() {
         matches!(error, Error::NewtonFailure { .. } | Error::NonFinite { .. }),
         "{error}"
     );
+}
+
+#[test]
+fn a_singular_newton_matrix_is_a_structured_error_not_nan() {
+    // h a = 0.5 * 4 = 2: 1 - h a/2 = 0 exactly.
+    let error = Midpoint::default()
+        .step(&Growth(4.0), 1.5, &[1.0], 0.5)
+        .unwrap_err();
+    assert_eq!(
+        error,
+        Error::SingularJacobian {
+            t: 1.5,
+            h: 0.5,
+            iteration: 1,
+            state: vec![1.0],
+        }
+    );
+    assert!(
+        error.to_string().contains("singular Newton matrix"),
+        "{error}"
+    );
+    // Beside the pole the step is the closed form.
+    let next = Midpoint::default()
+        .step(&Growth(4.0), 1.5, &[1.0], 0.25)
+        .unwrap();
+    assert!((next[0] - 1.5 / 0.5).abs() < 1e-12, "{next:?}");
 }
 
 #[test]

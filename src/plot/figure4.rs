@@ -11,10 +11,11 @@
 //! meridians through the `xt` poles) with `alpha1` across, `xt` up and
 //! `alpha2` in depth, and states the largest `|H - E0| / E0` along the run.
 
-use super::{
-    DrawResult, Drawn, Figure4, PlotError, PlotSpec, canvas, centred, draw_ends, draw_legend,
-    finite_runs, label_style, padded_range, title_style,
+use super::style::{
+    DrawResult, Drawn, canvas, centred, draw_ends, draw_legend, finite_runs, label_style,
+    padded_range, title_style,
 };
+use super::{Figure4, PlotError, PlotSpec};
 use plotters::coord::ranged3d::Cartesian3d;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;

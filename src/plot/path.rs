@@ -3,10 +3,11 @@
 //! `(cos theta, sin theta)` at regular time intervals, and the start and
 //! end marked.
 
-use super::{
-    DrawResult, Drawn, PlanarPath, PlotError, PlotSpec, canvas, centred, draw_ends, draw_legend,
-    emptiest_corner, finite_runs, label_style, padded_range, tick_labels, title_style,
+use super::style::{
+    DrawResult, Drawn, canvas, centred, draw_ends, draw_legend, emptiest_corner, finite_runs,
+    label_style, padded_range, tick_labels, title_style,
 };
+use super::{PlanarPath, PlotError, PlotSpec};
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;

@@ -6,10 +6,10 @@
 //! `E(t) - E(0)`. The residual `|r(t)|` is drawn on a logarithmic axis with
 //! values below [`RESIDUAL_FLOOR`] raised to it.
 
-use super::{
-    Drawn, PlotError, PlotSpec, RESIDUAL_FLOOR, canvas, finite_bounds, finite_runs, label_style,
-    padded_range, tick_labels, title_style,
+use super::style::{
+    Drawn, canvas, finite_bounds, finite_runs, label_style, padded_range, tick_labels, title_style,
 };
+use super::{PlotError, PlotSpec, RESIDUAL_FLOOR};
 use plotters::prelude::*;
 use std::ops::Range;
 use std::path::Path;

@@ -381,7 +381,7 @@ mod tests {
     use crate::sym::SymbolId;
     use crate::sym::zero::SplitMix;
     use crate::syntax::parse_str;
-    use chaplygin_runtime::linalg::solve;
+    use chaplygin_runtime::nalgebra::{DMatrix, DVector};
     use std::collections::HashMap;
 
     const SLEIGH: &str = include_str!("../../../models/sleigh.model");
@@ -497,8 +497,11 @@ pub struct Towed {
         let mut rhs = [0.0; M];
         rhs[..n].copy_from_slice(&force);
         rhs[n..].copy_from_slice(&drift);
-        let solution = solve(matrix, rhs);
-        let (accelerations, mu) = solution.split_at(n);
+        let solution = DMatrix::from_fn(M, M, |i, j| matrix[i][j])
+            .lu()
+            .solve(&DVector::from_column_slice(&rhs))
+            .expect("a regular saddle-point system");
+        let (accelerations, mu) = solution.as_slice().split_at(n);
         accelerations
             .iter()
             .copied()

@@ -25,7 +25,9 @@
 
 use super::newton::{Settings, identity_minus, solve_root};
 use super::{Error, FixedStep, finite, newton_failure};
+use crate::linalg::Square;
 use crate::system::{Jacobian, Structured};
+use nalgebra::Const;
 
 /// The discrete-gradient method with its Newton iteration's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,7 +48,10 @@ impl Default for DiscreteGradient {
     }
 }
 
-impl<S: Structured<D> + Jacobian<D>, const D: usize> FixedStep<S, D> for DiscreteGradient {
+impl<S: Structured<D> + Jacobian<D>, const D: usize> FixedStep<S, D> for DiscreteGradient
+where
+    Const<D>: Square,
+{
     fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error> {
         let tm = t + h / 2.0;
         let settings = Settings {
@@ -62,9 +67,9 @@ impl<S: Structured<D> + Jacobian<D>, const D: usize> FixedStep<S, D> for Discret
                 let flow: f64 = (0..D).map(|k| j[i][k] * gradient[k]).sum();
                 next[i] - x[i] - h * (flow + forcing[i])
             });
-            (value, identity_minus(h / 2.0, system.jacobian(tm, &m)))
+            (value, identity_minus(h / 2.0, &system.jacobian(tm, &m)))
         })
-        .map_err(|diverged| newton_failure(diverged, t, h, x))?;
+        .map_err(|failure| newton_failure(failure, t, h, x))?;
         finite(t + h, next)
     }
 }

@@ -20,7 +20,9 @@
 
 use super::newton::{Settings, identity_minus, solve_root};
 use super::{Error, FixedStep, finite, newton_failure};
+use crate::linalg::Square;
 use crate::system::Jacobian;
+use nalgebra::Const;
 
 /// The implicit midpoint rule with its Newton iteration's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,7 +45,10 @@ impl Default for Midpoint {
     }
 }
 
-impl<S: Jacobian<D>, const D: usize> FixedStep<S, D> for Midpoint {
+impl<S: Jacobian<D>, const D: usize> FixedStep<S, D> for Midpoint
+where
+    Const<D>: Square,
+{
     fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error> {
         let (tm, half) = (t + h / 2.0, h / 2.0);
         let euler = system.rhs(t, x);
@@ -55,9 +60,9 @@ impl<S: Jacobian<D>, const D: usize> FixedStep<S, D> for Midpoint {
         let midpoint = solve_root(start, settings, |m| {
             let f = system.rhs(tm, m);
             let g = core::array::from_fn(|i| m[i] - x[i] - half * f[i]);
-            (g, identity_minus(half, system.jacobian(tm, m)))
+            (g, identity_minus(half, &system.jacobian(tm, m)))
         })
-        .map_err(|diverged| newton_failure(diverged, t, h, x))?;
+        .map_err(|failure| newton_failure(failure, t, h, x))?;
         finite(t + h, core::array::from_fn(|i| 2.0 * midpoint[i] - x[i]))
     }
 }

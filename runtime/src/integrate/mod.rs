@@ -52,6 +52,22 @@ pub enum Error {
         /// The state at the start of the step.
         state: Vec<f64>,
     },
+    /// The Jacobian of an implicit step's equation (`I - h/2 df/dx` at the
+    /// iterate) had no nonzero pivot in an iteration of Newton's method.
+    #[error(
+        "singular Newton matrix I - h/2 df/dx in iteration {iteration} of the step from t = {t} \
+         (h = {h}), state {state:?}"
+    )]
+    SingularJacobian {
+        /// Time at the start of the step.
+        t: f64,
+        /// The step size.
+        h: f64,
+        /// The Newton iteration, from 1.
+        iteration: usize,
+        /// The state at the start of the step.
+        state: Vec<f64>,
+    },
     /// An adaptive method needed a step below its minimum to meet its tolerance.
     #[error("step size underflow at t = {t}: h = {h:e}, state {state:?}")]
     StepSizeUnderflow {
@@ -80,7 +96,7 @@ pub trait FixedStep<S, const D: usize> {
     ///
     /// # Errors
     /// [`Error::NonFinite`] when the new state is not finite; the method's own
-    /// failures (e.g. [`Error::NewtonFailure`]).
+    /// failures (e.g. [`Error::NewtonFailure`], [`Error::SingularJacobian`]).
     fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error>;
 }
 
@@ -110,19 +126,29 @@ where
     Ok(x)
 }
 
-/// [`Error::NewtonFailure`] for the step of size `h` from `x` at `t`.
+/// [`Error::NewtonFailure`] or [`Error::SingularJacobian`] for the step of
+/// size `h` from `x` at `t`.
 pub(crate) fn newton_failure<const D: usize>(
-    diverged: newton::Diverged,
+    failure: newton::Failure,
     t: f64,
     h: f64,
     x: &[f64; D],
 ) -> Error {
-    Error::NewtonFailure {
-        t,
-        h,
-        iterations: diverged.iterations,
-        update: diverged.update,
-        state: x.to_vec(),
+    let state = x.to_vec();
+    match failure {
+        newton::Failure::Diverged { iterations, update } => Error::NewtonFailure {
+            t,
+            h,
+            iterations,
+            update,
+            state,
+        },
+        newton::Failure::SingularJacobian { iteration } => Error::SingularJacobian {
+            t,
+            h,
+            iteration,
+            state,
+        },
     }
 }
 

@@ -1,7 +1,10 @@
-//! Newton's method on a fixed-size system, shared by the implicit steps.
+//! Newton's method on a fixed-size system, shared by the implicit steps:
+//! each iteration solves `J delta = r` by LU with partial pivoting
+//! (nalgebra's, on the stack, for the sizes of [`Square`]).
 
 use super::max_norm;
-use crate::linalg::solve;
+use crate::linalg::Square;
+use nalgebra::{Const, SMatrix, SVector};
 
 /// When Newton's method stops.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -12,12 +15,14 @@ pub(crate) struct Settings {
     pub(crate) max_iterations: usize,
 }
 
-/// Newton's method did not converge: iterations made and the largest entry
-/// of the last update.
+/// Why Newton's method stopped without a root.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Diverged {
-    pub(crate) iterations: usize,
-    pub(crate) update: f64,
+pub(crate) enum Failure {
+    /// No convergence: iterations made and the largest entry of the last
+    /// update.
+    Diverged { iterations: usize, update: f64 },
+    /// The Jacobian had no nonzero pivot in this iteration (from 1).
+    SingularJacobian { iteration: usize },
 }
 
 /// The root of `residual(y)` from `y`, where `residual` returns the value
@@ -25,12 +30,19 @@ pub(crate) struct Diverged {
 pub(crate) fn solve_root<const D: usize>(
     mut y: [f64; D],
     settings: Settings,
-    residual: impl Fn(&[f64; D]) -> ([f64; D], [[f64; D]; D]),
-) -> Result<[f64; D], Diverged> {
+    residual: impl Fn(&[f64; D]) -> ([f64; D], SMatrix<f64, D, D>),
+) -> Result<[f64; D], Failure>
+where
+    Const<D>: Square,
+{
     let mut update = f64::INFINITY;
     for iteration in 1..=settings.max_iterations {
         let (value, jacobian) = residual(&y);
-        let delta = solve(jacobian, value);
+        let delta: [f64; D] = jacobian
+            .lu()
+            .solve(&SVector::from(value))
+            .ok_or(Failure::SingularJacobian { iteration })?
+            .into();
         update = max_norm(&delta);
         for (yi, di) in y.iter_mut().zip(delta) {
             *yi -= di;
@@ -39,24 +51,19 @@ pub(crate) fn solve_root<const D: usize>(
             return Ok(y);
         }
         if !update.is_finite() {
-            return Err(Diverged {
+            return Err(Failure::Diverged {
                 iterations: iteration,
                 update,
             });
         }
     }
-    Err(Diverged {
+    Err(Failure::Diverged {
         iterations: settings.max_iterations,
         update,
     })
 }
 
-/// `I - scale * a`.
-pub(crate) fn identity_minus<const D: usize>(scale: f64, mut a: [[f64; D]; D]) -> [[f64; D]; D] {
-    for (i, row) in a.iter_mut().enumerate() {
-        for (j, entry) in row.iter_mut().enumerate() {
-            *entry = f64::from(u8::from(i == j)) - scale * *entry;
-        }
-    }
-    a
+/// `I - scale * a`, `a` row-major.
+pub(crate) fn identity_minus<const D: usize>(scale: f64, a: &[[f64; D]; D]) -> SMatrix<f64, D, D> {
+    SMatrix::from_fn(|i, j| f64::from(u8::from(i == j)) - scale * a[i][j])
 }

@@ -7,8 +7,8 @@
 //! round-off.
 
 use crate::formulation::Formulation;
-use chaplygin::runtime::linalg::solve_in_place;
-use chaplygin::runtime::monitor::{gram_regularity_in_place, reduced_regularity_in_place};
+use chaplygin::runtime::monitor::{gram_regularity, hadamard_ratio};
+use chaplygin::runtime::nalgebra::DMatrix;
 use chaplygin::runtime::simulate::Regularity;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 
@@ -114,7 +114,7 @@ impl Formulation for InterpretedReduced {
         }
         Regularity {
             quantity: chaplygin::runtime::simulate::REDUCED,
-            value: reduced_regularity_in_place(&mut rows, sizes.n),
+            value: hadamard_ratio(DMatrix::from_row_slice(sizes.n, sizes.n, &rows)),
             signed: true,
         }
     }
@@ -185,27 +185,13 @@ impl Formulation for InterpretedDalembert {
             evaluated(self.model.mass_matrix(q)),
             evaluated(self.model.constraint_matrix(q)),
         );
-        let inverse_rows: Vec<Vec<f64>> = a
-            .chunks(sizes.n)
-            .map(|row| {
-                let (mut matrix, mut solution) = (g.clone(), row.to_vec());
-                match solve_in_place(&mut matrix, &mut solution) {
-                    Ok(()) => solution,
-                    Err(_) => vec![f64::NAN; sizes.n],
-                }
-            })
-            .collect();
-        let mut gram: Vec<f64> = a
-            .chunks(sizes.n)
-            .flat_map(|row| {
-                inverse_rows
-                    .iter()
-                    .map(move |w| row.iter().zip(w).map(|(x, y)| x * y).sum::<f64>())
-            })
-            .collect();
+        let (g, a) = (
+            DMatrix::from_row_slice(sizes.n, sizes.n, &g),
+            DMatrix::from_row_slice(sizes.c, sizes.n, &a),
+        );
         Regularity {
             quantity: chaplygin::runtime::simulate::MULTIPLIERS,
-            value: gram_regularity_in_place(&mut gram, sizes.c),
+            value: gram_regularity(g, &a),
             signed: false,
         }
     }

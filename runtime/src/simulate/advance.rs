@@ -1,0 +1,56 @@
+//! The integrators as the simulation loop drives them ([`Advance`]): one
+//! step for the fixed-step methods, adaptive steps for Dormand-Prince.
+
+use crate::integrate::{self, DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4};
+use crate::system::OdeSystem;
+
+/// An integrator as the simulation loop uses it: from `x` at `t` to the
+/// state at `t_next`.
+pub trait Advance<S, const D: usize> {
+    /// The state at `t_next`.
+    ///
+    /// # Errors
+    /// The integrator's [`integrate::Error`].
+    fn advance(
+        &self,
+        system: &S,
+        t: f64,
+        x: &[f64; D],
+        t_next: f64,
+    ) -> Result<[f64; D], integrate::Error>;
+}
+
+macro_rules! one_step_advances {
+    ($($method:ty),*) => {$(
+        /// One step of size `t_next - t`.
+        impl<S, const D: usize> Advance<S, D> for $method
+        where
+            $method: FixedStep<S, D>,
+        {
+            fn advance(
+                &self,
+                system: &S,
+                t: f64,
+                x: &[f64; D],
+                t_next: f64,
+            ) -> Result<[f64; D], integrate::Error> {
+                self.step(system, t, x, t_next - t)
+            }
+        }
+    )*};
+}
+
+one_step_advances!(Rk4, Midpoint, DiscreteGradient);
+
+/// Adaptive steps to `t_next` within the tolerances.
+impl<S: OdeSystem<D>, const D: usize> Advance<S, D> for DormandPrince {
+    fn advance(
+        &self,
+        system: &S,
+        t: f64,
+        x: &[f64; D],
+        t_next: f64,
+    ) -> Result<[f64; D], integrate::Error> {
+        Ok(self.integrate(system, (t, *x), t_next)?.x)
+    }
+}

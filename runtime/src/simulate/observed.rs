@@ -1,0 +1,213 @@
+//! What the simulation loop observes of a system ([`Observed`]): its
+//! columns, inputs, energy, constraint residual and regularity measure
+//! ([`Regularity`]), for each formulation closed by its controller.
+
+use crate::control::{Interconnection, PortHamiltonianController};
+use crate::law::Controller;
+use crate::system::{
+    Dalembert, Energy, LagrangeDalembert, ModelNames, Momentum, MomentumEquations, Reduced,
+    ReducedPortHamiltonian, split,
+};
+
+/// A regularity measure's value at a state, and what it measures.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Regularity {
+    /// What degenerates where the measure vanishes.
+    pub quantity: &'static str,
+    /// The measure, scale-free, at most 1 in magnitude.
+    pub value: f64,
+    /// Whether the measure changes sign where it is crossed, so that a
+    /// crossing between two steps is detected too.
+    pub signed: bool,
+}
+
+/// A system the simulation loop can run and record: its columns, inputs,
+/// energy, constraint residual and regularity at a state.
+pub trait Observed<const D: usize>: Energy<D> {
+    /// The names of the state's entries, in order.
+    fn state_names(&self) -> Vec<String>;
+    /// The names of the inputs, in order.
+    fn input_names(&self) -> Vec<String>;
+    /// The inputs applied at `(t, x)`, written into `inputs` (as many as
+    /// [`Observed::input_names`]).
+    fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]);
+    /// The largest `|A(q) qdot|` at `x`.
+    fn constraint_residual(&self, x: &[f64; D]) -> f64;
+    /// The regularity measure at `x`.
+    fn regularity(&self, x: &[f64; D]) -> Regularity;
+}
+
+/// The reduced form's measure (see [`crate::monitor::reduced_regularity`]).
+pub const REDUCED: &str = "reduced form's det[A; V^T] (constraint rows and momentum basis)";
+
+/// The Lagrange-d'Alembert form's measure (see
+/// [`crate::monitor::constraint_regularity`]).
+pub const MULTIPLIERS: &str = "multiplier system's Gram matrix A g^-1 A^T";
+
+/// The largest `|A(q) qdot|` of the Lagrange-d'Alembert equations.
+fn largest_residual<M, const N: usize, const C: usize, const P: usize>(
+    model: &M,
+    q: &[f64; N],
+    qdot: &[f64; N],
+) -> f64
+where
+    M: LagrangeDalembert<N, C, P>,
+{
+    let residual = model.constraint_residual(q, qdot);
+    residual.iter().fold(0.0, |worst, r| worst.max(r.abs()))
+}
+
+/// The Gram matrix's measure at the configuration `q`.
+fn multiplier_regularity<M, const N: usize, const C: usize, const P: usize>(
+    model: &M,
+    q: &[f64; N],
+) -> Regularity
+where
+    M: LagrangeDalembert<N, C, P>,
+{
+    Regularity {
+        quantity: MULTIPLIERS,
+        value: model.constraint_regularity(q),
+        signed: false,
+    }
+}
+
+fn owned(names: &[&str]) -> Vec<String> {
+    names.iter().map(|name| name.to_string()).collect()
+}
+
+impl<M, F, const S: usize, const P: usize> Observed<S> for Reduced<'_, M, F, P>
+where
+    M: ReducedPortHamiltonian<S, P> + ModelNames,
+    F: Controller<S, P>,
+{
+    fn state_names(&self) -> Vec<String> {
+        owned(&[M::COORDINATES, M::MOMENTA].concat())
+    }
+
+    fn input_names(&self) -> Vec<String> {
+        owned(M::INPUTS)
+    }
+
+    fn inputs(&self, t: f64, x: &[f64; S], inputs: &mut [f64]) {
+        inputs.copy_from_slice(&self.controller().input(t, x));
+    }
+
+    fn constraint_residual(&self, x: &[f64; S]) -> f64 {
+        self.model().constraint_violation(x)
+    }
+
+    fn regularity(&self, x: &[f64; S]) -> Regularity {
+        Regularity {
+            quantity: REDUCED,
+            value: self.model().regularity(x),
+            signed: true,
+        }
+    }
+}
+
+impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> Observed<D>
+    for Dalembert<'_, M, F, N, C, P>
+where
+    M: LagrangeDalembert<N, C, P> + ModelNames,
+    F: Controller<D, P>,
+{
+    fn state_names(&self) -> Vec<String> {
+        let velocities = M::COORDINATES.iter().map(|q| format!("dot({q})"));
+        owned(M::COORDINATES)
+            .into_iter()
+            .chain(velocities)
+            .collect()
+    }
+
+    fn input_names(&self) -> Vec<String> {
+        owned(M::INPUTS)
+    }
+
+    fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
+        inputs.copy_from_slice(&self.controller().input(t, x));
+    }
+
+    fn constraint_residual(&self, x: &[f64; D]) -> f64 {
+        let (q, qdot) = split::<N, D>(x);
+        largest_residual(self.model(), &q, &qdot)
+    }
+
+    fn regularity(&self, x: &[f64; D]) -> Regularity {
+        multiplier_regularity(self.model(), &split::<N, D>(x).0)
+    }
+}
+
+impl<
+    M,
+    F,
+    const N: usize,
+    const R: usize,
+    const K: usize,
+    const C: usize,
+    const P: usize,
+    const D: usize,
+> Observed<D> for Momentum<'_, M, F, N, R, K, C, P>
+where
+    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P> + ModelNames,
+    F: Controller<D, P>,
+{
+    /// The coordinates, `dot(r)` for the shape velocities, `p1..pK`.
+    fn state_names(&self) -> Vec<String> {
+        let shape_velocities = M::SHAPE.map(|i| format!("dot({})", M::COORDINATES[i]));
+        let momenta = (1..=K).map(|i| format!("p{i}"));
+        owned(M::COORDINATES)
+            .into_iter()
+            .chain(shape_velocities)
+            .chain(momenta)
+            .collect()
+    }
+
+    fn input_names(&self) -> Vec<String> {
+        owned(M::INPUTS)
+    }
+
+    fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
+        inputs.copy_from_slice(&self.controller().input(t, x));
+    }
+
+    fn constraint_residual(&self, x: &[f64; D]) -> f64 {
+        let (q, qdot) = self.configuration_velocity(x);
+        largest_residual(self.model(), &q, &qdot)
+    }
+
+    fn regularity(&self, x: &[f64; D]) -> Regularity {
+        multiplier_regularity(self.model(), &core::array::from_fn(|i| x[i]))
+    }
+}
+
+impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> Observed<D>
+    for Interconnection<M, K, S, NC, P>
+where
+    M: ReducedPortHamiltonian<S, P> + ModelNames,
+    K: PortHamiltonianController<S, NC, P>,
+{
+    fn state_names(&self) -> Vec<String> {
+        owned(&[M::COORDINATES, M::MOMENTA, &K::STATES].concat())
+    }
+
+    fn input_names(&self) -> Vec<String> {
+        owned(M::INPUTS)
+    }
+
+    fn inputs(&self, _t: f64, z: &[f64; D], inputs: &mut [f64]) {
+        inputs.copy_from_slice(&self.input(z));
+    }
+
+    fn constraint_residual(&self, z: &[f64; D]) -> f64 {
+        self.plant.constraint_violation(&Self::split(z).0)
+    }
+
+    fn regularity(&self, z: &[f64; D]) -> Regularity {
+        Regularity {
+            quantity: REDUCED,
+            value: self.plant.regularity(&Self::split(z).0),
+            signed: true,
+        }
+    }
+}

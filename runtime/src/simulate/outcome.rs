@@ -1,0 +1,76 @@
+//! How a run ends: the [`Summary`] of a finished run, or the
+//! [`SimulationError`] that stopped it.
+
+use crate::integrate;
+
+/// Why a simulation stopped early.
+#[derive(Debug, thiserror::Error)]
+pub enum SimulationError {
+    /// The settings cannot describe a run.
+    #[error("invalid simulation: {reason}")]
+    Settings {
+        /// What is wrong.
+        reason: String,
+    },
+    /// The integrator failed (non-finite state, Newton failure, step size
+    /// underflow, too many steps).
+    #[error(transparent)]
+    Integration(#[from] integrate::Error),
+    /// The formulation degenerates at this configuration.
+    #[error(
+        "singular configuration at t = {t}: the {quantity} {how} ({value:.3e}, threshold {threshold:.0e}) at {}",
+        named(state_names, state)
+    )]
+    Singular {
+        /// Time of the first state found singular.
+        t: f64,
+        /// What degenerates.
+        quantity: &'static str,
+        /// `"vanishes"`, or `"changed sign in the step to t"` for a crossing.
+        how: &'static str,
+        /// The regularity measure there.
+        value: f64,
+        /// The threshold it fell below.
+        threshold: f64,
+        /// The state's names.
+        state_names: Vec<String>,
+        /// The state.
+        state: Vec<f64>,
+    },
+    /// The recorder failed.
+    #[error("recording failed at t = {t}: {source}")]
+    Recording {
+        /// Time of the row that failed.
+        t: f64,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+}
+
+/// `name = value, ...`.
+fn named(names: &[String], values: &[f64]) -> String {
+    let pairs: Vec<String> = names
+        .iter()
+        .zip(values)
+        .map(|(name, value)| format!("{name} = {value:.6}"))
+        .collect();
+    pairs.join(", ")
+}
+
+/// What a finished run measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Summary<const D: usize> {
+    /// Steps taken.
+    pub steps: usize,
+    /// The final time.
+    pub t: f64,
+    /// The final state.
+    pub state: [f64; D],
+    /// The largest `|E(t) - E(0)|` over the steps, divided by `|E(0)|` when
+    /// that is not zero.
+    pub energy_drift: f64,
+    /// The largest constraint residual over the steps.
+    pub max_constraint_residual: f64,
+    /// The smallest `|regularity|` over the steps.
+    pub min_regularity: f64,
+}

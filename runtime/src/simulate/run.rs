@@ -1,0 +1,163 @@
+//! A run in progress: the loop that advances, checks the regularity,
+//! updates the summary and records.
+
+use super::{Advance, Observed, Regularity, Simulation, SimulationError, Summary};
+use crate::integrate;
+use crate::record::Recorder;
+
+/// A run in progress.
+pub(super) struct Run<'a, M, S, R, const D: usize> {
+    settings: &'a Simulation<M>,
+    system: &'a S,
+    pub(super) recorder: &'a mut R,
+    pub(super) t: f64,
+    x: [f64; D],
+    energy0: f64,
+    regularity: Regularity,
+    row: Vec<f64>,
+    inputs: usize,
+    pub(super) summary: Summary<D>,
+}
+
+impl<'a, M, S, R, const D: usize> Run<'a, M, S, R, D>
+where
+    S: Observed<D>,
+    M: Advance<S, D>,
+    R: Recorder,
+{
+    pub(super) fn start(
+        settings: &'a Simulation<M>,
+        system: &'a S,
+        x0: [f64; D],
+        recorder: &'a mut R,
+    ) -> Result<Self, SimulationError> {
+        let t0 = settings.span.0;
+        let x = integrate::finite(t0, x0)?;
+        let columns = columns(system);
+        let regularity = system.regularity(&x);
+        let mut run = Self {
+            settings,
+            system,
+            t: t0,
+            x,
+            energy0: system.energy(&x),
+            regularity,
+            row: Vec::with_capacity(columns.len()),
+            inputs: system.input_names().len(),
+            summary: Summary {
+                steps: 0,
+                t: t0,
+                state: x,
+                energy_drift: 0.0,
+                max_constraint_residual: system.constraint_residual(&x),
+                min_regularity: regularity.value.abs(),
+            },
+            recorder,
+        };
+        run.recorder
+            .start(&columns)
+            .map_err(|source| SimulationError::Recording { t: t0, source })?;
+        run.check(run.regularity)?;
+        run.record()?;
+        Ok(run)
+    }
+
+    pub(super) fn advance_all(
+        &mut self,
+        steps: usize,
+        mut progress: impl FnMut(f64),
+    ) -> Result<(), SimulationError> {
+        let (t0, t_end) = self.settings.span;
+        for i in 1..=steps {
+            let t_next = if i == steps {
+                t_end
+            } else {
+                t0 + i as f64 * self.settings.step
+            };
+            let x = self
+                .settings
+                .method
+                .advance(self.system, self.t, &self.x, t_next)?;
+            let regularity = self.system.regularity(&x);
+            (self.t, self.x) = (t_next, x);
+            self.check(regularity)?;
+            self.regularity = regularity;
+            self.update_summary(i);
+            if i % self.settings.record_every == 0 || i == steps {
+                self.record()?;
+                progress((self.t - t0) / (t_end - t0));
+            }
+        }
+        Ok(())
+    }
+
+    /// [`SimulationError::Singular`] when `regularity` at the current state
+    /// is below the threshold or has changed sign since the last step.
+    fn check(&self, regularity: Regularity) -> Result<(), SimulationError> {
+        let crossed = regularity.signed
+            && regularity.value.signum() != self.regularity.value.signum()
+            && regularity.value != 0.0;
+        let vanishes =
+            regularity.value.is_nan() || regularity.value.abs() < self.settings.singular_below;
+        if !(crossed || vanishes) {
+            return Ok(());
+        }
+        Err(SimulationError::Singular {
+            t: self.t,
+            quantity: regularity.quantity,
+            how: if vanishes {
+                "vanishes"
+            } else {
+                "changed sign in the step to t"
+            },
+            value: regularity.value,
+            threshold: self.settings.singular_below,
+            state_names: self.system.state_names(),
+            state: self.x.to_vec(),
+        })
+    }
+
+    fn update_summary(&mut self, steps: usize) {
+        let energy = self.system.energy(&self.x);
+        let drift = (energy - self.energy0).abs()
+            / if self.energy0 == 0.0 {
+                1.0
+            } else {
+                self.energy0.abs()
+            };
+        let summary = &mut self.summary;
+        summary.steps = steps;
+        summary.t = self.t;
+        summary.state = self.x;
+        summary.energy_drift = summary.energy_drift.max(drift);
+        summary.max_constraint_residual = summary
+            .max_constraint_residual
+            .max(self.system.constraint_residual(&self.x));
+        summary.min_regularity = summary.min_regularity.min(self.regularity.value.abs());
+    }
+
+    fn record(&mut self) -> Result<(), SimulationError> {
+        let (t, x) = (self.t, &self.x);
+        self.row.clear();
+        self.row.push(t);
+        self.row.extend_from_slice(x);
+        let start = self.row.len();
+        self.row.resize(start + self.inputs, 0.0);
+        self.system.inputs(t, x, &mut self.row[start..]);
+        self.row.push(self.system.energy(x));
+        self.row.push(self.system.constraint_residual(x));
+        self.recorder
+            .record(&self.row)
+            .map_err(|source| SimulationError::Recording { t, source })
+    }
+}
+
+/// `t`, the state's names, the inputs' names, `energy`,
+/// `constraint_residual`.
+fn columns<S: Observed<D>, const D: usize>(system: &S) -> Vec<String> {
+    let mut columns = vec!["t".to_string()];
+    columns.extend(system.state_names());
+    columns.extend(system.input_names());
+    columns.extend(["energy".to_string(), "constraint_residual".to_string()]);
+    columns
+}

@@ -1,0 +1,242 @@
+//! What a run starts from: the parameters (`--param`), the initial state
+//! (`--initial`, checked against the constraints) and the constant inputs
+//! (`--input`), each mistake an [`InputError`] stated in one line.
+
+use super::arguments::SimulateArgs;
+use super::{CompiledModel, array};
+use crate::catalog::BuiltIn;
+use chaplygin::runtime::system::Parameters;
+
+/// A problem with the command's input, stated in one line.
+#[derive(Debug, thiserror::Error)]
+pub enum InputError {
+    /// `--param` names no parameter.
+    #[error("unknown parameter `{name}` (parameters: {known})")]
+    UnknownParameter {
+        /// What was given.
+        name: String,
+        /// The parameters there are.
+        known: String,
+    },
+    /// `--initial` names no coordinate, velocity or controller state.
+    #[error("unknown initial value `{name}` (coordinates, `dot(q)` velocities{states}: {known})")]
+    UnknownInitial {
+        /// What was given.
+        name: String,
+        /// ", controller states" when there are some.
+        states: &'static str,
+        /// The names there are.
+        known: String,
+    },
+    /// `--input` names no input.
+    #[error("unknown input `{name}` (inputs: {known})")]
+    UnknownInput {
+        /// What was given.
+        name: String,
+        /// The inputs there are.
+        known: String,
+    },
+    /// The initial velocity violates a constraint.
+    #[error(
+        "the initial velocity violates constraint `{constraint}`: A(q) qdot = {residual:e}, must be 0"
+    )]
+    ConstraintViolated {
+        /// The constraint with the largest residual.
+        constraint: String,
+        /// Its residual.
+        residual: f64,
+    },
+    /// A combination the command does not run.
+    #[error("{0}")]
+    Unsupported(String),
+}
+
+/// Sets `--param` values with `set`, which says whether the name was a
+/// parameter; `known` lists them for the error.
+pub(super) fn set_parameters(
+    known: &[&str],
+    given: &[(String, f64)],
+    set: &mut dyn FnMut(&str, f64) -> bool,
+) -> Result<(), InputError> {
+    for (name, value) in given {
+        if !set(name, *value) {
+            return Err(InputError::UnknownParameter {
+                name: name.clone(),
+                known: known.join(", "),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Sets `--param` values on a compiled model's parameters or the `extra`
+/// (controller) ones.
+pub(super) fn set_model_parameters<M: Parameters>(
+    model: &mut M,
+    given: &[(String, f64)],
+    extra: &mut [(&str, &mut f64)],
+) -> Result<(), InputError> {
+    let known: Vec<&str> = M::PARAMETERS
+        .iter()
+        .copied()
+        .chain(extra.iter().map(|(n, _)| *n))
+        .collect();
+    set_parameters(&known, given, &mut |name, value| {
+        if let Some(parameter) = model.parameter_mut(name) {
+            *parameter = value;
+        } else if let Some((_, parameter)) = extra.iter_mut().find(|(n, _)| *n == name) {
+            **parameter = value;
+        } else {
+            return false;
+        }
+        true
+    })
+}
+
+/// The initial configuration and velocity.
+pub(super) struct Start {
+    pub(super) q: Vec<f64>,
+    pub(super) qdot: Vec<f64>,
+}
+
+/// `A(q) qdot` from `(q, qdot)`.
+type Residual<'a> = dyn Fn(&[f64], &[f64]) -> Vec<f64> + 'a;
+
+/// What the initial state is checked and completed with.
+pub(super) struct Kinematics<'a> {
+    pub(super) coordinates: &'a [&'a str],
+    pub(super) constraints: &'a [&'a str],
+    pub(super) default_q: &'a [f64],
+    /// The default velocity at a configuration.
+    pub(super) default_motion: &'a dyn Fn(&[f64]) -> Vec<f64>,
+    /// `A(q) qdot`.
+    pub(super) residual: &'a Residual<'a>,
+}
+
+/// The initial state from the defaults and `--initial` (coordinates,
+/// `dot(q)` velocities and `controller_states`); the velocity is checked
+/// against the constraints.
+pub(super) fn initial_state(
+    kinematics: &Kinematics<'_>,
+    given: &[(String, f64)],
+    controller_states: &mut [(&str, &mut f64)],
+) -> Result<Start, InputError> {
+    let coordinates = kinematics.coordinates;
+    let mut q = kinematics.default_q.to_vec();
+    let mut velocities: Option<Vec<f64>> = None;
+    for (name, value) in given {
+        if let Some(i) = coordinates.iter().position(|c| c == name) {
+            q[i] = *value;
+        } else if let Some(i) = coordinates
+            .iter()
+            .position(|c| name == &format!("dot({c})"))
+        {
+            velocities.get_or_insert_with(|| vec![0.0; coordinates.len()])[i] = *value;
+        } else if let Some((_, state)) = controller_states.iter_mut().find(|(n, _)| n == name) {
+            **state = *value;
+        } else {
+            return Err(unknown_initial(name, coordinates, controller_states));
+        }
+    }
+    let qdot = velocities.unwrap_or_else(|| (kinematics.default_motion)(&q));
+    check_constraints(
+        kinematics.constraints,
+        &(kinematics.residual)(&q, &qdot),
+        &qdot,
+    )?;
+    Ok(Start { q, qdot })
+}
+
+/// [`initial_state`] for a compiled model, whose default motion is
+/// `velocities(q, alpha)` with the built-in default momenta.
+pub(super) fn compiled_start<
+    M,
+    const N: usize,
+    const C: usize,
+    const K: usize,
+    const P: usize,
+    const S: usize,
+>(
+    model: &M,
+    built_in: &BuiltIn,
+    args: &SimulateArgs,
+    controller_states: &mut [(&str, &mut f64)],
+) -> Result<Start, InputError>
+where
+    M: CompiledModel<N, C, K, P, S>,
+{
+    let alpha: [f64; K] = array(built_in.alpha);
+    initial_state(
+        &Kinematics {
+            coordinates: M::COORDINATES,
+            constraints: M::CONSTRAINTS,
+            default_q: built_in.q,
+            default_motion: &|q| model.velocities(&array(q), &alpha).to_vec(),
+            residual: &|q, qdot| model.constraint_residual(&array(q), &array(qdot)).to_vec(),
+        },
+        &args.initial,
+        controller_states,
+    )
+}
+
+fn unknown_initial(
+    name: &str,
+    coordinates: &[&str],
+    controller_states: &[(&str, &mut f64)],
+) -> InputError {
+    let velocities = coordinates.iter().map(|c| format!("dot({c})"));
+    let known: Vec<String> = coordinates
+        .iter()
+        .map(|c| c.to_string())
+        .chain(velocities)
+        .chain(controller_states.iter().map(|(n, _)| n.to_string()))
+        .collect();
+    InputError::UnknownInitial {
+        name: name.to_string(),
+        states: if controller_states.is_empty() {
+            ""
+        } else {
+            ", controller states"
+        },
+        known: known.join(", "),
+    }
+}
+
+/// [`InputError::ConstraintViolated`] when `|A(q) qdot|` exceeds round-off.
+fn check_constraints(names: &[&str], residual: &[f64], qdot: &[f64]) -> Result<(), InputError> {
+    let scale = qdot.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    let worst = residual
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+    match worst {
+        Some((i, r)) if r.abs() > 1e-9 * scale => Err(InputError::ConstraintViolated {
+            constraint: names[i].to_string(),
+            residual: *r,
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// The constant inputs from `--input`, zero where not given.
+pub(super) fn constant_inputs(
+    names: &[&str],
+    given: &[(String, f64)],
+) -> Result<Vec<f64>, InputError> {
+    let mut u = vec![0.0; names.len()];
+    for (name, value) in given {
+        let i = names
+            .iter()
+            .position(|n| n == name)
+            .ok_or_else(|| InputError::UnknownInput {
+                name: name.clone(),
+                known: if names.is_empty() {
+                    "none".into()
+                } else {
+                    names.join(", ")
+                },
+            })?;
+        u[i] = *value;
+    }
+    Ok(u)
+}
