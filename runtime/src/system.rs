@@ -94,6 +94,21 @@ pub trait LagrangeDalembert<const N: usize, const C: usize, const P: usize> {
     fn constraint_regularity(&self, q: &[f64; N]) -> f64;
 }
 
+/// Configuration constraints `f(q) = 0` (INTERFACE.md section 4, `holonomic`):
+/// `N` coordinates, `H` constraints. Generated models implement it, with
+/// `H = 0` when they declare none. Their velocity forms `(df/dq) qdot = 0`
+/// are among the model's constraint rows already; the runtime uses `f` itself
+/// to keep a trajectory on the constraint surface and to solve an initial
+/// configuration for the coordinates it leaves unset.
+pub trait Holonomic<const N: usize, const H: usize> {
+    /// The constraints' names, as declared.
+    const HOLONOMIC: [&'static str; H];
+    /// `f(q)`.
+    fn holonomic_residual(&self, q: &[f64; N]) -> [f64; H];
+    /// `df/dq`, one row per constraint.
+    fn holonomic_jacobian(&self, q: &[f64; N]) -> [[f64; N]; H];
+}
+
 /// The map between velocities and the reduced momenta `alpha` (MATH.md
 /// section 3): `N` coordinates, `K` momenta. Generated models implement it.
 pub trait Momenta<const N: usize, const K: usize> {
