@@ -1,8 +1,4 @@
-//! Reading literal tokens: untyped decimal numbers in expressions, and the
-//! string of a `#[doc = "..."]` attribute.
-
-use std::iter::Peekable;
-use std::str::Chars;
+//! Numbers in a model: untyped decimal literals only.
 
 /// Checks that `text` (a literal token's text, without a leading `-`) is an
 /// untyped decimal number and returns it without `_` separators.
@@ -68,76 +64,6 @@ fn digits_length(bytes: &[u8]) -> usize {
         .count()
 }
 
-/// The value of a string literal token, raw (`r"..."`, `r#"..."#`) or
-/// escaped (`"..."`); `None` for any other literal.
-pub(super) fn string_value(text: &str) -> Option<String> {
-    if let Some(raw) = text.strip_prefix('r') {
-        let hashes = raw.len() - raw.trim_start_matches('#').len();
-        let body = raw.get(hashes..raw.len().checked_sub(hashes)?)?;
-        return body.strip_prefix('"')?.strip_suffix('"').map(str::to_owned);
-    }
-    let body = text.strip_prefix('"')?.strip_suffix('"')?;
-    Some(unescape(body))
-}
-
-/// Resolves the escapes of a string literal's body: `\n \r \t \0 \\ \' \"`,
-/// `\xHH`, `\u{...}` and line continuations. Unknown escapes are kept as
-/// written (the lexer has already rejected invalid ones).
-fn unescape(body: &str) -> String {
-    let mut value = String::with_capacity(body.len());
-    let mut characters = body.chars().peekable();
-    while let Some(character) = characters.next() {
-        if character != '\\' {
-            value.push(character);
-            continue;
-        }
-        match characters.next() {
-            Some('n') => value.push('\n'),
-            Some('r') => value.push('\r'),
-            Some('t') => value.push('\t'),
-            Some('0') => value.push('\0'),
-            Some('x') => value.push(hex_escape(&mut characters)),
-            Some('u') => value.push(unicode_escape(&mut characters)),
-            Some('\n') => skip_whitespace(&mut characters),
-            Some(escaped @ ('\\' | '\'' | '"')) => value.push(escaped),
-            Some(other) => {
-                value.push('\\');
-                value.push(other);
-            }
-            None => value.push('\\'),
-        }
-    }
-    value
-}
-
-/// Skips the whitespace after a line continuation (`\` at a line's end).
-fn skip_whitespace(characters: &mut Peekable<Chars>) {
-    while characters.next_if(|next| next.is_whitespace()).is_some() {}
-}
-
-/// The character of `\xHH` (after the `x`).
-fn hex_escape(characters: &mut impl Iterator<Item = char>) -> char {
-    let hex: String = characters.take(2).collect();
-    char_from_hex(&hex)
-}
-
-/// The character of `\u{HHHH}` (after the `u`).
-fn unicode_escape(characters: &mut impl Iterator<Item = char>) -> char {
-    let hex: String = characters
-        .take_while(|character| *character != '}')
-        .filter(char::is_ascii_hexdigit)
-        .collect();
-    char_from_hex(&hex)
-}
-
-/// The character with the hexadecimal code `hex`, or U+FFFD if invalid.
-fn char_from_hex(hex: &str) -> char {
-    u32::from_str_radix(hex, 16)
-        .ok()
-        .and_then(char::from_u32)
-        .unwrap_or(char::REPLACEMENT_CHARACTER)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -168,21 +94,5 @@ mod tests {
         assert!(message("0x1F").contains("base 10"));
         assert!(message("\"abc\"").contains("string or character literal"));
         assert!(message("'c'").contains("string or character literal"));
-    }
-
-    #[test]
-    fn string_values_are_unescaped() {
-        assert_eq!(string_value(r#"r" raw \n""#).as_deref(), Some(r" raw \n"));
-        assert_eq!(
-            string_value(r###"r#"a "b""#"###).as_deref(),
-            Some(r#"a "b""#)
-        );
-        assert_eq!(
-            string_value(r#"" q\"uote \\ line\n tab\t \u{e9} \x41""#).as_deref(),
-            Some(" q\"uote \\ line\n tab\t \u{e9} A")
-        );
-        assert_eq!(string_value("\"a\\\n    b\"").as_deref(), Some("ab"));
-        assert_eq!(string_value("1.0"), None);
-        assert_eq!(string_value("r#\""), None);
     }
 }

@@ -32,9 +32,11 @@
 //! parsed independently, so all of their errors are reported together.
 
 mod ast;
+mod expr;
 mod literal;
-mod parser;
-mod tokens;
+mod model;
+mod scope;
+mod value;
 
 #[cfg(test)]
 mod tests;
@@ -42,14 +44,19 @@ mod tests;
 use proc_macro2::{LexError, TokenStream};
 
 pub use ast::{Attribute, BinaryOperator, Expr, Item, List, ModelSyntax, Section, Value};
-pub use parser::MAX_EXPRESSION_DEPTH;
+pub use expr::MAX_EXPRESSION_DEPTH;
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
-use parser::Parser;
 
 /// Parses the tokens of a `chaplygin::model! { ... }` invocation.
+///
+/// Groups nested too deeply are rejected before syn buffers the tokens
+/// (which recurses into groups); then the tokens are parsed as a
+/// [`ModelSyntax`] and every error becomes a [`Diagnostic`] at its span.
 pub fn parse(tokens: TokenStream) -> Result<ModelSyntax, Diagnostics> {
-    Parser::default().parse_model(tokens)
+    scope::check_group_depth(&tokens)
+        .and_then(|()| syn::parse2(tokens))
+        .map_err(diagnostics)
 }
 
 /// Parses the text of a `.model` file. Spans carry the file's lines and
@@ -59,6 +66,14 @@ pub fn parse_str(source: &str) -> Result<ModelSyntax, Diagnostics> {
         Ok(tokens) => parse(tokens),
         Err(error) => Err(lex_error(source, &error).into()),
     }
+}
+
+/// One diagnostic per message of a (combined) syn error, at its span.
+fn diagnostics(error: syn::Error) -> Diagnostics {
+    error
+        .into_iter()
+        .map(|error| Diagnostic::new(error.span(), error.to_string()))
+        .collect()
 }
 
 /// Explains a lexing failure, judging by the character it stopped at.

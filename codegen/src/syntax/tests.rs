@@ -345,13 +345,13 @@ fn missing_colon_names_the_section() {
 fn unknown_tokens_are_reported_where_they_are() {
     assert_eq!(
         errors("struct M {\n    potential_energy: 0;\n}"),
-        "m.model:2:24: error: expected an operator (`+`, `-`, `*`, `/` or `^`) \
-         or the end of the expression, found `;`\n"
+        "m.model:2:24: error: expected one of: `+`, `-`, `*`, `/`, `^`, `,`, `}`, \
+         found `;`\n"
     );
     assert_eq!(
         errors("struct M {\n    e: m @ x,\n}"),
-        "m.model:2:10: error: expected an operator (`+`, `-`, `*`, `/` or `^`) \
-         or the end of the expression, found `@`\n"
+        "m.model:2:10: error: expected one of: `+`, `-`, `*`, `/`, `^`, `,`, `}`, \
+         found `@`\n"
     );
     assert_eq!(
         errors("struct M { e: @x }"),
@@ -360,8 +360,8 @@ fn unknown_tokens_are_reported_where_they_are() {
     );
     assert_eq!(
         errors("struct M { e: a b }"),
-        "m.model:1:17: error: expected an operator (`+`, `-`, `*`, `/` or `^`) \
-         or the end of the expression, found `b`\n"
+        "m.model:1:17: error: expected one of: `+`, `-`, `*`, `/`, `^`, `,`, `}`, \
+         found `b`\n"
     );
 }
 
@@ -413,8 +413,8 @@ fn tokens_after_the_closing_brace_are_rejected() {
     );
     assert_eq!(
         errors("struct M { e: 1; } ;"),
-        "m.model:1:16: error: expected an operator (`+`, `-`, `*`, `/` or `^`) \
-         or the end of the expression, found `;`\n\
+        "m.model:1:16: error: expected one of: `+`, `-`, `*`, `/`, `^`, `,`, `}`, \
+         found `;`\n\
          m.model:1:20: error: unexpected tokens after the model's closing brace: found `;`\n"
     );
 }
@@ -451,8 +451,8 @@ fn missing_header_pieces_are_reported() {
 fn errors_in_different_sections_are_all_reported() {
     assert_eq!(
         errors("struct M {\n    coordinates: [x y],\n    potential_energy = 0,\n}"),
-        "m.model:2:21: error: expected an operator (`+`, `-`, `*`, `/` or `^`) \
-         or the end of the expression, found `y`\n\
+        "m.model:2:21: error: expected one of: `+`, `-`, `*`, `/`, `^`, `,`, `]`, \
+         found `y`\n\
          m.model:3:22: error: expected `:` after the section name `potential_energy`, found `=`\n"
     );
 }
@@ -515,7 +515,7 @@ fn misplaced_lists_and_sections_are_reported() {
     );
     assert_eq!(
         errors("struct M { e: (a, b) }"),
-        "m.model:1:17: error: expected an operator or `)` closing the parentheses, found `,`\n"
+        "m.model:1:17: error: expected one of: `+`, `-`, `*`, `/`, `^`, `)`, found `,`\n"
     );
 }
 
@@ -602,7 +602,7 @@ fn a_field_needs_a_name_and_a_list_argument_stands_alone() {
     assert!(text.contains("expected a field name after `.`"), "{text}");
     let text = errors("struct M { value: f([a] + 1) }");
     assert!(
-        text.contains("expected an operator or the end of the argument"),
+        text.contains("expected `,` after the list (a list `[...]` is a whole value), found `+`"),
         "{text}"
     );
     let text = errors("struct M { value: 1 + [a] }");
