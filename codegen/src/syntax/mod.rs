@@ -18,18 +18,24 @@
 //! expr       = term ( ( "+" | "-" ) term )* ;         (* left-assoc *)
 //! term       = unary ( ( "*" | "/" ) unary )* ;       (* left-assoc *)
 //! unary      = "-" unary | power ;
-//! power      = operand ( "^" unary )? ;               (* right-assoc *)
+//! power      = field ( "^" unary )? ;                 (* right-assoc *)
+//! field      = operand ( "." IDENT )* ;               (* `ground.x` *)
 //! operand    = NUMBER | IDENT | IDENT "(" arguments ")" | "(" expr ")" ;
-//! arguments  = ( expr ( "," expr )* ","? )? ;
+//! arguments  = ( value ( "," value )* ","? )? ;
 //! NUMBER     = untyped decimal literal: 2, 0.5, 1e-3, 1.5E2 ;
 //! ```
 //!
 //! So `-x^2` is `-(x^2)`, `x^-1` is `x^(-1)`, `2^-3^2` is `2^(-(3^2))`,
-//! `a*b^c^d` is `a*(b^(c^d))`, `a-b-c` is `(a-b)-c`, `2*-x` is `2*(-x)`.
+//! `a*b^c^d` is `a*(b^(c^d))`, `a-b-c` is `(a-b)-c`, `2*-x` is `2*(-x)`,
+//! `-r*lean.z^2` is `(-r)*((lean.z)^2)`.
 //!
-//! Every error is a [`Diagnostic`] spanned
-//! on the offending token. Sections, list items and call arguments are
-//! parsed independently, so all of their errors are reported together.
+//! The grammar is written on syn: every syntax tree type implements
+//! [`syn::parse::Parse`], comma-separated runs are [`syn::punctuated`]
+//! lists, and what may follow an operand is named by a
+//! [`syn::parse::Lookahead1`] ("expected one of: `+`, ..."). Sections, list
+//! items and call arguments are parsed independently and their
+//! [`syn::Error`]s combined, so all of their errors are reported together;
+//! each becomes a [`Diagnostic`] spanned on the offending token.
 
 mod ast;
 mod expr;

@@ -608,3 +608,108 @@ fn a_field_needs_a_name_and_a_list_argument_stands_alone() {
     let text = errors("struct M { value: 1 + [a] }");
     assert!(text.contains("cannot be part of an expression"), "{text}");
 }
+
+#[test]
+fn every_error_of_a_model_is_reported_together() {
+    let rendered =
+        errors("//! Inner.\nstruct M {\n    a: [x y],\n    b: f(1, 2u8),\n    c = 1,\n} extra");
+    let lines: Vec<&str> = rendered.lines().collect();
+    assert_eq!(lines.len(), 5, "{rendered}");
+    assert!(lines[0].starts_with("m.model:1:1: error: inner attributes"));
+    assert!(lines[1].starts_with("m.model:3:11: error: expected one of"));
+    assert!(lines[2].starts_with("m.model:4:13: error: the number `2u8`"));
+    assert!(lines[3].starts_with("m.model:5:7: error: expected `:` after the section name `c`"));
+    assert!(lines[4].starts_with("m.model:6:3: error: unexpected tokens after"));
+}
+
+#[test]
+fn expected_one_of_names_what_may_follow_an_operand() {
+    let operators = "expected one of: `+`, `-`, `*`, `/`, `^`";
+    assert_eq!(
+        errors("struct M { l: [a b] }"),
+        format!("m.model:1:18: error: {operators}, `,`, `]`, found `b`\n")
+    );
+    assert_eq!(
+        errors("struct M { e: f(a b) }"),
+        format!("m.model:1:19: error: {operators}, `,`, `)`, found `b`\n")
+    );
+    assert_eq!(
+        errors("struct M { e: (a b) }"),
+        format!("m.model:1:18: error: {operators}, `)`, found `b`\n")
+    );
+    assert_eq!(
+        errors("struct M { e: a.x y }"),
+        format!("m.model:1:19: error: {operators}, `,`, `}}`, found `y`\n")
+    );
+}
+
+#[test]
+fn the_syntax_tree_types_parse_with_syn() -> syn::Result<()> {
+    assert_eq!(parenthesized(&syn::parse_str::<Expr>("-x^2")?), "(-(x^2))");
+    assert_eq!(
+        printed(&syn::parse_str::<Value>("[a, m = 1]")?),
+        "[a, m = 1]"
+    );
+    let item = syn::parse_str::<Item>("m = 2*g")?;
+    assert_eq!(item.name().map(ToString::to_string).as_deref(), Some("m"));
+    assert_eq!(
+        printed(syn::parse_str::<List>("[[1], x]")?.items[0].value()),
+        "[1]"
+    );
+    let section = syn::parse_str::<Section>("coordinates: [x, y]")?;
+    assert_eq!(
+        (section.key.to_string(), printed(&section.value)),
+        ("coordinates".to_owned(), "[x, y]".to_owned())
+    );
+    let attribute = syn::parse_str::<Attribute>("chaplygin(report)")?;
+    assert_eq!(attribute.tokens.to_string(), "(report)");
+    let model = syn::parse_str::<ModelSyntax>("/// M.\nstruct M { e: 1 }")?;
+    assert_eq!(
+        (model.docs, model.sections.len()),
+        (vec![" M.".to_owned()], 1)
+    );
+    let error = syn::parse_str::<Expr>("a b")
+        .err()
+        .map(|error| error.to_string());
+    assert_eq!(
+        error.as_deref(),
+        Some("expected one of: `+`, `-`, `*`, `/`, `^`, found `b`")
+    );
+    Ok(())
+}
+
+#[test]
+fn nesting_too_deep_for_syn_to_buffer_is_rejected_first() {
+    let depth = 100_000;
+    let parentheses = format!(
+        "struct M {{ e: {}x{} }}",
+        "(".repeat(depth),
+        ")".repeat(depth)
+    );
+    assert_eq!(
+        errors(&parentheses),
+        format!(
+            "m.model:1:{}: error: nested too deeply (more than 200 levels of parentheses, \
+             lists, calls or operators); split the expression with `define`\n",
+            // the body's braces are the first level: the 200th parenthesis,
+            // at column 15 + 199, is the 201st
+            15 + 199
+        )
+    );
+}
+
+#[test]
+fn interpolated_groups_are_operands() {
+    let group = proc_macro2::Group::new(proc_macro2::Delimiter::None, quote!(a + b));
+    let model = parse(quote! { struct S { e: x * #group } });
+    let printed = model.map(|model| printed(&model.sections[0].value));
+    assert_eq!(printed.ok().as_deref(), Some("(x*(a+b))"));
+}
+
+#[test]
+fn a_doc_attribute_needs_a_string() {
+    assert_eq!(
+        errors("#[doc = 1]\nstruct M {}"),
+        "m.model:1:2: error: expected a string literal in `#[doc = \"...\"]`\n"
+    );
+}
