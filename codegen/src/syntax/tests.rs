@@ -459,14 +459,31 @@ fn errors_in_different_sections_are_all_reported() {
 
 #[test]
 fn errors_in_different_items_and_arguments_are_all_reported() {
-    let rendered = errors("struct M { l: [a +, b, 1f32], e: f(*, 2u8) }");
-    let lines: Vec<&str> = rendered.lines().collect();
-    assert_eq!(lines.len(), 4, "{rendered}");
-    assert!(lines[0].starts_with("m.model:1:19: error: expected an operand"));
-    assert!(lines[1].starts_with("m.model:1:24: error: the number `1f32`"));
-    assert!(lines[2].starts_with("m.model:1:36: error: expected an operand"));
+    let lines = error_lines(
+        "struct M { l: [a +, b, 1f32], e: f(*, 2u8) }",
+        &[
+            "m.model:1:19: error: expected an operand",
+            "m.model:1:24: error: the number `1f32`",
+            "m.model:1:36: error: expected an operand",
+            "m.model:1:39: error: the number `2u8`",
+        ],
+    );
     assert!(lines[2].ends_with("found `*` (powers are written `x^2`, not `x**2`)"));
-    assert!(lines[3].starts_with("m.model:1:39: error: the number `2u8`"));
+}
+
+/// The rendered error lines of a failing model text, checked to start with
+/// `prefixes`, one line each.
+fn error_lines(source: &str, prefixes: &[&str]) -> Vec<String> {
+    let rendered = errors(source);
+    let lines: Vec<String> = rendered.lines().map(str::to_owned).collect();
+    assert_eq!(lines.len(), prefixes.len(), "{rendered}");
+    for (line, prefix) in lines.iter().zip(prefixes) {
+        assert!(
+            line.starts_with(prefix),
+            "{line} should start with {prefix}"
+        );
+    }
+    lines
 }
 
 #[test]
@@ -611,15 +628,16 @@ fn a_field_needs_a_name_and_a_list_argument_stands_alone() {
 
 #[test]
 fn every_error_of_a_model_is_reported_together() {
-    let rendered =
-        errors("//! Inner.\nstruct M {\n    a: [x y],\n    b: f(1, 2u8),\n    c = 1,\n} extra");
-    let lines: Vec<&str> = rendered.lines().collect();
-    assert_eq!(lines.len(), 5, "{rendered}");
-    assert!(lines[0].starts_with("m.model:1:1: error: inner attributes"));
-    assert!(lines[1].starts_with("m.model:3:11: error: expected one of"));
-    assert!(lines[2].starts_with("m.model:4:13: error: the number `2u8`"));
-    assert!(lines[3].starts_with("m.model:5:7: error: expected `:` after the section name `c`"));
-    assert!(lines[4].starts_with("m.model:6:3: error: unexpected tokens after"));
+    error_lines(
+        "//! Inner.\nstruct M {\n    a: [x y],\n    b: f(1, 2u8),\n    c = 1,\n} extra",
+        &[
+            "m.model:1:1: error: inner attributes",
+            "m.model:3:11: error: expected one of",
+            "m.model:4:13: error: the number `2u8`",
+            "m.model:5:7: error: expected `:` after the section name `c`",
+            "m.model:6:3: error: unexpected tokens after",
+        ],
+    );
 }
 
 #[test]
