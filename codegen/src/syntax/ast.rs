@@ -228,18 +228,6 @@ impl BinaryOperator {
             BinaryOperator::Power => '^',
         }
     }
-
-    /// The operator written as `symbol`, if there is one.
-    pub fn from_symbol(symbol: char) -> Option<Self> {
-        match symbol {
-            '+' => Some(BinaryOperator::Add),
-            '-' => Some(BinaryOperator::Subtract),
-            '*' => Some(BinaryOperator::Multiply),
-            '/' => Some(BinaryOperator::Divide),
-            '^' => Some(BinaryOperator::Power),
-            _ => None,
-        }
-    }
 }
 
 impl fmt::Display for BinaryOperator {
