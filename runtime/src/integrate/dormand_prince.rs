@@ -14,7 +14,7 @@
 //! output between steps. It conserves linear invariants; the global error of
 //! other quantities is roughly proportional to the tolerance.
 
-use super::{Error, combine, finite};
+use super::{Error, NonFiniteCause, StepAt, combine, finite_start};
 use crate::system::OdeSystem;
 
 /// Dormand-Prince 5(4) with its tolerances and limits.
@@ -189,7 +189,7 @@ impl DormandPrince {
         t1: f64,
         mut observe: impl FnMut(&DenseStep<D>),
     ) -> Result<Solution<D>, Error> {
-        let (mut t, mut x) = (t0, finite(t0, x0)?);
+        let (mut t, mut x) = (t0, finite_start(t0, x0)?);
         let mut f = system.rhs(t, &x);
         let mut h = self.initial_step(&x, &f, t1 - t0);
         let (mut accepted, mut rejected, mut just_rejected) = (0, 0, false);
@@ -205,8 +205,12 @@ impl DormandPrince {
             };
             if error <= 1.0 {
                 observe(&DenseStep::new(t, step, &x, &trial));
+                let at = StepAt { t, h: step, x: &x };
+                (x, f) = (
+                    at.finite(trial.x, NonFiniteCause::NewState)?,
+                    trial.stages[6],
+                );
                 t = if last { t1 } else { t + step };
-                (x, f) = (finite(t, trial.x)?, trial.stages[6]);
                 accepted += 1;
             } else {
                 rejected += 1;
