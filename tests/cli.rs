@@ -29,8 +29,11 @@ fn scratch(name: &str) -> PathBuf {
     directory
 }
 
+/// A CSV's header and rows.
+type Csv = (Vec<String>, Vec<Vec<f64>>);
+
 /// The header and the rows of a CSV file, each row as long as the header.
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+fn read_csv(path: &Path) -> Csv {
     let text = std::fs::read_to_string(path).expect("the CSV exists");
     let mut lines = text.lines();
     let header: Vec<String> = lines
@@ -62,6 +65,35 @@ fn assert_one_line_error(output: &Output, needles: &[&str]) {
     for needle in needles {
         assert!(message.contains(needle), "`{needle}` not in {message}");
     }
+}
+
+/// The snakeboard rolling with its wheels turned: at `theta = 0`,
+/// `y' = 0` and `theta' = x' tan(phi) / r` satisfy both wheel constraints.
+const SNAKEBOARD_ROLLING: [&str; 8] = [
+    "--initial",
+    "phi=0.4",
+    "--initial",
+    "dot(x)=1",
+    "--initial",
+    "dot(theta)=0.8455864374763236",
+    "--initial",
+    "dot(psi)=0.3",
+];
+
+/// The CSV of a successful `chaplygin simulate` with `arguments`, written
+/// into a scratch directory called `name`.
+fn simulated(name: &str, arguments: &[&str]) -> Csv {
+    let out = scratch(name);
+    let mut all = vec!["simulate"];
+    all.extend(arguments);
+    all.extend(["--out", out.to_str().unwrap()]);
+    let output = chaplygin(&all);
+    assert!(
+        output.status.success(),
+        "{arguments:?}: {}",
+        stderr(&output)
+    );
+    read_csv(&out.join("trajectory.csv"))
 }
 
 #[test]
@@ -159,38 +191,12 @@ fn the_controlled_snakeboard_keeps_its_energy_in_the_csv() {
     }
 }
 
-#[test]
-fn a_model_file_runs_the_same_trajectory_as_the_compiled_model() {
-    let (compiled, interpreted) = (scratch("compiled"), scratch("interpreted"));
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
-    // theta = 0, y' = 0 and theta' = x' tan(phi) / r satisfy both wheel constraints
-    let common = [
-        "--initial",
-        "phi=0.4",
-        "--initial",
-        "dot(x)=1",
-        "--initial",
-        "dot(theta)=0.8455864374763236",
-        "--initial",
-        "dot(psi)=0.3",
-        "--initial",
-        "dot(phi)=0.2",
-        "--input",
-        "u_torso=0.05",
-        "--t-end",
-        "5",
-    ];
-    for (model, out) in [("snakeboard", &compiled), (file, &interpreted)] {
-        let mut arguments = vec!["simulate", model, "--out", out.to_str().unwrap()];
-        arguments.extend(common);
-        let output = chaplygin(&arguments);
-        assert!(output.status.success(), "{model}: {}", stderr(&output));
-    }
-    let (header, rows) = read_csv(&compiled.join("trajectory.csv"));
-    let (other_header, other_rows) = read_csv(&interpreted.join("trajectory.csv"));
+/// Asserts that two runs wrote the same columns and rows, to 1e-12
+/// relative.
+fn assert_same_run((header, rows): &Csv, (other_header, other_rows): &Csv) {
     assert_eq!(header, other_header);
     assert_eq!(rows.len(), other_rows.len());
-    for (row, other) in rows.iter().zip(&other_rows) {
+    for (row, other) in rows.iter().zip(other_rows) {
         for (a, b) in row.iter().zip(other) {
             assert!(
                 (a - b).abs() <= 1e-12 * a.abs().max(1.0),
@@ -199,6 +205,18 @@ fn a_model_file_runs_the_same_trajectory_as_the_compiled_model() {
             );
         }
     }
+}
+
+#[test]
+fn a_model_file_runs_the_same_trajectory_as_the_compiled_model() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
+    let run = |model: &str, name: &str| {
+        let mut arguments = vec![model, "--initial", "dot(phi)=0.2"];
+        arguments.extend(["--input", "u_torso=0.05", "--t-end", "5"]);
+        arguments.extend(SNAKEBOARD_ROLLING);
+        simulated(name, &arguments)
+    };
+    assert_same_run(&run("snakeboard", "compiled"), &run(file, "interpreted"));
 }
 
 #[test]
@@ -335,35 +353,11 @@ fn a_model_file_stops_at_the_singular_configuration_too() {
 #[test]
 fn the_momentum_formulation_follows_the_lagrange_run() {
     let run = |formulation: &str| {
-        let out = scratch(&format!("formulation-{formulation}"));
-        let output = chaplygin(&[
-            "simulate",
-            "snakeboard",
-            "--formulation",
-            formulation,
-            "--integrator",
-            "dopri5",
-            "--initial",
-            "phi=0.4",
-            "--initial",
-            "dot(x)=1",
-            "--initial",
-            "dot(theta)=0.8455864374763236",
-            "--initial",
-            "dot(psi)=0.3",
-            "--input",
-            "u_torso=0.05",
-            "--t-end",
-            "5",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        assert!(
-            output.status.success(),
-            "{formulation}: {}",
-            stderr(&output)
-        );
-        read_csv(&out.join("trajectory.csv"))
+        let mut arguments = vec!["snakeboard", "--formulation", formulation];
+        arguments.extend(["--integrator", "dopri5", "--input", "u_torso=0.05"]);
+        arguments.extend(SNAKEBOARD_ROLLING);
+        arguments.extend(["--t-end", "5"]);
+        simulated(&format!("formulation-{formulation}"), &arguments)
     };
     let (lagrange_header, lagrange) = run("lagrange");
     let (momentum_header, momentum) = run("momentum");
@@ -392,45 +386,15 @@ fn the_momentum_formulation_follows_the_lagrange_run() {
 fn the_momentum_formulation_of_a_model_file_follows_the_compiled_model() {
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
     let run = |model: &str, name: &str| {
-        let out = scratch(name);
-        let output = chaplygin(&[
-            "simulate",
-            model,
-            "--formulation",
-            "momentum",
-            "--integrator",
-            "rk4",
-            "--initial",
-            "phi=0.4",
-            "--initial",
-            "dot(x)=1",
-            "--initial",
-            "dot(theta)=0.8455864374763236",
-            "--initial",
-            "dot(psi)=0.3",
-            "--input",
-            "u_torso=0.05*sin(3*t)",
-            "--t-end",
-            "3",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        assert!(output.status.success(), "{model}: {}", stderr(&output));
-        read_csv(&out.join("trajectory.csv"))
+        let mut arguments = vec![model, "--formulation", "momentum", "--integrator", "rk4"];
+        arguments.extend(["--input", "u_torso=0.05*sin(3*t)", "--t-end", "3"]);
+        arguments.extend(SNAKEBOARD_ROLLING);
+        simulated(name, &arguments)
     };
-    let (header, rows) = run("snakeboard", "momentum-compiled");
-    let (file_header, file_rows) = run(file, "momentum-file");
-    assert_eq!(header, file_header);
-    assert_eq!(rows.len(), file_rows.len());
-    for (row, other) in rows.iter().zip(&file_rows) {
-        for (a, b) in row.iter().zip(other) {
-            assert!(
-                (a - b).abs() <= 1e-12 * a.abs().max(1.0),
-                "{a} vs {b} at t = {}",
-                row[0]
-            );
-        }
-    }
+    assert_same_run(
+        &run("snakeboard", "momentum-compiled"),
+        &run(file, "momentum-file"),
+    );
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
     let source = std::fs::read_to_string(file).unwrap();
     let without_symmetry: String = source
@@ -458,9 +422,6 @@ const RACER: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/tests/models/roller_racer.model"
 );
-
-/// A CSV's header and rows.
-type Csv = (Vec<String>, Vec<Vec<f64>>);
 
 /// The racer's run in `formulation` with `integrator` and `arguments`: the
 /// output, and the CSV when one was written.

@@ -22,17 +22,21 @@ pub trait Formulation {
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]);
     /// The stored energy.
     fn energy(&self, x: &[f64]) -> f64;
-    /// Whether [`Formulation::structure`] is available.
-    fn is_structured(&self) -> bool;
-    /// `f = J dH/dx + F`: `J` (row-major), `dH/dx` and `F`.
+    /// Whether [`Formulation::structure`] is available (by default not).
+    fn is_structured(&self) -> bool {
+        false
+    }
+    /// `f = J dH/dx + F`: `J` (row-major), `dH/dx` and `F`; by default
+    /// nothing is written (see [`Formulation::is_structured`]).
     fn structure(
         &self,
-        t: f64,
-        x: &[f64],
-        j: &mut [f64],
-        gradient: &mut [f64],
-        forcing: &mut [f64],
-    );
+        _t: f64,
+        _x: &[f64],
+        _j: &mut [f64],
+        _gradient: &mut [f64],
+        _forcing: &mut [f64],
+    ) {
+    }
     /// The inputs applied at `(t, x)`.
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]);
     /// The largest `|A(q) qdot|`.

@@ -197,12 +197,6 @@ impl Formulation for InterpretedDalembert {
         evaluated(self.model.energy(q, qdot))
     }
 
-    fn is_structured(&self) -> bool {
-        false
-    }
-
-    fn structure(&self, _t: f64, _x: &[f64], _j: &mut [f64], _g: &mut [f64], _f: &mut [f64]) {}
-
     fn inputs(&self, t: f64, _x: &[f64], inputs: &mut [f64]) {
         (self.inputs)(t, inputs);
     }
@@ -379,12 +373,6 @@ impl Formulation for InterpretedMomentum {
         let (q, qdot) = self.configuration_velocity(x);
         evaluated(self.model.energy(q, &qdot))
     }
-
-    fn is_structured(&self) -> bool {
-        false
-    }
-
-    fn structure(&self, _t: f64, _x: &[f64], _j: &mut [f64], _g: &mut [f64], _f: &mut [f64]) {}
 
     fn inputs(&self, t: f64, _x: &[f64], inputs: &mut [f64]) {
         (self.inputs)(t, inputs);
