@@ -21,8 +21,9 @@
 //! With a symmetry, the momentum items are available through
 //! [`InterpretedModel::call`] (`momentum`, `momentum_rhs`,
 //! `momentum_input_matrix`, `nonholonomic_connection`, `locked_inertia`,
-//! `body_velocity`), and [`InterpretedModel::shape_acceleration`] composes
-//! `body_velocity` and `acceleration` as the emitted code does.
+//! `body_velocity`), and [`InterpretedModel::shape_acceleration`] and
+//! [`InterpretedModel::reconstructed_velocity`] compose `body_velocity` with
+//! `acceleration` and with the group's action as the emitted code does.
 
 use crate::derive::momentum::group_coordinates;
 use crate::derive::port_hamiltonian::momentum_names;
@@ -429,15 +430,11 @@ impl InterpretedModel {
         p: &[f64],
         u: &[f64],
     ) -> Result<Vec<f64>, CallError> {
-        let group = self
-            .group
-            .as_ref()
-            .ok_or_else(|| CallError::UnknownFunction {
-                name: "shape_acceleration".to_string(),
-            })?;
+        let shape = self.shape().ok_or_else(|| CallError::UnknownFunction {
+            name: "shape_acceleration".to_string(),
+        })?;
         let xi = self.call("body_velocity", &[r, rdot, p])?;
         let n = self.sizes.n;
-        let shape: Vec<usize> = (0..n).filter(|i| !group.contains(i)).collect();
         let (mut q, mut qdot) = (vec![0.0; n], vec![0.0; n]);
         for (a, &i) in shape.iter().enumerate() {
             q[i] = r[a];
