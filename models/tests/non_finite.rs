@@ -8,7 +8,9 @@
 //! `x1 = -0.95`, where long steps from `x = (1, 0)` land.
 
 use chaplygin::runtime::Error;
-use chaplygin::runtime::integrate::{DiscreteGradient, FixedStep, NonFiniteCause, Rk4};
+use chaplygin::runtime::integrate::{
+    DiscreteGradient, DormandPrince, FixedStep, NonFiniteCause, Rk4,
+};
 use chaplygin::runtime::system::{Energy, Jacobian, OdeSystem, Structured};
 
 struct Walled;
@@ -97,4 +99,26 @@ fn the_discrete_gradient_stops_at_a_non_finite_newton_residual() {
 fn rk4_stops_at_a_non_finite_stage() {
     let error = Rk4.step(&Walled, 0.0, &[1.0, 0.0], 2.0).unwrap_err();
     assert_non_finite(error, 2.0, NonFiniteCause::RightHandSide);
+}
+
+/// Dormand-Prince retries a step whose stages are not finite with a shorter
+/// one; running into the wall (the flow reaches `x1 = -0.95`, where `H` ends,
+/// at a finite time), its steps shrink to nothing on non-finite stages, and
+/// the error says so, from the last finite state, instead of reporting an
+/// underflow.
+#[test]
+fn dormand_prince_into_the_wall_says_the_stages_were_not_finite() {
+    let error = DormandPrince::default()
+        .integrate(&Walled, (0.0, [1.0, 0.0]), 10.0)
+        .unwrap_err();
+    match &error {
+        Error::NonFinite {
+            t, cause, state, ..
+        } => {
+            assert_eq!(*cause, NonFiniteCause::RightHandSide);
+            assert!(*t > 0.0 && state.iter().all(|v| v.is_finite()), "{error}");
+            assert!(state[1] > -0.95 && state[1] < -0.9, "{error}");
+        }
+        other => panic!("{other}"),
+    }
 }
