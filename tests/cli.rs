@@ -29,8 +29,11 @@ fn scratch(name: &str) -> PathBuf {
     directory
 }
 
+/// A CSV's header and rows.
+type Csv = (Vec<String>, Vec<Vec<f64>>);
+
 /// The header and the rows of a CSV file, each row as long as the header.
-fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+fn read_csv(path: &Path) -> Csv {
     let text = std::fs::read_to_string(path).expect("the CSV exists");
     let mut lines = text.lines();
     let header: Vec<String> = lines
@@ -62,6 +65,35 @@ fn assert_one_line_error(output: &Output, needles: &[&str]) {
     for needle in needles {
         assert!(message.contains(needle), "`{needle}` not in {message}");
     }
+}
+
+/// The snakeboard rolling with its wheels turned: at `theta = 0`,
+/// `y' = 0` and `theta' = x' tan(phi) / r` satisfy both wheel constraints.
+const SNAKEBOARD_ROLLING: [&str; 8] = [
+    "--initial",
+    "phi=0.4",
+    "--initial",
+    "dot(x)=1",
+    "--initial",
+    "dot(theta)=0.8455864374763236",
+    "--initial",
+    "dot(psi)=0.3",
+];
+
+/// The CSV of a successful `chaplygin simulate` with `arguments`, written
+/// into a scratch directory called `name`.
+fn simulated(name: &str, arguments: &[&str]) -> Csv {
+    let out = scratch(name);
+    let mut all = vec!["simulate"];
+    all.extend(arguments);
+    all.extend(["--out", out.to_str().unwrap()]);
+    let output = chaplygin(&all);
+    assert!(
+        output.status.success(),
+        "{arguments:?}: {}",
+        stderr(&output)
+    );
+    read_csv(&out.join("trajectory.csv"))
 }
 
 #[test]
@@ -159,38 +191,12 @@ fn the_controlled_snakeboard_keeps_its_energy_in_the_csv() {
     }
 }
 
-#[test]
-fn a_model_file_runs_the_same_trajectory_as_the_compiled_model() {
-    let (compiled, interpreted) = (scratch("compiled"), scratch("interpreted"));
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
-    // theta = 0, y' = 0 and theta' = x' tan(phi) / r satisfy both wheel constraints
-    let common = [
-        "--initial",
-        "phi=0.4",
-        "--initial",
-        "dot(x)=1",
-        "--initial",
-        "dot(theta)=0.8455864374763236",
-        "--initial",
-        "dot(psi)=0.3",
-        "--initial",
-        "dot(phi)=0.2",
-        "--input",
-        "u_torso=0.05",
-        "--t-end",
-        "5",
-    ];
-    for (model, out) in [("snakeboard", &compiled), (file, &interpreted)] {
-        let mut arguments = vec!["simulate", model, "--out", out.to_str().unwrap()];
-        arguments.extend(common);
-        let output = chaplygin(&arguments);
-        assert!(output.status.success(), "{model}: {}", stderr(&output));
-    }
-    let (header, rows) = read_csv(&compiled.join("trajectory.csv"));
-    let (other_header, other_rows) = read_csv(&interpreted.join("trajectory.csv"));
+/// Asserts that two runs wrote the same columns and rows, to 1e-12
+/// relative.
+fn assert_same_run((header, rows): &Csv, (other_header, other_rows): &Csv) {
     assert_eq!(header, other_header);
     assert_eq!(rows.len(), other_rows.len());
-    for (row, other) in rows.iter().zip(&other_rows) {
+    for (row, other) in rows.iter().zip(other_rows) {
         for (a, b) in row.iter().zip(other) {
             assert!(
                 (a - b).abs() <= 1e-12 * a.abs().max(1.0),
@@ -199,6 +205,18 @@ fn a_model_file_runs_the_same_trajectory_as_the_compiled_model() {
             );
         }
     }
+}
+
+#[test]
+fn a_model_file_runs_the_same_trajectory_as_the_compiled_model() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
+    let run = |model: &str, name: &str| {
+        let mut arguments = vec![model, "--initial", "dot(phi)=0.2"];
+        arguments.extend(["--input", "u_torso=0.05", "--t-end", "5"]);
+        arguments.extend(SNAKEBOARD_ROLLING);
+        simulated(name, &arguments)
+    };
+    assert_same_run(&run("snakeboard", "compiled"), &run(file, "interpreted"));
 }
 
 #[test]
@@ -335,35 +353,11 @@ fn a_model_file_stops_at_the_singular_configuration_too() {
 #[test]
 fn the_momentum_formulation_follows_the_lagrange_run() {
     let run = |formulation: &str| {
-        let out = scratch(&format!("formulation-{formulation}"));
-        let output = chaplygin(&[
-            "simulate",
-            "snakeboard",
-            "--formulation",
-            formulation,
-            "--integrator",
-            "dopri5",
-            "--initial",
-            "phi=0.4",
-            "--initial",
-            "dot(x)=1",
-            "--initial",
-            "dot(theta)=0.8455864374763236",
-            "--initial",
-            "dot(psi)=0.3",
-            "--input",
-            "u_torso=0.05",
-            "--t-end",
-            "5",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        assert!(
-            output.status.success(),
-            "{formulation}: {}",
-            stderr(&output)
-        );
-        read_csv(&out.join("trajectory.csv"))
+        let mut arguments = vec!["snakeboard", "--formulation", formulation];
+        arguments.extend(["--integrator", "dopri5", "--input", "u_torso=0.05"]);
+        arguments.extend(SNAKEBOARD_ROLLING);
+        arguments.extend(["--t-end", "5"]);
+        simulated(&format!("formulation-{formulation}"), &arguments)
     };
     let (lagrange_header, lagrange) = run("lagrange");
     let (momentum_header, momentum) = run("momentum");
@@ -385,15 +379,23 @@ fn the_momentum_formulation_follows_the_lagrange_run() {
     }
 }
 
-/// The momentum formulation of a `.model` file: refused in one line, saying
-/// why (no symmetry, or not through the interpreter).
+/// The momentum formulation of a `.model` file through the interpreter runs
+/// the trajectory of the compiled model; a file without a symmetry is
+/// refused in one line.
 #[test]
-fn the_momentum_formulation_of_a_model_file_is_refused() {
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
-    assert_one_line_error(
-        &chaplygin(&["simulate", file, "--formulation", "momentum"]),
-        &["momentum formulation", "--formulation lagrange"],
+fn the_momentum_formulation_of_a_model_file_follows_the_compiled_model() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
+    let run = |model: &str, name: &str| {
+        let mut arguments = vec![model, "--formulation", "momentum", "--integrator", "rk4"];
+        arguments.extend(["--input", "u_torso=0.05*sin(3*t)", "--t-end", "3"]);
+        arguments.extend(SNAKEBOARD_ROLLING);
+        simulated(name, &arguments)
+    };
+    assert_same_run(
+        &run("snakeboard", "momentum-compiled"),
+        &run(file, "momentum-file"),
     );
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
     let source = std::fs::read_to_string(file).unwrap();
     let without_symmetry: String = source
         .lines()
@@ -412,5 +414,275 @@ fn the_momentum_formulation_of_a_model_file_is_refused() {
             "momentum",
         ]),
         &["declares no symmetry"],
+    );
+}
+
+/// The roller racer (`tests/models/roller_racer.model`).
+const RACER: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/models/roller_racer.model"
+);
+
+/// The racer's run in `formulation` with `integrator` and `arguments`: the
+/// output, and the CSV when one was written.
+fn racer(
+    name: &str,
+    formulation: &str,
+    integrator: &str,
+    arguments: &[&str],
+) -> (Output, Option<Csv>) {
+    let out = scratch(&format!("racer-{name}-{formulation}-{integrator}"));
+    let mut all = vec![
+        "simulate",
+        RACER,
+        "--formulation",
+        formulation,
+        "--integrator",
+        integrator,
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    all.extend(arguments);
+    let output = chaplygin(&all);
+    let csv = out.join("trajectory.csv");
+    let table = csv.exists().then(|| read_csv(&csv));
+    (output, table)
+}
+
+/// The values of column `name`.
+fn column_of(table: &Csv, name: &str) -> Vec<f64> {
+    let index = table.0.iter().position(|c| c == name).expect(name);
+    table.1.iter().map(|row| row[index]).collect()
+}
+
+/// The energy gained over the run minus the joint torque's work
+/// `sum u1(t + h/2) (phi(t + h) - phi(t))`, `u1` the law of time given.
+fn energy_minus_work(table: &Csv, u1: impl Fn(f64) -> f64) -> f64 {
+    let (t, phi, energy) = (
+        column_of(table, "t"),
+        column_of(table, "phi"),
+        column_of(table, "energy"),
+    );
+    let work: f64 = (1..t.len())
+        .map(|i| u1((t[i - 1] + t[i]) / 2.0) * (phi[i] - phi[i - 1]))
+        .sum();
+    energy[energy.len() - 1] - energy[0] - work
+}
+
+/// The racer's gait: the joint driven by `u1 = 0.2 cos(2 t)` from a straight
+/// roll (`phi = 0`, `dot(x) = 1`) swings `phi` by +-0.06 and keeps the
+/// heading within 0.4 rad, so the reduced form's basis (singular at heading
+/// +-pi/2) holds for 40 s. Every integrator of the reduced and the
+/// Lagrange-d'Alembert forms runs the 40 s with the constraints at
+/// round-off (the Lagrange form projected after each step), and the energy
+/// gained is the torque's work: to round-off with the discrete gradient
+/// (its discrete power balance is exact), to 1e-6 with the midpoint rule.
+/// The momentum form cannot start here: the derived momentum basis
+/// `e(phi)` carries a factor `sin(phi)` and vanishes at `phi = 0`.
+#[test]
+fn the_roller_racer_gait_runs_40_s_on_its_constraints_with_its_energy_balanced() {
+    let gait = [
+        "--input",
+        "u1=0.2*cos(2*t)",
+        "--initial",
+        "dot(x)=1",
+        "--t-end",
+        "40",
+    ];
+    let u1 = |t: f64| 0.2 * (2.0 * t).cos();
+    for (formulation, integrator) in [
+        ("reduced", "rk4"),
+        ("reduced", "dopri5"),
+        ("reduced", "midpoint"),
+        ("reduced", "discrete-gradient"),
+        ("lagrange", "rk4"),
+        ("lagrange", "dopri5"),
+        ("lagrange", "midpoint"),
+    ] {
+        let (output, table) = racer("gait", formulation, integrator, &gait);
+        let context = format!("{formulation} {integrator}");
+        assert!(output.status.success(), "{context}: {}", stderr(&output));
+        assert!(stdout(&output).contains(&format!("steps of {integrator}")));
+        let table = table.unwrap();
+        assert_eq!(*column_of(&table, "t").last().unwrap(), 40.0, "{context}");
+        let residual = column_of(&table, "constraint_residual");
+        assert!(residual.iter().all(|r| *r < 1e-9), "{context}");
+        let balance = energy_minus_work(&table, u1).abs();
+        match integrator {
+            "discrete-gradient" => assert!(balance < 1e-12, "{context}: {balance:e}"),
+            "midpoint" => assert!(balance < 1e-6, "{context}: {balance:e}"),
+            _ => {}
+        }
+    }
+    assert_one_line_error(
+        &racer("gait", "momentum", "rk4", &gait).0,
+        &[
+            "cannot represent this initial velocity",
+            "momentum basis degenerates",
+        ],
+    );
+}
+
+/// The racer circling under a constant torque `u1 = 0.02` from `phi = 0.3`
+/// (`phi` stays in (0.3, 1.4), clear of the momentum basis' zeros at
+/// `phi = 0, pi`): the Lagrange-d'Alembert and the momentum forms run 40 s
+/// with every integrator, on the constraints, the energy gained equal to
+/// `u1` times the joint's turn (to 1e-6 with the higher-order integrators;
+/// the midpoint rule's O(h^2) energy error of this non-quadratic energy is
+/// of order 1e-4 here). The reduced form stops where the heading reaches
+/// pi/2 (t = 0.93), with a structured error, whatever the integrator.
+#[test]
+fn the_roller_racer_circling_runs_40_s_in_the_lagrange_and_momentum_forms() {
+    let circling = [
+        "--input",
+        "u1=0.02",
+        "--initial",
+        "phi=0.3",
+        "--initial",
+        "dot(x)=1",
+        // the front axle's no-slip row: dot(theta) = sin(phi) / (d1 cos(phi) - d2)
+        "--initial",
+        "dot(theta)=1.6633259780808927",
+        "--t-end",
+        "40",
+    ];
+    for formulation in ["lagrange", "momentum"] {
+        for integrator in ["rk4", "dopri5", "midpoint"] {
+            let (output, table) = racer("circling", formulation, integrator, &circling);
+            let context = format!("{formulation} {integrator}");
+            assert!(output.status.success(), "{context}: {}", stderr(&output));
+            let table = table.unwrap();
+            assert_eq!(*column_of(&table, "t").last().unwrap(), 40.0, "{context}");
+            let residual = column_of(&table, "constraint_residual");
+            assert!(residual.iter().all(|r| *r < 1e-9), "{context}");
+            if integrator != "midpoint" {
+                let balance = energy_minus_work(&table, |_| 0.02).abs();
+                assert!(balance < 1e-6, "{context}: {balance:e}");
+            }
+        }
+    }
+    for integrator in ["rk4", "dopri5", "midpoint", "discrete-gradient"] {
+        let (output, table) = racer("circling", "reduced", integrator, &circling);
+        let needles: &[&str] = if integrator == "discrete-gradient" {
+            &["Newton's method did not converge in the step from t = 0.9"]
+        } else {
+            &["singular configuration at t = 0.93", "det[A; V^T]"]
+        };
+        assert_one_line_error(&output, needles);
+        let theta = column_of(&table.unwrap(), "theta");
+        let last = theta.last().unwrap();
+        assert!(
+            (last - std::f64::consts::FRAC_PI_2).abs() < 0.02,
+            "{integrator}: {last}"
+        );
+    }
+}
+
+/// The discrete gradient's step across the racer's heading singularity used
+/// to end in a NaN state: Newton's update, measured by `f64::max`, dropped
+/// the NaN entries of an iterate where the energy is not finite and passed
+/// for converged. Now the step stops at the non-finite residual, saying
+/// where (t, h, the finite state before the step) and why.
+#[test]
+fn the_discrete_gradient_says_where_and_why_a_step_goes_non_finite() {
+    let (output, _) = racer(
+        "nan",
+        "reduced",
+        "discrete-gradient",
+        &[
+            "--param",
+            "d2=0.1",
+            "--input",
+            "u1=0.1",
+            "--initial",
+            "dot(x)=1",
+        ],
+    );
+    assert_one_line_error(
+        &output,
+        &[
+            "non-finite residual of the implicit step's equation at a Newton iterate",
+            "in the step from t = 1.92 (h = 0.01",
+            "state [1.449",
+        ],
+    );
+    assert!(!stderr(&output).contains("NaN"), "{}", stderr(&output));
+}
+
+/// `--input NAME=EXPRESSION`: the model language's expressions of `t` and
+/// the parameters, recorded as applied; a name that is neither is refused.
+#[test]
+fn inputs_are_expressions_of_time_and_the_parameters() {
+    for (law, expected) in [
+        (
+            "u1=0.2*cos(2*t)",
+            (|t: f64| 0.2 * (2.0 * t).cos()) as fn(f64) -> f64,
+        ),
+        ("u1=-d1^2*exp(-t)", |t: f64| -0.25 * (-t).exp()),
+    ] {
+        let (output, table) = racer(
+            "law",
+            "lagrange",
+            "rk4",
+            &["--input", law, "--initial", "dot(x)=1", "--t-end", "1"],
+        );
+        assert!(output.status.success(), "{law}: {}", stderr(&output));
+        let table = table.unwrap();
+        for (t, u) in column_of(&table, "t").iter().zip(column_of(&table, "u1")) {
+            assert!((u - expected(*t)).abs() <= 1e-15, "{law} at {t}: {u}");
+        }
+    }
+    assert_one_line_error(
+        &racer("law", "lagrange", "rk4", &["--input", "u1=0.2*cos(2*s)"]).0,
+        &[
+            "--input u1=0.2*cos(2*s)",
+            "`s` is neither `t` nor a parameter",
+        ],
+    );
+}
+
+/// The default integrator is the discrete gradient for the reduced form,
+/// which keeps the sleigh's energy (not quadratic in its state: the
+/// metric turns with the heading) to round-off, and the midpoint rule for
+/// the Lagrange-d'Alembert form; the summary names it.
+#[test]
+fn the_default_integrator_keeps_the_sleighs_energy_and_is_named() {
+    let energy_drift = |summary: &str| -> f64 {
+        let after = summary
+            .split("energy drift (relative) ")
+            .nth(1)
+            .expect(summary);
+        after.split(';').next().unwrap().parse().unwrap()
+    };
+    let out = scratch("default-integrator");
+    let output = chaplygin(&[
+        "simulate",
+        "sleigh",
+        "--t-end",
+        "20",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let summary = stdout(&output);
+    assert!(
+        summary.contains("2000 steps of discrete-gradient"),
+        "{summary}"
+    );
+    assert!(energy_drift(&summary) <= 1e-12, "{summary}");
+    let output = chaplygin(&[
+        "simulate",
+        "sleigh",
+        "--formulation",
+        "lagrange",
+        "--t-end",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        stdout(&output).contains("steps of midpoint"),
+        "{}",
+        stdout(&output)
     );
 }

@@ -21,15 +21,16 @@
 //! With a symmetry, the momentum items are available through
 //! [`InterpretedModel::call`] (`momentum`, `momentum_rhs`,
 //! `momentum_input_matrix`, `nonholonomic_connection`, `locked_inertia`,
-//! `body_velocity`), and [`InterpretedModel::shape_acceleration`] composes
-//! `body_velocity` and `acceleration` as the emitted code does.
+//! `body_velocity`), and [`InterpretedModel::shape_acceleration`] and
+//! [`InterpretedModel::reconstructed_velocity`] compose `body_velocity` with
+//! `acceleration` and with the group's action as the emitted code does.
 
 use crate::derive::momentum::group_coordinates;
 use crate::derive::port_hamiltonian::momentum_names;
 use crate::diagnostic::Diagnostics;
 use crate::emit::{self, Lowered};
 use crate::ir::IrError;
-use crate::model::Model;
+use crate::model::{GroupFactor, Model};
 use crate::{analysed_model, over_budget};
 
 /// The names of a model and its sizes.
@@ -130,6 +131,8 @@ pub struct InterpretedModel {
     report: String,
     /// With a symmetry, the coordinates the group acts on.
     group: Option<Vec<usize>>,
+    /// With a symmetry, its factors as declared.
+    factors: Vec<GroupFactor>,
 }
 
 impl std::fmt::Debug for InterpretedModel {
@@ -179,6 +182,11 @@ impl InterpretedModel {
                 .symmetry
                 .as_ref()
                 .map(|symmetry| group_coordinates(&symmetry.factors)),
+            factors: model
+                .symmetry
+                .as_ref()
+                .map(|symmetry| symmetry.factors.clone())
+                .unwrap_or_default(),
         })
     }
 
@@ -364,6 +372,52 @@ impl InterpretedModel {
         self.call("output", &[x])
     }
 
+    /// With a symmetry, the indices of the shape coordinates `r` in `q`
+    /// (those the group does not act on), in declared order.
+    pub fn shape(&self) -> Option<Vec<usize>> {
+        let group = self.group.as_ref()?;
+        Some((0..self.sizes.n).filter(|i| !group.contains(i)).collect())
+    }
+
+    /// The velocity `qdot` of the whole configuration from `(q, rdot, p)`,
+    /// as the emitted `reconstructed_velocity`: the body velocity
+    /// `body_velocity(r, rdot, p)` moved to the coordinates' frame factor by
+    /// factor (`R(theta) (v1, v2)` and `omega` for `se2`, the velocity itself
+    /// for a translation or a rotation), `rdot` on the shape.
+    pub fn reconstructed_velocity(
+        &self,
+        q: &[f64],
+        rdot: &[f64],
+        p: &[f64],
+    ) -> Result<Vec<f64>, CallError> {
+        let shape = self.shape().ok_or_else(|| CallError::UnknownFunction {
+            name: "reconstructed_velocity".to_string(),
+        })?;
+        let r: Vec<f64> = shape.iter().map(|&i| q[i]).collect();
+        let xi = self.call("body_velocity", &[&r, rdot, p])?;
+        let mut qdot = vec![0.0; self.sizes.n];
+        let mut offset = 0;
+        for factor in &self.factors {
+            match *factor {
+                GroupFactor::Se2 { x, y, theta } => {
+                    let (sin, cos) = q[theta].sin_cos();
+                    let (v1, v2) = (xi[offset], xi[offset + 1]);
+                    (qdot[x], qdot[y]) = (cos * v1 - sin * v2, sin * v1 + cos * v2);
+                    qdot[theta] = xi[offset + 2];
+                    offset += 3;
+                }
+                GroupFactor::Translation(i) | GroupFactor::Rotation(i) => {
+                    qdot[i] = xi[offset];
+                    offset += 1;
+                }
+            }
+        }
+        for (a, &i) in shape.iter().enumerate() {
+            qdot[i] = rdot[a];
+        }
+        Ok(qdot)
+    }
+
     /// The shape equations (Koon & Marsden 1.3): the shape rows of
     /// `acceleration` at the group identity (group coordinates 0, shape
     /// coordinates `r`) with the velocity `rdot` on the shape and
@@ -376,15 +430,11 @@ impl InterpretedModel {
         p: &[f64],
         u: &[f64],
     ) -> Result<Vec<f64>, CallError> {
-        let group = self
-            .group
-            .as_ref()
-            .ok_or_else(|| CallError::UnknownFunction {
-                name: "shape_acceleration".to_string(),
-            })?;
+        let shape = self.shape().ok_or_else(|| CallError::UnknownFunction {
+            name: "shape_acceleration".to_string(),
+        })?;
         let xi = self.call("body_velocity", &[r, rdot, p])?;
         let n = self.sizes.n;
-        let shape: Vec<usize> = (0..n).filter(|i| !group.contains(i)).collect();
         let (mut q, mut qdot) = (vec![0.0; n], vec![0.0; n]);
         for (a, &i) in shape.iter().enumerate() {
             q[i] = r[a];

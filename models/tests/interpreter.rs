@@ -15,6 +15,7 @@
 
 mod common;
 
+use chaplygin::runtime::system::MomentumEquations;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 use chaplygin_models::differential_drive::DifferentialDrive;
 use chaplygin_models::rolling_disk::RollingDisk;
@@ -344,6 +345,14 @@ macro_rules! momentum_test {
                         "shape_acceleration",
                         &compiled.shape_acceleration(&r, &rdot, &p, &u),
                         &shape,
+                    );
+                    let reconstructed = interpreted
+                        .reconstructed_velocity(&q, &rdot, &p)
+                        .expect("evaluates");
+                    agreement.check(
+                        "reconstructed_velocity",
+                        &MomentumEquations::reconstructed_velocity(compiled, &q, &rdot, &p),
+                        &reconstructed,
                     );
                 },
             );

@@ -9,7 +9,8 @@
 //! - [`integrate`]: integrators over any [`system::OdeSystem`] (RK4,
 //!   Dormand-Prince 5(4), the implicit midpoint rule, Gonzalez's discrete
 //!   gradient);
-//! - [`monitor`]: where a formulation degenerates;
+//! - [`monitor`]: where a formulation degenerates; [`projection`]: a state
+//!   moved back onto the constraint manifold after a step;
 //! - [`simulate`]: the simulation loop (integrator, span, step, regularity
 //!   checks, recording) and [`record`]: where its rows go (memory, CSV);
 //! - [`linalg`]: linear algebra on nalgebra's matrices (LU, Cholesky,
@@ -27,6 +28,7 @@ pub mod law;
 pub mod linalg;
 pub mod monitor;
 pub mod phase;
+pub mod projection;
 pub mod record;
 pub mod simulate;
 pub mod system;

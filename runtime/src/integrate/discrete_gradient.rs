@@ -24,7 +24,7 @@
 //! left out, which slows convergence a little but not the step it finds.
 
 use super::newton::{Settings, identity_minus, solve_root};
-use super::{Error, FixedStep, finite, newton_failure};
+use super::{Error, FixedStep, NonFiniteCause, StepAt, newton_failure};
 use crate::linalg::Square;
 use crate::system::{Jacobian, Structured};
 use nalgebra::Const;
@@ -58,8 +58,13 @@ where
             tolerance: self.tolerance,
             max_iterations: self.max_iterations,
         };
-        let energy = system.energy(x);
-        let next = solve_root(explicit_midpoint(system, t, x, h), settings, |next| {
+        let at = StepAt { t, h, x };
+        let energy = at.finite([system.energy(x)], NonFiniteCause::Energy)?[0];
+        let start = at.finite(
+            explicit_midpoint(system, t, x, h),
+            NonFiniteCause::RightHandSide,
+        )?;
+        let next = solve_root(start, settings, |next| {
             let m: [f64; D] = core::array::from_fn(|i| (x[i] + next[i]) / 2.0);
             let gradient = discrete_gradient(system, energy, x, next, &m);
             let (j, forcing) = (system.structure_matrix(&m), system.forcing(tm, &m));
@@ -70,7 +75,7 @@ where
             (value, identity_minus(h / 2.0, &system.jacobian(tm, &m)))
         })
         .map_err(|failure| newton_failure(failure, t, h, x))?;
-        finite(t + h, next)
+        at.finite(next, NonFiniteCause::NewState)
     }
 }
 

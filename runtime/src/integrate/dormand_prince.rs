@@ -14,7 +14,7 @@
 //! output between steps. It conserves linear invariants; the global error of
 //! other quantities is roughly proportional to the tolerance.
 
-use super::{Error, combine, finite};
+use super::{Error, NonFiniteCause, StepAt, combine, finite_start};
 use crate::system::OdeSystem;
 
 /// Dormand-Prince 5(4) with its tolerances and limits.
@@ -165,9 +165,12 @@ impl DormandPrince {
     /// Integrates from `x0` at `t0` to `t1` (forward or backward).
     ///
     /// # Errors
-    /// [`Error::NonFinite`] when an accepted state is not finite;
-    /// [`Error::StepSizeUnderflow`] when the step needed falls below
-    /// `min_step` (or below round-off of `t`); [`Error::TooManySteps`].
+    /// [`Error::NonFinite`] when the right-hand side at the start is not
+    /// finite, or when the step fell below `min_step` rejected for stages
+    /// that were not finite (a step into where `f` is undefined is retried
+    /// shorter first); [`Error::StepSizeUnderflow`] when the step needed to
+    /// meet the tolerance falls below `min_step` (or below round-off of
+    /// `t`); [`Error::TooManySteps`].
     pub fn integrate<S: OdeSystem<D>, const D: usize>(
         &self,
         system: &S,
@@ -189,15 +192,30 @@ impl DormandPrince {
         t1: f64,
         mut observe: impl FnMut(&DenseStep<D>),
     ) -> Result<Solution<D>, Error> {
-        let (mut t, mut x) = (t0, finite(t0, x0)?);
-        let mut f = system.rhs(t, &x);
+        let (mut t, mut x) = (t0, finite_start(t0, x0)?);
+        let start = StepAt { t, h: 0.0, x: &x };
+        let mut f = start.finite(system.rhs(t, &x), NonFiniteCause::RightHandSide)?;
         let mut h = self.initial_step(&x, &f, t1 - t0);
         let (mut accepted, mut rejected, mut just_rejected) = (0, 0, false);
+        let mut non_finite_trial = false;
         while (t1 - t) * (t1 - t0).signum() > 0.0 {
-            self.check_step(t, h, &x, accepted + rejected)?;
+            self.check_step(t, h, &x, accepted + rejected)
+                .map_err(|error| match error {
+                    // the step shrank to nothing because its stages were not finite
+                    Error::StepSizeUnderflow { t, h, state } if non_finite_trial => {
+                        Error::NonFinite {
+                            t,
+                            h,
+                            cause: NonFiniteCause::RightHandSide,
+                            state,
+                        }
+                    }
+                    other => other,
+                })?;
             let last = (t + h - t1) * h.signum() >= 0.0;
             let step = if last { t1 - t } else { h };
             let trial = self.trial(system, t, &x, &f, step);
+            non_finite_trial = !trial.stages.iter().flatten().all(|v| v.is_finite());
             let error = if trial.error.is_nan() {
                 f64::INFINITY
             } else {
@@ -205,8 +223,12 @@ impl DormandPrince {
             };
             if error <= 1.0 {
                 observe(&DenseStep::new(t, step, &x, &trial));
+                let at = StepAt { t, h: step, x: &x };
+                (x, f) = (
+                    at.finite(trial.x, NonFiniteCause::NewState)?,
+                    trial.stages[6],
+                );
                 t = if last { t1 } else { t + step };
-                (x, f) = (finite(t, trial.x)?, trial.stages[6]);
                 accepted += 1;
             } else {
                 rejected += 1;

@@ -19,7 +19,7 @@
 //! the snakeboard in the paper's momentum basis.)
 
 use super::newton::{Settings, identity_minus, solve_root};
-use super::{Error, FixedStep, finite, newton_failure};
+use super::{Error, FixedStep, NonFiniteCause, StepAt, newton_failure};
 use crate::linalg::Square;
 use crate::system::Jacobian;
 use nalgebra::Const;
@@ -51,7 +51,8 @@ where
 {
     fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error> {
         let (tm, half) = (t + h / 2.0, h / 2.0);
-        let euler = system.rhs(t, x);
+        let at = StepAt { t, h, x };
+        let euler = at.finite(system.rhs(t, x), NonFiniteCause::RightHandSide)?;
         let start: [f64; D] = core::array::from_fn(|i| x[i] + half * euler[i]);
         let settings = Settings {
             tolerance: self.tolerance,
@@ -63,6 +64,9 @@ where
             (g, identity_minus(half, &system.jacobian(tm, m)))
         })
         .map_err(|failure| newton_failure(failure, t, h, x))?;
-        finite(t + h, core::array::from_fn(|i| 2.0 * midpoint[i] - x[i]))
+        at.finite(
+            core::array::from_fn(|i| 2.0 * midpoint[i] - x[i]),
+            NonFiniteCause::NewState,
+        )
     }
 }

@@ -27,12 +27,18 @@ use crate::system::OdeSystem;
 /// Why an integration stopped.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum Error {
-    /// The state became NaN or infinite.
-    #[error("non-finite state at t = {t}: {state:?}")]
+    /// A value of the step became NaN or infinite: the new state, a stage
+    /// of the right-hand side, or a Newton iterate's residual.
+    #[error("non-finite {cause} in the step from t = {t} (h = {h}), state {state:?}")]
     NonFinite {
-        /// Time of the non-finite state.
+        /// Time at the start of the step (for a non-finite initial state,
+        /// the initial time).
         t: f64,
-        /// The non-finite state.
+        /// The step size (0 for the initial state).
+        h: f64,
+        /// What became non-finite.
+        cause: NonFiniteCause,
+        /// The state at the start of the step.
         state: Vec<f64>,
     },
     /// Newton's method of an implicit step did not converge.
@@ -90,6 +96,34 @@ pub enum Error {
     },
 }
 
+/// What became NaN or infinite in a step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NonFiniteCause {
+    /// The initial state.
+    InitialState,
+    /// The right-hand side `f(t, x)` at the state or at a stage.
+    RightHandSide,
+    /// The energy `H(x)` at the state (the discrete gradient's).
+    Energy,
+    /// The residual of an implicit step's equation at a Newton iterate
+    /// (for the discrete gradient, the energy there).
+    NewtonResidual,
+    /// The new state.
+    NewState,
+}
+
+impl std::fmt::Display for NonFiniteCause {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::InitialState => "initial state",
+            Self::RightHandSide => "right-hand side f(t, x)",
+            Self::Energy => "energy H(x)",
+            Self::NewtonResidual => "residual of the implicit step's equation at a Newton iterate",
+            Self::NewState => "new state",
+        })
+    }
+}
+
 /// A one-step method with a fixed step size, for systems of type `S`.
 pub trait FixedStep<S, const D: usize> {
     /// The state at `t + h` from the state `x` at `t`.
@@ -126,8 +160,8 @@ where
     Ok(x)
 }
 
-/// [`Error::NewtonFailure`] or [`Error::SingularJacobian`] for the step of
-/// size `h` from `x` at `t`.
+/// [`Error::NewtonFailure`], [`Error::SingularJacobian`] or
+/// [`Error::NonFinite`] for the step of size `h` from `x` at `t`.
 pub(crate) fn newton_failure<const D: usize>(
     failure: newton::Failure,
     t: f64,
@@ -149,19 +183,53 @@ pub(crate) fn newton_failure<const D: usize>(
             iteration,
             state,
         },
+        newton::Failure::NonFinite => Error::NonFinite {
+            t,
+            h,
+            cause: NonFiniteCause::NewtonResidual,
+            state,
+        },
     }
 }
 
-/// `x` itself when all its entries are finite, else [`Error::NonFinite`].
-pub(crate) fn finite<const D: usize>(t: f64, x: [f64; D]) -> Result<[f64; D], Error> {
-    if x.iter().all(|v| v.is_finite()) {
-        Ok(x)
-    } else {
-        Err(Error::NonFinite {
-            t,
-            state: x.to_vec(),
-        })
+/// Where a value is checked: the step of size `h` from the state `x` at `t`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StepAt<'a, const D: usize> {
+    pub(crate) t: f64,
+    pub(crate) h: f64,
+    pub(crate) x: &'a [f64; D],
+}
+
+impl<const D: usize> StepAt<'_, D> {
+    /// `value` itself when all its entries are finite, else
+    /// [`Error::NonFinite`] with `cause`, this step and its start state.
+    pub(crate) fn finite<const E: usize>(
+        &self,
+        value: [f64; E],
+        cause: NonFiniteCause,
+    ) -> Result<[f64; E], Error> {
+        if value.iter().all(|v| v.is_finite()) {
+            Ok(value)
+        } else {
+            Err(Error::NonFinite {
+                t: self.t,
+                h: self.h,
+                cause,
+                state: self.x.to_vec(),
+            })
+        }
     }
+}
+
+/// The initial state `x0` at `t0` when it is finite, else
+/// [`Error::NonFinite`].
+pub(crate) fn finite_start<const D: usize>(t0: f64, x0: [f64; D]) -> Result<[f64; D], Error> {
+    StepAt {
+        t: t0,
+        h: 0.0,
+        x: &x0,
+    }
+    .finite(x0, NonFiniteCause::InitialState)
 }
 
 /// `x + h sum_i b_i k_i`.
@@ -173,7 +241,14 @@ pub(crate) fn combine<const D: usize>(
     core::array::from_fn(|i| x[i] + h * terms.iter().map(|(b, k)| b * k[i]).sum::<f64>())
 }
 
-/// The largest absolute entry.
+/// The largest absolute entry; NaN when an entry is NaN (`f64::max` would
+/// drop it, and a NaN update would pass for a converged one).
 pub(crate) fn max_norm<const D: usize>(x: &[f64; D]) -> f64 {
-    x.iter().fold(0.0, |m, v| m.max(v.abs()))
+    x.iter().fold(0.0, |m, v| {
+        if v.is_nan() || m.is_nan() {
+            f64::NAN
+        } else {
+            m.max(v.abs())
+        }
+    })
 }

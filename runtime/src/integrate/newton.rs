@@ -23,6 +23,8 @@ pub(crate) enum Failure {
     Diverged { iterations: usize, update: f64 },
     /// The Jacobian had no nonzero pivot in this iteration (from 1).
     SingularJacobian { iteration: usize },
+    /// The residual or its Jacobian at an iterate is not finite.
+    NonFinite,
 }
 
 /// The root of `residual(y)` from `y`, where `residual` returns the value
@@ -38,6 +40,9 @@ where
     let mut update = f64::INFINITY;
     for iteration in 1..=settings.max_iterations {
         let (value, jacobian) = residual(&y);
+        if !(value.iter().all(|v| v.is_finite()) && jacobian.iter().all(|v| v.is_finite())) {
+            return Err(Failure::NonFinite);
+        }
         let delta: [f64; D] = jacobian
             .lu()
             .solve(&SVector::from(value))

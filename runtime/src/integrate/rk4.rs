@@ -7,7 +7,7 @@
 //! not quadratic ones: the energy of a conservative system drifts, by
 //! `O(h^4)` per unit time.
 
-use super::{Error, FixedStep, combine, finite};
+use super::{Error, FixedStep, NonFiniteCause, StepAt, combine};
 use crate::system::OdeSystem;
 
 /// The classical Runge-Kutta method of order 4.
@@ -17,10 +17,12 @@ pub struct Rk4;
 impl<S: OdeSystem<D>, const D: usize> FixedStep<S, D> for Rk4 {
     fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error> {
         let half = h / 2.0;
-        let k1 = system.rhs(t, x);
-        let k2 = system.rhs(t + half, &combine(x, half, &[(1.0, &k1)]));
-        let k3 = system.rhs(t + half, &combine(x, half, &[(1.0, &k2)]));
-        let k4 = system.rhs(t + h, &combine(x, h, &[(1.0, &k3)]));
+        let at = StepAt { t, h, x };
+        let rhs = |t, x: &[f64; D]| at.finite(system.rhs(t, x), NonFiniteCause::RightHandSide);
+        let k1 = rhs(t, x)?;
+        let k2 = rhs(t + half, &combine(x, half, &[(1.0, &k1)]))?;
+        let k3 = rhs(t + half, &combine(x, half, &[(1.0, &k2)]))?;
+        let k4 = rhs(t + h, &combine(x, h, &[(1.0, &k3)]))?;
         let sixth = 1.0 / 6.0;
         let terms = [
             (sixth, &k1),
@@ -28,6 +30,6 @@ impl<S: OdeSystem<D>, const D: usize> FixedStep<S, D> for Rk4 {
             (2.0 * sixth, &k3),
             (sixth, &k4),
         ];
-        finite(t + h, combine(x, h, &terms))
+        at.finite(combine(x, h, &terms), NonFiniteCause::NewState)
     }
 }

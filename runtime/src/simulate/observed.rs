@@ -1,12 +1,15 @@
 //! What the simulation loop observes of a system ([`Observed`]): its
 //! columns, inputs, energy, constraint residual and regularity measure
-//! ([`Regularity`]), for each formulation closed by its controller.
+//! ([`Regularity`]), for each formulation closed by its controller; and how
+//! it keeps a state on the constraint manifold after a step
+//! ([`Observed::project`]).
 
 use crate::control::{Interconnection, PortHamiltonianController};
 use crate::law::Controller;
+use crate::projection::{self, ProjectionError, Surface};
 use crate::system::{
-    Dalembert, Energy, LagrangeDalembert, ModelNames, Momentum, MomentumEquations, Reduced,
-    ReducedPortHamiltonian, split,
+    Dalembert, Energy, Holonomic, LagrangeDalembert, ModelNames, Momentum, MomentumEquations,
+    Reduced, ReducedPortHamiltonian, split,
 };
 
 /// A regularity measure's value at a state, and what it measures.
@@ -35,6 +38,20 @@ pub trait Observed<const D: usize>: Energy<D> {
     fn constraint_residual(&self, x: &[f64; D]) -> f64;
     /// The regularity measure at `x`.
     fn regularity(&self, x: &[f64; D]) -> Regularity;
+    /// `x` moved back onto the constraint manifold after a step
+    /// ([`crate::projection`]). The formulations whose state cannot leave it
+    /// (the reduced form, the momentum equation) keep the default: `x`.
+    ///
+    /// # Errors
+    /// A constraint the projection cannot meet.
+    fn project(&self, x: [f64; D]) -> Result<[f64; D], ProjectionError> {
+        Ok(x)
+    }
+    /// The largest `|f(q)|` of the configuration constraints the system
+    /// keeps, `None` when it keeps none (no `holonomic_residual` column).
+    fn holonomic_residual(&self, _x: &[f64; D]) -> Option<f64> {
+        None
+    }
 }
 
 /// The reduced form's measure (see [`crate::monitor::reduced_regularity`]).
@@ -136,6 +153,16 @@ where
     fn regularity(&self, x: &[f64; D]) -> Regularity {
         multiplier_regularity(self.model(), &split::<N, D>(x).0)
     }
+
+    /// The velocity onto `ker A(q)` in the kinetic-energy metric
+    /// ([`projection::dalembert_velocity`]).
+    fn project(&self, x: [f64; D]) -> Result<[f64; D], ProjectionError> {
+        let (q, qdot) = split::<N, D>(&x);
+        let qdot = projection::dalembert_velocity(self.model(), &q, &qdot)?;
+        Ok(core::array::from_fn(
+            |i| if i < N { q[i] } else { qdot[i - N] },
+        ))
+    }
 }
 
 impl<
@@ -209,5 +236,48 @@ where
             value: self.plant.regularity(&Self::split(z).0),
             signed: true,
         }
+    }
+}
+
+impl<M, F, const N: usize, const C: usize, const P: usize, const H: usize, const D: usize>
+    Observed<D> for Surface<'_, M, F, N, C, P, H>
+where
+    M: LagrangeDalembert<N, C, P> + Holonomic<N, H> + ModelNames,
+    F: Controller<D, P>,
+{
+    fn state_names(&self) -> Vec<String> {
+        self.equations().state_names()
+    }
+
+    fn input_names(&self) -> Vec<String> {
+        self.equations().input_names()
+    }
+
+    fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
+        self.equations().inputs(t, x, inputs);
+    }
+
+    fn constraint_residual(&self, x: &[f64; D]) -> f64 {
+        self.equations().constraint_residual(x)
+    }
+
+    fn regularity(&self, x: &[f64; D]) -> Regularity {
+        self.equations().regularity(x)
+    }
+
+    /// The configuration onto `f(q) = 0`, then the velocity onto `ker A(q)`
+    /// there.
+    fn project(&self, x: [f64; D]) -> Result<[f64; D], ProjectionError> {
+        let q = self.project_configuration(&split::<N, D>(&x).0)?;
+        self.equations()
+            .project(core::array::from_fn(|i| if i < N { q[i] } else { x[i] }))
+    }
+
+    fn holonomic_residual(&self, x: &[f64; D]) -> Option<f64> {
+        let residual = self
+            .equations()
+            .model()
+            .holonomic_residual(&split::<N, D>(x).0);
+        Some(residual.iter().fold(0.0, |worst, r| worst.max(r.abs())))
     }
 }

@@ -2,6 +2,7 @@
 //! [`SimulationError`] that stopped it.
 
 use crate::integrate;
+use crate::projection::ProjectionError;
 
 /// Why a simulation stopped early.
 #[derive(Debug, thiserror::Error)]
@@ -37,6 +38,14 @@ pub enum SimulationError {
         /// The state.
         state: Vec<f64>,
     },
+    /// The state could not be kept on the constraint manifold.
+    #[error("projection onto the constraints failed after the step to t = {t}: {source}")]
+    Projection {
+        /// Time of the state that could not be projected.
+        t: f64,
+        /// Which constraint, and why.
+        source: ProjectionError,
+    },
     /// The recorder failed.
     #[error("recording failed at t = {t}: {source}")]
     Recording {
@@ -71,6 +80,9 @@ pub struct Summary<const D: usize> {
     pub energy_drift: f64,
     /// The largest constraint residual over the steps.
     pub max_constraint_residual: f64,
+    /// The largest `|f(q)|` of the configuration constraints over the steps
+    /// (0 when the system keeps none).
+    pub max_holonomic_residual: f64,
     /// The smallest `|regularity|` over the steps.
     pub min_regularity: f64,
 }

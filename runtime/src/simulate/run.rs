@@ -32,8 +32,8 @@ where
         recorder: &'a mut R,
     ) -> Result<Self, SimulationError> {
         let t0 = settings.span.0;
-        let x = integrate::finite(t0, x0)?;
-        let columns = columns(system);
+        let x = integrate::finite_start(t0, x0)?;
+        let columns = columns(system, &x);
         let regularity = system.regularity(&x);
         let mut run = Self {
             settings,
@@ -50,6 +50,7 @@ where
                 state: x,
                 energy_drift: 0.0,
                 max_constraint_residual: system.constraint_residual(&x),
+                max_holonomic_residual: system.holonomic_residual(&x).unwrap_or(0.0),
                 min_regularity: regularity.value.abs(),
             },
             recorder,
@@ -78,6 +79,10 @@ where
                 .settings
                 .method
                 .advance(self.system, self.t, &self.x, t_next)?;
+            let x = self
+                .system
+                .project(x)
+                .map_err(|source| SimulationError::Projection { t: t_next, source })?;
             let regularity = self.system.regularity(&x);
             (self.t, self.x) = (t_next, x);
             self.check(regularity)?;
@@ -133,6 +138,9 @@ where
         summary.max_constraint_residual = summary
             .max_constraint_residual
             .max(self.system.constraint_residual(&self.x));
+        if let Some(residual) = self.system.holonomic_residual(&self.x) {
+            summary.max_holonomic_residual = summary.max_holonomic_residual.max(residual);
+        }
         summary.min_regularity = summary.min_regularity.min(self.regularity.value.abs());
     }
 
@@ -146,6 +154,7 @@ where
         self.system.inputs(t, x, &mut self.row[start..]);
         self.row.push(self.system.energy(x));
         self.row.push(self.system.constraint_residual(x));
+        self.row.extend(self.system.holonomic_residual(x));
         self.recorder
             .record(&self.row)
             .map_err(|source| SimulationError::Recording { t, source })
@@ -153,11 +162,15 @@ where
 }
 
 /// `t`, the state's names, the inputs' names, `energy`,
-/// `constraint_residual`.
-fn columns<S: Observed<D>, const D: usize>(system: &S) -> Vec<String> {
+/// `constraint_residual`, and `holonomic_residual` when the system keeps
+/// configuration constraints.
+fn columns<S: Observed<D>, const D: usize>(system: &S, x: &[f64; D]) -> Vec<String> {
     let mut columns = vec!["t".to_string()];
     columns.extend(system.state_names());
     columns.extend(system.input_names());
     columns.extend(["energy".to_string(), "constraint_residual".to_string()]);
+    if system.holonomic_residual(x).is_some() {
+        columns.push("holonomic_residual".to_string());
+    }
     columns
 }

@@ -6,6 +6,7 @@
 //! fixed-size runtime system; [`Sized`] turns it back into a fixed-size
 //! runtime system of dimension `D`, chosen at run time by [`with_dimension!`].
 
+use chaplygin::runtime::projection::ProjectionError;
 use chaplygin::runtime::simulate::{Observed, Regularity};
 use chaplygin::runtime::system::{Energy, Jacobian, OdeSystem, Structured};
 
@@ -21,23 +22,39 @@ pub trait Formulation {
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]);
     /// The stored energy.
     fn energy(&self, x: &[f64]) -> f64;
-    /// Whether [`Formulation::structure`] is available.
-    fn is_structured(&self) -> bool;
-    /// `f = J dH/dx + F`: `J` (row-major), `dH/dx` and `F`.
+    /// Whether [`Formulation::structure`] is available (by default not).
+    fn is_structured(&self) -> bool {
+        false
+    }
+    /// `f = J dH/dx + F`: `J` (row-major), `dH/dx` and `F`; by default
+    /// nothing is written (see [`Formulation::is_structured`]).
     fn structure(
         &self,
-        t: f64,
-        x: &[f64],
-        j: &mut [f64],
-        gradient: &mut [f64],
-        forcing: &mut [f64],
-    );
+        _t: f64,
+        _x: &[f64],
+        _j: &mut [f64],
+        _gradient: &mut [f64],
+        _forcing: &mut [f64],
+    ) {
+    }
     /// The inputs applied at `(t, x)`.
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]);
     /// The largest `|A(q) qdot|`.
     fn constraint_residual(&self, x: &[f64]) -> f64;
     /// The regularity measure.
     fn regularity(&self, x: &[f64]) -> Regularity;
+    /// `x` moved back onto the constraint manifold after a step (see
+    /// [`Observed::project`]); by default left as it is.
+    ///
+    /// # Errors
+    /// A constraint the projection cannot meet.
+    fn project(&self, _x: &mut [f64]) -> Result<(), ProjectionError> {
+        Ok(())
+    }
+    /// The largest `|f(q)|` of the configuration constraints kept, if any.
+    fn holonomic_residual(&self, _x: &[f64]) -> Option<f64> {
+        None
+    }
 }
 
 /// The structured form of a `D`-dimensional system, when it has one.
@@ -135,6 +152,15 @@ impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
     fn regularity(&self, x: &[f64]) -> Regularity {
         self.system.regularity(&array(x))
     }
+
+    fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
+        x.copy_from_slice(&self.system.project(array(x))?);
+        Ok(())
+    }
+
+    fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
+        self.system.holonomic_residual(&array(x))
+    }
 }
 
 /// A [`Formulation`] of dimension `D` as a fixed-size runtime system.
@@ -205,6 +231,15 @@ impl<const D: usize> Observed<D> for Sized<'_, D> {
 
     fn regularity(&self, x: &[f64; D]) -> Regularity {
         self.0.regularity(x)
+    }
+
+    fn project(&self, mut x: [f64; D]) -> Result<[f64; D], ProjectionError> {
+        self.0.project(&mut x)?;
+        Ok(x)
+    }
+
+    fn holonomic_residual(&self, x: &[f64; D]) -> Option<f64> {
+        self.0.holonomic_residual(x)
     }
 }
 

@@ -1,6 +1,7 @@
 //! A `.model` file simulated without recompiling: its emitted functions run
 //! through the IR interpreter (`chaplygin_codegen::interpret`), in the
-//! reduced or the Lagrange-d'Alembert formulation with constant inputs.
+//! reduced, the Lagrange-d'Alembert or (with a symmetry) the momentum
+//! formulation, with inputs given as functions of time.
 //!
 //! The interpreter evaluates the same straight-line programs the compiled
 //! code is emitted from, so a `.model` file and the compiled model agree to
@@ -8,7 +9,8 @@
 
 use crate::formulation::Formulation;
 use chaplygin::runtime::monitor::{gram_regularity, hadamard_ratio};
-use chaplygin::runtime::nalgebra::DMatrix;
+use chaplygin::runtime::nalgebra::{DMatrix, DVector};
+use chaplygin::runtime::projection::{self, ProjectionError};
 use chaplygin::runtime::simulate::Regularity;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 
@@ -23,20 +25,45 @@ fn split(x: &[f64], n: usize) -> (&[f64], &[f64]) {
     x.split_at(n)
 }
 
+/// The inputs `u(t)`, written into a slice of the model's inputs.
+pub type InputLaw = Box<dyn Fn(f64, &mut [f64])>;
+
+/// The momentum formulation cannot represent an initial velocity: the one
+/// reconstructed from its momenta differs.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "the momentum formulation cannot represent this initial velocity: dot({coordinate}) \
+     reconstructed from the momenta is off by {error:e} (the momentum basis degenerates at \
+     this shape; see `chaplygin derive`)"
+)]
+pub struct Unrepresentable {
+    /// The coordinate whose velocity is worst reconstructed.
+    pub coordinate: String,
+    /// By how much.
+    pub error: f64,
+}
+
 /// The reduced form `x = (q, alpha)` of an interpreted model.
 pub struct InterpretedReduced {
     /// The model.
     pub model: InterpretedModel,
-    /// The constant inputs.
-    pub inputs: Vec<f64>,
+    /// The inputs `u(t)`.
+    pub inputs: InputLaw,
 }
 
 /// The Lagrange-d'Alembert form `x = (q, qdot)` of an interpreted model.
 pub struct InterpretedDalembert {
     /// The model.
     pub model: InterpretedModel,
-    /// The constant inputs.
-    pub inputs: Vec<f64>,
+    /// The inputs `u(t)`.
+    pub inputs: InputLaw,
+}
+
+/// The inputs at `t`, as many as the model has.
+fn inputs_at(model: &InterpretedModel, law: &InputLaw, t: f64) -> Vec<f64> {
+    let mut u = vec![0.0; model.sizes().p];
+    law(t, &mut u);
+    u
 }
 
 /// The largest `|A(q) qdot|`.
@@ -44,6 +71,24 @@ fn residual(model: &InterpretedModel, q: &[f64], qdot: &[f64]) -> f64 {
     evaluated(model.constraint_residual(q, qdot))
         .iter()
         .fold(0.0, |worst, r| worst.max(r.abs()))
+}
+
+/// The Hadamard ratio of `A g^-1 A^T` at `q`.
+fn multiplier_regularity(model: &InterpretedModel, q: &[f64]) -> Regularity {
+    let sizes = model.sizes();
+    let (g, a) = (
+        evaluated(model.mass_matrix(q)),
+        evaluated(model.constraint_matrix(q)),
+    );
+    let (g, a) = (
+        DMatrix::from_row_slice(sizes.n, sizes.n, &g),
+        DMatrix::from_row_slice(sizes.c, sizes.n, &a),
+    );
+    Regularity {
+        quantity: chaplygin::runtime::simulate::MULTIPLIERS,
+        value: gram_regularity(g, &a),
+        signed: false,
+    }
 }
 
 impl Formulation for InterpretedReduced {
@@ -61,12 +106,14 @@ impl Formulation for InterpretedReduced {
         self.model.names().inputs.clone()
     }
 
-    fn rhs(&self, _t: f64, x: &[f64], xdot: &mut [f64]) {
-        xdot.copy_from_slice(&evaluated(self.model.reduced_rhs(x, &self.inputs)));
+    fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
+        let u = inputs_at(&self.model, &self.inputs, t);
+        xdot.copy_from_slice(&evaluated(self.model.reduced_rhs(x, &u)));
     }
 
-    fn jacobian(&self, _t: f64, x: &[f64], jacobian: &mut [f64]) {
-        jacobian.copy_from_slice(&evaluated(self.model.reduced_rhs_jacobian(x, &self.inputs)));
+    fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
+        let u = inputs_at(&self.model, &self.inputs, t);
+        jacobian.copy_from_slice(&evaluated(self.model.reduced_rhs_jacobian(x, &u)));
     }
 
     fn energy(&self, x: &[f64]) -> f64 {
@@ -79,7 +126,7 @@ impl Formulation for InterpretedReduced {
 
     fn structure(
         &self,
-        _t: f64,
+        t: f64,
         x: &[f64],
         j: &mut [f64],
         gradient: &mut [f64],
@@ -88,14 +135,15 @@ impl Formulation for InterpretedReduced {
         j.copy_from_slice(&evaluated(self.model.structure_matrix(x)));
         gradient.copy_from_slice(&evaluated(self.model.hamiltonian_gradient(x)));
         let b = evaluated(self.model.input_matrix(x));
-        let p = self.inputs.len();
+        let u = inputs_at(&self.model, &self.inputs, t);
+        let p = u.len();
         for (i, f) in forcing.iter_mut().enumerate() {
-            *f = (0..p).map(|l| b[i * p + l] * self.inputs[l]).sum();
+            *f = (0..p).map(|l| b[i * p + l] * u[l]).sum();
         }
     }
 
-    fn inputs(&self, _t: f64, _x: &[f64], inputs: &mut [f64]) {
-        inputs.copy_from_slice(&self.inputs);
+    fn inputs(&self, t: f64, _x: &[f64], inputs: &mut [f64]) {
+        (self.inputs)(t, inputs);
     }
 
     fn constraint_residual(&self, x: &[f64]) -> f64 {
@@ -131,29 +179,17 @@ impl Formulation for InterpretedDalembert {
         self.model.names().inputs.clone()
     }
 
-    fn rhs(&self, _t: f64, x: &[f64], xdot: &mut [f64]) {
+    fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
         let (q, qdot) = split(x, self.model.sizes().n);
-        let (qddot, _) = evaluated(self.model.acceleration(q, qdot, &self.inputs));
+        let u = inputs_at(&self.model, &self.inputs, t);
+        let (qddot, _) = evaluated(self.model.acceleration(q, qdot, &u));
         xdot[..q.len()].copy_from_slice(qdot);
         xdot[q.len()..].copy_from_slice(&qddot);
     }
 
     /// Central differences, as the compiled Lagrange-d'Alembert adapter.
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
-        let d = x.len();
-        let (mut plus, mut minus) = (vec![0.0; d], vec![0.0; d]);
-        let mut shifted = x.to_vec();
-        for j in 0..d {
-            let step = f64::EPSILON.cbrt() * x[j].abs().max(1.0);
-            shifted[j] = x[j] + step;
-            self.rhs(t, &shifted, &mut plus);
-            shifted[j] = x[j] - step;
-            self.rhs(t, &shifted, &mut minus);
-            shifted[j] = x[j];
-            for i in 0..d {
-                jacobian[i * d + j] = (plus[i] - minus[i]) / (2.0 * step);
-            }
-        }
+        central_differences(self, t, x, jacobian);
     }
 
     fn energy(&self, x: &[f64]) -> f64 {
@@ -161,14 +197,8 @@ impl Formulation for InterpretedDalembert {
         evaluated(self.model.energy(q, qdot))
     }
 
-    fn is_structured(&self) -> bool {
-        false
-    }
-
-    fn structure(&self, _t: f64, _x: &[f64], _j: &mut [f64], _g: &mut [f64], _f: &mut [f64]) {}
-
-    fn inputs(&self, _t: f64, _x: &[f64], inputs: &mut [f64]) {
-        inputs.copy_from_slice(&self.inputs);
+    fn inputs(&self, t: f64, _x: &[f64], inputs: &mut [f64]) {
+        (self.inputs)(t, inputs);
     }
 
     fn constraint_residual(&self, x: &[f64]) -> f64 {
@@ -179,20 +209,182 @@ impl Formulation for InterpretedDalembert {
     /// The Hadamard ratio of `A g^-1 A^T`, as the compiled models'
     /// `constraint_regularity`.
     fn regularity(&self, x: &[f64]) -> Regularity {
+        multiplier_regularity(&self.model, &x[..self.model.sizes().n])
+    }
+
+    /// The velocity onto `ker A(q)` in the metric `g(q)` (see
+    /// `chaplygin::runtime::projection`).
+    fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
         let sizes = self.model.sizes();
-        let q = &x[..sizes.n];
+        let (q, qdot) = x.split_at_mut(sizes.n);
         let (g, a) = (
             evaluated(self.model.mass_matrix(q)),
             evaluated(self.model.constraint_matrix(q)),
         );
-        let (g, a) = (
+        let projected = projection::velocity(
             DMatrix::from_row_slice(sizes.n, sizes.n, &g),
-            DMatrix::from_row_slice(sizes.c, sizes.n, &a),
-        );
-        Regularity {
-            quantity: chaplygin::runtime::simulate::MULTIPLIERS,
-            value: gram_regularity(g, &a),
-            signed: false,
+            &DMatrix::from_row_slice(sizes.c, sizes.n, &a),
+            &DVector::from_column_slice(qdot),
+        )?;
+        qdot.copy_from_slice(projected.as_slice());
+        Ok(())
+    }
+}
+
+/// `df/dx` of `formulation` by central differences into `jacobian`
+/// (row-major), as the compiled adapters without a symbolic Jacobian.
+fn central_differences(formulation: &dyn Formulation, t: f64, x: &[f64], jacobian: &mut [f64]) {
+    let d = x.len();
+    let (mut plus, mut minus) = (vec![0.0; d], vec![0.0; d]);
+    let mut shifted = x.to_vec();
+    for j in 0..d {
+        let step = f64::EPSILON.cbrt() * x[j].abs().max(1.0);
+        shifted[j] = x[j] + step;
+        formulation.rhs(t, &shifted, &mut plus);
+        shifted[j] = x[j] - step;
+        formulation.rhs(t, &shifted, &mut minus);
+        shifted[j] = x[j];
+        for i in 0..d {
+            jacobian[i * d + j] = (plus[i] - minus[i]) / (2.0 * step);
         }
+    }
+}
+
+/// The momentum equation `x = (q, rdot, p)` of an interpreted model with a
+/// symmetry (MATH.md section 4), as the compiled `system::Momentum`:
+///
+/// ```text
+/// qdot  = reconstructed_velocity(q, rdot, p)
+/// rddot = shape_acceleration(r, rdot, p, u)
+/// pdot  = momentum_rhs(r, rdot, p) + momentum_input_matrix(q) u
+/// ```
+pub struct InterpretedMomentum {
+    /// The model.
+    pub model: InterpretedModel,
+    /// The indices of the shape coordinates `r` in `q`.
+    pub shape: Vec<usize>,
+    /// The inputs `u(t)`.
+    pub inputs: InputLaw,
+}
+
+impl InterpretedMomentum {
+    /// The momentum formulation of `model`, `None` without a symmetry.
+    pub fn new(model: InterpretedModel, inputs: InputLaw) -> Option<Self> {
+        let shape = model.shape()?;
+        Some(Self {
+            model,
+            shape,
+            inputs,
+        })
+    }
+
+    /// The state `(q, rdot, p)` of `q` moving with `qdot`, checked: the
+    /// velocity reconstructed from it must be `qdot` again (to `1e-9`
+    /// relative), which fails where the derived momentum basis `e(r)`
+    /// degenerates at this shape.
+    pub fn initial_state(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Unrepresentable> {
+        let rdot = self.shape.iter().map(|&i| qdot[i]);
+        let p = evaluated(self.model.call("momentum", &[q, qdot]));
+        let x: Vec<f64> = q.iter().copied().chain(rdot).chain(p).collect();
+        let (_, reconstructed) = self.configuration_velocity(&x);
+        let scale = qdot.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+        let names = &self.model.names().coordinates;
+        match reconstructed
+            .iter()
+            .zip(qdot)
+            .enumerate()
+            .map(|(i, (a, b))| (i, (a - b).abs()))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+        {
+            Some((i, error)) if error > 1e-9 * scale || error.is_nan() => Err(Unrepresentable {
+                coordinate: names[i].clone(),
+                error,
+            }),
+            _ => Ok(x),
+        }
+    }
+
+    /// `(q, rdot, p)` of `x`.
+    fn split<'x>(&self, x: &'x [f64]) -> (&'x [f64], &'x [f64], &'x [f64]) {
+        let (q, rest) = x.split_at(self.model.sizes().n);
+        let (rdot, p) = rest.split_at(self.shape.len());
+        (q, rdot, p)
+    }
+
+    /// The configuration and its reconstructed velocity at `x`.
+    fn configuration_velocity<'x>(&self, x: &'x [f64]) -> (&'x [f64], Vec<f64>) {
+        let (q, rdot, p) = self.split(x);
+        (q, evaluated(self.model.reconstructed_velocity(q, rdot, p)))
+    }
+}
+
+impl Formulation for InterpretedMomentum {
+    /// The coordinates, `dot(r)` for the shape velocities, `p1..pK`.
+    fn state_names(&self) -> Vec<String> {
+        let coordinates = &self.model.names().coordinates;
+        let shape_velocities = self
+            .shape
+            .iter()
+            .map(|&i| format!("dot({})", coordinates[i]));
+        let k = self.model.arguments("momentum_rhs").map_or(0, |a| a[2].1);
+        let momenta = (1..=k).map(|i| format!("p{i}"));
+        coordinates
+            .iter()
+            .cloned()
+            .chain(shape_velocities)
+            .chain(momenta)
+            .collect()
+    }
+
+    fn input_names(&self) -> Vec<String> {
+        self.model.names().inputs.clone()
+    }
+
+    fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
+        let (q, rdot, p) = self.split(x);
+        let u = inputs_at(&self.model, &self.inputs, t);
+        let r: Vec<f64> = self.shape.iter().map(|&i| q[i]).collect();
+        let qdot = evaluated(self.model.reconstructed_velocity(q, rdot, p));
+        let rddot = evaluated(self.model.shape_acceleration(&r, rdot, p, &u));
+        let unforced = evaluated(self.model.call("momentum_rhs", &[&r, rdot, p]));
+        let input_matrix = evaluated(self.model.call("momentum_input_matrix", &[q]));
+        let pdot = unforced.iter().enumerate().map(|(i, f)| {
+            f + u
+                .iter()
+                .enumerate()
+                .map(|(l, ul)| input_matrix[i * u.len() + l] * ul)
+                .sum::<f64>()
+        });
+        for (slot, value) in xdot
+            .iter_mut()
+            .zip(qdot.into_iter().chain(rddot).chain(pdot))
+        {
+            *slot = value;
+        }
+    }
+
+    /// Central differences, as the compiled momentum adapter.
+    fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
+        central_differences(self, t, x, jacobian);
+    }
+
+    /// The energy at the reconstructed velocity.
+    fn energy(&self, x: &[f64]) -> f64 {
+        let (q, qdot) = self.configuration_velocity(x);
+        evaluated(self.model.energy(q, &qdot))
+    }
+
+    fn inputs(&self, t: f64, _x: &[f64], inputs: &mut [f64]) {
+        (self.inputs)(t, inputs);
+    }
+
+    fn constraint_residual(&self, x: &[f64]) -> f64 {
+        let (q, qdot) = self.configuration_velocity(x);
+        residual(&self.model, q, &qdot)
+    }
+
+    /// The Hadamard ratio of `A g^-1 A^T`, as the compiled momentum adapter.
+    fn regularity(&self, x: &[f64]) -> Regularity {
+        multiplier_regularity(&self.model, &x[..self.model.sizes().n])
     }
 }

@@ -5,15 +5,17 @@
 //! energy drift and the largest constraint residual.
 
 mod arguments;
+mod inputs;
 mod output;
 mod start;
 
 pub use arguments::SimulateArgs;
+use inputs::InputSchedule;
 
 use crate::catalog::{self, BuiltIn, Compiled, Source};
 use crate::derive::Rejected;
 use crate::formulation::Typed;
-use crate::interpreted::{InterpretedDalembert, InterpretedReduced};
+use crate::interpreted::{InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced};
 use crate::models::energy_control::{ClosedLoop, EnergyController};
 use crate::models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
@@ -21,7 +23,6 @@ use crate::models::{
 };
 use arguments::{Controller, Formulation as Kind};
 use chaplygin::plot;
-use chaplygin::runtime::control::Constant;
 use chaplygin::runtime::system::{
     Dalembert, LagrangeDalembert, ModelNames, Momenta, Momentum, MomentumEquations, Parameters,
     Reduced, ReducedPortHamiltonian,
@@ -29,8 +30,7 @@ use chaplygin::runtime::system::{
 use chaplygin_codegen::interpret::InterpretedModel;
 use output::execute;
 use start::{
-    InputError, Kinematics, compiled_start, constant_inputs, initial_state, set_model_parameters,
-    set_parameters,
+    InputError, Kinematics, compiled_start, initial_state, set_model_parameters, set_parameters,
 };
 use std::error::Error;
 
@@ -84,7 +84,13 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
         &mut [],
     )?;
     let input_names: Vec<&str> = names.inputs.iter().map(String::as_str).collect();
-    let inputs = constant_inputs(&input_names, &args.inputs)?;
+    let parameters: Vec<(&str, f64)> = known
+        .iter()
+        .copied()
+        .zip(model.parameter_values().iter().copied())
+        .collect();
+    let schedule = InputSchedule::new(&input_names, &args.inputs, &parameters)?;
+    let inputs: InputLaw = Box::new(move |t, u| schedule.at(t, u));
     match args.formulation {
         Kind::Reduced => {
             let alpha = model.momenta(&start.q, &start.qdot)?;
@@ -95,22 +101,15 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
             let x0: Vec<f64> = start.q.iter().chain(&start.qdot).copied().collect();
             execute(&InterpretedDalembert { model, inputs }, &x0, args, None)
         }
-        Kind::Momentum => Err(interpreted_momentum(path, &model).into()),
-    }
-}
-
-/// The momentum formulation needs a symmetry, and runs on the compiled
-/// models only.
-fn interpreted_momentum(path: &str, model: &InterpretedModel) -> InputError {
-    if model.functions().any(|name| name == "momentum_rhs") {
-        InputError::Unsupported(format!(
-            "the momentum formulation runs on the built-in models; `{path}` takes \
-             `--formulation reduced` or `--formulation lagrange`"
-        ))
-    } else {
-        InputError::Unsupported(format!(
-            "`{path}` declares no symmetry: the momentum formulation needs one"
-        ))
+        Kind::Momentum => {
+            let momentum = InterpretedMomentum::new(model, inputs).ok_or_else(|| {
+                InputError::Unsupported(format!(
+                    "`{path}` declares no symmetry: the momentum formulation needs one"
+                ))
+            })?;
+            let x0 = momentum.initial_state(&start.q, &start.qdot)?;
+            execute(&momentum, &x0, args, None)
+        }
     }
 }
 
@@ -172,8 +171,8 @@ where
     let mut model = M::default();
     set_model_parameters(&mut model, &args.params, &mut [])?;
     let start = compiled_start::<M, N, C, K, P, S>(&model, built_in, args, &mut [])?;
-    let inputs = constant_inputs(M::INPUTS, &args.inputs)?;
-    let u = Constant(core::array::from_fn::<f64, P, _>(|i| inputs[i]));
+    let inputs = InputSchedule::new(M::INPUTS, &args.inputs, &parameter_values(model))?;
+    let u = |t: f64| inputs.array::<P>(t);
     match args.formulation {
         Kind::Reduced => {
             let alpha = model.momenta(&array(&start.q), &array(&start.qdot));
@@ -269,6 +268,14 @@ fn energy_controlled(built_in: &BuiltIn, args: &SimulateArgs) -> Result<(), Box<
         args,
         Some(figure4),
     )
+}
+
+/// A compiled model's parameters, by name, at their values.
+fn parameter_values<M: Parameters>(mut model: M) -> Vec<(&'static str, f64)> {
+    M::PARAMETERS
+        .iter()
+        .filter_map(|&name| model.parameter_mut(name).map(|value| (name, *value)))
+        .collect()
 }
 
 fn array<const N: usize>(values: &[f64]) -> [f64; N] {

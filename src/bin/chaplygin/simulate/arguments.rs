@@ -12,9 +12,10 @@ pub struct SimulateArgs {
     /// The equations integrated.
     #[arg(long, value_enum, default_value_t = Formulation::Reduced)]
     pub formulation: Formulation,
-    /// The integrator.
-    #[arg(long, value_enum, default_value_t = Integrator::Midpoint)]
-    pub integrator: Integrator,
+    /// The integrator [default: discrete-gradient for the reduced form, which
+    /// keeps the energy of any conservative model; midpoint otherwise].
+    #[arg(long, value_enum)]
+    pub integrator: Option<Integrator>,
     /// The controller closing the inputs: `none` applies the constant
     /// `--input` values (zero by default); `energy` is the energy-based
     /// snakeboard controller of Duindam & Stramigioli (reduced form only).
@@ -37,9 +38,11 @@ pub struct SimulateArgs {
     /// is given; otherwise the model's default motion is used.
     #[arg(long = "initial", value_parser = assignment)]
     pub initial: Vec<(String, f64)>,
-    /// A constant input `NAME=VALUE` with `--controller none` (repeatable).
-    #[arg(long = "input", value_parser = assignment)]
-    pub inputs: Vec<(String, f64)>,
+    /// An input `NAME=EXPRESSION` with `--controller none` (repeatable): a
+    /// constant (`u1=0.1`) or an expression of the time `t` and the model's
+    /// parameters in the model language (`u1=0.3*sin(2*t)`).
+    #[arg(long = "input", value_parser = input_assignment)]
+    pub inputs: Vec<(String, String)>,
 }
 
 /// Which equations are integrated.
@@ -74,6 +77,38 @@ pub enum Controller {
     None,
     /// The energy-based snakeboard controller (MATH.md 3.2).
     Energy,
+}
+
+impl Integrator {
+    /// The one chosen, or the default for a formulation that is or is not
+    /// structured (`xdot = J dH/dx + F`): the discrete gradient, which keeps
+    /// the energy of any conservative model to round-off, or the implicit
+    /// midpoint rule.
+    pub fn chosen_or_default(chosen: Option<Self>, structured: bool) -> Self {
+        match chosen {
+            Some(integrator) => integrator,
+            None if structured => Self::DiscreteGradient,
+            None => Self::Midpoint,
+        }
+    }
+
+    /// Its name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Rk4 => "rk4",
+            Self::Dopri5 => "dopri5",
+            Self::Midpoint => "midpoint",
+            Self::DiscreteGradient => "discrete-gradient",
+        }
+    }
+}
+
+/// `NAME=EXPRESSION`, the expression read later against the model.
+fn input_assignment(text: &str) -> Result<(String, String), String> {
+    let (name, value) = text
+        .split_once('=')
+        .ok_or_else(|| format!("expected NAME=EXPRESSION, found `{text}`"))?;
+    Ok((name.trim().to_string(), value.trim().to_string()))
 }
 
 /// `NAME=VALUE` with a finite number.

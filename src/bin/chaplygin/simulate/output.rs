@@ -14,8 +14,8 @@ use std::error::Error;
 use std::io;
 use std::time::{Duration, Instant};
 
-/// Runs `formulation` from `x0` with the chosen integrator, writing
-/// Runs `formulation` from `x0` with the chosen integrator, writing
+/// Runs `formulation` from `x0` with the chosen integrator (or the
+/// formulation's default, see [`Integrator::chosen_or_default`]), writing
 /// `trajectory.csv` and the plots into `--out`, and prints the summary.
 pub(super) fn execute(
     formulation: &dyn Formulation,
@@ -23,7 +23,8 @@ pub(super) fn execute(
     args: &SimulateArgs,
     figure4: Option<plot::Figure4>,
 ) -> Result<(), Box<dyn Error>> {
-    if args.integrator == Integrator::DiscreteGradient && !formulation.is_structured() {
+    let integrator = Integrator::chosen_or_default(args.integrator, formulation.is_structured());
+    if integrator == Integrator::DiscreteGradient && !formulation.is_structured() {
         return Err(InputError::Unsupported(
             "the discrete-gradient integrator needs the structured (reduced) form: use --formulation reduced".into(),
         )
@@ -32,7 +33,7 @@ pub(super) fn execute(
     std::fs::create_dir_all(&args.out)?;
     let csv_path = args.out.join("trajectory.csv");
     let mut recorder = Both(CsvRecorder::create(&csv_path)?, Table::new());
-    let outcome = with_dimension!(x0.len(), D => integrate::<D>(formulation, x0, args, &mut recorder),
+    let outcome = with_dimension!(x0.len(), D => integrate::<D>(formulation, x0, (integrator, args), &mut recorder),
         _ => Err(InputError::Unsupported(format!(
             "the state has {} entries; the command line runs up to {}",
             x0.len(),
@@ -73,10 +74,12 @@ fn write_plots(
 
 /// What a finished run prints.
 struct Report {
+    integrator: Integrator,
     steps: usize,
     t: f64,
     energy_drift: f64,
     max_constraint_residual: f64,
+    max_holonomic_residual: Option<f64>,
     seconds: f64,
 }
 
@@ -84,9 +87,18 @@ impl std::fmt::Display for Report {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "t = {}: {} steps in {:.3} s; energy drift (relative) {:.3e}; max constraint residual {:.3e}",
-            self.t, self.steps, self.seconds, self.energy_drift, self.max_constraint_residual
-        )
+            "t = {}: {} steps of {} in {:.3} s; energy drift (relative) {:.3e}; max constraint residual {:.3e}",
+            self.t,
+            self.steps,
+            self.integrator.name(),
+            self.seconds,
+            self.energy_drift,
+            self.max_constraint_residual
+        )?;
+        match self.max_holonomic_residual {
+            Some(residual) => write!(f, "; max holonomic residual {residual:.3e}"),
+            None => Ok(()),
+        }
     }
 }
 
@@ -94,7 +106,7 @@ impl std::fmt::Display for Report {
 fn integrate<const D: usize>(
     formulation: &dyn Formulation,
     x0: &[f64],
-    args: &SimulateArgs,
+    (integrator, args): (Integrator, &SimulateArgs),
     recorder: &mut impl Recorder,
 ) -> Result<Report, Box<dyn Error>>
 where
@@ -103,7 +115,7 @@ where
     let system = Sized::<D>(formulation);
     let x0: [f64; D] = core::array::from_fn(|i| x0[i]);
     let started = Instant::now();
-    let summary = match args.integrator {
+    let summary = match integrator {
         Integrator::Rk4 => run_with(Rk4, &system, x0, args, recorder),
         Integrator::Midpoint => run_with(Midpoint::default(), &system, x0, args, recorder),
         Integrator::DiscreteGradient => {
@@ -111,11 +123,14 @@ where
         }
         Integrator::Dopri5 => run_with(DormandPrince::default(), &system, x0, args, recorder),
     }?;
+    let holonomic = formulation.holonomic_residual(x0.as_slice()).is_some();
     Ok(Report {
+        integrator,
         steps: summary.steps,
         t: summary.t,
         energy_drift: summary.energy_drift,
         max_constraint_residual: summary.max_constraint_residual,
+        max_holonomic_residual: holonomic.then_some(summary.max_holonomic_residual),
         seconds: started.elapsed().as_secs_f64(),
     })
 }

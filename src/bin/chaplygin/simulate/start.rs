@@ -1,6 +1,6 @@
-//! What a run starts from: the parameters (`--param`), the initial state
-//! (`--initial`, checked against the constraints) and the constant inputs
-//! (`--input`), each mistake an [`InputError`] stated in one line.
+//! What a run starts from: the parameters (`--param`) and the initial state
+//! (`--initial`, checked against the constraints), each mistake an
+//! [`InputError`] stated in one line (also an `--input` naming no input).
 
 use super::arguments::SimulateArgs;
 use super::{CompiledModel, array};
@@ -216,27 +216,4 @@ fn check_constraints(names: &[&str], residual: &[f64], qdot: &[f64]) -> Result<(
         }),
         _ => Ok(()),
     }
-}
-
-/// The constant inputs from `--input`, zero where not given.
-pub(super) fn constant_inputs(
-    names: &[&str],
-    given: &[(String, f64)],
-) -> Result<Vec<f64>, InputError> {
-    let mut u = vec![0.0; names.len()];
-    for (name, value) in given {
-        let i = names
-            .iter()
-            .position(|n| n == name)
-            .ok_or_else(|| InputError::UnknownInput {
-                name: name.clone(),
-                known: if names.is_empty() {
-                    "none".into()
-                } else {
-                    names.join(", ")
-                },
-            })?;
-        u[i] = *value;
-    }
-    Ok(u)
 }
