@@ -94,6 +94,48 @@ pub trait LagrangeDalembert<const N: usize, const C: usize, const P: usize> {
     fn constraint_regularity(&self, q: &[f64; N]) -> f64;
 }
 
+/// One factor of a model's symmetry group, acting on the coordinates at
+/// these indices (INTERFACE.md section 1, `symmetry`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroupFactor {
+    /// The special Euclidean group of the plane on `(x, y, theta)`.
+    Se2 {
+        /// Index of `x`.
+        x: usize,
+        /// Index of `y`.
+        y: usize,
+        /// Index of the heading `theta`.
+        theta: usize,
+    },
+    /// Translations of one coordinate.
+    Translation(usize),
+    /// Rotations of one angle.
+    Rotation(usize),
+}
+
+/// What linearizing the Lagrange-d'Alembert equations needs (MATH.md
+/// section 6, [`crate::linearize`]): the symmetry group, `A(q)`, and the
+/// exact Jacobians of `qddot`. Generated models implement it.
+pub trait Linearization<const N: usize, const C: usize, const P: usize>:
+    LagrangeDalembert<N, C, P>
+{
+    /// The factors of the declared symmetry group (empty without one).
+    const SYMMETRY: &'static [GroupFactor];
+    /// The mass matrix `g(q)`.
+    fn mass_matrix(&self, q: &[f64; N]) -> [[f64; N]; N];
+    /// The constraint rows `A(q)`.
+    fn constraint_matrix(&self, q: &[f64; N]) -> [[f64; N]; C];
+    /// `(d qddot/dq, d qddot/dqdot, d qddot/du)` of
+    /// [`LagrangeDalembert::acceleration`], row `i` the derivatives of `qddot_i`.
+    #[allow(clippy::type_complexity)]
+    fn acceleration_jacobian(
+        &self,
+        q: &[f64; N],
+        qdot: &[f64; N],
+        u: &[f64; P],
+    ) -> ([[f64; N]; N], [[f64; N]; N], [[f64; P]; N]);
+}
+
 /// Configuration constraints `f(q) = 0` (INTERFACE.md section 4, `holonomic`):
 /// `N` coordinates, `H` constraints. Generated models implement it, with
 /// `H = 0` when they declare none. Their velocity forms `(df/dq) qdot = 0`
