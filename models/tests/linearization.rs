@@ -8,7 +8,7 @@ use chaplygin::runtime::linalg::central_difference_jacobian;
 use chaplygin::runtime::linearize::{
     Compiled, LinearSystem, OperatingPoint, PointError, SteadyError, linearize,
 };
-use chaplygin::runtime::system::Linearization;
+use chaplygin::runtime::system::{Holonomic, LagrangeDalembert, Linearization, ModelNames};
 use chaplygin_models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
     snakeboard::Snakeboard,
@@ -251,5 +251,184 @@ fn a_singular_mass_matrix_is_an_error_not_a_nan() {
     assert!(
         matches!(linear, Err(SteadyError::MassMatrix(_))),
         "{linear:?}"
+    );
+}
+
+/// A pendulum in redundant coordinates `(theta, x, y)`, written by hand:
+/// a point mass `m` at `(x, y) = (l sin theta, -l cos theta)` (the two
+/// configuration constraints), a rotor of inertia `j` turning with
+/// `theta`, gravity `gravity` along `-y`, a torque `u` on `theta`. Its
+/// acceleration solves the saddle-point system of MATH.md section 2
+/// numerically; its Jacobians are Richardson-extrapolated central
+/// differences of that (good to about 1e-12 here).
+struct Pendulum {
+    m: f64,
+    l: f64,
+    j: f64,
+    gravity: f64,
+}
+
+impl Pendulum {
+    fn constraint_rows(&self, q: &[f64; 3]) -> [[f64; 3]; 2] {
+        let (sin, cos) = q[0].sin_cos();
+        [[-self.l * cos, 1.0, 0.0], [-self.l * sin, 0.0, 1.0]]
+    }
+}
+
+/// `d f(x + s e_j)/ds` at `s = 0` for every `j`, by central differences
+/// extrapolated once.
+fn richardson_jacobian<const D: usize, const R: usize>(
+    f: impl Fn(&[f64; D]) -> [f64; R],
+    x: &[f64; D],
+) -> [[f64; D]; R] {
+    let central = |j: usize, h: f64| -> [f64; R] {
+        let (mut plus, mut minus) = (*x, *x);
+        plus[j] += h;
+        minus[j] -= h;
+        let (up, down) = (f(&plus), f(&minus));
+        std::array::from_fn(|i| (up[i] - down[i]) / (2.0 * h))
+    };
+    let h = f64::EPSILON.powf(0.2);
+    let mut jacobian = [[0.0; D]; R];
+    for j in 0..D {
+        let (coarse, fine) = (central(j, h), central(j, h / 2.0));
+        for i in 0..R {
+            jacobian[i][j] = (4.0 * fine[i] - coarse[i]) / 3.0;
+        }
+    }
+    jacobian
+}
+
+impl LagrangeDalembert<3, 2, 1> for Pendulum {
+    fn acceleration(&self, q: &[f64; 3], qdot: &[f64; 3], u: &[f64; 1]) -> ([f64; 3], [f64; 2]) {
+        use chaplygin::runtime::nalgebra::{SMatrix, SVector};
+        let a = self.constraint_rows(q);
+        let (sin, cos) = q[0].sin_cos();
+        let w2 = qdot[0] * qdot[0];
+        let drift = [-self.l * sin * w2, self.l * cos * w2];
+        let mass = [self.j, self.m, self.m];
+        let force = [u[0], 0.0, -self.m * self.gravity];
+        let saddle = SMatrix::<f64, 5, 5>::from_fn(|i, k| match (i < 3, k < 3) {
+            (true, true) => if i == k { mass[i] } else { 0.0 },
+            (true, false) => -a[k - 3][i],
+            (false, true) => a[i - 3][k],
+            (false, false) => 0.0,
+        });
+        let rhs = SVector::<f64, 5>::from_fn(|i, _| if i < 3 { force[i] } else { drift[i - 3] });
+        let solution = saddle.lu().solve(&rhs).unwrap_or(SVector::from_element(f64::NAN));
+        (
+            [solution[0], solution[1], solution[2]],
+            [solution[3], solution[4]],
+        )
+    }
+    fn energy(&self, q: &[f64; 3], qdot: &[f64; 3]) -> f64 {
+        self.j / 2.0 * qdot[0].powi(2)
+            + self.m / 2.0 * (qdot[1].powi(2) + qdot[2].powi(2))
+            + self.m * self.gravity * q[2]
+    }
+    fn constraint_residual(&self, q: &[f64; 3], qdot: &[f64; 3]) -> [f64; 2] {
+        self.constraint_rows(q)
+            .map(|row| row.iter().zip(qdot).map(|(a, v)| a * v).sum())
+    }
+    fn constraint_regularity(&self, _q: &[f64; 3]) -> f64 {
+        1.0
+    }
+}
+
+impl Linearization<3, 2, 1> for Pendulum {
+    const SYMMETRY: &'static [chaplygin::runtime::system::GroupFactor] = &[];
+    fn mass_matrix(&self, _q: &[f64; 3]) -> [[f64; 3]; 3] {
+        [[self.j, 0.0, 0.0], [0.0, self.m, 0.0], [0.0, 0.0, self.m]]
+    }
+    fn constraint_matrix(&self, q: &[f64; 3]) -> [[f64; 3]; 2] {
+        self.constraint_rows(q)
+    }
+    fn acceleration_jacobian(
+        &self,
+        q: &[f64; 3],
+        qdot: &[f64; 3],
+        u: &[f64; 1],
+    ) -> ([[f64; 3]; 3], [[f64; 3]; 3], [[f64; 1]; 3]) {
+        (
+            richardson_jacobian(|q| self.acceleration(q, qdot, u).0, q),
+            richardson_jacobian(|qdot| self.acceleration(q, qdot, u).0, qdot),
+            richardson_jacobian(|u| self.acceleration(q, qdot, u).0, u),
+        )
+    }
+}
+
+impl Holonomic<3, 2> for Pendulum {
+    const HOLONOMIC: [&'static str; 2] = ["rod_x", "rod_y"];
+    fn holonomic_residual(&self, q: &[f64; 3]) -> [f64; 2] {
+        let (sin, cos) = q[0].sin_cos();
+        [q[1] - self.l * sin, q[2] + self.l * cos]
+    }
+    fn holonomic_jacobian(&self, q: &[f64; 3]) -> [[f64; 3]; 2] {
+        self.constraint_rows(q)
+    }
+}
+
+impl ModelNames for Pendulum {
+    const COORDINATES: &'static [&'static str] = &["theta", "x", "y"];
+    const MOMENTA: &'static [&'static str] = &["p"];
+    const INPUTS: &'static [&'static str] = &["torque"];
+    const CONSTRAINTS: &'static [&'static str] = &["rod_x", "rod_y"];
+}
+
+/// About `theta = theta0` the pendulum is `(j + m l^2) theta'' = -m g l
+/// sin theta + u`: hanging (`theta0 = 0`) the eigenvalues are `+-i w`,
+/// inverted (`pi`) `+-w`, with `w^2 = m g l / (j + m l^2)`; `x` and `y`
+/// follow from the configuration constraints, solved by Newton's method.
+#[test]
+fn the_pendulums_coordinates_follow_its_configuration_constraints() {
+    let pendulum = Pendulum {
+        m: 2.0,
+        l: 0.8,
+        j: 0.05,
+        gravity: 9.81,
+    };
+    let model = Compiled::holonomic(&pendulum);
+    let w = (pendulum.m * pendulum.gravity * pendulum.l
+        / (pendulum.j + pendulum.m * pendulum.l.powi(2)))
+    .sqrt();
+    for theta in [0.0, std::f64::consts::PI] {
+        let point = OperatingPoint::solve(
+            &model,
+            &[Some(theta), None, None],
+            &[Some(0.0), None, None],
+        )
+        .expect("x and y solved");
+        let (sin, cos) = theta.sin_cos();
+        assert!((point.q[1] - pendulum.l * sin).abs() < 1e-14, "{:?}", point.q);
+        assert!((point.q[2] + pendulum.l * cos).abs() < 1e-14, "{:?}", point.q);
+        let linear = linearize(&model, &point, &[0.0], &[]).expect("an equilibrium");
+        assert_eq!(linear.state, ["theta", "dot(theta)"]);
+        let [first, second] = [linear.eigenvalues[0], linear.eigenvalues[1]];
+        if theta == 0.0 {
+            assert!(first.re.abs() < 1e-10 && (first.im - w).abs() < 1e-9, "{first}");
+            assert!(second.re.abs() < 1e-10 && (second.im + w).abs() < 1e-9, "{second}");
+        } else {
+            assert!((first.re - w).abs() < 1e-9 && first.im == 0.0, "{first}");
+            assert!((second.re + w).abs() < 1e-9 && second.im == 0.0, "{second}");
+        }
+        // Neither is asymptotically stable: hanging is a centre.
+        assert!(!linear.is_stable());
+        // The torque enters as 1 / (j + m l^2).
+        let b = linear.b[(1, 0)];
+        assert!((b - 1.0 / (pendulum.j + pendulum.m * pendulum.l.powi(2))).abs() < 1e-9);
+    }
+    let swinging = OperatingPoint::solve(&model, &[Some(0.3), None, None], &[Some(0.0), None, None])
+        .expect("at rest");
+    assert!(matches!(
+        linearize(&model, &swinging, &[0.0], &[]),
+        Err(SteadyError::NotSteady { quantity, .. }) if quantity == "dot(theta)"
+    ));
+    let inconsistent = OperatingPoint::solve(&model, &[Some(0.0), Some(0.5), None], &[None; 3]);
+    assert_eq!(
+        inconsistent,
+        Err(PointError::HolonomicFixed {
+            constraint: "rod_x".into(),
+            residual: 0.5
+        })
     );
 }

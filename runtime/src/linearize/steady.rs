@@ -75,12 +75,17 @@ impl LinearSystem {
         eigenvalue.norm() <= Self::ZERO * self.a.amax().max(1.0)
     }
 
+    /// A real part counts as negative below `-MARGIN max(1, max |A_ij|)`:
+    /// round-off does not make a centre's eigenvalues stable.
+    pub const MARGIN: f64 = 1e-10;
+
     /// Whether the motion is asymptotically stable: every eigenvalue but
-    /// the zeros in the open left half plane.
+    /// the zeros in the open left half plane (by [`Self::MARGIN`]).
     pub fn is_stable(&self) -> bool {
+        let bound = -Self::MARGIN * self.a.amax().max(1.0);
         self.eigenvalues
             .iter()
-            .all(|&eigenvalue| self.is_zero(eigenvalue) || eigenvalue.re < 0.0)
+            .all(|&eigenvalue| self.is_zero(eigenvalue) || eigenvalue.re < bound)
     }
 }
 
