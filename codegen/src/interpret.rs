@@ -29,7 +29,7 @@ use crate::derive::port_hamiltonian::momentum_names;
 use crate::diagnostic::Diagnostics;
 use crate::emit::{self, Lowered};
 use crate::ir::IrError;
-use crate::model::Model;
+use crate::model::{GroupFactor, Model};
 use crate::{analysed_model, over_budget};
 
 /// The names of a model and its sizes.
@@ -114,6 +114,9 @@ pub enum CallError {
     },
 }
 
+/// `(d qddot/dq, d qddot/dqdot, d qddot/du)`, each row-major.
+pub type Jacobians = (Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// One emitted function's name and program.
 struct Interpreted {
     name: &'static str,
@@ -130,6 +133,8 @@ pub struct InterpretedModel {
     report: String,
     /// With a symmetry, the coordinates the group acts on.
     group: Option<Vec<usize>>,
+    /// The symmetry group's factors (empty without a symmetry).
+    symmetry: Vec<GroupFactor>,
 }
 
 impl std::fmt::Debug for InterpretedModel {
@@ -179,6 +184,11 @@ impl InterpretedModel {
                 .symmetry
                 .as_ref()
                 .map(|symmetry| group_coordinates(&symmetry.factors)),
+            symmetry: model
+                .symmetry
+                .as_ref()
+                .map(|symmetry| symmetry.factors.clone())
+                .unwrap_or_default(),
         })
     }
 
@@ -190,6 +200,11 @@ impl InterpretedModel {
     /// The sizes n, c, k, p, s.
     pub fn sizes(&self) -> Sizes {
         self.sizes
+    }
+
+    /// The symmetry group's factors, as declared (empty without a symmetry).
+    pub fn symmetry(&self) -> &[GroupFactor] {
+        &self.symmetry
     }
 
     /// The derivation report, the generated `REPORT`.
@@ -317,6 +332,21 @@ impl InterpretedModel {
         let mut values = self.call("acceleration", &[q, qdot, u])?;
         let multipliers = values.split_off(self.sizes.n);
         Ok((values, multipliers))
+    }
+
+    /// The exact Jacobians of `qddot`, `(d qddot/dq, d qddot/dqdot,
+    /// d qddot/du)`, each row-major (n x n, n x n, n x p).
+    pub fn acceleration_jacobian(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        u: &[f64],
+    ) -> Result<Jacobians, CallError> {
+        let n = self.sizes.n;
+        let mut by_q = self.call("acceleration_jacobian", &[q, qdot, u])?;
+        let mut by_qdot = by_q.split_off(n * n);
+        let by_u = by_qdot.split_off(n * n);
+        Ok((by_q, by_qdot, by_u))
     }
 
     /// The reduced momenta `alpha = P g qdot`.

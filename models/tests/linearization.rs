@@ -8,7 +8,9 @@ use chaplygin::runtime::linalg::central_difference_jacobian;
 use chaplygin::runtime::linearize::{
     Compiled, LinearSystem, OperatingPoint, PointError, SteadyError, linearize,
 };
-use chaplygin::runtime::system::{Holonomic, LagrangeDalembert, Linearization, ModelNames};
+use chaplygin::runtime::system::{
+    AccelerationJacobian, Holonomic, LagrangeDalembert, Linearization, ModelNames,
+};
 use chaplygin_models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
     snakeboard::Snakeboard,
@@ -289,14 +291,11 @@ fn richardson_jacobian<const D: usize, const R: usize>(
         std::array::from_fn(|i| (up[i] - down[i]) / (2.0 * h))
     };
     let h = f64::EPSILON.powf(0.2);
-    let mut jacobian = [[0.0; D]; R];
-    for j in 0..D {
+    let columns: [[f64; R]; D] = std::array::from_fn(|j| {
         let (coarse, fine) = (central(j, h), central(j, h / 2.0));
-        for i in 0..R {
-            jacobian[i][j] = (4.0 * fine[i] - coarse[i]) / 3.0;
-        }
-    }
-    jacobian
+        std::array::from_fn(|i| (4.0 * fine[i] - coarse[i]) / 3.0)
+    });
+    std::array::from_fn(|i| std::array::from_fn(|j| columns[j][i]))
 }
 
 impl LagrangeDalembert<3, 2, 1> for Pendulum {
@@ -309,13 +308,22 @@ impl LagrangeDalembert<3, 2, 1> for Pendulum {
         let mass = [self.j, self.m, self.m];
         let force = [u[0], 0.0, -self.m * self.gravity];
         let saddle = SMatrix::<f64, 5, 5>::from_fn(|i, k| match (i < 3, k < 3) {
-            (true, true) => if i == k { mass[i] } else { 0.0 },
+            (true, true) => {
+                if i == k {
+                    mass[i]
+                } else {
+                    0.0
+                }
+            }
             (true, false) => -a[k - 3][i],
             (false, true) => a[i - 3][k],
             (false, false) => 0.0,
         });
         let rhs = SVector::<f64, 5>::from_fn(|i, _| if i < 3 { force[i] } else { drift[i - 3] });
-        let solution = saddle.lu().solve(&rhs).unwrap_or(SVector::from_element(f64::NAN));
+        let solution = saddle
+            .lu()
+            .solve(&rhs)
+            .unwrap_or(SVector::from_element(f64::NAN));
         (
             [solution[0], solution[1], solution[2]],
             [solution[3], solution[4]],
@@ -348,7 +356,7 @@ impl Linearization<3, 2, 1> for Pendulum {
         q: &[f64; 3],
         qdot: &[f64; 3],
         u: &[f64; 1],
-    ) -> ([[f64; 3]; 3], [[f64; 3]; 3], [[f64; 1]; 3]) {
+    ) -> AccelerationJacobian<3, 1> {
         (
             richardson_jacobian(|q| self.acceleration(q, qdot, u).0, q),
             richardson_jacobian(|qdot| self.acceleration(q, qdot, u).0, qdot),
@@ -392,21 +400,32 @@ fn the_pendulums_coordinates_follow_its_configuration_constraints() {
         / (pendulum.j + pendulum.m * pendulum.l.powi(2)))
     .sqrt();
     for theta in [0.0, std::f64::consts::PI] {
-        let point = OperatingPoint::solve(
-            &model,
-            &[Some(theta), None, None],
-            &[Some(0.0), None, None],
-        )
-        .expect("x and y solved");
+        let point =
+            OperatingPoint::solve(&model, &[Some(theta), None, None], &[Some(0.0), None, None])
+                .expect("x and y solved");
         let (sin, cos) = theta.sin_cos();
-        assert!((point.q[1] - pendulum.l * sin).abs() < 1e-14, "{:?}", point.q);
-        assert!((point.q[2] + pendulum.l * cos).abs() < 1e-14, "{:?}", point.q);
+        assert!(
+            (point.q[1] - pendulum.l * sin).abs() < 1e-14,
+            "{:?}",
+            point.q
+        );
+        assert!(
+            (point.q[2] + pendulum.l * cos).abs() < 1e-14,
+            "{:?}",
+            point.q
+        );
         let linear = linearize(&model, &point, &[0.0], &[]).expect("an equilibrium");
         assert_eq!(linear.state, ["theta", "dot(theta)"]);
         let [first, second] = [linear.eigenvalues[0], linear.eigenvalues[1]];
         if theta == 0.0 {
-            assert!(first.re.abs() < 1e-10 && (first.im - w).abs() < 1e-9, "{first}");
-            assert!(second.re.abs() < 1e-10 && (second.im + w).abs() < 1e-9, "{second}");
+            assert!(
+                first.re.abs() < 1e-10 && (first.im - w).abs() < 1e-9,
+                "{first}"
+            );
+            assert!(
+                second.re.abs() < 1e-10 && (second.im + w).abs() < 1e-9,
+                "{second}"
+            );
         } else {
             assert!((first.re - w).abs() < 1e-9 && first.im == 0.0, "{first}");
             assert!((second.re + w).abs() < 1e-9 && second.im == 0.0, "{second}");
@@ -417,8 +436,9 @@ fn the_pendulums_coordinates_follow_its_configuration_constraints() {
         let b = linear.b[(1, 0)];
         assert!((b - 1.0 / (pendulum.j + pendulum.m * pendulum.l.powi(2))).abs() < 1e-9);
     }
-    let swinging = OperatingPoint::solve(&model, &[Some(0.3), None, None], &[Some(0.0), None, None])
-        .expect("at rest");
+    let swinging =
+        OperatingPoint::solve(&model, &[Some(0.3), None, None], &[Some(0.0), None, None])
+            .expect("at rest");
     assert!(matches!(
         linearize(&model, &swinging, &[0.0], &[]),
         Err(SteadyError::NotSteady { quantity, .. }) if quantity == "dot(theta)"

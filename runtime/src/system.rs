@@ -113,8 +113,13 @@ pub enum GroupFactor {
     Rotation(usize),
 }
 
+/// `(d qddot/dq, d qddot/dqdot, d qddot/du)` of a model with `N`
+/// coordinates and `P` inputs, row `i` the derivatives of `qddot_i`.
+pub type AccelerationJacobian<const N: usize, const P: usize> =
+    ([[f64; N]; N], [[f64; N]; N], [[f64; P]; N]);
+
 /// What linearizing the Lagrange-d'Alembert equations needs (MATH.md
-/// section 6, [`crate::linearize`]): the symmetry group, `A(q)`, and the
+/// section 6; the runtime's `linearize` module): the symmetry group, `A(q)`, and the
 /// exact Jacobians of `qddot`. Generated models implement it.
 pub trait Linearization<const N: usize, const C: usize, const P: usize>:
     LagrangeDalembert<N, C, P>
@@ -125,15 +130,13 @@ pub trait Linearization<const N: usize, const C: usize, const P: usize>:
     fn mass_matrix(&self, q: &[f64; N]) -> [[f64; N]; N];
     /// The constraint rows `A(q)`.
     fn constraint_matrix(&self, q: &[f64; N]) -> [[f64; N]; C];
-    /// `(d qddot/dq, d qddot/dqdot, d qddot/du)` of
-    /// [`LagrangeDalembert::acceleration`], row `i` the derivatives of `qddot_i`.
-    #[allow(clippy::type_complexity)]
+    /// The exact Jacobians of [`LagrangeDalembert::acceleration`]'s `qddot`.
     fn acceleration_jacobian(
         &self,
         q: &[f64; N],
         qdot: &[f64; N],
         u: &[f64; P],
-    ) -> ([[f64; N]; N], [[f64; N]; N], [[f64; P]; N]);
+    ) -> AccelerationJacobian<N, P>;
 }
 
 /// Configuration constraints `f(q) = 0` (INTERFACE.md section 4, `holonomic`):

@@ -74,13 +74,12 @@ pub(super) fn acceleration_jacobian(
         /// `(d qddot/dq, d qddot/dqdot, d qddot/du)`, row `i` holding the
         /// derivatives of `qddot_i`, derived symbolically from the expressions
         /// `acceleration` computes.
-        #[allow(clippy::type_complexity)]
         pub fn acceleration_jacobian(
             &self,
             #q: &[#f64; #n],
             #qdot: &[#f64; #n],
             #u: &[#f64; #p],
-        ) -> ([[#f64; #n]; #n], [[#f64; #n]; #n], [[#f64; #p]; #n]) {
+        ) -> ::chaplygin::runtime::system::AccelerationJacobian<#n, #p> {
             #statements
         }
     };
@@ -164,7 +163,7 @@ pub(super) fn implementation(model: &Model) -> TokenStream {
                 q: &[#f64; #n],
                 qdot: &[#f64; #n],
                 u: &[#f64; #p],
-            ) -> ([[#f64; #n]; #n], [[#f64; #n]; #n], [[#f64; #p]; #n]) {
+            ) -> #system::AccelerationJacobian<#n, #p> {
                 #name::acceleration_jacobian(self, q, qdot, u)
             }
         }

@@ -30,7 +30,7 @@ pub struct OperatingPoint {
 pub enum PointError {
     /// The velocities given leave these free.
     #[error(
-        "the velocities given leave {} free: fix them with `dot(q)=...`",
+        "the velocities given leave {} free: give them too",
         velocities.join(", ")
     )]
     FreeVelocities {

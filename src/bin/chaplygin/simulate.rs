@@ -9,6 +9,8 @@ mod output;
 mod start;
 
 pub use arguments::SimulateArgs;
+pub(crate) use arguments::assignment;
+pub(crate) use start::{set_model_parameters, set_parameters};
 
 use crate::catalog::{self, BuiltIn, Compiled, Source};
 use crate::derive::Rejected;
@@ -28,10 +30,7 @@ use chaplygin::runtime::system::{
 };
 use chaplygin_codegen::interpret::InterpretedModel;
 use output::execute;
-use start::{
-    InputError, Kinematics, compiled_start, constant_inputs, initial_state, set_model_parameters,
-    set_parameters,
-};
+use start::{InputError, Kinematics, compiled_start, constant_inputs, initial_state};
 use std::error::Error;
 
 /// Runs `chaplygin simulate`.

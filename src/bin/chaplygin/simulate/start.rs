@@ -53,7 +53,7 @@ pub enum InputError {
 
 /// Sets `--param` values with `set`, which says whether the name was a
 /// parameter; `known` lists them for the error.
-pub(super) fn set_parameters(
+pub(crate) fn set_parameters(
     known: &[&str],
     given: &[(String, f64)],
     set: &mut dyn FnMut(&str, f64) -> bool,
@@ -71,7 +71,7 @@ pub(super) fn set_parameters(
 
 /// Sets `--param` values on a compiled model's parameters or the `extra`
 /// (controller) ones.
-pub(super) fn set_model_parameters<M: Parameters>(
+pub(crate) fn set_model_parameters<M: Parameters>(
     model: &mut M,
     given: &[(String, f64)],
     extra: &mut [(&str, &mut f64)],
