@@ -39,7 +39,7 @@ pub enum PointError {
     },
     /// The velocities given contradict a constraint.
     #[error(
-        "the velocities given violate constraint `{constraint}`: A(q) qdot = {residual:e}, must be 0"
+        "the velocity violates constraint `{constraint}`: A(q) qdot = {residual:e}, must be 0, whatever the velocities not given"
     )]
     ConstraintViolated {
         /// The constraint with the largest residual.

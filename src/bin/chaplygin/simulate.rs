@@ -24,8 +24,9 @@ use crate::models::{
 use arguments::{Controller, Formulation as Kind};
 use chaplygin::plot;
 use chaplygin::runtime::control::Constant;
+use chaplygin::runtime::nalgebra::DMatrix;
 use chaplygin::runtime::system::{
-    Dalembert, LagrangeDalembert, ModelNames, Momenta, Momentum, MomentumEquations, Parameters,
+    Dalembert, Linearization, ModelNames, Momenta, Momentum, MomentumEquations, Parameters,
     Reduced, ReducedPortHamiltonian,
 };
 use chaplygin_codegen::interpret::InterpretedModel;
@@ -77,7 +78,10 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
             constraints: &constraints,
             default_q: &vec![0.0; n],
             default_motion: &|_| vec![0.0; n],
-            residual: &|q, qdot| model.constraint_residual(q, qdot).unwrap_or_default(),
+            constraint_matrix: &|q| {
+                let a = crate::interpreted::evaluated(model.constraint_matrix(q));
+                DMatrix::from_row_slice(constraints.len(), n, &a)
+            },
         },
         &args.initial,
         &mut [],
@@ -122,7 +126,7 @@ fn no_controller(model: &str) -> InputError {
 /// What a compiled model must offer the command line.
 trait CompiledModel<const N: usize, const C: usize, const K: usize, const P: usize, const S: usize>:
     ReducedPortHamiltonian<S, P>
-    + LagrangeDalembert<N, C, P>
+    + Linearization<N, C, P>
     + Momenta<N, K>
     + ModelNames
     + Parameters
@@ -135,7 +139,7 @@ impl<M, const N: usize, const C: usize, const K: usize, const P: usize, const S:
     CompiledModel<N, C, K, P, S> for M
 where
     M: ReducedPortHamiltonian<S, P>
-        + LagrangeDalembert<N, C, P>
+        + Linearization<N, C, P>
         + Momenta<N, K>
         + ModelNames
         + Parameters
