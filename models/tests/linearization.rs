@@ -452,3 +452,81 @@ fn the_pendulums_coordinates_follow_its_configuration_constraints() {
         })
     );
 }
+
+chaplygin::model! {
+    /// A thin uniform disk rolling without slipping on the plane: contact
+    /// point (x, y), heading psi, lean phi, spin theta. The frame
+    /// `Rz(psi) Rx(phi)` has the disk's axis as its y axis; the centre is at
+    /// `(x + r sin psi sin phi, y - r cos psi sin phi, r cos phi)`; the
+    /// angular velocity in that frame is
+    /// `(dot(phi), dot(psi) sin phi + dot(theta), dot(psi) cos phi)` with
+    /// inertia `diag(i1, i3, i1)`. The material point at the contact has
+    /// velocity `(xdot, ydot) - r dot(theta) (cos psi, sin psi)`.
+    pub struct TiltingDisk {
+        coordinates: [x, y, psi, phi, theta],
+        parameters: [m = 1.0, r = 0.5, g = 9.81],
+        define: [i1 = m*r^2/4, i3 = m*r^2/2],
+        kinetic_energy: m/2*((dot(x) + r*(cos(psi)*sin(phi)*dot(psi) + sin(psi)*cos(phi)*dot(phi)))^2
+            + (dot(y) + r*(sin(psi)*sin(phi)*dot(psi) - cos(psi)*cos(phi)*dot(phi)))^2
+            + (r*sin(phi)*dot(phi))^2)
+            + i1/2*dot(phi)^2 + i3/2*(sin(phi)*dot(psi) + dot(theta))^2
+            + i1/2*(cos(phi)*dot(psi))^2,
+        potential_energy: m*g*r*cos(phi),
+        constraints: [
+            roll_x = dot(x) - r*cos(psi)*dot(theta),
+            roll_y = dot(y) - r*sin(psi)*dot(theta),
+        ],
+        symmetry: se2(x, y, psi) * rotation(theta),
+    }
+}
+
+/// The thin disk rolling upright at speed `v = r Omega` (spin `Omega`):
+/// the classical result (e.g. Neimark & Fufaev, *Dynamics of Nonholonomic
+/// Systems*, the rolling disk) is that the lean oscillates,
+/// `phi'' + ((i3 (i3 + m r^2) Omega^2 - m g r i1) / (i1 (i1 + m r^2))) phi = 0`
+/// after the yaw rate (tied to the lean by the conserved quantities) is
+/// eliminated; for the thin disk (`i3 = 2 i1 = m r^2 / 2`) that is
+/// `phi'' + (12/5 Omega^2 - 4/5 g/r) phi = 0`: upright rolling is stable
+/// (purely imaginary eigenvalues, the motion conserves energy) exactly for
+/// `v^2 > g r / 3`, and below it a real eigenvalue pair splits off.
+#[test]
+fn the_upright_disk_rolls_stably_above_the_critical_speed() {
+    let disk = TiltingDisk::default();
+    let model = Compiled::new(&disk);
+    let critical = (disk.g * disk.r / 3.0).sqrt();
+    for v in [
+        0.3 * critical,
+        0.9 * critical,
+        1.1 * critical,
+        3.0 * critical,
+    ] {
+        let omega = v / disk.r;
+        let point = OperatingPoint::solve(
+            &model,
+            &[None; 5],
+            &[None, None, Some(0.0), Some(0.0), Some(omega)],
+        )
+        .expect("rolling straight");
+        let linear = linearize(&model, &point, &[], &[]).expect("a relative equilibrium");
+        let square = -(12.0 / 5.0 * omega * omega - 4.0 / 5.0 * disk.g / disk.r);
+        let nonzero: Vec<_> = linear
+            .eigenvalues
+            .iter()
+            .filter(|&&e| !linear.is_zero(e))
+            .collect();
+        assert_eq!(
+            nonzero.len(),
+            2,
+            "{:?} in {:?}",
+            linear.eigenvalues,
+            linear.state
+        );
+        for eigenvalue in nonzero {
+            let squared = eigenvalue * eigenvalue;
+            assert!(
+                (squared.re - square).abs() < 1e-9 && squared.im.abs() < 1e-9,
+                "v = {v}: {eigenvalue}^2 vs {square}"
+            );
+        }
+    }
+}
