@@ -7,18 +7,22 @@
 //!   constraints `f(q) = 0`, the other velocities from `A(q) qdot = 0`;
 //! - [`steady`]: the reduced flow `z' = F(z)` in `z = (r, w)` (shape `r`,
 //!   velocities `w` at the group's identity), the check `F(z) = 0`, and the
-//!   linear system `y' = A y + B u` in independent coordinates and speeds.
+//!   linear system `y' = A y + B u` in independent coordinates and speeds;
+//! - [`canonical`]: from two such systems, the canonical form
+//!   `M qddot + v C1 qdot + (g K0 + v^2 K2) q = f` of Meijaard et al. (2007).
 //!
 //! Both work on a model seen through [`Dynamics`] (run-time sizes), which
 //! [`Compiled`] implements for a generated model (the runtime traits
 //! [`Linearization`] and, with configuration constraints, [`Holonomic`]).
 
+pub mod canonical;
 pub mod point;
 pub mod steady;
 
 use crate::system::{GroupFactor, Holonomic, Linearization, ModelNames};
 use nalgebra::{DMatrix, DVector};
 
+pub use canonical::{CanonicalError, CanonicalForm};
 pub use point::{OperatingPoint, PointError};
 pub use steady::{LinearSystem, SteadyError, linearize};
 

@@ -35,15 +35,10 @@
 //! coordinates, each last declared first; entries the caller names as
 //! independent are never chosen.
 //!
-//! **Canonical form (Meijaard et al. 2007).** For the benchmark bicycle
-//! take `y = (phi, delta, dot(phi), dot(delta), dot(theta_r))` (name those
-//! independent) with the inputs a lean torque on `phi` and a steer torque on
-//! `delta`. The rows of `dot(phi)`, `dot(delta)` give
-//! `qddot = A_q q + A_v qdot + B_v f` with `q = (phi, delta)` (the column of
-//! `dot(theta_r)` vanishes at upright running), so `M = B_v^-1`,
-//! `v C1 = -M A_v` and `g K0 + v^2 K2 = -M A_q`; two speeds `v1 != v2`
-//! separate `K2 = (X(v1) - X(v2)) / (v1^2 - v2^2)` and
-//! `K0 = (X(v1) - v1^2 K2) / g` with `X(v) = -M A_q(v)`.
+//! **Canonical form (Meijaard et al. 2007).** With the coordinates `q`
+//! and their speeds named independent and one input on each coordinate,
+//! two speeds give `M`, `C1`, `K0`, `K2` ([`super::canonical`]); for the
+//! benchmark bicycle `y = (phi, delta, dot(phi), dot(delta), dot(theta_r))`.
 
 use super::point::OperatingPoint;
 use super::{Dynamics, largest, pivots};
@@ -409,10 +404,14 @@ fn tangent_basis(phi: &DMatrix<f64>, chosen: &[(usize, usize)]) -> DMatrix<f64> 
     let phi_rows = phi.select_rows(&rows);
     let phi_dependent = phi_rows.select_columns(&dependent);
     let phi_kept = phi_rows.select_columns(&kept);
-    let solved = phi_dependent
-        .lu()
-        .solve(&(-phi_kept))
-        .unwrap_or_else(|| DMatrix::from_element(dependent.len(), kept.len(), f64::NAN));
+    let solved = if dependent.is_empty() {
+        DMatrix::zeros(0, kept.len())
+    } else {
+        phi_dependent
+            .lu()
+            .solve(&(-phi_kept))
+            .unwrap_or_else(|| DMatrix::from_element(dependent.len(), kept.len(), f64::NAN))
+    };
     let mut basis = DMatrix::zeros(phi.ncols(), kept.len());
     for (j, &z) in kept.iter().enumerate() {
         basis[(z, j)] = 1.0;
