@@ -12,11 +12,12 @@
 #[allow(dead_code)]
 mod support;
 
-use chaplygin::runtime::linearize::{CanonicalForm, Compiled, OperatingPoint, linearize};
-use chaplygin::runtime::nalgebra::{DMatrix, Matrix2, Vector2};
-use chaplygin::runtime::system::{
-    AccelerationJacobian, GroupFactor, LagrangeDalembert, Linearization, ModelNames,
+use chaplygin::runtime::linearize::{
+    AccelerationJacobian, CanonicalForm, Compiled, GroupFactor, Linearization, OperatingPoint,
+    linearize,
 };
+use chaplygin::runtime::nalgebra::{DMatrix, Matrix2, Vector2};
+use chaplygin::runtime::system::{LagrangeDalembert, ModelNames};
 use support::benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
 
 /// Roll `phi`, steer `delta` and the rear wheel's rotation `theta_r`, with

@@ -6,11 +6,10 @@ mod common;
 
 use chaplygin::runtime::linalg::central_difference_jacobian;
 use chaplygin::runtime::linearize::{
-    Compiled, LinearSystem, OperatingPoint, PointError, SteadyError, linearize,
+    AccelerationJacobian, Compiled, GroupFactor, LinearSystem, Linearization, OperatingPoint,
+    PointError, SteadyError, linearize,
 };
-use chaplygin::runtime::system::{
-    AccelerationJacobian, Holonomic, LagrangeDalembert, Linearization, ModelNames,
-};
+use chaplygin::runtime::system::{Holonomic, LagrangeDalembert, ModelNames};
 use chaplygin_models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
     snakeboard::Snakeboard,
@@ -344,7 +343,7 @@ impl LagrangeDalembert<3, 2, 1> for Pendulum {
 }
 
 impl Linearization<3, 2, 1> for Pendulum {
-    const SYMMETRY: &'static [chaplygin::runtime::system::GroupFactor] = &[];
+    const SYMMETRY: &'static [GroupFactor] = &[];
     fn mass_matrix(&self, _q: &[f64; 3]) -> [[f64; 3]; 3] {
         [[self.j, 0.0, 0.0], [0.0, self.m, 0.0], [0.0, 0.0, self.m]]
     }

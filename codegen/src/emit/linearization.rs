@@ -1,6 +1,6 @@
 //! What linearization needs of a model: the exact Jacobians of
 //! `acceleration` and its symmetry, as items and as the runtime's
-//! `::chaplygin::runtime::system::Linearization` trait.
+//! `::chaplygin::runtime::linearize::Linearization` trait.
 //!
 //! ```text
 //! acceleration_jacobian(q, qdot, u)   (d qddot/dq, d qddot/dqdot, d qddot/du)
@@ -79,7 +79,7 @@ pub(super) fn acceleration_jacobian(
             #q: &[#f64; #n],
             #qdot: &[#f64; #n],
             #u: &[#f64; #p],
-        ) -> ::chaplygin::runtime::system::AccelerationJacobian<#n, #p> {
+        ) -> ::chaplygin::runtime::linearize::AccelerationJacobian<#n, #p> {
             #statements
         }
     };
@@ -121,13 +121,13 @@ fn derivatives_by(model: &mut Model, functions: &[ExprId], variables: &[SymbolId
         .collect()
 }
 
-/// `impl ::chaplygin::runtime::system::Linearization<n, c, p>`: the
+/// `impl ::chaplygin::runtime::linearize::Linearization<n, c, p>`: the
 /// symmetry's factors, `mass_matrix`, `constraint_matrix` and `acceleration_jacobian`.
 pub(super) fn implementation(model: &Model) -> TokenStream {
     let name = &model.name;
     let f64 = f64_type();
     let (n, c, p) = (model.n(), model.c(), model.p());
-    let system = quote!(::chaplygin::runtime::system);
+    let linearize = quote!(::chaplygin::runtime::linearize);
     let factors = model
         .symmetry
         .iter()
@@ -137,21 +137,21 @@ pub(super) fn implementation(model: &Model) -> TokenStream {
             match *factor {
                 GroupFactor::Se2 { x, y, theta } => {
                     let (x, y, theta) = (at(x), at(y), at(theta));
-                    quote!(#system::GroupFactor::Se2 { x: #x, y: #y, theta: #theta })
+                    quote!(#linearize::GroupFactor::Se2 { x: #x, y: #y, theta: #theta })
                 }
                 GroupFactor::Translation(i) => {
                     let i = at(i);
-                    quote!(#system::GroupFactor::Translation(#i))
+                    quote!(#linearize::GroupFactor::Translation(#i))
                 }
                 GroupFactor::Rotation(i) => {
                     let i = at(i);
-                    quote!(#system::GroupFactor::Rotation(#i))
+                    quote!(#linearize::GroupFactor::Rotation(#i))
                 }
             }
         });
     quote! {
-        impl #system::Linearization<#n, #c, #p> for #name {
-            const SYMMETRY: &'static [#system::GroupFactor] = &[#(#factors),*];
+        impl #linearize::Linearization<#n, #c, #p> for #name {
+            const SYMMETRY: &'static [#linearize::GroupFactor] = &[#(#factors),*];
             fn mass_matrix(&self, q: &[#f64; #n]) -> [[#f64; #n]; #n] {
                 #name::mass_matrix(self, q)
             }
@@ -163,7 +163,7 @@ pub(super) fn implementation(model: &Model) -> TokenStream {
                 q: &[#f64; #n],
                 qdot: &[#f64; #n],
                 u: &[#f64; #p],
-            ) -> #system::AccelerationJacobian<#n, #p> {
+            ) -> #linearize::AccelerationJacobian<#n, #p> {
                 #name::acceleration_jacobian(self, q, qdot, u)
             }
         }

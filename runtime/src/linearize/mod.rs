@@ -19,12 +19,57 @@ pub mod canonical;
 pub mod point;
 pub mod steady;
 
-use crate::system::{GroupFactor, Holonomic, Linearization, ModelNames};
+use crate::system::{Holonomic, LagrangeDalembert, ModelNames};
 use nalgebra::{DMatrix, DVector};
 
 pub use canonical::{CanonicalError, CanonicalForm};
 pub use point::{OperatingPoint, PointError};
 pub use steady::{LinearSystem, SteadyError, linearize};
+
+/// One factor of a model's symmetry group, acting on the coordinates at
+/// these indices (INTERFACE.md section 1, `symmetry`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroupFactor {
+    /// The special Euclidean group of the plane on `(x, y, theta)`.
+    Se2 {
+        /// Index of `x`.
+        x: usize,
+        /// Index of `y`.
+        y: usize,
+        /// Index of the heading `theta`.
+        theta: usize,
+    },
+    /// Translations of one coordinate.
+    Translation(usize),
+    /// Rotations of one angle.
+    Rotation(usize),
+}
+
+/// `(d qddot/dq, d qddot/dqdot, d qddot/du)` of a model with `N`
+/// coordinates and `P` inputs, row `i` the derivatives of `qddot_i`.
+pub type AccelerationJacobian<const N: usize, const P: usize> =
+    ([[f64; N]; N], [[f64; N]; N], [[f64; P]; N]);
+
+/// What linearizing the Lagrange-d'Alembert equations needs (MATH.md
+/// section 6): the symmetry group, `A(q)`, and the
+/// exact Jacobians of `qddot`. Generated models implement it.
+pub trait Linearization<const N: usize, const C: usize, const P: usize>:
+    LagrangeDalembert<N, C, P>
+{
+    /// The factors of the declared symmetry group (empty without one).
+    const SYMMETRY: &'static [GroupFactor];
+    /// The mass matrix `g(q)`.
+    fn mass_matrix(&self, q: &[f64; N]) -> [[f64; N]; N];
+    /// The constraint rows `A(q)`.
+    fn constraint_matrix(&self, q: &[f64; N]) -> [[f64; N]; C];
+    /// The exact Jacobians of [`LagrangeDalembert::acceleration`]'s `qddot`.
+    fn acceleration_jacobian(
+        &self,
+        q: &[f64; N],
+        qdot: &[f64; N],
+        u: &[f64; P],
+    ) -> AccelerationJacobian<N, P>;
+}
 
 /// What linearization needs of a model, on run-time sizes: `n`
 /// coordinates, `c` velocity constraint rows, `h` configuration

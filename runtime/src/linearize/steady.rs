@@ -40,10 +40,10 @@
 //! two speeds give `M`, `C1`, `K0`, `K2` ([`super::canonical`]); for the
 //! benchmark bicycle `y = (phi, delta, dot(phi), dot(delta), dot(theta_r))`.
 
+use super::GroupFactor;
 use super::point::OperatingPoint;
 use super::{Dynamics, largest, pivots};
 use crate::linalg::{self, MatrixError};
-use crate::system::GroupFactor;
 use nalgebra::{Complex, DMatrix, DVector};
 
 /// The linear system `y' = A y + B u` about a steady motion.

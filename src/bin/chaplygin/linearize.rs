@@ -20,9 +20,10 @@ use crate::models::{
 use crate::simulate::set_model_parameters;
 use chaplygin::plot::{EigenvalueSweep, write_eigenvalue_plot};
 use chaplygin::runtime::linearize::{
-    self as runtime_linearize, Dynamics, LinearSystem, OperatingPoint, PointError, SteadyError,
+    self as runtime_linearize, Dynamics, LinearSystem, Linearization, OperatingPoint, PointError,
+    SteadyError,
 };
-use chaplygin::runtime::system::{Linearization, ModelNames, Parameters};
+use chaplygin::runtime::system::{ModelNames, Parameters};
 use chaplygin_codegen::interpret::InterpretedModel;
 use expression::{ExpressionError, evaluate};
 use interpreted::InterpretedDynamics;

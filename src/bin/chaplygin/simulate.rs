@@ -24,10 +24,11 @@ use crate::models::{
 use arguments::{Controller, Formulation as Kind};
 use chaplygin::plot;
 use chaplygin::runtime::control::Constant;
+use chaplygin::runtime::linearize::Linearization;
 use chaplygin::runtime::nalgebra::DMatrix;
 use chaplygin::runtime::system::{
-    Dalembert, Linearization, ModelNames, Momenta, Momentum, MomentumEquations, Parameters,
-    Reduced, ReducedPortHamiltonian,
+    Dalembert, ModelNames, Momenta, Momentum, MomentumEquations, Parameters, Reduced,
+    ReducedPortHamiltonian,
 };
 use chaplygin_codegen::interpret::InterpretedModel;
 use output::execute;

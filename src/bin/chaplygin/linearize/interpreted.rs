@@ -5,9 +5,8 @@
 //! here (`h = 0`).
 
 use crate::interpreted::evaluated;
-use chaplygin::runtime::linearize::Dynamics;
+use chaplygin::runtime::linearize::{Dynamics, GroupFactor};
 use chaplygin::runtime::nalgebra::{DMatrix, DVector};
-use chaplygin::runtime::system::GroupFactor;
 use chaplygin_codegen::interpret::InterpretedModel;
 use chaplygin_codegen::model;
 

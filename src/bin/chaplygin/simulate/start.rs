@@ -6,10 +6,10 @@
 use super::arguments::SimulateArgs;
 use super::{CompiledModel, array};
 use crate::catalog::BuiltIn;
-use chaplygin::runtime::linearize::PointError;
 use chaplygin::runtime::linearize::point::{solve_velocities, velocity_names};
+use chaplygin::runtime::linearize::{Linearization, PointError};
 use chaplygin::runtime::nalgebra::DMatrix;
-use chaplygin::runtime::system::{Linearization, Parameters};
+use chaplygin::runtime::system::Parameters;
 
 /// A problem with the command's input, stated in one line.
 #[derive(Debug, thiserror::Error)]
