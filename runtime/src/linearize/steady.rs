@@ -82,14 +82,42 @@ impl LinearSystem {
             .count()
     }
 
-    /// Whether the motion is asymptotically stable, counting the zeros at
-    /// this point as those of conserved quantities: every other eigenvalue
-    /// in the open left half plane (by [`Self::MARGIN`]). At a point where
-    /// an eigenvalue crosses zero this overcounts; over a family of steady
-    /// motions [`Self::is_stable_modulo`] with the family's fewest zeros
+    /// `dim ker A`: the directions of a family of steady motions through
+    /// the point, one per conserved quantity (numerical rank by the singular
+    /// values, below [`Self::ZERO`] `max(1, max |A_ij|)` counting as zero).
+    /// Fewer than [`Self::zeros`] means a Jordan chain at zero: a drift that
+    /// grows linearly, no conserved quantity.
+    pub fn kernel_dimension(&self) -> usize {
+        let order = self.a.nrows();
+        if order == 0 {
+            return 0;
+        }
+        let tolerance = Self::ZERO * self.a.amax().max(1.0);
+        self.a
+            .clone()
+            .try_svd(false, false, f64::EPSILON, 10_000)
+            .map_or(order, |svd| {
+                svd.singular_values
+                    .iter()
+                    .filter(|&&sigma| sigma <= tolerance)
+                    .count()
+            })
+    }
+
+    /// The zeros counted as those of conserved quantities at this point:
+    /// the zero eigenvalues with eigenvectors, `min(zeros, dim ker A)`.
+    pub fn conserved_zeros(&self) -> usize {
+        self.zeros().min(self.kernel_dimension())
+    }
+
+    /// Whether the motion is asymptotically stable: every eigenvalue but
+    /// the [`Self::conserved_zeros`] in the open left half plane (by
+    /// [`Self::MARGIN`]). At a point where an eigenvalue crosses zero this
+    /// can overcount; over a family of steady motions
+    /// [`Self::is_stable_modulo`] with the family's fewest conserved zeros
     /// does not.
     pub fn is_stable(&self) -> bool {
-        self.is_stable_modulo(self.zeros())
+        self.is_stable_modulo(self.conserved_zeros())
     }
 
     /// Whether every eigenvalue but the `conserved` smallest in modulus

@@ -184,7 +184,11 @@ fn analyse(
     }
     // The zeros of conserved quantities are those every point of the family
     // has: a point with more has an eigenvalue crossing zero.
-    let conserved = linears.iter().map(LinearSystem::zeros).min().unwrap_or(0);
+    let conserved = linears
+        .iter()
+        .map(LinearSystem::conserved_zeros)
+        .min()
+        .unwrap_or(0);
     let stable: Vec<bool> = linears
         .iter()
         .map(|linear| linear.is_stable_modulo(conserved))
@@ -251,7 +255,7 @@ fn describe(linear: &LinearSystem) -> String {
     );
     for &eigenvalue in &linear.eigenvalues {
         let zero = if linear.is_zero(eigenvalue) {
-            "   (zero: a conserved quantity)"
+            "   (zero)"
         } else {
             ""
         };
@@ -266,8 +270,8 @@ fn describe(linear: &LinearSystem) -> String {
     let verdict = if linear.is_stable() { "yes" } else { "no" };
     let _ = writeln!(
         text,
-        "asymptotically stable: {verdict} (the {} zeros counted as conserved quantities)",
-        linear.zeros()
+        "asymptotically stable: {verdict} ({} zeros counted as conserved quantities)",
+        linear.conserved_zeros()
     );
     text
 }
