@@ -567,3 +567,52 @@ fn linearize_bad_input_is_one_line_and_a_failure() {
         &["at w = 0.5:", "not a steady motion"],
     );
 }
+
+/// The thin disk declared in `models/tests/linearization.rs`: the body of
+/// its `chaplygin::model!` invocation, the same text a `.model` file holds.
+fn tilting_disk_text() -> String {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/tests/linearization.rs");
+    let text = std::fs::read_to_string(file).expect("readable");
+    let open =
+        text.find("chaplygin::model! {").expect("the disk's macro") + "chaplygin::model! ".len();
+    let mut depth = 0;
+    for (offset, character) in text[open..].char_indices() {
+        depth += match character {
+            '{' => 1,
+            '}' => -1,
+            _ => 0,
+        };
+        if depth == 0 {
+            return text[open + 1..open + offset].to_string();
+        }
+    }
+    panic!("unbalanced braces in {file}");
+}
+
+/// A `.model` file with an `se2 * rotation` symmetry linearizes through the
+/// interpreter: a thin disk (radius 0.5, g = 9.81) rolling upright at
+/// `v = 0.5` (spin `Omega = 1`) is below the critical speed `sqrt(g r / 3)`,
+/// and its lean grows at `sqrt(4/5 g/r - 12/5 Omega^2) = sqrt(13.296)`
+/// (the classical lean equation, quoted in `models/tests/linearization.rs`).
+#[test]
+fn linearize_runs_a_model_file_with_a_rotation_symmetry() {
+    let directory = scratch("tilting-disk");
+    std::fs::create_dir_all(&directory).unwrap();
+    let path = directory.join("disk.model");
+    std::fs::write(&path, tilting_disk_text()).unwrap();
+    let output = chaplygin(&[
+        "linearize",
+        path.to_str().unwrap(),
+        "--at",
+        "dot(psi)=0",
+        "--at",
+        "dot(phi)=0",
+        "--at",
+        "dot(theta)=1",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    let growth = format!("{:.9e}", 13.296f64.sqrt());
+    assert!(text.contains(&growth), "{growth} not in {text}");
+    assert!(text.contains("asymptotically stable: no"), "{text}");
+}
