@@ -21,11 +21,16 @@
 //!   constant-energy ellipsoid
 //!   `alpha1^2/(2m) + alpha2^2/(2Jt) + kt xt^2/2 = E0`.
 //!
+//! And for `chaplygin linearize --sweep`, [`write_eigenvalue_plot`] writes
+//! `eigenvalues.png`: the real and imaginary parts of the eigenvalues
+//! against the swept variable.
+//!
 //! Non-finite samples (a diverged run) break the curves instead of being
 //! drawn. Text uses DejaVu Sans (Bitstream Vera license, shipped in
 //! `assets/fonts` with its license), embedded in the binary and registered
 //! with plotters' `ab_glyph` renderer, so no system font library is needed.
 
+mod eigenvalues;
 mod error;
 mod figure4;
 mod path;
@@ -33,6 +38,7 @@ mod series;
 mod spec;
 mod style;
 
+pub use eigenvalues::{EigenvalueSweep, write_eigenvalue_plot};
 pub use error::PlotError;
 pub use spec::{Figure4, PlanarPath, PlotSpec, Table};
 

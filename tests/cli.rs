@@ -69,7 +69,7 @@ fn assert_one_line_error(output: &Output, needles: &[&str]) {
 
 /// The snakeboard rolling with its wheels turned: at `theta = 0`,
 /// `y' = 0` and `theta' = x' tan(phi) / r` satisfy both wheel constraints.
-const SNAKEBOARD_ROLLING: [&str; 8] = [
+const SNAKEBOARD_ROLLING: [&str; 10] = [
     "--initial",
     "phi=0.4",
     "--initial",
@@ -78,6 +78,8 @@ const SNAKEBOARD_ROLLING: [&str; 8] = [
     "dot(theta)=0.8455864374763236",
     "--initial",
     "dot(psi)=0.3",
+    "--initial",
+    "dot(phi)=0",
 ];
 
 /// The CSV of a successful `chaplygin simulate` with `arguments`, written
@@ -685,4 +687,204 @@ fn the_default_integrator_keeps_the_sleighs_energy_and_is_named() {
         "{}",
         stdout(&output)
     );
+}
+
+/// `--initial` fixes the velocities given and solves the others from the
+/// constraints: the sleigh's blade gives `dot(y) = tan(theta) dot(x)`.
+#[test]
+fn initial_velocities_not_given_are_solved_from_the_constraints() {
+    let out = scratch("solved-initial");
+    let output = chaplygin(&[
+        "simulate",
+        "sleigh",
+        "--formulation",
+        "lagrange",
+        "--initial",
+        "theta=0.5",
+        "--initial",
+        "dot(x)=1",
+        "--initial",
+        "dot(theta)=0.2",
+        "--t-end",
+        "0.1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let (header, rows) = read_csv(&out.join("trajectory.csv"));
+    let column = |name: &str| header.iter().position(|h| h == name).expect(name);
+    assert!((rows[0][column("dot(y)")] - 0.5f64.tan()).abs() < 1e-15);
+    assert_eq!(rows[0][column("dot(theta)")], 0.2);
+    assert_one_line_error(
+        &chaplygin(&["simulate", "sleigh", "--initial", "dot(theta)=1"]),
+        &["leave dot(x), dot(y) free"],
+    );
+}
+
+/// The sleigh's straight motion at `dot(x) = 1`: the yaw rate decays like
+/// `exp(-m a v t / (I + m a^2))` (`m = 1`, `I = 0.1`, `a = 0.5`: rate
+/// -10/7), the forward speed is conserved (a zero); the built-in model and
+/// its `.model` file through the interpreter print the same.
+#[test]
+fn linearize_prints_the_sleighs_eigenvalues() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
+    let mut printed = Vec::new();
+    for model in ["sleigh", file] {
+        let output = chaplygin(&[
+            "linearize",
+            model,
+            "--at",
+            "dot(x)=1",
+            "--at",
+            "dot(theta)=0",
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        let text = stdout(&output);
+        assert!(text.contains("-1.428571429e0 + 0.000000000e0 i"), "{text}");
+        assert!(text.contains("(zero)"), "{text}");
+        assert!(text.contains("(1 zeros counted as conserved"), "{text}");
+        assert!(text.contains("asymptotically stable: yes"), "{text}");
+        printed.push(text);
+    }
+    assert_eq!(printed[0], printed[1]);
+}
+
+/// `--sweep` over the sleigh's speed: one CSV row per grid point (STOP
+/// included) with the hand eigenvalues `0` and `-m a v / (I + m a^2)`,
+/// the plot, and the stable interval `v > 0` on the grid.
+#[test]
+fn linearize_sweeps_write_the_eigenvalues_and_the_stable_intervals() {
+    let out = scratch("sweep");
+    let output = chaplygin(&[
+        "linearize",
+        "sleigh",
+        "--at",
+        "dot(x)=v*cos(0.3)",
+        "--at",
+        "theta=0.3",
+        "--at",
+        "dot(theta)=0",
+        "--sweep",
+        "v=-1:1:0.25",
+        "--param",
+        "a=0.4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let (header, rows) = read_csv(&out.join("eigenvalues.csv"));
+    assert_eq!(header, ["v", "re_1", "im_1", "re_2", "im_2"]);
+    assert_eq!(rows.len(), 9);
+    for row in &rows {
+        let yaw = -0.4 * row[0] / (0.1 + 0.16);
+        let (first, second) = if yaw > 0.0 { (yaw, 0.0) } else { (0.0, yaw) };
+        assert!((row[1] - first).abs() < 1e-10, "{row:?}");
+        assert!((row[3] - second).abs() < 1e-10, "{row:?}");
+        assert_eq!((row[2], row[4]), (0.0, 0.0));
+    }
+    let bytes = std::fs::read(out.join("eigenvalues.png")).expect("the plot exists");
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    let text = stdout(&output);
+    assert!(text.contains("[0.25, 1]"), "{text}");
+    assert_eq!(text.matches('[').count(), 1, "{text}");
+}
+
+#[test]
+fn linearize_bad_input_is_one_line_and_a_failure() {
+    let sleigh = |extra: &[&str]| {
+        let mut arguments = vec!["linearize", "sleigh", "--at", "dot(x)=1"];
+        arguments.extend(extra);
+        chaplygin(&arguments)
+    };
+    assert_one_line_error(
+        &sleigh(&["--at", "dot(theta)=0.5"]),
+        &["not a steady motion", "d/dt dot(theta)"],
+    );
+    assert_one_line_error(&sleigh(&[]), &["leave dot(theta) free"]);
+    assert_one_line_error(
+        &sleigh(&["--at", "dot(y)=1"]),
+        &["violates constraint `blade`"],
+    );
+    assert_one_line_error(
+        &sleigh(&[
+            "--at",
+            "dot(theta)=0",
+            "--param",
+            "m=0",
+            "--param",
+            "inertia=0",
+        ]),
+        &["mass matrix", "not positive definite"],
+    );
+    assert_one_line_error(
+        &sleigh(&["--at", "dot(theta)=0", "--sweep", "v=0:1:0"]),
+        &["STEP must be positive"],
+    );
+    assert_one_line_error(
+        &sleigh(&["--at", "dot(theta)=0", "--sweep", "v=1:0:0.1"]),
+        &["empty range"],
+    );
+    assert_one_line_error(
+        &sleigh(&["--at", "dot(theta)=w"]),
+        &["unknown name `w`", "inertia"],
+    );
+    assert_one_line_error(&sleigh(&["--at", "speed=1"]), &["unknown name `speed`"]);
+    assert_one_line_error(
+        &sleigh(&["--at", "dot(theta)=0", "--sweep", "m=1:2:1"]),
+        &["`m` is a parameter"],
+    );
+    // A sweep stops at the first point that is no steady motion, naming it.
+    assert_one_line_error(
+        &sleigh(&["--at", "dot(theta)=w", "--sweep", "w=0:1:0.5"]),
+        &["at w = 0.5:", "not a steady motion"],
+    );
+}
+
+/// The thin disk declared in `models/tests/linearization.rs`: the body of
+/// its `chaplygin::model!` invocation, the same text a `.model` file holds.
+fn tilting_disk_text() -> String {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/tests/linearization.rs");
+    let text = std::fs::read_to_string(file).expect("readable");
+    let open =
+        text.find("chaplygin::model! {").expect("the disk's macro") + "chaplygin::model! ".len();
+    let mut depth = 0;
+    for (offset, character) in text[open..].char_indices() {
+        depth += match character {
+            '{' => 1,
+            '}' => -1,
+            _ => 0,
+        };
+        if depth == 0 {
+            return text[open + 1..open + offset].to_string();
+        }
+    }
+    panic!("unbalanced braces in {file}");
+}
+
+/// A `.model` file with an `se2 * rotation` symmetry linearizes through the
+/// interpreter: a thin disk (radius 0.5, g = 9.81) rolling upright at
+/// `v = 0.5` (spin `Omega = 1`) is below the critical speed `sqrt(g r / 3)`,
+/// and its lean grows at `sqrt(4/5 g/r - 12/5 Omega^2) = sqrt(13.296)`
+/// (the classical lean equation, quoted in `models/tests/linearization.rs`).
+#[test]
+fn linearize_runs_a_model_file_with_a_rotation_symmetry() {
+    let directory = scratch("tilting-disk");
+    std::fs::create_dir_all(&directory).unwrap();
+    let path = directory.join("disk.model");
+    std::fs::write(&path, tilting_disk_text()).unwrap();
+    let output = chaplygin(&[
+        "linearize",
+        path.to_str().unwrap(),
+        "--at",
+        "dot(psi)=0",
+        "--at",
+        "dot(phi)=0",
+        "--at",
+        "dot(theta)=1",
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    let growth = format!("{:.9e}", 13.296f64.sqrt());
+    assert!(text.contains(&growth), "{growth} not in {text}");
+    assert!(text.contains("asymptotically stable: no"), "{text}");
 }

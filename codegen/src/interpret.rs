@@ -115,6 +115,9 @@ pub enum CallError {
     },
 }
 
+/// `(d qddot/dq, d qddot/dqdot, d qddot/du)`, each row-major.
+pub type Jacobians = (Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// One emitted function's name and program.
 struct Interpreted {
     name: &'static str,
@@ -131,8 +134,8 @@ pub struct InterpretedModel {
     report: String,
     /// With a symmetry, the coordinates the group acts on.
     group: Option<Vec<usize>>,
-    /// With a symmetry, its factors as declared.
-    factors: Vec<GroupFactor>,
+    /// The symmetry group's factors (empty without a symmetry).
+    symmetry: Vec<GroupFactor>,
 }
 
 impl std::fmt::Debug for InterpretedModel {
@@ -182,7 +185,7 @@ impl InterpretedModel {
                 .symmetry
                 .as_ref()
                 .map(|symmetry| group_coordinates(&symmetry.factors)),
-            factors: model
+            symmetry: model
                 .symmetry
                 .as_ref()
                 .map(|symmetry| symmetry.factors.clone())
@@ -198,6 +201,11 @@ impl InterpretedModel {
     /// The sizes n, c, k, p, s.
     pub fn sizes(&self) -> Sizes {
         self.sizes
+    }
+
+    /// The symmetry group's factors, as declared (empty without a symmetry).
+    pub fn symmetry(&self) -> &[GroupFactor] {
+        &self.symmetry
     }
 
     /// The derivation report, the generated `REPORT`.
@@ -327,6 +335,21 @@ impl InterpretedModel {
         Ok((values, multipliers))
     }
 
+    /// The exact Jacobians of `qddot`, `(d qddot/dq, d qddot/dqdot,
+    /// d qddot/du)`, each row-major (n x n, n x n, n x p).
+    pub fn acceleration_jacobian(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        u: &[f64],
+    ) -> Result<Jacobians, CallError> {
+        let n = self.sizes.n;
+        let mut by_q = self.call("acceleration_jacobian", &[q, qdot, u])?;
+        let mut by_qdot = by_q.split_off(n * n);
+        let by_u = by_qdot.split_off(n * n);
+        Ok((by_q, by_qdot, by_u))
+    }
+
     /// The reduced momenta `alpha = P g qdot`.
     pub fn momenta(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, CallError> {
         self.call("momenta", &[q, qdot])
@@ -397,7 +420,7 @@ impl InterpretedModel {
         let xi = self.call("body_velocity", &[&r, rdot, p])?;
         let mut qdot = vec![0.0; self.sizes.n];
         let mut offset = 0;
-        for factor in &self.factors {
+        for factor in &self.symmetry {
             match *factor {
                 GroupFactor::Se2 { x, y, theta } => {
                     let (sin, cos) = q[theta].sin_cos();

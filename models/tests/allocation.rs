@@ -169,6 +169,40 @@ fn acceleration_does_not_allocate() {
     assert!(allocations(|| drop(black_box(vec![1u8; 16]))) > 0);
 }
 
+#[test]
+fn acceleration_jacobian_does_not_allocate() {
+    let (board, sleigh, towed) = (Snakeboard::default(), Sleigh::default(), Towed::default());
+    let (disk, robot, snake) = (
+        RollingDisk::default(),
+        DifferentialDrive::default(),
+        Snake3::default(),
+    );
+    let counted = allocations(|| {
+        for i in 0..10_000 {
+            let t = i as f64 * 1e-3;
+            let q = [t, -t, 0.3 + t, 0.1, 0.2 - t];
+            let qdot = [1.0, 0.5, -0.2, t, 0.3];
+            let u = [t, 0.5];
+            black_box(board.acceleration_jacobian(black_box(&q), black_box(&qdot), black_box(&u)));
+            let q3 = [t, 0.5, 0.2 + t];
+            let v3 = [1.0, -0.5, t];
+            black_box(sleigh.acceleration_jacobian(black_box(&q3), black_box(&v3), &[]));
+            let q4 = [t, 0.5, 0.2 + t, 0.3 - t];
+            let v4 = [1.0, -0.5, t, 0.7];
+            black_box(towed.acceleration_jacobian(black_box(&q4), black_box(&v4), &[t]));
+            black_box(disk.acceleration_jacobian(black_box(&q4), black_box(&v4), &[t, 0.2]));
+            black_box(robot.acceleration_jacobian(black_box(&q), black_box(&qdot), &[0.1, t]));
+            let qs = [0.1 + t; Snake3::N];
+            let vs = [0.2 - t; Snake3::N];
+            let us = [t; Snake3::P];
+            black_box(snake.acceleration_jacobian(black_box(&qs), black_box(&vs), &us));
+        }
+    });
+    assert_eq!(counted, 0);
+    // the counter itself works: a Vec allocates
+    assert!(allocations(|| drop(black_box(vec![1u8; 16]))) > 0);
+}
+
 fn has_non_finite(values: &[f64]) -> bool {
     values.iter().any(|v| !v.is_finite())
 }

@@ -191,6 +191,7 @@ macro_rules! differential_test {
                 alpha: &[f64; $model::K],
             ) -> Vec<(&'static str, Vec<f64>)> {
                 let (qddot, lambda) = self.acceleration(q, qdot, u);
+                let (by_q, by_qdot, by_u) = self.acceleration_jacobian(q, qdot, u);
                 vec![
                     ("mass_matrix", self.mass_matrix(q).concat()),
                     ("energy", vec![self.energy(q, qdot)]),
@@ -202,6 +203,10 @@ macro_rules! differential_test {
                     (
                         "acceleration",
                         [qddot.as_slice(), lambda.as_slice()].concat(),
+                    ),
+                    (
+                        "acceleration_jacobian",
+                        [by_q.concat(), by_qdot.concat(), by_u.concat()].concat(),
                     ),
                     ("momenta", self.momenta(q, qdot).to_vec()),
                     ("velocities", self.velocities(q, alpha).to_vec()),
@@ -242,12 +247,14 @@ fn interpreted_items(
     [q, qdot, u, x, alpha]: [&[f64]; 5],
 ) -> Result<Vec<Vec<f64>>, CallError> {
     let (qddot, lambda) = model.acceleration(q, qdot, u)?;
+    let (by_q, by_qdot, by_u) = model.acceleration_jacobian(q, qdot, u)?;
     Ok(vec![
         model.mass_matrix(q)?,
         vec![model.energy(q, qdot)?],
         model.constraint_matrix(q)?,
         model.constraint_residual(q, qdot)?,
         [qddot, lambda].concat(),
+        [by_q, by_qdot, by_u].concat(),
         model.momenta(q, qdot)?,
         model.velocities(q, alpha)?,
         vec![model.hamiltonian(x)?],

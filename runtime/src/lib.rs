@@ -16,6 +16,8 @@
 //! - [`linalg`]: linear algebra on nalgebra's matrices (LU, Cholesky,
 //!   eigenvalues, central-difference Jacobians), and [`arrays`]: nalgebra
 //!   values to and from the generated code's arrays;
+//! - [`linearize`]: operating points, the steady-motion check and the
+//!   linear system about a steady motion with its eigenvalues;
 //! - [`phase`]: the group displacement over one period of a shape gait, split
 //!   into its geometric and dynamic parts.
 
@@ -26,6 +28,7 @@ pub mod control;
 pub mod integrate;
 pub mod law;
 pub mod linalg;
+pub mod linearize;
 pub mod monitor;
 pub mod phase;
 pub mod projection;

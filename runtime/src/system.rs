@@ -384,8 +384,9 @@ where
     M: LagrangeDalembert<N, C, P>,
     F: Controller<D, P>,
 {
-    /// Central differences of [`OdeSystem::rhs`] (the generated code has no
-    /// symbolic Jacobian of `acceleration`). An implicit method's Newton
+    /// Central differences of [`OdeSystem::rhs`] ([`LagrangeDalembert`]
+    /// carries no Jacobian; generated models' exact one is
+    /// `linearize::Linearization::acceleration_jacobian`). An implicit method's Newton
     /// iteration uses it only to find its step: the step it converges to is
     /// the same, only the convergence rate depends on the Jacobian's accuracy.
     fn jacobian(&self, t: f64, x: &[f64; D]) -> [[f64; D]; D] {

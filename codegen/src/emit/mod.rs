@@ -10,6 +10,7 @@
 //! constraint_matrix(q)            A(q)
 //! constraint_residual(q, qdot)    A(q) qdot
 //! acceleration(q, qdot, u)        (qddot, lambda), Lagrange-d'Alembert
+//! acceleration_jacobian(q, qdot, u)  its exact Jacobians (see `linearization`)
 //! REPORT                          the derivation report (see [`report`])
 //! ```
 //!
@@ -26,6 +27,7 @@
 
 mod kinematics;
 mod lagrange_dalembert;
+mod linearization;
 mod momentum;
 mod port_hamiltonian;
 pub mod report;
@@ -89,7 +91,8 @@ pub(crate) fn emit(
     let constants = constants(model);
     let mut functions = kinematics::functions(model)?;
     let (acceleration, solve_report) = lagrange_dalembert::acceleration(model)?;
-    functions.push(acceleration);
+    let acceleration_jacobian = linearization::acceleration_jacobian(model, &acceleration)?;
+    functions.extend([acceleration, acceleration_jacobian]);
     let (reduced, reduced_report) = port_hamiltonian::functions(model, &constraints.basis)?;
     functions.extend(reduced);
     let mut sections = vec![solve_report, reduced_report];
@@ -103,6 +106,7 @@ pub(crate) fn emit(
     let items = functions.iter().map(|f| &f.item);
     let name = &model.name;
     let implementations = traits::implementations(model);
+    let linearization = linearization::implementation(model);
     let items = quote! {
         #definition
         impl #name {
@@ -111,6 +115,7 @@ pub(crate) fn emit(
             #(#items)*
         }
         #implementations
+        #linearization
     };
     Ok(Emitted {
         items,

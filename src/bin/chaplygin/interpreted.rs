@@ -16,7 +16,7 @@ use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 
 /// The interpreter failed on a call whose arguments the formulation sized
 /// itself: a defect, reported instead of wrong numbers.
-fn evaluated<T>(result: Result<T, CallError>) -> T {
+pub(crate) fn evaluated<T>(result: Result<T, CallError>) -> T {
     result.unwrap_or_else(|error| panic!("interpreted model: {error}"))
 }
 

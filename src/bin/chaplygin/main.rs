@@ -6,6 +6,8 @@
 //! chaplygin simulate MODEL [--formulation reduced|lagrange] [--integrator rk4|dopri5|midpoint|discrete-gradient]
 //!                          [--controller none|energy] [--t-end T] [--dt H] [--out DIR]
 //!                          [--param NAME=VALUE]... [--initial NAME=VALUE]... [--input NAME=VALUE]...
+//! chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
+//!                           [--param NAME=VALUE]... [--out DIR]
 //! ```
 //!
 //! MODEL is a built-in model's name or the path of a `.model` file, which
@@ -17,6 +19,7 @@ mod catalog;
 mod derive;
 mod formulation;
 mod interpreted;
+mod linearize;
 mod options;
 mod simulate;
 

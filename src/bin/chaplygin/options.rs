@@ -1,6 +1,7 @@
 //! The command line: its commands, and what each does with its arguments
 //! (those of `simulate` are defined with it).
 
+use crate::linearize::{self, LinearizeArgs};
 use crate::simulate::{self, SimulateArgs};
 use crate::{catalog, derive};
 use clap::{Parser, Subcommand};
@@ -27,6 +28,9 @@ enum Action {
     },
     /// Simulate a model, writing `trajectory.csv` and PNG plots.
     Simulate(Box<SimulateArgs>),
+    /// Linearize about a steady motion and print the eigenvalues; with
+    /// `--sweep`, write `eigenvalues.csv` and `eigenvalues.png`.
+    Linearize(Box<LinearizeArgs>),
 }
 
 impl Command {
@@ -45,6 +49,7 @@ impl Command {
                 Ok(())
             }
             Action::Simulate(args) => simulate::run(&args),
+            Action::Linearize(args) => linearize::run(&args),
         }
     }
 }

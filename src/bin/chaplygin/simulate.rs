@@ -10,7 +10,9 @@ mod output;
 mod start;
 
 pub use arguments::SimulateArgs;
+pub(crate) use arguments::assignment;
 use inputs::InputSchedule;
+pub(crate) use start::{set_model_parameters, set_parameters};
 
 use crate::catalog::{self, BuiltIn, Compiled, Source};
 use crate::derive::Rejected;
@@ -23,15 +25,15 @@ use crate::models::{
 };
 use arguments::{Controller, Formulation as Kind};
 use chaplygin::plot;
+use chaplygin::runtime::linearize::Linearization;
+use chaplygin::runtime::nalgebra::DMatrix;
 use chaplygin::runtime::system::{
-    Dalembert, LagrangeDalembert, ModelNames, Momenta, Momentum, MomentumEquations, Parameters,
-    Reduced, ReducedPortHamiltonian,
+    Dalembert, ModelNames, Momenta, Momentum, MomentumEquations, Parameters, Reduced,
+    ReducedPortHamiltonian,
 };
 use chaplygin_codegen::interpret::InterpretedModel;
 use output::execute;
-use start::{
-    InputError, Kinematics, compiled_start, initial_state, set_model_parameters, set_parameters,
-};
+use start::{InputError, Kinematics, compiled_start, initial_state};
 use std::error::Error;
 
 /// Runs `chaplygin simulate`.
@@ -78,7 +80,10 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
             constraints: &constraints,
             default_q: &vec![0.0; n],
             default_motion: &|_| vec![0.0; n],
-            residual: &|q, qdot| model.constraint_residual(q, qdot).unwrap_or_default(),
+            constraint_matrix: &|q| {
+                let a = crate::interpreted::evaluated(model.constraint_matrix(q));
+                DMatrix::from_row_slice(constraints.len(), n, &a)
+            },
         },
         &args.initial,
         &mut [],
@@ -122,7 +127,7 @@ fn no_controller(model: &str) -> InputError {
 /// What a compiled model must offer the command line.
 trait CompiledModel<const N: usize, const C: usize, const K: usize, const P: usize, const S: usize>:
     ReducedPortHamiltonian<S, P>
-    + LagrangeDalembert<N, C, P>
+    + Linearization<N, C, P>
     + Momenta<N, K>
     + ModelNames
     + Parameters
@@ -135,7 +140,7 @@ impl<M, const N: usize, const C: usize, const K: usize, const P: usize, const S:
     CompiledModel<N, C, K, P, S> for M
 where
     M: ReducedPortHamiltonian<S, P>
-        + LagrangeDalembert<N, C, P>
+        + Linearization<N, C, P>
         + Momenta<N, K>
         + ModelNames
         + Parameters

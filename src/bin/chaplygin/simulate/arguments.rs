@@ -112,7 +112,7 @@ fn input_assignment(text: &str) -> Result<(String, String), String> {
 }
 
 /// `NAME=VALUE` with a finite number.
-fn assignment(text: &str) -> Result<(String, f64), String> {
+pub(crate) fn assignment(text: &str) -> Result<(String, f64), String> {
     let (name, value) = text
         .split_once('=')
         .ok_or_else(|| format!("expected NAME=VALUE, found `{text}`"))?;

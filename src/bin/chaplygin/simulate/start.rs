@@ -1,10 +1,14 @@
 //! What a run starts from: the parameters (`--param`) and the initial state
-//! (`--initial`, checked against the constraints), each mistake an
+//! (`--initial`: the velocities given are fixed and the others solved from
+//! the constraints, as for `chaplygin linearize --at`), each mistake an
 //! [`InputError`] stated in one line (also an `--input` naming no input).
 
 use super::arguments::SimulateArgs;
 use super::{CompiledModel, array};
 use crate::catalog::BuiltIn;
+use chaplygin::runtime::linearize::point::{solve_velocities, velocity_names};
+use chaplygin::runtime::linearize::{Linearization, PointError};
+use chaplygin::runtime::nalgebra::DMatrix;
 use chaplygin::runtime::system::Parameters;
 
 /// A problem with the command's input, stated in one line.
@@ -36,16 +40,9 @@ pub enum InputError {
         /// The inputs there are.
         known: String,
     },
-    /// The initial velocity violates a constraint.
-    #[error(
-        "the initial velocity violates constraint `{constraint}`: A(q) qdot = {residual:e}, must be 0"
-    )]
-    ConstraintViolated {
-        /// The constraint with the largest residual.
-        constraint: String,
-        /// Its residual.
-        residual: f64,
-    },
+    /// The velocities not given cannot be solved from the constraints.
+    #[error(transparent)]
+    Velocities(#[from] PointError),
     /// A combination the command does not run.
     #[error("{0}")]
     Unsupported(String),
@@ -53,7 +50,7 @@ pub enum InputError {
 
 /// Sets `--param` values with `set`, which says whether the name was a
 /// parameter; `known` lists them for the error.
-pub(super) fn set_parameters(
+pub(crate) fn set_parameters(
     known: &[&str],
     given: &[(String, f64)],
     set: &mut dyn FnMut(&str, f64) -> bool,
@@ -71,7 +68,7 @@ pub(super) fn set_parameters(
 
 /// Sets `--param` values on a compiled model's parameters or the `extra`
 /// (controller) ones.
-pub(super) fn set_model_parameters<M: Parameters>(
+pub(crate) fn set_model_parameters<M: Parameters>(
     model: &mut M,
     given: &[(String, f64)],
     extra: &mut [(&str, &mut f64)],
@@ -99,8 +96,8 @@ pub(super) struct Start {
     pub(super) qdot: Vec<f64>,
 }
 
-/// `A(q) qdot` from `(q, qdot)`.
-type Residual<'a> = dyn Fn(&[f64], &[f64]) -> Vec<f64> + 'a;
+/// `A(q)` from `q`.
+type ConstraintMatrix<'a> = dyn Fn(&[f64]) -> DMatrix<f64> + 'a;
 
 /// What the initial state is checked and completed with.
 pub(super) struct Kinematics<'a> {
@@ -109,13 +106,15 @@ pub(super) struct Kinematics<'a> {
     pub(super) default_q: &'a [f64],
     /// The default velocity at a configuration.
     pub(super) default_motion: &'a dyn Fn(&[f64]) -> Vec<f64>,
-    /// `A(q) qdot`.
-    pub(super) residual: &'a Residual<'a>,
+    /// `A(q)`.
+    pub(super) constraint_matrix: &'a ConstraintMatrix<'a>,
 }
 
 /// The initial state from the defaults and `--initial` (coordinates,
-/// `dot(q)` velocities and `controller_states`); the velocity is checked
-/// against the constraints.
+/// `dot(q)` velocities and `controller_states`): without a velocity given,
+/// the default motion; else the velocities given, and the others solved
+/// from `A(q) qdot = 0` (an error names those left free, or the constraint
+/// the velocities given violate).
 pub(super) fn initial_state(
     kinematics: &Kinematics<'_>,
     given: &[(String, f64)],
@@ -123,7 +122,7 @@ pub(super) fn initial_state(
 ) -> Result<Start, InputError> {
     let coordinates = kinematics.coordinates;
     let mut q = kinematics.default_q.to_vec();
-    let mut velocities: Option<Vec<f64>> = None;
+    let mut velocities: Vec<Option<f64>> = vec![None; coordinates.len()];
     for (name, value) in given {
         if let Some(i) = coordinates.iter().position(|c| c == name) {
             q[i] = *value;
@@ -131,19 +130,29 @@ pub(super) fn initial_state(
             .iter()
             .position(|c| name == &format!("dot({c})"))
         {
-            velocities.get_or_insert_with(|| vec![0.0; coordinates.len()])[i] = *value;
+            velocities[i] = Some(*value);
         } else if let Some((_, state)) = controller_states.iter_mut().find(|(n, _)| n == name) {
             **state = *value;
         } else {
             return Err(unknown_initial(name, coordinates, controller_states));
         }
     }
-    let qdot = velocities.unwrap_or_else(|| (kinematics.default_motion)(&q));
-    check_constraints(
-        kinematics.constraints,
-        &(kinematics.residual)(&q, &qdot),
-        &qdot,
-    )?;
+    let qdot = if velocities.iter().all(Option::is_none) {
+        (kinematics.default_motion)(&q)
+    } else {
+        let names: Vec<String> = coordinates.iter().map(|c| c.to_string()).collect();
+        let constraints: Vec<String> = kinematics
+            .constraints
+            .iter()
+            .map(|c| c.to_string())
+            .collect();
+        solve_velocities(
+            &(kinematics.constraint_matrix)(&q),
+            &constraints,
+            &velocity_names(&names),
+            &velocities,
+        )?
+    };
     Ok(Start { q, qdot })
 }
 
@@ -172,7 +181,10 @@ where
             constraints: M::CONSTRAINTS,
             default_q: built_in.q,
             default_motion: &|q| model.velocities(&array(q), &alpha).to_vec(),
-            residual: &|q, qdot| model.constraint_residual(&array(q), &array(qdot)).to_vec(),
+            constraint_matrix: &|q| {
+                let a = Linearization::constraint_matrix(model, &array(q));
+                DMatrix::from_fn(C, N, |i, j| a[i][j])
+            },
         },
         &args.initial,
         controller_states,
@@ -199,21 +211,5 @@ fn unknown_initial(
             ", controller states"
         },
         known: known.join(", "),
-    }
-}
-
-/// [`InputError::ConstraintViolated`] when `|A(q) qdot|` exceeds round-off.
-fn check_constraints(names: &[&str], residual: &[f64], qdot: &[f64]) -> Result<(), InputError> {
-    let scale = qdot.iter().fold(1.0f64, |m, v| m.max(v.abs()));
-    let worst = residual
-        .iter()
-        .enumerate()
-        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
-    match worst {
-        Some((i, r)) if r.abs() > 1e-9 * scale => Err(InputError::ConstraintViolated {
-            constraint: names[i].to_string(),
-            residual: *r,
-        }),
-        _ => Ok(()),
     }
 }

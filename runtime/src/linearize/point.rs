@@ -1,0 +1,254 @@
+//! An operating point `(q, qdot)` from the coordinates and velocities
+//! given (INTERFACE.md section 5, `--at`).
+//!
+//! - Coordinates: those given are fixed; of the others, one per
+//!   configuration constraint (the pivots of `df/dq` on them, by complete
+//!   pivoting) is solved from `f(q) = 0` by Newton's method, and the rest
+//!   are 0.
+//! - Velocities: those given are fixed and the others solved from
+//!   `A(q) qdot = 0`, i.e. `A_free qdot_free = -A_given qdot_given`. If
+//!   that leaves a direction free (`A_free` has a null space), the
+//!   velocities with a component along it are named
+//!   ([`PointError::FreeVelocities`]); if no solution exists, the
+//!   constraint with the largest residual of the least-squares solution is
+//!   ([`PointError::ConstraintViolated`]).
+
+use super::{Dynamics, largest, pivots};
+use nalgebra::{DMatrix, DVector};
+
+/// A configuration and a velocity the constraints allow.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OperatingPoint {
+    /// The coordinates `q`.
+    pub q: Vec<f64>,
+    /// The velocities `qdot`, with `A(q) qdot = 0`.
+    pub qdot: Vec<f64>,
+}
+
+/// Why no operating point was found.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum PointError {
+    /// The velocities given leave these free.
+    #[error(
+        "the velocities given leave {} free: give them too",
+        velocities.join(", ")
+    )]
+    FreeVelocities {
+        /// The velocities (`dot(q)`) along a direction the constraints allow.
+        velocities: Vec<String>,
+    },
+    /// The velocities given contradict a constraint.
+    #[error(
+        "the velocity violates constraint `{constraint}`: A(q) qdot = {residual:e}, must be 0, whatever the velocities not given"
+    )]
+    ConstraintViolated {
+        /// The constraint with the largest residual.
+        constraint: String,
+        /// Its residual `A(q) qdot`.
+        residual: f64,
+    },
+    /// The constraint rows have a non-finite entry.
+    #[error("the constraint matrix A(q) is not finite at the operating point")]
+    NonFinite,
+    /// A configuration constraint depends on no coordinate left to solve.
+    #[error(
+        "configuration constraint `{constraint}` cannot be met: it is {residual:e} and the coordinates left unset do not change it"
+    )]
+    HolonomicFixed {
+        /// The constraint.
+        constraint: String,
+        /// Its residual `f(q)` with the coordinates given.
+        residual: f64,
+    },
+    /// Newton's method on `f(q) = 0` did not converge.
+    #[error(
+        "configuration constraint `{constraint}` is still {residual:e} after {iterations} Newton steps"
+    )]
+    HolonomicNotConverged {
+        /// The constraint with the largest residual.
+        constraint: String,
+        /// Its residual.
+        residual: f64,
+        /// The steps taken.
+        iterations: usize,
+    },
+}
+
+/// The iterations the singular value decomposition may take.
+const SVD_ITERATIONS: usize = 10_000;
+
+/// The Newton steps allowed for `f(q) = 0`.
+const NEWTON_STEPS: usize = 50;
+
+impl OperatingPoint {
+    /// The point with the coordinates and velocities given (`None` where
+    /// not given, `n` entries each), completed as the module documentation
+    /// says.
+    ///
+    /// # Errors
+    /// [`PointError`]: unsolvable configuration constraints, velocities left
+    /// free, or velocities contradicting the constraints.
+    pub fn solve(
+        model: &dyn Dynamics,
+        coordinates: &[Option<f64>],
+        velocities: &[Option<f64>],
+    ) -> Result<OperatingPoint, PointError> {
+        let q = configuration(model, coordinates)?;
+        let names = velocity_names(&model.coordinates());
+        let qdot = solve_velocities(
+            &model.constraint_matrix(&q),
+            &model.constraints(),
+            &names,
+            velocities,
+        )?;
+        Ok(OperatingPoint { q, qdot })
+    }
+}
+
+/// `dot(q)` for each coordinate `q`.
+pub fn velocity_names(coordinates: &[String]) -> Vec<String> {
+    coordinates.iter().map(|c| format!("dot({c})")).collect()
+}
+
+/// The coordinates given, the others 0 or solved from `f(q) = 0`.
+///
+/// # Errors
+/// [`PointError::HolonomicFixed`], [`PointError::HolonomicNotConverged`].
+pub fn configuration(model: &dyn Dynamics, given: &[Option<f64>]) -> Result<Vec<f64>, PointError> {
+    let mut q: Vec<f64> = given.iter().map(|v| v.unwrap_or(0.0)).collect();
+    let names = model.holonomic();
+    if names.is_empty() {
+        return Ok(q);
+    }
+    let unset: Vec<usize> = (0..q.len()).filter(|&i| given[i].is_none()).collect();
+    let jacobian = model.holonomic_jacobian(&q);
+    let chosen = pivots(&jacobian, &unset, 1.0, 1e-12 * jacobian.amax().max(1.0));
+    if chosen.len() < names.len() {
+        let residual = model.holonomic_residual(&q);
+        let missed = (0..names.len())
+            .find(|row| chosen.iter().all(|(r, _)| r != row))
+            .unwrap_or(0);
+        return Err(PointError::HolonomicFixed {
+            constraint: names[missed].clone(),
+            residual: residual[missed],
+        });
+    }
+    let solved: Vec<usize> = chosen.iter().map(|&(_, column)| column).collect();
+    newton(model, &mut q, &solved, &names)?;
+    Ok(q)
+}
+
+/// Newton's method on `f(q) = 0` in the coordinates `solved` (one per constraint).
+fn newton(
+    model: &dyn Dynamics,
+    q: &mut [f64],
+    solved: &[usize],
+    names: &[String],
+) -> Result<(), PointError> {
+    let scale = q.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    for _ in 0..NEWTON_STEPS {
+        let residual = model.holonomic_residual(q);
+        if residual.amax() <= 1e-13 * scale {
+            return Ok(());
+        }
+        let jacobian = model.holonomic_jacobian(q).select_columns(solved);
+        let Some(step) = jacobian.lu().solve(&residual) else {
+            break;
+        };
+        for (&i, delta) in solved.iter().zip(step.iter()) {
+            q[i] -= delta;
+        }
+    }
+    let residual = model.holonomic_residual(q);
+    let (worst, value) = largest(residual.as_slice()).unwrap_or((0, 0.0));
+    if value.abs() <= 1e-13 * scale {
+        return Ok(());
+    }
+    Err(PointError::HolonomicNotConverged {
+        constraint: names[worst].clone(),
+        residual: value,
+        iterations: NEWTON_STEPS,
+    })
+}
+
+/// The velocities given (`None` where not), the others solved from
+/// `A qdot = 0` with `A` the constraint rows (`constraints` their names,
+/// `names` the velocities').
+///
+/// # Errors
+/// [`PointError::FreeVelocities`], [`PointError::ConstraintViolated`].
+pub fn solve_velocities(
+    a: &DMatrix<f64>,
+    constraints: &[String],
+    names: &[String],
+    given: &[Option<f64>],
+) -> Result<Vec<f64>, PointError> {
+    let free: Vec<usize> = (0..given.len()).filter(|&i| given[i].is_none()).collect();
+    let mut qdot: Vec<f64> = given.iter().map(|v| v.unwrap_or(0.0)).collect();
+    let a_free = a.select_columns(&free);
+    let rhs = -(a * DVector::from_column_slice(&qdot));
+    let scale = a.amax().max(f64::MIN_POSITIVE) * qdot.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    let (solution, null_space) = least_squares(&a_free, &rhs).ok_or(PointError::NonFinite)?;
+    for (&i, value) in free.iter().zip(solution.iter()) {
+        qdot[i] = *value;
+    }
+    let residual = a * DVector::from_column_slice(&qdot);
+    if let Some((worst, value)) = largest(residual.as_slice())
+        && value.abs() > 1e-10 * scale
+    {
+        return Err(PointError::ConstraintViolated {
+            constraint: constraints[worst].clone(),
+            residual: value,
+        });
+    }
+    let left_free: Vec<String> = free
+        .iter()
+        .enumerate()
+        .filter(|&(j, _)| null_space.iter().any(|v| v[j].abs() > 1e-9))
+        .map(|(_, &i)| names[i].clone())
+        .collect();
+    if !left_free.is_empty() {
+        return Err(PointError::FreeVelocities {
+            velocities: left_free,
+        });
+    }
+    Ok(qdot)
+}
+
+/// The least-squares solution of `a x = b` of least norm, and an
+/// orthonormal basis of the null space of `a`, by the singular value
+/// decomposition (`a` padded with zero rows to at least square, so that
+/// every right singular vector is computed); `None` when the decomposition
+/// fails (a non-finite entry).
+fn least_squares(a: &DMatrix<f64>, b: &DVector<f64>) -> Option<(DVector<f64>, Vec<DVector<f64>>)> {
+    let columns = a.ncols();
+    if columns == 0 {
+        return Some((DVector::zeros(0), Vec::new()));
+    }
+    let rows = a.nrows().max(columns);
+    let padded = DMatrix::from_fn(
+        rows,
+        columns,
+        |i, j| {
+            if i < a.nrows() { a[(i, j)] } else { 0.0 }
+        },
+    );
+    let padded_b = DVector::from_fn(rows, |i, _| if i < b.len() { b[i] } else { 0.0 });
+    if padded.iter().chain(padded_b.iter()).any(|x| !x.is_finite()) {
+        return None;
+    }
+    let svd = padded.try_svd(true, true, f64::EPSILON, SVD_ITERATIONS)?;
+    let tolerance = 1e-10 * svd.singular_values.amax().max(f64::MIN_POSITIVE);
+    let (u, v_t) = (svd.u.as_ref()?, svd.v_t.as_ref()?);
+    let mut solution = DVector::zeros(columns);
+    let mut null_space = Vec::new();
+    for (k, &sigma) in svd.singular_values.iter().enumerate() {
+        let v = v_t.row(k).transpose();
+        if sigma > tolerance {
+            solution += v * (u.column(k).dot(&padded_b) / sigma);
+        } else {
+            null_space.push(v);
+        }
+    }
+    Some((solution, null_space))
+}

@@ -1,0 +1,292 @@
+//! `chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
+//! [--param NAME=VALUE]... [--out DIR]` (INTERFACE.md section 5): the
+//! operating point from `--at` (`chaplygin::runtime::linearize::point`),
+//! the linear system about it with the symmetry reduced and the constraints
+//! eliminated (`chaplygin::runtime::linearize::steady`), its eigenvalues;
+//! with `--sweep`, `DIR/eigenvalues.csv`, `DIR/eigenvalues.png` and the
+//! intervals of VAR where the motion is asymptotically stable. The inputs
+//! are zero.
+
+mod expression;
+mod interpreted;
+mod sweep;
+
+use crate::catalog::{self, Compiled, Source};
+use crate::derive::Rejected;
+use crate::models::{
+    differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
+    snakeboard::Snakeboard,
+};
+use crate::simulate::set_model_parameters;
+use chaplygin::plot::{EigenvalueSweep, write_eigenvalue_plot};
+use chaplygin::runtime::linearize::{
+    self as runtime_linearize, Dynamics, LinearSystem, Linearization, OperatingPoint, PointError,
+    SteadyError,
+};
+use chaplygin::runtime::system::{ModelNames, Parameters};
+use chaplygin_codegen::interpret::InterpretedModel;
+use expression::{ExpressionError, evaluate};
+use interpreted::InterpretedDynamics;
+use std::collections::BTreeMap;
+use std::error::Error;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+pub use sweep::Sweep;
+
+/// The arguments of `chaplygin linearize`.
+#[derive(Debug, clap::Args)]
+pub struct LinearizeArgs {
+    /// A built-in model's name, or the path of a `.model` file.
+    pub model: String,
+    /// A coordinate (`phi=0`) or a velocity (`dot(theta)=-v/r`) of the
+    /// operating point; EXPR may use the parameters and the sweep variable.
+    #[arg(long = "at", value_parser = at)]
+    pub at: Vec<(String, String)>,
+    /// Sweep VAR from START to STOP (included when on the grid) by STEP.
+    #[arg(long, value_parser = sweep::parse)]
+    pub sweep: Option<Sweep>,
+    /// A parameter's value, `NAME=VALUE`.
+    #[arg(long = "param", value_parser = crate::simulate::assignment)]
+    pub params: Vec<(String, f64)>,
+    /// Where `--sweep` writes `eigenvalues.csv` and `eigenvalues.png`.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+}
+
+/// `NAME=EXPR`.
+fn at(text: &str) -> Result<(String, String), String> {
+    let (name, expression) = text
+        .split_once('=')
+        .ok_or_else(|| format!("expected NAME=EXPR, found `{text}`"))?;
+    Ok((name.trim().to_string(), expression.trim().to_string()))
+}
+
+/// A problem with the command's input or its operating point, in one line.
+#[derive(Debug, thiserror::Error)]
+pub enum LinearizeError {
+    /// `--at` names neither a coordinate nor a velocity.
+    #[error("--at: unknown name `{name}` (coordinates and `dot(q)` velocities: {known})")]
+    UnknownName {
+        /// The name given.
+        name: String,
+        /// The names there are.
+        known: String,
+    },
+    /// The sweep variable is also a parameter.
+    #[error(
+        "--sweep: `{0}` is a parameter; sweep a new name and use it in --at or --param expressions"
+    )]
+    ParameterSwept(String),
+    /// An `--at` expression.
+    #[error("--at: {0}")]
+    Expression(#[from] ExpressionError),
+    /// The operating point.
+    #[error(transparent)]
+    Point(#[from] PointError),
+    /// The steady motion or its linearization.
+    #[error(transparent)]
+    Steady(#[from] SteadyError),
+    /// The grid.
+    #[error(transparent)]
+    Sweep(#[from] sweep::SweepError),
+    /// A problem at one point of a sweep.
+    #[error("at {variable} = {value}: {source}")]
+    AtSweepValue {
+        /// The sweep variable.
+        variable: String,
+        /// Its value there.
+        value: f64,
+        /// What went wrong.
+        source: Box<LinearizeError>,
+    },
+}
+
+/// Runs `chaplygin linearize`.
+///
+/// # Errors
+/// Bad input, a point that is not a steady motion, an I/O error.
+pub fn run(args: &LinearizeArgs) -> Result<(), Box<dyn Error>> {
+    match catalog::lookup(&args.model)? {
+        Source::File { path, text } => {
+            let mut model = InterpretedModel::from_source(&text).map_err(|diagnostics| {
+                Rejected(diagnostics.render(&path).trim_end().to_string())
+            })?;
+            let known = model.names().parameters.clone();
+            let known: Vec<&str> = known.iter().map(String::as_str).collect();
+            crate::simulate::set_parameters(&known, &args.params, &mut |name, value| {
+                model.set_parameter(name, value).is_ok()
+            })?;
+            let parameters = known
+                .iter()
+                .zip(model.parameter_values())
+                .map(|(name, value)| (name.to_string(), *value))
+                .collect();
+            analyse(&InterpretedDynamics(model), parameters, args)
+        }
+        Source::BuiltIn(built_in) => match built_in.compiled {
+            Compiled::Snakeboard => compiled::<Snakeboard, 5, 2, 2>(args),
+            Compiled::Sleigh => compiled::<Sleigh, 3, 1, 0>(args),
+            Compiled::RollingDisk => compiled::<RollingDisk, 4, 2, 2>(args),
+            Compiled::DifferentialDrive => compiled::<DifferentialDrive, 5, 3, 2>(args),
+        },
+    }
+}
+
+/// A built-in model with its `--param` values.
+fn compiled<M, const N: usize, const C: usize, const P: usize>(
+    args: &LinearizeArgs,
+) -> Result<(), Box<dyn Error>>
+where
+    M: Linearization<N, C, P> + ModelNames + Parameters + Default,
+{
+    let mut model = M::default();
+    set_model_parameters(&mut model, &args.params, &mut [])?;
+    let parameters = M::PARAMETERS
+        .iter()
+        .filter_map(|&name| Some((name.to_string(), *model.parameter_mut(name)?)))
+        .collect();
+    analyse(
+        &runtime_linearize::Compiled::<M, N, C, P, 0>::new(&model),
+        parameters,
+        args,
+    )
+}
+
+/// Linearizes at one point, or over the sweep.
+fn analyse(
+    model: &dyn Dynamics,
+    parameters: BTreeMap<String, f64>,
+    args: &LinearizeArgs,
+) -> Result<(), Box<dyn Error>> {
+    let Some(sweep) = &args.sweep else {
+        let linear = linearize_at(model, &parameters, &args.at)?;
+        print!("{}", describe(&linear));
+        return Ok(());
+    };
+    if parameters.contains_key(&sweep.variable) {
+        return Err(LinearizeError::ParameterSwept(sweep.variable.clone()).into());
+    }
+    let values = sweep.grid().map_err(LinearizeError::from)?;
+    let mut eigenvalues = Vec::with_capacity(values.len());
+    let mut linears = Vec::with_capacity(values.len());
+    for &value in &values {
+        let mut names = parameters.clone();
+        names.insert(sweep.variable.clone(), value);
+        let linear = linearize_at(model, &names, &args.at).map_err(|source| {
+            LinearizeError::AtSweepValue {
+                variable: sweep.variable.clone(),
+                value,
+                source: Box::new(source),
+            }
+        })?;
+        eigenvalues.push(linear.eigenvalues.iter().map(|e| (e.re, e.im)).collect());
+        linears.push(linear);
+    }
+    // The zeros of conserved quantities are those every point of the family
+    // has: a point with more has an eigenvalue crossing zero.
+    let conserved = linears
+        .iter()
+        .map(LinearSystem::conserved_zeros)
+        .min()
+        .unwrap_or(0);
+    let stable: Vec<bool> = linears
+        .iter()
+        .map(|linear| linear.is_stable_modulo(conserved))
+        .collect();
+    let csv_file = args.out.join("eigenvalues.csv");
+    sweep::write(
+        &csv_file,
+        &sweep::csv(&sweep.variable, &values, &eigenvalues),
+    )
+    .map_err(|error| format!("cannot write {}: {error}", csv_file.display()))?;
+    let png_file = args.out.join("eigenvalues.png");
+    let plotted = EigenvalueSweep {
+        variable: sweep.variable.clone(),
+        values: values.clone(),
+        eigenvalues,
+    };
+    write_eigenvalue_plot(&plotted, &png_file)?;
+    println!("wrote {} and {}", csv_file.display(), png_file.display());
+    print!(
+        "{}",
+        stability(&sweep.variable, &values, &stable, conserved)
+    );
+    Ok(())
+}
+
+/// The point `--at` describes with the names bound, linearized.
+fn linearize_at(
+    model: &dyn Dynamics,
+    names: &BTreeMap<String, f64>,
+    at: &[(String, String)],
+) -> Result<LinearSystem, LinearizeError> {
+    let coordinates = model.coordinates();
+    let velocities = runtime_linearize::point::velocity_names(&coordinates);
+    let mut q = vec![None; coordinates.len()];
+    let mut qdot = vec![None; coordinates.len()];
+    for (name, text) in at {
+        let value = evaluate(text, names)?;
+        if let Some(i) = coordinates.iter().position(|c| c == name) {
+            q[i] = Some(value);
+        } else if let Some(i) = velocities.iter().position(|v| v == name) {
+            qdot[i] = Some(value);
+        } else {
+            return Err(LinearizeError::UnknownName {
+                name: name.clone(),
+                known: coordinates
+                    .iter()
+                    .chain(&velocities)
+                    .cloned()
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            });
+        }
+    }
+    let point = OperatingPoint::solve(model, &q, &qdot)?;
+    let u = vec![0.0; model.inputs()];
+    Ok(runtime_linearize::linearize(model, &point, &u, &[])?)
+}
+
+/// The state, the eigenvalues and the verdict of one linearization.
+fn describe(linear: &LinearSystem) -> String {
+    let mut text = format!(
+        "linear system in ({}), inputs zero\neigenvalues (by descending real part):\n",
+        linear.state.join(", ")
+    );
+    for &eigenvalue in &linear.eigenvalues {
+        let zero = if linear.is_zero(eigenvalue) {
+            "   (zero)"
+        } else {
+            ""
+        };
+        let sign = if eigenvalue.im < 0.0 { '-' } else { '+' };
+        let _ = writeln!(
+            text,
+            "  {:>16.9e} {sign} {:.9e} i{zero}",
+            eigenvalue.re,
+            eigenvalue.im.abs()
+        );
+    }
+    let verdict = if linear.is_stable() { "yes" } else { "no" };
+    let _ = writeln!(
+        text,
+        "asymptotically stable: {verdict} ({} zeros counted as conserved quantities)",
+        linear.conserved_zeros()
+    );
+    text
+}
+
+/// The intervals of the sweep where the motion is asymptotically stable.
+fn stability(variable: &str, values: &[f64], stable: &[bool], conserved: usize) -> String {
+    let intervals = sweep::stable_intervals(values, stable);
+    if intervals.is_empty() {
+        return format!("asymptotically stable for no {variable} on the grid\n");
+    }
+    let mut text = format!(
+        "asymptotically stable (modulo {conserved} zeros of conserved quantities) for {variable} in (grid points):\n"
+    );
+    for (first, last) in intervals {
+        let _ = writeln!(text, "  [{first}, {last}]");
+    }
+    text
+}

@@ -1,0 +1,81 @@
+//! A `.model` file linearized without recompiling: the interpreter runs the
+//! same programs the compiled items are emitted from, `acceleration_jacobian`
+//! among them, so the Jacobians are as exact as the compiled model's.
+//! Configuration constraints are not interpreted: `.model` files have none
+//! here (`h = 0`).
+
+use crate::interpreted::evaluated;
+use chaplygin::runtime::linearize::{Dynamics, GroupFactor};
+use chaplygin::runtime::nalgebra::{DMatrix, DVector};
+use chaplygin_codegen::interpret::InterpretedModel;
+use chaplygin_codegen::model;
+
+/// An interpreted model seen as [`Dynamics`].
+pub struct InterpretedDynamics(pub InterpretedModel);
+
+impl Dynamics for InterpretedDynamics {
+    fn coordinates(&self) -> Vec<String> {
+        self.0.names().coordinates.clone()
+    }
+
+    fn constraints(&self) -> Vec<String> {
+        self.0.names().constraints.clone()
+    }
+
+    fn holonomic(&self) -> Vec<String> {
+        Vec::new()
+    }
+
+    fn inputs(&self) -> usize {
+        self.0.sizes().p
+    }
+
+    fn symmetry(&self) -> Vec<GroupFactor> {
+        self.0
+            .symmetry()
+            .iter()
+            .map(|factor| match *factor {
+                model::GroupFactor::Se2 { x, y, theta } => GroupFactor::Se2 { x, y, theta },
+                model::GroupFactor::Translation(i) => GroupFactor::Translation(i),
+                model::GroupFactor::Rotation(i) => GroupFactor::Rotation(i),
+            })
+            .collect()
+    }
+
+    fn holonomic_residual(&self, _q: &[f64]) -> DVector<f64> {
+        DVector::zeros(0)
+    }
+
+    fn holonomic_jacobian(&self, q: &[f64]) -> DMatrix<f64> {
+        DMatrix::zeros(0, q.len())
+    }
+
+    fn mass_matrix(&self, q: &[f64]) -> DMatrix<f64> {
+        let n = q.len();
+        DMatrix::from_row_slice(n, n, &evaluated(self.0.mass_matrix(q)))
+    }
+
+    fn constraint_matrix(&self, q: &[f64]) -> DMatrix<f64> {
+        let (n, c) = (q.len(), self.0.sizes().c);
+        DMatrix::from_row_slice(c, n, &evaluated(self.0.constraint_matrix(q)))
+    }
+
+    fn acceleration(&self, q: &[f64], qdot: &[f64], u: &[f64]) -> DVector<f64> {
+        DVector::from_vec(evaluated(self.0.acceleration(q, qdot, u)).0)
+    }
+
+    fn acceleration_jacobian(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        u: &[f64],
+    ) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
+        let (n, p) = (q.len(), u.len());
+        let (by_q, by_qdot, by_u) = evaluated(self.0.acceleration_jacobian(q, qdot, u));
+        (
+            DMatrix::from_row_slice(n, n, &by_q),
+            DMatrix::from_row_slice(n, n, &by_qdot),
+            DMatrix::from_row_slice(n, p, &by_u),
+        )
+    }
+}

@@ -1,0 +1,203 @@
+//! `--sweep VAR=START:STOP:STEP`: the grid, `eigenvalues.csv` (columns
+//! `VAR, re_1, im_1, ..., re_m, im_m`, eigenvalues by descending real
+//! part) and the intervals of VAR over which the motion is asymptotically
+//! stable.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The grid points a sweep may take.
+const MAX_POINTS: usize = 1_000_000;
+
+/// A swept variable and its grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sweep {
+    /// The variable's name.
+    pub variable: String,
+    /// The first value.
+    pub start: f64,
+    /// The last value asked for.
+    pub stop: f64,
+    /// The step.
+    pub step: f64,
+}
+
+/// What is wrong with a sweep.
+#[derive(Debug, PartialEq, thiserror::Error)]
+pub enum SweepError {
+    /// Not `VAR=START:STOP:STEP` with three numbers.
+    #[error("--sweep: expected VAR=START:STOP:STEP with three numbers, found `{0}`")]
+    Malformed(String),
+    /// The step is not positive.
+    #[error("--sweep {variable}: STEP must be positive, found {step}")]
+    Step {
+        /// The variable.
+        variable: String,
+        /// The step given.
+        step: f64,
+    },
+    /// STOP is below START.
+    #[error("--sweep {variable}: empty range, STOP {stop} is below START {start}")]
+    Empty {
+        /// The variable.
+        variable: String,
+        /// START.
+        start: f64,
+        /// STOP.
+        stop: f64,
+    },
+    /// Too many grid points.
+    #[error("--sweep {variable}: {points} grid points, at most {MAX_POINTS}")]
+    TooMany {
+        /// The variable.
+        variable: String,
+        /// The points asked for.
+        points: f64,
+    },
+}
+
+/// Parses `VAR=START:STOP:STEP` (clap's value parser).
+pub fn parse(text: &str) -> Result<Sweep, String> {
+    let malformed = || SweepError::Malformed(text.to_string()).to_string();
+    let (variable, range) = text.split_once('=').ok_or_else(malformed)?;
+    let numbers: Vec<f64> = range
+        .split(':')
+        .map(|part| part.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| malformed())?;
+    let variable = variable.trim();
+    let valid_name =
+        variable.chars().all(|c| c.is_alphanumeric() || c == '_') && !variable.is_empty();
+    match numbers[..] {
+        [start, stop, step] if valid_name && numbers.iter().all(|x| x.is_finite()) => Ok(Sweep {
+            variable: variable.to_string(),
+            start,
+            stop,
+            step,
+        }),
+        _ => Err(malformed()),
+    }
+}
+
+impl Sweep {
+    /// `START + i STEP` for `i = 0, 1, ...` up to STOP, STOP included when
+    /// it is on the grid (to round-off: within 1e-9 steps).
+    ///
+    /// # Errors
+    /// [`SweepError`]: a step that is not positive, an empty range, too
+    /// many points.
+    pub fn grid(&self) -> Result<Vec<f64>, SweepError> {
+        let variable = self.variable.clone();
+        if self.step <= 0.0 {
+            return Err(SweepError::Step {
+                variable,
+                step: self.step,
+            });
+        }
+        if self.stop < self.start {
+            return Err(SweepError::Empty {
+                variable,
+                start: self.start,
+                stop: self.stop,
+            });
+        }
+        let intervals = ((self.stop - self.start) / self.step + 1e-9).floor();
+        if intervals + 1.0 > MAX_POINTS as f64 {
+            return Err(SweepError::TooMany {
+                variable,
+                points: intervals + 1.0,
+            });
+        }
+        Ok((0..=intervals as usize)
+            .map(|i| self.start + i as f64 * self.step)
+            .collect())
+    }
+}
+
+/// `eigenvalues.csv`: a header `VAR, re_1, im_1, ...` and one row per value.
+pub fn csv(variable: &str, values: &[f64], eigenvalues: &[Vec<(f64, f64)>]) -> String {
+    let m = eigenvalues.first().map_or(0, Vec::len);
+    let mut text = variable.to_string();
+    for i in 1..=m {
+        let _ = write!(text, ",re_{i},im_{i}");
+    }
+    text.push('\n');
+    for (value, row) in values.iter().zip(eigenvalues) {
+        let _ = write!(text, "{value}");
+        for (re, im) in row {
+            let _ = write!(text, ",{re},{im}");
+        }
+        text.push('\n');
+    }
+    text
+}
+
+/// Writes `text` to `file`, creating its directory.
+pub fn write(file: &Path, text: &str) -> std::io::Result<()> {
+    if let Some(dir) = file.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    std::fs::write(file, text)
+}
+
+/// The runs of consecutive grid values where `stable` holds, as
+/// `(first, last)` grid values.
+pub fn stable_intervals(values: &[f64], stable: &[bool]) -> Vec<(f64, f64)> {
+    let mut intervals: Vec<(f64, f64)> = Vec::new();
+    let mut previous = false;
+    for (&value, &is_stable) in values.iter().zip(stable) {
+        match (is_stable, previous) {
+            (true, true) => {
+                if let Some(last) = intervals.last_mut() {
+                    last.1 = value;
+                }
+            }
+            (true, false) => intervals.push((value, value)),
+            _ => {}
+        }
+        previous = is_stable;
+    }
+    intervals
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_grid_includes_stop_when_on_it() {
+        let sweep = parse("v=0:1:0.1").expect("parses");
+        let grid = sweep.grid().expect("a grid");
+        assert_eq!(grid.len(), 11);
+        assert!((grid[10] - 1.0).abs() < 1e-15);
+        let off = parse("v=0:1:0.3").expect("parses").grid().expect("a grid");
+        assert_eq!(off.len(), 4);
+    }
+
+    #[test]
+    fn bad_sweeps_are_named() {
+        assert!(parse("v=0:1").is_err());
+        assert!(parse("v 0:1:2").is_err());
+        assert!(matches!(
+            parse("v=0:1:0").expect("parses").grid(),
+            Err(SweepError::Step { .. })
+        ));
+        assert!(matches!(
+            parse("v=1:0:0.1").expect("parses").grid(),
+            Err(SweepError::Empty { .. })
+        ));
+    }
+
+    #[test]
+    fn stable_runs_become_intervals() {
+        let values = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+        let stable = [false, true, true, false, true, false];
+        assert_eq!(stable_intervals(&values, &stable), [(1.0, 2.0), (4.0, 4.0)]);
+    }
+
+    #[test]
+    fn the_csv_has_a_column_pair_per_eigenvalue() {
+        let text = csv("v", &[0.5], &[vec![(-1.0, 2.0), (-1.0, -2.0)]]);
+        assert_eq!(text, "v,re_1,im_1,re_2,im_2\n0.5,-1,2,-1,-2\n");
+    }
+}
