@@ -16,8 +16,9 @@ use crate::formulation::Typed;
 use crate::interpreted::{InterpretedDalembert, InterpretedReduced};
 use crate::models::energy_control::{ClosedLoop, EnergyController};
 use crate::models::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
-    snakeboard::Snakeboard,
+    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
+    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
 use arguments::{Controller, Formulation as Kind};
 use chaplygin::plot;
@@ -52,6 +53,13 @@ pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
         Compiled::RollingDisk => compiled::<RollingDisk, 4, 2, 2, 2, 6, 8, 1, 1, 6>(model, args),
         Compiled::DifferentialDrive => {
             compiled::<DifferentialDrive, 5, 3, 2, 2, 7, 10, 2, 0, 7>(model, args)
+        }
+        Compiled::RollingDisk3d => {
+            compiled::<RollingDisk3d, 5, 2, 3, 2, 8, 10, 1, 2, 8>(model, args)
+        }
+        Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 2, 0, 5, 6, 0, 2, 5>(model, args),
+        Compiled::SnakeboardBodies => {
+            compiled::<SnakeboardBodies, 5, 2, 3, 2, 8, 10, 2, 1, 8>(model, args)
         }
     }
 }

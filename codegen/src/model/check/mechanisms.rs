@@ -65,7 +65,7 @@ impl Checker {
         let mut space = Space::new(&mut self.store);
         let frames = self.frames(sections.get("frames"), &mut space, &reference, &q);
         let points = self.points(sections.get("points"), &mut space, &reference);
-        let bodies = self.bodies(sections.get("bodies"), &space, &reference);
+        let bodies = self.bodies(sections.get("bodies"), &mut space, &reference);
         let gravity = self.gravity(sections.get("gravity"), &space, &reference);
         let (contacts, mut rows) =
             self.contacts(sections.get("no_slip"), &space, &reference, &bodies, &q);
@@ -176,11 +176,22 @@ impl Checker {
             if let Some(state) = self.rotated_frame(&frame, space, reference, q) {
                 space.add_frame(&frame.declared.name, state);
                 resolved.push(frame.declared);
+            } else {
+                space.mark_broken(&frame.declared.name);
             }
         }
-        let waiting: Vec<String> = pending.iter().map(|f| f.declared.name.clone()).collect();
-        for frame in &pending {
-            self.rule_frame_parent_known(frame, &waiting);
+        let written: Vec<String> = list
+            .items
+            .iter()
+            .filter_map(|item| item.name().map(ToString::to_string))
+            .collect();
+        for (index, frame) in pending.iter().enumerate() {
+            self.rule_frame_parent_known(index, frame, &pending, &written);
+        }
+        for name in &written {
+            if space.frame(name).is_none() {
+                space.mark_broken(name);
+            }
         }
         resolved
     }
@@ -242,22 +253,51 @@ impl Checker {
         axis
     }
 
-    /// A parent that never resolved is unknown, or part of a cycle.
-    fn rule_frame_parent_known(&mut self, frame: &FrameDeclaration, waiting: &[String]) {
+    /// A frame that never resolved has an unknown parent, or is part of a
+    /// cycle (reported once, at the cycle's first frame); a frame below a
+    /// broken declaration is not reported again.
+    fn rule_frame_parent_known(
+        &mut self,
+        index: usize,
+        frame: &FrameDeclaration,
+        pending: &[FrameDeclaration],
+        written: &[String],
+    ) {
+        let position = |name: &str| pending.iter().position(|f| f.declared.name == name);
         let parent = frame.parent.to_string();
-        let message = if waiting.contains(&parent) {
-            format!(
-                "frame `{}` is turned from `{parent}`, and the chain of parents never reaches \
-                 `ground`: the frames form a cycle",
-                frame.declared.name
-            )
-        } else {
-            format!(
-                "unknown frame `{parent}`: a frame is turned from `ground` or from a frame \
-                 declared in `frames`"
-            )
-        };
-        self.diagnostics.error(frame.parent.span(), message);
+        if position(&parent).is_none() {
+            if !written.contains(&parent) {
+                self.diagnostics.error(
+                    frame.parent.span(),
+                    format!(
+                        "unknown frame `{parent}`: a frame is turned from `ground` or from a \
+                         frame declared in `frames`"
+                    ),
+                );
+            }
+            return;
+        }
+        let mut cycle = vec![index];
+        let mut next = position(&parent);
+        while let Some(member) = next.filter(|m| !cycle.contains(m)) {
+            cycle.push(member);
+            next = position(&pending[member].parent.to_string());
+        }
+        if next == Some(index) && cycle.iter().all(|&member| member >= index) {
+            let names: Vec<&str> = cycle
+                .iter()
+                .chain([&index])
+                .map(|&member| pending[member].declared.name.as_str())
+                .collect();
+            self.diagnostics.error(
+                frame.parent.span(),
+                format!(
+                    "the frames form a cycle ({}): each frame is turned from a parent on a \
+                     chain that must start at `ground`",
+                    names.join(" <- ")
+                ),
+            );
+        }
     }
 
     fn rotated_frame(
@@ -306,10 +346,12 @@ impl Checker {
             if !self.rule_fresh_name(&declared.name, declared.span, "point") {
                 continue;
             }
-            let Some(position) = position else { continue };
-            if self.rule_configuration_only(&position, expr, "a point") {
-                space.add_point(&declared.name, position);
-                declared_points.push(declared);
+            match position {
+                Some(position) if self.rule_configuration_only(&position, expr, "a point") => {
+                    space.add_point(&declared.name, position);
+                    declared_points.push(declared);
+                }
+                _ => space.mark_broken(&declared.name),
             }
         }
         declared_points
@@ -321,7 +363,7 @@ impl Checker {
     fn bodies(
         &mut self,
         section: Option<&&Section>,
-        space: &Space,
+        space: &mut Space,
         reference: &Reference,
     ) -> Vec<(Declared, Body)> {
         let Some(list) = section.and_then(|s| self.list(s)) else {
@@ -334,9 +376,9 @@ impl Checker {
             };
             let names: Vec<Declared> = bodies.iter().map(|(d, _)| d.clone()).collect();
             let unique = self.rule_unique_in_section(&names, &declared.name, declared.span);
-            let body = self.body(value, space, reference);
-            if let (true, Some(body)) = (unique, body) {
-                bodies.push((declared, body));
+            match (unique, self.body(value, space, reference)) {
+                (true, Some(body)) => bodies.push((declared, body)),
+                _ => space.mark_broken(&declared.name),
             }
         }
         bodies
@@ -393,7 +435,7 @@ impl Checker {
     ) -> Option<space::FrameState> {
         let ident = self.rule_frame_name(value)?;
         let frame = space.frame(&ident.to_string()).cloned();
-        if frame.is_none() {
+        if frame.is_none() && !space.is_broken(&ident.to_string()) {
             self.diagnostics.error(
                 ident.span(),
                 format!(
@@ -410,7 +452,8 @@ impl Checker {
         let expr = self.item_expression(value)?;
         if let Expr::Name(ident) = expr {
             let name = ident.to_string();
-            if space.point(&name).is_none() && space.frame(&name).is_none() {
+            let known = space.point(&name).is_some() || space.frame(&name).is_some();
+            if !known && !space.is_broken(&name) {
                 self.diagnostics.error(
                     ident.span(),
                     format!("unknown point `{name}`: a centre is `origin` or a point declared in `points`"),
@@ -497,13 +540,13 @@ impl Checker {
                 continue;
             }
             self.diagnostics.error(
-                entries[3 * j + i].span(),
+                entries[3 * i + j].span(),
                 format!(
                     "an inertia matrix is symmetric: entry ({}, {}) differs from entry ({}, {})",
+                    i + 1,
                     j + 1,
-                    i + 1,
-                    i + 1,
-                    j + 1
+                    j + 1,
+                    i + 1
                 ),
             );
             return false;
@@ -612,7 +655,7 @@ impl Checker {
         if function != "no_slip" {
             return self.contact_form(function.span());
         }
-        let body = self.rule_body_known(body, bodies);
+        let body = self.rule_body_known(body, bodies, space);
         let point = self.center(point, space, reference);
         let directions = self.directions(directions, space, reference);
         let (body, point, directions) = (body?, point?, directions?);
@@ -639,12 +682,16 @@ impl Checker {
         &mut self,
         value: &Value,
         bodies: &'b [(Declared, Body)],
+        space: &Space,
     ) -> Option<&'b Body> {
-        let found = match value {
-            Value::Expr(Expr::Name(ident)) => bodies.iter().find(|(d, _)| *ident == d.name),
-            _ => None,
+        let (found, broken) = match value {
+            Value::Expr(Expr::Name(ident)) => (
+                bodies.iter().find(|(d, _)| *ident == d.name),
+                space.is_broken(&ident.to_string()),
+            ),
+            _ => (None, false),
         };
-        if found.is_none() {
+        if found.is_none() && !broken {
             self.diagnostics.error(
                 value.span(),
                 "unknown body: a rolling contact names a body declared in `bodies`",

@@ -91,6 +91,14 @@ impl Evaluator<'_> {
 
     /// The value of any mechanism expression.
     pub(in crate::model) fn evaluate(&mut self, expr: &Expr) -> Option<Quantity> {
+        if let Some(unknown) = self.unknown_name(expr) {
+            let message = format!(
+                "unknown name `{unknown}`: expressions here may use the coordinates, the \
+                 parameters, the definitions, `dot(q)`, the points declared before this one \
+                 and the unit vectors `F.x`, `F.y`, `F.z` of the frames"
+            );
+            return self.error(unknown.span(), message);
+        }
         if self.is_plain(expr) {
             return self.lowerer.lower(expr).map(Quantity::Scalar);
         }
@@ -119,7 +127,9 @@ impl Evaluator<'_> {
             Expr::Number { .. } => true,
             Expr::Name(ident) => {
                 let name = ident.to_string();
-                self.space.point(&name).is_none() && self.space.frame(&name).is_none()
+                self.space.point(&name).is_none()
+                    && self.space.frame(&name).is_none()
+                    && !self.space.is_broken(&name)
             }
             Expr::Field { .. } => false,
             Expr::Call {
@@ -138,10 +148,43 @@ impl Evaluator<'_> {
         }
     }
 
+    /// The first name that is neither a scalar's, a point's nor a frame's
+    /// (called functions and the fields after `.` are not names).
+    fn unknown_name<'e>(&self, expr: &'e Expr) -> Option<&'e Ident> {
+        match expr {
+            Expr::Number { .. } => None,
+            Expr::Name(ident) => {
+                let name = ident.to_string();
+                let known = self.lowerer.scope.get(&name).is_some()
+                    || self.space.is_broken(&name)
+                    || self.space.point(&name).is_some()
+                    || self.space.frame(&name).is_some();
+                (!known).then_some(ident)
+            }
+            Expr::Field { .. } => None,
+            Expr::Call {
+                function,
+                arguments,
+                ..
+            } if function != "dot" => arguments
+                .iter()
+                .filter_map(Value::as_expr)
+                .find_map(|a| self.unknown_name(a)),
+            Expr::Call { .. } => None,
+            Expr::Negate { operand, .. } => self.unknown_name(operand),
+            Expr::Binary { left, right, .. } => {
+                self.unknown_name(left).or_else(|| self.unknown_name(right))
+            }
+        }
+    }
+
     fn name(&mut self, ident: &Ident) -> Option<Quantity> {
         let name = ident.to_string();
         if let Some(position) = self.space.point(&name) {
             return Some(Quantity::Point(*position));
+        }
+        if self.space.is_broken(&name) {
+            return None;
         }
         self.error(
             ident.span(),
@@ -155,6 +198,7 @@ impl Evaluator<'_> {
     /// `F.x`, `F.y`, `F.z`.
     fn unit_vector(&mut self, base: &Expr, field: &Ident) -> Option<Vector> {
         let frame = match base {
+            Expr::Name(ident) if self.space.is_broken(&ident.to_string()) => return None,
             Expr::Name(ident) => self.space.frame(&ident.to_string()),
             _ => None,
         };

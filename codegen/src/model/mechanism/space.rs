@@ -48,6 +48,9 @@ impl FrameState {
 pub(in crate::model) struct Space {
     frames: Vec<(String, FrameState)>,
     points: Vec<(String, Vector)>,
+    /// Frames, points and bodies whose declarations failed: their uses are
+    /// not reported again.
+    broken: Vec<String>,
 }
 
 /// The name of the inertial frame.
@@ -67,6 +70,7 @@ impl Space {
         Space {
             frames: vec![(GROUND.to_string(), ground)],
             points: vec![(ORIGIN.to_string(), vector::zero(store))],
+            broken: Vec::new(),
         }
     }
 
@@ -88,6 +92,16 @@ impl Space {
     /// Records a point.
     pub(in crate::model) fn add_point(&mut self, name: &str, position: Vector) {
         self.points.push((name.to_string(), position));
+    }
+
+    /// Records a declaration that failed.
+    pub(in crate::model) fn mark_broken(&mut self, name: &str) {
+        self.broken.push(name.to_string());
+    }
+
+    /// True when `name` was declared but its declaration failed.
+    pub(in crate::model) fn is_broken(&self, name: &str) -> bool {
+        self.broken.iter().any(|b| b == name)
     }
 
     /// The declared frames (without `ground`), in resolution order.
