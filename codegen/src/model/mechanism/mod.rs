@@ -15,6 +15,9 @@ pub(super) mod evaluate;
 pub(super) mod space;
 pub(super) mod vector;
 
+#[cfg(test)]
+mod tests;
+
 use super::Declared;
 use crate::sym::{Matrix, RationalFunction};
 
