@@ -14,6 +14,7 @@ fn main() {
         "rolling_disk_3d",
         "sleigh_bodies",
         "snakeboard_bodies",
+        "caster_robot",
     ];
     let builder = models
         .iter()

@@ -21,6 +21,7 @@ fn generate() -> Result<(), Box<dyn std::error::Error>> {
         .model_file("rolling_disk_3d.model")
         .model_file("sleigh_bodies.model")
         .model_file("snakeboard_bodies.model")
+        .model_file("caster_robot.model")
         .write_to_out_dir()?;
     println!("cargo:rerun-if-changed=src/snake.rs");
     let out_dir = std::path::PathBuf::from(std::env::var("OUT_DIR")?);

@@ -144,3 +144,13 @@ pub mod snakeboard_bodies {
     /// The model's declaration in the model language.
     pub const MODEL_TEXT: &str = include_str!("../snakeboard_bodies.model");
 }
+
+pub mod caster_robot {
+    //! A wheeled mobile robot with a passive caster, declared as a
+    //! mechanism: two driven wheels on a common axle and a caster wheel on
+    //! a swivelling fork behind; `n = 7`, five rolling rows, `k = 2`.
+    include!(concat!(env!("OUT_DIR"), "/caster_robot.rs"));
+
+    /// The model's declaration in the model language.
+    pub const MODEL_TEXT: &str = include_str!("../caster_robot.model");
+}

@@ -14,7 +14,7 @@ use chaplygin::runtime::system::LagrangeDalembert;
 use chaplygin::runtime::system::{Dalembert, Reduced, ReducedPortHamiltonian};
 use chaplygin_models::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin_models::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    caster_robot::CasterRobot, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
     rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
     snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
@@ -166,6 +166,7 @@ fn mechanism_items_do_not_allocate() {
     let board = SnakeboardBodies::default();
     let sphere = OnSphere::default();
     let plain = Snakeboard::default();
+    let caster = CasterRobot::default();
     let counted = allocations(|| {
         for i in 0..10_000 {
             let t = i as f64 * 1e-3;
@@ -192,6 +193,12 @@ fn mechanism_items_do_not_allocate() {
             reduced_items!(disk, RollingDisk3d, t);
             reduced_items!(sleigh, SleighBodies, t);
             reduced_items!(board, SnakeboardBodies, t);
+            let q7 = [t, -t, 0.3 + t, 0.1, 0.2 - t, 0.4, t];
+            let v7 = [1.0, 0.5, -0.2, t, 0.3, 0.1, -t];
+            black_box(caster.orientations(black_box(&q7)));
+            black_box(caster.positions(black_box(&q7)));
+            black_box(caster.acceleration(black_box(&q7), black_box(&v7), &[0.0; 2]));
+            reduced_items!(caster, CasterRobot, t);
         }
     });
     assert_eq!(counted, 0);

@@ -10,7 +10,9 @@ use chaplygin_codegen::model::{Model, check};
 use chaplygin_codegen::sym::{Matrix, RationalFunction};
 use chaplygin_codegen::syntax::parse_str;
 use chaplygin_models::rolling_disk_3d::RollingDisk3d;
-use chaplygin_models::{rolling_disk_3d, sleigh, sleigh_bodies, snakeboard, snakeboard_bodies};
+use chaplygin_models::{
+    caster_robot, rolling_disk_3d, sleigh, sleigh_bodies, snakeboard, snakeboard_bodies,
+};
 
 fn checked(source: &str) -> Model {
     let syntax = parse_str(source).expect("parses");
@@ -150,6 +152,47 @@ fn the_snakeboard_of_bodies_is_the_snakeboard_of_energies() {
     assert_eq!(
         energy_form.constraint_matrix.rows(),
         model.constraint_matrix.rows()
+    );
+}
+
+/// The caster robot by hand: the chassis translates and turns, each wheel
+/// and the caster wheel spin about their axles, the fork turns at
+/// `thetadot + betadot`. A wheel's contact point has the hub's velocity
+/// minus `r phidot` along its rolling direction: with the hubs at
+/// `(x, y) +- b heading.y`, the mount `l` behind, the trail `d` along the
+/// swivel's x (so `heading.y . swivel.x = sin(beta)`,
+/// `heading.y . swivel.y = cos(beta)`), rolling and no side slip read
+/// as the rows below.
+#[test]
+fn the_caster_robot_derives_its_hand_energies_and_rolling_rows() {
+    let mut model = checked(caster_robot::MODEL_TEXT);
+    assert_energies(
+        &mut model,
+        "m/2*(dot(x)^2 + dot(y)^2) + i_c/2*dot(theta)^2 + iw/2*(dot(phi_l)^2 + dot(phi_r)^2) \
+         + i_s/2*(dot(theta) + dot(beta))^2 + ic/2*dot(phi_c)^2",
+        "0",
+    );
+    assert_row_space(
+        &mut model,
+        &[
+            "cos(theta)*dot(x) + sin(theta)*dot(y) - b*dot(theta) - r*dot(phi_l)",
+            "-sin(theta)*dot(x) + cos(theta)*dot(y)",
+            "cos(theta)*dot(x) + sin(theta)*dot(y) + b*dot(theta) - r*dot(phi_r)",
+            "cos(theta + beta)*dot(x) + sin(theta + beta)*dot(y) - l*sin(beta)*dot(theta) \
+             - rc*dot(phi_c)",
+            "-sin(theta + beta)*dot(x) + cos(theta + beta)*dot(y) - l*cos(beta)*dot(theta) \
+             - d*(dot(theta) + dot(beta))",
+        ],
+    );
+    assert_eq!(
+        caster_robot::CasterRobot::CONSTRAINTS,
+        [
+            "left_rolling_1",
+            "left_rolling_2",
+            "right_rolling",
+            "caster_rolling_1",
+            "caster_rolling_2"
+        ]
     );
 }
 

@@ -2,7 +2,7 @@
 //! listing of `chaplygin list`.
 
 use crate::models::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    caster_robot::CasterRobot, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
     rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
     snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
@@ -24,6 +24,8 @@ pub enum Compiled {
     SleighBodies,
     /// [`SnakeboardBodies`].
     SnakeboardBodies,
+    /// [`CasterRobot`].
+    CasterRobot,
 }
 
 /// A built-in model.
@@ -45,7 +47,7 @@ pub struct BuiltIn {
 }
 
 /// The built-in models.
-pub const BUILT_IN: [BuiltIn; 7] = [
+pub const BUILT_IN: [BuiltIn; 8] = [
     BuiltIn {
         name: "snakeboard",
         about: "snakeboard of Duindam & Stramigioli (2004), paper's momentum basis",
@@ -101,6 +103,14 @@ pub const BUILT_IN: [BuiltIn; 7] = [
         compiled: Compiled::SnakeboardBodies,
         q: &[0.0, 0.0, 0.0, 0.0, 0.3],
         alpha: &[1.0, 0.5, 0.025],
+    },
+    BuiltIn {
+        name: "caster-robot",
+        about: "wheeled mobile robot with a passive caster, declared as a mechanism",
+        source: include_str!("../../../models/caster_robot.model"),
+        compiled: Compiled::CasterRobot,
+        q: &[0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.0],
+        alpha: &[0.5, 0.2],
     },
 ];
 
@@ -175,6 +185,15 @@ fn facts(compiled: Compiled) -> ([usize; 4], &'static str) {
                 SnakeboardBodies::P,
             ],
             SnakeboardBodies::REPORT,
+        ),
+        Compiled::CasterRobot => (
+            [
+                CasterRobot::N,
+                CasterRobot::C,
+                CasterRobot::K,
+                CasterRobot::P,
+            ],
+            CasterRobot::REPORT,
         ),
     }
 }

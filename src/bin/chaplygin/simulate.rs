@@ -61,6 +61,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
         Compiled::SnakeboardBodies => {
             compiled::<SnakeboardBodies, 5, 2, 3, 2, 8, 10, 2, 1, 8>(model, args)
         }
+        // No symmetry: the interpreter runs it from its text.
+        Compiled::CasterRobot => interpreted(model.name, model.source, args),
     }
 }
 
