@@ -383,3 +383,28 @@ fn a_broken_mechanism_file_is_reported_with_file_line_and_column() {
     assert_eq!(error.to_string().lines().count(), 1, "{error}");
     std::fs::remove_dir_all(&directory).expect("clean up");
 }
+
+/// A `.model` file with mechanism sections runs through the interpreter,
+/// mechanism items included, as the compiled model does.
+#[test]
+fn the_interpreter_runs_a_mechanism_as_compiled() {
+    use chaplygin_codegen::interpret::InterpretedModel;
+    let interpreted = InterpretedModel::from_source(rolling_disk_3d::MODEL_TEXT).expect("compiles");
+    let disk = RollingDisk3d::default();
+    let q = [0.3, -1.2, 0.7, 0.4, -2.1];
+    let qdot = [0.2, 0.1, -0.5, 0.3, 1.5];
+    let (qddot, _) = disk.acceleration(&q, &qdot, &[0.1, -0.2]);
+    let interpreted_qddot = interpreted
+        .acceleration(&q, &qdot, &[0.1, -0.2])
+        .expect("runs")
+        .0;
+    for (a, b) in qddot.iter().zip(&interpreted_qddot) {
+        assert!((a - b).abs() < 1e-12 * (1.0 + a.abs()), "{a} vs {b}");
+    }
+    let positions = interpreted.call("positions", &[&q]).expect("runs");
+    let compiled: Vec<f64> = disk.positions(&q).into_iter().flatten().collect();
+    assert_eq!(positions.len(), compiled.len());
+    for (a, b) in positions.iter().zip(&compiled) {
+        assert!((a - b).abs() < 1e-14, "{a} vs {b}");
+    }
+}
