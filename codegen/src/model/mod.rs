@@ -5,8 +5,12 @@
 //! `g_ij = d^2 T / d qdot_i d qdot_j`, or as declared), the potential `V(q)`,
 //! the constraint rows `A(q)` (`A qdot = 0`; from a declared distribution, a
 //! basis of its annihilator), the input matrix `B(q)`, and the optional
-//! momentum basis `h(q)` and symmetry group. Every rule of the model
-//! language is one function in [`check`]; all violations are reported at once.
+//! momentum basis `h(q)` and symmetry group. A model declared as a mechanism
+//! (frames, points, bodies, gravity, rolling contacts, holonomic
+//! constraints) has its `T`, `V` and constraint rows derived by the
+//! [`mechanism`] stage, and joined to the declared ones. Every rule of the
+//! model language is one function in [`check`]; all violations are reported
+//! at once.
 
 mod check;
 mod invariance;
