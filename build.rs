@@ -6,7 +6,16 @@ fn main() {
     if std::env::var_os("CARGO_FEATURE_CLI").is_none() {
         return;
     }
-    let models = ["snakeboard", "sleigh", "rolling_disk", "differential_drive"];
+    let models = [
+        "snakeboard",
+        "sleigh",
+        "rolling_disk",
+        "differential_drive",
+        "rolling_disk_3d",
+        "sleigh_bodies",
+        "snakeboard_bodies",
+        "caster_robot",
+    ];
     let builder = models
         .iter()
         .fold(chaplygin_codegen::Builder::new(), |b, m| {

@@ -18,6 +18,10 @@ fn generate() -> Result<(), Box<dyn std::error::Error>> {
         .model_file("sleigh.model")
         .model_file("rolling_disk.model")
         .model_file("differential_drive.model")
+        .model_file("rolling_disk_3d.model")
+        .model_file("sleigh_bodies.model")
+        .model_file("snakeboard_bodies.model")
+        .model_file("caster_robot.model")
         .write_to_out_dir()?;
     println!("cargo:rerun-if-changed=src/snake.rs");
     let out_dir = std::path::PathBuf::from(std::env::var("OUT_DIR")?);

@@ -472,7 +472,7 @@ fn energy_minus_work(table: &Csv, u1: impl Fn(f64) -> f64) -> f64 {
 }
 
 /// The racer's gait: the joint driven by `u1 = 0.2 cos(2 t)` from a straight
-/// roll (`phi = 0`, `dot(x) = 1`) swings `phi` by +-0.06 and keeps the
+/// roll (`phi = 0`, `dot(x) = 1`, `dot(phi) = 0`) swings `phi` by +-0.06 and keeps the
 /// heading within 0.4 rad, so the reduced form's basis (singular at heading
 /// +-pi/2) holds for 40 s. Every integrator of the reduced and the
 /// Lagrange-d'Alembert forms runs the 40 s with the constraints at
@@ -488,6 +488,8 @@ fn the_roller_racer_gait_runs_40_s_on_its_constraints_with_its_energy_balanced()
         "u1=0.2*cos(2*t)",
         "--initial",
         "dot(x)=1",
+        "--initial",
+        "dot(phi)=0",
         "--t-end",
         "40",
     ];
@@ -598,6 +600,8 @@ fn the_discrete_gradient_says_where_and_why_a_step_goes_non_finite() {
             "u1=0.1",
             "--initial",
             "dot(x)=1",
+            "--initial",
+            "dot(phi)=0",
         ],
     );
     assert_one_line_error(
@@ -626,7 +630,16 @@ fn inputs_are_expressions_of_time_and_the_parameters() {
             "law",
             "lagrange",
             "rk4",
-            &["--input", law, "--initial", "dot(x)=1", "--t-end", "1"],
+            &[
+                "--input",
+                law,
+                "--initial",
+                "dot(x)=1",
+                "--initial",
+                "dot(phi)=0",
+                "--t-end",
+                "1",
+            ],
         );
         assert!(output.status.success(), "{law}: {}", stderr(&output));
         let table = table.unwrap();

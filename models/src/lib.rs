@@ -110,3 +110,47 @@ pub mod differential_drive {
     /// The model's declaration in the model language.
     pub const MODEL_TEXT: &str = include_str!("../differential_drive.model");
 }
+
+pub mod rolling_disk_3d {
+    //! A disk rolling without slipping on a plane under gravity, leaning,
+    //! declared as a mechanism (INTERFACE.md section 4): the tool derives
+    //! `T`, `V` and the rolling rows from the frames, the body and the
+    //! contact. Coordinates `(x, y, psi, phi, theta)`: the contact point,
+    //! the heading, the lean (upright at 0) and the rolling angle. Rolling
+    //! says the contact point moves along the heading at the rim speed,
+    //! `xdot = r cos(psi) thetadot`, `ydot = r sin(psi) thetadot`.
+    //! Singular at `phi = +-pi/2`, where the disk lies flat.
+    include!(concat!(env!("OUT_DIR"), "/rolling_disk_3d.rs"));
+
+    /// The model's declaration in the model language.
+    pub const MODEL_TEXT: &str = include_str!("../rolling_disk_3d.model");
+}
+
+pub mod sleigh_bodies {
+    //! The Chaplygin sleigh declared as a body on a blade (compare
+    //! [`crate::sleigh`], declared by its energy: the same `T`, `V` and rows).
+    include!(concat!(env!("OUT_DIR"), "/sleigh_bodies.rs"));
+
+    /// The model's declaration in the model language.
+    pub const MODEL_TEXT: &str = include_str!("../sleigh_bodies.model");
+}
+
+pub mod snakeboard_bodies {
+    //! The snakeboard declared as bodies and wheel contacts (compare
+    //! [`crate::snakeboard`], declared by its energy: the same `T`, `V` and
+    //! rows; the same singular configurations `phi = +-pi/2`).
+    include!(concat!(env!("OUT_DIR"), "/snakeboard_bodies.rs"));
+
+    /// The model's declaration in the model language.
+    pub const MODEL_TEXT: &str = include_str!("../snakeboard_bodies.model");
+}
+
+pub mod caster_robot {
+    //! A wheeled mobile robot with a passive caster, declared as a
+    //! mechanism: two driven wheels on a common axle and a caster wheel on
+    //! a swivelling fork behind; `n = 7`, five rolling rows, `k = 2`.
+    include!(concat!(env!("OUT_DIR"), "/caster_robot.rs"));
+
+    /// The model's declaration in the model language.
+    pub const MODEL_TEXT: &str = include_str!("../caster_robot.model");
+}

@@ -15,8 +15,9 @@ use chaplygin::runtime::system::LagrangeDalembert;
 use chaplygin::runtime::system::{Dalembert, Reduced, ReducedPortHamiltonian};
 use chaplygin_models::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin_models::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
-    snakeboard::Snakeboard,
+    caster_robot::CasterRobot, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
+    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
 use common::towed::Towed;
 use snake3::Snake3;
@@ -142,6 +143,66 @@ fn generated_functions_do_not_allocate() {
     assert_eq!(counted, 0);
     // the counter itself works: a Vec allocates
     assert!(allocations(|| drop(black_box(vec![1u8; 16]))) > 0);
+}
+
+chaplygin::model! {
+    /// A particle held on a sphere by a holonomic constraint.
+    struct OnSphere {
+        coordinates: [x, y, z],
+        parameters: [m = 1.0, l = 2.0, g = 9.81],
+        points: [bob = origin + x*ground.x + y*ground.y + z*ground.z],
+        bodies: [ball = particle(bob, m)],
+        gravity: -g*ground.z,
+        holonomic: [length = norm(bob - origin) - l],
+    }
+}
+
+/// The items of every model's mechanism: `orientations`, `positions`,
+/// `holonomic_residual`, `holonomic_jacobian` (empty for energy-declared
+/// models), and the mechanism-declared models' other items.
+#[test]
+fn mechanism_items_do_not_allocate() {
+    let disk = RollingDisk3d::default();
+    let sleigh = SleighBodies::default();
+    let board = SnakeboardBodies::default();
+    let sphere = OnSphere::default();
+    let plain = Snakeboard::default();
+    let caster = CasterRobot::default();
+    let counted = allocations(|| {
+        for i in 0..10_000 {
+            let t = i as f64 * 1e-3;
+            let q = [t, -t, 0.3 + t, 0.1, 0.2 - t];
+            let qdot = [1.0, 0.5, -0.2, t, 0.3];
+            let q3 = [t, 0.5, -1.0 - t];
+            black_box(disk.orientations(black_box(&q)));
+            black_box(disk.positions(black_box(&q)));
+            black_box(disk.holonomic_residual(black_box(&q)));
+            black_box(disk.holonomic_jacobian(black_box(&q)));
+            black_box(disk.acceleration(black_box(&q), black_box(&qdot), &[0.0; 2]));
+            black_box(board.orientations(black_box(&q)));
+            black_box(board.positions(black_box(&q)));
+            black_box(board.acceleration(black_box(&q), black_box(&qdot), &[0.0; 2]));
+            black_box(sleigh.orientations(black_box(&q3)));
+            black_box(sleigh.positions(black_box(&q3)));
+            black_box(sphere.holonomic_residual(black_box(&q3)));
+            black_box(sphere.holonomic_jacobian(black_box(&q3)));
+            black_box(sphere.positions(black_box(&q3)));
+            black_box(plain.orientations(black_box(&q)));
+            black_box(plain.positions(black_box(&q)));
+            black_box(plain.holonomic_residual(black_box(&q)));
+            black_box(plain.holonomic_jacobian(black_box(&q)));
+            reduced_items!(disk, RollingDisk3d, t);
+            reduced_items!(sleigh, SleighBodies, t);
+            reduced_items!(board, SnakeboardBodies, t);
+            let q7 = [t, -t, 0.3 + t, 0.1, 0.2 - t, 0.4, t];
+            let v7 = [1.0, 0.5, -0.2, t, 0.3, 0.1, -t];
+            black_box(caster.orientations(black_box(&q7)));
+            black_box(caster.positions(black_box(&q7)));
+            black_box(caster.acceleration(black_box(&q7), black_box(&v7), &[0.0; 2]));
+            reduced_items!(caster, CasterRobot, t);
+        }
+    });
+    assert_eq!(counted, 0);
 }
 
 #[test]

@@ -14,6 +14,9 @@
 //! REPORT                          the derivation report (see [`report`])
 //! ```
 //!
+//! the mechanism items of `mechanism` (`FRAMES`, `POINTS`, `HOLONOMIC`,
+//! `orientations`, `positions`, `holonomic_residual`, `holonomic_jacobian`)
+//!
 //! and the reduced port-Hamiltonian items of `port_hamiltonian` (MATH.md
 //! section 3), for a model with a symmetry the momentum-equation items of
 //! `momentum` (MATH.md section 4), and the impls of the runtime's
@@ -28,6 +31,7 @@
 mod kinematics;
 mod lagrange_dalembert;
 mod linearization;
+mod mechanism;
 mod momentum;
 mod port_hamiltonian;
 pub mod report;
@@ -89,7 +93,9 @@ pub(crate) fn emit(
 ) -> Result<Emitted, Diagnostics> {
     let definition = parameter_struct(model);
     let constants = constants(model);
+    let mechanism_constants = mechanism::constants(model);
     let mut functions = kinematics::functions(model)?;
+    functions.extend(mechanism::functions(model)?);
     let (acceleration, solve_report) = lagrange_dalembert::acceleration(model)?;
     let acceleration_jacobian = linearization::acceleration_jacobian(model, &acceleration)?;
     functions.extend([acceleration, acceleration_jacobian]);
@@ -111,6 +117,7 @@ pub(crate) fn emit(
         #definition
         impl #name {
             #constants
+            #mechanism_constants
             #report_item
             #(#items)*
         }

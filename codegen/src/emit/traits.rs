@@ -1,6 +1,6 @@
 //! Implementations of the runtime's formulation traits
 //! (`::chaplygin::runtime::system::ReducedPortHamiltonian`,
-//! `LagrangeDalembert`, `ModelNames`, and with a symmetry
+//! `LagrangeDalembert`, `Holonomic`, `ModelNames`, and with a symmetry
 //! `MomentumEquations`) for the generated struct, so that
 //! every integrator of the runtime runs on it. Each method forwards to the
 //! inherent item of the same name (inherent items take precedence in
@@ -19,6 +19,7 @@ pub(crate) fn implementations(model: &Model) -> TokenStream {
     let f64 = f64_type();
     let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
     let s = n + k;
+    let h = model.mechanism.holonomic.len();
     let parameter_names = model
         .parameters
         .iter()
@@ -111,6 +112,16 @@ pub(crate) fn implementations(model: &Model) -> TokenStream {
             const MOMENTA: &'static [&'static ::core::primitive::str] = &#name::MOMENTA;
             const INPUTS: &'static [&'static ::core::primitive::str] = &#name::INPUTS;
             const CONSTRAINTS: &'static [&'static ::core::primitive::str] = &#name::CONSTRAINTS;
+        }
+
+        impl #system::Holonomic<#n, #h> for #name {
+            const HOLONOMIC: [&'static ::core::primitive::str; #h] = #name::HOLONOMIC;
+            fn holonomic_residual(&self, q: &[#f64; #n]) -> [#f64; #h] {
+                #name::holonomic_residual(self, q)
+            }
+            fn holonomic_jacobian(&self, q: &[#f64; #n]) -> [[#f64; #n]; #h] {
+                #name::holonomic_jacobian(self, q)
+            }
         }
 
         impl #system::LagrangeDalembert<#n, #c, #p> for #name {

@@ -5,17 +5,24 @@
 //! `g_ij = d^2 T / d qdot_i d qdot_j`, or as declared), the potential `V(q)`,
 //! the constraint rows `A(q)` (`A qdot = 0`; from a declared distribution, a
 //! basis of its annihilator), the input matrix `B(q)`, and the optional
-//! momentum basis `h(q)` and symmetry group. Every rule of the model
-//! language is one function in [`check`]; all violations are reported at once.
+//! momentum basis `h(q)` and symmetry group. A model declared as a mechanism
+//! (frames, points, bodies, gravity, rolling contacts, holonomic
+//! constraints) has its `T`, `V` and constraint rows derived by the
+//! [`mechanism`] stage, and joined to the declared ones. Every rule of the
+//! model language is one function in [`check`]; all violations are reported
+//! at once.
 
 mod check;
 mod invariance;
 mod lower;
+pub mod mechanism;
 #[cfg(test)]
 mod tests;
 
 pub use check::{check, check_within};
+pub use mechanism::Mechanism;
 
+use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::sym::{Matrix, Rational, RationalFunction, Store, SymbolId};
 use proc_macro2::{Ident, Span, TokenStream};
 
@@ -127,6 +134,9 @@ pub struct Model {
     pub momentum_basis: Option<MomentumBasis>,
     /// The declared symmetry, if any.
     pub symmetry: Option<Symmetry>,
+    /// The mechanism sections' frames, points, energies, contacts and
+    /// holonomic constraints (empty for a model declared by its energy).
+    pub mechanism: Mechanism,
 }
 
 impl Model {
@@ -167,6 +177,38 @@ impl Model {
         let trial = self.store.enter_attempt(limit);
         let result = work(self);
         self.store.leave_attempt(trial).then_some(result)
+    }
+
+    /// The normal form of a scalar expression written in the model language
+    /// over this model's coordinates, parameters and velocities `dot(q)`,
+    /// e.g. a hand-derived energy to compare with the derived one.
+    pub fn normal_of_text(&mut self, text: &str) -> Result<RationalFunction, Diagnostics> {
+        let syntax = crate::syntax::parse_str(&format!("struct Expression {{ value: {text} }}"))?;
+        let Some(expr) = syntax.sections.first().and_then(|s| s.value.as_expr()) else {
+            return Err(Diagnostic::new(syntax.name.span(), "expected one expression").into());
+        };
+        let mut scope = lower::Scope::default();
+        for coordinate in &self.coordinates {
+            let binding = lower::Binding::Coordinate(coordinate.symbol);
+            scope.bind(&coordinate.declared.name, binding);
+        }
+        for parameter in &self.parameters {
+            let binding = lower::Binding::Parameter(parameter.variable.symbol);
+            scope.bind(&parameter.variable.declared.name, binding);
+        }
+        let mut diagnostics = Diagnostics::default();
+        let lowered = lower::Lowerer {
+            store: &mut self.store,
+            scope: &scope,
+            diagnostics: &mut diagnostics,
+        }
+        .lower(expr);
+        let Some(id) = lowered else {
+            return Err(diagnostics);
+        };
+        self.store
+            .normal(id)
+            .map_err(|error| Diagnostic::new(expr.first_span(), error.to_string()).into())
     }
 
     /// The parameters' default values as `f64`, in order.

@@ -8,14 +8,19 @@
 //!   down to products of `sin q_i`, `cos q_i`; `tan u = sin u / cos u`;
 //! - products are reduced by `sin^2 q -> 1 - cos^2 q` ([`super::poly`]);
 //! - the denominator is kept factored, each factor monic and free of sines
-//!   (a divisor `a + b sin q` is cleared by its conjugate `a - b sin q`, as the
-//!   norm of the quadratic extension), so the numerator decides zero-ness:
+//!   and square roots (a divisor `a + b sin q` is cleared by its conjugate
+//!   `a - b sin q`, as the norm of the quadratic extension, and `a + b sqrt(u)`
+//!   by `a - b sqrt(u)`), so the numerator decides zero-ness:
 //!   on the exact class (atoms are symbols and `sin`/`cos` of symbols) an
 //!   expression is zero exactly when its numerator has no terms;
 //! - common factors are cancelled: the monomial content, and every
 //!   denominator factor that divides the numerator exactly (factors equal as
 //!   normal forms are recognised, a full multivariate gcd is not computed);
-//! - anything else (`exp`, `ln`, fractional powers, trigonometric functions of
+//! - the square root of a polynomial is an atom `r` reduced by `r^2 = u`
+//!   ([`super::poly`]), so `sqrt(u)^2 - u` and `(1/sqrt(u))^2 - 1/u` are zero
+//!   by the normal form; zero tests of other expressions with roots fall
+//!   back to the numeric test, as for kernels;
+//! - anything else (`exp`, `ln`, other fractional powers, trigonometric functions of
 //!   other arguments) becomes an opaque kernel atom whose argument is itself in
 //!   normal form, so equal kernels are recognised; zero tests involving kernels
 //!   fall back to the randomized numeric test ([`super::zero`]).
@@ -332,21 +337,31 @@ fn product_of(factors: &[(Poly, u32)], atoms: &Atoms) -> Poly {
         })
 }
 
-/// Multiplies `p` by the conjugates of its sines until none is left.
-/// Returns the sine-free product and the product of the conjugates used.
+/// Multiplies `p` by conjugates until no square root and no sine is left:
+/// `a + b r -> (a + b r)(a - b r) = a^2 - b^2 u` for a root `r = sqrt(u)`,
+/// the outermost root first (its radicand may hold inner roots and sines,
+/// a sine's conjugate none), then each sine the same way. Returns the
+/// product and the product of the conjugates used.
 fn clear_sines(p: &Poly, atoms: &Atoms) -> (Poly, Poly) {
     let mut cleared = p.clone();
     let mut conjugates = Poly::constant(Rational::ONE);
-    while let Some(sine) = cleared
-        .atoms()
-        .into_iter()
-        .find(|&a| atoms.cosine_of(a).is_some())
-    {
+    while let Some(sine) = next_to_clear(&cleared, atoms) {
         let conjugate = cleared.conjugate(sine);
         cleared = cleared.mul(&conjugate, atoms);
         conjugates = conjugates.mul(&conjugate, atoms);
     }
     (cleared, conjugates)
+}
+
+/// The outermost square root of `p` (the latest interned), else a sine.
+fn next_to_clear(p: &Poly, atoms: &Atoms) -> Option<AtomId> {
+    let present = p.atoms();
+    let root = present
+        .iter()
+        .copied()
+        .filter(|&a| atoms.radicand_of(a).is_some())
+        .max();
+    root.or_else(|| present.into_iter().find(|&a| atoms.cosine_of(a).is_some()))
 }
 
 /// Splits a non-zero, sine-free polynomial into a constant times monic factors:
@@ -465,10 +480,15 @@ impl Store {
         }
         let whole = floor(exponent);
         let fraction = exponent.sub(&Rational::integer(whole));
+        let is_square_root = fraction == Rational::new(1, 2).unwrap_or(Rational::ONE);
         let canonical_base = self.expression_of(base_form);
         let root = self.pow(canonical_base, fraction)?;
         let root_form = match self.node(root) {
             Node::Number(value) => RationalFunction::constant(value.clone()),
+            _ if is_square_root && base_form.denominator.is_empty() => {
+                let radicand = base_form.numerator.clone();
+                RationalFunction::from_poly(Poly::atom(self.atoms.square_root(root, radicand)))
+            }
             _ => RationalFunction::from_poly(Poly::atom(self.atoms.kernel(root))),
         };
         let integer_part = base_form

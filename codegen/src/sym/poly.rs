@@ -1,4 +1,5 @@
-//! Sparse multivariate polynomials over *atoms*, reduced modulo `sin^2 + cos^2 = 1`.
+//! Sparse multivariate polynomials over *atoms*, reduced modulo `sin^2 + cos^2 = 1`
+//! and `s^2 = u` for a square root `s = sqrt(u)` of a polynomial `u`.
 //!
 //! An atom is a symbol, the sine or cosine of an argument (always interned as a
 //! pair), or an opaque kernel (`exp(u)`, `ln(u)`, `u^(p/q)` with `u` already in
@@ -8,6 +9,11 @@
 //! most one; on this representation two polynomials are equal as functions of
 //! independent symbols exactly when their term lists are equal (the monomials
 //! `s^e * c^k * ...` with `e <= 1` form a basis of `Q[s, c]/(s^2 + c^2 - 1)`).
+//! A square root of a polynomial, `r = sqrt(u)` (a kernel whose radicand is
+//! recorded), is likewise reduced by `r^2 -> u` to degree at most one, so
+//! `a + b r` with `a`, `b` free of `r` is its representation; it is
+//! canonical when `u` is not a square, the case of the norms of vectors
+//! whose square the mechanism stage could not take exactly.
 
 use super::budget::Budget;
 use super::expr::{ExprId, SymbolId};
@@ -39,6 +45,7 @@ pub struct Atoms {
     list: Vec<Atom>,
     index: HashMap<Atom, AtomId>,
     cosine_partner: HashMap<AtomId, AtomId>,
+    radicands: HashMap<AtomId, Poly>,
     budget: Budget,
 }
 
@@ -75,6 +82,24 @@ impl Atoms {
     /// Interns an opaque kernel.
     pub fn kernel(&mut self, expression: ExprId) -> AtomId {
         self.intern(Atom::Kernel(expression))
+    }
+
+    /// Interns the kernel `expression = sqrt(radicand)`, reduced by
+    /// `sqrt(radicand)^2 = radicand` from now on.
+    pub fn square_root(&mut self, expression: ExprId, radicand: Poly) -> AtomId {
+        let root = self.intern(Atom::Kernel(expression));
+        self.radicands.insert(root, radicand);
+        root
+    }
+
+    /// The radicand of a square-root atom (`None` for any other atom).
+    pub fn radicand_of(&self, root: AtomId) -> Option<&Poly> {
+        self.radicands.get(&root)
+    }
+
+    /// True for the atoms whose square reduces: sines and square roots.
+    pub fn is_reducible(&self, atom: AtomId) -> bool {
+        self.cosine_partner.contains_key(&atom) || self.radicands.contains_key(&atom)
     }
 
     /// Interns `(sin(arg), cos(arg))` together.
@@ -439,42 +464,60 @@ impl Poly {
     }
 
     /// Replaces every `sin^e` with `e >= 2` by `sin^(e mod 2) (1 - cos^2)^(e div 2)`,
+    /// and every `r^e` of a square root `r = sqrt(u)` by `r^(e mod 2) u^(e div 2)`,
     /// charging the terms each expansion step creates to the budget of `atoms`
     /// (zero once it is spent).
     pub fn reduce_trig(self, atoms: &Atoms) -> Poly {
-        let needs_reduction = |m: &Monomial| {
-            m.0.iter()
-                .any(|&(a, e)| e >= 2 && atoms.cosine_of(a).is_some())
-        };
+        let needs_reduction =
+            |m: &Monomial| m.0.iter().any(|&(a, e)| e >= 2 && atoms.is_reducible(a));
         if !self.terms.iter().any(|(m, _)| needs_reduction(m)) {
             return self;
         }
         let mut reduced = Vec::new();
+        let mut roots_expanded = false;
         for (monomial, coefficient) in self.terms {
             let mut expansion = Poly::term(Monomial::one(), coefficient);
             let mut kept = Vec::with_capacity(monomial.0.len());
             for (atom, exponent) in monomial.0 {
-                match atoms.cosine_of(atom) {
-                    Some(cosine) if exponent >= 2 => {
-                        let one_minus_cos2 = Poly::constant(Rational::ONE)
-                            .sub(&Poly::term(Monomial::power(cosine, 2), Rational::ONE));
-                        for _ in 0..exponent / 2 {
-                            if !atoms.budget().charge(2 * expansion.len() as u64) {
-                                return Poly::zero();
-                            }
-                            expansion = expansion.mul_unreduced(&one_minus_cos2);
-                        }
-                        if exponent % 2 == 1 {
-                            kept.push((atom, 1));
-                        }
+                let square = match (atoms.cosine_of(atom), atoms.radicand_of(atom)) {
+                    _ if exponent < 2 => None,
+                    (Some(cosine), _) => Some(
+                        Poly::constant(Rational::ONE)
+                            .sub(&Poly::term(Monomial::power(cosine, 2), Rational::ONE)),
+                    ),
+                    (None, Some(radicand)) => {
+                        roots_expanded = true;
+                        Some(radicand.clone())
                     }
-                    _ => kept.push((atom, exponent)),
+                    (None, None) => None,
+                };
+                let Some(square) = square else {
+                    kept.push((atom, exponent));
+                    continue;
+                };
+                for _ in 0..exponent / 2 {
+                    if !atoms
+                        .budget()
+                        .charge(square.len() as u64 * expansion.len() as u64)
+                    {
+                        return Poly::zero();
+                    }
+                    expansion = expansion.mul_unreduced(&square);
+                }
+                if exponent % 2 == 1 {
+                    kept.push((atom, 1));
                 }
             }
             let kept = Monomial(kept);
             reduced.extend(expansion.terms.into_iter().map(|(m, c)| (m.mul(&kept), c)));
         }
-        Poly::from_terms(reduced)
+        let reduced = Poly::from_terms(reduced);
+        // A radicand may bring sines (or roots) that meet the kept ones.
+        if roots_expanded {
+            reduced.reduce_trig(atoms)
+        } else {
+            reduced
+        }
     }
 
     /// True when some sine atom occurs.

@@ -257,7 +257,8 @@ proptest! {
 }
 
 /// True when the recipe uses `sqrt` or `exp`, whose kernels lie outside the
-/// exact class (e.g. `sqrt(u)^2 = u` is not applied by the normal form).
+/// exact class (`sqrt(u)^2 = u` is applied by the normal form, but whether
+/// `u` is a square, which a zero test would need, is not decided).
 fn recipe_has_kernels(recipe: &Recipe) -> bool {
     match recipe {
         Recipe::SqrtSafe(_) | Recipe::Exp(_) => true,

@@ -2,8 +2,9 @@
 //! listing of `chaplygin list`.
 
 use crate::models::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
-    snakeboard::Snakeboard,
+    caster_robot::CasterRobot, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
+    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
 
 /// Which compiled model a built-in name stands for.
@@ -17,6 +18,14 @@ pub enum Compiled {
     RollingDisk,
     /// [`DifferentialDrive`].
     DifferentialDrive,
+    /// [`RollingDisk3d`].
+    RollingDisk3d,
+    /// [`SleighBodies`].
+    SleighBodies,
+    /// [`SnakeboardBodies`].
+    SnakeboardBodies,
+    /// [`CasterRobot`].
+    CasterRobot,
 }
 
 /// A built-in model.
@@ -38,7 +47,7 @@ pub struct BuiltIn {
 }
 
 /// The built-in models.
-pub const BUILT_IN: [BuiltIn; 4] = [
+pub const BUILT_IN: [BuiltIn; 8] = [
     BuiltIn {
         name: "snakeboard",
         about: "snakeboard of Duindam & Stramigioli (2004), paper's momentum basis",
@@ -70,6 +79,38 @@ pub const BUILT_IN: [BuiltIn; 4] = [
         compiled: Compiled::DifferentialDrive,
         q: &[0.0, 0.0, 0.0, 0.0, 0.0],
         alpha: &[0.2, 0.1],
+    },
+    BuiltIn {
+        name: "rolling-disk-3d",
+        about: "leaning disk rolling under gravity, declared as a mechanism",
+        source: include_str!("../../../models/rolling_disk_3d.model"),
+        compiled: Compiled::RollingDisk3d,
+        q: &[0.0, 0.0, 0.0, 0.1, 0.0],
+        alpha: &[0.1, 0.0, 2.0],
+    },
+    BuiltIn {
+        name: "sleigh-bodies",
+        about: "Chaplygin sleigh declared as a body on a blade",
+        source: include_str!("../../../models/sleigh_bodies.model"),
+        compiled: Compiled::SleighBodies,
+        q: &[0.0, 0.0, -0.5],
+        alpha: &[1.0, 0.5],
+    },
+    BuiltIn {
+        name: "snakeboard-bodies",
+        about: "snakeboard declared as bodies and wheel contacts",
+        source: include_str!("../../../models/snakeboard_bodies.model"),
+        compiled: Compiled::SnakeboardBodies,
+        q: &[0.0, 0.0, 0.0, 0.0, 0.3],
+        alpha: &[1.0, 0.5, 0.025],
+    },
+    BuiltIn {
+        name: "caster-robot",
+        about: "wheeled mobile robot with a passive caster, declared as a mechanism",
+        source: include_str!("../../../models/caster_robot.model"),
+        compiled: Compiled::CasterRobot,
+        q: &[0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.0],
+        alpha: &[0.5, 0.2],
     },
 ];
 
@@ -117,6 +158,42 @@ fn facts(compiled: Compiled) -> ([usize; 4], &'static str) {
                 DifferentialDrive::P,
             ],
             DifferentialDrive::REPORT,
+        ),
+        Compiled::RollingDisk3d => (
+            [
+                RollingDisk3d::N,
+                RollingDisk3d::C,
+                RollingDisk3d::K,
+                RollingDisk3d::P,
+            ],
+            RollingDisk3d::REPORT,
+        ),
+        Compiled::SleighBodies => (
+            [
+                SleighBodies::N,
+                SleighBodies::C,
+                SleighBodies::K,
+                SleighBodies::P,
+            ],
+            SleighBodies::REPORT,
+        ),
+        Compiled::SnakeboardBodies => (
+            [
+                SnakeboardBodies::N,
+                SnakeboardBodies::C,
+                SnakeboardBodies::K,
+                SnakeboardBodies::P,
+            ],
+            SnakeboardBodies::REPORT,
+        ),
+        Compiled::CasterRobot => (
+            [
+                CasterRobot::N,
+                CasterRobot::C,
+                CasterRobot::K,
+                CasterRobot::P,
+            ],
+            CasterRobot::REPORT,
         ),
     }
 }

@@ -20,8 +20,9 @@ use crate::formulation::Typed;
 use crate::interpreted::{InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced};
 use crate::models::energy_control::{ClosedLoop, EnergyController};
 use crate::models::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
-    snakeboard::Snakeboard,
+    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
+    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
 use arguments::{Controller, Formulation as Kind};
 use chaplygin::plot;
@@ -55,6 +56,15 @@ pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
         Compiled::DifferentialDrive => {
             compiled::<DifferentialDrive, 5, 3, 2, 2, 7, 10, 2, 0, 7>(model, args)
         }
+        Compiled::RollingDisk3d => {
+            compiled::<RollingDisk3d, 5, 2, 3, 2, 8, 10, 1, 2, 8>(model, args)
+        }
+        Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 2, 0, 5, 6, 0, 2, 5>(model, args),
+        Compiled::SnakeboardBodies => {
+            compiled::<SnakeboardBodies, 5, 2, 3, 2, 8, 10, 2, 1, 8>(model, args)
+        }
+        // No symmetry: the interpreter runs it from its text.
+        Compiled::CasterRobot => interpreted(model.name, model.source, args),
     }
 }
 

@@ -1,0 +1,172 @@
+//! The mechanism items: `FRAMES`, `POINTS`, `HOLONOMIC`,
+//! `orientations(q)` (each frame's rotation matrix in ground axes),
+//! `positions(q)` (each point in ground axes), `holonomic_residual(q)`
+//! (`f(q)`) and `holonomic_jacobian(q)` (`df/dq`, by exact
+//! differentiation). A model without mechanism sections has them empty.
+
+use super::{
+    Function, coordinates, expressions, f64_type, function_body, internal, matrix_literal,
+};
+use crate::diagnostic::Diagnostics;
+use crate::model::Model;
+use crate::sym::Matrix;
+use proc_macro2::TokenStream;
+use quote::quote;
+
+/// The name constants.
+pub(super) fn constants(model: &Model) -> TokenStream {
+    let mechanism = &model.mechanism;
+    let frames = names_constant(
+        "FRAMES",
+        "The declared frames, in the order of `orientations`.",
+        mechanism.frames.iter().map(|d| d.name.as_str()).collect(),
+    );
+    let points = names_constant(
+        "POINTS",
+        "The declared points, in the order of `positions`.",
+        mechanism.points.iter().map(|d| d.name.as_str()).collect(),
+    );
+    let holonomic = names_constant(
+        "HOLONOMIC",
+        "The holonomic constraints `f(q) = 0`, in declared order.",
+        mechanism
+            .holonomic
+            .iter()
+            .map(|d| d.name.as_str())
+            .collect(),
+    );
+    quote!(#frames #points #holonomic)
+}
+
+fn names_constant(name: &str, doc: &str, names: Vec<&str>) -> TokenStream {
+    let count = names.len();
+    let ident = proc_macro2::Ident::new(name, proc_macro2::Span::call_site());
+    quote! {
+        #[doc = #doc]
+        pub const #ident: [&'static ::core::primitive::str; #count] = [#(#names),*];
+    }
+}
+
+/// The four functions.
+pub(super) fn functions(model: &mut Model) -> Result<Vec<Function>, Diagnostics> {
+    let jacobian = holonomic_jacobian_matrix(model)?;
+    Ok(vec![
+        orientations(model)?,
+        positions(model)?,
+        holonomic_residual(model)?,
+        holonomic_jacobian(model, &jacobian)?,
+    ])
+}
+
+fn orientations(model: &mut Model) -> Result<Function, Diagnostics> {
+    let (n, frames) = (model.n(), model.mechanism.frames.len());
+    let outputs = expressions(model, &model.mechanism.orientations.clone());
+    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+        let matrices = values.chunks(9).map(|entries| matrix_literal(entries, 3));
+        quote!([#(#matrices),*])
+    })?;
+    let f64 = f64_type();
+    let q = body.argument("q");
+    let statements = body.statements;
+    let item = quote! {
+        /// Each frame's rotation matrix in ground axes, in the order of
+        /// `FRAMES`: its columns are the frame's unit vectors `x`, `y`, `z`.
+        pub fn orientations(&self, #q: &[#f64; #n]) -> [[[#f64; 3]; 3]; #frames] {
+            #statements
+        }
+    };
+    Ok(Function {
+        name: "orientations",
+        item,
+        operations: body.operations,
+        lowered: Some(body.lowered),
+    })
+}
+
+fn positions(model: &mut Model) -> Result<Function, Diagnostics> {
+    let (n, points) = (model.n(), model.mechanism.points.len());
+    let outputs = expressions(model, &model.mechanism.positions.clone());
+    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+        matrix_literal(values, 3)
+    })?;
+    let f64 = f64_type();
+    let q = body.argument("q");
+    let statements = body.statements;
+    let item = quote! {
+        /// Each point's position `P - origin` in ground axes, in the order of `POINTS`.
+        pub fn positions(&self, #q: &[#f64; #n]) -> [[#f64; 3]; #points] {
+            #statements
+        }
+    };
+    Ok(Function {
+        name: "positions",
+        item,
+        operations: body.operations,
+        lowered: Some(body.lowered),
+    })
+}
+
+fn holonomic_residual(model: &mut Model) -> Result<Function, Diagnostics> {
+    let (n, h) = (model.n(), model.mechanism.holonomic.len());
+    let outputs = expressions(model, &model.mechanism.holonomic_residual.clone());
+    let body = function_body(
+        model,
+        &[coordinates(model)],
+        &outputs,
+        |values| quote!([#(#values),*]),
+    )?;
+    let f64 = f64_type();
+    let q = body.argument("q");
+    let statements = body.statements;
+    let item = quote! {
+        /// The holonomic constraints' residuals `f(q)`, in the order of `HOLONOMIC`.
+        pub fn holonomic_residual(&self, #q: &[#f64; #n]) -> [#f64; #h] {
+            #statements
+        }
+    };
+    Ok(Function {
+        name: "holonomic_residual",
+        item,
+        operations: body.operations,
+        lowered: Some(body.lowered),
+    })
+}
+
+/// `df/dq`, `h x n`.
+fn holonomic_jacobian_matrix(model: &mut Model) -> Result<Matrix, Diagnostics> {
+    let residual = model.mechanism.holonomic_residual.clone();
+    let mut entries = Vec::new();
+    for f in residual.entries() {
+        for coordinate in model.coordinate_symbols() {
+            let partial = model
+                .store
+                .derivative_of_normal(f, coordinate)
+                .map_err(|e| internal(model, e))?;
+            entries.push(partial);
+        }
+    }
+    Matrix::new(residual.rows(), model.n(), entries).map_err(|e| internal(model, e))
+}
+
+fn holonomic_jacobian(model: &mut Model, jacobian: &Matrix) -> Result<Function, Diagnostics> {
+    let (n, h) = (model.n(), model.mechanism.holonomic.len());
+    let outputs = expressions(model, jacobian);
+    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+        matrix_literal(values, n)
+    })?;
+    let f64 = f64_type();
+    let q = body.argument("q");
+    let statements = body.statements;
+    let item = quote! {
+        /// `df/dq`: one row per holonomic constraint, one column per coordinate.
+        pub fn holonomic_jacobian(&self, #q: &[#f64; #n]) -> [[#f64; #n]; #h] {
+            #statements
+        }
+    };
+    Ok(Function {
+        name: "holonomic_jacobian",
+        item,
+        operations: body.operations,
+        lowered: Some(body.lowered),
+    })
+}

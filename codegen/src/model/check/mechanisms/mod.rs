@@ -1,0 +1,152 @@
+//! Mechanism sections: frames turned from `ground` without cycles about
+//! `x`, `y` or `z`, points, bodies with a known frame and centre and a
+//! symmetric inertia, gravity, rolling contacts with at least one direction
+//! on a declared body, and holonomic constraints free of velocities. Every
+//! value has the type its place asks for (scalar, vector or point) and
+//! depends on the configuration only.
+
+mod bodies;
+mod contacts;
+mod frames;
+
+use super::energy::first_velocity_span;
+use super::*;
+use crate::model::mechanism::Mechanism;
+use crate::model::mechanism::evaluate::{Evaluator, Reference};
+use crate::model::mechanism::space::{GROUND, ORIGIN, Space};
+use proc_macro2::Ident;
+
+/// A mechanism and the constraint rows it contributes (contacts, then the
+/// holonomic constraints' velocity forms).
+pub(super) struct MechanismParts {
+    pub(super) mechanism: Mechanism,
+    pub(super) names: Vec<Declared>,
+    pub(super) rows: Vec<RationalFunction>,
+}
+
+/// A frame's declaration: `name = rotate(parent, axis, angle)`.
+struct FrameDeclaration<'a> {
+    declared: Declared,
+    parent: &'a Ident,
+    axis: usize,
+    angle: &'a Expr,
+}
+
+impl Checker {
+    /// The mechanism sections, or `None` after reporting.
+    pub(super) fn mechanism(
+        &mut self,
+        sections: &Sections,
+        coordinates: &[Variable],
+        parameters: &[Parameter],
+    ) -> Option<MechanismParts> {
+        let q: Vec<SymbolId> = coordinates.iter().map(|c| c.symbol).collect();
+        if !SECTIONS[FIRST_MECHANISM_SECTION..]
+            .iter()
+            .any(|s| sections.contains_key(*s))
+        {
+            return Some(MechanismParts {
+                mechanism: Mechanism::none(),
+                names: Vec::new(),
+                rows: Vec::new(),
+            });
+        }
+        let reference = Reference(
+            parameters
+                .iter()
+                .map(|p| (p.variable.symbol, p.default.to_f64()))
+                .collect(),
+        );
+        for (name, kind) in [(GROUND, "predeclared frame"), (ORIGIN, "predeclared point")] {
+            self.declared
+                .entry(name.to_string())
+                .or_insert((kind, Span::call_site()));
+        }
+        let errors_before = self.diagnostics.len();
+        let mut space = Space::new(&mut self.store);
+        let frames = self.frames(sections.get("frames"), &mut space, &reference, &q);
+        let points = self.points(sections.get("points"), &mut space, &reference);
+        let bodies = self.bodies(sections.get("bodies"), &mut space, &reference);
+        let gravity = self.gravity(sections.get("gravity"), &space, &reference);
+        let (contacts, mut rows) =
+            self.contacts(sections.get("no_slip"), &space, &reference, &bodies, &q);
+        let (holonomic, residual, velocity_forms) =
+            self.holonomic(sections.get("holonomic"), &space, &reference, &q);
+        if self.diagnostics.len() > errors_before {
+            return None;
+        }
+        rows.extend(velocity_forms);
+        let (kinetic_energy, potential_energy) = self.body_energies(&bodies, &gravity, &q)?;
+        let orientations = self.normal_rows(
+            space
+                .declared_frames()
+                .iter()
+                .map(|(_, f)| f.rotation.to_vec()),
+            9,
+        )?;
+        let positions =
+            self.normal_rows(space.declared_points().iter().map(|(_, p)| p.to_vec()), 3)?;
+        let holonomic_residual = self.normal_rows(residual.into_iter().map(|f| vec![f]), 1)?;
+        let names = contacts.iter().chain(&holonomic).cloned().collect();
+        Some(MechanismParts {
+            mechanism: Mechanism {
+                frames,
+                orientations,
+                points,
+                positions,
+                kinetic_energy,
+                potential_energy,
+                contacts,
+                holonomic,
+                holonomic_residual,
+            },
+            names,
+            rows,
+        })
+    }
+
+    fn evaluator<'a>(&'a mut self, space: &'a Space, reference: &'a Reference) -> Evaluator<'a> {
+        Evaluator {
+            lowerer: Lowerer {
+                store: &mut self.store,
+                scope: &self.scope,
+                diagnostics: &mut self.diagnostics,
+            },
+            space,
+            reference,
+        }
+    }
+
+    /// Rows of normal forms, `width` entries each.
+    fn normal_rows(
+        &mut self,
+        rows: impl Iterator<Item = Vec<ExprId>>,
+        width: usize,
+    ) -> Option<Matrix> {
+        let mut entries = Vec::new();
+        for row in rows {
+            for id in row {
+                entries.push(self.store.normal(id).ok()?);
+            }
+        }
+        Matrix::new(entries.len() / width, width, entries).ok()
+    }
+
+    /// Values in mechanism sections depend on the configuration only.
+    fn rule_configuration_only(&mut self, values: &[ExprId], expr: &Expr, what: &str) -> bool {
+        let has_velocity = values.iter().any(|&id| {
+            self.store
+                .free_symbols(id)
+                .iter()
+                .any(|&s| matches!(self.store.symbol_info(s).kind, SymbolKind::Velocity(_)))
+        });
+        if has_velocity {
+            let span = first_velocity_span(expr).unwrap_or_else(|| expr.first_span());
+            self.diagnostics.error(
+                span,
+                format!("{what} depends on the configuration only: no velocities"),
+            );
+        }
+        !has_velocity
+    }
+}

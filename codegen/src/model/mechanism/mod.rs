@@ -1,0 +1,72 @@
+//! Mechanisms: a model declared by frames, points, bodies and contacts.
+//!
+//! The sections `frames`, `points`, `bodies`, `gravity`, `no_slip` and
+//! `holonomic` (INTERFACE.md section 4) are turned into exact symbolic
+//! objects that join the energy-level ones: the bodies' kinetic and
+//! potential energies ([`bodies`]) add to the declared `T` and `V`; each
+//! `no_slip` direction gives the constraint row `d . v_P = 0`, and each
+//! holonomic constraint `f(q) = 0` its velocity form `(df/dq) qdot = 0`.
+//! Orientations come from the rotation chain and velocities from exact
+//! differentiation ([`space`]), so everything downstream (constraint
+//! analysis, the formulations, the documents) works unchanged.
+
+pub(super) mod bodies;
+pub(super) mod evaluate;
+pub(super) mod space;
+pub(super) mod vector;
+
+#[cfg(test)]
+mod tests;
+
+use super::Declared;
+use crate::sym::{Matrix, RationalFunction};
+
+/// What a model's mechanism sections declare, in normal form.
+#[derive(Clone, Debug)]
+pub struct Mechanism {
+    /// The declared frames (not `ground`), in the order they were resolved.
+    pub frames: Vec<Declared>,
+    /// Each frame's rotation matrix in ground axes, row-major: `nf x 9`.
+    pub orientations: Matrix,
+    /// The declared points (not `origin`), in order.
+    pub points: Vec<Declared>,
+    /// Each point's position `P - origin` in ground axes: `np x 3`.
+    pub positions: Matrix,
+    /// The bodies' kinetic energy (part of the model's `T`).
+    pub kinetic_energy: RationalFunction,
+    /// The bodies' potential energy in the gravity field (part of `V`).
+    pub potential_energy: RationalFunction,
+    /// The names of the rolling-contact rows (part of the constraints).
+    pub contacts: Vec<Declared>,
+    /// The names of the holonomic constraints.
+    pub holonomic: Vec<Declared>,
+    /// `f(q)`, one row each: `h x 1`.
+    pub holonomic_residual: Matrix,
+}
+
+impl Mechanism {
+    /// A model without mechanism sections.
+    pub fn none() -> Mechanism {
+        Mechanism {
+            frames: Vec::new(),
+            orientations: Matrix::zeros(0, 9),
+            points: Vec::new(),
+            positions: Matrix::zeros(0, 3),
+            kinetic_energy: RationalFunction::zero(),
+            potential_energy: RationalFunction::zero(),
+            contacts: Vec::new(),
+            holonomic: Vec::new(),
+            holonomic_residual: Matrix::zeros(0, 1),
+        }
+    }
+
+    /// True when any mechanism section was given.
+    pub fn is_declared(&self) -> bool {
+        !(self.frames.is_empty()
+            && self.points.is_empty()
+            && self.kinetic_energy.is_zero()
+            && self.potential_energy.is_zero()
+            && self.contacts.is_empty()
+            && self.holonomic.is_empty())
+    }
+}
