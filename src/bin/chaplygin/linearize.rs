@@ -14,8 +14,9 @@ mod sweep;
 use crate::catalog::{self, Compiled, Source};
 use crate::derive::Rejected;
 use crate::models::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
-    snakeboard::Snakeboard,
+    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
+    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
 use crate::simulate::set_model_parameters;
 use chaplygin::plot::{EigenvalueSweep, write_eigenvalue_plot};
@@ -107,29 +108,37 @@ pub enum LinearizeError {
 /// Bad input, a point that is not a steady motion, an I/O error.
 pub fn run(args: &LinearizeArgs) -> Result<(), Box<dyn Error>> {
     match catalog::lookup(&args.model)? {
-        Source::File { path, text } => {
-            let mut model = InterpretedModel::from_source(&text).map_err(|diagnostics| {
-                Rejected(diagnostics.render(&path).trim_end().to_string())
-            })?;
-            let known = model.names().parameters.clone();
-            let known: Vec<&str> = known.iter().map(String::as_str).collect();
-            crate::simulate::set_parameters(&known, &args.params, &mut |name, value| {
-                model.set_parameter(name, value).is_ok()
-            })?;
-            let parameters = known
-                .iter()
-                .zip(model.parameter_values())
-                .map(|(name, value)| (name.to_string(), *value))
-                .collect();
-            analyse(&InterpretedDynamics(model), parameters, args)
-        }
+        Source::File { path, text } => interpreted(&path, &text, args),
         Source::BuiltIn(built_in) => match built_in.compiled {
             Compiled::Snakeboard => compiled::<Snakeboard, 5, 2, 2>(args),
             Compiled::Sleigh => compiled::<Sleigh, 3, 1, 0>(args),
             Compiled::RollingDisk => compiled::<RollingDisk, 4, 2, 2>(args),
             Compiled::DifferentialDrive => compiled::<DifferentialDrive, 5, 3, 2>(args),
+            Compiled::RollingDisk3d => compiled::<RollingDisk3d, 5, 2, 2>(args),
+            Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 0>(args),
+            Compiled::SnakeboardBodies => compiled::<SnakeboardBodies, 5, 2, 2>(args),
+            // No symmetry: the interpreter runs it from its text.
+            Compiled::CasterRobot => interpreted(built_in.name, built_in.source, args),
         },
     }
+}
+
+/// A `.model` file's text (or a built-in's) through the interpreter, with
+/// its `--param` values.
+fn interpreted(path: &str, text: &str, args: &LinearizeArgs) -> Result<(), Box<dyn Error>> {
+    let mut model = InterpretedModel::from_source(text)
+        .map_err(|diagnostics| Rejected(diagnostics.render(path).trim_end().to_string()))?;
+    let known = model.names().parameters.clone();
+    let known: Vec<&str> = known.iter().map(String::as_str).collect();
+    crate::simulate::set_parameters(&known, &args.params, &mut |name, value| {
+        model.set_parameter(name, value).is_ok()
+    })?;
+    let parameters = known
+        .iter()
+        .zip(model.parameter_values())
+        .map(|(name, value)| (name.to_string(), *value))
+        .collect();
+    analyse(&InterpretedDynamics(model), parameters, args)
 }
 
 /// A built-in model with its `--param` values.
