@@ -52,7 +52,6 @@
 //! it is reported alongside Frobenius and decides nothing.
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
-use crate::emit::internal;
 use crate::model::Model;
 use crate::sym::modular::{self, Outside, Point, Values};
 use crate::sym::{ExprId, ExprMatrix, Matrix, MatrixError, RationalFunction, SymbolId};
@@ -164,7 +163,8 @@ pub enum AnalysisError {
 /// Analyses the constraints; with `#[deny_holonomic]`, integrable
 /// constraints are an error spanned on the first constraint's name.
 pub fn analyse(model: &mut Model) -> Result<ConstraintAnalysis, Diagnostics> {
-    let analysis = derive_analysis(model).map_err(|e| internal(model, e))?;
+    let analysis =
+        derive_analysis(model).map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     deny_holonomic(model, &analysis)?;
     Ok(analysis)
 }

@@ -47,7 +47,7 @@ use crate::derive::lagrange_dalembert::{self, LagrangeDalembert};
 use crate::derive::momentum::{self, Momentum};
 use crate::derive::port_hamiltonian::{self, Exact, PortHamiltonian};
 use crate::diagnostic::Diagnostics;
-use crate::emit::{self, internal};
+use crate::emit;
 use crate::model::Model;
 use crate::sym::latex::latex_rate;
 use crate::sym::{ExprId, Matrix, SymbolId};
@@ -171,12 +171,18 @@ impl Document {
             .find(|f| f.name == "reduced_rhs")
             .and_then(|f| f.lowered.as_ref())
             .map(|lowered| lowered.outputs.clone())
-            .ok_or_else(|| internal(model, "`reduced_rhs` was not emitted"))?;
+            .ok_or_else(|| {
+                Diagnostics::internal(model.name.span(), "`reduced_rhs` was not emitted")
+            })?;
         let basis = &constraints.basis;
-        let dalembert = lagrange_dalembert::derive(model).map_err(|e| internal(model, e))?;
-        let reduced = port_hamiltonian::derive(model, basis).map_err(|e| internal(model, e))?;
+        let dalembert = lagrange_dalembert::derive(model)
+            .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
+        let reduced = port_hamiltonian::derive(model, basis)
+            .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
         let momentum = match model.symmetry {
-            Some(_) => Some(momentum::derive(model).map_err(|e| internal(model, e))?),
+            Some(_) => Some(
+                momentum::derive(model).map_err(|e| Diagnostics::internal(model.name.span(), e))?,
+            ),
             None => None,
         };
         let mut sections = vec![

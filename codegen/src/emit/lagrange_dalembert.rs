@@ -5,7 +5,7 @@
 //! system by blocks on those numbers.
 
 use super::report::Section;
-use super::{Argument, Function, coordinates, f64_type, function_body, internal, velocities};
+use super::{Argument, Function, coordinates, f64_type, function_body, velocities};
 use crate::derive::lagrange_dalembert::{LagrangeDalembert, Strategy, derive};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
@@ -14,7 +14,7 @@ use quote::quote;
 
 /// `acceleration(&self, q, qdot, u)`, with the derivation's chosen strategy.
 pub(super) fn acceleration(model: &mut Model) -> Result<(Function, Section), Diagnostics> {
-    let derivation = derive(model).map_err(|e| internal(model, e))?;
+    let derivation = derive(model).map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     let strategy = derivation.strategy;
     let item = acceleration_with(model, &derivation, strategy)?;
     Ok((item, report_section(&derivation)))
@@ -58,7 +58,9 @@ pub(crate) fn acceleration_with(
         Strategy::Symbolic => derivation
             .closed_form
             .as_ref()
-            .ok_or_else(|| internal(model, "the closed form was not derived"))?
+            .ok_or_else(|| {
+                Diagnostics::internal(model.name.span(), "the closed form was not derived")
+            })?
             .outputs(model),
         Strategy::Numeric => derivation.numeric_solution.clone(),
     };

@@ -32,7 +32,7 @@ pub mod report;
 mod traits;
 
 use crate::derive::constraints::ConstraintAnalysis;
-use crate::diagnostic::{Diagnostic, Diagnostics};
+use crate::diagnostic::Diagnostics;
 use crate::ir::{self, Op, OperationCount};
 use crate::model::Model;
 use crate::sym::{ExprId, Matrix, SymbolId};
@@ -308,8 +308,11 @@ pub(crate) fn function_body(
         sources.push(quote!(self.#field));
         owners.push(None);
     }
-    let program = ir::lower(&model.store, &symbols, outputs).map_err(|e| internal(model, e))?;
-    let emitted = program.emit(&sources).map_err(|e| internal(model, e))?;
+    let program = ir::lower(&model.store, &symbols, outputs)
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
+    let emitted = program
+        .emit(&sources)
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     let mut used: Vec<&'static str> = program
         .instructions()
         .iter()
@@ -337,13 +340,4 @@ pub(crate) fn function_body(
         lowered,
         used,
     })
-}
-
-/// An error of the generator itself, reported on the model's name.
-pub(crate) fn internal(model: &Model, error: impl std::fmt::Display) -> Diagnostics {
-    Diagnostic::new(
-        model.name.span(),
-        format!("internal error while generating code for this model: {error}"),
-    )
-    .into()
 }

@@ -26,7 +26,7 @@ use super::port_hamiltonian::{
     Signature, item, matrix_type, rows_literal, vector_literal, vector_type,
 };
 use super::report::Section;
-use super::{Argument, Function, coordinates, f64_type, internal, velocities};
+use super::{Argument, Function, coordinates, f64_type, velocities};
 use crate::derive::momentum::{Momentum, MomentumError, derive};
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::ir::OperationCount;
@@ -50,7 +50,9 @@ pub(super) fn functions(
     let acceleration = emitted
         .iter()
         .find(|f| f.name == "acceleration")
-        .ok_or_else(|| internal(model, "`acceleration` was not emitted"))?;
+        .ok_or_else(|| {
+            Diagnostics::internal(model.name.span(), "`acceleration` was not emitted")
+        })?;
     let shape = shape_acceleration(model, &momentum, &reconstruction, acceleration);
     let functions = vec![
         momentum_of_state(model, &momentum)?,

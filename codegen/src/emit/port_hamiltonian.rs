@@ -24,9 +24,7 @@
 //! operations against 20), the sleigh's the expanded one (19 against 29).
 
 use super::report::Section;
-use super::{
-    Argument, Function, coordinates, f64_type, function_body, internal, matrix_literal, velocities,
-};
+use super::{Argument, Function, coordinates, f64_type, function_body, matrix_literal, velocities};
 use crate::derive::constraints::DistributionBasis;
 use crate::derive::port_hamiltonian::{Exact, Forms, PortHamiltonian, derive};
 use crate::diagnostic::Diagnostics;
@@ -42,8 +40,10 @@ pub(super) fn functions(
     model: &mut Model,
     basis: &DistributionBasis,
 ) -> Result<(Vec<Function>, Section), Diagnostics> {
-    let reduced = derive(model, basis).map_err(|e| internal(model, e))?;
-    let forms = reduced.forms(model).map_err(|e| internal(model, e))?;
+    let reduced = derive(model, basis).map_err(|e| Diagnostics::internal(model.name.span(), e))?;
+    let forms = reduced
+        .forms(model)
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     let section = report_section(model, &reduced);
     let emitters: [Emitter; 10] = [
         momenta,
@@ -238,11 +238,12 @@ fn expanded_product(
     matrix: &Matrix,
     column: &[RationalFunction],
 ) -> Result<Vec<ExprId>, Diagnostics> {
-    let column = Matrix::new(column.len(), 1, column.to_vec()).map_err(|e| internal(model, e))?;
+    let column = Matrix::new(column.len(), 1, column.to_vec())
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     let atoms = model.store.atoms().clone();
     let product = matrix
         .mul(&column, &atoms)
-        .map_err(|e| internal(model, e))?;
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     Ok(expressions_of(model, product.entries()))
 }
 
@@ -266,8 +267,8 @@ fn cheapest(
     let inputs = program_inputs(model, arguments);
     let mut best: Option<(u64, Vec<ExprId>)> = None;
     for candidate in candidates {
-        let program =
-            ir::lower(&model.store, &inputs, &candidate).map_err(|e| internal(model, e))?;
+        let program = ir::lower(&model.store, &inputs, &candidate)
+            .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
         let cost = program.weighted_cost();
         if best.as_ref().is_none_or(|(lowest, _)| cost < *lowest) {
             best = Some((cost, candidate));
@@ -327,7 +328,7 @@ fn product(
     matrix
         .mul(&column, &mut model.store)
         .map(|product| product.entries().to_vec())
-        .map_err(|e| internal(model, e))
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))
 }
 
 /// The derivatives of `functions` by every state variable, row by row.
@@ -568,7 +569,7 @@ fn reduced_rhs_jacobian(
             let jacobian = model
                 .store
                 .jacobian(&exact.rhs, &state)
-                .map_err(|e| internal(model, e))?;
+                .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
             Ok(expressions_of(model, jacobian.entries()))
         },
     )?;

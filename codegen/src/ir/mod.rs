@@ -77,6 +77,7 @@ mod properties;
 #[cfg(test)]
 mod tests;
 
+pub use cost::estimated_weight;
 pub use emit::Emitted;
 pub use lower::lower;
 
