@@ -44,6 +44,7 @@
 //! at random points modulo a prime ([`crate::sym::modular`]: "not constant"
 //! and "not diagonal" proved, "constant" and "diagonal" probable).
 
+pub mod items;
 mod structured;
 
 use super::constraints::{DistributionBasis, Method};

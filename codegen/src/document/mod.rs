@@ -44,8 +44,8 @@ mod render;
 
 use crate::derive::constraints::ConstraintAnalysis;
 use crate::derive::lagrange_dalembert::{self, LagrangeDalembert};
-use crate::derive::momentum::{self, Momentum};
-use crate::derive::port_hamiltonian::{self, Exact, PortHamiltonian};
+use crate::derive::momentum::Momentum;
+use crate::derive::port_hamiltonian::{Exact, PortHamiltonian, items};
 use crate::diagnostic::Diagnostics;
 use crate::emit;
 use crate::model::Model;
@@ -164,35 +164,19 @@ impl Document {
         model: &mut Model,
         constraints: &ConstraintAnalysis,
     ) -> Result<Document, Diagnostics> {
-        let emitted = emit::emit(model, constraints)?;
-        let rhs = emitted
-            .functions
-            .iter()
-            .find(|f| f.name == "reduced_rhs")
-            .and_then(|f| f.lowered.as_ref())
-            .map(|lowered| lowered.outputs.clone())
-            .ok_or_else(|| {
-                Diagnostics::internal(model.name.span(), "`reduced_rhs` was not emitted")
-            })?;
-        let basis = &constraints.basis;
-        let dalembert = lagrange_dalembert::derive(model)
-            .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
-        let reduced = port_hamiltonian::derive(model, basis)
-            .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
-        let momentum = match model.symmetry {
-            Some(_) => Some(
-                momentum::derive(model).map_err(|e| Diagnostics::internal(model.name.span(), e))?,
-            ),
-            None => None,
-        };
+        let derivation = crate::derive::derivation(model, constraints)?;
+        let emitted = emit::emit(model, constraints, &derivation)?;
+        let rhs = derivation.reduced_items.outputs(items::Item::ReducedRhs);
+        let (dalembert, reduced) = (&derivation.lagrange_dalembert, &derivation.reduced);
+        let momentum = &derivation.momentum;
         let mut sections = vec![
-            names_section(model, &reduced),
+            names_section(model, reduced),
             sizes_section(model),
             constraints_section(model, constraints),
-            dalembert_section(model, &dalembert),
-            reduced_section(model, &reduced, &rhs),
+            dalembert_section(model, dalembert),
+            reduced_section(model, reduced, rhs),
         ];
-        if let Some(momentum) = &momentum {
+        if let Some(momentum) = momentum {
             sections.push(momentum_section(model, momentum, &dalembert.inputs));
         }
         sections.push(Section {
