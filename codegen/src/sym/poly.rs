@@ -9,6 +9,12 @@
 //! independent symbols exactly when their term lists are equal (the monomials
 //! `s^e * c^k * ...` with `e <= 1` form a basis of `Q[s, c]/(s^2 + c^2 - 1)`).
 
+mod monomial;
+#[cfg(test)]
+mod tests;
+
+pub use monomial::Monomial;
+
 use super::budget::Budget;
 use super::expr::{ExprId, SymbolId};
 use super::number::Rational;
@@ -98,145 +104,6 @@ impl Atoms {
         self.list.push(atom.clone());
         self.index.insert(atom, id);
         id
-    }
-}
-
-/// A power product of atoms, sorted by atom, exponents positive.
-#[derive(Clone, Debug, PartialEq, Eq, Hash, Default)]
-pub struct Monomial(Vec<(AtomId, u32)>);
-
-impl Monomial {
-    /// The monomial 1.
-    pub fn one() -> Monomial {
-        Monomial(Vec::new())
-    }
-
-    /// `atom^exponent`.
-    pub fn power(atom: AtomId, exponent: u32) -> Monomial {
-        if exponent == 0 {
-            Monomial::one()
-        } else {
-            Monomial(vec![(atom, exponent)])
-        }
-    }
-
-    /// The `(atom, exponent)` pairs, sorted by atom.
-    pub fn factors(&self) -> &[(AtomId, u32)] {
-        &self.0
-    }
-
-    /// The exponent of `atom` (0 when absent).
-    pub fn exponent(&self, atom: AtomId) -> u32 {
-        self.0
-            .binary_search_by_key(&atom, |&(a, _)| a)
-            .map_or(0, |at| self.0[at].1)
-    }
-
-    /// True for the monomial 1.
-    pub fn is_one(&self) -> bool {
-        self.0.is_empty()
-    }
-
-    /// `self * other`.
-    pub fn mul(&self, other: &Monomial) -> Monomial {
-        let (a, b) = (&self.0, &other.0);
-        let mut out = Vec::with_capacity(a.len() + b.len());
-        let (mut i, mut j) = (0, 0);
-        while i < a.len() && j < b.len() {
-            match a[i].0.cmp(&b[j].0) {
-                Ordering::Less => {
-                    out.push(a[i]);
-                    i += 1;
-                }
-                Ordering::Greater => {
-                    out.push(b[j]);
-                    j += 1;
-                }
-                Ordering::Equal => {
-                    out.push((a[i].0, a[i].1 + b[j].1));
-                    i += 1;
-                    j += 1;
-                }
-            }
-        }
-        out.extend_from_slice(&a[i..]);
-        out.extend_from_slice(&b[j..]);
-        Monomial(out)
-    }
-
-    /// `self / other` when `other` divides `self`.
-    pub fn div(&self, other: &Monomial) -> Option<Monomial> {
-        let mut out = Vec::with_capacity(self.0.len());
-        let mut j = 0;
-        for &(atom, exponent) in &self.0 {
-            let divisor = match other.0.get(j) {
-                Some(&(a, e)) if a == atom => {
-                    j += 1;
-                    e
-                }
-                Some(&(a, _)) if a < atom => return None,
-                _ => 0,
-            };
-            match exponent.cmp(&divisor) {
-                Ordering::Less => return None,
-                Ordering::Equal => {}
-                Ordering::Greater => out.push((atom, exponent - divisor)),
-            }
-        }
-        (j == other.0.len()).then_some(Monomial(out))
-    }
-
-    /// The greatest common divisor of two monomials.
-    pub fn gcd(&self, other: &Monomial) -> Monomial {
-        Monomial(
-            self.0
-                .iter()
-                .filter_map(|&(atom, e)| {
-                    let f = other.exponent(atom);
-                    (f > 0).then_some((atom, e.min(f)))
-                })
-                .collect(),
-        )
-    }
-
-    /// Total degree.
-    pub fn degree(&self) -> u32 {
-        self.0.iter().map(|&(_, e)| e).sum()
-    }
-
-    /// Removes `atom` entirely, returning its exponent and the rest.
-    fn without(&self, atom: AtomId) -> (u32, Monomial) {
-        let exponent = self.exponent(atom);
-        let rest = self.0.iter().copied().filter(|&(a, _)| a != atom).collect();
-        (exponent, Monomial(rest))
-    }
-}
-
-/// The lexicographic monomial order (lower atom ids most significant).
-/// It is a monomial order: total, and `a > b` implies `t a > t b`.
-impl Ord for Monomial {
-    fn cmp(&self, other: &Self) -> Ordering {
-        let (a, b) = (&self.0, &other.0);
-        for k in 0.. {
-            return match (a.get(k), b.get(k)) {
-                (None, None) => Ordering::Equal,
-                (Some(_), None) => Ordering::Greater,
-                (None, Some(_)) => Ordering::Less,
-                (Some(&(x, e)), Some(&(y, f))) => match x.cmp(&y) {
-                    Ordering::Less => Ordering::Greater,
-                    Ordering::Greater => Ordering::Less,
-                    Ordering::Equal if e == f => continue,
-                    Ordering::Equal => e.cmp(&f),
-                },
-            };
-        }
-        Ordering::Equal
-    }
-}
-
-impl PartialOrd for Monomial {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
     }
 }
 
@@ -580,56 +447,5 @@ impl Poly {
     /// True for zero (no terms).
     pub fn is_empty(&self) -> bool {
         self.terms.is_empty()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::sym::{Store, SymbolKind};
-
-    fn setup() -> (Atoms, AtomId, AtomId, AtomId) {
-        let mut store = Store::new();
-        let x = store.declare("x", SymbolKind::Coordinate);
-        let arg = store.symbol(x);
-        let mut atoms = Atoms::default();
-        let m = atoms.symbol(store.declare("m", SymbolKind::Parameter));
-        let (s, c) = atoms.trig_pair(arg);
-        (atoms, m, s, c)
-    }
-
-    #[test]
-    fn sine_squared_reduces_to_one_minus_cosine_squared() {
-        let (atoms, _, s, c) = setup();
-        let sine = Poly::atom(s);
-        let cosine = Poly::atom(c);
-        let pythagoras = sine.mul(&sine, &atoms).add(&cosine.mul(&cosine, &atoms));
-        assert_eq!(pythagoras, Poly::constant(Rational::ONE));
-        let cube = sine.pow(3, &atoms);
-        assert_eq!(cube.degree_in(s), 1);
-    }
-
-    #[test]
-    fn exact_division_recovers_the_factor_and_rejects_non_factors() {
-        let (atoms, m, s, c) = setup();
-        let a = Poly::atom(m).add(&Poly::atom(c));
-        let b = Poly::atom(s).add(&Poly::constant(Rational::integer(3)));
-        let product = a.mul(&b, &atoms);
-        assert_eq!(product.div_exact(&a, atoms.budget()), Some(b.clone()));
-        assert_eq!(b.div_exact(&a, atoms.budget()), None);
-        assert_eq!(
-            Poly::atom(m).mul(&Poly::atom(m), &atoms).monomial_content(),
-            Monomial::power(m, 2)
-        );
-    }
-
-    #[test]
-    fn lexicographic_order_is_multiplicative() {
-        let (_, m, s, c) = setup();
-        let a = Monomial::power(m, 1);
-        let b = Monomial::power(s, 3).mul(&Monomial::power(c, 1));
-        assert_eq!(a.cmp(&b), Ordering::Greater);
-        let t = Monomial::power(c, 2);
-        assert_eq!(a.mul(&t).cmp(&b.mul(&t)), Ordering::Greater);
     }
 }
