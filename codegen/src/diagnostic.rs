@@ -56,6 +56,15 @@ impl fmt::Display for Diagnostic {
 pub struct Diagnostics(Vec<Diagnostic>);
 
 impl Diagnostics {
+    /// An error of the generator itself, reported at `span` (the model's name).
+    pub(crate) fn internal(span: Span, error: impl fmt::Display) -> Diagnostics {
+        Diagnostic::new(
+            span,
+            format!("internal error while generating code for this model: {error}"),
+        )
+        .into()
+    }
+
     /// No errors yet.
     pub fn new() -> Self {
         Diagnostics(Vec::new())

@@ -153,7 +153,8 @@ impl InterpretedModel {
     /// [`crate::generate`] takes), keeping the functions' programs.
     pub fn from_source(source: &str) -> Result<InterpretedModel, Diagnostics> {
         let (mut model, constraints) = analysed_model(source)?;
-        let emitted = emit::emit(&mut model, &constraints);
+        let emitted = crate::derive::derivation(&mut model, &constraints)
+            .and_then(|derivation| emit::emit(&mut model, &constraints, &derivation));
         over_budget(&model)?;
         let emitted = emitted?;
         let functions = emitted

@@ -6,9 +6,10 @@
 //! tokens --syntax::parse--> ModelSyntax --model::check--> Model --derive--> analyses --emit--> Rust items
 //! ```
 //!
-//! The symbolic engine [`sym`] holds every expression; [`ir`] lowers derived
-//! expressions to straight-line code with common subexpressions shared, which
-//! [`emit`] splices into allocation-free Rust. [`expand`] is what the
+//! The symbolic engine [`sym`] holds every expression; [`derive`] decides
+//! what each item computes (by costs estimated on the expression DAG);
+//! [`ir`] lowers those expressions to straight-line code with common
+//! subexpressions shared, which [`emit`] splices into allocation-free Rust. [`expand`] is what the
 //! `chaplygin::model!` macro calls; [`Builder`] is the build-script door for
 //! `.model` files. [`document`] lays out a model's derivation as text, LaTeX
 //! or JSON; [`interpret`] runs a model text through the IR interpreter
@@ -92,7 +93,8 @@ fn compile_within(
 ) -> Result<TokenStream, diagnostic::Diagnostics> {
     let outcome = model::check_within(syntax, budget.clone()).and_then(|mut model| {
         let constraints = derive::constraints::analyse(&mut model)?;
-        emit::model_items(&mut model, &constraints)
+        let derivation = derive::derivation(&mut model, &constraints)?;
+        emit::model_items(&mut model, &constraints, &derivation)
     });
     within_budget(syntax, &budget, outcome)
 }

@@ -51,11 +51,16 @@
 //! factors (`(1 + x^2)(y xdot + x ydot) = 0` is holonomic but not exact), so
 //! it is reported alongside Frobenius and decides nothing.
 
+mod at_points;
+mod basis;
+
+use at_points::{growth_vector_at_point, is_involutive_at_points};
+pub use basis::{DistributionBasis, default_point, distribution_basis};
+
 use crate::diagnostic::{Diagnostic, Diagnostics};
-use crate::emit::internal;
 use crate::model::Model;
-use crate::sym::modular::{self, Outside, Point, Values};
-use crate::sym::{ExprId, ExprMatrix, Matrix, MatrixError, RationalFunction, SymbolId};
+use crate::sym::modular::Outside;
+use crate::sym::{Matrix, MatrixError, RationalFunction};
 
 /// The term products the exact basis of D may take.
 pub const EXACT_BASIS_PRODUCTS: u64 = 1_000_000;
@@ -164,7 +169,8 @@ pub enum AnalysisError {
 /// Analyses the constraints; with `#[deny_holonomic]`, integrable
 /// constraints are an error spanned on the first constraint's name.
 pub fn analyse(model: &mut Model) -> Result<ConstraintAnalysis, Diagnostics> {
-    let analysis = derive_analysis(model).map_err(|e| internal(model, e))?;
+    let analysis =
+        derive_analysis(model).map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     deny_holonomic(model, &analysis)?;
     Ok(analysis)
 }
@@ -337,116 +343,6 @@ fn bracket(
     model.store.lie_bracket(x, y, &coordinates)
 }
 
-/// Frobenius at random points: `A [X_i, X_j]` evaluated modulo a prime at
-/// two points; a non-zero value proves D not integrable.
-fn is_involutive_at_points(
-    model: &mut Model,
-    basis: &DistributionBasis,
-) -> Result<bool, AnalysisError> {
-    let fields = expression_columns(&basis.field_expressions);
-    let rows = ExprMatrix::of(&model.constraint_matrix, &mut model.store);
-    let mut products = Vec::new();
-    for (i, x) in fields.iter().enumerate() {
-        for y in &fields[i + 1..] {
-            let bracket = ExprMatrix::column(expression_bracket(model, x, y));
-            products.extend_from_slice(rows.mul(&bracket, &mut model.store)?.entries());
-        }
-    }
-    for seed in modular::SEEDS {
-        let values = Values::at(Point::new(seed)).of(&model.store, &products)?;
-        if values.iter().any(|&v| v != 0) {
-            return Ok(false);
-        }
-    }
-    Ok(true)
-}
-
-/// The growth vector from ranks at a random point, with the brackets built
-/// as expressions; `(growth, complete)`, incomplete when the brackets of
-/// the next level would exceed [`STRUCTURED_GROWTH_NODES`] new nodes.
-fn growth_vector_at_point(
-    model: &mut Model,
-    basis: &DistributionBasis,
-) -> Result<(Vec<usize>, bool), AnalysisError> {
-    let start = model.store.len();
-    let fields = expression_columns(&basis.field_expressions);
-    let mut span = SpanAtPoint::new(model.n(), Point::new(modular::SEEDS[0]));
-    let mut newest = span.additions(model, fields.clone())?;
-    let mut growth = vec![span.rank()];
-    while span.rank() < model.n() && !newest.is_empty() {
-        let mut brackets = Vec::with_capacity(fields.len() * newest.len());
-        for x in &fields {
-            for y in &newest {
-                if model.store.len() - start > STRUCTURED_GROWTH_NODES {
-                    return Ok((growth, false));
-                }
-                brackets.push(expression_bracket(model, x, y));
-            }
-        }
-        newest = span.additions(model, brackets)?;
-        if newest.is_empty() {
-            break;
-        }
-        growth.push(span.rank());
-    }
-    Ok((growth, true))
-}
-
-/// Fields kept for their values at a point, which are independent there.
-struct SpanAtPoint {
-    n: usize,
-    /// The kept fields' values, row after row.
-    values: Vec<u64>,
-    /// The values of every node evaluated at the point.
-    at_point: Values,
-}
-
-impl SpanAtPoint {
-    fn new(n: usize, point: Point) -> SpanAtPoint {
-        SpanAtPoint {
-            n,
-            values: Vec::new(),
-            at_point: Values::at(point),
-        }
-    }
-
-    fn rank(&self) -> usize {
-        self.values.len() / self.n.max(1)
-    }
-
-    /// Keeps each candidate whose value at `point` raises the rank; returns those.
-    fn additions(
-        &mut self,
-        model: &Model,
-        candidates: Vec<Vec<ExprId>>,
-    ) -> Result<Vec<Vec<ExprId>>, Outside> {
-        let mut added = Vec::new();
-        for candidate in candidates {
-            let values = self.at_point.of(&model.store, &candidate)?;
-            let before = self.values.len();
-            self.values.extend_from_slice(&values);
-            let fields = self.rank();
-            if modular::rank(self.values.clone(), fields, self.n) == fields {
-                added.push(candidate);
-            } else {
-                self.values.truncate(before);
-            }
-        }
-        Ok(added)
-    }
-}
-
-fn expression_bracket(model: &mut Model, x: &[ExprId], y: &[ExprId]) -> Vec<ExprId> {
-    let coordinates = model.coordinate_symbols();
-    model.store.lie_bracket_of_expressions(x, y, &coordinates)
-}
-
-fn expression_columns(matrix: &ExprMatrix) -> Vec<Vec<ExprId>> {
-    (0..matrix.columns())
-        .map(|j| matrix.column_entries(j))
-        .collect()
-}
-
 fn columns_of(matrix: &Matrix) -> Vec<Field> {
     (0..matrix.columns())
         .map(|j| {
@@ -471,197 +367,6 @@ fn exact_rows(model: &mut Model) -> Result<Vec<bool>, MatrixError> {
         exact.push(asymmetry.is_zero());
     }
     Ok(exact)
-}
-
-/// A basis of the constraint distribution D and how it was chosen.
-#[derive(Clone, Debug)]
-pub struct DistributionBasis {
-    /// `X`, n x k, as expressions: column j is the vector field `X_j`, the
-    /// dependent speeds written as the elimination computes them.
-    pub field_expressions: ExprMatrix,
-    /// `X` in exact normal form, when it fits [`EXACT_BASIS_PRODUCTS`].
-    pub fields: Option<Matrix>,
-    /// The coordinates whose speeds are dependent (pivot columns), in row order.
-    pub dependent: Vec<usize>,
-    /// The coordinates whose speeds are independent, in order: `X_j` has a 1
-    /// at `independent[j]` and 0 at the other independent speeds.
-    pub independent: Vec<usize>,
-}
-
-/// Chooses the dependent speeds at the defaults and solves for a basis of
-/// D: as expressions always, in normal form within [`EXACT_BASIS_PRODUCTS`].
-pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, MatrixError> {
-    let n = model.n();
-    let dependent = pivot_columns(model);
-    let independent: Vec<usize> = (0..n).filter(|j| !dependent.contains(j)).collect();
-    let a = ExprMatrix::of(&model.constraint_matrix, &mut model.store);
-    let (a_r, a_s) = (
-        expression_columns_at(&a, &dependent, &mut model.store),
-        expression_columns_at(&a, &independent, &mut model.store),
-    );
-    let solved = model.store.solve_in_order(&a_r, &a_s)?;
-    let minus_one = model.store.integer(-1);
-    let a_n = solved.scale(minus_one, &mut model.store);
-    let mut field_expressions = ExprMatrix::zeros(&mut model.store, n, independent.len());
-    let one = model.store.integer(1);
-    for (k, &j) in independent.iter().enumerate() {
-        field_expressions.set(j, k, one);
-    }
-    for (row, &j) in dependent.iter().enumerate() {
-        for k in 0..independent.len() {
-            field_expressions.set(j, k, a_n.get(row, k));
-        }
-    }
-    let exact_a = &model.constraint_matrix;
-    let fields = model
-        .store
-        .attempt(EXACT_BASIS_PRODUCTS, |store| {
-            exact_fields(exact_a, &dependent, &independent, store.atoms())
-        })
-        .transpose()?;
-    Ok(DistributionBasis {
-        field_expressions,
-        fields,
-        dependent,
-        independent,
-    })
-}
-
-/// The columns `indices` of `a`, in that order.
-fn expression_columns_at(
-    a: &ExprMatrix,
-    indices: &[usize],
-    store: &mut crate::sym::Store,
-) -> ExprMatrix {
-    let mut columns = ExprMatrix::zeros(store, a.rows(), indices.len());
-    for i in 0..a.rows() {
-        for (k, &j) in indices.iter().enumerate() {
-            columns.set(i, k, a.get(i, j));
-        }
-    }
-    columns
-}
-
-/// `X = [I; -A_r^-1 A_s]` (rows permuted back) in normal form.
-fn exact_fields(
-    a: &Matrix,
-    dependent: &[usize],
-    independent: &[usize],
-    atoms: &crate::sym::Atoms,
-) -> Result<Matrix, MatrixError> {
-    let c = a.rows();
-    let columns = |indices: &[usize]| {
-        let mut m = Matrix::zeros(c, indices.len());
-        for i in 0..c {
-            for (k, &j) in indices.iter().enumerate() {
-                m.set(i, k, a.get(i, j).clone());
-            }
-        }
-        m
-    };
-    let a_n = columns(dependent)
-        .solve(&columns(independent), atoms)?
-        .neg();
-    let mut fields = Matrix::zeros(a.columns(), independent.len());
-    for (k, &j) in independent.iter().enumerate() {
-        fields.set(j, k, RationalFunction::one());
-    }
-    for (row, &j) in dependent.iter().enumerate() {
-        for k in 0..independent.len() {
-            fields.set(j, k, a_n.get(row, k).clone());
-        }
-    }
-    Ok(fields)
-}
-
-/// The dependent speeds: pivots at the defaults when A has full rank there,
-/// generic pivots otherwise.
-fn pivot_columns(model: &mut Model) -> Vec<usize> {
-    pivots_at_defaults(model).unwrap_or_else(|| generic_pivots(model))
-}
-
-/// A pivot smaller than this, relative to A's largest entry at the defaults,
-/// counts as vanishing there (the choice only needs to be regular; the solve
-/// that follows is exact).
-const VANISHING_PIVOT: f64 = 1e-9;
-
-/// Gaussian elimination with partial pivoting on A at the defaults: the
-/// pivot column of each row is the one of largest magnitude there. `None`
-/// when a pivot vanishes (A is singular at the defaults).
-fn pivots_at_defaults(model: &mut Model) -> Option<Vec<usize>> {
-    let (n, c) = (model.n(), model.c());
-    let defaults = default_point(model);
-    let mut values = model
-        .constraint_matrix
-        .evaluate(&mut model.store, &|s| defaults(s));
-    let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut pivots: Vec<usize> = Vec::with_capacity(c);
-    for row in 0..c {
-        let column = (0..n).filter(|j| !pivots.contains(j)).max_by(|&a, &b| {
-            values[row * n + a]
-                .abs()
-                .total_cmp(&values[row * n + b].abs())
-        })?;
-        let pivot = values[row * n + column];
-        let regular = pivot.abs() > VANISHING_PIVOT * scale;
-        if !regular {
-            return None;
-        }
-        for below in row + 1..c {
-            let factor = values[below * n + column] / pivot;
-            for j in 0..n {
-                values[below * n + j] -= factor * values[row * n + j];
-            }
-        }
-        pivots.push(column);
-    }
-    Some(pivots)
-}
-
-/// Exact elimination on A: the pivot of each row is its first column with a
-/// non-zero entry (A has full generic rank, checked by `model::check`).
-fn generic_pivots(model: &Model) -> Vec<usize> {
-    let (n, c) = (model.n(), model.c());
-    let atoms = model.store.atoms();
-    let mut rows: Vec<Field> = (0..c)
-        .map(|i| {
-            (0..n)
-                .map(|j| model.constraint_matrix.get(i, j).clone())
-                .collect()
-        })
-        .collect();
-    let mut pivots = Vec::with_capacity(c);
-    for row in 0..c {
-        let Some(column) = (0..n).find(|&j| !pivots.contains(&j) && !rows[row][j].is_zero()) else {
-            break;
-        };
-        let pivot_row = rows[row].clone();
-        for below in &mut rows[row + 1..] {
-            let Some(factor) = below[column].div(&pivot_row[column], atoms) else {
-                continue;
-            };
-            for (entry, p) in below.iter_mut().zip(&pivot_row) {
-                *entry = entry.sub(&factor.mul(p, atoms), atoms);
-            }
-        }
-        pivots.push(column);
-    }
-    pivots
-}
-
-/// The default configuration: coordinates 0, parameters at their defaults.
-pub fn default_point(model: &Model) -> impl Fn(SymbolId) -> f64 + use<> {
-    let parameters: Vec<(SymbolId, f64)> = model
-        .parameters
-        .iter()
-        .map(|p| (p.variable.symbol, p.default.to_f64()))
-        .collect();
-    move |s| {
-        parameters
-            .iter()
-            .find(|(p, _)| *p == s)
-            .map_or(0.0, |(_, v)| *v)
-    }
 }
 
 #[cfg(test)]

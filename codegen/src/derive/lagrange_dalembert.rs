@@ -33,17 +33,17 @@
 //!   ([`crate::sym::Store::ldl`]), skipping the structural zeros of `A`,
 //!   and fails (division by a zero pivot) exactly where the equations do.
 //!
-//! The cheaper one after common subexpressions are shared is chosen
-//! ([`LagrangeDalembert::strategy`]), by the weighted cost of
-//! [`crate::ir::Program::weighted_cost`] (a division weighs four additions,
-//! a call of `sin` twenty). Exact inverses grow
+//! The cheaper one is chosen ([`LagrangeDalembert::strategy`]) by the
+//! weighted cost [`crate::ir::estimated_weight`] estimates on the expression
+//! DAG, without lowering either (a division weighs four additions, a call of
+//! `sin` twenty). Exact inverses grow
 //! quickly with the size of a dense block (a 6 x 6 coupled metric with trig
 //! entries does not finish in minutes), so the closed form is only derived
 //! when every diagonal block of `g`, and `c`, are at most
 //! [`CLOSED_FORM_LIMIT`], and within [`CLOSED_FORM_PRODUCTS`] term products;
 //! otherwise the numeric strategy is taken outright.
 
-use crate::ir::{self, IrError};
+use crate::ir;
 use crate::model::Model;
 use crate::sym::{
     ExprId, ExprMatrix, Matrix, MatrixError, Poly, RationalFunction, Store, SymbolId, SymbolKind,
@@ -92,13 +92,7 @@ pub struct LagrangeDalembert {
     /// `qddot` then `lambda`, the system's solution by blocks, as
     /// expressions over its pieces.
     pub numeric_solution: Vec<ExprId>,
-    /// Operations of the closed form after common subexpressions are shared
-    /// (`None` when it was not derived).
-    pub symbolic_operations: Option<u64>,
-    /// Operations of the numeric solution (pieces and solve) after common
-    /// subexpressions are shared.
-    pub numeric_operations: u64,
-    /// The weighted costs ([`crate::ir::Program::weighted_cost`]) of the
+    /// The estimated weighted costs ([`crate::ir::estimated_weight`]) of the
     /// closed form (when derived) and of the numeric solution, which decide
     /// the strategy.
     pub weighted_costs: (Option<u64>, u64),
@@ -113,9 +107,6 @@ pub enum DerivationError {
     /// A symbolic matrix operation failed.
     #[error(transparent)]
     Matrix(#[from] MatrixError),
-    /// Lowering for the operation count failed.
-    #[error(transparent)]
-    Ir(#[from] IrError),
 }
 
 /// The largest diagonal block of `g`, and the largest `c`, for which the
@@ -134,7 +125,7 @@ pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
     let terms = Terms::of(model, &inputs)?;
     let saddle_point = terms.saddle_point(model);
     let numeric_solution = saddle_point.solution_by_blocks(model)?;
-    let (numeric_operations, numeric_weight) = operations(model, &inputs, &numeric_solution)?;
+    let numeric_weight = ir::estimated_weight(&model.store, &numeric_solution);
     let closed_form = if closed_form_is_tractable(model) {
         model
             .attempt(CLOSED_FORM_PRODUCTS, |model| terms.closed_form(model))
@@ -142,15 +133,10 @@ pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
     } else {
         None
     };
-    let symbolic = match &closed_form {
-        Some(closed_form) => {
-            let outputs = closed_form.outputs(model);
-            Some(operations(model, &inputs, &outputs)?)
-        }
-        None => None,
-    };
-    let symbolic_operations = symbolic.map(|(count, _)| count);
-    let symbolic_weight = symbolic.map(|(_, weight)| weight);
+    let symbolic_weight = closed_form.as_ref().map(|closed_form| {
+        let outputs = closed_form.outputs(model);
+        ir::estimated_weight(&model.store, &outputs)
+    });
     let strategy = match symbolic_weight {
         Some(weight) if weight <= numeric_weight => Strategy::Symbolic,
         _ => Strategy::Numeric,
@@ -160,8 +146,6 @@ pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
         closed_form,
         saddle_point,
         numeric_solution,
-        symbolic_operations,
-        numeric_operations,
         weighted_costs: (symbolic_weight, numeric_weight),
         strategy,
     })
@@ -186,21 +170,6 @@ fn declare_inputs(model: &mut Model) -> Vec<SymbolId> {
         .iter()
         .map(|input| model.store.declare(&input.name, SymbolKind::Auxiliary))
         .collect()
-}
-
-/// The operation count of `outputs` after common subexpressions are shared,
-/// and their weighted cost.
-fn operations(
-    model: &Model,
-    inputs: &[SymbolId],
-    outputs: &[ExprId],
-) -> Result<(u64, u64), IrError> {
-    let mut arguments = model.coordinate_symbols();
-    arguments.extend(&model.velocities);
-    arguments.extend(inputs);
-    arguments.extend(model.parameter_symbols());
-    let program = ir::lower(&model.store, &arguments, outputs)?;
-    Ok((program.operation_count().after_cse, program.weighted_cost()))
 }
 
 /// The terms of the equations, as columns.
@@ -377,9 +346,10 @@ fn directional_derivative(
 #[cfg(test)]
 mod tests {
     use super::{LagrangeDalembert, Strategy, derive};
+    use crate::ir;
     use crate::model::{Model, check};
-    use crate::sym::SymbolId;
     use crate::sym::zero::SplitMix;
+    use crate::sym::{ExprId, SymbolId};
     use crate::syntax::parse_str;
     use chaplygin_runtime::nalgebra::{DMatrix, DVector};
     use std::collections::HashMap;
@@ -549,23 +519,37 @@ pub struct Towed {
         assert_strategies_agree::<4>(SLEIGH);
     }
 
-    /// The strategy with the smaller weighted cost is emitted, the closed
-    /// form on a tie: the sleigh's and the snakeboard's closed forms are
-    /// cheap, the towed sleigh's dense coupled metric does not invert
-    /// cheaply in closed form.
+    /// The weighted cost of `outputs` once lowered ([`ir::Program::weighted_cost`]).
+    fn lowered_weight(model: &Model, d: &LagrangeDalembert, outputs: &[ExprId]) -> u64 {
+        let mut arguments = model.coordinate_symbols();
+        arguments.extend(&model.velocities);
+        arguments.extend(&d.inputs);
+        arguments.extend(model.parameter_symbols());
+        ir::lower(&model.store, &arguments, outputs)
+            .expect("every symbol is an argument")
+            .weighted_cost()
+    }
+
+    /// The strategy the DAG estimate chooses is the one whose lowered
+    /// program weighs less (the closed form on a tie): the sleigh's and the
+    /// snakeboard's closed forms are cheap, the towed sleigh's dense coupled
+    /// metric does not invert cheaply in closed form.
     #[test]
-    fn the_cheaper_strategy_is_chosen() {
+    fn the_estimate_chooses_the_strategy_that_lowers_cheaper() {
         for (name, source) in [
             ("snakeboard", crate::fixtures::SNAKEBOARD),
             ("sleigh", SLEIGH),
             ("towed", TOWED),
         ] {
-            let (_, d) = derived(source);
-            let (symbolic, numeric) = d.weighted_costs;
-            let symbolic = symbolic.expect("within the limits");
+            let (mut model, d) = derived(source);
+            let closed_form = d.closed_form.as_ref().expect("within the limits");
+            let closed_form = closed_form.outputs(&mut model);
+            let symbolic = lowered_weight(&model, &d, &closed_form);
+            let numeric = lowered_weight(&model, &d, &d.numeric_solution);
             println!(
-                "{name}: operations closed form {:?}, by blocks {}; weighted {symbolic}, {numeric} -> {:?}",
-                d.symbolic_operations, d.numeric_operations, d.strategy
+                "{name}: lowered weights closed form {symbolic}, by blocks {numeric}; \
+                 estimated {:?} -> {:?}",
+                d.weighted_costs, d.strategy
             );
             let expected = if symbolic <= numeric {
                 Strategy::Symbolic
@@ -586,7 +570,7 @@ pub struct Towed {
             model.mass_matrix.diagonal_blocks(),
             [vec![0, 1, 2, 3, 4, 5]]
         );
-        assert!(d.closed_form.is_none() && d.symbolic_operations.is_none());
+        assert!(d.closed_form.is_none() && d.weighted_costs.0.is_none());
         assert_eq!(d.strategy, Strategy::Numeric);
         assert_strategies_agree::<8>(CHAIN);
     }

@@ -1,8 +1,68 @@
 //! Derivations: from a checked model to its equations of motion.
 //!
-//! One module per formulation, each stating its equation and citing its source.
+//! One module per formulation, each stating its equation and citing its
+//! source. [`derivation`] runs them in order after the constraint analysis
+//! and decides everything emission needs: the solve of `acceleration`
+//! ([`lagrange_dalembert::Strategy`]) and the form of each reduced item
+//! ([`port_hamiltonian::items`]), each by a cost estimated on the expression
+//! DAG. Emission lowers what it is given and decides nothing.
 
 pub mod constraints;
 pub mod lagrange_dalembert;
 pub mod momentum;
 pub mod port_hamiltonian;
+
+use crate::diagnostic::{Diagnostic, Diagnostics};
+use crate::model::Model;
+use constraints::ConstraintAnalysis;
+use lagrange_dalembert::LagrangeDalembert;
+use momentum::{Momentum, MomentumError};
+use port_hamiltonian::PortHamiltonian;
+use port_hamiltonian::items::Items;
+
+/// Everything derived from an analysed model.
+#[derive(Clone, Debug)]
+pub struct Derivation {
+    /// The Lagrange-d'Alembert equations and their chosen solve (MATH.md 2).
+    pub lagrange_dalembert: LagrangeDalembert,
+    /// The reduced port-Hamiltonian form (MATH.md 3).
+    pub reduced: PortHamiltonian,
+    /// The reduced form's items, each in its chosen form.
+    pub reduced_items: Items,
+    /// The momentum equation, for a model with a symmetry (MATH.md 4).
+    pub momentum: Option<Momentum>,
+}
+
+/// Derives every formulation of `model` on the basis of D of `constraints`.
+pub fn derivation(
+    model: &mut Model,
+    constraints: &ConstraintAnalysis,
+) -> Result<Derivation, Diagnostics> {
+    let internal = |model: &Model, error: &dyn std::fmt::Display| {
+        Diagnostics::internal(model.name.span(), error)
+    };
+    let lagrange_dalembert = lagrange_dalembert::derive(model).map_err(|e| internal(model, &e))?;
+    let reduced =
+        port_hamiltonian::derive(model, &constraints.basis).map_err(|e| internal(model, &e))?;
+    let reduced_items =
+        port_hamiltonian::items::items(model, &reduced).map_err(|e| internal(model, &e))?;
+    let momentum = match model.symmetry {
+        Some(_) => Some(momentum::derive(model).map_err(|error| refused(model, error))?),
+        None => None,
+    };
+    Ok(Derivation {
+        lagrange_dalembert,
+        reduced,
+        reduced_items,
+        momentum,
+    })
+}
+
+/// The momentum equation's failure, on the symmetry declaration.
+fn refused(model: &Model, error: MomentumError) -> Diagnostics {
+    let span = model
+        .symmetry
+        .as_ref()
+        .map_or(model.name.span(), |symmetry| symmetry.span);
+    Diagnostic::new(span, error.to_string()).into()
+}

@@ -2,8 +2,7 @@
 //! `constraint_matrix`, `constraint_residual`.
 
 use super::{
-    Function, coordinates, expressions, f64_type, function_body, internal, matrix_literal,
-    velocities,
+    Function, coordinates, expressions, f64_type, function_body, matrix_literal, velocities,
 };
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
@@ -106,11 +105,11 @@ fn constraint_residual(model: &mut Model) -> Result<Function, Diagnostics> {
             })
             .collect(),
     )
-    .map_err(|e| internal(model, e))?;
+    .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     let residual = model
         .constraint_matrix
         .mul(&velocity_column, &atoms)
-        .map_err(|e| internal(model, e))?;
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     let outputs = expressions(model, &residual);
     let arguments = [coordinates(model), velocities(model)];
     let body = function_body(model, &arguments, &outputs, |values| quote!([#(#values),*]))?;

@@ -5,22 +5,24 @@
 //! system by blocks on those numbers.
 
 use super::report::Section;
-use super::{Argument, Function, coordinates, f64_type, function_body, internal, velocities};
-use crate::derive::lagrange_dalembert::{LagrangeDalembert, Strategy, derive};
+use super::{Argument, Function, coordinates, f64_type, function_body, velocities};
+use crate::derive::lagrange_dalembert::{LagrangeDalembert, Strategy};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
+use crate::sym::ExprId;
 use proc_macro2::TokenStream;
 use quote::quote;
 
 /// `acceleration(&self, q, qdot, u)`, with the derivation's chosen strategy.
-pub(super) fn acceleration(model: &mut Model) -> Result<(Function, Section), Diagnostics> {
-    let derivation = derive(model).map_err(|e| internal(model, e))?;
-    let strategy = derivation.strategy;
-    let item = acceleration_with(model, &derivation, strategy)?;
-    Ok((item, report_section(&derivation)))
+pub(super) fn acceleration(
+    model: &mut Model,
+    derivation: &LagrangeDalembert,
+) -> Result<(Function, Section), Diagnostics> {
+    let item = acceleration_with(model, derivation, derivation.strategy)?;
+    Ok((item, report_section(derivation)))
 }
 
-/// What the report says of the solve: the strategy and both operation counts.
+/// What the report says of the solve: the strategy and both estimated costs.
 fn report_section(derivation: &LagrangeDalembert) -> Section {
     let mut section = Section::new("Lagrange-d'Alembert equations (qddot, lambda)");
     let chosen = match derivation.strategy {
@@ -31,17 +33,10 @@ fn report_section(derivation: &LagrangeDalembert) -> Section {
         }
     };
     section.line(format!("solve: {chosen}"));
-    let symbolic = derivation
-        .symbolic_operations
-        .map_or("not derived (too large)".to_string(), |n| n.to_string());
-    section.line(format!(
-        "operations after CSE: closed form {symbolic}, numeric solve {}",
-        derivation.numeric_operations
-    ));
     let (symbolic_weight, numeric_weight) = derivation.weighted_costs;
     let symbolic_weight = symbolic_weight.map_or("-".to_string(), |w| w.to_string());
     section.line(format!(
-        "weighted cost (a division 4, a call 20): closed form {symbolic_weight}, \
+        "estimated weighted cost (a division 4, a call 20): closed form {symbolic_weight}, \
          numeric solve {numeric_weight}"
     ));
     section
@@ -54,14 +49,7 @@ pub(crate) fn acceleration_with(
     strategy: Strategy,
 ) -> Result<Function, Diagnostics> {
     let (n, c, p) = (model.n(), model.c(), model.p());
-    let outputs = match strategy {
-        Strategy::Symbolic => derivation
-            .closed_form
-            .as_ref()
-            .ok_or_else(|| internal(model, "the closed form was not derived"))?
-            .outputs(model),
-        Strategy::Numeric => derivation.numeric_solution.clone(),
-    };
+    let outputs = solution_expressions(model, derivation, strategy)?;
     let arguments = [
         coordinates(model),
         velocities(model),
@@ -107,6 +95,24 @@ pub(crate) fn acceleration_with(
         item,
         operations,
         lowered: Some(lowered),
+    })
+}
+
+/// The exact expressions of `(qddot, lambda)` that `strategy` computes.
+pub(super) fn solution_expressions(
+    model: &mut Model,
+    derivation: &LagrangeDalembert,
+    strategy: Strategy,
+) -> Result<Vec<ExprId>, Diagnostics> {
+    Ok(match strategy {
+        Strategy::Symbolic => derivation
+            .closed_form
+            .as_ref()
+            .ok_or_else(|| {
+                Diagnostics::internal(model.name.span(), "the closed form was not derived")
+            })?
+            .outputs(model),
+        Strategy::Numeric => derivation.numeric_solution.clone(),
     })
 }
 

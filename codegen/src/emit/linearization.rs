@@ -14,26 +14,24 @@
 //! flow `d(q, qdot)/dt = (qdot, qddot(q, qdot, u))` needs nothing else
 //! (MATH.md section 6).
 
-use super::{Argument, Function, coordinates, f64_type, function_body, internal, velocities};
+use super::lagrange_dalembert::solution_expressions;
+use super::{Argument, Function, coordinates, f64_type, function_body, velocities};
+use crate::derive::lagrange_dalembert::LagrangeDalembert;
 use crate::diagnostic::Diagnostics;
 use crate::model::{GroupFactor, Model};
 use crate::sym::{ExprId, SymbolId, SymbolKind};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-/// `acceleration_jacobian(&self, q, qdot, u)`, from the outputs of the
-/// emitted `acceleration` (its first n outputs are `qddot`).
+/// `acceleration_jacobian(&self, q, qdot, u)`, from the expressions of
+/// `qddot` the derivation chose to emit `acceleration` from.
 pub(super) fn acceleration_jacobian(
     model: &mut Model,
-    acceleration: &Function,
+    derivation: &LagrangeDalembert,
 ) -> Result<Function, Diagnostics> {
     let (n, p) = (model.n(), model.p());
-    let accelerations: Vec<ExprId> = acceleration
-        .lowered
-        .as_ref()
-        .ok_or_else(|| internal(model, "`acceleration` has no program to differentiate"))?
-        .outputs[..n]
-        .to_vec();
+    let mut accelerations = solution_expressions(model, derivation, derivation.strategy)?;
+    accelerations.truncate(n);
     let inputs = input_symbols(model);
     let coordinates_argument = coordinates(model);
     let velocities_argument = velocities(model);

@@ -4,9 +4,7 @@
 //! (`f(q)`) and `holonomic_jacobian(q)` (`df/dq`, by exact
 //! differentiation). A model without mechanism sections has them empty.
 
-use super::{
-    Function, coordinates, expressions, f64_type, function_body, internal, matrix_literal,
-};
+use super::{Function, coordinates, expressions, f64_type, function_body, matrix_literal};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
 use crate::sym::Matrix;
@@ -141,11 +139,12 @@ fn holonomic_jacobian_matrix(model: &mut Model) -> Result<Matrix, Diagnostics> {
             let partial = model
                 .store
                 .derivative_of_normal(f, coordinate)
-                .map_err(|e| internal(model, e))?;
+                .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
             entries.push(partial);
         }
     }
-    Matrix::new(residual.rows(), model.n(), entries).map_err(|e| internal(model, e))
+    Matrix::new(residual.rows(), model.n(), entries)
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))
 }
 
 fn holonomic_jacobian(model: &mut Model, jacobian: &Matrix) -> Result<Function, Diagnostics> {

@@ -37,8 +37,9 @@ mod port_hamiltonian;
 pub mod report;
 mod traits;
 
+use crate::derive::Derivation;
 use crate::derive::constraints::ConstraintAnalysis;
-use crate::diagnostic::{Diagnostic, Diagnostics};
+use crate::diagnostic::Diagnostics;
 use crate::ir::{self, Op, OperationCount};
 use crate::model::Model;
 use crate::sym::{ExprId, Matrix, SymbolId};
@@ -64,11 +65,10 @@ pub(crate) struct Function {
 
 /// The program of a function body and its layout: input slots are the
 /// elements of each argument array in order, then the parameters in
-/// declared order; `outputs` are the expressions it computes.
+/// declared order.
 pub(crate) struct Lowered {
     pub(crate) program: ir::Program,
     pub(crate) arguments: Vec<(&'static str, usize)>,
-    pub(crate) outputs: Vec<ExprId>,
 }
 
 /// A model's items, its emitted functions and its report text.
@@ -78,32 +78,37 @@ pub(crate) struct Emitted {
     pub(crate) report: String,
 }
 
-/// The Rust items of a checked and analysed model.
+/// The Rust items of a checked, analysed and derived model.
 pub fn model_items(
     model: &mut Model,
     constraints: &ConstraintAnalysis,
+    derivation: &Derivation,
 ) -> Result<TokenStream, Diagnostics> {
-    emit(model, constraints).map(|emitted| emitted.items)
+    emit(model, constraints, derivation).map(|emitted| emitted.items)
 }
 
 /// [`model_items`], keeping the functions and the report.
 pub(crate) fn emit(
     model: &mut Model,
     constraints: &ConstraintAnalysis,
+    derivation: &Derivation,
 ) -> Result<Emitted, Diagnostics> {
     let definition = parameter_struct(model);
     let constants = constants(model);
     let mechanism_constants = mechanism::constants(model);
     let mut functions = kinematics::functions(model)?;
     functions.extend(mechanism::functions(model)?);
-    let (acceleration, solve_report) = lagrange_dalembert::acceleration(model)?;
-    let acceleration_jacobian = linearization::acceleration_jacobian(model, &acceleration)?;
+    let (acceleration, solve_report) =
+        lagrange_dalembert::acceleration(model, &derivation.lagrange_dalembert)?;
+    let acceleration_jacobian =
+        linearization::acceleration_jacobian(model, &derivation.lagrange_dalembert)?;
     functions.extend([acceleration, acceleration_jacobian]);
-    let (reduced, reduced_report) = port_hamiltonian::functions(model, &constraints.basis)?;
+    let (reduced, reduced_report) =
+        port_hamiltonian::functions(model, &derivation.reduced, &derivation.reduced_items)?;
     functions.extend(reduced);
     let mut sections = vec![solve_report, reduced_report];
-    if model.symmetry.is_some() {
-        let (reduction, reduction_report) = momentum::functions(model, &functions)?;
+    if let Some(momentum) = &derivation.momentum {
+        let (reduction, reduction_report) = momentum::functions(model, momentum, &functions)?;
         functions.extend(reduction);
         sections.push(reduction_report);
     }
@@ -320,8 +325,11 @@ pub(crate) fn function_body(
         sources.push(quote!(self.#field));
         owners.push(None);
     }
-    let program = ir::lower(&model.store, &symbols, outputs).map_err(|e| internal(model, e))?;
-    let emitted = program.emit(&sources).map_err(|e| internal(model, e))?;
+    let program = ir::lower(&model.store, &symbols, outputs)
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
+    let emitted = program
+        .emit(&sources)
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     let mut used: Vec<&'static str> = program
         .instructions()
         .iter()
@@ -341,7 +349,6 @@ pub(crate) fn function_body(
             .iter()
             .map(|argument| (argument.name, argument.symbols.len()))
             .collect(),
-        outputs: outputs.to_vec(),
     };
     Ok(Body {
         statements: quote!(#statements #value),
@@ -349,13 +356,4 @@ pub(crate) fn function_body(
         lowered,
         used,
     })
-}
-
-/// An error of the generator itself, reported on the model's name.
-pub(crate) fn internal(model: &Model, error: impl std::fmt::Display) -> Diagnostics {
-    Diagnostic::new(
-        model.name.span(),
-        format!("internal error while generating code for this model: {error}"),
-    )
-    .into()
 }

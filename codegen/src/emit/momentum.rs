@@ -26,9 +26,9 @@ use super::port_hamiltonian::{
     Signature, item, matrix_type, rows_literal, vector_literal, vector_type,
 };
 use super::report::Section;
-use super::{Argument, Function, coordinates, f64_type, internal, velocities};
-use crate::derive::momentum::{Momentum, MomentumError, derive};
-use crate::diagnostic::{Diagnostic, Diagnostics};
+use super::{Argument, Function, coordinates, f64_type, velocities};
+use crate::derive::momentum::Momentum;
+use crate::diagnostic::Diagnostics;
 use crate::ir::OperationCount;
 use crate::model::Model;
 use crate::sym::{Matrix, RationalFunction};
@@ -42,23 +42,25 @@ const TITLE: &str =
 /// emitted before (`acceleration` among them).
 pub(super) fn functions(
     model: &mut Model,
+    momentum: &Momentum,
     emitted: &[Function],
 ) -> Result<(Vec<Function>, Section), Diagnostics> {
-    let momentum = derive(model).map_err(|error| refused(model, error))?;
-    let section = report_section(model, &momentum);
-    let reconstruction = body_velocity(model, &momentum)?;
+    let section = report_section(model, momentum);
+    let reconstruction = body_velocity(model, momentum)?;
     let acceleration = emitted
         .iter()
         .find(|f| f.name == "acceleration")
-        .ok_or_else(|| internal(model, "`acceleration` was not emitted"))?;
-    let shape = shape_acceleration(model, &momentum, &reconstruction, acceleration);
+        .ok_or_else(|| {
+            Diagnostics::internal(model.name.span(), "`acceleration` was not emitted")
+        })?;
+    let shape = shape_acceleration(model, momentum, &reconstruction, acceleration);
     let functions = vec![
-        momentum_of_state(model, &momentum)?,
-        momentum_rhs(model, &momentum)?,
-        momentum_input_matrix(model, &momentum)?,
+        momentum_of_state(model, momentum)?,
+        momentum_rhs(model, momentum)?,
+        momentum_input_matrix(model, momentum)?,
         shape_matrix(
             model,
-            &momentum,
+            momentum,
             "nonholonomic_connection",
             "The nonholonomic connection `A_nh(r)`: the horizontal body velocity is \
              `-A_nh(r) rdot` (Koon & Marsden 1.1); the geometric phase of a shape loop is \
@@ -67,7 +69,7 @@ pub(super) fn functions(
         )?,
         shape_matrix(
             model,
-            &momentum,
+            momentum,
             "locked_inertia",
             "The locked inertia `I(r) = e II e^T` on S: `p = I(r) Omega`.",
             &momentum.locked_inertia,
@@ -76,15 +78,6 @@ pub(super) fn functions(
         shape,
     ];
     Ok((functions, section))
-}
-
-/// The derivation's failure, on the symmetry declaration.
-fn refused(model: &Model, error: MomentumError) -> Diagnostics {
-    let span = model
-        .symmetry
-        .as_ref()
-        .map_or(model.name.span(), |symmetry| symmetry.span);
-    Diagnostic::new(span, error.to_string()).into()
 }
 
 fn report_section(model: &mut Model, momentum: &Momentum) -> Section {

@@ -7,8 +7,14 @@
 //! [`super::OperationCount`] are comparable. For example `x^3 + x^3*y`
 //! written as a tree costs `2 + (2 + 1) + 1 = 6`, while the program
 //! `t2 = t0*t0; t3 = t2*t0; t4 = t3*t1; t5 = t3 + t4` costs 4.
+//!
+//! [`estimated_weight`] prices outputs without lowering them: every node of
+//! the DAG once (the store shares equal sub-expressions), each operation by
+//! its [`super::Op::weight`]. It is what a derivation compares to choose
+//! between forms of one item.
 
-use crate::sym::{ExprId, Node, Rational, Store};
+use crate::sym::{ExprId, Function, Node, Rational, Store};
+use rustc_hash::FxHashSet as HashSet;
 
 /// A power computed with at most two multiplications or one square root.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -100,4 +106,63 @@ pub(super) fn tree_cost(store: &Store, order: &[ExprId], outputs: &[ExprId]) -> 
         .iter()
         .map(|output| costs.get(output).copied().unwrap_or(0))
         .fold(0, u64::saturating_add)
+}
+
+/// The weight ([`super::Op::weight`]) of a division, a square root or a `powi`.
+const SLOW_WEIGHT: u64 = 4;
+/// The weight ([`super::Op::weight`]) of a call of an elementary function, `powf`
+/// and `sin_cos` included.
+const CALL_WEIGHT: u64 = 20;
+
+impl BasicPower {
+    /// [`BasicPower::cost`] weighted: a square root weighs [`SLOW_WEIGHT`].
+    fn weight(self) -> u64 {
+        match self {
+            BasicPower::SquareRoot => SLOW_WEIGHT,
+            other => other.cost(),
+        }
+    }
+}
+
+impl PowerForm {
+    /// [`PowerForm::cost`] weighted by [`super::Op::weight`].
+    fn weight(self) -> u64 {
+        match self {
+            PowerForm::Direct(power) => power.weight(),
+            PowerForm::Inverse(power) => power.weight() + SLOW_WEIGHT,
+            PowerForm::Powi(_) => SLOW_WEIGHT,
+            PowerForm::Powf => CALL_WEIGHT,
+        }
+    }
+}
+
+/// The estimated weighted cost of computing `outputs`: every node reachable
+/// from them once, a sum or product of `n` operands `n - 1` operations, a
+/// power by its [`PowerForm`] (an inverse power one division, as if its
+/// reciprocal were shared, which lowering does for a repeated divisor), a
+/// call 20, the sine and cosine of one argument one `sin_cos`. It is
+/// computed in one pass over the DAG, without building a program; lowering
+/// also shares chain prefixes, so the program usually weighs a little less.
+pub fn estimated_weight(store: &Store, outputs: &[ExprId]) -> u64 {
+    let mut weight = 0u64;
+    let mut sines = HashSet::default();
+    let mut cosines = HashSet::default();
+    for id in store.reachable(outputs) {
+        weight = weight.saturating_add(match store.node(id) {
+            Node::Number(_) | Node::Symbol(_) => 0,
+            Node::Add(operands) | Node::Mul(operands) => operands.len().saturating_sub(1) as u64,
+            Node::Pow(_, exponent) => PowerForm::of(exponent).weight(),
+            Node::Call(Function::Sin, argument) if !cosines.contains(argument) => {
+                sines.insert(*argument);
+                CALL_WEIGHT
+            }
+            Node::Call(Function::Cos, argument) if !sines.contains(argument) => {
+                cosines.insert(*argument);
+                CALL_WEIGHT
+            }
+            Node::Call(Function::Sin | Function::Cos, _) => 0,
+            Node::Call(..) => CALL_WEIGHT,
+        });
+    }
+    weight
 }

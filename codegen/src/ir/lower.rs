@@ -3,7 +3,9 @@
 //! Each node reachable from the outputs gets a [`Plan`]: how its value is
 //! assembled from its children (a sum as a chain of `+`/`-`, a product as
 //! numerator chain `/` denominator chain, a power by its
-//! [`PowerForm`], a call). Two passes follow, both over the DAG, never a tree:
+//! [`PowerForm`], a call). A divisor `x^-e` that several sums and products
+//! read is not a denominator but a numerator, its reciprocal `1 / x^e`
+//! computed once, as a careful hand writes `v = p / m` once and multiplies. Two passes follow, both over the DAG, never a tree:
 //!
 //! 1. demand, parents before children: which nodes need their own value
 //!    (`plain`), and which products with a negative coefficient need the
@@ -186,6 +188,13 @@ impl<'a> Planner<'a> {
         Planner { store, sharing }
     }
 
+    /// Whether `id` is an operand of more than one sum or product. A shared
+    /// inverse power `x^-e` is computed once as `1 / x^e` and multiplied,
+    /// rather than divided by in every product: one division for all.
+    fn is_shared(&self, id: ExprId) -> bool {
+        self.sharing.get(&id).is_some_and(|&count| count > 1)
+    }
+
     /// Most shared first, then by id: chains with a common prefix share it.
     fn chain_order(&self, id: ExprId) -> (Reverse<usize>, ExprId) {
         (Reverse(self.sharing.get(&id).copied().unwrap_or(0)), id)
@@ -255,7 +264,9 @@ impl<'a> Planner<'a> {
             match self.store.node(factor) {
                 Node::Number(_) => {}
                 Node::Pow(base, exponent) => match PowerForm::of(exponent) {
-                    PowerForm::Inverse(basic) => denominators.push((*base, basic)),
+                    PowerForm::Inverse(basic) if !self.is_shared(factor) => {
+                        denominators.push((*base, basic));
+                    }
                     _ => numerators.push(factor),
                 },
                 _ => numerators.push(factor),

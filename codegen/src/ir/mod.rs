@@ -20,6 +20,9 @@
 //!   how many sums and products share them, constants last, so that chains
 //!   with a common prefix (`a*b*c` and `a*b*d`) compute the prefix (`a*b`) once;
 //! - `sin u` and `cos u` both needed become one `sin_cos(u)`;
+//! - a divisor `x^-e` that several sums and products read is inverted once,
+//!   `r = 1 / x^e`, and multiplied (`v = p * r`, then `v * cos(phi)`, ...),
+//!   rather than divided by in each of them;
 //! - the same constant is one value;
 //! - a term `-c*u` of a sum whose value `-c*u` is computed anyway (it is an
 //!   output, say) is added rather than rebuilt as `c*u` and subtracted.
@@ -27,8 +30,9 @@
 //! Arithmetic is shaped as a person would write it: a term with a negative
 //! coefficient is subtracted (`a - 3*b`, not `a + (-3)*b`), `-x` is a
 //! negation, the factors `x^-1`, `x^-2`, `x^-3` and `x^(-1/2)` of a product
-//! are gathered into one division (`a*b/(c*d^2)`), `x^2` and `x^3` are
-//! multiplications (`x*x`, `x^2*x`), other integer powers are `powi`,
+//! are gathered into one division (`a*b/(c*d^2)`) unless they are shared,
+//! `x^2` and `x^3` are multiplications (`x*x`, `x^2*x`), other integer
+//! powers are `powi`,
 //! `x^(1/2)` is `sqrt`, `x^(-1/2)` is `1/sqrt`, and other rational powers are
 //! `powf`.
 //!
@@ -77,6 +81,7 @@ mod properties;
 #[cfg(test)]
 mod tests;
 
+pub use cost::estimated_weight;
 pub use emit::Emitted;
 pub use lower::lower;
 
@@ -321,9 +326,10 @@ impl Program {
         self.value_count
     }
 
-    /// The sum of the instructions' [`Op::weight`]s: what the code
-    /// generator minimises when it chooses between forms of one function
-    /// (the operation count treats a division like an addition).
+    /// The sum of the instructions' [`Op::weight`]s (the operation count
+    /// treats a division like an addition): what [`estimated_weight`]
+    /// estimates on the expression DAG, without lowering, when a derivation
+    /// chooses between forms of one function.
     pub fn weighted_cost(&self) -> u64 {
         self.instructions.iter().map(|i| i.op.weight()).sum()
     }

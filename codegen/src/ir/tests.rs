@@ -166,6 +166,69 @@ fn negative_powers_in_a_product_share_one_division() {
     assert_eq!(got, vec![6.0]);
 }
 
+/// The snakeboard's flow, `xdot = p cos(phi) cos(theta) / m`,
+/// `ydot = p cos(phi) sin(theta) / m`, `thetadot = p sin(phi) / (m r)` and
+/// `pdot = -u sin(phi) / r`: `m` and `r` divide twice each, so their
+/// reciprocals are taken once (two divisions, not four) and multiplied, and
+/// the products share `v = p / m` and `v cos(phi)` as a hand writes them:
+/// eight products in all.
+#[test]
+fn a_repeated_divisor_is_inverted_once() {
+    let (mut s, symbols, v) = store_with(&["theta", "phi", "p", "u", "m", "r"]);
+    let [theta, phi, p, u, m, r] = [v[0], v[1], v[2], v[3], v[4], v[5]];
+    let minus_one = Rational::integer(-1);
+    let m_inverse = s.pow(m, minus_one.clone()).unwrap();
+    let r_inverse = s.pow(r, minus_one.clone()).unwrap();
+    let (sin_theta, cos_theta) = (
+        s.apply(Function::Sin, theta).unwrap(),
+        s.apply(Function::Cos, theta).unwrap(),
+    );
+    let (sin_phi, cos_phi) = (
+        s.apply(Function::Sin, phi).unwrap(),
+        s.apply(Function::Cos, phi).unwrap(),
+    );
+    let minus = s.number(minus_one);
+    let outputs = [
+        s.mul(&[p, cos_phi, cos_theta, m_inverse]),
+        s.mul(&[p, cos_phi, sin_theta, m_inverse]),
+        s.mul(&[p, sin_phi, m_inverse, r_inverse]),
+        s.mul(&[minus, u, sin_phi, r_inverse]),
+    ];
+    let program = lower(&s, &symbols, &outputs).unwrap();
+    assert_eq!(
+        count(&program, |op| matches!(op, Op::Div(..))),
+        2,
+        "{program}"
+    );
+    let products = count(&program, |op| matches!(op, Op::Mul(..)));
+    assert_eq!(products, 8, "{program}");
+    let state: [f64; 6] = [0.3, -0.7, 1.9, 0.4, 2.5, 0.8];
+    let [theta, phi, p, u, m, r] = state;
+    let expected = [
+        p * phi.cos() * theta.cos() / m,
+        p * phi.cos() * theta.sin() / m,
+        p * phi.sin() / (m * r),
+        -u * phi.sin() / r,
+    ];
+    let got = program.evaluate_vec(&state).unwrap();
+    for (got, expected) in got.iter().zip(expected) {
+        assert!(
+            (got - expected).abs() <= 1e-15 * expected.abs(),
+            "{got} {expected}"
+        );
+    }
+}
+
+#[test]
+fn a_divisor_read_once_stays_a_division() {
+    let (mut s, symbols, v) = store_with(&["a", "b", "m"]);
+    let m_inverse = s.pow(v[2], Rational::integer(-1)).unwrap();
+    let outputs = [s.mul(&[v[0], m_inverse]), s.mul(&[v[0], v[1]])];
+    let program = lower(&s, &symbols, &outputs).unwrap();
+    assert_eq!(count(&program, |op| matches!(op, Op::Div(..))), 1);
+    assert_eq!(after_cse(&program), 2, "{program}");
+}
+
 #[test]
 fn powers_use_division_sqrt_powi_and_powf() {
     let (mut s, symbols, v) = store_with(&["x"]);

@@ -1,0 +1,200 @@
+//! The basis of D (MATH.md 1.1): `u_r = A_n u_s` with `A_n = -A_r^-1 A_s`
+//! for the dependent speeds `u_r` (pivot columns of A, chosen at the
+//! model's defaults, or by exact elimination where A loses rank there), and
+//! the columns of `[I; A_n]` as k vector fields spanning `D = ker A`; as
+//! expressions always, in normal form within [`EXACT_BASIS_PRODUCTS`].
+
+use super::{EXACT_BASIS_PRODUCTS, Field};
+use crate::model::Model;
+use crate::sym::{ExprMatrix, Matrix, MatrixError, RationalFunction, SymbolId};
+
+/// A basis of the constraint distribution D and how it was chosen.
+#[derive(Clone, Debug)]
+pub struct DistributionBasis {
+    /// `X`, n x k, as expressions: column j is the vector field `X_j`, the
+    /// dependent speeds written as the elimination computes them.
+    pub field_expressions: ExprMatrix,
+    /// `X` in exact normal form, when it fits [`EXACT_BASIS_PRODUCTS`].
+    pub fields: Option<Matrix>,
+    /// The coordinates whose speeds are dependent (pivot columns), in row order.
+    pub dependent: Vec<usize>,
+    /// The coordinates whose speeds are independent, in order: `X_j` has a 1
+    /// at `independent[j]` and 0 at the other independent speeds.
+    pub independent: Vec<usize>,
+}
+
+/// Chooses the dependent speeds at the defaults and solves for a basis of
+/// D: as expressions always, in normal form within [`EXACT_BASIS_PRODUCTS`].
+pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, MatrixError> {
+    let n = model.n();
+    let dependent = pivot_columns(model);
+    let independent: Vec<usize> = (0..n).filter(|j| !dependent.contains(j)).collect();
+    let a = ExprMatrix::of(&model.constraint_matrix, &mut model.store);
+    let (a_r, a_s) = (
+        expression_columns_at(&a, &dependent, &mut model.store),
+        expression_columns_at(&a, &independent, &mut model.store),
+    );
+    let solved = model.store.solve_in_order(&a_r, &a_s)?;
+    let minus_one = model.store.integer(-1);
+    let a_n = solved.scale(minus_one, &mut model.store);
+    let mut field_expressions = ExprMatrix::zeros(&mut model.store, n, independent.len());
+    let one = model.store.integer(1);
+    for (k, &j) in independent.iter().enumerate() {
+        field_expressions.set(j, k, one);
+    }
+    for (row, &j) in dependent.iter().enumerate() {
+        for k in 0..independent.len() {
+            field_expressions.set(j, k, a_n.get(row, k));
+        }
+    }
+    let exact_a = &model.constraint_matrix;
+    let fields = model
+        .store
+        .attempt(EXACT_BASIS_PRODUCTS, |store| {
+            exact_fields(exact_a, &dependent, &independent, store.atoms())
+        })
+        .transpose()?;
+    Ok(DistributionBasis {
+        field_expressions,
+        fields,
+        dependent,
+        independent,
+    })
+}
+
+/// The columns `indices` of `a`, in that order.
+fn expression_columns_at(
+    a: &ExprMatrix,
+    indices: &[usize],
+    store: &mut crate::sym::Store,
+) -> ExprMatrix {
+    let mut columns = ExprMatrix::zeros(store, a.rows(), indices.len());
+    for i in 0..a.rows() {
+        for (k, &j) in indices.iter().enumerate() {
+            columns.set(i, k, a.get(i, j));
+        }
+    }
+    columns
+}
+
+/// `X = [I; -A_r^-1 A_s]` (rows permuted back) in normal form.
+fn exact_fields(
+    a: &Matrix,
+    dependent: &[usize],
+    independent: &[usize],
+    atoms: &crate::sym::Atoms,
+) -> Result<Matrix, MatrixError> {
+    let c = a.rows();
+    let columns = |indices: &[usize]| {
+        let mut m = Matrix::zeros(c, indices.len());
+        for i in 0..c {
+            for (k, &j) in indices.iter().enumerate() {
+                m.set(i, k, a.get(i, j).clone());
+            }
+        }
+        m
+    };
+    let a_n = columns(dependent)
+        .solve(&columns(independent), atoms)?
+        .neg();
+    let mut fields = Matrix::zeros(a.columns(), independent.len());
+    for (k, &j) in independent.iter().enumerate() {
+        fields.set(j, k, RationalFunction::one());
+    }
+    for (row, &j) in dependent.iter().enumerate() {
+        for k in 0..independent.len() {
+            fields.set(j, k, a_n.get(row, k).clone());
+        }
+    }
+    Ok(fields)
+}
+
+/// The dependent speeds: pivots at the defaults when A has full rank there,
+/// generic pivots otherwise.
+fn pivot_columns(model: &mut Model) -> Vec<usize> {
+    pivots_at_defaults(model).unwrap_or_else(|| generic_pivots(model))
+}
+
+/// A pivot smaller than this, relative to A's largest entry at the defaults,
+/// counts as vanishing there (the choice only needs to be regular; the solve
+/// that follows is exact).
+const VANISHING_PIVOT: f64 = 1e-9;
+
+/// Gaussian elimination with partial pivoting on A at the defaults: the
+/// pivot column of each row is the one of largest magnitude there. `None`
+/// when a pivot vanishes (A is singular at the defaults).
+fn pivots_at_defaults(model: &mut Model) -> Option<Vec<usize>> {
+    let (n, c) = (model.n(), model.c());
+    let defaults = default_point(model);
+    let mut values = model
+        .constraint_matrix
+        .evaluate(&mut model.store, &|s| defaults(s));
+    let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut pivots: Vec<usize> = Vec::with_capacity(c);
+    for row in 0..c {
+        let column = (0..n).filter(|j| !pivots.contains(j)).max_by(|&a, &b| {
+            values[row * n + a]
+                .abs()
+                .total_cmp(&values[row * n + b].abs())
+        })?;
+        let pivot = values[row * n + column];
+        let regular = pivot.abs() > VANISHING_PIVOT * scale;
+        if !regular {
+            return None;
+        }
+        for below in row + 1..c {
+            let factor = values[below * n + column] / pivot;
+            for j in 0..n {
+                values[below * n + j] -= factor * values[row * n + j];
+            }
+        }
+        pivots.push(column);
+    }
+    Some(pivots)
+}
+
+/// Exact elimination on A: the pivot of each row is its first column with a
+/// non-zero entry (A has full generic rank, checked by `model::check`).
+fn generic_pivots(model: &Model) -> Vec<usize> {
+    let (n, c) = (model.n(), model.c());
+    let atoms = model.store.atoms();
+    let mut rows: Vec<Field> = (0..c)
+        .map(|i| {
+            (0..n)
+                .map(|j| model.constraint_matrix.get(i, j).clone())
+                .collect()
+        })
+        .collect();
+    let mut pivots = Vec::with_capacity(c);
+    for row in 0..c {
+        let Some(column) = (0..n).find(|&j| !pivots.contains(&j) && !rows[row][j].is_zero()) else {
+            break;
+        };
+        let pivot_row = rows[row].clone();
+        for below in &mut rows[row + 1..] {
+            let Some(factor) = below[column].div(&pivot_row[column], atoms) else {
+                continue;
+            };
+            for (entry, p) in below.iter_mut().zip(&pivot_row) {
+                *entry = entry.sub(&factor.mul(p, atoms), atoms);
+            }
+        }
+        pivots.push(column);
+    }
+    pivots
+}
+
+/// The default configuration: coordinates 0, parameters at their defaults.
+pub fn default_point(model: &Model) -> impl Fn(SymbolId) -> f64 + use<> {
+    let parameters: Vec<(SymbolId, f64)> = model
+        .parameters
+        .iter()
+        .map(|p| (p.variable.symbol, p.default.to_f64()))
+        .collect();
+    move |s| {
+        parameters
+            .iter()
+            .find(|(p, _)| *p == s)
+            .map_or(0.0, |(_, v)| *v)
+    }
+}

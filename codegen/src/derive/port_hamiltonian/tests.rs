@@ -1,0 +1,245 @@
+//! Tests of the reduced port-Hamiltonian derivation.
+
+use super::{Exact, PortHamiltonian, PortHamiltonianError, derive, prove_skew};
+use crate::derive::constraints::distribution_basis;
+use crate::model::{Model, check};
+use crate::sym::{ExprId, Matrix, Poly, RationalFunction};
+use crate::syntax::parse_str;
+
+const SLEIGH: &str = include_str!("../../../../models/sleigh.model");
+
+/// The snakeboard with its momentum basis removed: the tool picks its own.
+fn snakeboard_without_basis() -> String {
+    let fixture = crate::fixtures::SNAKEBOARD;
+    let start = fixture.find("    momentum_basis").expect("declared");
+    let end = fixture.find("    symmetry").expect("declared");
+    format!("{}{}", &fixture[..start], &fixture[end..])
+}
+
+fn sources() -> [String; 3] {
+    [
+        crate::fixtures::SNAKEBOARD.to_string(),
+        snakeboard_without_basis(),
+        SLEIGH.to_string(),
+    ]
+}
+
+fn derived(source: &str) -> (Model, PortHamiltonian) {
+    let mut model = check(&parse_str(source).expect("parses")).expect("checks");
+    let basis = distribution_basis(&mut model).expect("regular at the defaults");
+    let reduced = derive(&mut model, &basis).expect("derives");
+    (model, reduced)
+}
+
+fn exact(reduced: &PortHamiltonian) -> &Exact {
+    reduced.exact().expect("derived exactly")
+}
+
+/// True when the expressions equal the normal forms as rational functions.
+fn equal(model: &mut Model, expressions: &[ExprId], forms: &[RationalFunction]) -> bool {
+    expressions.iter().zip(forms).all(|(&e, form)| {
+        let structured = model.store.normal(e).expect("normal form");
+        let atoms = model.store.atoms().clone();
+        structured.sub(form, &atoms).is_zero()
+    })
+}
+
+/// The structured derivation (the dh identity, `qdot = X alpha`, the flow
+/// without `gbar gbar_inv`) against the exact one, on the models with the
+/// tool's basis: every matrix and the flow equal as rational functions,
+/// and the same facts.
+#[test]
+fn the_structured_form_equals_the_exact_form() {
+    for source in [snakeboard_without_basis(), SLEIGH.to_string()] {
+        let (mut model, reduced) = derived(&source);
+        assert!(reduced.exact().is_some(), "the exact form fits");
+        let basis = distribution_basis(&mut model).expect("regular at the defaults");
+        let forms = super::structured::derive(
+            &mut model,
+            &basis.field_expressions,
+            &reduced.momenta,
+            &reduced.inputs,
+        )
+        .expect("derives");
+        let exact = exact(&reduced).clone();
+        let pairs: [(&str, &[ExprId], &[RationalFunction]); 9] = [
+            (
+                "X",
+                forms.velocity_map.entries(),
+                exact.velocity_map.entries(),
+            ),
+            (
+                "P g",
+                forms.momentum_map.entries(),
+                exact.momentum_map.entries(),
+            ),
+            (
+                "gbar_inv",
+                forms.metric_inverse.entries(),
+                exact.metric_inverse.entries(),
+            ),
+            ("gbar", forms.metric.entries(), exact.metric.entries()),
+            ("Jbar", forms.structure.entries(), exact.structure.entries()),
+            (
+                "Bbar",
+                forms.input_matrix.entries(),
+                exact.input_matrix.entries(),
+            ),
+            ("dHbar/dx", &forms.gradient, &exact.gradient),
+            ("xdot", &forms.rhs, &exact.rhs),
+            ("y", &forms.output, &exact.output),
+        ];
+        for (name, structured, expanded) in pairs {
+            assert!(equal(&mut model, structured, expanded), "{name}");
+        }
+        assert!(equal(
+            &mut model,
+            &[forms.hamiltonian],
+            std::slice::from_ref(&exact.hamiltonian)
+        ));
+        let perturbed = model.store.add2(forms.rhs[0], forms.rhs[1]);
+        assert!(!equal(&mut model, &[perturbed], &exact.rhs[..1]));
+        let structured_facts =
+            super::facts_at_points(&mut model, &forms.metric_inverse).expect("evaluates");
+        assert_eq!(
+            structured_facts,
+            (reduced.metric_constant, reduced.metric_diagonal)
+        );
+    }
+}
+
+fn parameter(model: &mut Model, name: &str) -> RationalFunction {
+    let symbol = model
+        .parameters
+        .iter()
+        .find(|p| p.variable.declared.name == name)
+        .expect("declared")
+        .variable
+        .symbol;
+    RationalFunction::from_poly(Poly::atom(model.store.symbol_atom(symbol)))
+}
+
+#[test]
+fn the_snakeboard_metric_is_exactly_diag_m_jt_jw() {
+    let (mut model, reduced) = derived(crate::fixtures::SNAKEBOARD);
+    let mut expected = Matrix::zeros(3, 3);
+    for (i, name) in ["m", "jt", "jw"].into_iter().enumerate() {
+        expected.set(i, i, parameter(&mut model, name));
+    }
+    assert_eq!(exact(&reduced).metric, expected);
+    assert!(reduced.metric_constant && reduced.metric_diagonal);
+    assert!(reduced.declared_basis);
+    assert_eq!(reduced.momentum_names, ["group", "torso", "wheels"]);
+}
+
+#[test]
+fn the_snakeboard_has_no_gyroscopic_terms() {
+    let (_, reduced) = derived(crate::fixtures::SNAKEBOARD);
+    assert!(exact(&reduced).gyroscopic.is_zero());
+}
+
+#[test]
+fn the_projection_is_a_left_inverse_of_the_basis() {
+    for source in sources() {
+        let (model, reduced) = derived(&source);
+        let exact = exact(&reduced);
+        let product = exact
+            .projection
+            .mul(&exact.basis.transpose(), model.store.atoms())
+            .expect("fits");
+        assert_eq!(product, Matrix::identity(reduced.momenta.len()));
+    }
+}
+
+#[test]
+fn the_structure_matrix_is_exactly_skew() {
+    for source in sources() {
+        let (model, reduced) = derived(&source);
+        let atoms = model.store.atoms();
+        let structure = &exact(&reduced).structure;
+        assert!(structure.is_skew(atoms));
+        let sum = structure.add(&structure.transpose(), atoms).expect("fits");
+        assert!(sum.is_zero());
+    }
+}
+
+#[test]
+fn a_matrix_that_is_not_skew_is_reported() {
+    let mut lopsided = Matrix::zeros(2, 2);
+    lopsided.set(0, 1, RationalFunction::one());
+    let atoms = crate::sym::Atoms::default();
+    assert_eq!(
+        prove_skew(&lopsided, &atoms),
+        Err(PortHamiltonianError::NotSkew { row: 0, column: 1 })
+    );
+    assert_eq!(
+        prove_skew(
+            &Matrix::identity(2)
+                .neg()
+                .add(&Matrix::identity(2), &atoms)
+                .unwrap(),
+            &atoms
+        ),
+        Ok(())
+    );
+}
+
+/// The tool's own basis for the sleigh, `h = (g X)^T` with
+/// `X = [(1, tan theta, 0), (0, 0, 1)]` (y is the dependent speed at theta = 0).
+#[test]
+fn the_sleigh_gets_the_tools_basis_and_its_facts_are_recorded() {
+    let (mut model, reduced) = derived(SLEIGH);
+    assert!(!reduced.declared_basis);
+    assert_eq!(reduced.momentum_names, ["alpha1", "alpha2"]);
+    let exact = exact(&reduced);
+    for (name, matrix) in [
+        ("h", &exact.basis),
+        ("gbar", &exact.metric),
+        ("Gamma", &exact.gyroscopic),
+    ] {
+        for (i, entry) in matrix.entries().iter().enumerate() {
+            let expression = model.store.expression_of(entry);
+            println!("sleigh {name}[{i}] = {}", model.store.display(expression));
+        }
+    }
+    println!(
+        "sleigh gbar constant: {}, diagonal: {}",
+        reduced.metric_constant, reduced.metric_diagonal
+    );
+    assert!(
+        !reduced.metric_constant,
+        "gbar = X^T g X carries 1/cos(theta)^2"
+    );
+    assert!(
+        !exact.gyroscopic.is_zero(),
+        "the sleigh's momenta are gyroscopically coupled"
+    );
+}
+
+#[test]
+fn the_snakeboard_without_a_basis_gets_the_tools() {
+    let (mut model, reduced) = derived(&snakeboard_without_basis());
+    assert!(!reduced.declared_basis);
+    assert_eq!(reduced.momentum_names, ["alpha1", "alpha2", "alpha3"]);
+    let exact = exact(&reduced);
+    for (name, matrix) in [("gbar", &exact.metric), ("Gamma", &exact.gyroscopic)] {
+        for (i, entry) in matrix.entries().iter().enumerate() {
+            let expression = model.store.expression_of(entry);
+            println!(
+                "snakeboard (own basis) {name}[{i}] = {}",
+                model.store.display(expression)
+            );
+        }
+    }
+    assert!(!reduced.metric_constant && !reduced.metric_diagonal);
+    assert!(!exact.gyroscopic.is_zero());
+}
+
+#[test]
+fn momenta_of_inputs_never_capture_a_parameter() {
+    let source = crate::fixtures::SNAKEBOARD.replace("u_torso = psi", "m = psi");
+    let (model, reduced) = derived(&source);
+    let input = model.store.symbol_info(reduced.inputs[0]);
+    assert_eq!(input.name, "m'");
+    assert_eq!(input.kind, crate::sym::SymbolKind::Auxiliary);
+}

@@ -1,0 +1,415 @@
+//! The document's sections, one function each: names and sizes, the
+//! constraint analysis, the Lagrange-d'Alembert equations, the reduced
+//! port-Hamiltonian form, the momentum equation.
+
+use super::{
+    Equation, Item, Printed, Section, count_fact, expression_item, fact, flag_fact, label,
+    matrix_item, names_fact, rates, symbol_name, word_fact,
+};
+use crate::derive::constraints::ConstraintAnalysis;
+use crate::derive::lagrange_dalembert::{self, LagrangeDalembert};
+use crate::derive::momentum::Momentum;
+use crate::derive::port_hamiltonian::{Exact, PortHamiltonian};
+use crate::model::Model;
+use crate::sym::{ExprId, SymbolId};
+use serde_json::{Value, json};
+
+pub(super) fn names_section(model: &Model, reduced: &PortHamiltonian) -> Section {
+    let declared = |list: &[crate::model::Declared]| list.iter().map(|d| d.name.clone()).collect();
+    let parameters: Vec<Value> = model
+        .parameters
+        .iter()
+        .map(|p| json!({"name": p.variable.declared.name, "default": p.default.to_f64()}))
+        .collect();
+    let parameter_text: Vec<String> = model
+        .parameters
+        .iter()
+        .map(|p| format!("{} = {}", p.variable.declared.name, p.default.to_f64()))
+        .collect();
+    Section {
+        key: "names",
+        title: "Names",
+        items: vec![
+            word_fact("model", "model", &model.name.to_string()),
+            names_fact(
+                "coordinates",
+                "coordinates q",
+                model
+                    .coordinates
+                    .iter()
+                    .map(|c| c.declared.name.clone())
+                    .collect(),
+            ),
+            fact(
+                "parameters",
+                "parameters (defaults)",
+                Value::Array(parameters),
+                parameter_text.join(", "),
+            ),
+            names_fact("inputs", "inputs u", declared(&model.inputs)),
+            names_fact("constraints", "constraints", declared(&model.constraints)),
+            names_fact(
+                "momenta",
+                "reduced momenta alpha",
+                reduced.momentum_names.clone(),
+            ),
+        ],
+    }
+}
+
+pub(super) fn sizes_section(model: &Model) -> Section {
+    let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
+    Section {
+        key: "sizes",
+        title: "Sizes",
+        items: vec![
+            count_fact("n", "coordinates n", n),
+            count_fact("c", "constraints c", c),
+            count_fact("k", "degrees of freedom in velocity k = n - c", k),
+            count_fact("p", "inputs p", p),
+            count_fact("s", "reduced state s = n + k", n + k),
+        ],
+    }
+}
+
+pub(super) fn constraints_section(model: &mut Model, analysis: &ConstraintAnalysis) -> Section {
+    let speeds = |indices: &[usize]| -> Vec<String> {
+        indices
+            .iter()
+            .map(|&i| format!("dot({})", model.coordinates[i].declared.name))
+            .collect()
+    };
+    let (dependent, independent) = (
+        speeds(&analysis.basis.dependent),
+        speeds(&analysis.basis.independent),
+    );
+    let (exact_rows, exact_text): (Vec<Value>, Vec<String>) = model
+        .constraints
+        .iter()
+        .zip(&analysis.exact_rows)
+        .map(|(row, &exact)| {
+            let verdict = if exact { "exact" } else { "not exact" };
+            (
+                json!({"constraint": row.name, "exact": exact}),
+                format!("{} {verdict}", row.name),
+            )
+        })
+        .unzip();
+    let growth: Vec<String> = analysis.growth.iter().map(usize::to_string).collect();
+    let reachable = analysis.growth.last().copied().unwrap_or(model.n());
+    Section {
+        key: "constraints",
+        title: "Constraint analysis (Frobenius, Chow, Moore)",
+        items: vec![
+            names_fact("dependent_speeds", "dependent speeds", dependent),
+            names_fact("independent_speeds", "independent speeds", independent),
+            basis_item(model, analysis),
+            flag_fact(
+                "integrable",
+                "integrable (A [X_i, X_j] = 0 for all i, j)",
+                analysis.integrable,
+            ),
+            word_fact(
+                "integrability_decided",
+                "integrability decided",
+                analysis.integrability_method.describe(),
+            ),
+            fact(
+                "growth_vector",
+                "growth vector",
+                json!(analysis.growth),
+                format!("({})", growth.join(", ")),
+            ),
+            flag_fact(
+                "growth_complete",
+                "growth vector complete",
+                analysis.growth_complete,
+            ),
+            word_fact(
+                "growth_decided",
+                "growth vector decided",
+                analysis.growth_method.describe(),
+            ),
+            word_fact(
+                "classification",
+                "classification",
+                analysis.classification.describe(),
+            ),
+            count_fact(
+                "degrees_of_freedom",
+                "degrees of freedom in velocity",
+                model.k(),
+            ),
+            count_fact(
+                "reachable_dimension",
+                "reachable dimension (last rank of the growth)",
+                reachable,
+            ),
+            fact(
+                "exact_rows",
+                "Moore's test (is each row exact?)",
+                Value::Array(exact_rows),
+                if exact_text.is_empty() {
+                    "no constraints".to_string()
+                } else {
+                    exact_text.join(", ")
+                },
+            ),
+        ],
+    }
+}
+
+pub(super) fn dalembert_section(model: &mut Model, derivation: &LagrangeDalembert) -> Section {
+    let potential = model.store.expression_of(&model.potential_energy.clone());
+    let system = &derivation.saddle_point;
+    let equations = vec![
+        Equation {
+            lhs: label(
+                "g qddot + C + dV/dq",
+                "g \\ddot{q} + C + \\frac{\\partial V}{\\partial q}",
+            ),
+            rhs: label("A^T lambda + B u", "A^{T} \\lambda + B u"),
+        },
+        Equation {
+            lhs: label("A qddot + Adot qdot", "A \\ddot{q} + \\dot{A} \\dot{q}"),
+            rhs: label("0", "0"),
+        },
+    ];
+    let solve = match derivation.strategy {
+        lagrange_dalembert::Strategy::Symbolic => "closed form",
+        lagrange_dalembert::Strategy::Numeric => "numeric solve of the saddle-point system",
+    };
+    Section {
+        key: "lagrange_dalembert",
+        title: "Lagrange-d'Alembert equations",
+        items: vec![
+            Item::Equations {
+                key: "equations".into(),
+                lines: equations,
+            },
+            matrix_item(
+                model,
+                "mass_matrix",
+                label("g", "g"),
+                &model.mass_matrix.clone(),
+            ),
+            expression_item(model, "potential", label("V", "V"), potential),
+            matrix_item(
+                model,
+                "constraint_matrix",
+                label("A", "A"),
+                &model.constraint_matrix.clone(),
+            ),
+            matrix_item(
+                model,
+                "input_matrix",
+                label("B", "B"),
+                &model.input_matrix.clone(),
+            ),
+            matrix_item(
+                model,
+                "force",
+                label(
+                    "B u - C - dV/dq",
+                    "B u - C - \\frac{\\partial V}{\\partial q}",
+                ),
+                &system.force,
+            ),
+            matrix_item(
+                model,
+                "drift",
+                label("-Adot qdot", "-\\dot{A} \\dot{q}"),
+                &system.drift,
+            ),
+            word_fact("solve", "acceleration computed by", solve),
+        ],
+    }
+}
+
+/// X as a matrix when exact; a statement of how it is computed when not.
+fn basis_item(model: &mut Model, analysis: &ConstraintAnalysis) -> Item {
+    match &analysis.basis.fields {
+        Some(fields) => matrix_item(
+            model,
+            "basis",
+            label("X = [X1 ... Xk], a basis of D", "X"),
+            fields,
+        ),
+        None => word_fact(
+            "basis",
+            "X = [X1 ... Xk], a basis of D",
+            "structured: the dependent speeds by elimination of A, not expanded \
+             (the exact form exceeds its derivation budget)",
+        ),
+    }
+}
+
+pub(super) fn reduced_section(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    rhs: &[ExprId],
+) -> Section {
+    let mut items = vec![
+        flag_fact(
+            "declared_basis",
+            "momentum basis declared",
+            reduced.declared_basis,
+        ),
+        names_fact("momenta", "momenta", reduced.momentum_names.clone()),
+    ];
+    match reduced.exact() {
+        Some(exact) => items.extend(exact_items(model, reduced, exact, rhs)),
+        None => items.extend(structured_items(reduced)),
+    }
+    Section {
+        key: "port_hamiltonian",
+        title: "Reduced port-Hamiltonian form (Duindam & Stramigioli)",
+        items,
+    }
+}
+
+/// The exact matrices, the energy and the reduced equations.
+fn exact_items(
+    model: &mut Model,
+    reduced: &PortHamiltonian,
+    exact: &Exact,
+    rhs: &[ExprId],
+) -> Vec<Item> {
+    let hamiltonian = model.store.expression_of(&exact.hamiltonian);
+    let equations = rates(model, &reduced.state(model), rhs);
+    let matrices = [
+        ("momentum_basis", label("h", "h"), &exact.basis),
+        ("metric", label("gbar", "\\bar{g}"), &exact.metric),
+        ("gyroscopic", label("Gamma", "\\Gamma"), &exact.gyroscopic),
+        (
+            "structure_matrix",
+            label("Jbar", "\\bar{J}"),
+            &exact.structure,
+        ),
+        (
+            "input_matrix",
+            label("Bbar", "\\bar{B}"),
+            &exact.input_matrix,
+        ),
+    ];
+    let mut items: Vec<Item> = matrices
+        .into_iter()
+        .map(|(key, symbol, matrix)| matrix_item(model, key, symbol, matrix))
+        .collect();
+    items.extend([
+        flag_fact("metric_constant", "gbar constant", reduced.metric_constant),
+        flag_fact("metric_diagonal", "gbar diagonal", reduced.metric_diagonal),
+        expression_item(model, "hamiltonian", label("Hbar", "\\bar{H}"), hamiltonian),
+        Item::Equations {
+            key: "equations".into(),
+            lines: equations,
+        },
+    ]);
+    items
+}
+
+/// How the structured form computes what the exact one would print.
+fn structured_items(reduced: &PortHamiltonian) -> Vec<Item> {
+    vec![
+        word_fact(
+            "derivation",
+            "reduced form derived",
+            "structured (the exact form exceeds its derivation budget): h = X^T g, \
+             gbar_inv = X^T g X, gbar by elimination, Gamma = gbar S gbar with \
+             S_ab = alpha_c dh^c(X_a, X_b); qdot = X alpha, \
+             alphadot = gbar (-X^T dHbar/dq + S alpha + X^T B u); Jbar skew by construction",
+        ),
+        flag_fact("metric_constant", "gbar constant", reduced.metric_constant),
+        flag_fact("metric_diagonal", "gbar diagonal", reduced.metric_diagonal),
+        word_fact(
+            "metric_facts_decided",
+            "gbar facts decided",
+            reduced.facts_method.describe(),
+        ),
+    ]
+}
+
+pub(super) fn momentum_section(
+    model: &mut Model,
+    momentum: &Momentum,
+    inputs: &[SymbolId],
+) -> Section {
+    let shape: Vec<String> = momentum
+        .shape
+        .iter()
+        .map(|&i| model.coordinates[i].declared.name.clone())
+        .collect();
+    let names: Vec<Printed> = momentum
+        .momenta
+        .iter()
+        .map(|&p| symbol_name(model, p))
+        .collect();
+    let momenta: Vec<String> = names.iter().map(|name| name.text.clone()).collect();
+    let mut items = vec![
+        names_fact("shape", "shape coordinates r", shape),
+        names_fact("momenta", "momenta p", momenta),
+        matrix_item(model, "basis", label("e", "e"), &momentum.basis),
+        matrix_item(
+            model,
+            "connection",
+            label("A_nh", "A_{\\mathrm{nh}}"),
+            &momentum.connection,
+        ),
+        matrix_item(
+            model,
+            "locked_inertia",
+            label("I", "I"),
+            &momentum.locked_inertia,
+        ),
+    ];
+    for (name, coefficients) in names.iter().zip(&momentum.coefficients) {
+        for (tensor, matrix) in [
+            ("H", &coefficients.shape),
+            ("K", &coefficients.mixed),
+            ("D", &coefficients.momentum),
+        ] {
+            let symbol = label(
+                &format!("{tensor} ({})", name.text),
+                &format!("{tensor}^{{{}}}", name.latex),
+            );
+            items.push(matrix_item(
+                model,
+                &format!("{tensor}_{}", name.text),
+                symbol,
+                matrix,
+            ));
+        }
+    }
+    items.push(matrix_item(
+        model,
+        "input_coupling",
+        label("h B", "h B"),
+        &momentum.input_coupling,
+    ));
+    let forced = forced_momentum_rhs(model, momentum, inputs);
+    items.push(Item::Equations {
+        key: "equations".into(),
+        lines: rates(model, &momentum.momenta, &forced),
+    });
+    Section {
+        key: "momentum",
+        title: "Momentum equation (Bloch-Krishnaprasad-Marsden-Murray; Koon & Marsden)",
+        items,
+    }
+}
+
+/// `pdot_i = rhs_i + sum_j (h B)_ij u_j`.
+fn forced_momentum_rhs(model: &mut Model, momentum: &Momentum, inputs: &[SymbolId]) -> Vec<ExprId> {
+    let coupling = &momentum.input_coupling;
+    (0..momentum.rhs.len())
+        .map(|i| {
+            let mut terms = vec![model.store.expression_of(&momentum.rhs[i])];
+            for (j, &input) in inputs.iter().enumerate() {
+                let entry = model.store.expression_of(coupling.get(i, j));
+                let u = model.store.symbol(input);
+                terms.push(model.store.mul2(entry, u));
+            }
+            model.store.add(&terms)
+        })
+        .collect()
+}

@@ -1,0 +1,310 @@
+//! Building sums, products, powers and calls with the store's cheap,
+//! always-valid rewrites: flattening, constant folding, collecting
+//! `c*x + d*x` and `x^a * x^b`, sorting operands.
+
+use super::{ExprId, Function, MAX_CONSTANT_BITS, Node, Store, SymError};
+use crate::sym::number::Rational;
+use rustc_hash::FxHashMap as HashMap;
+
+impl Store {
+    // ----- sums ----------------------------------------------------------
+
+    /// `a + b`.
+    pub fn add2(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        self.add(&[a, b])
+    }
+
+    /// `a - b`.
+    pub fn sub(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        let minus_b = self.neg(b);
+        self.add(&[a, minus_b])
+    }
+
+    /// `-a`.
+    pub fn neg(&mut self, a: ExprId) -> ExprId {
+        let minus_one = self.integer(-1);
+        self.mul(&[minus_one, a])
+    }
+
+    /// The sum of `terms`, flattened, with like terms `c*x + d*x` collected.
+    pub fn add(&mut self, terms: &[ExprId]) -> ExprId {
+        let mut constant = Rational::ZERO;
+        let mut coefficients: Vec<(ExprId, Rational)> = Vec::new();
+        let mut positions: HashMap<ExprId, usize> = HashMap::default();
+        let mut pending: Vec<ExprId> = terms.to_vec();
+        while let Some(term) = pending.pop() {
+            match self.node(term) {
+                Node::Number(value) => constant = constant.add(value),
+                Node::Add(children) => pending.extend(children.iter().copied()),
+                _ => {
+                    let (coefficient, rest) = self.split_coefficient(term);
+                    match positions.get(&rest) {
+                        Some(&at) => coefficients[at].1 = coefficients[at].1.add(&coefficient),
+                        None => {
+                            positions.insert(rest, coefficients.len());
+                            coefficients.push((rest, coefficient));
+                        }
+                    }
+                }
+            }
+        }
+        let mut children: Vec<ExprId> = coefficients
+            .into_iter()
+            .filter(|(_, c)| !c.is_zero())
+            .map(|(rest, c)| self.scale(rest, c))
+            .collect();
+        children.sort_unstable();
+        if !constant.is_zero() {
+            children.insert(0, self.number(constant));
+        }
+        match children.len() {
+            0 => self.integer(0),
+            1 => children[0],
+            _ => self.intern(Node::Add(children.into_boxed_slice())),
+        }
+    }
+
+    /// Splits `c * rest` into its constant coefficient and the rest.
+    fn split_coefficient(&mut self, term: ExprId) -> (Rational, ExprId) {
+        if let Node::Mul(factors) = self.node(term)
+            && let Node::Number(c) = self.node(factors[0])
+        {
+            let c = c.clone();
+            let rest = factors[1..].to_vec();
+            let rest = if rest.len() == 1 {
+                rest[0]
+            } else {
+                self.intern(Node::Mul(rest.into_boxed_slice()))
+            };
+            return (c, rest);
+        }
+        (Rational::ONE, term)
+    }
+
+    /// `c * rest` where `rest` carries no constant factor.
+    fn scale(&mut self, rest: ExprId, c: Rational) -> ExprId {
+        if c.is_one() {
+            return rest;
+        }
+        let c = self.number(c);
+        self.mul(&[c, rest])
+    }
+
+    // ----- products ------------------------------------------------------
+
+    /// `a * b`.
+    pub fn mul2(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        self.mul(&[a, b])
+    }
+
+    /// The product of `factors`, flattened, with `x^a * x^b = x^(a+b)` collected.
+    pub fn mul(&mut self, factors: &[ExprId]) -> ExprId {
+        let mut constant = Rational::ONE;
+        let mut exponents: Vec<(ExprId, Rational)> = Vec::new();
+        let mut positions: HashMap<ExprId, usize> = HashMap::default();
+        let mut pending: Vec<ExprId> = factors.to_vec();
+        while let Some(factor) = pending.pop() {
+            let (base, exponent) = match self.node(factor) {
+                Node::Number(value) => {
+                    constant = constant.mul(value);
+                    continue;
+                }
+                Node::Mul(children) => {
+                    pending.extend(children.iter().copied());
+                    continue;
+                }
+                Node::Pow(base, exponent) => (*base, exponent.clone()),
+                _ => (factor, Rational::ONE),
+            };
+            match positions.get(&base) {
+                Some(&at) => exponents[at].1 = exponents[at].1.add(&exponent),
+                None => {
+                    positions.insert(base, exponents.len());
+                    exponents.push((base, exponent));
+                }
+            }
+        }
+        if constant.is_zero() {
+            return self.integer(0);
+        }
+        let mut children = Vec::with_capacity(exponents.len() + 1);
+        let mut distributed = false;
+        for (base, exponent) in exponents {
+            let power = self.pow_of_collected(base, exponent);
+            match self.node(power) {
+                Node::Number(value) => constant = constant.mul(value),
+                Node::Mul(_) => {
+                    distributed = true;
+                    children.push(power);
+                }
+                _ => children.push(power),
+            }
+        }
+        if distributed {
+            // An integer power of a product, e.g. sqrt(2x)^2 = 2x, was
+            // distributed: collect its factors with the others once more.
+            children.push(self.number(constant));
+            return self.mul(&children);
+        }
+        if constant.is_zero() {
+            return self.integer(0);
+        }
+        children.sort_unstable();
+        if !constant.is_one() {
+            children.insert(0, self.number(constant));
+        }
+        match children.len() {
+            0 => self.integer(1),
+            1 => children[0],
+            _ => self.intern(Node::Mul(children.into_boxed_slice())),
+        }
+    }
+
+    /// Rebuilds a collected power; a constant base that cannot be folded exactly
+    /// (e.g. `2^(1/2)`) is kept as a power node, which is always valid here
+    /// because constructors never produce a negative base with a fractional exponent.
+    fn pow_of_collected(&mut self, base: ExprId, exponent: Rational) -> ExprId {
+        match self.pow(base, exponent.clone()) {
+            Ok(power) => power,
+            Err(_) => self.intern(Node::Pow(base, exponent)),
+        }
+    }
+
+    /// `a / b`. Fails when `b` is the constant zero; a divisor that is zero only
+    /// after simplification is caught by the normal form.
+    pub fn div(&mut self, a: ExprId, b: ExprId) -> Result<ExprId, SymError> {
+        let inverse = self.pow(b, Rational::integer(-1))?;
+        Ok(self.mul(&[a, inverse]))
+    }
+
+    // ----- powers --------------------------------------------------------
+
+    /// `base ^ exponent` for a rational exponent.
+    pub fn pow(&mut self, base: ExprId, exponent: Rational) -> Result<ExprId, SymError> {
+        if exponent.is_zero() {
+            return Ok(self.integer(1));
+        }
+        if exponent.is_one() {
+            return Ok(base);
+        }
+        match self.node(base).clone() {
+            Node::Number(value) => self.pow_of_number(&value, exponent),
+            _ => Ok(self.pow_of_expression(base, exponent)),
+        }
+    }
+
+    /// `base ^ exponent` for a non-constant base: never fails.
+    pub(crate) fn pow_of_expression(&mut self, base: ExprId, exponent: Rational) -> ExprId {
+        if exponent.is_zero() {
+            return self.integer(1);
+        }
+        if exponent.is_one() {
+            return base;
+        }
+        match self.node(base).clone() {
+            Node::Pow(inner, inner_exponent) if exponent.is_integer() => {
+                self.pow_of_expression(inner, inner_exponent.mul(&exponent))
+            }
+            Node::Mul(factors) if exponent.is_integer() => {
+                let powers: Vec<ExprId> = factors
+                    .iter()
+                    .map(|&f| self.pow_of_collected(f, exponent.clone()))
+                    .collect();
+                self.mul(&powers)
+            }
+            _ => self.intern(Node::Pow(base, exponent)),
+        }
+    }
+
+    fn pow_of_number(&mut self, value: &Rational, exponent: Rational) -> Result<ExprId, SymError> {
+        if value.is_zero() && exponent.is_negative() {
+            return Err(SymError::DivisionByZero {
+                expr: "0".to_string(),
+            });
+        }
+        if let Some(n) = exponent.to_i64() {
+            let bits = value.bits().saturating_mul(n.unsigned_abs());
+            if bits > MAX_CONSTANT_BITS && value.abs() != Rational::ONE {
+                return Err(SymError::ConstantTooLarge { bits });
+            }
+        }
+        if let Some(folded) = exponent.to_i64().and_then(|n| value.powi(n)) {
+            return Ok(self.number(folded));
+        }
+        if value.is_negative() {
+            return Err(SymError::NegativeBase {
+                expr: format!("({value})^({exponent})"),
+            });
+        }
+        let (numerator, denominator) = match exponent.to_small() {
+            Some(parts) => parts,
+            None => {
+                let base = self.number(value.clone());
+                return Ok(self.intern(Node::Pow(base, exponent)));
+            }
+        };
+        let root = u32::try_from(denominator)
+            .ok()
+            .and_then(|d| value.exact_root(d));
+        if let Some(power) = root.and_then(|r| r.powi(numerator)) {
+            return Ok(self.number(power));
+        }
+        let base = self.number(value.clone());
+        Ok(self.intern(Node::Pow(base, exponent)))
+    }
+
+    /// `sqrt(x)`, stored as `x^(1/2)`.
+    pub fn sqrt(&mut self, x: ExprId) -> Result<ExprId, SymError> {
+        self.pow(x, Rational::new(1, 2).unwrap_or(Rational::ONE))
+    }
+
+    // ----- functions -----------------------------------------------------
+
+    /// Applies a function by its model-language name (`sin cos tan sqrt exp ln`).
+    pub fn apply_named(&mut self, name: &str, argument: ExprId) -> Result<ExprId, SymError> {
+        let function = match name {
+            "sin" => Function::Sin,
+            "cos" => Function::Cos,
+            "tan" => Function::Tan,
+            "exp" => Function::Exp,
+            "ln" => Function::Ln,
+            "sqrt" => return self.sqrt(argument),
+            _ => {
+                return Err(SymError::UnknownFunction {
+                    name: name.to_string(),
+                });
+            }
+        };
+        self.apply(function, argument)
+    }
+
+    /// `function(argument)`, folding the exact constant cases
+    /// (`sin 0 = 0`, `cos 0 = 1`, `tan 0 = 0`, `exp 0 = 1`, `ln 1 = 0`).
+    pub fn apply(&mut self, function: Function, argument: ExprId) -> Result<ExprId, SymError> {
+        if let Node::Number(value) = self.node(argument) {
+            if value.is_zero() {
+                return match function {
+                    Function::Sin | Function::Tan => Ok(self.integer(0)),
+                    Function::Cos | Function::Exp => Ok(self.integer(1)),
+                    Function::Ln => Err(SymError::Undefined {
+                        expr: "ln(0)".to_string(),
+                    }),
+                };
+            }
+            if function == Function::Ln && value.is_one() {
+                return Ok(self.integer(0));
+            }
+            if function == Function::Ln && value.is_negative() {
+                return Err(SymError::Undefined {
+                    expr: format!("ln({value})"),
+                });
+            }
+        }
+        Ok(self.intern(Node::Call(function, argument)))
+    }
+
+    /// `function(argument)` for an argument known not to be a constant.
+    pub(crate) fn apply_to_expression(&mut self, function: Function, argument: ExprId) -> ExprId {
+        self.intern(Node::Call(function, argument))
+    }
+}
