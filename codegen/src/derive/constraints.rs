@@ -53,6 +53,7 @@
 
 mod at_points;
 mod basis;
+mod body_frame;
 
 use at_points::{growth_vector_at_point, is_involutive_at_points};
 pub use basis::{DistributionBasis, default_point, distribution_basis};

@@ -3,7 +3,11 @@
 //! model's defaults, or by exact elimination where A loses rank there), and
 //! the columns of `[I; A_n]` as k vector fields spanning `D = ker A`; as
 //! expressions always, in normal form within [`EXACT_BASIS_PRODUCTS`].
+//! With a symmetry declared and no momentum basis, the elimination runs on
+//! the body rows `A(e, r)` and the basis is mapped back, `X = L [I; A_n]`
+//! ([`super::body_frame`]), so no group coordinate enters a denominator.
 
+use super::body_frame::BodyFrame;
 use super::{EXACT_BASIS_PRODUCTS, Field};
 use crate::model::Model;
 use crate::sym::{ExprMatrix, Matrix, MatrixError, RationalFunction, SymbolId};
@@ -19,8 +23,12 @@ pub struct DistributionBasis {
     /// The coordinates whose speeds are dependent (pivot columns), in row order.
     pub dependent: Vec<usize>,
     /// The coordinates whose speeds are independent, in order: `X_j` has a 1
-    /// at `independent[j]` and 0 at the other independent speeds.
+    /// at `independent[j]` and 0 at the other independent speeds (of the
+    /// body velocity `(xi, rdot)` when [`DistributionBasis::body_frame`]).
     pub independent: Vec<usize>,
+    /// The speeds are the body velocity's (the basis was chosen on the body
+    /// rows and rotated back), not the coordinates' own.
+    pub body_frame: bool,
 }
 
 /// Chooses the dependent speeds at the defaults and solves for a basis of
@@ -29,7 +37,14 @@ pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, Matrix
     let n = model.n();
     let dependent = pivot_columns(model);
     let independent: Vec<usize> = (0..n).filter(|j| !dependent.contains(j)).collect();
-    let a = ExprMatrix::of(&model.constraint_matrix, &mut model.store);
+    let frame = match model.momentum_basis {
+        None => BodyFrame::of(model)?,
+        Some(_) => None,
+    };
+    let a = match &frame {
+        Some(frame) => frame.constraints.clone(),
+        None => ExprMatrix::of(&model.constraint_matrix, &mut model.store),
+    };
     let (a_r, a_s) = (
         expression_columns_at(&a, &dependent, &mut model.store),
         expression_columns_at(&a, &independent, &mut model.store),
@@ -47,11 +62,25 @@ pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, Matrix
             field_expressions.set(j, k, a_n.get(row, k));
         }
     }
+    if let Some(frame) = &frame {
+        field_expressions = frame
+            .to_coordinates
+            .mul(&field_expressions, &mut model.store)?;
+    }
     let exact_a = &model.constraint_matrix;
     let fields = model
         .store
-        .attempt(EXACT_BASIS_PRODUCTS, |store| {
-            exact_fields(exact_a, &dependent, &independent, store.atoms())
+        .attempt(EXACT_BASIS_PRODUCTS, |store| match &frame {
+            Some(frame) => {
+                let body = exact_fields(
+                    &frame.exact_constraints(store)?,
+                    &dependent,
+                    &independent,
+                    store.atoms(),
+                )?;
+                frame.exact_to_coordinates(store)?.mul(&body, store.atoms())
+            }
+            None => exact_fields(exact_a, &dependent, &independent, store.atoms()),
         })
         .transpose()?;
     Ok(DistributionBasis {
@@ -59,6 +88,7 @@ pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, Matrix
         fields,
         dependent,
         independent,
+        body_frame: frame.is_some(),
     })
 }
 

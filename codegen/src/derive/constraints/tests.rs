@@ -246,3 +246,40 @@ fn a_long_chain_is_analysed_at_points() {
         .expect("in the class");
     assert!(values.iter().all(|&v| v == 0), "A X = 0 at the point");
 }
+
+/// With the symmetry declared, the basis is chosen on the body rows and
+/// rotated back: it spans `ker A` exactly, and no denominator of it holds
+/// a group coordinate, so it is regular at every heading (the coordinate
+/// elimination's `tan(theta)` for the sleigh is gone).
+#[test]
+fn the_body_frame_basis_has_no_group_coordinate_in_a_denominator() {
+    let sleigh = include_str!("../../../../models/sleigh.model");
+    let racer = include_str!("../../../../tests/models/roller_racer.model");
+    for (source, rank) in [(sleigh, 2), (racer, 2)] {
+        let mut m = model(source);
+        let basis = distribution_basis(&mut m).expect("regular");
+        assert!(basis.body_frame);
+        let fields = basis.fields.clone().expect("exact within the budget");
+        let atoms = m.store.atoms().clone();
+        let product = m.constraint_matrix.mul(&fields, &atoms).expect("fits");
+        assert!(product.is_zero(), "A X must vanish exactly");
+        assert_eq!(fields.rank(&atoms), rank);
+        let group: Vec<_> = ["x", "y", "theta"]
+            .iter()
+            .map(|name| {
+                let index = m.coordinates.iter().position(|q| q.declared.name == *name);
+                m.coordinates[index.expect("declared")].symbol
+            })
+            .collect();
+        for entry in fields.entries() {
+            let denominator = entry
+                .reciprocal_of_denominator()
+                .inverse(&atoms)
+                .expect("non-zero");
+            let denominator = m.store.expression_of(&denominator);
+            for &q in &group {
+                assert!(!m.store.depends_on(denominator, q));
+            }
+        }
+    }
+}
