@@ -580,6 +580,39 @@ fn the_roller_racer_circling_runs_40_s_in_every_form() {
     }
 }
 
+/// The racer's derived momentum basis `e(phi)` carries a factor `sin(phi)`,
+/// so the momentum form's reconstruction of `qdot` from `(rdot, p)` is
+/// singular at `phi = 0`. A run whose joint swings through `phi = 0` used to
+/// go on across it with wrong numbers (the measure was the constraint rows'
+/// Gram matrix, regular there); now the reconstruction's own measure changes
+/// sign there and the run stops with the structured error, with the joint
+/// at `phi = 0` within the step. The Lagrange-d'Alembert form runs through.
+#[test]
+fn the_racer_crossing_a_degenerate_momentum_basis_stops() {
+    let swing = [
+        "--initial",
+        "phi=0.1",
+        "--initial",
+        "dot(x)=1",
+        "--initial",
+        "dot(phi)=-0.5",
+        "--t-end",
+        "2",
+    ];
+    let (output, table) = racer("swing", "momentum", "rk4", &swing);
+    assert_one_line_error(
+        &output,
+        &["singular configuration at t = 0.", "reconstruction"],
+    );
+    let phi = column_of(&table.unwrap(), "phi");
+    let last = *phi.last().unwrap();
+    assert!(last.abs() < 0.01, "phi = {last}");
+    let (output, table) = racer("swing", "lagrange", "rk4", &swing);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let phi = column_of(&table.unwrap(), "phi");
+    assert!(phi.iter().any(|v| *v < -0.01), "the joint swings through 0");
+}
+
 /// The sleigh with a declared momentum basis `(g X)^T` for the coordinate
 /// basis `X = [(1, tan(theta), 0), (0, 0, 1)]`, degenerate at heading +-pi/2.
 const TAN_SLEIGH: &str = "

@@ -9,6 +9,8 @@
 
 use chaplygin::runtime::control::Controller;
 use chaplygin::runtime::integrate::DormandPrince;
+use chaplygin::runtime::linalg::Square;
+use chaplygin::runtime::nalgebra::Const;
 use chaplygin::runtime::simulate::Observed;
 use chaplygin::runtime::system::{
     Dalembert, Energy, LagrangeDalembert, ModelNames, Momenta, Momentum, MomentumEquations,
@@ -66,6 +68,7 @@ fn compare<
 where
     M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P> + Momenta<N, S> + ModelNames,
     U: Controller<D, P> + Controller<TWO_N, P> + Copy,
+    Const<N>: Square,
 {
     let qdot0 = model.velocities(&q0, alpha0);
     let dalembert = Dalembert::new(model, input);

@@ -13,6 +13,14 @@
 //!   configuration path crosses such a point transversally. The snakeboard's
 //!   two wheel constraints become parallel at `phi = +-pi/2` (Duindam &
 //!   Stramigioli 2004, section 3: `tan(phi)` in the paper's basis of D).
+//! - The momentum form `(q, rdot, p)` reconstructs the velocity from the
+//!   shape velocities and the momenta, i.e. it solves the square system
+//!   `[A(q); E_r; W(q)] qdot = (0, rdot, p)` with `E_r` the shape
+//!   coordinates' unit rows and `W = h g` the momenta's rows
+//!   (`p = W qdot`). [`momentum_regularity`] is its Hadamard ratio: zero
+//!   where the constraint rows are dependent or the momentum basis
+//!   degenerates (a derived basis vector `e_i(r)` vanishing, say), and it
+//!   changes sign where a path crosses such a point.
 //! - The Lagrange-d'Alembert form needs the multiplier system, with the
 //!   Gram matrix `A g^-1 A^T`, to be regular. [`constraint_regularity`] is
 //!   its Hadamard ratio `det(A g^-1 A^T) / prod_i (A g^-1 A^T)_ii`, in
@@ -56,6 +64,46 @@ where
     };
     let rows: [[f64; N]; N] =
         core::array::from_fn(|i| if i < C { constraints[i] } else { basis[i - C] });
+    hadamard_ratio(matrix_from_rows(&rows))
+}
+
+/// The Hadamard ratio of the momentum form's reconstruction
+/// `[A; E_r; W]` (see the module documentation), from the linear maps
+/// `constraints(e_j) = A e_j` and `momenta(e_j) = W e_j` of each unit
+/// velocity and the indices of the shape coordinates; `N = C + R + K`.
+///
+/// ```
+/// use chaplygin_runtime::monitor::momentum_regularity;
+/// // The plane with ydot = 0, no shape, the momentum p = 2 xdot: regular.
+/// let a = |v: &[f64; 2]| [v[1]];
+/// assert_eq!(momentum_regularity(a, |v: &[f64; 2]| [2.0 * v[0]], &[]), -1.0);
+/// // A momentum row along the constraint's: degenerate.
+/// assert_eq!(momentum_regularity(a, |v: &[f64; 2]| [v[1]], &[]), 0.0);
+/// ```
+pub fn momentum_regularity<const N: usize, const C: usize, const R: usize, const K: usize>(
+    constraints: impl Fn(&[f64; N]) -> [f64; C],
+    momenta: impl Fn(&[f64; N]) -> [f64; K],
+    shape: &[usize; R],
+) -> f64
+where
+    Const<N>: Square,
+{
+    const {
+        assert!(
+            N == C + R + K,
+            "C constraint rows, R shape rows and K momenta make N rows"
+        )
+    };
+    let unit = |j: usize| -> [f64; N] { core::array::from_fn(|i| f64::from(u8::from(i == j))) };
+    let a: [[f64; C]; N] = core::array::from_fn(|j| constraints(&unit(j)));
+    let w: [[f64; K]; N] = core::array::from_fn(|j| momenta(&unit(j)));
+    let rows: [[f64; N]; N] = core::array::from_fn(|i| {
+        core::array::from_fn(|j| match i {
+            i if i < C => a[j][i],
+            i if i < C + R => f64::from(u8::from(shape[i - C] == j)),
+            i => w[j][i - C - R],
+        })
+    });
     hadamard_ratio(matrix_from_rows(&rows))
 }
 

@@ -21,7 +21,7 @@ mod outcome;
 mod run;
 
 pub use advance::Advance;
-pub use observed::{MULTIPLIERS, Observed, REDUCED, Regularity};
+pub use observed::{MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, Regularity};
 pub use outcome::{SimulationError, Summary};
 
 use crate::record::Recorder;

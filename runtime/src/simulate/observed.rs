@@ -6,11 +6,14 @@
 
 use crate::control::{Interconnection, PortHamiltonianController};
 use crate::law::Controller;
+use crate::linalg::Square;
+use crate::monitor::momentum_regularity;
 use crate::projection::{self, ProjectionError, Surface};
 use crate::system::{
     Dalembert, Energy, Holonomic, LagrangeDalembert, ModelNames, Momentum, MomentumEquations,
     Reduced, ReducedPortHamiltonian, split,
 };
+use nalgebra::Const;
 
 /// A regularity measure's value at a state, and what it measures.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,6 +59,10 @@ pub trait Observed<const D: usize>: Energy<D> {
 
 /// The reduced form's measure (see [`crate::monitor::reduced_regularity`]).
 pub const REDUCED: &str = "reduced form's det[A; V^T] (constraint rows and momentum basis)";
+
+/// The momentum form's measure (see [`crate::monitor::momentum_regularity`]).
+pub const RECONSTRUCTION: &str =
+    "momentum form's reconstruction det[A; E_r; h g] (constraint rows, shape and momentum basis)";
 
 /// The Lagrange-d'Alembert form's measure (see
 /// [`crate::monitor::constraint_regularity`]).
@@ -178,6 +185,7 @@ impl<
 where
     M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P> + ModelNames,
     F: Controller<D, P>,
+    Const<N>: Square,
 {
     /// The coordinates, `dot(r)` for the shape velocities, `p1..pK`.
     fn state_names(&self) -> Vec<String> {
@@ -203,8 +211,20 @@ where
         largest_residual(self.model(), &q, &qdot)
     }
 
+    /// What the reconstruction of `qdot` inverts (see
+    /// [`crate::monitor::momentum_regularity`]).
     fn regularity(&self, x: &[f64; D]) -> Regularity {
-        multiplier_regularity(self.model(), &core::array::from_fn(|i| x[i]))
+        let q: [f64; N] = core::array::from_fn(|i| x[i]);
+        let model = self.model();
+        Regularity {
+            quantity: RECONSTRUCTION,
+            value: momentum_regularity(
+                |v| model.constraint_residual(&q, v),
+                |v| model.momentum(&q, v),
+                &M::SHAPE,
+            ),
+            signed: true,
+        }
     }
 }
 

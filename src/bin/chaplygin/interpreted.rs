@@ -383,8 +383,32 @@ impl Formulation for InterpretedMomentum {
         residual(&self.model, q, &qdot)
     }
 
-    /// The Hadamard ratio of `A g^-1 A^T`, as the compiled momentum adapter.
+    /// The Hadamard ratio of the reconstruction `[A; E_r; h g]`, as the
+    /// compiled momentum adapter's (`momentum_regularity`).
     fn regularity(&self, x: &[f64]) -> Regularity {
-        multiplier_regularity(&self.model, &x[..self.model.sizes().n])
+        let n = self.model.sizes().n;
+        let q = &x[..n];
+        let mut rows = evaluated(self.model.constraint_matrix(q));
+        for &i in &self.shape {
+            rows.extend((0..n).map(|j| f64::from(u8::from(i == j))));
+        }
+        let columns: Vec<Vec<f64>> = (0..n)
+            .map(|j| {
+                let unit: Vec<f64> = (0..n).map(|i| f64::from(u8::from(i == j))).collect();
+                evaluated(self.model.call("momentum", &[q, &unit]))
+            })
+            .collect();
+        let k = columns.first().map_or(0, Vec::len);
+        rows.extend((0..k).flat_map(|i| columns.iter().map(move |column| column[i])));
+        let value = if rows.len() == n * n {
+            hadamard_ratio(DMatrix::from_row_slice(n, n, &rows))
+        } else {
+            0.0
+        };
+        Regularity {
+            quantity: chaplygin::runtime::simulate::RECONSTRUCTION,
+            value,
+            signed: true,
+        }
     }
 }

@@ -26,8 +26,9 @@ use crate::models::{
 };
 use arguments::{Controller, Formulation as Kind};
 use chaplygin::plot;
+use chaplygin::runtime::linalg::Square;
 use chaplygin::runtime::linearize::Linearization;
-use chaplygin::runtime::nalgebra::DMatrix;
+use chaplygin::runtime::nalgebra::{Const, DMatrix};
 use chaplygin::runtime::system::{
     Dalembert, ModelNames, Momenta, Momentum, MomentumEquations, Parameters, Reduced,
     ReducedPortHamiltonian,
@@ -179,6 +180,7 @@ fn compiled<
 ) -> Result<(), Box<dyn Error>>
 where
     M: CompiledModel<N, C, K, P, S> + MomentumEquations<N, R, MP, P>,
+    Const<N>: Square,
 {
     if args.controller == Controller::Energy {
         return Err(no_controller(built_in.name).into());
