@@ -79,6 +79,9 @@ where
 /// assert_eq!(momentum_regularity(a, |v: &[f64; 2]| [2.0 * v[0]], &[]), -1.0);
 /// // A momentum row along the constraint's: degenerate.
 /// assert_eq!(momentum_regularity(a, |v: &[f64; 2]| [v[1]], &[]), 0.0);
+/// // A momentum row through zero: the measure changes sign.
+/// let through = |s: f64| momentum_regularity(a, move |v: &[f64; 2]| [s * v[0]], &[]);
+/// assert!(through(-0.1) * through(0.1) < 0.0);
 /// ```
 pub fn momentum_regularity<const N: usize, const C: usize, const R: usize, const K: usize>(
     constraints: impl Fn(&[f64; N]) -> [f64; C],

@@ -49,8 +49,8 @@ use super::constraints::default_point;
 use super::port_hamiltonian::{column_of_symbols, fresh_symbol};
 use crate::model::{GroupFactor, Model};
 use crate::sym::{
-    Atoms, ExprId, Function, Matrix, MatrixError, Rational, RationalFunction, SymError, SymbolId,
-    SymbolKind,
+    Atoms, ExprId, Function, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError,
+    SymbolId, SymbolKind,
 };
 use std::collections::HashMap;
 
@@ -266,7 +266,8 @@ fn body_basis(constraints_group: &Matrix, atoms: &Atoms) -> Result<Matrix, Matri
         let row: Vec<RationalFunction> = (0..basis.columns())
             .map(|j| basis.get(i, j).clone())
             .collect();
-        for (j, entry) in normalized(&row, atoms).into_iter().enumerate() {
+        let row = without_atom_factors(&normalized(&row, atoms), atoms);
+        for (j, entry) in row.into_iter().enumerate() {
             basis.set(i, j, entry);
         }
     }
@@ -320,6 +321,44 @@ fn normalized(vector: &[RationalFunction], atoms: &Atoms) -> Vec<RationalFunctio
         })
         .min_by_key(|candidate| candidate.iter().map(RationalFunction::size).sum::<usize>())
         .unwrap_or_else(|| vector.to_vec())
+}
+
+/// `vector` divided by each atom (a shape coordinate, a sine or a cosine, a
+/// parameter) that divides every entry exactly, as often as it does: a
+/// factor common to all entries vanishes where the vector does not
+/// degenerate as a direction (the roller racer's `sin(phi)`, its third
+/// entry `cos(phi)^2 - 1` being `-sin(phi)^2` in the engine's normal form).
+fn without_atom_factors(vector: &[RationalFunction], atoms: &Atoms) -> Vec<RationalFunction> {
+    let mut vector = vector.to_vec();
+    let mut candidates: Vec<_> = vector.iter().flat_map(RationalFunction::atoms).collect();
+    candidates.sort_unstable();
+    candidates.dedup();
+    for atom in candidates {
+        let factor = RationalFunction::from_poly(Poly::atom(atom));
+        while let Some(divided) = divided_exactly(&vector, &factor, atoms) {
+            vector = divided;
+        }
+    }
+    vector
+}
+
+/// Every entry of `vector` over `factor`, when each is a polynomial again
+/// and not all are zero.
+fn divided_exactly(
+    vector: &[RationalFunction],
+    factor: &RationalFunction,
+    atoms: &Atoms,
+) -> Option<Vec<RationalFunction>> {
+    if vector.iter().all(RationalFunction::is_zero) {
+        return None;
+    }
+    vector
+        .iter()
+        .map(|entry| {
+            let quotient = entry.div(factor, atoms)?;
+            quotient.as_polynomial().is_some().then_some(quotient)
+        })
+        .collect()
 }
 
 /// `vector` times the least common multiple of its entries' denominators.

@@ -287,3 +287,24 @@ fn rolling_disk_under_se2_and_rotation() {
         }
     }
 }
+
+/// The roller racer's body constraints at the identity are `v2 = 0` and
+/// `-sin(phi) v1 + (d1 cos(phi) - d2) omega = 0` (the front axle's row with
+/// `rdot = 0`), so S is spanned by `(d2 - d1 cos(phi), 0, -sin(phi))`, which
+/// vanishes nowhere for `d1 != d2`; scaled to 1 at the defaults, by
+/// `d2 - d1`. The null space of the elimination carries a factor `sin(phi)`
+/// in every entry; it is divided out.
+#[test]
+fn the_racers_momentum_basis_has_no_removable_factor() {
+    let (mut model, momentum) =
+        derived(include_str!("../../../../tests/models/roller_racer.model"));
+    let expected: Vec<RationalFunction> =
+        ["(d2 - d1*cos(phi))/(d2 - d1)", "0", "-sin(phi)/(d2 - d1)"]
+            .iter()
+            .map(|text| model.normal_of_text(text).expect("parses"))
+            .collect();
+    let atoms = model.store.atoms().clone();
+    for (entry, expected) in momentum.basis.entries().iter().zip(&expected) {
+        assert!(entry.sub(expected, &atoms).is_zero());
+    }
+}
