@@ -283,3 +283,137 @@ fn simulate_names_a_length_constraint_no_height_meets_with_its_residual() {
         );
     }
 }
+
+/// `derive MODEL --format FORMAT`'s standard output.
+fn derived(model: &str, format: &str) -> String {
+    let output = chaplygin(&["derive", model, "--format", format]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8_lossy(&output.stdout).to_string()
+}
+
+/// The text format's mechanism lines `NAME: VALUE` under `heading`.
+fn text_entries(text: &str, heading: &str) -> Vec<(String, String)> {
+    text.lines()
+        .skip_while(|line| !line.contains(heading))
+        .skip(1)
+        .take_while(|line| line.starts_with("    "))
+        .filter(|line| line.trim() != "none")
+        .map(|line| {
+            let (name, value) = line.trim().split_once(": ").expect("NAME: VALUE");
+            (name.to_string(), value.to_string())
+        })
+        .collect()
+}
+
+#[test]
+fn derive_json_has_the_mechanism_object_with_the_texts_values() {
+    for model in ["caster-robot", "rolling-disk-3d", PENDULUM] {
+        let text = derived(model, "text");
+        let json: serde_json::Value =
+            serde_json::from_str(&derived(model, "json")).expect("the JSON parses");
+        let mechanism = &json["mechanism"];
+        let line_value = |label: &str| {
+            text.lines()
+                .find_map(|line| line.trim().strip_prefix(label))
+                .unwrap_or_else(|| panic!("{label} in {text}"))
+                .to_string()
+        };
+        let names = |key: &str| {
+            let names: Vec<&str> = mechanism[key]
+                .as_array()
+                .unwrap_or_else(|| panic!("{key} in {mechanism}"))
+                .iter()
+                .map(|name| name.as_str().expect("a name"))
+                .collect();
+            names.join(", ")
+        };
+        assert_eq!(names("frames"), line_value("frames: ").replace("none", ""));
+        assert_eq!(names("points"), line_value("points: "));
+        assert_eq!(
+            mechanism["kinetic_energy"]["text"],
+            line_value("T of the bodies = ")
+        );
+        assert_eq!(
+            mechanism["potential_energy"]["text"],
+            line_value("V of the bodies = ")
+        );
+        assert!(mechanism["kinetic_energy"]["latex"].is_string());
+        let contacts = text_entries(&text, "rolling contacts");
+        assert_eq!(
+            contacts.len(),
+            mechanism["contacts"].as_object().unwrap().len()
+        );
+        for (name, row) in contacts {
+            let entries: Vec<&str> = mechanism["contacts"][&name]["text"]
+                .as_array()
+                .unwrap_or_else(|| panic!("{name} in {mechanism}"))
+                .iter()
+                .map(|e| e.as_str().expect("an entry"))
+                .collect();
+            assert_eq!(format!("[{}]", entries.join(", ")), row);
+            assert_eq!(
+                mechanism["contacts"][&name]["latex"]
+                    .as_array()
+                    .unwrap()
+                    .len(),
+                entries.len()
+            );
+        }
+        let holonomic = text_entries(&text, "holonomic constraints");
+        assert_eq!(
+            holonomic.len(),
+            mechanism["holonomic"].as_object().unwrap().len()
+        );
+        for (name, residual) in holonomic {
+            assert_eq!(mechanism["holonomic"][&name]["text"], residual.as_str());
+        }
+        // The rest of the document is there too.
+        assert!(json["constraints"].is_object() && json["report"].is_object());
+    }
+    // The pendulum's constraint, x^2 + z^2 - l^2, by hand.
+    let json: serde_json::Value = serde_json::from_str(&derived(PENDULUM, "json")).unwrap();
+    let length = json["mechanism"]["holonomic"]["length"]["text"]
+        .as_str()
+        .expect("the length constraint");
+    for term in ["x^2", "z^2", "- l^2"] {
+        assert!(length.contains(term), "{length}");
+    }
+}
+
+#[test]
+fn derive_latex_has_the_mechanism_section_before_the_constraint_analysis() {
+    let latex = derived("sleigh-bodies", "latex");
+    let mechanism = latex
+        .find("\\section*{Mechanism (frames, bodies, contacts)}")
+        .expect("a mechanism section");
+    let analysis = latex
+        .find("\\section*{Constraint analysis")
+        .expect("the analysis");
+    assert!(mechanism < analysis);
+    let section = &latex[mechanism..analysis];
+    assert!(
+        section.contains("\\item[points] blade, center"),
+        "{section}"
+    );
+    // The blade's row, -sin(theta) dot(x) + cos(theta) dot(y) = 0.
+    assert!(
+        section.contains(
+            "A_{\\text{blade}} = \\begin{bmatrix} -\\sin\\theta & \\cos\\theta & 0 \\end{bmatrix}"
+        ),
+        "{section}"
+    );
+    assert!(section.contains("V_{\\text{bodies}} = 0"), "{section}");
+    let pendulum = derived(PENDULUM, "latex");
+    assert!(pendulum.contains("f_{\\text{length}}(q) = "), "{pendulum}");
+    let caster = derived("caster-robot", "latex");
+    assert!(
+        caster.contains("\\item[points] center, left\\_hub"),
+        "{caster}"
+    );
+    let energy_form = derived("sleigh", "latex");
+    assert!(!energy_form.contains("Mechanism ("), "{energy_form}");
+}
