@@ -40,7 +40,7 @@ mod style;
 
 pub use eigenvalues::{EigenvalueSweep, write_eigenvalue_plot};
 pub use error::PlotError;
-pub use spec::{Figure4, PlanarPath, PlotSpec, Table};
+pub use spec::{Figure4, PlanarPath, PlotSpec, Table, Track};
 
 use plotters::style::FontStyle;
 use std::collections::BTreeMap;

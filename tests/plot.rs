@@ -5,7 +5,7 @@
 //! their PNG signature and size, and the structured errors of bad input.
 #![cfg(feature = "cli")]
 
-use chaplygin::plot::{Figure4, PlanarPath, PlotError, PlotSpec, Table, write_plots};
+use chaplygin::plot::{Figure4, PlanarPath, PlotError, PlotSpec, Table, Track, write_plots};
 use std::f64::consts::FRAC_PI_2;
 use std::path::{Path, PathBuf};
 
@@ -211,6 +211,7 @@ fn a_missing_column_is_named_and_nothing_is_written() {
             x: "x".into(),
             y: "y".into(),
             heading: Some("heading".into()),
+            tracks: Vec::new(),
         }),
         ..PlotSpec::default()
     };
@@ -224,6 +225,30 @@ fn a_missing_column_is_named_and_nothing_is_written() {
     }
     assert!(error.to_string().contains("`heading`"), "{error}");
     assert!(!dir.exists(), "nothing is written when a column is missing");
+}
+
+#[test]
+fn a_track_names_its_columns_and_one_missing_is_an_error() {
+    let dir = scratch("track");
+    let track = Track {
+        point: "contact".into(),
+        x: "contact.x".into(),
+        y: "contact.y".into(),
+    };
+    let spec = PlotSpec::for_table(&trajectory(10)).with_tracks(vec![track.clone()]);
+    assert_eq!(spec.path.as_ref().unwrap().tracks, [track]);
+    match write_plots(&trajectory(10), &spec, &dir).unwrap_err() {
+        PlotError::MissingColumn { name, .. } => assert_eq!(name, "contact.x"),
+        other => panic!("expected a missing column, got {other:?}"),
+    }
+    assert!(!dir.exists(), "nothing is written when a column is missing");
+    let planeless = Table::new(["t", "energy"].map(String::from).to_vec()).unwrap();
+    let no_path = PlotSpec::for_table(&planeless).with_tracks(vec![Track {
+        point: "p".into(),
+        x: "p.x".into(),
+        y: "p.y".into(),
+    }]);
+    assert_eq!(no_path.path, None, "no tracks without a path");
 }
 
 #[test]

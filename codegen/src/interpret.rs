@@ -46,6 +46,10 @@ pub struct Names {
     pub constraints: Vec<String>,
     /// The reduced momenta `alpha` (the momentum basis rows).
     pub momenta: Vec<String>,
+    /// The declared points (`positions` returns each one's ground position).
+    pub points: Vec<String>,
+    /// The configuration constraints `f(q) = 0` (`holonomic_residual`).
+    pub holonomic: Vec<String>,
 }
 
 /// The sizes of a model: `n` coordinates, `c` constraints, `k = n - c`,
@@ -194,7 +198,8 @@ impl InterpretedModel {
         })
     }
 
-    /// The names of the coordinates, parameters, inputs, constraints and momenta.
+    /// The names of the coordinates, parameters, inputs, constraints,
+    /// momenta, points and configuration constraints.
     pub fn names(&self) -> &Names {
         &self.names
     }
@@ -489,6 +494,8 @@ fn names(model: &Model) -> Names {
         inputs: declared(&model.inputs),
         constraints: declared(&model.constraints),
         momenta: momentum_names(model),
+        points: declared(&model.mechanism.points),
+        holonomic: declared(&model.mechanism.holonomic),
     }
 }
 

@@ -1,7 +1,8 @@
 //! `path.png`: the planar path `(x(t), y(t))` with equal axis scales, so
 //! that turns and distances look as they are, heading arrows
-//! `(cos theta, sin theta)` at regular time intervals, and the start and
-//! end marked.
+//! `(cos theta, sin theta)` at regular time intervals, the start and end
+//! marked, and the ground tracks of declared points (a mechanism's contact
+//! points) as thinner curves of their own colours.
 
 use super::style::{
     DrawResult, Drawn, canvas, centred, draw_ends, draw_legend, emptiest_corner, finite_runs,
@@ -24,6 +25,16 @@ const ARROW_LENGTH: f64 = 0.035;
 /// Half-angle of an arrowhead, in radians.
 const ARROWHEAD_ANGLE: f64 = 0.45;
 
+/// The colours of the tracks, in turn.
+const TRACK_COLOURS: [RGBColor; 6] = [
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(23, 190, 207),
+];
+
 /// Draws `path.png` from the spec's columns.
 pub(super) fn draw(
     file: &Path,
@@ -33,6 +44,20 @@ pub(super) fn draw(
 ) -> Result<(), PlotError> {
     let (x, y) = (&columns[&planar.x], &columns[&planar.y]);
     let points: Vec<(f64, f64)> = x.iter().copied().zip(y.iter().copied()).collect();
+    let tracks: Vec<(&str, Vec<(f64, f64)>)> = planar
+        .tracks
+        .iter()
+        .map(|track| {
+            let (x, y) = (&columns[&track.x], &columns[&track.y]);
+            let points = x.iter().copied().zip(y.iter().copied()).collect();
+            (track.point.as_str(), points)
+        })
+        .collect();
+    let everything: Vec<(f64, f64)> = points
+        .iter()
+        .chain(tracks.iter().flat_map(|(_, track)| track))
+        .copied()
+        .collect();
     let root = canvas(file, spec.size)?;
     let area = root
         .titled("Path in the plane", title_style())
@@ -43,12 +68,12 @@ pub(super) fn draw(
         .plotting_area()
         .dim_in_pixel();
     let (x_range, y_range) = equal_scale(
-        padded_range(x.iter().copied(), 0.08),
-        padded_range(y.iter().copied(), 0.08),
+        padded_range(everything.iter().map(|p| p.0), 0.08),
+        padded_range(everything.iter().map(|p| p.1), 0.08),
         pixels,
     );
     let arrow = ARROW_LENGTH * (x_range.end - x_range.start).max(y_range.end - y_range.start);
-    let legend_corner = emptiest_corner(&points, &x_range, &y_range);
+    let legend_corner = emptiest_corner(&everything, &x_range, &y_range);
     let (x_labels, y_labels) = (tick_labels(&x_range), tick_labels(&y_range));
     let mut chart = chart_builder(&area)
         .build_cartesian_2d(x_range, y_range)
@@ -64,6 +89,7 @@ pub(super) fn draw(
         .draw()
         .drawn(file)?;
     let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
+    draw_tracks(&mut chart, &tracks).drawn(file)?;
     let path_style = BLUE.stroke_width(2);
     chart
         .draw_series(finite_runs(&points, finite).map(|run| PathElement::new(run, path_style)))
@@ -88,6 +114,22 @@ pub(super) fn draw(
     draw_ends(&mut chart, ends).drawn(file)?;
     draw_legend(&mut chart, legend_corner).drawn(file)?;
     root.present().drawn(file)
+}
+
+/// Each point's track, labelled `track of POINT`, in [`TRACK_COLOURS`] in turn.
+fn draw_tracks(
+    chart: &mut ChartContext<'_, BitMapBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    tracks: &[(&str, Vec<(f64, f64)>)],
+) -> DrawResult {
+    let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
+    for ((point, track), colour) in tracks.iter().zip(TRACK_COLOURS.iter().cycle()) {
+        let style = colour.stroke_width(1);
+        chart
+            .draw_series(finite_runs(track, finite).map(|run| PathElement::new(run, style)))?
+            .label(format!("track of {point}"))
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+    }
+    Ok(())
 }
 
 /// Arrows of `length` at the marks `(position, heading)`.

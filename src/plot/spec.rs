@@ -76,6 +76,19 @@ pub struct PlanarPath {
     pub y: String,
     /// Heading angle in radians from the x axis; no arrows without it.
     pub heading: Option<String>,
+    /// Ground tracks of declared points drawn with the path.
+    pub tracks: Vec<Track>,
+}
+
+/// The columns of one point's ground track: its x and y in ground axes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Track {
+    /// The point's name, shown in the legend.
+    pub point: String,
+    /// Column of the point's ground x.
+    pub x: String,
+    /// Column of the point's ground y.
+    pub y: String,
 }
 
 /// The data of Duindam & Stramigioli's Figure 4 (MATH.md 3.2): the columns
@@ -130,6 +143,7 @@ impl Default for PlotSpec {
                 x: "x".into(),
                 y: "y".into(),
                 heading: Some("theta".into()),
+                tracks: Vec::new(),
             }),
             energy: Some("energy".into()),
             constraint_residual: Some("constraint_residual".into()),
@@ -151,6 +165,7 @@ impl PlotSpec {
                 x,
                 y,
                 heading: present("theta"),
+                tracks: Vec::new(),
             }),
             _ => None,
         };
@@ -168,6 +183,14 @@ impl PlotSpec {
             figure4: Some(figure4),
             ..self
         }
+    }
+
+    /// This spec with `tracks` drawn along the path (none without a path).
+    pub fn with_tracks(mut self, tracks: Vec<Track>) -> Self {
+        if let Some(path) = &mut self.path {
+            path.tracks = tracks;
+        }
+        self
     }
 
     /// This spec with `unit` shown on the axes of `column`.
@@ -190,6 +213,9 @@ impl PlotSpec {
         if let Some(path) = &self.path {
             names.extend([path.x.as_str(), path.y.as_str()]);
             names.extend(path.heading.as_deref());
+            for track in &path.tracks {
+                names.extend([track.x.as_str(), track.y.as_str()]);
+            }
         }
         names.extend(self.energy.as_deref());
         names.extend(self.constraint_residual.as_deref());

@@ -4,7 +4,14 @@
 //! - Coordinates: those given are fixed; of the others, one per
 //!   configuration constraint (the pivots of `df/dq` on them, by complete
 //!   pivoting) is solved from `f(q) = 0` by Newton's method, and the rest
-//!   are 0.
+//!   are 0. Newton starts from 0, or from [`GENERIC_START`] where `df/dq`
+//!   is singular in the unset coordinates at 0 (a pendulum's length
+//!   constraint at height 0). An error names the constraint and its
+//!   residual: one the unset coordinates do not change
+//!   ([`PointError::HolonomicFixed`]), or one Newton's method leaves
+//!   unmet, with the smallest residual it reached
+//!   ([`PointError::HolonomicNotConverged`]: no real solution, such as a
+//!   pendulum's height given beyond its length).
 //! - Velocities: those given are fixed and the others solved from
 //!   `A(q) qdot = 0`, i.e. `A_free qdot_free = -A_given qdot_given`. If
 //!   that leaves a direction free (`A_free` has a null space), the
@@ -62,12 +69,12 @@ pub enum PointError {
     },
     /// Newton's method on `f(q) = 0` did not converge.
     #[error(
-        "configuration constraint `{constraint}` is still {residual:e} after {iterations} Newton steps"
+        "configuration constraint `{constraint}` cannot be met: Newton's method on the coordinates left unset comes no closer than {residual:e} in {iterations} steps"
     )]
     HolonomicNotConverged {
-        /// The constraint with the largest residual.
+        /// The constraint with the largest residual at the closest iterate.
         constraint: String,
-        /// Its residual.
+        /// Its residual there.
         residual: f64,
         /// The steps taken.
         iterations: usize,
@@ -79,6 +86,9 @@ const SVD_ITERATIONS: usize = 10_000;
 
 /// The Newton steps allowed for `f(q) = 0`.
 const NEWTON_STEPS: usize = 50;
+
+/// Where the unset coordinates start when `df/dq` is singular in them at 0.
+pub const GENERIC_START: f64 = 0.5;
 
 impl OperatingPoint {
     /// The point with the coordinates and velocities given (`None` where
@@ -121,21 +131,33 @@ pub fn configuration(model: &dyn Dynamics, given: &[Option<f64>]) -> Result<Vec<
         return Ok(q);
     }
     let unset: Vec<usize> = (0..q.len()).filter(|&i| given[i].is_none()).collect();
-    let jacobian = model.holonomic_jacobian(&q);
-    let chosen = pivots(&jacobian, &unset, 1.0, 1e-12 * jacobian.amax().max(1.0));
+    let mut chosen = solvable(model, &q, &unset);
     if chosen.len() < names.len() {
-        let residual = model.holonomic_residual(&q);
-        let missed = (0..names.len())
-            .find(|row| chosen.iter().all(|(r, _)| r != row))
-            .unwrap_or(0);
-        return Err(PointError::HolonomicFixed {
-            constraint: names[missed].clone(),
-            residual: residual[missed],
-        });
+        let mut generic = q.clone();
+        unset.iter().for_each(|&i| generic[i] = GENERIC_START);
+        let at_generic = solvable(model, &generic, &unset);
+        if at_generic.len() < names.len() {
+            let residual = model.holonomic_residual(&q);
+            let missed = (0..names.len())
+                .find(|row| at_generic.iter().all(|(r, _)| r != row))
+                .unwrap_or(0);
+            return Err(PointError::HolonomicFixed {
+                constraint: names[missed].clone(),
+                residual: residual[missed],
+            });
+        }
+        (q, chosen) = (generic, at_generic);
     }
     let solved: Vec<usize> = chosen.iter().map(|&(_, column)| column).collect();
     newton(model, &mut q, &solved, &names)?;
     Ok(q)
+}
+
+/// The pivots `(constraint, coordinate)` of `df/dq` at `q` among the
+/// coordinates `unset`.
+fn solvable(model: &dyn Dynamics, q: &[f64], unset: &[usize]) -> Vec<(usize, usize)> {
+    let jacobian = model.holonomic_jacobian(q);
+    pivots(&jacobian, unset, 1.0, 1e-12 * jacobian.amax().max(1.0))
 }
 
 /// Newton's method on `f(q) = 0` in the coordinates `solved` (one per constraint).
@@ -146,24 +168,33 @@ fn newton(
     names: &[String],
 ) -> Result<(), PointError> {
     let scale = q.iter().fold(1.0f64, |m, v| m.max(v.abs()));
-    for _ in 0..NEWTON_STEPS {
+    let mut closest: Option<(usize, f64)> = None;
+    for step in 0..=NEWTON_STEPS {
         let residual = model.holonomic_residual(q);
-        if residual.amax() <= 1e-13 * scale {
+        let Some((worst, value)) = largest(residual.as_slice()) else {
+            return Ok(());
+        };
+        if value.abs() <= 1e-13 * scale {
             return Ok(());
         }
+        if closest.is_none_or(|(_, best)| value.abs() < best.abs()) {
+            closest = Some((worst, value));
+        }
+        if step == NEWTON_STEPS {
+            break;
+        }
         let jacobian = model.holonomic_jacobian(q).select_columns(solved);
-        let Some(step) = jacobian.lu().solve(&residual) else {
+        let Some(newton_step) = jacobian.lu().solve(&residual) else {
             break;
         };
-        for (&i, delta) in solved.iter().zip(step.iter()) {
+        if newton_step.iter().any(|delta| !delta.is_finite()) {
+            break;
+        }
+        for (&i, delta) in solved.iter().zip(newton_step.iter()) {
             q[i] -= delta;
         }
     }
-    let residual = model.holonomic_residual(q);
-    let (worst, value) = largest(residual.as_slice()).unwrap_or((0, 0.0));
-    if value.abs() <= 1e-13 * scale {
-        return Ok(());
-    }
+    let (worst, value) = closest.unwrap_or((0, f64::NAN));
     Err(PointError::HolonomicNotConverged {
         constraint: names[worst].clone(),
         residual: value,

@@ -2,16 +2,26 @@
 //! constraint analysis, the Lagrange-d'Alembert equations, the reduced
 //! port-Hamiltonian form, the momentum equation with a symmetry, the
 //! report) as text, LaTeX or JSON, from `chaplygin_codegen::document`.
-//! For a model declared as a mechanism, the text also shows what the
-//! mechanism sections derived: the bodies' `T` and `V`, the rolling-contact
-//! rows and the holonomic constraints.
+//! For a model declared as a mechanism, each format also shows what the
+//! mechanism sections derived (INTERFACE.md section 4): the frames and
+//! points, the bodies' `T` and `V`, the rolling-contact rows of `A(q)` and
+//! the holonomic constraints `f(q)`; as a section before the constraint
+//! analysis in text and LaTeX, as the `mechanism` object in JSON:
+//!
+//! ```text
+//! "mechanism": {"frames": [..], "points": [..],
+//!               "kinetic_energy": {"text", "latex"}, "potential_energy": {..},
+//!               "contacts": {NAME: {"text": [..], "latex": [..]}, ..},
+//!               "holonomic": {NAME: {"text", "latex"}, ..}}
+//! ```
 
 use crate::catalog;
 use chaplygin_codegen::diagnostic::Diagnostics;
 use chaplygin_codegen::document::{self, derive_document};
-use chaplygin_codegen::model::{Model, check};
+use chaplygin_codegen::model::{Declared, Model, check};
 use chaplygin_codegen::sym::RationalFunction;
 use chaplygin_codegen::syntax::parse_str;
+use serde_json::{Map, Value, json};
 use std::error::Error;
 
 /// The document's format.
@@ -56,67 +66,195 @@ pub fn document(model: &str, format: Format) -> Result<String, Box<dyn Error>> {
         .into()
     };
     let text = derive_document(source.text(), format.into()).map_err(rejected)?;
-    if format != Format::Text {
-        return Ok(text);
-    }
     let syntax = parse_str(source.text()).map_err(rejected)?;
     let mut checked = check(&syntax).map_err(rejected)?;
     if !checked.mechanism.is_declared() {
         return Ok(text);
     }
-    let mechanism = mechanism_section(&mut checked);
-    Ok(match text.find(BEFORE_MECHANISM) {
-        Some(at) => format!("{}\n\n{mechanism}{}", &text[..at], &text[at..]),
-        None => format!("{text}\n{mechanism}"),
+    let mechanism = MechanismSection::of(&mut checked);
+    Ok(match format {
+        Format::Text => before(&text, "\n\nConstraint analysis", &mechanism.text(), "\n\n"),
+        Format::Latex => before(
+            &text,
+            "\n\\section*{Constraint analysis",
+            &mechanism.latex(),
+            "\n",
+        ),
+        Format::Json => mechanism.json(&text)?,
     })
 }
 
-/// The heading the mechanism section is printed before.
-const BEFORE_MECHANISM: &str = "\n\nConstraint analysis";
+/// `text` with `section` inserted before `heading` (at the end without
+/// it), `separator` in front.
+fn before(text: &str, heading: &str, section: &str, separator: &str) -> String {
+    match text.find(heading) {
+        Some(at) => format!("{}{separator}{section}{}", &text[..at], &text[at..]),
+        None => format!("{text}{separator}{section}\n"),
+    }
+}
 
-/// What the mechanism sections derived, as text.
-fn mechanism_section(model: &mut Model) -> String {
-    let mechanism = model.mechanism.clone();
-    let (n, rows) = (model.n(), model.constraint_matrix.clone());
-    let first_contact = model.c() - mechanism.contacts.len() - mechanism.holonomic.len();
-    let names = |declared: &[chaplygin_codegen::model::Declared]| {
-        let names: Vec<&str> = declared.iter().map(|d| d.name.as_str()).collect();
-        if names.is_empty() {
-            "none".to_string()
-        } else {
-            names.join(", ")
+/// An expression printed as text and as LaTeX.
+struct Printed {
+    text: String,
+    latex: String,
+}
+
+impl Printed {
+    fn json(&self) -> Value {
+        json!({"text": self.text, "latex": self.latex})
+    }
+}
+
+/// What the mechanism sections derived, printed.
+struct MechanismSection {
+    frames: Vec<String>,
+    points: Vec<String>,
+    kinetic_energy: Printed,
+    potential_energy: Printed,
+    /// Each rolling-contact row of `A(q)`, by name.
+    contacts: Vec<(String, Vec<Printed>)>,
+    /// Each holonomic constraint's `f(q)`, by name.
+    holonomic: Vec<(String, Printed)>,
+}
+
+impl MechanismSection {
+    /// The section of a checked model declared as a mechanism.
+    fn of(model: &mut Model) -> Self {
+        let mechanism = model.mechanism.clone();
+        let (n, rows) = (model.n(), model.constraint_matrix.clone());
+        let first_contact = model.c() - mechanism.contacts.len() - mechanism.holonomic.len();
+        let names = |declared: &[Declared]| declared.iter().map(|d| d.name.clone()).collect();
+        let mut printed = |form: &RationalFunction| {
+            let expression = model.store.expression_of(form);
+            Printed {
+                text: model.store.display(expression).to_string(),
+                latex: model.store.latex(expression),
+            }
+        };
+        let contacts = (mechanism.contacts.iter().enumerate())
+            .map(|(offset, contact)| {
+                let row = first_contact + offset;
+                let entries = (0..n).map(|j| printed(rows.get(row, j))).collect();
+                (contact.name.clone(), entries)
+            })
+            .collect();
+        let holonomic = (mechanism.holonomic.iter().enumerate())
+            .map(|(i, h)| {
+                (
+                    h.name.clone(),
+                    printed(mechanism.holonomic_residual.get(i, 0)),
+                )
+            })
+            .collect();
+        MechanismSection {
+            frames: names(&mechanism.frames),
+            points: names(&mechanism.points),
+            kinetic_energy: printed(&mechanism.kinetic_energy),
+            potential_energy: printed(&mechanism.potential_energy),
+            contacts,
+            holonomic,
         }
-    };
-    let mut printed = |form: &RationalFunction| {
-        let expression = model.store.expression_of(form);
-        model.store.display(expression).to_string()
-    };
-    let mut lines = vec![
-        "Mechanism (frames, bodies, contacts)".to_string(),
-        format!("  frames: {}", names(&mechanism.frames)),
-        format!("  points: {}", names(&mechanism.points)),
-        format!("  T of the bodies = {}", printed(&mechanism.kinetic_energy)),
-        format!(
-            "  V of the bodies = {}",
-            printed(&mechanism.potential_energy)
-        ),
-    ];
-    lines.push("  rolling contacts (A_i qdot = 0, rows of A):".to_string());
-    if mechanism.contacts.is_empty() {
-        lines.push("    none".to_string());
     }
-    for (offset, contact) in mechanism.contacts.iter().enumerate() {
-        let row = first_contact + offset;
-        let entries: Vec<String> = (0..n).map(|j| printed(rows.get(row, j))).collect();
-        lines.push(format!("    {}: [{}]", contact.name, entries.join(", ")));
+
+    /// The section as text.
+    fn text(&self) -> String {
+        let listed = |names: &[String]| match names.is_empty() {
+            true => "none".to_string(),
+            false => names.join(", "),
+        };
+        let mut lines = vec![
+            "Mechanism (frames, bodies, contacts)".to_string(),
+            format!("  frames: {}", listed(&self.frames)),
+            format!("  points: {}", listed(&self.points)),
+            format!("  T of the bodies = {}", self.kinetic_energy.text),
+            format!("  V of the bodies = {}", self.potential_energy.text),
+            "  rolling contacts (A_i qdot = 0, rows of A):".to_string(),
+        ];
+        if self.contacts.is_empty() {
+            lines.push("    none".to_string());
+        }
+        for (name, row) in &self.contacts {
+            let entries: Vec<&str> = row.iter().map(|e| e.text.as_str()).collect();
+            lines.push(format!("    {name}: [{}]", entries.join(", ")));
+        }
+        lines.push("  holonomic constraints f(q) = 0:".to_string());
+        if self.holonomic.is_empty() {
+            lines.push("    none".to_string());
+        }
+        for (name, residual) in &self.holonomic {
+            lines.push(format!("    {name}: {}", residual.text));
+        }
+        lines.join("\n")
     }
-    lines.push("  holonomic constraints f(q) = 0:".to_string());
-    if mechanism.holonomic.is_empty() {
-        lines.push("    none".to_string());
+
+    /// The section as LaTeX, a `\section*` of the derivation document.
+    fn latex(&self) -> String {
+        let listed = |names: &[String]| match names.is_empty() {
+            true => "none".to_string(),
+            false => escaped(&names.join(", ")),
+        };
+        let mut out = vec![
+            "\\section*{Mechanism (frames, bodies, contacts)}".to_string(),
+            "\\begin{description}".to_string(),
+            format!("\\item[frames] {}", listed(&self.frames)),
+            format!("\\item[points] {}", listed(&self.points)),
+            "\\end{description}".to_string(),
+            format!(
+                "\\[ T_{{\\text{{bodies}}}} = {} \\]",
+                self.kinetic_energy.latex
+            ),
+            format!(
+                "\\[ V_{{\\text{{bodies}}}} = {} \\]",
+                self.potential_energy.latex
+            ),
+        ];
+        for (name, row) in &self.contacts {
+            let entries: Vec<&str> = row.iter().map(|e| e.latex.as_str()).collect();
+            out.push(format!(
+                "\\[ A_{{\\text{{{}}}}} = \\begin{{bmatrix}} {} \\end{{bmatrix}} \\]",
+                escaped(name),
+                entries.join(" & ")
+            ));
+        }
+        for (name, residual) in &self.holonomic {
+            out.push(format!(
+                "\\[ f_{{\\text{{{}}}}}(q) = {} = 0 \\]",
+                escaped(name),
+                residual.latex
+            ));
+        }
+        out.join("\n") + "\n"
     }
-    for (i, holonomic) in mechanism.holonomic.iter().enumerate() {
-        let residual = printed(mechanism.holonomic_residual.get(i, 0));
-        lines.push(format!("    {}: {residual}", holonomic.name));
+
+    /// The JSON document `document` with the section as its `mechanism` object.
+    fn json(&self, document: &str) -> Result<String, serde_json::Error> {
+        let mut root: Map<String, Value> = serde_json::from_str(document)?;
+        let contacts: Map<String, Value> = (self.contacts.iter())
+            .map(|(name, row)| {
+                let text: Vec<&str> = row.iter().map(|e| e.text.as_str()).collect();
+                let latex: Vec<&str> = row.iter().map(|e| e.latex.as_str()).collect();
+                (name.clone(), json!({"text": text, "latex": latex}))
+            })
+            .collect();
+        let holonomic: Map<String, Value> = (self.holonomic.iter())
+            .map(|(name, residual)| (name.clone(), residual.json()))
+            .collect();
+        let section = json!({
+            "frames": self.frames,
+            "points": self.points,
+            "kinetic_energy": self.kinetic_energy.json(),
+            "potential_energy": self.potential_energy.json(),
+            "contacts": contacts,
+            "holonomic": holonomic,
+        });
+        root.insert("mechanism".into(), section);
+        let mut text = serde_json::to_string_pretty(&Value::Object(root))?;
+        text.push('\n');
+        Ok(text)
     }
-    lines.join("\n")
+}
+
+/// A name in LaTeX text: underscores escaped.
+fn escaped(name: &str) -> String {
+    name.replace('_', "\\_")
 }

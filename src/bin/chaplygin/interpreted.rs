@@ -7,6 +7,8 @@
 //! code is emitted from, so a `.model` file and the compiled model agree to
 //! round-off.
 
+pub mod dynamics;
+
 use crate::formulation::Formulation;
 use chaplygin::runtime::monitor::{gram_regularity, hadamard_ratio};
 use chaplygin::runtime::nalgebra::{DMatrix, DVector};

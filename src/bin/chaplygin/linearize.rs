@@ -8,11 +8,11 @@
 //! are zero.
 
 mod expression;
-mod interpreted;
 mod sweep;
 
 use crate::catalog::{self, Compiled, Source};
 use crate::derive::Rejected;
+use crate::interpreted::dynamics::InterpretedDynamics;
 use crate::models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
     rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
@@ -27,7 +27,6 @@ use chaplygin::runtime::linearize::{
 use chaplygin::runtime::system::{ModelNames, Parameters};
 use chaplygin_codegen::interpret::InterpretedModel;
 use expression::{ExpressionError, evaluate};
-use interpreted::InterpretedDynamics;
 use std::collections::BTreeMap;
 use std::error::Error;
 use std::fmt::Write as _;

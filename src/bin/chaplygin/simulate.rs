@@ -17,6 +17,7 @@ pub(crate) use start::{set_model_parameters, set_parameters};
 use crate::catalog::{self, BuiltIn, Compiled, Source};
 use crate::derive::Rejected;
 use crate::formulation::Typed;
+use crate::interpreted::dynamics::InterpretedDynamics;
 use crate::interpreted::{InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced};
 use crate::models::energy_control::{ClosedLoop, EnergyController};
 use crate::models::{
@@ -34,7 +35,7 @@ use chaplygin::runtime::system::{
     ReducedPortHamiltonian,
 };
 use chaplygin_codegen::interpret::InterpretedModel;
-use output::execute;
+use output::{Points, execute};
 use start::{InputError, Kinematics, compiled_start, initial_state};
 use std::error::Error;
 
@@ -51,19 +52,37 @@ pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
         Compiled::Snakeboard if args.controller == Controller::Energy => {
             energy_controlled(model, args)
         }
-        Compiled::Snakeboard => compiled::<Snakeboard, 5, 2, 3, 2, 8, 10, 2, 1, 8>(model, args),
-        Compiled::Sleigh => compiled::<Sleigh, 3, 1, 2, 0, 5, 6, 0, 2, 5>(model, args),
-        Compiled::RollingDisk => compiled::<RollingDisk, 4, 2, 2, 2, 6, 8, 1, 1, 6>(model, args),
+        Compiled::Snakeboard => {
+            compiled::<Snakeboard, 5, 2, 3, 2, 8, 10, 2, 1, 8>(model, args, None)
+        }
+        Compiled::Sleigh => compiled::<Sleigh, 3, 1, 2, 0, 5, 6, 0, 2, 5>(model, args, None),
+        Compiled::RollingDisk => {
+            compiled::<RollingDisk, 4, 2, 2, 2, 6, 8, 1, 1, 6>(model, args, None)
+        }
         Compiled::DifferentialDrive => {
-            compiled::<DifferentialDrive, 5, 3, 2, 2, 7, 10, 2, 0, 7>(model, args)
+            compiled::<DifferentialDrive, 5, 3, 2, 2, 7, 10, 2, 0, 7>(model, args, None)
         }
-        Compiled::RollingDisk3d => {
-            compiled::<RollingDisk3d, 5, 2, 3, 2, 8, 10, 1, 2, 8>(model, args)
-        }
-        Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 2, 0, 5, 6, 0, 2, 5>(model, args),
-        Compiled::SnakeboardBodies => {
-            compiled::<SnakeboardBodies, 5, 2, 3, 2, 8, 10, 2, 1, 8>(model, args)
-        }
+        Compiled::RollingDisk3d => compiled::<RollingDisk3d, 5, 2, 3, 2, 8, 10, 1, 2, 8>(
+            model,
+            args,
+            Some((&RollingDisk3d::POINTS, |disk, q| {
+                disk.positions(&array(q)).as_flattened().to_vec()
+            })),
+        ),
+        Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 2, 0, 5, 6, 0, 2, 5>(
+            model,
+            args,
+            Some((&SleighBodies::POINTS, |sleigh, q| {
+                sleigh.positions(&array(q)).as_flattened().to_vec()
+            })),
+        ),
+        Compiled::SnakeboardBodies => compiled::<SnakeboardBodies, 5, 2, 3, 2, 8, 10, 2, 1, 8>(
+            model,
+            args,
+            Some((&SnakeboardBodies::POINTS, |board, q| {
+                board.positions(&array(q)).as_flattened().to_vec()
+            })),
+        ),
         // No symmetry: the interpreter runs it from its text.
         Compiled::CasterRobot => interpreted(model.name, model.source, args),
     }
@@ -85,6 +104,7 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
     let coordinates: Vec<&str> = names.coordinates.iter().map(String::as_str).collect();
     let constraints: Vec<&str> = names.constraints.iter().map(String::as_str).collect();
     let n = coordinates.len();
+    let dynamics = InterpretedDynamics(model);
     let start = initial_state(
         &Kinematics {
             coordinates: &coordinates,
@@ -92,13 +112,15 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
             default_q: &vec![0.0; n],
             default_motion: &|_| vec![0.0; n],
             constraint_matrix: &|q| {
-                let a = crate::interpreted::evaluated(model.constraint_matrix(q));
+                let a = crate::interpreted::evaluated(dynamics.0.constraint_matrix(q));
                 DMatrix::from_row_slice(constraints.len(), n, &a)
             },
+            holonomic: Some(&dynamics),
         },
         &args.initial,
         &mut [],
     )?;
+    let InterpretedDynamics(model) = dynamics;
     let input_names: Vec<&str> = names.inputs.iter().map(String::as_str).collect();
     let parameters: Vec<(&str, f64)> = known
         .iter()
@@ -111,11 +133,15 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
         Kind::Reduced => {
             let alpha = model.momenta(&start.q, &start.qdot)?;
             let x0: Vec<f64> = start.q.iter().chain(&alpha).copied().collect();
-            execute(&InterpretedReduced { model, inputs }, &x0, args, None)
+            let reduced = InterpretedReduced { model, inputs };
+            let points = interpreted_points(&reduced.model);
+            execute(&reduced, &x0, args, (None, points))
         }
         Kind::Lagrange => {
             let x0: Vec<f64> = start.q.iter().chain(&start.qdot).copied().collect();
-            execute(&InterpretedDalembert { model, inputs }, &x0, args, None)
+            let dalembert = InterpretedDalembert { model, inputs };
+            let points = interpreted_points(&dalembert.model);
+            execute(&dalembert, &x0, args, (None, points))
         }
         Kind::Momentum => {
             let momentum = InterpretedMomentum::new(model, inputs).ok_or_else(|| {
@@ -124,9 +150,35 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
                 ))
             })?;
             let x0 = momentum.initial_state(&start.q, &start.qdot)?;
-            execute(&momentum, &x0, args, None)
+            let points = interpreted_points(&momentum.model);
+            execute(&momentum, &x0, args, (None, points))
         }
     }
+}
+
+/// The points an interpreted model declares, `None` without any.
+fn interpreted_points(model: &InterpretedModel) -> Option<Points<'_>> {
+    let names = &model.names().points;
+    (!names.is_empty()).then(|| Points {
+        names: names.clone(),
+        n: model.sizes().n,
+        positions: Box::new(|q| Ok(model.call("positions", &[q])?)),
+    })
+}
+
+/// A compiled model's point names and its `positions`, flattened.
+type CompiledPoints<M> = (&'static [&'static str], fn(&M, &[f64]) -> Vec<f64>);
+
+/// [`CompiledPoints`] as the run sees them.
+fn compiled_points<M, const N: usize>(
+    model: &M,
+    points: Option<CompiledPoints<M>>,
+) -> Option<Points<'_>> {
+    points.map(|(names, positions)| Points {
+        names: names.iter().map(|name| name.to_string()).collect(),
+        n: N,
+        positions: Box::new(move |q| Ok(positions(model, q))),
+    })
 }
 
 fn no_controller(model: &str) -> InputError {
@@ -177,6 +229,7 @@ fn compiled<
 >(
     built_in: &BuiltIn,
     args: &SimulateArgs,
+    points: Option<CompiledPoints<M>>,
 ) -> Result<(), Box<dyn Error>>
 where
     M: CompiledModel<N, C, K, P, S> + MomentumEquations<N, R, MP, P>,
@@ -190,6 +243,7 @@ where
     let start = compiled_start::<M, N, C, K, P, S>(&model, built_in, args, &mut [])?;
     let inputs = InputSchedule::new(M::INPUTS, &args.inputs, &parameter_values(model))?;
     let u = |t: f64| inputs.array::<P>(t);
+    let points = compiled_points::<M, N>(&model, points);
     match args.formulation {
         Kind::Reduced => {
             let alpha = model.momenta(&array(&start.q), &array(&start.qdot));
@@ -198,7 +252,7 @@ where
                 &Typed::<_, S>::structured(Reduced::new(&model, u)),
                 &x0,
                 args,
-                None,
+                (None, points),
             )
         }
         Kind::Lagrange => {
@@ -207,13 +261,13 @@ where
                 &Typed::<_, D>::plain(Dalembert::new(&model, u)),
                 &x0,
                 args,
-                None,
+                (None, points),
             )
         }
         Kind::Momentum => {
             let system = Momentum::new(&model, u);
             let x0: [f64; DM] = system.initial_state(&array(&start.q), &array(&start.qdot));
-            execute(&Typed::<_, DM>::plain(system), &x0, args, None)
+            execute(&Typed::<_, DM>::plain(system), &x0, args, (None, points))
         }
     }
 }
@@ -283,7 +337,7 @@ fn energy_controlled(built_in: &BuiltIn, args: &SimulateArgs) -> Result<(), Box<
         &Typed::<_, 10>::structured(closed_loop),
         &x0,
         args,
-        Some(figure4),
+        (Some(figure4), None),
     )
 }
 

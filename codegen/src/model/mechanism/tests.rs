@@ -99,3 +99,36 @@ fn a_square_norm_is_taken_without_a_root_on_the_reference_branch() {
         "no kernel: the root was taken exactly"
     );
 }
+
+#[test]
+fn a_written_out_square_of_a_polynomial_is_rooted_exactly() {
+    let (mut store, [_, p], [qe, pe]) = store();
+    let cos = store.apply(Function::Cos, qe).expect("cos");
+    let sin = store.apply(Function::Sin, qe).expect("sin");
+    let one = store.integer(1);
+    let zero = store.integer(0);
+    let defaults = move |s| if s == p { 2.0 } else { 0.0 };
+    // (1 + cos q)(cos q, sin q, 0): |a|^2 = (1 + cos q)^2 written out as
+    // 1 + 2 cos q + cos^2 q once sin^2 q = 1 - cos^2 q.
+    let one_plus_cos = store.add2(one, cos);
+    let turning = [cos, sin, zero].map(|c| store.mul2(one_plus_cos, c));
+    let length = vector::norm(&mut store, &turning, &defaults).expect("norm");
+    let difference = store.sub(length, one_plus_cos);
+    assert!(is_zero(&mut store, difference));
+    let form = store.normal(length).expect("normal");
+    assert!(store.in_exact_class(&form), "no root kernel");
+    // (q - p cos q, 0, 0) with p = 2: the root is p cos q - q, positive at q = 0.
+    let p_cos = store.mul2(pe, cos);
+    let skew = store.sub(qe, p_cos);
+    let length = vector::norm(&mut store, &[skew, zero, zero], &defaults).expect("norm");
+    let expected = store.sub(p_cos, qe);
+    let difference = store.sub(length, expected);
+    assert!(is_zero(&mut store, difference));
+    // 1 + 2 cos q + 2 cos^2 q is no square: it stays a root.
+    let not_square = [one_plus_cos, cos, zero];
+    let length = vector::norm(&mut store, &not_square, &defaults).expect("norm");
+    let form = store.normal(length).expect("normal");
+    assert!(!store.in_exact_class(&form), "a root kernel remains");
+    let at_zero = store.evaluate(length, &defaults);
+    assert!((at_zero - 5.0_f64.sqrt()).abs() < 1e-15, "{at_zero}");
+}

@@ -6,16 +6,19 @@
 //! and `unit(a) = a / norm(a)`.
 //!
 //! A norm is taken exactly when its square's normal form is a perfect
-//! square `c m^2` (`c` a square rational, `m` a power product of atoms over
-//! a denominator of even multiplicities): the root is `sqrt(c) m`, with the
-//! sign that makes it positive at the model's reference configuration
+//! square `s^2` over a denominator of even multiplicities: `s` a monomial
+//! `sqrt(c) m` (`c` a square rational, `m` a power product of atoms) or a
+//! polynomial without sines, found term by term from the leading one
+//! ([`polynomial_root`]: `(1 + cos q)^2` written out is `1 + cos q` again).
+//! The root takes the sign that makes it positive at the model's reference
+//! configuration
 //! (coordinates zero, parameters at their defaults). This is the case of a
 //! disk's contact point, `unit(cross(a, cross(a, z)))` with `|a x z| = |cos phi|`
 //! for the lean `phi`, taken as `cos phi` on the branch of the upright disk.
 //! Any other square stays `sqrt(...)`, a kernel of the normal form that
 //! differentiation and emission carry like every other.
 
-use crate::sym::{ExprId, Monomial, Poly, RationalFunction, Store, SymError, SymbolId};
+use crate::sym::{Atoms, ExprId, Monomial, Poly, RationalFunction, Store, SymError, SymbolId};
 
 /// Three components in ground axes.
 pub(in crate::model) type Vector = [ExprId; 3];
@@ -100,23 +103,10 @@ pub(in crate::model) fn unit(
     Ok(components)
 }
 
-/// `sqrt(form)` when the form is `c m^2 / (f_1^2k_1 ...)` with `c` a square
-/// rational and `m` a power product: a monomial over the halved denominator.
+/// `sqrt(form)` when the form is `s^2 / (f_1^2k_1 ...)`: `s` (see
+/// [`polynomial_root`]) over the halved denominator.
 fn exact_root(store: &Store, form: &RationalFunction) -> Option<RationalFunction> {
-    let [(monomial, coefficient)] = form.numerator().terms() else {
-        return None;
-    };
-    let root_coefficient = coefficient.exact_root(2)?;
-    let mut root = Poly::term(Monomial::one(), root_coefficient);
-    for &(atom, exponent) in monomial.factors() {
-        if exponent % 2 != 0 {
-            return None;
-        }
-        root = root.mul_term(
-            &Monomial::power(atom, exponent / 2),
-            &crate::sym::Rational::ONE,
-        );
-    }
+    let root = polynomial_root(form.numerator(), store.atoms())?;
     let mut result = RationalFunction::from_poly(root);
     for (factor, multiplicity) in form.denominator() {
         if multiplicity % 2 != 0 {
@@ -126,4 +116,43 @@ fn exact_root(store: &Store, form: &RationalFunction) -> Option<RationalFunction
         result = result.div(&half, store.atoms())?;
     }
     Some(result)
+}
+
+/// `s` with `s^2 = p` and a positive leading coefficient, when there is
+/// one: the leading term of `p` is that of `s` squared, and each next term
+/// of `s` is the leading term of the remainder `p - s_k^2` over twice the
+/// leading term of `s` (the lexicographic order is a monomial order). A
+/// polynomial with a sine is not tried: its square would have been reduced
+/// by `sin^2 = 1 - cos^2`, so the remainders do not cancel term by term.
+fn polynomial_root(p: &Poly, atoms: &Atoms) -> Option<Poly> {
+    if p.has_sine(atoms) {
+        return None;
+    }
+    let (lead_monomial, lead_coefficient) = p.leading()?;
+    let root_monomial = half(lead_monomial)?;
+    let root_coefficient = lead_coefficient.exact_root(2)?;
+    let twice = root_coefficient.add(&root_coefficient);
+    let mut root = Poly::term(root_monomial.clone(), root_coefficient);
+    for _ in 0..p.len() {
+        let remainder = p.sub(&root.mul(&root, atoms));
+        let Some((monomial, coefficient)) = remainder.leading() else {
+            return Some(root);
+        };
+        let next = monomial.div(&root_monomial)?;
+        if next >= root_monomial {
+            return None;
+        }
+        root = root.add(&Poly::term(next, coefficient.div(&twice)?));
+    }
+    p.sub(&root.mul(&root, atoms)).is_zero().then_some(root)
+}
+
+/// `m` with `m^2 = monomial`, when every exponent is even.
+fn half(monomial: &Monomial) -> Option<Monomial> {
+    monomial
+        .factors()
+        .iter()
+        .try_fold(Monomial::one(), |half, &(atom, exponent)| {
+            (exponent % 2 == 0).then(|| half.mul(&Monomial::power(atom, exponent / 2)))
+        })
 }

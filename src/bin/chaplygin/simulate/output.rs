@@ -1,5 +1,8 @@
 //! A run and what it writes: the simulation with the chosen integrator,
-//! `trajectory.csv`, the plots, and the summary printed.
+//! `trajectory.csv`, the plots, and the summary printed; for a model that
+//! declares points (INTERFACE.md section 4), `tracks.csv`: `t` and each
+//! point's position in ground axes (`P.x`, `P.y`, `P.z`) at every recorded
+//! row, whose ground tracks (x, y) `path.png` draws with the path.
 
 use super::arguments::{Integrator, SimulateArgs};
 use super::start::InputError;
@@ -14,14 +17,30 @@ use std::error::Error;
 use std::io;
 use std::time::{Duration, Instant};
 
+/// The points' positions at a configuration, three entries per point.
+pub(super) type PositionsAt<'a> = Box<dyn Fn(&[f64]) -> Result<Vec<f64>, Box<dyn Error>> + 'a>;
+
+/// A model's declared points: their names and their positions in ground
+/// axes at a configuration `q` (the first `n` entries of the state),
+/// flattened point by point.
+pub(super) struct Points<'a> {
+    /// The points' names, in declared order.
+    pub(super) names: Vec<String>,
+    /// The number of coordinates.
+    pub(super) n: usize,
+    /// `positions(q)`, three entries per point.
+    pub(super) positions: PositionsAt<'a>,
+}
+
 /// Runs `formulation` from `x0` with the chosen integrator (or the
 /// formulation's default, see [`Integrator::chosen_or_default`]), writing
-/// `trajectory.csv` and the plots into `--out`, and prints the summary.
+/// `trajectory.csv`, with `points` `tracks.csv`, and the plots into
+/// `--out`, and prints the summary.
 pub(super) fn execute(
     formulation: &dyn Formulation,
     x0: &[f64],
     args: &SimulateArgs,
-    figure4: Option<plot::Figure4>,
+    (figure4, points): (Option<plot::Figure4>, Option<Points<'_>>),
 ) -> Result<(), Box<dyn Error>> {
     let integrator = Integrator::chosen_or_default(args.integrator, formulation.is_structured());
     if integrator == Integrator::DiscreteGradient && !formulation.is_structured() {
@@ -40,36 +59,104 @@ pub(super) fn execute(
             crate::formulation::MAX_DIMENSION
         )).into()));
     let Both(_, table) = recorder;
-    let plots = write_plots(&table, &args.out, figure4);
+    let tracks = match &points {
+        Some(points) => Some(tracks(&table, points)?),
+        None => None,
+    };
+    let plots = write_plots(&table, tracks.as_ref(), &args.out, figure4);
     let report = outcome?;
     println!("{report}");
     println!("wrote {}", csv_path.display());
+    if let Some(tracks) = &tracks {
+        let tracks_path = args.out.join("tracks.csv");
+        write_table(tracks, &tracks_path)?;
+        println!("wrote {}", tracks_path.display());
+    }
     for plot in plots? {
         println!("wrote {}", plot.display());
     }
     Ok(())
 }
 
-/// The plots of what was recorded (`chaplygin::plot`), Figure 4 with
-/// `figure4`.
+/// The points' positions at every row of `table`: `t` then `P.x`, `P.y`,
+/// `P.z` for each point `P`.
+fn tracks(table: &Table, points: &Points<'_>) -> Result<Table, Box<dyn Error>> {
+    let mut tracks = Table::new();
+    let mut columns = vec!["t".to_string()];
+    for name in &points.names {
+        columns.extend(["x", "y", "z"].map(|axis| format!("{name}.{axis}")));
+    }
+    tracks.start(&columns)?;
+    for row in &table.rows {
+        let q = &row[1..=points.n];
+        let mut tracked = vec![row[0]];
+        tracked.extend((points.positions)(q)?);
+        tracks.record(&tracked)?;
+    }
+    Ok(tracks)
+}
+
+/// Writes `table` as CSV at `path`.
+fn write_table(table: &Table, path: &std::path::Path) -> io::Result<()> {
+    let mut csv = CsvRecorder::create(path)?;
+    csv.start(&table.columns)?;
+    for row in &table.rows {
+        csv.record(row)?;
+    }
+    csv.finish()
+}
+
+/// The plots of what was recorded (`chaplygin::plot`), with the points'
+/// ground tracks from `tracks` and Figure 4 with `figure4`.
 fn write_plots(
     table: &Table,
+    tracks: Option<&Table>,
     out: &std::path::Path,
     figure4: Option<plot::Figure4>,
 ) -> Result<Vec<std::path::PathBuf>, plot::PlotError> {
     if table.rows.is_empty() {
         return Ok(Vec::new());
     }
-    let mut plotted = plot::Table::new(table.columns.clone())?;
-    for row in &table.rows {
-        plotted.push_row(row.clone())?;
+    let mut columns = table.columns.clone();
+    let ground = tracks.map(ground_tracks).unwrap_or_default();
+    columns.extend(
+        ground
+            .iter()
+            .flat_map(|(track, _)| [track.x.clone(), track.y.clone()]),
+    );
+    let mut plotted = plot::Table::new(columns)?;
+    for (i, row) in table.rows.iter().enumerate() {
+        let mut row = row.clone();
+        if let Some(tracks) = tracks {
+            row.extend(
+                ground
+                    .iter()
+                    .flat_map(|&(_, j)| [tracks.rows[i][j], tracks.rows[i][j + 1]]),
+            );
+        }
+        plotted.push_row(row)?;
     }
-    let spec = plot::PlotSpec::for_table(&plotted);
+    let spec = plot::PlotSpec::for_table(&plotted)
+        .with_tracks(ground.into_iter().map(|(track, _)| track).collect());
     let spec = match figure4 {
         Some(figure4) => spec.with_figure4(figure4),
         None => spec,
     };
     plot::write_plots(&plotted, &spec, out)
+}
+
+/// The tracks' ground x and y columns, each with the index of its x
+/// column in `tracks` (its y column is the next).
+fn ground_tracks(tracks: &Table) -> Vec<(plot::Track, usize)> {
+    (1..tracks.columns.len())
+        .step_by(3)
+        .map(|j| {
+            let x = tracks.columns[j].clone();
+            let point = x.trim_end_matches(".x").to_string();
+            let y = tracks.columns[j + 1].clone();
+            (plot::Track { point, x, y }, j)
+        })
+        .collect()
 }
 
 /// What a finished run prints.

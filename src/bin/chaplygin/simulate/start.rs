@@ -1,13 +1,15 @@
 //! What a run starts from: the parameters (`--param`) and the initial state
-//! (`--initial`: the velocities given are fixed and the others solved from
-//! the constraints, as for `chaplygin linearize --at`), each mistake an
+//! (`--initial`: with configuration constraints, the coordinates given are
+//! fixed and the others solved from `f(q) = 0`; the velocities given are
+//! fixed and the others solved from the constraints, as for
+//! `chaplygin linearize --at`, see [`configuration`]), each mistake an
 //! [`InputError`] stated in one line (also an `--input` naming no input).
 
 use super::arguments::SimulateArgs;
 use super::{CompiledModel, array};
 use crate::catalog::BuiltIn;
-use chaplygin::runtime::linearize::point::{solve_velocities, velocity_names};
-use chaplygin::runtime::linearize::{Linearization, PointError};
+use chaplygin::runtime::linearize::point::{configuration, solve_velocities, velocity_names};
+use chaplygin::runtime::linearize::{Dynamics, Linearization, PointError};
 use chaplygin::runtime::nalgebra::DMatrix;
 use chaplygin::runtime::system::Parameters;
 
@@ -40,9 +42,11 @@ pub enum InputError {
         /// The inputs there are.
         known: String,
     },
-    /// The velocities not given cannot be solved from the constraints.
+    /// The coordinates or velocities not given cannot be solved from the
+    /// constraints (a configuration constraint no coordinate left unset
+    /// meets is named with its residual).
     #[error(transparent)]
-    Velocities(#[from] PointError),
+    Point(#[from] PointError),
     /// A combination the command does not run.
     #[error("{0}")]
     Unsupported(String),
@@ -108,13 +112,17 @@ pub(super) struct Kinematics<'a> {
     pub(super) default_motion: &'a dyn Fn(&[f64]) -> Vec<f64>,
     /// `A(q)`.
     pub(super) constraint_matrix: &'a ConstraintMatrix<'a>,
+    /// The configuration constraints `f(q) = 0`, if the model declares any.
+    pub(super) holonomic: Option<&'a dyn Dynamics>,
 }
 
 /// The initial state from the defaults and `--initial` (coordinates,
 /// `dot(q)` velocities and `controller_states`): without a velocity given,
 /// the default motion; else the velocities given, and the others solved
 /// from `A(q) qdot = 0` (an error names those left free, or the constraint
-/// the velocities given violate).
+/// the velocities given violate). With configuration constraints, the
+/// coordinates not given are solved from `f(q) = 0` first (an error names
+/// the constraint no choice of them meets, with its residual).
 pub(super) fn initial_state(
     kinematics: &Kinematics<'_>,
     given: &[(String, f64)],
@@ -123,9 +131,11 @@ pub(super) fn initial_state(
     let coordinates = kinematics.coordinates;
     let mut q = kinematics.default_q.to_vec();
     let mut velocities: Vec<Option<f64>> = vec![None; coordinates.len()];
+    let mut positions: Vec<Option<f64>> = vec![None; coordinates.len()];
     for (name, value) in given {
         if let Some(i) = coordinates.iter().position(|c| c == name) {
             q[i] = *value;
+            positions[i] = Some(*value);
         } else if let Some(i) = coordinates
             .iter()
             .position(|c| name == &format!("dot({c})"))
@@ -136,6 +146,11 @@ pub(super) fn initial_state(
         } else {
             return Err(unknown_initial(name, coordinates, controller_states));
         }
+    }
+    if let Some(holonomic) = kinematics.holonomic
+        && !holonomic.holonomic().is_empty()
+    {
+        q = configuration(holonomic, &positions)?;
     }
     let qdot = if velocities.iter().all(Option::is_none) {
         (kinematics.default_motion)(&q)
@@ -185,6 +200,7 @@ where
                 let a = Linearization::constraint_matrix(model, &array(q));
                 DMatrix::from_fn(C, N, |i, j| a[i][j])
             },
+            holonomic: None,
         },
         &args.initial,
         controller_states,

@@ -1,8 +1,9 @@
-//! A `.model` file linearized without recompiling: the interpreter runs the
+//! A `.model` file seen as the runtime's [`Dynamics`], for linearization
+//! and initial states without recompiling: the interpreter runs the
 //! same programs the compiled items are emitted from, `acceleration_jacobian`
-//! among them, so the Jacobians are as exact as the compiled model's.
-//! Configuration constraints are not interpreted: `.model` files have none
-//! here (`h = 0`).
+//! among them, so the Jacobians are as exact as the compiled model's, and
+//! `holonomic_residual` and `holonomic_jacobian` for the configuration
+//! constraints.
 
 use crate::interpreted::evaluated;
 use chaplygin::runtime::linearize::{Dynamics, GroupFactor};
@@ -23,7 +24,7 @@ impl Dynamics for InterpretedDynamics {
     }
 
     fn holonomic(&self) -> Vec<String> {
-        Vec::new()
+        self.0.names().holonomic.clone()
     }
 
     fn inputs(&self) -> usize {
@@ -42,12 +43,14 @@ impl Dynamics for InterpretedDynamics {
             .collect()
     }
 
-    fn holonomic_residual(&self, _q: &[f64]) -> DVector<f64> {
-        DVector::zeros(0)
+    fn holonomic_residual(&self, q: &[f64]) -> DVector<f64> {
+        DVector::from_vec(evaluated(self.0.call("holonomic_residual", &[q])))
     }
 
     fn holonomic_jacobian(&self, q: &[f64]) -> DMatrix<f64> {
-        DMatrix::zeros(0, q.len())
+        let h = self.0.names().holonomic.len();
+        let jacobian = evaluated(self.0.call("holonomic_jacobian", &[q]));
+        DMatrix::from_row_slice(h, q.len(), &jacobian)
     }
 
     fn mass_matrix(&self, q: &[f64]) -> DMatrix<f64> {
