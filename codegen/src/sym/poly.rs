@@ -16,10 +16,12 @@
 //! whose square the mechanism stage could not take exactly.
 
 mod atoms;
+mod factors;
 #[cfg(test)]
 mod tests;
 
 pub use atoms::{Atom, AtomId, Atoms};
+use factors::Factors;
 
 use super::budget::Budget;
 use super::number::Rational;
@@ -28,12 +30,12 @@ use std::cmp::Ordering;
 
 /// A power product of atoms, sorted by atom, exponents positive.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, Default)]
-pub struct Monomial(Vec<(AtomId, u32)>);
+pub struct Monomial(Factors);
 
 impl Monomial {
     /// The monomial 1.
     pub fn one() -> Monomial {
-        Monomial(Vec::new())
+        Monomial(Factors::new())
     }
 
     /// `atom^exponent`.
@@ -41,7 +43,7 @@ impl Monomial {
         if exponent == 0 {
             Monomial::one()
         } else {
-            Monomial(vec![(atom, exponent)])
+            Monomial([(atom, exponent)].into_iter().collect())
         }
     }
 
@@ -65,7 +67,7 @@ impl Monomial {
     /// `self * other`.
     pub fn mul(&self, other: &Monomial) -> Monomial {
         let (a, b) = (&self.0, &other.0);
-        let mut out = Vec::with_capacity(a.len() + b.len());
+        let mut out = Factors::new();
         let (mut i, mut j) = (0, 0);
         while i < a.len() && j < b.len() {
             match a[i].0.cmp(&b[j].0) {
@@ -84,16 +86,16 @@ impl Monomial {
                 }
             }
         }
-        out.extend_from_slice(&a[i..]);
-        out.extend_from_slice(&b[j..]);
+        out.extend(a[i..].iter().copied());
+        out.extend(b[j..].iter().copied());
         Monomial(out)
     }
 
     /// `self / other` when `other` divides `self`.
     pub fn div(&self, other: &Monomial) -> Option<Monomial> {
-        let mut out = Vec::with_capacity(self.0.len());
+        let mut out = Factors::new();
         let mut j = 0;
-        for &(atom, exponent) in &self.0 {
+        for &(atom, exponent) in self.0.iter() {
             let divisor = match other.0.get(j) {
                 Some(&(a, e)) if a == atom => {
                     j += 1;
@@ -377,8 +379,8 @@ impl Poly {
         let mut roots_expanded = false;
         for (monomial, coefficient) in self.terms {
             let mut expansion = Poly::term(Monomial::one(), coefficient);
-            let mut kept = Vec::with_capacity(monomial.0.len());
-            for (atom, exponent) in monomial.0 {
+            let mut kept = Factors::new();
+            for &(atom, exponent) in monomial.0.iter() {
                 let square = match (atoms.cosine_of(atom), atoms.radicand_of(atom)) {
                     _ if exponent < 2 => None,
                     (Some(cosine), _) => Some(
