@@ -269,8 +269,20 @@ impl Poly {
         }
     }
 
-    /// `self + other`, by merging the sorted term lists.
+    /// `self + other`.
     pub fn add(&self, other: &Poly) -> Poly {
+        self.merge(other, false)
+    }
+
+    /// `self - other`.
+    pub fn sub(&self, other: &Poly) -> Poly {
+        self.merge(other, true)
+    }
+
+    /// `self + other`, or `self - other` when `negate_other`, by merging
+    /// the sorted term lists (no negated copy of `other`).
+    fn merge(&self, other: &Poly, negate_other: bool) -> Poly {
+        let signed = |c: &Rational| if negate_other { c.neg() } else { c.clone() };
         let (a, b) = (&self.terms, &other.terms);
         let mut terms = Vec::with_capacity(a.len() + b.len());
         let (mut i, mut j) = (0, 0);
@@ -281,11 +293,11 @@ impl Poly {
                     i += 1;
                 }
                 Ordering::Less => {
-                    terms.push(b[j].clone());
+                    terms.push((b[j].0.clone(), signed(&b[j].1)));
                     j += 1;
                 }
                 Ordering::Equal => {
-                    let sum = a[i].1.add(&b[j].1);
+                    let sum = a[i].1.add(&signed(&b[j].1));
                     if !sum.is_zero() {
                         terms.push((a[i].0.clone(), sum));
                     }
@@ -295,13 +307,8 @@ impl Poly {
             }
         }
         terms.extend_from_slice(&a[i..]);
-        terms.extend_from_slice(&b[j..]);
+        terms.extend(b[j..].iter().map(|(m, c)| (m.clone(), signed(c))));
         Poly { terms }
-    }
-
-    /// `self - other`.
-    pub fn sub(&self, other: &Poly) -> Poly {
-        self.add(&other.neg())
     }
 
     /// `coefficient * monomial * self`; the order is kept, so no sorting.
