@@ -1,7 +1,9 @@
 //! Derivation time of every built-in model: `chaplygin_codegen::generate`
 //! on the model's text (`MODEL_TEXT`), from parsing to the emitted Rust
 //! source. Besides criterion's estimates, prints `DERIVATION name: best of
-//! several` from its own loop.
+//! several` from its own loop; `CHAPLYGIN_DERIVATION_SNAKES=8,12` adds the
+//! N-link snakes of those sizes to that loop (best of [`SNAKE_RUNS`]; not
+//! to criterion, at seconds per derivation).
 //!
 //! Run with `cargo bench -p chaplygin-models --bench derivation`.
 
@@ -13,6 +15,29 @@ use std::time::Instant;
 
 /// Runs of the printed best-of timing.
 const RUNS: usize = 7;
+/// Runs of the printed best-of timing of the larger snakes.
+const SNAKE_RUNS: usize = 3;
+
+/// The sizes listed in `CHAPLYGIN_DERIVATION_SNAKES` (comma-separated).
+fn larger_snakes() -> Vec<usize> {
+    std::env::var("CHAPLYGIN_DERIVATION_SNAKES")
+        .unwrap_or_default()
+        .split(',')
+        .filter_map(|size| size.trim().parse().ok())
+        .collect()
+}
+
+/// Prints `DERIVATION name: best of runs`.
+fn print_best(name: &str, text: &str, runs: usize) {
+    let best = (0..runs)
+        .map(|_| {
+            let start = Instant::now();
+            black_box(generate(black_box(text)).expect("the built-in model compiles"));
+            start.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min);
+    println!("DERIVATION {name}: {:.3} ms", best * 1e3);
+}
 
 fn models() -> Vec<(&'static str, String)> {
     vec![
@@ -30,14 +55,10 @@ fn models() -> Vec<(&'static str, String)> {
 fn bench(c: &mut Criterion) {
     let models = models();
     for (name, text) in &models {
-        let best = (0..RUNS)
-            .map(|_| {
-                let start = Instant::now();
-                black_box(generate(black_box(text)).expect("the built-in model compiles"));
-                start.elapsed().as_secs_f64()
-            })
-            .fold(f64::INFINITY, f64::min);
-        println!("DERIVATION {name}: {:.3} ms", best * 1e3);
+        print_best(name, text, RUNS);
+    }
+    for links in larger_snakes() {
+        print_best(&format!("snake{links}"), &snake::n_link_snake(links), SNAKE_RUNS);
     }
     let mut group = c.benchmark_group("derivation");
     group.sample_size(10);
