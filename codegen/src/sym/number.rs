@@ -142,7 +142,10 @@ impl Rational {
     /// `-self`.
     pub fn neg(&self) -> Rational {
         match &self.0 {
-            Repr::Small(n, d) => from_i128(-(*n as i128), *d as i128),
+            Repr::Small(n, d) => match n.checked_neg() {
+                Some(n) => Rational(Repr::Small(n, *d)),
+                None => from_i128(-(*n as i128), *d as i128),
+            },
             Repr::Big(b) => from_big(-b.clone()),
         }
     }
@@ -160,8 +163,10 @@ impl Rational {
     pub fn add(&self, other: &Rational) -> Rational {
         match (&self.0, &other.0) {
             (Repr::Small(a, b), Repr::Small(c, d)) => {
-                let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
-                from_i128(a * d + c * b, b * d)
+                add_in_i64(*a, *b, *c, *d).unwrap_or_else(|| {
+                    let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
+                    from_i128(a * d + c * b, b * d)
+                })
             }
             _ => from_big(self.to_big() + other.to_big()),
         }
@@ -175,9 +180,8 @@ impl Rational {
     /// `self * other`.
     pub fn mul(&self, other: &Rational) -> Rational {
         match (&self.0, &other.0) {
-            (Repr::Small(a, b), Repr::Small(c, d)) => {
-                from_i128(*a as i128 * *c as i128, *b as i128 * *d as i128)
-            }
+            (Repr::Small(a, b), Repr::Small(c, d)) => mul_in_i64(*a, *b, *c, *d)
+                .unwrap_or_else(|| from_i128(*a as i128 * *c as i128, *b as i128 * *d as i128)),
             _ => from_big(self.to_big() * other.to_big()),
         }
     }
@@ -262,6 +266,43 @@ impl Rational {
     }
 }
 
+/// `a/b + c/d` (reduced operands, `b, d > 0`) in checked `i64` arithmetic,
+/// or `None` when an intermediate overflows.
+fn add_in_i64(a: i64, b: i64, c: i64, d: i64) -> Option<Rational> {
+    if b == d {
+        return Some(reduced_i64(a.checked_add(c)?, b));
+    }
+    let numerator = a.checked_mul(d)?.checked_add(c.checked_mul(b)?)?;
+    Some(reduced_i64(numerator, b.checked_mul(d)?))
+}
+
+/// `(a/b) (c/d)` (reduced operands, `b, d > 0`) in checked `i64` arithmetic,
+/// or `None` when the product overflows. Cancelling `gcd(a, d)` and
+/// `gcd(c, b)` first leaves the product reduced.
+fn mul_in_i64(a: i64, b: i64, c: i64, d: i64) -> Option<Rational> {
+    if b == 1 && d == 1 {
+        return Some(Rational::integer(a.checked_mul(c)?));
+    }
+    let (ad, cb) = (gcd_i64(a, d), gcd_i64(c, b));
+    let numerator = (a / ad).checked_mul(c / cb)?;
+    let denominator = (b / cb).checked_mul(d / ad)?;
+    Some(Rational(Repr::Small(numerator, denominator)))
+}
+
+/// `gcd(|n|, d)` for `d > 0` (so it fits `i64`).
+fn gcd_i64(n: i64, d: i64) -> i64 {
+    n.unsigned_abs().gcd(&d.unsigned_abs()) as i64
+}
+
+/// `numerator / denominator` reduced, for `denominator > 0`.
+fn reduced_i64(numerator: i64, denominator: i64) -> Rational {
+    if denominator == 1 {
+        return Rational::integer(numerator);
+    }
+    let divisor = gcd_i64(numerator, denominator);
+    Rational(Repr::Small(numerator / divisor, denominator / divisor))
+}
+
 fn from_i128(numerator: i128, denominator: i128) -> Rational {
     let divisor = numerator.gcd(&denominator);
     let sign = if denominator < 0 { -1 } else { 1 };
@@ -341,6 +382,43 @@ mod tests {
         assert_eq!(Rational::new(2, -4).unwrap().to_small(), Some((-1, 2)));
         assert!(Rational::new(1, 0).is_none());
         assert!(Rational::ZERO.recip().is_none());
+    }
+
+    /// The checked `i64` paths against big rational arithmetic, on values
+    /// around the edges of `i64` where they overflow and must promote.
+    #[test]
+    fn the_i64_paths_agree_with_big_rationals() {
+        let edges = [
+            0,
+            1,
+            -1,
+            2,
+            -3,
+            6,
+            35,
+            i64::MAX,
+            i64::MIN,
+            i64::MAX / 2,
+            -(1 << 40),
+        ];
+        let denominators = [1, 2, 3, 6, 35, i64::MAX, 1 << 40, (1 << 31) - 1];
+        let values: Vec<Rational> = edges
+            .iter()
+            .flat_map(|&n| {
+                denominators
+                    .iter()
+                    .map(move |&d| from_big(BigRational::new(BigInt::from(n), BigInt::from(d))))
+            })
+            .collect();
+        for x in &values {
+            assert_eq!(x.neg().to_big(), -x.to_big());
+            for y in &values {
+                assert_eq!(x.add(y).to_big(), x.to_big() + y.to_big(), "{x} + {y}");
+                assert_eq!(x.mul(y).to_big(), x.to_big() * y.to_big(), "{x} * {y}");
+                assert_eq!(x.add(y), from_big(x.to_big() + y.to_big()), "{x} + {y}");
+                assert_eq!(x.mul(y), from_big(x.to_big() * y.to_big()), "{x} * {y}");
+            }
+        }
     }
 
     #[test]

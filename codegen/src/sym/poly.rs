@@ -16,10 +16,12 @@
 //! whose square the mechanism stage could not take exactly.
 
 mod atoms;
+mod factors;
 #[cfg(test)]
 mod tests;
 
 pub use atoms::{Atom, AtomId, Atoms};
+use factors::Factors;
 
 use super::budget::Budget;
 use super::number::Rational;
@@ -28,12 +30,12 @@ use std::cmp::Ordering;
 
 /// A power product of atoms, sorted by atom, exponents positive.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, Default)]
-pub struct Monomial(Vec<(AtomId, u32)>);
+pub struct Monomial(Factors);
 
 impl Monomial {
     /// The monomial 1.
     pub fn one() -> Monomial {
-        Monomial(Vec::new())
+        Monomial(Factors::new())
     }
 
     /// `atom^exponent`.
@@ -41,7 +43,7 @@ impl Monomial {
         if exponent == 0 {
             Monomial::one()
         } else {
-            Monomial(vec![(atom, exponent)])
+            Monomial([(atom, exponent)].into_iter().collect())
         }
     }
 
@@ -65,7 +67,7 @@ impl Monomial {
     /// `self * other`.
     pub fn mul(&self, other: &Monomial) -> Monomial {
         let (a, b) = (&self.0, &other.0);
-        let mut out = Vec::with_capacity(a.len() + b.len());
+        let mut out = Factors::new();
         let (mut i, mut j) = (0, 0);
         while i < a.len() && j < b.len() {
             match a[i].0.cmp(&b[j].0) {
@@ -84,16 +86,16 @@ impl Monomial {
                 }
             }
         }
-        out.extend_from_slice(&a[i..]);
-        out.extend_from_slice(&b[j..]);
+        out.extend(a[i..].iter().copied());
+        out.extend(b[j..].iter().copied());
         Monomial(out)
     }
 
     /// `self / other` when `other` divides `self`.
     pub fn div(&self, other: &Monomial) -> Option<Monomial> {
-        let mut out = Vec::with_capacity(self.0.len());
+        let mut out = Factors::new();
         let mut j = 0;
-        for &(atom, exponent) in &self.0 {
+        for &(atom, exponent) in self.0.iter() {
             let divisor = match other.0.get(j) {
                 Some(&(a, e)) if a == atom => {
                     j += 1;
@@ -267,8 +269,20 @@ impl Poly {
         }
     }
 
-    /// `self + other`, by merging the sorted term lists.
+    /// `self + other`.
     pub fn add(&self, other: &Poly) -> Poly {
+        self.merge(other, false)
+    }
+
+    /// `self - other`.
+    pub fn sub(&self, other: &Poly) -> Poly {
+        self.merge(other, true)
+    }
+
+    /// `self + other`, or `self - other` when `negate_other`, by merging
+    /// the sorted term lists (no negated copy of `other`).
+    fn merge(&self, other: &Poly, negate_other: bool) -> Poly {
+        let signed = |c: &Rational| if negate_other { c.neg() } else { c.clone() };
         let (a, b) = (&self.terms, &other.terms);
         let mut terms = Vec::with_capacity(a.len() + b.len());
         let (mut i, mut j) = (0, 0);
@@ -279,11 +293,11 @@ impl Poly {
                     i += 1;
                 }
                 Ordering::Less => {
-                    terms.push(b[j].clone());
+                    terms.push((b[j].0.clone(), signed(&b[j].1)));
                     j += 1;
                 }
                 Ordering::Equal => {
-                    let sum = a[i].1.add(&b[j].1);
+                    let sum = a[i].1.add(&signed(&b[j].1));
                     if !sum.is_zero() {
                         terms.push((a[i].0.clone(), sum));
                     }
@@ -293,13 +307,8 @@ impl Poly {
             }
         }
         terms.extend_from_slice(&a[i..]);
-        terms.extend_from_slice(&b[j..]);
+        terms.extend(b[j..].iter().map(|(m, c)| (m.clone(), signed(c))));
         Poly { terms }
-    }
-
-    /// `self - other`.
-    pub fn sub(&self, other: &Poly) -> Poly {
-        self.add(&other.neg())
     }
 
     /// `coefficient * monomial * self`; the order is kept, so no sorting.
@@ -377,8 +386,8 @@ impl Poly {
         let mut roots_expanded = false;
         for (monomial, coefficient) in self.terms {
             let mut expansion = Poly::term(Monomial::one(), coefficient);
-            let mut kept = Vec::with_capacity(monomial.0.len());
-            for (atom, exponent) in monomial.0 {
+            let mut kept = Factors::new();
+            for &(atom, exponent) in monomial.0.iter() {
                 let square = match (atoms.cosine_of(atom), atoms.radicand_of(atom)) {
                     _ if exponent < 2 => None,
                     (Some(cosine), _) => Some(

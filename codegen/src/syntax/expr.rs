@@ -11,7 +11,7 @@
 
 use proc_macro2::{Delimiter, Ident, Literal, Punct, Span, TokenTree};
 use syn::ext::IdentExt;
-use syn::parse::{End, Parse, ParseStream, Parser};
+use syn::parse::{End, Lookahead1, Parse, ParseStream, Parser};
 use syn::{Error, Result, Token, parenthesized, token};
 
 use super::ast::{BinaryOperator, Expr};
@@ -114,24 +114,39 @@ fn parse_operations(input: ParseStream, scope: Scope, min_precedence: u8) -> Res
 /// The binary operator after an operand, or `None` where the expression
 /// ends: at the end of the group, or at a `,` where commas separate. Any
 /// other token is an error naming everything that may follow an operand.
+/// The tokens are peeked directly; only the error path builds a
+/// [`syn::parse::Lookahead1`] (which records every token it is asked about).
 fn next_operator(input: ParseStream, scope: Scope) -> Result<Option<BinaryOperator>> {
-    let lookahead = input.lookahead1();
-    let operator = if lookahead.peek(Token![+]) {
+    let operator = if input.peek(Token![+]) {
         BinaryOperator::Add
-    } else if lookahead.peek(Token![-]) {
+    } else if input.peek(Token![-]) {
         BinaryOperator::Subtract
-    } else if lookahead.peek(Token![*]) {
+    } else if input.peek(Token![*]) {
         BinaryOperator::Multiply
-    } else if lookahead.peek(Token![/]) {
+    } else if input.peek(Token![/]) {
         BinaryOperator::Divide
-    } else if lookahead.peek(Token![^]) {
+    } else if input.peek(Token![^]) {
         BinaryOperator::Power
-    } else if (scope.commas() && lookahead.peek(Token![,])) || lookahead.peek(End) {
+    } else if (scope.commas() && input.peek(Token![,])) || input.is_empty() {
         return Ok(None);
     } else {
-        return Err(scope.unexpected(input, lookahead));
+        return Err(scope.unexpected(input, operand_followers(input, scope)));
     };
     Ok(Some(operator))
+}
+
+/// What may follow an operand, as a lookahead that names each of them.
+fn operand_followers(input: ParseStream, scope: Scope) -> Lookahead1 {
+    let lookahead = input.lookahead1();
+    let follows = lookahead.peek(Token![+])
+        || lookahead.peek(Token![-])
+        || lookahead.peek(Token![*])
+        || lookahead.peek(Token![/])
+        || lookahead.peek(Token![^])
+        || (scope.commas() && lookahead.peek(Token![,]))
+        || lookahead.peek(End);
+    debug_assert!(!follows, "asked only where no operator and no end follows");
+    lookahead
 }
 
 /// A primary operand followed by any number of `.field` selections.

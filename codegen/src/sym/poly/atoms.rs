@@ -11,6 +11,11 @@ use rustc_hash::FxHashMap as HashMap;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct AtomId(u32);
 
+impl AtomId {
+    /// The first atom interned (a filler for unused inline slots).
+    pub(super) const FIRST: AtomId = AtomId(0);
+}
+
 /// An indivisible factor of a polynomial.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Atom {
