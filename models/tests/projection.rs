@@ -94,7 +94,11 @@ fn the_pendulum_stays_on_its_rod_and_records_the_holonomic_residual() {
     let summary = Simulation::new(Rk4)
         .span(0.0, 100.0)
         .step(0.005)
-        .run(&Surface::new(&PENDULUM, Constant([])), start, &mut table)
+        .run(
+            &Surface::dalembert(Dalembert::new(&PENDULUM, Constant([]))),
+            start,
+            &mut table,
+        )
         .unwrap();
     assert_eq!(
         table.columns,
@@ -147,7 +151,7 @@ fn the_pendulum_stays_on_its_rod_and_records_the_holonomic_residual() {
 /// i.e. 1e-12 / (2 l) on the radius).
 #[test]
 fn the_configuration_projection_is_radial_on_a_circle() {
-    let surface = Surface::<_, Constant<0>, 2, 1, 0, 1>::new(&PENDULUM, Constant([]));
+    let surface: Surface<_, 2, 4> = Surface::dalembert(Dalembert::new(&PENDULUM, Constant([])));
     let q = [0.7, -1.9];
     let projected = surface.project_configuration(&q).unwrap();
     let radius = q[0].hypot(q[1]);
@@ -169,7 +173,7 @@ fn a_constraint_newton_cannot_meet_is_a_structured_error_naming_it() {
         .span(0.0, 1.0)
         .step(0.01)
         .run(
-            &Surface::new(&impossible, Constant([])),
+            &Surface::dalembert(Dalembert::new(&impossible, Constant([]))),
             swinging(0.3, 0.0),
             &mut Table::new(),
         )

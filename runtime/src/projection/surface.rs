@@ -1,34 +1,173 @@
-//! The Lagrange-d'Alembert form of a model with configuration constraints
-//! `f(q) = 0` ([`Holonomic`]), kept on them: after each step the
-//! configuration is projected onto `f(q) = 0`, then the velocity onto
-//! `ker A(q)` (see [`super`]), and the run records `max |f(q)|`.
+//! A formulation of a model with configuration constraints `f(q) = 0`
+//! ([`Holonomic`]) kept on them. Every formulation keeps `f` only through
+//! its velocity form `(df/dq) qdot = 0` (one of the constraint rows), so
+//! that `f` drifts with the integrator's error; after each step [`Surface`]
+//! projects the configuration onto `f(q) = 0` ([`super::configuration`]),
+//! then the velocity onto `ker A(q)` at the projected configuration in the
+//! kinetic-energy metric ([`super::dalembert_velocity`]), and the run
+//! records `max |f(q)|`.
+//!
+//! Each formulation's state starts with `q`; the rest is rebuilt exactly
+//! from the projected `(q, qdot)`:
+//!
+//! - Lagrange-d'Alembert, `x = (q, qdot)`: `q` replaced, and the velocity
+//!   projected by the formulation's own projection at the new `q`;
+//! - reduced, `x = (q, alpha)`: `qdot = velocities(q, alpha)` before the
+//!   projection, `alpha = momenta(q, qdot)` after it (exact on `ker A(q)`);
+//! - momentum, `x = (q, rdot, p)`: `qdot` reconstructed before, and
+//!   `(rdot, p)` of the projected `(q, qdot)` after
+//!   ([`Momentum::initial_state`]).
+//!
+//! A model without configuration constraints (`H = 0`) is left to its
+//! formulation: the wrapper then changes nothing.
 
-use super::{ProjectionError, Settings, configuration};
+use super::{ProjectionError, Settings, configuration, dalembert_velocity};
 use crate::arrays::matrix_from_rows;
-use crate::law::Controller;
-use crate::system::{Dalembert, Energy, Holonomic, Jacobian, LagrangeDalembert, OdeSystem};
+use crate::system::{
+    Dalembert, Energy, Holonomic, Jacobian, LagrangeDalembert, Momenta, Momentum,
+    MomentumEquations, OdeSystem, Reduced, Structured,
+};
 use nalgebra::{Const, SVector};
 
-/// A model's Lagrange-d'Alembert equations closed by a controller, as
-/// [`Dalembert`], with its `H` configuration constraints kept: `N`
-/// coordinates, `C` constraint rows (the velocity forms of the `H`
-/// among them), `P` inputs, `D = 2 N` states.
+/// A formulation `S` of a model with `N` coordinates, its state of size `D`
+/// kept on the model's configuration constraints after each step.
+///
+/// ```text
+/// Surface::dalembert(Dalembert::new(&model, controller))
+/// Surface::reduced(Reduced::new(&model, controller))
+/// Surface::momentum(Momentum::new(&model, controller))
+/// ```
 #[derive(Clone, Copy, Debug)]
-pub struct Surface<'a, M, F, const N: usize, const C: usize, const P: usize, const H: usize> {
-    equations: Dalembert<'a, M, F, N, C, P>,
+pub struct Surface<S, const N: usize, const D: usize> {
+    system: S,
+    kept: Option<Kept<S, N, D>>,
     settings: Settings,
 }
 
-impl<'a, M, F, const N: usize, const C: usize, const P: usize, const H: usize>
-    Surface<'a, M, F, N, C, P, H>
+/// How the state of a formulation `S` is kept on `f(q) = 0`.
+#[derive(Clone, Copy, Debug)]
+struct Kept<S, const N: usize, const D: usize> {
+    /// `q` onto `f(q) = 0` ([`configuration`]).
+    configuration: fn(&S, &[f64; N], Settings) -> Result<[f64; N], ProjectionError>,
+    /// `max |f(q)|`.
+    residual: fn(&S, &[f64; N]) -> f64,
+    /// The velocity `qdot` of a state.
+    velocity: fn(&S, &[f64; D]) -> [f64; N],
+    /// The state of a projected configuration moving with `qdot`.
+    state: fn(&S, &[f64; N], &[f64; N]) -> Result<[f64; D], ProjectionError>,
+}
+
+/// A closed formulation's model.
+trait Formulated {
+    type Model;
+    fn formulated_model(&self) -> &Self::Model;
+}
+
+impl<M, F, const N: usize, const C: usize, const P: usize> Formulated
+    for Dalembert<'_, M, F, N, C, P>
 where
-    M: LagrangeDalembert<N, C, P> + Holonomic<N, H>,
+    M: LagrangeDalembert<N, C, P>,
 {
-    /// `model` driven by `controller` (as [`Dalembert::new`]), projected
-    /// with Newton's default [`Settings`].
-    pub fn new(model: &'a M, controller: F) -> Self {
+    type Model = M;
+    fn formulated_model(&self) -> &M {
+        self.model()
+    }
+}
+
+impl<M, F, const P: usize> Formulated for Reduced<'_, M, F, P> {
+    type Model = M;
+    fn formulated_model(&self) -> &M {
+        self.model()
+    }
+}
+
+impl<M, F, const N: usize, const R: usize, const K: usize, const C: usize, const P: usize>
+    Formulated for Momentum<'_, M, F, N, R, K, C, P>
+where
+    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
+{
+    type Model = M;
+    fn formulated_model(&self) -> &M {
+        self.model()
+    }
+}
+
+/// `q` moved onto `f(q) = 0` of `model` ([`configuration`], the
+/// constraints named as declared).
+fn onto_configuration<M, const N: usize, const H: usize>(
+    model: &M,
+    q: &[f64; N],
+    settings: Settings,
+) -> Result<[f64; N], ProjectionError>
+where
+    M: Holonomic<N, H>,
+{
+    let constraint = |q: &SVector<f64, N>| {
+        let q: [f64; N] = (*q).into();
+        (
+            SVector::<f64, H>::from(model.holonomic_residual(&q)),
+            matrix_from_rows(&model.holonomic_jacobian(&q)),
+        )
+    };
+    configuration::<Const<N>, Const<H>>(SVector::from(*q), constraint, &M::HOLONOMIC, settings)
+        .map(Into::into)
+}
+
+/// `max |f(q)|` of `model`.
+fn largest_holonomic<M, const N: usize, const H: usize>(model: &M, q: &[f64; N]) -> f64
+where
+    M: Holonomic<N, H>,
+{
+    model
+        .holonomic_residual(q)
+        .iter()
+        .fold(0.0, |worst, f| worst.max(f.abs()))
+}
+
+/// How `S` is kept on its model's `H` configuration constraints, with the
+/// formulation's `velocity` and `state`; `None` without any.
+fn kept<S, const N: usize, const H: usize, const D: usize>(
+    velocity: fn(&S, &[f64; D]) -> [f64; N],
+    state: fn(&S, &[f64; N], &[f64; N]) -> Result<[f64; D], ProjectionError>,
+) -> Option<Kept<S, N, D>>
+where
+    S: Formulated,
+    S::Model: Holonomic<N, H>,
+{
+    (H > 0).then_some(Kept {
+        configuration: |system, q, settings| {
+            onto_configuration::<_, N, H>(system.formulated_model(), q, settings)
+        },
+        residual: |system, q| largest_holonomic::<_, N, H>(system.formulated_model(), q),
+        velocity,
+        state,
+    })
+}
+
+/// The first `N` entries of `x`: every formulation's configuration `q`.
+fn configuration_of<const N: usize, const D: usize>(x: &[f64; D]) -> [f64; N] {
+    core::array::from_fn(|i| x[i])
+}
+
+/// The last `K` entries of `x`.
+fn tail<const K: usize, const D: usize>(x: &[f64; D]) -> [f64; K] {
+    core::array::from_fn(|i| x[D - K + i])
+}
+
+/// `(head, tail)` as one state of size `D = A + B`.
+fn joined<const A: usize, const B: usize, const D: usize>(
+    head: &[f64; A],
+    tail: &[f64; B],
+) -> [f64; D] {
+    const { assert!(D == A + B, "a state joins its parts") };
+    core::array::from_fn(|i| if i < A { head[i] } else { tail[i - A] })
+}
+
+impl<S, const N: usize, const D: usize> Surface<S, N, D> {
+    fn with(system: S, kept: Option<Kept<S, N, D>>) -> Self {
         Self {
-            equations: Dalembert::new(model, controller),
+            system,
+            kept,
             settings: Settings::default(),
         }
     }
@@ -39,63 +178,154 @@ where
         self
     }
 
-    /// The equations without the configuration constraints.
-    pub fn equations(&self) -> &Dalembert<'a, M, F, N, C, P> {
-        &self.equations
+    /// The formulation without the configuration constraints.
+    pub fn system(&self) -> &S {
+        &self.system
     }
 
-    /// `q` moved onto `f(q) = 0`.
+    /// Whether the model declares configuration constraints (which are
+    /// then kept).
+    pub fn keeps_configuration(&self) -> bool {
+        self.kept.is_some()
+    }
+
+    /// `q` moved onto `f(q) = 0` (unchanged without configuration
+    /// constraints).
     ///
     /// # Errors
     /// As [`configuration`].
     pub fn project_configuration(&self, q: &[f64; N]) -> Result<[f64; N], ProjectionError> {
-        let model = self.equations.model();
-        let constraint = |q: &SVector<f64, N>| {
-            let q: [f64; N] = (*q).into();
-            (
-                SVector::<f64, H>::from(model.holonomic_residual(&q)),
-                matrix_from_rows(&model.holonomic_jacobian(&q)),
-            )
+        match &self.kept {
+            Some(kept) => (kept.configuration)(&self.system, q, self.settings),
+            None => Ok(*q),
+        }
+    }
+
+    /// `x` with its configuration on `f(q) = 0` and its velocity on
+    /// `ker A(q)` there, as the module documentation says; the
+    /// formulation's own projection follows in [`crate::simulate::Observed::project`].
+    ///
+    /// # Errors
+    /// As [`configuration`] and [`super::velocity`].
+    pub fn project_state(&self, x: [f64; D]) -> Result<[f64; D], ProjectionError> {
+        let Some(kept) = &self.kept else {
+            return Ok(x);
         };
-        configuration::<Const<N>, Const<H>>(
-            SVector::from(*q),
-            constraint,
-            &M::HOLONOMIC,
-            self.settings,
-        )
-        .map(Into::into)
+        let qdot = (kept.velocity)(&self.system, &x);
+        let q = (kept.configuration)(&self.system, &configuration_of(&x), self.settings)?;
+        (kept.state)(&self.system, &q, &qdot)
+    }
+
+    /// `max |f(q)|` at `x`, `None` without configuration constraints.
+    pub fn holonomic_residual(&self, x: &[f64; D]) -> Option<f64> {
+        let kept = self.kept.as_ref()?;
+        Some((kept.residual)(&self.system, &configuration_of(x)))
     }
 }
 
-impl<M, F, const N: usize, const C: usize, const P: usize, const H: usize, const D: usize>
-    OdeSystem<D> for Surface<'_, M, F, N, C, P, H>
+impl<'a, M, F, const N: usize, const C: usize, const P: usize, const D: usize>
+    Surface<Dalembert<'a, M, F, N, C, P>, N, D>
 where
     M: LagrangeDalembert<N, C, P>,
-    F: Controller<D, P>,
 {
+    /// The Lagrange-d'Alembert equations kept on the model's `H`
+    /// configuration constraints; their own projection
+    /// ([`crate::simulate::Observed::project`]) moves the velocity onto
+    /// `ker A(q)` at the projected configuration.
+    pub fn dalembert<const H: usize>(system: Dalembert<'a, M, F, N, C, P>) -> Self
+    where
+        M: Holonomic<N, H>,
+    {
+        let kept = kept::<Dalembert<'a, M, F, N, C, P>, N, H, D>(
+            |_, x| tail::<N, D>(x),
+            |_, q, qdot| Ok(joined(q, qdot)),
+        );
+        Self::with(system, kept)
+    }
+}
+
+impl<'a, M, F, const N: usize, const P: usize, const D: usize> Surface<Reduced<'a, M, F, P>, N, D> {
+    /// The reduced form `(q, alpha)` kept on the model's `H` configuration
+    /// constraints (`C` constraint rows, `K` momenta, `D = N + K`).
+    pub fn reduced<const C: usize, const K: usize, const H: usize>(
+        system: Reduced<'a, M, F, P>,
+    ) -> Self
+    where
+        M: LagrangeDalembert<N, C, P> + Momenta<N, K> + Holonomic<N, H>,
+    {
+        let kept = kept::<Reduced<'a, M, F, P>, N, H, D>(
+            |system, x| {
+                let model = system.model();
+                model.velocities(&configuration_of(x), &tail::<K, D>(x))
+            },
+            |system, q, qdot| {
+                let qdot = dalembert_velocity::<M, N, C, P>(system.model(), q, qdot)?;
+                Ok(joined(q, &system.model().momenta(q, &qdot)))
+            },
+        );
+        Self::with(system, kept)
+    }
+}
+
+impl<
+    'a,
+    M,
+    F,
+    const N: usize,
+    const R: usize,
+    const K: usize,
+    const C: usize,
+    const P: usize,
+    const D: usize,
+> Surface<Momentum<'a, M, F, N, R, K, C, P>, N, D>
+where
+    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
+{
+    /// The momentum equation `(q, rdot, p)` kept on the model's `H`
+    /// configuration constraints.
+    pub fn momentum<const H: usize>(system: Momentum<'a, M, F, N, R, K, C, P>) -> Self
+    where
+        M: Holonomic<N, H>,
+    {
+        let kept = kept::<Momentum<'a, M, F, N, R, K, C, P>, N, H, D>(
+            |system, x| system.configuration_velocity(x).1,
+            |system, q, qdot| {
+                let qdot = dalembert_velocity::<M, N, C, P>(system.model(), q, qdot)?;
+                Ok(system.initial_state(q, &qdot))
+            },
+        );
+        Self::with(system, kept)
+    }
+}
+
+impl<S: OdeSystem<D>, const N: usize, const D: usize> OdeSystem<D> for Surface<S, N, D> {
     fn rhs(&self, t: f64, x: &[f64; D]) -> [f64; D] {
-        self.equations.rhs(t, x)
+        self.system.rhs(t, x)
     }
 }
 
-impl<M, F, const N: usize, const C: usize, const P: usize, const H: usize, const D: usize>
-    Jacobian<D> for Surface<'_, M, F, N, C, P, H>
-where
-    M: LagrangeDalembert<N, C, P>,
-    F: Controller<D, P>,
-{
+impl<S: Jacobian<D>, const N: usize, const D: usize> Jacobian<D> for Surface<S, N, D> {
     fn jacobian(&self, t: f64, x: &[f64; D]) -> [[f64; D]; D] {
-        self.equations.jacobian(t, x)
+        self.system.jacobian(t, x)
     }
 }
 
-impl<M, F, const N: usize, const C: usize, const P: usize, const H: usize, const D: usize> Energy<D>
-    for Surface<'_, M, F, N, C, P, H>
-where
-    M: LagrangeDalembert<N, C, P>,
-    F: Controller<D, P>,
-{
+impl<S: Energy<D>, const N: usize, const D: usize> Energy<D> for Surface<S, N, D> {
     fn energy(&self, x: &[f64; D]) -> f64 {
-        self.equations.energy(x)
+        self.system.energy(x)
+    }
+}
+
+impl<S: Structured<D>, const N: usize, const D: usize> Structured<D> for Surface<S, N, D> {
+    fn structure_matrix(&self, x: &[f64; D]) -> [[f64; D]; D] {
+        self.system.structure_matrix(x)
+    }
+
+    fn energy_gradient(&self, x: &[f64; D]) -> [f64; D] {
+        self.system.energy_gradient(x)
+    }
+
+    fn forcing(&self, t: f64, x: &[f64; D]) -> [f64; D] {
+        self.system.forcing(t, x)
     }
 }

@@ -10,8 +10,8 @@ use crate::linalg::Square;
 use crate::monitor::momentum_regularity;
 use crate::projection::{self, ProjectionError, Surface};
 use crate::system::{
-    Dalembert, Energy, Holonomic, LagrangeDalembert, ModelNames, Momentum, MomentumEquations,
-    Reduced, ReducedPortHamiltonian, split,
+    Dalembert, Energy, LagrangeDalembert, ModelNames, Momentum, MomentumEquations, Reduced,
+    ReducedPortHamiltonian, split,
 };
 use nalgebra::Const;
 
@@ -259,45 +259,38 @@ where
     }
 }
 
-impl<M, F, const N: usize, const C: usize, const P: usize, const H: usize, const D: usize>
-    Observed<D> for Surface<'_, M, F, N, C, P, H>
+impl<S, const N: usize, const D: usize> Observed<D> for Surface<S, N, D>
 where
-    M: LagrangeDalembert<N, C, P> + Holonomic<N, H> + ModelNames,
-    F: Controller<D, P>,
+    S: Observed<D>,
 {
     fn state_names(&self) -> Vec<String> {
-        self.equations().state_names()
+        self.system().state_names()
     }
 
     fn input_names(&self) -> Vec<String> {
-        self.equations().input_names()
+        self.system().input_names()
     }
 
     fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
-        self.equations().inputs(t, x, inputs);
+        self.system().inputs(t, x, inputs);
     }
 
     fn constraint_residual(&self, x: &[f64; D]) -> f64 {
-        self.equations().constraint_residual(x)
+        self.system().constraint_residual(x)
     }
 
     fn regularity(&self, x: &[f64; D]) -> Regularity {
-        self.equations().regularity(x)
+        self.system().regularity(x)
     }
 
-    /// The configuration onto `f(q) = 0`, then the velocity onto `ker A(q)`
-    /// there.
+    /// The configuration onto `f(q) = 0` and the velocity onto `ker A(q)`
+    /// there ([`Surface::project_state`]), then the formulation's own
+    /// projection.
     fn project(&self, x: [f64; D]) -> Result<[f64; D], ProjectionError> {
-        let q = self.project_configuration(&split::<N, D>(&x).0)?;
-        self.equations()
-            .project(core::array::from_fn(|i| if i < N { q[i] } else { x[i] }))
+        self.system().project(self.project_state(x)?)
     }
 
     fn holonomic_residual(&self, x: &[f64; D]) -> Option<f64> {
-        let residual = self
-            .equations()
-            .model()
-            .holonomic_residual(&split::<N, D>(x).0);
-        Some(residual.iter().fold(0.0, |worst, r| worst.max(r.abs())))
+        Surface::holonomic_residual(self, x)
     }
 }

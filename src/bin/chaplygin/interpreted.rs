@@ -8,13 +8,15 @@
 //! round-off.
 
 pub mod dynamics;
+mod surface;
 
 use crate::formulation::Formulation;
 use chaplygin::runtime::monitor::{gram_regularity, hadamard_ratio};
-use chaplygin::runtime::nalgebra::{DMatrix, DVector};
-use chaplygin::runtime::projection::{self, ProjectionError};
+use chaplygin::runtime::nalgebra::DMatrix;
+use chaplygin::runtime::projection::ProjectionError;
 use chaplygin::runtime::simulate::Regularity;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
+use surface::{holonomic_residual, keeps_configuration, onto_surface};
 
 /// The interpreter failed on a call whose arguments the formulation sized
 /// itself: a defect, reported instead of wrong numbers.
@@ -168,6 +170,24 @@ impl Formulation for InterpretedReduced {
             signed: true,
         }
     }
+
+    /// With configuration constraints, `(q, qdot = velocities(q, alpha))`
+    /// kept on them ([`onto_surface`]) and `alpha = momenta(q, qdot)` of
+    /// the result; without, the state cannot leave the constraints.
+    fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
+        if !keeps_configuration(&self.model) {
+            return Ok(());
+        }
+        let (q, alpha) = x.split_at_mut(self.model.sizes().n);
+        let mut qdot = evaluated(self.model.velocities(q, alpha));
+        onto_surface(&self.model, q, &mut qdot)?;
+        alpha.copy_from_slice(&evaluated(self.model.momenta(q, &qdot)));
+        Ok(())
+    }
+
+    fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
+        holonomic_residual(&self.model, &x[..self.model.sizes().n])
+    }
 }
 
 impl Formulation for InterpretedDalembert {
@@ -214,22 +234,16 @@ impl Formulation for InterpretedDalembert {
         multiplier_regularity(&self.model, &x[..self.model.sizes().n])
     }
 
-    /// The velocity onto `ker A(q)` in the metric `g(q)` (see
-    /// `chaplygin::runtime::projection`).
+    /// The configuration onto `f(q) = 0`, with configuration constraints,
+    /// and the velocity onto `ker A(q)` in the metric `g(q)`
+    /// ([`onto_surface`]).
     fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
-        let sizes = self.model.sizes();
-        let (q, qdot) = x.split_at_mut(sizes.n);
-        let (g, a) = (
-            evaluated(self.model.mass_matrix(q)),
-            evaluated(self.model.constraint_matrix(q)),
-        );
-        let projected = projection::velocity(
-            DMatrix::from_row_slice(sizes.n, sizes.n, &g),
-            &DMatrix::from_row_slice(sizes.c, sizes.n, &a),
-            &DVector::from_column_slice(qdot),
-        )?;
-        qdot.copy_from_slice(projected.as_slice());
-        Ok(())
+        let (q, qdot) = x.split_at_mut(self.model.sizes().n);
+        onto_surface(&self.model, q, qdot)
+    }
+
+    fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
+        holonomic_residual(&self.model, &x[..self.model.sizes().n])
     }
 }
 
@@ -285,9 +299,7 @@ impl InterpretedMomentum {
     /// relative), which fails where the derived momentum basis `e(r)`
     /// degenerates at this shape.
     pub fn initial_state(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Unrepresentable> {
-        let rdot = self.shape.iter().map(|&i| qdot[i]);
-        let p = evaluated(self.model.call("momentum", &[q, qdot]));
-        let x: Vec<f64> = q.iter().copied().chain(rdot).chain(p).collect();
+        let x = self.state(q, qdot);
         let (_, reconstructed) = self.configuration_velocity(&x);
         let scale = qdot.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
         let names = &self.model.names().coordinates;
@@ -304,6 +316,13 @@ impl InterpretedMomentum {
             }),
             _ => Ok(x),
         }
+    }
+
+    /// The state `(q, rdot, p)` of `q` moving with `qdot`.
+    fn state(&self, q: &[f64], qdot: &[f64]) -> Vec<f64> {
+        let rdot = self.shape.iter().map(|&i| qdot[i]);
+        let p = evaluated(self.model.call("momentum", &[q, qdot]));
+        q.iter().copied().chain(rdot).chain(p).collect()
     }
 
     /// `(q, rdot, p)` of `x`.
@@ -412,5 +431,23 @@ impl Formulation for InterpretedMomentum {
             value,
             signed: true,
         }
+    }
+
+    /// With configuration constraints, `q` and the reconstructed `qdot`
+    /// kept on them ([`onto_surface`]) and `(rdot, p)` of the result;
+    /// without, the state cannot leave the constraints.
+    fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
+        if !keeps_configuration(&self.model) {
+            return Ok(());
+        }
+        let (q, qdot) = self.configuration_velocity(x);
+        let (mut q, mut qdot) = (q.to_vec(), qdot);
+        onto_surface(&self.model, &mut q, &mut qdot)?;
+        x.copy_from_slice(&self.state(&q, &qdot));
+        Ok(())
+    }
+
+    fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
+        holonomic_residual(&self.model, &x[..self.model.sizes().n])
     }
 }

@@ -30,8 +30,9 @@ use chaplygin::plot;
 use chaplygin::runtime::linalg::Square;
 use chaplygin::runtime::linearize::Linearization;
 use chaplygin::runtime::nalgebra::{Const, DMatrix};
+use chaplygin::runtime::projection::Surface;
 use chaplygin::runtime::system::{
-    Dalembert, ModelNames, Momenta, Momentum, MomentumEquations, Parameters, Reduced,
+    Dalembert, Holonomic, ModelNames, Momenta, Momentum, MomentumEquations, Parameters, Reduced,
     ReducedPortHamiltonian,
 };
 use chaplygin_codegen::interpret::InterpretedModel;
@@ -53,30 +54,30 @@ pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
             energy_controlled(model, args)
         }
         Compiled::Snakeboard => {
-            compiled::<Snakeboard, 5, 2, 3, 2, 8, 10, 2, 1, 8>(model, args, None)
+            compiled::<Snakeboard, 5, 2, 3, 2, 8, 10, 2, 1, 8, 0>(model, args, None)
         }
-        Compiled::Sleigh => compiled::<Sleigh, 3, 1, 2, 0, 5, 6, 0, 2, 5>(model, args, None),
+        Compiled::Sleigh => compiled::<Sleigh, 3, 1, 2, 0, 5, 6, 0, 2, 5, 0>(model, args, None),
         Compiled::RollingDisk => {
-            compiled::<RollingDisk, 4, 2, 2, 2, 6, 8, 1, 1, 6>(model, args, None)
+            compiled::<RollingDisk, 4, 2, 2, 2, 6, 8, 1, 1, 6, 0>(model, args, None)
         }
         Compiled::DifferentialDrive => {
-            compiled::<DifferentialDrive, 5, 3, 2, 2, 7, 10, 2, 0, 7>(model, args, None)
+            compiled::<DifferentialDrive, 5, 3, 2, 2, 7, 10, 2, 0, 7, 0>(model, args, None)
         }
-        Compiled::RollingDisk3d => compiled::<RollingDisk3d, 5, 2, 3, 2, 8, 10, 1, 2, 8>(
+        Compiled::RollingDisk3d => compiled::<RollingDisk3d, 5, 2, 3, 2, 8, 10, 1, 2, 8, 0>(
             model,
             args,
             Some((&RollingDisk3d::POINTS, |disk, q| {
                 disk.positions(&array(q)).as_flattened().to_vec()
             })),
         ),
-        Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 2, 0, 5, 6, 0, 2, 5>(
+        Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 2, 0, 5, 6, 0, 2, 5, 0>(
             model,
             args,
             Some((&SleighBodies::POINTS, |sleigh, q| {
                 sleigh.positions(&array(q)).as_flattened().to_vec()
             })),
         ),
-        Compiled::SnakeboardBodies => compiled::<SnakeboardBodies, 5, 2, 3, 2, 8, 10, 2, 1, 8>(
+        Compiled::SnakeboardBodies => compiled::<SnakeboardBodies, 5, 2, 3, 2, 8, 10, 2, 1, 8, 0>(
             model,
             args,
             Some((&SnakeboardBodies::POINTS, |board, q| {
@@ -226,13 +227,14 @@ fn compiled<
     const R: usize,
     const MP: usize,
     const DM: usize,
+    const H: usize,
 >(
     built_in: &BuiltIn,
     args: &SimulateArgs,
     points: Option<CompiledPoints<M>>,
 ) -> Result<(), Box<dyn Error>>
 where
-    M: CompiledModel<N, C, K, P, S> + MomentumEquations<N, R, MP, P>,
+    M: CompiledModel<N, C, K, P, S> + MomentumEquations<N, R, MP, P> + Holonomic<N, H>,
     Const<N>: Square,
 {
     if args.controller == Controller::Energy {
@@ -240,7 +242,7 @@ where
     }
     let mut model = M::default();
     set_model_parameters(&mut model, &args.params, &mut [])?;
-    let start = compiled_start::<M, N, C, K, P, S>(&model, built_in, args, &mut [])?;
+    let start = compiled_start::<M, N, C, K, P, S, H>(&model, built_in, args, &mut [])?;
     let inputs = InputSchedule::new(M::INPUTS, &args.inputs, &parameter_values(model))?;
     let u = |t: f64| inputs.array::<P>(t);
     let points = compiled_points::<M, N>(&model, points);
@@ -249,7 +251,7 @@ where
             let alpha = model.momenta(&array(&start.q), &array(&start.qdot));
             let x0: Vec<f64> = start.q.iter().chain(&alpha).copied().collect();
             execute(
-                &Typed::<_, S>::structured(Reduced::new(&model, u)),
+                &Typed::<_, S>::structured(Surface::reduced(Reduced::new(&model, u))),
                 &x0,
                 args,
                 (None, points),
@@ -258,7 +260,7 @@ where
         Kind::Lagrange => {
             let x0: Vec<f64> = start.q.iter().chain(&start.qdot).copied().collect();
             execute(
-                &Typed::<_, D>::plain(Dalembert::new(&model, u)),
+                &Typed::<_, D>::plain(Surface::dalembert(Dalembert::new(&model, u))),
                 &x0,
                 args,
                 (None, points),
@@ -267,7 +269,8 @@ where
         Kind::Momentum => {
             let system = Momentum::new(&model, u);
             let x0: [f64; DM] = system.initial_state(&array(&start.q), &array(&start.qdot));
-            execute(&Typed::<_, DM>::plain(system), &x0, args, (None, points))
+            let kept = Surface::momentum(system);
+            execute(&Typed::<_, DM>::plain(kept), &x0, args, (None, points))
         }
     }
 }
@@ -310,7 +313,7 @@ fn energy_controlled(built_in: &BuiltIn, args: &SimulateArgs) -> Result<(), Box<
         alpha: &[0.0; 3],
         ..*built_in
     };
-    let start = compiled_start::<Snakeboard, 5, 2, 3, 2, 8>(
+    let start = compiled_start::<Snakeboard, 5, 2, 3, 2, 8, 0>(
         &board,
         &at_rest,
         args,

@@ -9,9 +9,9 @@ use super::arguments::SimulateArgs;
 use super::{CompiledModel, array};
 use crate::catalog::BuiltIn;
 use chaplygin::runtime::linearize::point::{configuration, solve_velocities, velocity_names};
-use chaplygin::runtime::linearize::{Dynamics, Linearization, PointError};
+use chaplygin::runtime::linearize::{Compiled, Dynamics, Linearization, PointError};
 use chaplygin::runtime::nalgebra::DMatrix;
-use chaplygin::runtime::system::Parameters;
+use chaplygin::runtime::system::{Holonomic, Parameters};
 
 /// A problem with the command's input, stated in one line.
 #[derive(Debug, thiserror::Error)]
@@ -172,7 +172,8 @@ pub(super) fn initial_state(
 }
 
 /// [`initial_state`] for a compiled model, whose default motion is
-/// `velocities(q, alpha)` with the built-in default momenta.
+/// `velocities(q, alpha)` with the built-in default momenta, and whose `H`
+/// configuration constraints solve the coordinates not given.
 pub(super) fn compiled_start<
     M,
     const N: usize,
@@ -180,6 +181,7 @@ pub(super) fn compiled_start<
     const K: usize,
     const P: usize,
     const S: usize,
+    const H: usize,
 >(
     model: &M,
     built_in: &BuiltIn,
@@ -187,7 +189,7 @@ pub(super) fn compiled_start<
     controller_states: &mut [(&str, &mut f64)],
 ) -> Result<Start, InputError>
 where
-    M: CompiledModel<N, C, K, P, S>,
+    M: CompiledModel<N, C, K, P, S> + Holonomic<N, H>,
 {
     let alpha: [f64; K] = array(built_in.alpha);
     initial_state(
@@ -200,7 +202,7 @@ where
                 let a = Linearization::constraint_matrix(model, &array(q));
                 DMatrix::from_fn(C, N, |i, j| a[i][j])
             },
-            holonomic: None,
+            holonomic: Some(&Compiled::<M, N, C, P, H>::holonomic(model)),
         },
         &args.initial,
         controller_states,
