@@ -954,16 +954,73 @@ const PLANAR_PENDULUM: &str = concat!(
     "/tests/models/planar_pendulum.model"
 );
 
+/// A bead in the tilted trough `z = 2 y^2 - 0.2 x` of
+/// `tests/models/tilted_trough.model`, symmetric under translations along `x`.
+const TILTED_TROUGH: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/models/tilted_trough.model"
+);
+
+/// Runs `simulate` on `model` with `arguments` and checks that it kept its
+/// configuration constraint: the summary names the largest holonomic
+/// residual, the CSV's last column is `holonomic_residual`, and it and
+/// `constraint(row)` recomputed from the coordinates stay within 1e-10 at
+/// every row; the energy's relative drift stays within `energy_bound`.
+/// Returns the CSV.
+fn assert_kept_run(
+    model: &str,
+    arguments: &[&str],
+    constraint: impl Fn(&Csv, usize) -> f64,
+    energy_bound: f64,
+) -> Csv {
+    let context = format!("{model} {arguments:?}");
+    let out = scratch(&format!(
+        "kept-{}",
+        arguments.join("-").replace(['(', ')', '='], "")
+    ));
+    let mut all = vec!["simulate", model];
+    all.extend(arguments);
+    all.extend(["--out", out.to_str().unwrap()]);
+    let output = chaplygin(&all);
+    assert!(output.status.success(), "{context}: {}", stderr(&output));
+    assert!(
+        stdout(&output).contains("max holonomic residual"),
+        "{context}: {}",
+        stdout(&output)
+    );
+    let table = read_csv(&out.join("trajectory.csv"));
+    assert_eq!(table.0.last().unwrap(), "holonomic_residual", "{context}");
+    for (row, recorded) in column_of(&table, "holonomic_residual").iter().enumerate() {
+        let recomputed = constraint(&table, row);
+        assert!(
+            *recorded <= 1e-10 && recomputed.abs() <= 1e-10,
+            "{context}: row {row}: {recorded:e}, {recomputed:e}"
+        );
+    }
+    let energy = column_of(&table, "energy");
+    let drift = energy
+        .iter()
+        .map(|e| ((e - energy[0]) / energy[0]).abs())
+        .fold(0.0, f64::max);
+    assert!(drift <= energy_bound, "{context}: energy drift {drift:e}");
+    let _ = std::fs::remove_dir_all(&out);
+    table
+}
+
+/// `name`'s value in `row`.
+fn at(table: &Csv, name: &str, row: usize) -> f64 {
+    column_of(table, name)[row]
+}
+
 /// From rest at `x = 0.6` (`z = 0.8` solved from the length), the
-/// interpreted pendulum is kept on its circle after every step: the
-/// `holonomic_residual` column and `x^2 + z^2 - 1` recomputed from the
-/// coordinates stay within 1e-10 and the energy within the integrator's
-/// error. Without the projection the length drifted over these 20 s by
-/// 4.3e-7 (RK4), 8.8e-4 (midpoint), 2.3e-9 (Dormand-Prince). The reduced
-/// form runs until just before the bob passes under the pivot, where the
-/// tool's momentum basis (solved for `dot(x)`) degenerates.
+/// interpreted pendulum is kept on its circle after every step. Without
+/// the projection the length drifted over these 20 s by 4.3e-7 (RK4),
+/// 8.8e-4 (midpoint), 2.3e-9 (Dormand-Prince). The reduced form runs until
+/// just before the bob passes under the pivot, where the tool's momentum
+/// basis (solved for `dot(x)`) degenerates.
 #[test]
 fn a_model_file_with_a_holonomic_constraint_stays_on_it_in_every_run() {
+    let length = |table: &Csv, row| at(table, "x", row).powi(2) + at(table, "z", row).powi(2) - 1.0;
     for (formulation, integrator, t_end, energy_bound) in [
         ("lagrange", "rk4", "20", 1e-5),
         ("lagrange", "midpoint", "20", 2e-3),
@@ -971,11 +1028,7 @@ fn a_model_file_with_a_holonomic_constraint_stays_on_it_in_every_run() {
         ("reduced", "rk4", "0.7", 1e-6),
         ("reduced", "dopri5", "0.7", 1e-7),
     ] {
-        let context = format!("{formulation} {integrator}");
-        let out = scratch(&format!("kept-pendulum-{formulation}-{integrator}"));
-        let output = chaplygin(&[
-            "simulate",
-            PLANAR_PENDULUM,
+        let arguments = [
             "--formulation",
             formulation,
             "--integrator",
@@ -984,35 +1037,38 @@ fn a_model_file_with_a_holonomic_constraint_stays_on_it_in_every_run() {
             "x=0.6",
             "--t-end",
             t_end,
-            "--dt",
-            "0.01",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        assert!(output.status.success(), "{context}: {}", stderr(&output));
-        assert!(
-            stdout(&output).contains("max holonomic residual"),
-            "{context}: {}",
-            stdout(&output)
-        );
-        let table = read_csv(&out.join("trajectory.csv"));
-        assert_eq!(table.0.last().unwrap(), "holonomic_residual", "{context}");
-        assert_eq!(column_of(&table, "z")[0], 0.8, "{context}");
-        let recorded = column_of(&table, "holonomic_residual");
-        let (x, z) = (column_of(&table, "x"), column_of(&table, "z"));
-        for (row, recorded) in recorded.iter().enumerate() {
-            let length = x[row] * x[row] + z[row] * z[row] - 1.0;
-            assert!(
-                *recorded <= 1e-10 && length.abs() <= 1e-10,
-                "{context}: row {row}: {recorded:e}, {length:e}"
-            );
-        }
-        let energy = column_of(&table, "energy");
-        let drift = energy
-            .iter()
-            .map(|e| ((e - energy[0]) / energy[0]).abs())
-            .fold(0.0, f64::max);
-        assert!(drift <= energy_bound, "{context}: energy drift {drift:e}");
-        let _ = std::fs::remove_dir_all(&out);
+        ];
+        let table = assert_kept_run(PLANAR_PENDULUM, &arguments, length, energy_bound);
+        assert_eq!(at(&table, "z", 0), 0.8);
+    }
+}
+
+/// The trough's height `z = 2 y^2 - 0.2 x` is solved at the start and kept
+/// in every formulation, the momentum form's `(q, rdot)` rebuilt from the
+/// projected configuration and velocity (measured energy drifts with RK4
+/// over 10 s: 7.8e-7, 6.1e-6, 1.8e-4). Without the projection the momentum
+/// form's height drifted by 3.6e-8.
+#[test]
+fn a_model_file_with_a_symmetry_stays_in_its_trough_in_the_momentum_form() {
+    let trough = |table: &Csv, row| {
+        at(table, "z", row) - 2.0 * at(table, "y", row).powi(2) + 0.2 * at(table, "x", row)
+    };
+    for (formulation, energy_bound) in [("lagrange", 1e-5), ("reduced", 1e-4), ("momentum", 1e-3)] {
+        let arguments = [
+            "--formulation",
+            formulation,
+            "--integrator",
+            "rk4",
+            "--initial",
+            "y=0.3",
+            "--initial",
+            "dot(x)=-2",
+            "--initial",
+            "dot(y)=0",
+            "--t-end",
+            "10",
+        ];
+        let table = assert_kept_run(TILTED_TROUGH, &arguments, trough, energy_bound);
+        assert!((at(&table, "z", 0) - 0.18).abs() <= 1e-15);
     }
 }
