@@ -2,7 +2,10 @@
 //! interpreted), its parameters and initial state from the command line, a
 //! formulation closed by a controller, an integrator; the run writes
 //! `trajectory.csv` (INTERFACE.md section 3) and the plots, and prints the
-//! energy drift and the largest constraint residual.
+//! energy drift and the largest constraint residual. A model with
+//! configuration constraints is kept on `f(q) = 0` after every step, in
+//! every formulation (`projection::Surface` for a compiled model, the
+//! interpreted adapters' own projection for a `.model` file).
 
 mod arguments;
 mod inputs;
