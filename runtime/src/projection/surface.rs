@@ -44,17 +44,26 @@ pub struct Surface<S, const N: usize, const D: usize> {
     settings: Settings,
 }
 
+/// `q` moved onto `f(q) = 0` by a formulation `S`'s model.
+type OntoConfiguration<S, const N: usize> =
+    fn(&S, &[f64; N], Settings) -> Result<[f64; N], ProjectionError>;
+
+/// The state of a formulation `S` at a projected configuration moving
+/// with a velocity.
+type StateAt<S, const N: usize, const D: usize> =
+    fn(&S, &[f64; N], &[f64; N]) -> Result<[f64; D], ProjectionError>;
+
 /// How the state of a formulation `S` is kept on `f(q) = 0`.
 #[derive(Clone, Copy, Debug)]
 struct Kept<S, const N: usize, const D: usize> {
     /// `q` onto `f(q) = 0` ([`configuration`]).
-    configuration: fn(&S, &[f64; N], Settings) -> Result<[f64; N], ProjectionError>,
+    configuration: OntoConfiguration<S, N>,
     /// `max |f(q)|`.
     residual: fn(&S, &[f64; N]) -> f64,
     /// The velocity `qdot` of a state.
     velocity: fn(&S, &[f64; D]) -> [f64; N],
     /// The state of a projected configuration moving with `qdot`.
-    state: fn(&S, &[f64; N], &[f64; N]) -> Result<[f64; D], ProjectionError>,
+    state: StateAt<S, N, D>,
 }
 
 /// A closed formulation's model.
@@ -128,7 +137,7 @@ where
 /// formulation's `velocity` and `state`; `None` without any.
 fn kept<S, const N: usize, const H: usize, const D: usize>(
     velocity: fn(&S, &[f64; D]) -> [f64; N],
-    state: fn(&S, &[f64; N], &[f64; N]) -> Result<[f64; D], ProjectionError>,
+    state: StateAt<S, N, D>,
 ) -> Option<Kept<S, N, D>>
 where
     S: Formulated,
@@ -203,7 +212,7 @@ impl<S, const N: usize, const D: usize> Surface<S, N, D> {
 
     /// `x` with its configuration on `f(q) = 0` and its velocity on
     /// `ker A(q)` there, as the module documentation says; the
-    /// formulation's own projection follows in [`crate::simulate::Observed::project`].
+    /// formulation's own projection follows in the simulation loop.
     ///
     /// # Errors
     /// As [`configuration`] and [`super::velocity`].
@@ -229,8 +238,8 @@ where
     M: LagrangeDalembert<N, C, P>,
 {
     /// The Lagrange-d'Alembert equations kept on the model's `H`
-    /// configuration constraints; their own projection
-    /// ([`crate::simulate::Observed::project`]) moves the velocity onto
+    /// configuration constraints; their own velocity projection
+    /// ([`super::dalembert_velocity`]) moves the velocity onto
     /// `ker A(q)` at the projected configuration.
     pub fn dalembert<const H: usize>(system: Dalembert<'a, M, F, N, C, P>) -> Self
     where
