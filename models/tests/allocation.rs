@@ -1,6 +1,6 @@
-//! Generated functions, the runtime's integrator steps and its linear
-//! algebra on fixed sizes (nalgebra's LU, Cholesky and real Schur form)
-//! allocate nothing:
+//! Generated functions, the runtime's integrator steps, its projection
+//! onto configuration constraints and its linear algebra on fixed sizes
+//! (nalgebra's LU, Cholesky and real Schur form) allocate nothing:
 //! a counting global allocator sees zero allocations across 10^4 calls of each (counted per thread, so tests
 //! running in parallel do not see each other's allocations). Non-finite input gives
 //! non-finite output, without a panic.
@@ -10,9 +10,10 @@ mod common;
 use chaplygin::runtime::arrays::matrix_from_rows;
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4};
 use chaplygin::runtime::linalg::{eigenvalues, solve, solve_positive_definite};
+use chaplygin::runtime::projection::Surface;
 use chaplygin::runtime::simulate::Observed;
 use chaplygin::runtime::system::LagrangeDalembert;
-use chaplygin::runtime::system::{Dalembert, Reduced, ReducedPortHamiltonian};
+use chaplygin::runtime::system::{Constant, Dalembert, Reduced, ReducedPortHamiltonian};
 use chaplygin_models::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin_models::{
     caster_robot::CasterRobot, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
@@ -384,4 +385,34 @@ fn fixed_size_linear_algebra_does_not_allocate() {
         "{found} {regularity}"
     );
     assert!(y.iter().all(|v| v.is_finite()), "{y:?}");
+}
+
+/// Keeping a state on its configuration constraint
+/// (`projection::Surface`: Newton's projection of `q`, the velocity's
+/// projection, the state rebuilt) allocates nothing, in the
+/// Lagrange-d'Alembert and the reduced forms.
+#[test]
+fn keeping_the_configuration_constraints_does_not_allocate() {
+    let sphere = OnSphere::default();
+    let lagrange = Surface::dalembert(Dalembert::new(&sphere, Constant([])));
+    let reduced = Surface::reduced(Reduced::new(&sphere, Constant([])));
+    let (mut on_lagrange, mut on_reduced) = (0.0, 0.0);
+    let counted = allocations(|| {
+        for i in 0..10_000 {
+            let t = i as f64 * 1e-4;
+            // off the sphere of radius 2 by about 0.05
+            let x = [0.3 + t, 0.4, -1.9, 0.1, t, 0.2];
+            let kept = lagrange.project(black_box(x)).unwrap();
+            on_lagrange += lagrange.holonomic_residual(&kept).unwrap();
+            let kept = reduced
+                .project(black_box([0.3 + t, 0.4, -1.9, 0.1, t]))
+                .unwrap();
+            on_reduced += reduced.holonomic_residual(&kept).unwrap();
+        }
+    });
+    assert_eq!(counted, 0);
+    assert!(
+        on_lagrange <= 1e-8 && on_reduced <= 1e-8,
+        "{on_lagrange} {on_reduced}"
+    );
 }
