@@ -16,7 +16,12 @@
 //!   projection, `alpha = momenta(q, qdot)` after it (exact on `ker A(q)`);
 //! - momentum, `x = (q, rdot, p)`: `qdot` reconstructed before, and
 //!   `(rdot, p)` of the projected `(q, qdot)` after
-//!   ([`Momentum::initial_state`]).
+//!   ([`Momentum::initial_state`]). A model has a momentum form with a
+//!   configuration constraint only when the symmetry moves `f` by
+//!   constants along its orbits (its differential `df` invariant, as for a
+//!   tilted trough `z = a y^2 - k x` under translations along `x`): a
+//!   constraint invariant under the group restricts the shape velocities,
+//!   which the momentum equation needs free.
 //!
 //! A model without configuration constraints (`H = 0`) is left to its
 //! formulation: the wrapper then changes nothing.
