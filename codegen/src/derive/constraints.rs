@@ -55,7 +55,7 @@ mod at_points;
 mod basis;
 mod body_frame;
 
-use at_points::{growth_vector_at_point, is_involutive_at_points};
+use at_points::{growth_vector_at_point, is_exact_row_at_points, is_involutive_at_points};
 pub use basis::{DistributionBasis, default_point, distribution_basis};
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
@@ -354,20 +354,26 @@ fn columns_of(matrix: &Matrix) -> Vec<Field> {
         .collect()
 }
 
-/// Moore's mixed-partials test, per row: `d a_i / d q_j = d a_j / d q_i`.
-fn exact_rows(model: &mut Model) -> Result<Vec<bool>, MatrixError> {
-    let coordinates = model.coordinate_symbols();
-    let rows = model.constraint_matrix.rows();
-    let mut exact = Vec::with_capacity(rows);
-    for row in 0..rows {
-        let entries: Field = (0..model.n())
-            .map(|j| model.constraint_matrix.get(row, j).clone())
-            .collect();
-        let jacobian = model.store.jacobian(&entries, &coordinates)?;
-        let asymmetry = jacobian.sub(&jacobian.transpose(), model.store.atoms())?;
-        exact.push(asymmetry.is_zero());
-    }
-    Ok(exact)
+/// Moore's mixed-partials test, per row: `d a_i / d q_j = d a_j / d q_i`,
+/// exactly within [`EXACT_ANALYSIS_PRODUCTS`], else at random points.
+fn exact_rows(model: &mut Model) -> Result<Vec<bool>, AnalysisError> {
+    (0..model.constraint_matrix.rows())
+        .map(|row| {
+            let entries: Field = (0..model.n())
+                .map(|j| model.constraint_matrix.get(row, j).clone())
+                .collect();
+            let exact = model.attempt(EXACT_ANALYSIS_PRODUCTS, |model| {
+                let coordinates = model.coordinate_symbols();
+                let jacobian = model.store.jacobian(&entries, &coordinates)?;
+                let asymmetry = jacobian.sub(&jacobian.transpose(), model.store.atoms())?;
+                Ok::<bool, MatrixError>(asymmetry.is_zero())
+            });
+            match exact {
+                Some(decided) => Ok(decided?),
+                None => is_exact_row_at_points(model, &entries),
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -77,8 +77,40 @@ pub struct SaddlePointSystem {
     /// `B u - C - dV/dq`, n x 1.
     pub force: Matrix,
     /// `-Adot qdot`, c x 1.
-    pub drift: Matrix,
+    pub drift: Drift,
 }
+
+/// `-Adot qdot`: exact normal forms within [`EXACT_DRIFT_PRODUCTS`], else
+/// expressions (the square root in a rolling wheel's contact point makes
+/// the normal forms of its rows' derivatives too large to form).
+#[derive(Clone, Debug)]
+pub enum Drift {
+    /// Normal forms.
+    Exact(Matrix),
+    /// Expressions, `-sum_jk d A_ij/dq_k qdot_j qdot_k`.
+    Structured(ExprMatrix),
+}
+
+impl Drift {
+    /// The normal forms, when exact.
+    pub fn exact(&self) -> Option<&Matrix> {
+        match self {
+            Drift::Exact(drift) => Some(drift),
+            Drift::Structured(_) => None,
+        }
+    }
+
+    /// The entries as expressions.
+    pub fn expressions(&self, store: &mut Store) -> ExprMatrix {
+        match self {
+            Drift::Exact(drift) => ExprMatrix::of(drift, store),
+            Drift::Structured(drift) => drift.clone(),
+        }
+    }
+}
+
+/// The term products the exact `Adot qdot` may take.
+pub const EXACT_DRIFT_PRODUCTS: u64 = 2_000_000;
 
 /// The derived equations, both solutions, and which one is emitted.
 #[derive(Clone, Debug)]
@@ -130,6 +162,7 @@ pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
         model
             .attempt(CLOSED_FORM_PRODUCTS, |model| terms.closed_form(model))
             .transpose()?
+            .flatten()
     } else {
         None
     };
@@ -176,8 +209,8 @@ fn declare_inputs(model: &mut Model) -> Vec<SymbolId> {
 struct Terms {
     /// `B u - C - dV/dq`, n x 1.
     force: Matrix,
-    /// `Adot qdot`, c x 1.
-    constraint_drift: Matrix,
+    /// `Adot qdot`, c x 1, when its normal forms fit [`EXACT_DRIFT_PRODUCTS`].
+    constraint_drift: Option<Matrix>,
 }
 
 impl Terms {
@@ -189,8 +222,12 @@ impl Terms {
         let coriolis = coriolis(model, &velocity)?;
         let gradient = potential_gradient(model)?;
         let force = applied.sub(&coriolis, &atoms)?.sub(&gradient, &atoms)?;
-        let residual = model.constraint_matrix.mul(&velocity, &atoms)?;
-        let constraint_drift = directional_derivative(model, &residual, &velocity)?;
+        let constraint_drift = model
+            .attempt(EXACT_DRIFT_PRODUCTS, |model| {
+                let residual = model.constraint_matrix.mul(&velocity, &atoms)?;
+                directional_derivative(model, &residual, &velocity)
+            })
+            .transpose()?;
         Ok(Terms {
             force,
             constraint_drift,
@@ -198,7 +235,10 @@ impl Terms {
     }
 
     /// `lambda = (A g^-1 A^T)^-1 (-A g^-1 f - Adot qdot)`, `qddot = g^-1 (f + A^T lambda)`.
-    fn closed_form(&self, model: &Model) -> Result<ClosedForm, MatrixError> {
+    fn closed_form(&self, model: &Model) -> Result<Option<ClosedForm>, MatrixError> {
+        let Some(constraint_drift) = &self.constraint_drift else {
+            return Ok(None);
+        };
         let atoms = model.store.atoms();
         let (g, a) = (&model.mass_matrix, &model.constraint_matrix);
         let a_transpose = a.transpose();
@@ -207,23 +247,27 @@ impl Terms {
         let schur = a.mul(&g_inverse_a_transpose, atoms)?;
         let schur_rhs = a
             .mul(&g_inverse_force, atoms)?
-            .add(&self.constraint_drift, atoms)?
+            .add(constraint_drift, atoms)?
             .neg();
         let multipliers = schur.solve(&schur_rhs, atoms)?;
         let accelerations =
             g_inverse_force.add(&g_inverse_a_transpose.mul(&multipliers, atoms)?, atoms)?;
-        Ok(ClosedForm {
+        Ok(Some(ClosedForm {
             accelerations,
             multipliers,
-        })
+        }))
     }
 
-    fn saddle_point(&self, model: &Model) -> SaddlePointSystem {
+    fn saddle_point(&self, model: &mut Model) -> SaddlePointSystem {
+        let drift = match &self.constraint_drift {
+            Some(drift) => Drift::Exact(drift.neg()),
+            None => Drift::Structured(structured_drift(model)),
+        };
         SaddlePointSystem {
             mass_matrix: model.mass_matrix.clone(),
             constraint_matrix: model.constraint_matrix.clone(),
             force: self.force.clone(),
-            drift: self.constraint_drift.neg(),
+            drift,
         }
     }
 }
@@ -241,11 +285,11 @@ impl SaddlePointSystem {
     /// `qddot` then `lambda` by blocks (see the module documentation), as
     /// expressions over the system's pieces.
     pub fn solution_by_blocks(&self, model: &mut Model) -> Result<Vec<ExprId>, MatrixError> {
+        let a = model.constraint_expressions.clone();
         let store = &mut model.store;
         let g = ExprMatrix::of(&self.mass_matrix, store);
-        let a = ExprMatrix::of(&self.constraint_matrix, store);
         let force = ExprMatrix::of(&self.force, store);
-        let drift = ExprMatrix::of(&self.drift, store);
+        let drift = self.drift.expressions(store);
         let (lower, pivots) = store.ldl(&g)?;
         let w = store.forward_substitution(&lower, &a.transpose());
         let z = store.forward_substitution(&lower, &force);
@@ -266,15 +310,11 @@ impl SaddlePointSystem {
 
     /// `g` and `A` row-major, then `force`, then `drift`, as expressions.
     pub fn outputs(&self, model: &mut Model) -> Vec<ExprId> {
-        [
-            &self.mass_matrix,
-            &self.constraint_matrix,
-            &self.force,
-            &self.drift,
-        ]
-        .into_iter()
-        .flat_map(|m| m.to_expressions(&mut model.store))
-        .collect()
+        let mut outputs = self.mass_matrix.to_expressions(&mut model.store);
+        outputs.extend(model.constraint_expressions.entries());
+        outputs.extend(self.force.to_expressions(&mut model.store));
+        outputs.extend(self.drift.expressions(&mut model.store).entries());
+        outputs
     }
 }
 
@@ -330,6 +370,33 @@ fn gradient(model: &mut Model, f: &RationalFunction) -> Result<Matrix, Derivatio
         .store
         .jacobian(std::slice::from_ref(f), &coordinates)?;
     Ok(row.transpose())
+}
+
+/// `-Adot qdot = -sum_k d(A qdot)/dq_k qdot_k` as expressions.
+fn structured_drift(model: &mut Model) -> ExprMatrix {
+    let coordinates = model.coordinate_symbols();
+    let a = model.constraint_expressions.clone();
+    let store = &mut model.store;
+    let velocities: Vec<ExprId> = model.velocities.iter().map(|&v| store.symbol(v)).collect();
+    let entries = (0..a.rows())
+        .map(|i| {
+            let terms: Vec<ExprId> = (0..a.columns())
+                .map(|j| store.mul2(a.get(i, j), velocities[j]))
+                .collect();
+            let residual = store.add(&terms);
+            let rates: Vec<ExprId> = coordinates
+                .iter()
+                .zip(&velocities)
+                .map(|(&q, &velocity)| {
+                    let rate = store.derivative(residual, q);
+                    store.mul2(rate, velocity)
+                })
+                .collect();
+            let rate = store.add(&rates);
+            store.neg(rate)
+        })
+        .collect();
+    ExprMatrix::column(entries)
 }
 
 /// `sum_k d column/dq_k qdot_k`: the rate of change of `column(q)` along `qdot`.
@@ -408,7 +475,7 @@ pub struct Towed {
             assert!(balance.is_zero(), "g qddot - A^T lambda - f must vanish");
             let acceleration_constraint = a
                 .mul(&solution.accelerations, atoms)
-                .and_then(|m| m.sub(&system.drift, atoms))
+                .and_then(|m| m.sub(system.drift.exact().expect("small models' drift is exact"), atoms))
                 .expect("fits");
             assert!(
                 acceleration_constraint.is_zero(),
@@ -453,7 +520,13 @@ pub struct Towed {
             .constraint_matrix
             .evaluate(&mut model.store, &value_of);
         let force = system.force.evaluate(&mut model.store, &value_of);
-        let drift = system.drift.evaluate(&mut model.store, &value_of);
+        let drift: Vec<f64> = system
+            .drift
+            .expressions(&mut model.store)
+            .entries()
+            .iter()
+            .map(|&e| model.store.evaluate(e, &value_of))
+            .collect();
         let mut matrix = [[0.0; M]; M];
         for i in 0..n {
             matrix[i][..n].copy_from_slice(&g[i * n..(i + 1) * n]);

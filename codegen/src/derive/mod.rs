@@ -29,9 +29,19 @@ pub struct Derivation {
     pub reduced: PortHamiltonian,
     /// The reduced form's items, each in its chosen form.
     pub reduced_items: Items,
-    /// The momentum equation, for a model with a symmetry (MATH.md 4).
+    /// The momentum equation, for a model with a symmetry (MATH.md 4) and
+    /// no holonomic constraints ([`MOMENTUM_WITH_HOLONOMIC`]).
     pub momentum: Option<Momentum>,
 }
+
+/// Why a model with a symmetry and holonomic constraints has no momentum
+/// equation: an invariant `f(q) = 0` is a function of the shape, so its
+/// velocity row restricts the shape velocities, and the momentum equation
+/// (Bloch, Krishnaprasad, Marsden & Murray 1996) is stated for free ones.
+/// The symmetry still reduces the linearization about relative equilibria.
+pub const MOMENTUM_WITH_HOLONOMIC: &str = "not derived: the holonomic constraints restrict \
+     the shape velocities, and the momentum equation needs free ones; the symmetry reduces \
+     the linearization only";
 
 /// Derives every formulation of `model` on the basis of D of `constraints`.
 pub fn derivation(
@@ -47,8 +57,10 @@ pub fn derivation(
     let reduced_items =
         port_hamiltonian::items::items(model, &reduced).map_err(|e| internal(model, &e))?;
     let momentum = match model.symmetry {
-        Some(_) => Some(momentum::derive(model).map_err(|error| refused(model, error))?),
-        None => None,
+        Some(_) if model.mechanism.holonomic.is_empty() => {
+            Some(momentum::derive(model).map_err(|error| refused(model, error))?)
+        }
+        _ => None,
     };
     Ok(Derivation {
         lagrange_dalembert,

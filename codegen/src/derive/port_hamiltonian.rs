@@ -50,7 +50,7 @@ mod structured;
 
 use super::constraints::{DistributionBasis, Method};
 use crate::model::Model;
-use crate::sym::modular::{self, Outside, Point, Values};
+use crate::sym::modular::{self, Outside, Values};
 use crate::sym::{
     Atoms, ExprId, ExprMatrix, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError,
     SymbolId, SymbolKind,
@@ -320,15 +320,17 @@ fn facts_at_points(
         .filter(|at| at / k != at % k)
         .map(|at| metric_inverse.entries()[at])
         .collect();
-    let (mut constant, mut diagonal) = (true, true);
-    for seed in modular::SEEDS {
-        let mut values = Values::at(Point::new(seed));
-        let rate_values = values.of(&model.store, &rates)?;
-        constant &= rate_values.iter().all(|&v| v == 0);
-        let off_values = values.of(&model.store, &off_diagonal)?;
-        diagonal &= off_values.iter().all(|&v| v == 0);
-    }
-    Ok((constant, diagonal))
+    let facts = modular::at_defined_points(modular::SEEDS.len(), |point| {
+        let mut values = Values::at(point);
+        let constant = values.of(&model.store, &rates)?.iter().all(|&v| v == 0);
+        let diagonal = values.of(&model.store, &off_diagonal)?.iter().all(|&v| v == 0);
+        Ok((constant, diagonal))
+    })?;
+    Ok(facts
+        .iter()
+        .fold((true, true), |(c, d), &(constant, diagonal)| {
+            (c && constant, d && diagonal)
+        }))
 }
 
 /// The configuration-dependent maps between velocities and reduced momenta.

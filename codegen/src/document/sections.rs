@@ -215,14 +215,27 @@ pub(super) fn dalembert_section(model: &mut Model, derivation: &LagrangeDalember
                 ),
                 &system.force,
             ),
-            matrix_item(
-                model,
-                "drift",
-                label("-Adot qdot", "-\\dot{A} \\dot{q}"),
-                &system.drift,
-            ),
+            drift_item(model, &system.drift),
             word_fact("solve", "acceleration computed by", solve),
         ],
+    }
+}
+
+/// `-Adot qdot` as a matrix when exact; a statement of how it is computed when not.
+fn drift_item(model: &mut Model, drift: &lagrange_dalembert::Drift) -> Item {
+    match drift {
+        lagrange_dalembert::Drift::Exact(drift) => matrix_item(
+            model,
+            "drift",
+            label("-Adot qdot", "-\\dot{A} \\dot{q}"),
+            drift,
+        ),
+        lagrange_dalembert::Drift::Structured(_) => word_fact(
+            "drift",
+            "-Adot qdot",
+            "structured: the derivatives of the rows along qdot, not expanded \
+             (the exact form exceeds its derivation budget)",
+        ),
     }
 }
 

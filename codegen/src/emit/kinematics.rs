@@ -6,7 +6,7 @@ use super::{
 };
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
-use crate::sym::{Matrix, RationalFunction};
+use crate::sym::ExprMatrix;
 use quote::quote;
 
 /// The four functions, in the order they are documented.
@@ -68,7 +68,7 @@ fn energy(model: &mut Model) -> Result<Function, Diagnostics> {
 
 fn constraint_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
     let (n, c) = (model.n(), model.c());
-    let outputs = expressions(model, &model.constraint_matrix.clone());
+    let outputs = model.constraint_expressions.entries().to_vec();
     let body = function_body(model, &[coordinates(model)], &outputs, |values| {
         matrix_literal(values, n)
     })?;
@@ -91,26 +91,20 @@ fn constraint_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
 
 fn constraint_residual(model: &mut Model) -> Result<Function, Diagnostics> {
     let (n, c) = (model.n(), model.c());
-    let atoms = model.store.atoms().clone();
-    let velocity_column = Matrix::new(
-        n,
-        1,
+    let a = model.constraint_expressions.clone();
+    let velocity_column = ExprMatrix::column(
         model
             .velocities
             .clone()
             .into_iter()
-            .map(|v| {
-                let atom = model.store.symbol_atom(v);
-                RationalFunction::from_poly(crate::sym::Poly::atom(atom))
-            })
+            .map(|v| model.store.symbol(v))
             .collect(),
-    )
-    .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
-    let residual = model
-        .constraint_matrix
-        .mul(&velocity_column, &atoms)
-        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
-    let outputs = expressions(model, &residual);
+    );
+    let outputs = a
+        .mul(&velocity_column, &mut model.store)
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?
+        .entries()
+        .to_vec();
     let arguments = [coordinates(model), velocities(model)];
     let body = function_body(model, &arguments, &outputs, |values| quote!([#(#values),*]))?;
     let f64 = f64_type();

@@ -111,12 +111,14 @@ pub(crate) fn emit(
         let (reduction, reduction_report) = momentum::functions(model, momentum, &functions)?;
         functions.extend(reduction);
         sections.push(reduction_report);
+    } else if model.symmetry.is_some() {
+        sections.push(momentum::omitted());
     }
     let report = report_text(model, constraints, sections, &functions);
     let report_item = report_constant(&report);
     let items = functions.iter().map(|f| &f.item);
     let name = &model.name;
-    let implementations = traits::implementations(model);
+    let implementations = traits::implementations(model, derivation.momentum.is_some());
     let linearization = linearization::implementation(model);
     let items = quote! {
         #definition

@@ -80,6 +80,14 @@ pub(super) fn functions(
     Ok((functions, section))
 }
 
+/// The report's momentum section for a model with a symmetry whose
+/// momentum equation is not derived ([`crate::derive::MOMENTUM_WITH_HOLONOMIC`]).
+pub(super) fn omitted() -> Section {
+    let mut section = Section::new(TITLE);
+    section.line(crate::derive::MOMENTUM_WITH_HOLONOMIC);
+    section
+}
+
 fn report_section(model: &mut Model, momentum: &Momentum) -> Section {
     let mut section = Section::new(TITLE);
     let shape: Vec<&str> = momentum

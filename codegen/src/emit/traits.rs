@@ -13,8 +13,9 @@ use crate::model::{GroupFactor, Model, Symmetry};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-/// The runtime trait impls of `model`'s struct.
-pub(crate) fn implementations(model: &Model) -> TokenStream {
+/// The runtime trait impls of `model`'s struct (`MomentumEquations` when
+/// `momentum` was derived).
+pub(crate) fn implementations(model: &Model, momentum: bool) -> TokenStream {
     let name = &model.name;
     let f64 = f64_type();
     let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
@@ -37,6 +38,7 @@ pub(crate) fn implementations(model: &Model) -> TokenStream {
     let momentum_equations = model
         .symmetry
         .as_ref()
+        .filter(|_| momentum)
         .map(|symmetry| momentum_equations(model, symmetry));
     quote! {
         #momentum_equations

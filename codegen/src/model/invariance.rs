@@ -9,12 +9,23 @@
 //! the difference), and the constraint distribution is carried to itself, i.e.
 //! the transformed rows `A(g q) g_*` lie in the row space of `A(q)`: the
 //! exact rank of the stacked rows stays `c` (Koon & Marsden, section 2).
+//!
+//! Each part is decided exactly within [`EXACT_INVARIANCE_PRODUCTS`] term
+//! products. Beyond (a bicycle's rolling rows carry a square root in every
+//! entry), it is decided by evaluation modulo a prime at random points
+//! ([`crate::sym::modular`]): a non-zero difference, or a stacked rank above
+//! `c`, at a point proves the part not invariant; agreement at two points
+//! holds for every group element with probability above `1 - 1e-15`.
 
 use super::{GroupFactor, Symmetry, Variable};
+use crate::sym::modular::{self, Outside, Values};
 use crate::sym::{
     ExprId, Function, Matrix, RationalFunction, Store, SymError, SymbolId, SymbolKind,
 };
 use std::collections::HashMap;
+
+/// The term products each exact invariance check may take.
+const EXACT_INVARIANCE_PRODUCTS: u64 = 2_000_000;
 
 /// Which part of the model the group does not preserve.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -116,14 +127,67 @@ fn group_action(
     Ok(action)
 }
 
-/// `f(g q, g_* qdot) = f(q, qdot)` exactly.
+/// `f(g q, g_* qdot) = f(q, qdot)`.
 fn preserved(
+    store: &mut Store,
+    form: &RationalFunction,
+    action: &HashMap<SymbolId, ExprId>,
+) -> Result<bool, SymError> {
+    let exact = |store: &mut Store| exactly_preserved(store, form, action);
+    if let Some(decided) = store.attempt(EXACT_INVARIANCE_PRODUCTS, exact) {
+        return decided;
+    }
+    let expression = store.expression_of(form);
+    let moved = store.substitute(expression, action)?;
+    let difference = store.sub(moved, expression);
+    match all_zero_at_points(store, &[], &[difference], |values| values[0] == 0) {
+        Ok(preserved) => Ok(preserved),
+        Err(_) => exact(store),
+    }
+}
+
+/// `f(g q, g_* qdot) = f(q, qdot)` by the normal form of the difference.
+fn exactly_preserved(
     store: &mut Store,
     form: &RationalFunction,
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<bool, SymError> {
     let moved = transformed(store, form, action)?;
     Ok(moved.sub(form, store.atoms()).is_zero())
+}
+
+/// `holds` at two random points where the normal forms `forms` and the
+/// expressions `expressions` are defined (their values, in that order);
+/// false at the first point where it fails.
+fn all_zero_at_points(
+    store: &mut Store,
+    forms: &[RationalFunction],
+    expressions: &[ExprId],
+    holds: impl Fn(&[u64]) -> bool,
+) -> Result<bool, Outside> {
+    let mut defined_points = 0;
+    let mut outside = None;
+    for point in modular::points() {
+        let mut values = Values::at(point);
+        let evaluated = store
+            .evaluate_normal_modular(forms, &mut values)
+            .and_then(|mut evaluated| {
+                evaluated.extend(values.of(store, expressions)?);
+                Ok(evaluated)
+            });
+        match evaluated {
+            Ok(evaluated) if !holds(&evaluated) => return Ok(false),
+            Ok(_) => defined_points += 1,
+            Err(undefined @ Outside::Undefined { .. }) => outside = Some(undefined),
+            Err(not_in_class) => return Err(not_in_class),
+        }
+        if defined_points == 2 {
+            return Ok(true);
+        }
+    }
+    Err(outside.unwrap_or(Outside::Undefined {
+        expr: "every point drawn".to_string(),
+    }))
 }
 
 fn transformed(
@@ -147,6 +211,53 @@ fn constraints_preserved(
     if c == 0 {
         return Ok(true);
     }
+    let exact = |store: &mut Store| exactly_constraints_preserved(store, a, velocities, action);
+    if let Some(decided) = store.attempt(EXACT_INVARIANCE_PRODUCTS, exact) {
+        return decided;
+    }
+    let mut moved = Vec::with_capacity(c * n);
+    for i in 0..c {
+        let residual = moved_residual(store, a, i, velocities, action)?;
+        for &velocity in velocities {
+            moved.push(store.derivative(residual, velocity));
+        }
+    }
+    let in_row_space = |values: &[u64]| modular::rank(values.to_vec(), 2 * c, n) == c;
+    match all_zero_at_points(store, a.entries(), &moved, in_row_space) {
+        Ok(preserved) => Ok(preserved),
+        Err(_) => exact(store),
+    }
+}
+
+/// `sum_j A_ij(g q) (g_* qdot)_j` as an expression.
+fn moved_residual(
+    store: &mut Store,
+    a: &Matrix,
+    i: usize,
+    velocities: &[SymbolId],
+    action: &HashMap<SymbolId, ExprId>,
+) -> Result<ExprId, SymError> {
+    let terms: Vec<ExprId> = velocities
+        .iter()
+        .enumerate()
+        .map(|(j, &velocity)| {
+            let entry = store.expression_of(a.get(i, j));
+            let velocity = store.symbol(velocity);
+            store.mul2(entry, velocity)
+        })
+        .collect();
+    let residual = store.add(&terms);
+    store.substitute(residual, action)
+}
+
+/// The exact rank of `A(q)` stacked on the transformed rows is `c`.
+fn exactly_constraints_preserved(
+    store: &mut Store,
+    a: &Matrix,
+    velocities: &[SymbolId],
+    action: &HashMap<SymbolId, ExprId>,
+) -> Result<bool, SymError> {
+    let (c, n) = (a.rows(), a.columns());
     let atoms = store.atoms().clone();
     let mut stacked = a.entries().to_vec();
     for i in 0..c {

@@ -23,7 +23,7 @@ pub use check::{check, check_within};
 pub use mechanism::Mechanism;
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
-use crate::sym::{Matrix, Rational, RationalFunction, Store, SymbolId};
+use crate::sym::{ExprMatrix, Matrix, Rational, RationalFunction, Store, SymbolId};
 use proc_macro2::{Ident, Span, TokenStream};
 
 /// A name the user declared, with where they declared it.
@@ -126,6 +126,10 @@ pub struct Model {
     pub constraints: Vec<Declared>,
     /// `A(q)`, c x n, full row rank.
     pub constraint_matrix: Matrix,
+    /// `A(q)` as the expressions emitted code computes it: the normal
+    /// forms written out, or for a large derived entry the expression it
+    /// was derived as (equal to the normal form).
+    pub constraint_expressions: ExprMatrix,
     /// The input names.
     pub inputs: Vec<Declared>,
     /// `B(q)`, n x p.

@@ -30,7 +30,7 @@ use std::rc::Rc;
 /// The built-in models use under 0.2 % of it; the wheeled snakes of 2 to 12
 /// links between 10 and 55 %, mostly on exact forms they attempt and give up
 /// for structured ones (`FUZZING.md` lists the measured use of each).
-pub const DEFAULT_DERIVATION_BUDGET: u64 = 10_000_000;
+pub const DEFAULT_DERIVATION_BUDGET: u64 = 40_000_000;
 
 /// A shared counter of polynomial term products with a limit.
 #[derive(Clone, Debug)]

@@ -13,6 +13,14 @@
 //! ```
 //!
 //! (`1 + t^2` never vanishes: -1 is not a square modulo a prime `3 mod 4`).
+//! A square root `sqrt(u)` is the principal root of `u`'s value,
+//! `u^((p + 1) / 4)` (a root because `p = 3 mod 4`), where `u`'s value is a
+//! square; where it is not, the point is not on the variety `r^2 = u` and the
+//! expression is [`Outside::Undefined`] there, so callers draw the next point
+//! ([`points`]). The normal form uses nothing of a root `r` but `r^2 = u`, so
+//! either root of `u` gives a point of the variety it works on
+//! ([`normal_form`] evaluates normal forms, their root atoms from their
+//! radicands).
 //! `cos` and `sin` of `a_1 q_1 + ... + a_m q_m` (integers `a_i`) are the real
 //! and imaginary parts of the unit `prod (c_i + i s_i)^(a_i)`, the addition
 //! formulas. A symbol and its sine and cosine satisfy no algebraic relation
@@ -33,6 +41,8 @@
 //! Expressions outside the class (`exp`, `ln`, fractional powers, `sin` of a
 //! non-linear argument) are not evaluated: [`Outside`].
 
+mod normal_form;
+
 use super::expr::{ExprId, Function, Node, Store, SymbolId};
 use rustc_hash::FxHashMap as HashMap;
 
@@ -41,6 +51,46 @@ pub const PRIME: u64 = (1 << 61) - 1;
 
 /// The seeds of the points at which the derivations decide by evaluation.
 pub const SEEDS: [u64; 2] = [0x00c4_a91f_9e37_79b9, 0x5eed_0fd1_5c0f_fe00];
+
+/// How many points [`points`] draws: a square root's radicand is a square
+/// at half the points, so 64 draws miss a point where every one of a few
+/// roots is defined with probability far below `1e-6`.
+pub const POINT_DRAWS: u64 = 64;
+
+/// The points derivations evaluate at, in order: first [`SEEDS`], then
+/// further points from them, for callers that skip the points where an
+/// expression is [`Outside::Undefined`].
+pub fn points() -> impl Iterator<Item = Point> {
+    (0..POINT_DRAWS).map(|draw_index| {
+        let seed = SEEDS[(draw_index % 2) as usize];
+        Point::new(seed.wrapping_add((draw_index / 2).wrapping_mul(0x9E37_79B9_7F4A_7C15)))
+    })
+}
+
+/// `evaluate` at the first `count` points of [`points`] where it is
+/// defined (skipping those where it is [`Outside::Undefined`]); an
+/// expression outside the class is an error at once, and so is finding
+/// fewer than `count` defined points.
+pub fn at_defined_points<T>(
+    count: usize,
+    mut evaluate: impl FnMut(Point) -> Result<T, Outside>,
+) -> Result<Vec<T>, Outside> {
+    let mut results = Vec::with_capacity(count);
+    let mut undefined = None;
+    for point in points() {
+        match evaluate(point) {
+            Ok(result) => results.push(result),
+            Err(error @ Outside::Undefined { .. }) => undefined = Some(error),
+            Err(error) => return Err(error),
+        }
+        if results.len() == count {
+            return Ok(results);
+        }
+    }
+    Err(undefined.unwrap_or(Outside::Undefined {
+        expr: "every point drawn".to_string(),
+    }))
+}
 
 /// Why an expression was not evaluated at a point.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -158,10 +208,14 @@ impl Store {
             Node::Mul(factors) => factors
                 .iter()
                 .fold(1, |product, f| multiply(product, values[f], PRIME)),
-            Node::Pow(base, exponent) => {
-                let exponent = exponent.to_i64().ok_or_else(not_in_class)?;
-                power(values[base], exponent).ok_or_else(undefined)?
-            }
+            Node::Pow(base, exponent) => match exponent.to_small() {
+                Some((n, 1)) => power(values[base], n).ok_or_else(undefined)?,
+                Some((n, 2)) => {
+                    let root = square_root(values[base]).ok_or_else(undefined)?;
+                    power(root, n).ok_or_else(undefined)?
+                }
+                _ => return Err(not_in_class()),
+            },
             Node::Call(function, argument) => {
                 let combination = self.angle_combination(*argument).ok_or_else(not_in_class)?;
                 let unit = combination
@@ -267,6 +321,16 @@ pub fn power(a: u64, exponent: i64) -> Option<u64> {
     Some(unsigned_power(base, exponent.unsigned_abs(), PRIME))
 }
 
+/// The principal square root `a^((p + 1) / 4)` of `a` modulo [`PRIME`],
+/// `None` when `a` is not a square (Euler's criterion).
+pub fn square_root(a: u64) -> Option<u64> {
+    let a = a % PRIME;
+    if a == 0 {
+        return Some(0);
+    }
+    (unsigned_power(a, (PRIME - 1) / 2, PRIME) == 1).then(|| unsigned_power(a, (PRIME + 1) / 4, PRIME))
+}
+
 fn unsigned_power(mut base: u64, mut exponent: u64, modulus: u64) -> u64 {
     let mut result = 1 % modulus;
     while exponent > 0 {
@@ -325,8 +389,8 @@ mod tests {
     #[test]
     fn trigonometric_identities_vanish_and_their_perturbations_do_not() {
         let (mut store, x, y) = store_with_angles();
-        let two = store.integer(2);
         let sum = store.add2(x, y);
+        let two = store.integer(2);
         let twice = store.mul2(two, x);
         let [sin_x, cos_x, sin_y, cos_y] = [
             (Function::Sin, x),
@@ -390,14 +454,40 @@ mod tests {
         let (mut store, x, y) = store_with_angles();
         let product = store.mul2(x, y);
         let sin_product = store.apply(Function::Sin, product).expect("applies");
-        let root = store.sqrt(x).expect("applies");
+        let cube_root = store
+            .pow(x, Rational::new(1, 3).expect("non-zero denominator"))
+            .expect("applies");
         let exponential = store.apply(Function::Exp, x).expect("applies");
-        for expression in [sin_product, root, exponential] {
+        for expression in [sin_product, cube_root, exponential] {
             assert!(matches!(
                 store.evaluate_modular(&[expression], &Point::new(1)),
                 Err(Outside::NotInClass { .. })
             ));
         }
+    }
+
+    #[test]
+    fn square_roots_square_to_their_radicands_where_those_are_squares() {
+        let (mut store, x, y) = store_with_angles();
+        let radicand = store.add2(x, y);
+        let root = store.sqrt(radicand).expect("applies");
+        let (mut defined, mut undefined) = (0, 0);
+        for point in super::points() {
+            match store.evaluate_modular(&[root, radicand], &point) {
+                Ok(values) => {
+                    let square = super::multiply(values[0], values[0], PRIME);
+                    assert_eq!(square, values[1], "sqrt(u)^2 = u");
+                    defined += 1;
+                }
+                Err(Outside::Undefined { .. }) => undefined += 1,
+                Err(other) => panic!("in the class: {other}"),
+            }
+        }
+        // About half the residues are squares modulo a prime.
+        assert!(defined > 16 && undefined > 16, "{defined} defined, {undefined} not");
+        let values = super::at_defined_points(2, |point| store.evaluate_modular(&[root], &point))
+            .expect("two points where x + y is a square");
+        assert_eq!(values.len(), 2);
     }
 
     #[test]

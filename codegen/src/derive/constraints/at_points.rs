@@ -7,7 +7,7 @@
 use super::{AnalysisError, DistributionBasis, STRUCTURED_GROWTH_NODES};
 use crate::model::Model;
 use crate::sym::modular::{self, Outside, Point, Values};
-use crate::sym::{ExprId, ExprMatrix};
+use crate::sym::{ExprId, ExprMatrix, RationalFunction};
 
 /// Frobenius at random points: `A [X_i, X_j]` evaluated modulo a prime at
 /// two points; a non-zero value proves D not integrable.
@@ -16,7 +16,7 @@ pub(super) fn is_involutive_at_points(
     basis: &DistributionBasis,
 ) -> Result<bool, AnalysisError> {
     let fields = expression_columns(&basis.field_expressions);
-    let rows = ExprMatrix::of(&model.constraint_matrix, &mut model.store);
+    let rows = model.constraint_expressions.clone();
     let mut products = Vec::new();
     for (i, x) in fields.iter().enumerate() {
         for y in &fields[i + 1..] {
@@ -24,25 +24,67 @@ pub(super) fn is_involutive_at_points(
             products.extend_from_slice(rows.mul(&bracket, &mut model.store)?.entries());
         }
     }
-    for seed in modular::SEEDS {
-        let values = Values::at(Point::new(seed)).of(&model.store, &products)?;
-        if values.iter().any(|&v| v != 0) {
-            return Ok(false);
-        }
-    }
-    Ok(true)
+    let store = &model.store;
+    let values = modular::at_defined_points(modular::SEEDS.len(), |point| {
+        Values::at(point).of(store, &products)
+    })?;
+    Ok(values.iter().flatten().all(|&v| v == 0))
 }
 
-/// The growth vector from ranks at a random point, with the brackets built
-/// as expressions; `(growth, complete)`, incomplete when the brackets of
-/// the next level would exceed [`STRUCTURED_GROWTH_NODES`] new nodes.
+/// Moore's test of one row at random points: `d a_i / d q_j - d a_j / d q_i`
+/// non-zero at a point proves the row not exact.
+pub(super) fn is_exact_row_at_points(
+    model: &mut Model,
+    row: &[RationalFunction],
+) -> Result<bool, AnalysisError> {
+    let coordinates = model.coordinate_symbols();
+    let entries: Vec<ExprId> = row.iter().map(|a| model.store.expression_of(a)).collect();
+    let mut asymmetries = Vec::new();
+    for (i, &a_i) in entries.iter().enumerate() {
+        for (j, &a_j) in entries.iter().enumerate().skip(i + 1) {
+            let forward = model.store.derivative(a_i, coordinates[j]);
+            let backward = model.store.derivative(a_j, coordinates[i]);
+            asymmetries.push(model.store.sub(forward, backward));
+        }
+    }
+    let store = &model.store;
+    let values = modular::at_defined_points(modular::SEEDS.len(), |point| {
+        Values::at(point).of(store, &asymmetries)
+    })?;
+    Ok(values.iter().flatten().all(|&v| v == 0))
+}
+
+/// The growth vector from ranks at a random point (the first where every
+/// bracket is defined), with the brackets built as expressions;
+/// `(growth, complete)`, incomplete when the brackets of the next level
+/// would exceed [`STRUCTURED_GROWTH_NODES`] new nodes.
 pub(super) fn growth_vector_at_point(
     model: &mut Model,
     basis: &DistributionBasis,
 ) -> Result<(Vec<usize>, bool), AnalysisError> {
     let start = model.store.len();
+    let mut undefined = None;
+    for point in modular::points() {
+        match growth_at(model, basis, point, start) {
+            Err(AnalysisError::Undecided(outside @ Outside::Undefined { .. })) => {
+                undefined = Some(outside);
+            }
+            decided => return decided,
+        }
+    }
+    Err(AnalysisError::Undecided(undefined.unwrap_or(Outside::Undefined {
+        expr: "every point drawn".to_string(),
+    })))
+}
+
+fn growth_at(
+    model: &mut Model,
+    basis: &DistributionBasis,
+    point: Point,
+    start: usize,
+) -> Result<(Vec<usize>, bool), AnalysisError> {
     let fields = expression_columns(&basis.field_expressions);
-    let mut span = SpanAtPoint::new(model.n(), Point::new(modular::SEEDS[0]));
+    let mut span = SpanAtPoint::new(model.n(), point);
     let mut newest = span.additions(model, fields.clone())?;
     let mut growth = vec![span.rank()];
     while span.rank() < model.n() && !newest.is_empty() {

@@ -43,7 +43,7 @@ pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, Matrix
     };
     let a = match &frame {
         Some(frame) => frame.constraints.clone(),
-        None => ExprMatrix::of(&model.constraint_matrix, &mut model.store),
+        None => model.constraint_expressions.clone(),
     };
     let (a_r, a_s) = (
         expression_columns_at(&a, &dependent, &mut model.store),

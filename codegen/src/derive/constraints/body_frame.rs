@@ -48,7 +48,7 @@ impl BodyFrame {
             })
             .map(|i| (model.coordinates[i].symbol, zero))
             .collect();
-        let a = ExprMatrix::of(&model.constraint_matrix, store);
+        let a = model.constraint_expressions.clone();
         let mut constraints = ExprMatrix::zeros(store, a.rows(), a.columns());
         for i in 0..a.rows() {
             for j in 0..a.columns() {

@@ -2,32 +2,69 @@
 //! the annihilator of a declared distribution; independent.
 
 use super::mechanisms::MechanismParts;
+use crate::sym::ExprMatrix;
 use super::*;
+
+/// The most terms a derived row's entry may have to be emitted from its
+/// normal form ([`Checker::entry_expressions`]).
+const EXPANDED_ENTRY_TERMS: usize = 64;
+
+/// The term products the exact rank confirming a dependent row may take.
+const EXACT_RANK_PRODUCTS: u64 = 2_000_000;
 
 impl Checker {
     // ----- constraints ---------------------------------------------------
 
-    /// `(names, A)` from `constraints` or `distribution` (none: c = 0).
-    /// `(names, A)`: the declared rows (or a distribution's annihilator),
-    /// then the mechanism's contact and holonomic rows; independent together.
+    /// `(names, A, A as expressions)`: the declared rows (or a
+    /// distribution's annihilator), then the mechanism's contact and
+    /// holonomic rows; independent together.
     pub(super) fn constraints(
         &mut self,
         sections: &Sections,
         n: usize,
         mechanism: &MechanismParts,
-    ) -> Option<(Vec<Declared>, Matrix)> {
+    ) -> Option<(Vec<Declared>, Matrix, ExprMatrix)> {
         let (mut names, declared) = self.declared_constraints(sections, n)?;
         let mut entries = declared.entries().to_vec();
-        for (declared, form) in mechanism.names.iter().zip(&mechanism.rows) {
+        let mut expressions: Vec<ExprId> = entries
+            .iter()
+            .map(|entry| self.store.expression_of(entry))
+            .collect();
+        for (declared, (form, derived_as)) in mechanism.names.iter().zip(&mechanism.rows) {
             if !self.rule_unique_in_section(&names, &declared.name, declared.span) {
                 return None;
             }
-            entries.extend(self.velocity_coefficients(form)?);
+            let coefficients = self.velocity_coefficients(form)?;
+            expressions.extend(self.entry_expressions(&coefficients, *derived_as));
+            entries.extend(coefficients);
             names.push(declared.clone());
         }
         let a = Matrix::new(names.len(), n, entries).ok()?;
+        let a_expressions = ExprMatrix::new(names.len(), n, expressions).ok()?;
         self.rule_independent_rows(&a, &names, "constraint")
-            .then_some((names, a))
+            .then_some((names, a, a_expressions))
+    }
+
+    /// The entries of a derived row as expressions: each normal form
+    /// written out, unless it has more than [`EXPANDED_ENTRY_TERMS`] terms;
+    /// then the derivative of the expression the row was derived as in
+    /// that velocity (a rolling wheel's contact carries a square root
+    /// whose normal forms are far larger than the derivation's DAG).
+    fn entry_expressions(&mut self, entries: &[RationalFunction], derived_as: ExprId) -> Vec<ExprId> {
+        let velocities = self.velocity_symbols();
+        entries
+            .iter()
+            .zip(velocities)
+            .map(|(entry, velocity)| {
+                let terms = entry.numerator().terms().len()
+                    + entry.denominator().iter().map(|(f, _)| f.terms().len()).sum::<usize>();
+                if terms <= EXPANDED_ENTRY_TERMS {
+                    self.store.expression_of(entry)
+                } else {
+                    self.store.derivative(derived_as, velocity)
+                }
+            })
+            .collect()
     }
 
     /// The coefficients of a linear form in the velocities, in coordinate order.
@@ -102,25 +139,38 @@ impl Checker {
         names: &[Declared],
         what: &str,
     ) -> bool {
-        let atoms = self.store.atoms().clone();
-        for (i, name) in names.iter().enumerate().take(m.rows()) {
-            let upto = Matrix::new(
-                i + 1,
-                m.columns(),
-                m.entries()[..(i + 1) * m.columns()].to_vec(),
-            );
-            if upto.is_ok_and(|u| u.rank(&atoms) < i + 1) {
-                self.diagnostics.error(
-                    name.span,
-                    format!(
-                        "{what} `{}` depends on the ones before it: the rows must be linearly independent",
-                        name.name
-                    ),
-                );
-                return false;
-            }
-        }
-        true
+        let Some(dependent) = self.first_dependent_row(m) else {
+            return true;
+        };
+        self.diagnostics.error(
+            names[dependent].span,
+            format!(
+                "{what} `{}` depends on the ones before it: the rows must be linearly independent",
+                names[dependent].name
+            ),
+        );
+        false
+    }
+
+    /// The first row of `m` in the span of the rows before it. Ranks at
+    /// random points modulo a prime ([`crate::sym::modular`]) prove the
+    /// rows before it independent; the row they find no rank for is
+    /// confirmed by the exact rank within [`EXACT_RANK_PRODUCTS`] (beyond it,
+    /// by two random points: wrong with probability below `1e-15`).
+    fn first_dependent_row(&mut self, m: &Matrix) -> Option<usize> {
+        let proved_full = self
+            .store
+            .prefixes_of_full_rank_at_points(m)
+            .unwrap_or_else(|_| vec![false; m.rows()]);
+        (0..m.rows())
+            .filter(|&i| !proved_full[i])
+            .find(|&i| {
+                let prefix = Matrix::new(i + 1, m.columns(), m.entries()[..(i + 1) * m.columns()].to_vec());
+                let Ok(prefix) = prefix else { return false };
+                self.store
+                    .attempt(EXACT_RANK_PRODUCTS, |store| prefix.rank(store.atoms()))
+                    .is_none_or(|rank| rank < i + 1)
+            })
     }
 
     /// A distribution: k independent vector fields of length n, no velocities;

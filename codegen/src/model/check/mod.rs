@@ -95,13 +95,13 @@ pub fn check_within(syntax: &ModelSyntax, budget: Budget) -> Result<Model, Diagn
     };
     let inputs = checker.inputs(sections.get("inputs"), &coordinates);
     let momentum_basis = match (&energy, &constraints) {
-        (Some((_, g)), Some((_, a))) => {
+        (Some((_, g)), Some((_, a, _))) => {
             checker.momentum_basis(sections.get("momentum_basis"), g, a, coordinates.len())
         }
         _ => None,
     };
     let symmetry = checker.symmetry(sections.get("symmetry"), &coordinates);
-    if let (Some(symmetry), Some((kinetic_energy, _)), Some(potential_energy), Some((_, a))) =
+    if let (Some(symmetry), Some((kinetic_energy, _)), Some(potential_energy), Some((_, a, _))) =
         (&symmetry, &energy, &potential_energy, &constraints)
     {
         let velocities: Vec<SymbolId> = coordinates
@@ -125,7 +125,7 @@ pub fn check_within(syntax: &ModelSyntax, budget: Budget) -> Result<Model, Diagn
     let (
         Some((kinetic_energy, mass_matrix)),
         Some(potential_energy),
-        Some((constraint_names, constraint_matrix)),
+        Some((constraint_names, constraint_matrix, constraint_expressions)),
         Some((input_names, input_matrix)),
         Some(mechanism),
     ) = (energy, potential_energy, constraints, inputs, mechanism)
@@ -154,6 +154,7 @@ pub fn check_within(syntax: &ModelSyntax, budget: Budget) -> Result<Model, Diagn
         mass_matrix,
         constraints: constraint_names,
         constraint_matrix,
+        constraint_expressions,
         inputs: input_names,
         input_matrix,
         momentum_basis,

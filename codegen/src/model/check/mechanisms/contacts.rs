@@ -16,7 +16,7 @@ impl Checker {
         reference: &Reference,
         bodies: &[(Declared, Body)],
         q: &[SymbolId],
-    ) -> (Vec<Declared>, Vec<RationalFunction>) {
+    ) -> (Vec<Declared>, Vec<(RationalFunction, ExprId)>) {
         let mut names = Vec::new();
         let mut rows = Vec::new();
         let Some(list) = section.and_then(|s| self.list(s)) else {
@@ -46,7 +46,8 @@ impl Checker {
         (names, rows)
     }
 
-    /// The slip velocities `d_i . v_P` of one contact, in normal form.
+    /// The slip velocities `d_i . v_P` of one contact, in normal form and
+    /// as the expression they were derived as.
     pub(super) fn contact(
         &mut self,
         value: &Value,
@@ -54,7 +55,7 @@ impl Checker {
         reference: &Reference,
         bodies: &[(Declared, Body)],
         q: &[SymbolId],
-    ) -> Option<Vec<RationalFunction>> {
+    ) -> Option<Vec<(RationalFunction, ExprId)>> {
         let Value::Expr(Expr::Call {
             function,
             arguments,
@@ -78,7 +79,7 @@ impl Checker {
             .iter()
             .map(|d| {
                 let slip = vector::inner(&mut self.store, d, &v);
-                self.store.normal(slip).ok()
+                Some((self.store.normal(slip).ok()?, slip))
             })
             .collect()
     }
@@ -148,7 +149,7 @@ impl Checker {
         space: &Space,
         reference: &Reference,
         q: &[SymbolId],
-    ) -> (Vec<Declared>, Vec<ExprId>, Vec<RationalFunction>) {
+    ) -> (Vec<Declared>, Vec<ExprId>, Vec<(RationalFunction, ExprId)>) {
         let (mut names, mut residuals, mut forms) = (Vec::new(), Vec::new(), Vec::new());
         let Some(list) = section.and_then(|s| self.list(s)) else {
             return (names, residuals, forms);
@@ -177,7 +178,7 @@ impl Checker {
             };
             names.push(declared);
             residuals.push(f);
-            forms.push(form);
+            forms.push((form, rate));
         }
         (names, residuals, forms)
     }

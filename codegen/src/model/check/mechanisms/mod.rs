@@ -21,7 +21,9 @@ use proc_macro2::Ident;
 pub(super) struct MechanismParts {
     pub(super) mechanism: Mechanism,
     pub(super) names: Vec<Declared>,
-    pub(super) rows: Vec<RationalFunction>,
+    /// Each row's linear form in the velocities: its normal form and the
+    /// expression it was derived as.
+    pub(super) rows: Vec<(RationalFunction, ExprId)>,
 }
 
 /// A frame's declaration: `name = rotate(parent, axis, angle)`.

@@ -1,0 +1,118 @@
+//! Normal forms evaluated modulo a prime: each atom once, then the
+//! polynomials. Symbols, sines and cosines and kernels are evaluated as the
+//! expressions they stand for; a square-root atom `r` as the principal root
+//! of its radicand's value, so `r^2 = u` holds at the point (the only
+//! relation the normal form uses of `r`).
+
+use super::{Outside, PRIME, Values, add, inverse, multiply, power, rank, square_root};
+use crate::sym::poly::{AtomId, Poly};
+use crate::sym::{Matrix, RationalFunction, Store};
+use rustc_hash::FxHashMap as HashMap;
+
+impl Store {
+    /// The values of `forms` modulo [`PRIME`] at the point of `values`
+    /// (whose expression values are reused and extended).
+    pub fn evaluate_normal_modular(
+        &mut self,
+        forms: &[RationalFunction],
+        values: &mut Values,
+    ) -> Result<Vec<u64>, Outside> {
+        let mut atoms = AtomValues::default();
+        forms
+            .iter()
+            .map(|form| {
+                let numerator = atoms.of_poly(self, form.numerator(), values)?;
+                let mut denominator = 1;
+                for (factor, multiplicity) in form.denominator() {
+                    let value = atoms.of_poly(self, factor, values)?;
+                    let value = power(value, i64::from(*multiplicity)).unwrap_or(0);
+                    denominator = multiply(denominator, value, PRIME);
+                }
+                let reciprocal = inverse(denominator, PRIME).ok_or_else(|| Outside::Undefined {
+                    expr: "a denominator of a normal form".to_string(),
+                })?;
+                Ok(multiply(numerator, reciprocal, PRIME))
+            })
+            .collect()
+    }
+}
+
+/// The values of the atoms met so far.
+#[derive(Default)]
+struct AtomValues(HashMap<AtomId, u64>);
+
+impl AtomValues {
+    fn of_poly(&mut self, store: &mut Store, poly: &Poly, values: &mut Values) -> Result<u64, Outside> {
+        let mut sum = 0;
+        for (monomial, coefficient) in poly.terms() {
+            let mut term = coefficient.residue(PRIME).ok_or_else(|| Outside::Undefined {
+                expr: format!("the coefficient {coefficient}"),
+            })?;
+            for &(atom, exponent) in monomial.factors() {
+                let value = self.of_atom(store, atom, values)?;
+                term = multiply(term, power(value, i64::from(exponent)).unwrap_or(0), PRIME);
+            }
+            sum = add(sum, term);
+        }
+        Ok(sum)
+    }
+
+    fn of_atom(&mut self, store: &mut Store, atom: AtomId, values: &mut Values) -> Result<u64, Outside> {
+        if let Some(&value) = self.0.get(&atom) {
+            return Ok(value);
+        }
+        let value = match store.atoms().radicand_of(atom).cloned() {
+            Some(radicand) => {
+                let value = self.of_poly(store, &radicand, values)?;
+                let root = store.expression_of_atom(atom);
+                square_root(value).ok_or_else(|| Outside::Undefined {
+                    expr: store.display(root).to_string(),
+                })?
+            }
+            None => {
+                let expression = store.expression_of_atom(atom);
+                values.of(store, &[expression])?[0]
+            }
+        };
+        self.0.insert(atom, value);
+        Ok(value)
+    }
+}
+
+impl Store {
+    /// For each `i`, whether the first `i + 1` rows of `matrix` have full
+    /// rank at one of two random points ([`super::points`], skipping points
+    /// where an entry is undefined). A rank at a point is a lower bound of
+    /// the generic rank: `true` is proved, `false` only probable.
+    pub fn prefixes_of_full_rank_at_points(
+        &mut self,
+        matrix: &Matrix,
+    ) -> Result<Vec<bool>, Outside> {
+        let columns = matrix.columns();
+        let mut full = vec![false; matrix.rows()];
+        let mut defined_points = 0;
+        let mut last_undefined = None;
+        for point in super::points() {
+            let values =
+                match self.evaluate_normal_modular(matrix.entries(), &mut Values::at(point)) {
+                    Ok(values) => values,
+                    Err(undefined @ Outside::Undefined { .. }) => {
+                        last_undefined = Some(undefined);
+                        continue;
+                    }
+                    Err(outside) => return Err(outside),
+                };
+            for (i, prefix_full) in full.iter_mut().enumerate() {
+                *prefix_full |= rank(values[..(i + 1) * columns].to_vec(), i + 1, columns) == i + 1;
+            }
+            defined_points += 1;
+            if defined_points == 2 || full.iter().all(|&f| f) {
+                return Ok(full);
+            }
+        }
+        match (defined_points, last_undefined) {
+            (0, Some(undefined)) => Err(undefined),
+            _ => Ok(full),
+        }
+    }
+}
