@@ -9,7 +9,7 @@
 #[path = "../models/tests/support/benchmark_bicycle.rs"]
 mod benchmark_bicycle;
 
-use benchmark_bicycle::Bicycle;
+use benchmark_bicycle::BenchmarkParameters;
 use nalgebra::Complex;
 use std::path::PathBuf;
 use std::process::Command;
@@ -66,7 +66,7 @@ fn nonzero(eigenvalues: &[Complex<f64>]) -> Vec<Complex<f64>> {
 
 #[test]
 fn the_eigenvalues_from_0_to_10_m_s_are_the_papers() {
-    let reference = Bicycle::benchmark();
+    let reference = BenchmarkParameters::benchmark();
     let rows = swept("bicycle-eigenvalues", "v=0:10:1");
     assert_eq!(rows.len(), 11);
     for (v, eigenvalues) in rows {
@@ -103,7 +103,7 @@ fn stability_change(name: &str, sweep: &str, stable_before: bool) -> f64 {
 
 #[test]
 fn the_weave_and_capsize_speeds_are_the_papers_to_1e_6() {
-    let reference = Bicycle::benchmark();
+    let reference = BenchmarkParameters::benchmark();
     // Meijaard et al. (2007), section 6: 4.292382536341 and 6.024262015388 m/s.
     let weave = reference.weave_speeds()[0];
     let capsize = reference.capsize_speeds()[0];
