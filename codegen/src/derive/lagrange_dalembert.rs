@@ -475,7 +475,12 @@ pub struct Towed {
             assert!(balance.is_zero(), "g qddot - A^T lambda - f must vanish");
             let acceleration_constraint = a
                 .mul(&solution.accelerations, atoms)
-                .and_then(|m| m.sub(system.drift.exact().expect("small models' drift is exact"), atoms))
+                .and_then(|m| {
+                    m.sub(
+                        system.drift.exact().expect("small models' drift is exact"),
+                        atoms,
+                    )
+                })
                 .expect("fits");
             assert!(
                 acceleration_constraint.is_zero(),

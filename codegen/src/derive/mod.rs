@@ -29,8 +29,9 @@ pub struct Derivation {
     pub reduced: PortHamiltonian,
     /// The reduced form's items, each in its chosen form.
     pub reduced_items: Items,
-    /// The momentum equation, for a model with a symmetry (MATH.md 4) and
-    /// no holonomic constraints ([`MOMENTUM_WITH_HOLONOMIC`]).
+    /// The momentum equation, for a model with a symmetry (MATH.md 4) whose
+    /// holonomic constraints do not restrict the shape alone
+    /// ([`MOMENTUM_WITH_HOLONOMIC`]).
     pub momentum: Option<Momentum>,
 }
 
@@ -57,7 +58,7 @@ pub fn derivation(
     let reduced_items =
         port_hamiltonian::items::items(model, &reduced).map_err(|e| internal(model, &e))?;
     let momentum = match model.symmetry {
-        Some(_) if model.mechanism.holonomic.is_empty() => {
+        Some(_) if !holonomic_rows_restrict_the_shape(model) => {
             Some(momentum::derive(model).map_err(|error| refused(model, error))?)
         }
         _ => None,
@@ -67,6 +68,25 @@ pub fn derivation(
         reduced,
         reduced_items,
         momentum,
+    })
+}
+
+/// Whether a holonomic constraint's velocity row (they follow the other
+/// rows of `A`) is zero on every group coordinate, so that it restricts the
+/// shape velocities alone ([`MOMENTUM_WITH_HOLONOMIC`]); a constraint the
+/// group shifts by constants along its orbits (a trough tilted along a
+/// translation) leaves the momentum equation standing.
+fn holonomic_rows_restrict_the_shape(model: &Model) -> bool {
+    let Some(symmetry) = &model.symmetry else {
+        return false;
+    };
+    let group = momentum::group_coordinates(&symmetry.factors);
+    let rows = model.constraint_matrix.rows();
+    let first_holonomic = rows - model.mechanism.holonomic.len();
+    (first_holonomic..rows).any(|i| {
+        group
+            .iter()
+            .all(|&j| model.constraint_matrix.get(i, j).is_zero())
     })
 }
 

@@ -323,7 +323,10 @@ fn facts_at_points(
     let facts = modular::at_defined_points(modular::SEEDS.len(), |point| {
         let mut values = Values::at(point);
         let constant = values.of(&model.store, &rates)?.iter().all(|&v| v == 0);
-        let diagonal = values.of(&model.store, &off_diagonal)?.iter().all(|&v| v == 0);
+        let diagonal = values
+            .of(&model.store, &off_diagonal)?
+            .iter()
+            .all(|&v| v == 0);
         Ok((constant, diagonal))
     })?;
     Ok(facts

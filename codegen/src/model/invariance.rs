@@ -169,12 +169,13 @@ fn all_zero_at_points(
     let mut outside = None;
     for point in modular::points() {
         let mut values = Values::at(point);
-        let evaluated = store
-            .evaluate_normal_modular(forms, &mut values)
-            .and_then(|mut evaluated| {
-                evaluated.extend(values.of(store, expressions)?);
-                Ok(evaluated)
-            });
+        let evaluated =
+            store
+                .evaluate_normal_modular(forms, &mut values)
+                .and_then(|mut evaluated| {
+                    evaluated.extend(values.of(store, expressions)?);
+                    Ok(evaluated)
+                });
         match evaluated {
             Ok(evaluated) if !holds(&evaluated) => return Ok(false),
             Ok(_) => defined_points += 1,

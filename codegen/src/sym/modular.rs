@@ -328,7 +328,8 @@ pub fn square_root(a: u64) -> Option<u64> {
     if a == 0 {
         return Some(0);
     }
-    (unsigned_power(a, (PRIME - 1) / 2, PRIME) == 1).then(|| unsigned_power(a, (PRIME + 1) / 4, PRIME))
+    (unsigned_power(a, (PRIME - 1) / 2, PRIME) == 1)
+        .then(|| unsigned_power(a, (PRIME + 1) / 4, PRIME))
 }
 
 fn unsigned_power(mut base: u64, mut exponent: u64, modulus: u64) -> u64 {
@@ -484,7 +485,10 @@ mod tests {
             }
         }
         // About half the residues are squares modulo a prime.
-        assert!(defined > 16 && undefined > 16, "{defined} defined, {undefined} not");
+        assert!(
+            defined > 16 && undefined > 16,
+            "{defined} defined, {undefined} not"
+        );
         let values = super::at_defined_points(2, |point| store.evaluate_modular(&[root], &point))
             .expect("two points where x + y is a square");
         assert_eq!(values.len(), 2);

@@ -72,9 +72,11 @@ pub(super) fn growth_vector_at_point(
             decided => return decided,
         }
     }
-    Err(AnalysisError::Undecided(undefined.unwrap_or(Outside::Undefined {
-        expr: "every point drawn".to_string(),
-    })))
+    Err(AnalysisError::Undecided(undefined.unwrap_or(
+        Outside::Undefined {
+            expr: "every point drawn".to_string(),
+        },
+    )))
 }
 
 fn growth_at(

@@ -2,8 +2,8 @@
 //! the annihilator of a declared distribution; independent.
 
 use super::mechanisms::MechanismParts;
-use crate::sym::ExprMatrix;
 use super::*;
+use crate::sym::ExprMatrix;
 
 /// The most terms a derived row's entry may have to be emitted from its
 /// normal form ([`Checker::entry_expressions`]).
@@ -50,14 +50,22 @@ impl Checker {
     /// then the derivative of the expression the row was derived as in
     /// that velocity (a rolling wheel's contact carries a square root
     /// whose normal forms are far larger than the derivation's DAG).
-    fn entry_expressions(&mut self, entries: &[RationalFunction], derived_as: ExprId) -> Vec<ExprId> {
+    fn entry_expressions(
+        &mut self,
+        entries: &[RationalFunction],
+        derived_as: ExprId,
+    ) -> Vec<ExprId> {
         let velocities = self.velocity_symbols();
         entries
             .iter()
             .zip(velocities)
             .map(|(entry, velocity)| {
                 let terms = entry.numerator().terms().len()
-                    + entry.denominator().iter().map(|(f, _)| f.terms().len()).sum::<usize>();
+                    + entry
+                        .denominator()
+                        .iter()
+                        .map(|(f, _)| f.terms().len())
+                        .sum::<usize>();
                 if terms <= EXPANDED_ENTRY_TERMS {
                     self.store.expression_of(entry)
                 } else {
@@ -162,15 +170,17 @@ impl Checker {
             .store
             .prefixes_of_full_rank_at_points(m)
             .unwrap_or_else(|_| vec![false; m.rows()]);
-        (0..m.rows())
-            .filter(|&i| !proved_full[i])
-            .find(|&i| {
-                let prefix = Matrix::new(i + 1, m.columns(), m.entries()[..(i + 1) * m.columns()].to_vec());
-                let Ok(prefix) = prefix else { return false };
-                self.store
-                    .attempt(EXACT_RANK_PRODUCTS, |store| prefix.rank(store.atoms()))
-                    .is_none_or(|rank| rank < i + 1)
-            })
+        (0..m.rows()).filter(|&i| !proved_full[i]).find(|&i| {
+            let prefix = Matrix::new(
+                i + 1,
+                m.columns(),
+                m.entries()[..(i + 1) * m.columns()].to_vec(),
+            );
+            let Ok(prefix) = prefix else { return false };
+            self.store
+                .attempt(EXACT_RANK_PRODUCTS, |store| prefix.rank(store.atoms()))
+                .is_none_or(|rank| rank < i + 1)
+        })
     }
 
     /// A distribution: k independent vector fields of length n, no velocities;

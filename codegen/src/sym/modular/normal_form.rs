@@ -42,12 +42,19 @@ impl Store {
 struct AtomValues(HashMap<AtomId, u64>);
 
 impl AtomValues {
-    fn of_poly(&mut self, store: &mut Store, poly: &Poly, values: &mut Values) -> Result<u64, Outside> {
+    fn of_poly(
+        &mut self,
+        store: &mut Store,
+        poly: &Poly,
+        values: &mut Values,
+    ) -> Result<u64, Outside> {
         let mut sum = 0;
         for (monomial, coefficient) in poly.terms() {
-            let mut term = coefficient.residue(PRIME).ok_or_else(|| Outside::Undefined {
-                expr: format!("the coefficient {coefficient}"),
-            })?;
+            let mut term = coefficient
+                .residue(PRIME)
+                .ok_or_else(|| Outside::Undefined {
+                    expr: format!("the coefficient {coefficient}"),
+                })?;
             for &(atom, exponent) in monomial.factors() {
                 let value = self.of_atom(store, atom, values)?;
                 term = multiply(term, power(value, i64::from(exponent)).unwrap_or(0), PRIME);
@@ -57,7 +64,12 @@ impl AtomValues {
         Ok(sum)
     }
 
-    fn of_atom(&mut self, store: &mut Store, atom: AtomId, values: &mut Values) -> Result<u64, Outside> {
+    fn of_atom(
+        &mut self,
+        store: &mut Store,
+        atom: AtomId,
+        values: &mut Values,
+    ) -> Result<u64, Outside> {
         if let Some(&value) = self.0.get(&atom) {
             return Ok(value);
         }
