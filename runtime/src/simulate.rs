@@ -21,7 +21,9 @@ mod outcome;
 mod run;
 
 pub use advance::Advance;
-pub use observed::{MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, Regularity};
+pub use observed::{
+    CHART_SWITCH, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, Regularity, better_chart,
+};
 pub use outcome::{SimulationError, Summary};
 
 use crate::record::Recorder;

@@ -15,6 +15,7 @@
 
 pub use crate::law::Constant;
 use crate::law::Controller;
+use core::cell::Cell;
 
 /// A first-order system `xdot = f(t, x)` in `D` states.
 pub trait OdeSystem<const D: usize> {
@@ -76,6 +77,59 @@ pub trait ReducedPortHamiltonian<const S: usize, const P: usize> {
     /// most 1; it vanishes, and changes sign when crossed transversally,
     /// where the constraint rows or the momentum basis lose rank.
     fn regularity(&self, x: &[f64; S]) -> f64;
+
+    /// The number of charts of D: 1, unless the tool's basis of D
+    /// degenerates where the constraint rows stay independent; then chart 0
+    /// is that basis and the others choose other dependent speeds (README,
+    /// "Chart switching"). Every chart has the state layout `(q, alpha)`,
+    /// `alpha` the momenta of its own basis; the `chart_*` methods are the
+    /// items above in a chart, and chart 0's are the items above.
+    fn charts(&self) -> usize {
+        1
+    }
+    /// How well `chart` fits at the configuration of `x`: its pivot ratio
+    /// `|det A_r(q)| / prod_i |A_i(q)|` ([`crate::monitor::pivot_ratio`]),
+    /// 0 where its basis degenerates.
+    fn chart_fit(&self, _chart: usize, _x: &[f64; S]) -> f64 {
+        1.0
+    }
+    /// The state `x` of chart `from` in chart `to`: the same configuration,
+    /// and the momenta of `to` of the velocity `x` has in `from`.
+    fn change_chart(&self, _from: usize, _to: usize, x: &[f64; S]) -> [f64; S] {
+        *x
+    }
+    /// [`ReducedPortHamiltonian::reduced_rhs`] in `chart`.
+    fn chart_rhs(&self, _chart: usize, x: &[f64; S], u: &[f64; P]) -> [f64; S] {
+        self.reduced_rhs(x, u)
+    }
+    /// [`ReducedPortHamiltonian::reduced_rhs_jacobian`] in `chart`.
+    fn chart_rhs_jacobian(&self, _chart: usize, x: &[f64; S], u: &[f64; P]) -> [[f64; S]; S] {
+        self.reduced_rhs_jacobian(x, u)
+    }
+    /// [`ReducedPortHamiltonian::hamiltonian`] in `chart`.
+    fn chart_hamiltonian(&self, _chart: usize, x: &[f64; S]) -> f64 {
+        self.hamiltonian(x)
+    }
+    /// [`ReducedPortHamiltonian::hamiltonian_gradient`] in `chart`.
+    fn chart_hamiltonian_gradient(&self, _chart: usize, x: &[f64; S]) -> [f64; S] {
+        self.hamiltonian_gradient(x)
+    }
+    /// [`ReducedPortHamiltonian::structure_matrix`] in `chart`.
+    fn chart_structure_matrix(&self, _chart: usize, x: &[f64; S]) -> [[f64; S]; S] {
+        self.structure_matrix(x)
+    }
+    /// [`ReducedPortHamiltonian::input_matrix`] in `chart`.
+    fn chart_input_matrix(&self, _chart: usize, x: &[f64; S]) -> [[f64; P]; S] {
+        self.input_matrix(x)
+    }
+    /// [`ReducedPortHamiltonian::constraint_violation`] in `chart`.
+    fn chart_constraint_violation(&self, _chart: usize, x: &[f64; S]) -> f64 {
+        self.constraint_violation(x)
+    }
+    /// [`ReducedPortHamiltonian::regularity`] in `chart`.
+    fn chart_regularity(&self, _chart: usize, x: &[f64; S]) -> f64 {
+        self.regularity(x)
+    }
 }
 
 /// The Lagrange-d'Alembert equations in `(q, qdot)`: `N` coordinates, `C`
@@ -176,18 +230,37 @@ pub trait ModelNames {
 }
 
 /// A model in its reduced form closed by a [`Controller`]: an
-/// [`OdeSystem`] in `x = (q, alpha)` with `u = controller(t, x)`.
-#[derive(Clone, Copy, Debug)]
+/// [`OdeSystem`] in `x = (q, alpha)` with `u = controller(t, x)`, in the
+/// active chart of D ([`ReducedPortHamiltonian::charts`]; chart 0 at the
+/// start, changed by the simulation loop where it degenerates, see
+/// [`crate::simulate::Observed::change_chart`]). A feedback reads the
+/// state of the active chart.
+#[derive(Clone, Debug)]
 pub struct Reduced<'a, M, F, const P: usize> {
     model: &'a M,
     controller: F,
+    chart: Cell<usize>,
 }
 
 impl<'a, M, F, const P: usize> Reduced<'a, M, F, P> {
     /// `model` driven by `controller`: a [`Constant`], a closure `u(t)`,
     /// or a [`crate::law::Feedback`] `u(t, x)`.
     pub fn new(model: &'a M, controller: F) -> Self {
-        Self { model, controller }
+        Self {
+            model,
+            controller,
+            chart: Cell::new(0),
+        }
+    }
+
+    /// The active chart.
+    pub fn chart(&self) -> usize {
+        self.chart.get()
+    }
+
+    /// Makes `chart` the active chart (the state must be given in it).
+    pub fn set_chart(&self, chart: usize) {
+        self.chart.set(chart);
     }
 
     /// The model.
@@ -214,7 +287,8 @@ where
     F: Controller<S, P>,
 {
     fn rhs(&self, t: f64, x: &[f64; S]) -> [f64; S] {
-        self.model.reduced_rhs(x, &self.controller.input(t, x))
+        self.model
+            .chart_rhs(self.chart(), x, &self.controller.input(t, x))
     }
 }
 
@@ -227,9 +301,10 @@ where
     /// the feedback's through the input matrix.
     fn jacobian(&self, t: f64, x: &[f64; S]) -> [[f64; S]; S] {
         let u = self.controller.input(t, x);
-        let mut jacobian = self.model.reduced_rhs_jacobian(x, &u);
+        let chart = self.chart();
+        let mut jacobian = self.model.chart_rhs_jacobian(chart, x, &u);
         let (g, du) = (
-            self.model.input_matrix(x),
+            self.model.chart_input_matrix(chart, x),
             self.controller.input_jacobian(t, x),
         );
         for (row, g_row) in jacobian.iter_mut().zip(&g) {
@@ -247,7 +322,7 @@ where
     F: Controller<S, P>,
 {
     fn energy(&self, x: &[f64; S]) -> f64 {
-        self.model.hamiltonian(x)
+        self.model.chart_hamiltonian(self.chart(), x)
     }
 }
 
@@ -257,16 +332,19 @@ where
     F: Controller<S, P>,
 {
     fn structure_matrix(&self, x: &[f64; S]) -> [[f64; S]; S] {
-        self.model.structure_matrix(x)
+        self.model.chart_structure_matrix(self.chart(), x)
     }
 
     fn energy_gradient(&self, x: &[f64; S]) -> [f64; S] {
-        self.model.hamiltonian_gradient(x)
+        self.model.chart_hamiltonian_gradient(self.chart(), x)
     }
 
     /// `G(x) u(t, x)`.
     fn forcing(&self, t: f64, x: &[f64; S]) -> [f64; S] {
-        let (g, u) = (self.model.input_matrix(x), self.controller.input(t, x));
+        let (g, u) = (
+            self.model.chart_input_matrix(self.chart(), x),
+            self.controller.input(t, x),
+        );
         core::array::from_fn(|i| (0..P).map(|l| g[i][l] * u[l]).sum())
     }
 }

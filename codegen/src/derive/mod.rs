@@ -31,6 +31,21 @@ pub struct Derivation {
     pub reduced_items: Items,
     /// The momentum equation, for a model with a symmetry (MATH.md 4).
     pub momentum: Option<Momentum>,
+    /// The reduced form in each other chart of D
+    /// ([`constraints::charts`]), in order.
+    pub charts: Vec<Chart>,
+}
+
+/// The reduced form in one other chart of D: the same state layout
+/// `(q, alpha)`, with `alpha` the momenta of that chart's basis.
+#[derive(Clone, Debug)]
+pub struct Chart {
+    /// The chart's dependent speeds.
+    pub dependent: Vec<usize>,
+    /// The reduced form on the chart's basis.
+    pub reduced: PortHamiltonian,
+    /// Its items, each in its chosen form.
+    pub items: Items,
 }
 
 /// Derives every formulation of `model` on the basis of D of `constraints`.
@@ -50,11 +65,26 @@ pub fn derivation(
         Some(_) => Some(momentum::derive(model).map_err(|error| refused(model, error))?),
         None => None,
     };
+    let charts = constraints
+        .charts
+        .iter()
+        .map(|basis| {
+            let reduced = port_hamiltonian::derive(model, basis)?;
+            let items = port_hamiltonian::items::items(model, &reduced)?;
+            Ok(Chart {
+                dependent: basis.dependent.clone(),
+                reduced,
+                items,
+            })
+        })
+        .collect::<Result<Vec<_>, port_hamiltonian::PortHamiltonianError>>()
+        .map_err(|e| internal(model, &e))?;
     Ok(Derivation {
         lagrange_dalembert,
         reduced,
         reduced_items,
         momentum,
+        charts,
     })
 }
 

@@ -14,7 +14,9 @@ use chaplygin::runtime::monitor::{gram_regularity, hadamard_ratio};
 use chaplygin::runtime::nalgebra::{DMatrix, DVector};
 use chaplygin::runtime::projection::{self, ProjectionError};
 use chaplygin::runtime::simulate::Regularity;
+use chaplygin::runtime::simulate::better_chart;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
+use std::cell::Cell;
 
 /// The interpreter failed on a call whose arguments the formulation sized
 /// itself: a defect, reported instead of wrong numbers.
@@ -45,12 +47,30 @@ pub struct Unrepresentable {
     pub error: f64,
 }
 
-/// The reduced form `x = (q, alpha)` of an interpreted model.
+/// The reduced form `x = (q, alpha)` of an interpreted model, in its
+/// active chart of D (chart 0 at the start; see `Formulation::change_chart`).
 pub struct InterpretedReduced {
     /// The model.
     pub model: InterpretedModel,
     /// The inputs `u(t)`.
     pub inputs: InputLaw,
+    chart: Cell<usize>,
+}
+
+impl InterpretedReduced {
+    /// `model` driven by `inputs`, in chart 0.
+    pub fn new(model: InterpretedModel, inputs: InputLaw) -> Self {
+        Self {
+            model,
+            inputs,
+            chart: Cell::new(0),
+        }
+    }
+
+    /// The reduced item `name` in the active chart.
+    fn call(&self, name: &str, arguments: &[&[f64]]) -> Vec<f64> {
+        evaluated(self.model.call_in_chart(self.chart.get(), name, arguments))
+    }
 }
 
 /// The Lagrange-d'Alembert form `x = (q, qdot)` of an interpreted model.
@@ -110,16 +130,16 @@ impl Formulation for InterpretedReduced {
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
         let u = inputs_at(&self.model, &self.inputs, t);
-        xdot.copy_from_slice(&evaluated(self.model.reduced_rhs(x, &u)));
+        xdot.copy_from_slice(&self.call("reduced_rhs", &[x, &u]));
     }
 
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
         let u = inputs_at(&self.model, &self.inputs, t);
-        jacobian.copy_from_slice(&evaluated(self.model.reduced_rhs_jacobian(x, &u)));
+        jacobian.copy_from_slice(&self.call("reduced_rhs_jacobian", &[x, &u]));
     }
 
     fn energy(&self, x: &[f64]) -> f64 {
-        evaluated(self.model.hamiltonian(x))
+        self.call("hamiltonian", &[x])[0]
     }
 
     fn is_structured(&self) -> bool {
@@ -134,9 +154,9 @@ impl Formulation for InterpretedReduced {
         gradient: &mut [f64],
         forcing: &mut [f64],
     ) {
-        j.copy_from_slice(&evaluated(self.model.structure_matrix(x)));
-        gradient.copy_from_slice(&evaluated(self.model.hamiltonian_gradient(x)));
-        let b = evaluated(self.model.input_matrix(x));
+        j.copy_from_slice(&self.call("structure_matrix", &[x]));
+        gradient.copy_from_slice(&self.call("hamiltonian_gradient", &[x]));
+        let b = self.call("input_matrix", &[x]);
         let u = inputs_at(&self.model, &self.inputs, t);
         let p = u.len();
         for (i, f) in forcing.iter_mut().enumerate() {
@@ -150,7 +170,7 @@ impl Formulation for InterpretedReduced {
 
     fn constraint_residual(&self, x: &[f64]) -> f64 {
         let (q, alpha) = split(x, self.model.sizes().n);
-        residual(&self.model, q, &evaluated(self.model.velocities(q, alpha)))
+        residual(&self.model, q, &self.call("velocities", &[q, alpha]))
     }
 
     /// `det[A; V^T]` over its rows' norms, as the compiled models' `regularity`.
@@ -160,13 +180,34 @@ impl Formulation for InterpretedReduced {
         let mut rows = evaluated(self.model.constraint_matrix(q));
         for j in 0..sizes.k {
             let unit: Vec<f64> = (0..sizes.k).map(|i| f64::from(u8::from(i == j))).collect();
-            rows.extend(evaluated(self.model.velocities(q, &unit)));
+            rows.extend(self.call("velocities", &[q, &unit]));
         }
         Regularity {
             quantity: chaplygin::runtime::simulate::REDUCED,
             value: hadamard_ratio(DMatrix::from_row_slice(sizes.n, sizes.n, &rows)),
             signed: true,
         }
+    }
+
+    fn chart(&self) -> Option<usize> {
+        (self.model.charts().len() > 1).then(|| self.chart.get())
+    }
+
+    /// As the compiled reduced form's (`Observed::change_chart`): the state
+    /// moves into the best chart through its velocity.
+    fn change_chart(&self, x: &mut [f64]) -> bool {
+        let (model, active) = (&self.model, self.chart.get());
+        let n = model.sizes().n;
+        let fit = |chart| evaluated(model.chart_fit(chart, &x[..n]));
+        let Some(best) = better_chart(model.charts().len(), active, fit) else {
+            return false;
+        };
+        let (q, alpha) = split(x, n);
+        let qdot = self.call("velocities", &[q, alpha]);
+        let moved = evaluated(model.call_in_chart(best, "momenta", &[q, &qdot]));
+        x[n..].copy_from_slice(&moved);
+        self.chart.set(best);
+        true
     }
 }
 

@@ -133,7 +133,7 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
         Kind::Reduced => {
             let alpha = model.momenta(&start.q, &start.qdot)?;
             let x0: Vec<f64> = start.q.iter().chain(&alpha).copied().collect();
-            let reduced = InterpretedReduced { model, inputs };
+            let reduced = InterpretedReduced::new(model, inputs);
             let points = interpreted_points(&reduced.model);
             execute(&reduced, &x0, args, (None, points))
         }
