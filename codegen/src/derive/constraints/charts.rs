@@ -18,10 +18,13 @@
 //! are independent some choice of dependent speeds has a ratio bounded
 //! away from 0. The charts are chosen at build time on a fixed set of
 //! sample configurations (each coordinate alone at `+-pi/2, pi/4, 3 pi/4,
-//! 1, -2`, then pseudo-random points in `[-pi, pi]^n`, parameters at their
-//! defaults): where no chart so far has a ratio of at least [`COVERAGE`]
-//! times that of the columns Gaussian elimination with partial pivoting
-//! picks there, those columns become a new chart, up to [`MOST_CHARTS`].
+//! 1, -2`, where trigonometric minors vanish, then pseudo-random points in
+//! `[-pi, pi]^n`; parameters at their defaults): where every chart so far
+//! degenerates, its ratio below [`DEGENERATE`] times that of the columns
+//! Gaussian elimination with partial pivoting picks there, those columns
+//! become a new chart, up to [`MOST_CHARTS`]. A chart that is only worse
+//! than another somewhere (the caster robot's, by a factor 2.5 at a swivel
+//! of `pi/2`) needs no other.
 //! Points where the rows themselves are dependent (a Gram ratio
 //! `det(A A^T) / prod_i |A_i|^2` below [`DEPENDENT_ROWS`]) are genuine
 //! singularities, which no chart removes, and are skipped.
@@ -38,9 +41,9 @@ use crate::sym::MatrixError;
 /// The most charts a model gets, its own basis included.
 pub const MOST_CHARTS: usize = 4;
 
-/// A sample point is covered when some chart's pivot ratio there is at
-/// least this fraction of the partially pivoted choice's.
-pub const COVERAGE: f64 = 0.5;
+/// A chart degenerates at a sample point when its pivot ratio there is
+/// below this fraction of the partially pivoted choice's.
+pub const DEGENERATE: f64 = 1e-3;
 
 /// A Gram ratio below this marks dependent rows: a genuine singularity.
 pub const DEPENDENT_ROWS: f64 = 1e-9;
@@ -72,7 +75,7 @@ pub fn alternative_charts(
             .iter()
             .map(|dependent| pivot_ratio(&values, n, dependent))
             .fold(0.0, f64::max);
-        if best < COVERAGE * pivot_ratio(&values, n, &pivots) {
+        if best < DEGENERATE * pivot_ratio(&values, n, &pivots) {
             charts.push(pivots);
         }
     }
