@@ -9,7 +9,7 @@
 
 use super::body_frame::BodyFrame;
 use super::{EXACT_BASIS_PRODUCTS, Field};
-use crate::model::Model;
+use crate::model::{GroupFactor, Model};
 use crate::sym::{ExprMatrix, Matrix, MatrixError, RationalFunction, SymbolId};
 
 /// A basis of the constraint distribution D and how it was chosen.
@@ -29,6 +29,37 @@ pub struct DistributionBasis {
     /// The speeds are the body velocity's (the basis was chosen on the body
     /// rows and rotated back), not the coordinates' own.
     pub body_frame: bool,
+}
+
+impl DistributionBasis {
+    /// The names of the speeds at the coordinate indices `indices`:
+    /// `dot(q)` for a coordinate's own speed; for a body-frame basis, the
+    /// body velocity's components on each `se2(x, y, theta)` factor,
+    /// `v_x_body` and `v_y_body` (the velocity of the frame's origin along
+    /// the body's own axes, `cos(theta) dot(x) + sin(theta) dot(y)` and
+    /// `-sin(theta) dot(x) + cos(theta) dot(y)`) and `omega_theta` (the
+    /// turning rate, `dot(theta)`), named after the factor's coordinates.
+    pub fn speed_names(&self, model: &Model, indices: &[usize]) -> Vec<String> {
+        indices.iter().map(|&i| self.speed_name(model, i)).collect()
+    }
+
+    fn speed_name(&self, model: &Model, i: usize) -> String {
+        let name = |j: usize| model.coordinates[j].declared.name.as_str();
+        let factors = match (&model.symmetry, self.body_frame) {
+            (Some(symmetry), true) => symmetry.factors.as_slice(),
+            _ => &[],
+        };
+        for factor in factors {
+            if let GroupFactor::Se2 { x, y, theta } = *factor {
+                match i {
+                    _ if i == x || i == y => return format!("v_{}_body", name(i)),
+                    _ if i == theta => return format!("omega_{}", name(i)),
+                    _ => {}
+                }
+            }
+        }
+        format!("dot({})", name(i))
+    }
 }
 
 /// Chooses the dependent speeds at the defaults and solves for a basis of
