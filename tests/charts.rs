@@ -161,3 +161,18 @@ fn a_run_that_needs_no_switch_reports_none() {
         .expect("runs");
     assert_eq!(summary.chart_switches, 0);
 }
+
+/// Started on a singular heading of chart 0, the run starts in chart 1.
+#[test]
+fn a_run_starts_in_the_chart_that_fits_best() {
+    let sleigh = SleighNoSymmetry::default();
+    let system = Reduced::constant(&sleigh, []);
+    let x0: [f64; 5] = system.initial_state(&[0.0, 0.0, FRAC_PI_2], &[0.0, 1.0, 1.0]);
+    assert_eq!(system.chart(), 1);
+    assert_eq!(x0[3..], [1.0, 1.0]);
+    let summary = Simulation::new(DiscreteGradient::default())
+        .span(0.0, 1.0)
+        .run(&system, x0, &mut Table::new())
+        .expect("runs from the singular heading of chart 0");
+    assert!(summary.energy_drift < 1e-12, "{summary:?}");
+}

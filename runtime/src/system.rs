@@ -170,6 +170,11 @@ pub trait Momenta<const N: usize, const K: usize> {
     fn momenta(&self, q: &[f64; N], qdot: &[f64; N]) -> [f64; K];
     /// `qdot = g^-1 h^T alpha`.
     fn velocities(&self, q: &[f64; N], alpha: &[f64; K]) -> [f64; N];
+    /// [`Momenta::momenta`] in chart `chart` of the reduced form (see
+    /// [`ReducedPortHamiltonian::charts`]); chart 0's are `momenta`.
+    fn chart_momenta(&self, _chart: usize, q: &[f64; N], qdot: &[f64; N]) -> [f64; K] {
+        self.momenta(q, qdot)
+    }
 }
 
 /// The momentum equation of a model with a symmetry (MATH.md section 4):
@@ -261,6 +266,28 @@ impl<'a, M, F, const P: usize> Reduced<'a, M, F, P> {
     /// Makes `chart` the active chart (the state must be given in it).
     pub fn set_chart(&self, chart: usize) {
         self.chart.set(chart);
+    }
+
+    /// The state `(q, alpha)` of the configuration `q` moving with `qdot`
+    /// (a velocity the constraints allow), in the chart that fits best at
+    /// `q`, which becomes the active chart; `S = N + K`.
+    pub fn initial_state<const N: usize, const K: usize, const S: usize>(
+        &self,
+        q: &[f64; N],
+        qdot: &[f64; N],
+    ) -> [f64; S]
+    where
+        M: ReducedPortHamiltonian<S, P> + Momenta<N, K>,
+    {
+        const { assert!(S == N + K, "the state (q, alpha) has S = N + K entries") };
+        let configuration: [f64; S] = core::array::from_fn(|i| if i < N { q[i] } else { 0.0 });
+        let fit = |chart| self.model.chart_fit(chart, &configuration);
+        let best = (0..self.model.charts())
+            .max_by(|&a, &b| fit(a).total_cmp(&fit(b)))
+            .unwrap_or(0);
+        self.set_chart(best);
+        let alpha = self.model.chart_momenta(best, q, qdot);
+        core::array::from_fn(|i| if i < N { q[i] } else { alpha[i - N] })
     }
 
     /// The model.

@@ -175,6 +175,25 @@ pub(crate) fn implementations(model: &Model, charts: &[Vec<usize>]) -> TokenStre
         .as_ref()
         .map(|symmetry| momentum_equations(model, symmetry));
     let chart_methods = chart_methods(model, charts);
+    let chart_momenta = (charts.len() > 1).then(|| {
+        let momenta = in_chart(
+            model,
+            charts.len(),
+            quote!(chart),
+            "momenta",
+            quote!(q, qdot),
+        );
+        quote! {
+            fn chart_momenta(
+                &self,
+                chart: ::core::primitive::usize,
+                q: &[#f64; #n],
+                qdot: &[#f64; #n],
+            ) -> [#f64; #k] {
+                #momenta
+            }
+        }
+    });
     quote! {
         #momentum_equations
 
@@ -224,6 +243,7 @@ pub(crate) fn implementations(model: &Model, charts: &[Vec<usize>]) -> TokenStre
         }
 
         impl #system::Momenta<#n, #k> for #name {
+            #chart_momenta
             fn momenta(&self, q: &[#f64; #n], qdot: &[#f64; #n]) -> [#f64; #k] {
                 #name::momenta(self, q, qdot)
             }

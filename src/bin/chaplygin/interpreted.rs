@@ -67,6 +67,20 @@ impl InterpretedReduced {
         }
     }
 
+    /// The state `(q, alpha)` of `q` moving with `qdot`, in the chart that
+    /// fits best at `q`, which becomes the active chart.
+    pub fn initial_state(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, CallError> {
+        let fits = (0..self.model.charts().len())
+            .map(|chart| self.model.chart_fit(chart, q))
+            .collect::<Result<Vec<f64>, _>>()?;
+        let best = (0..fits.len())
+            .max_by(|&a, &b| fits[a].total_cmp(&fits[b]))
+            .unwrap_or(0);
+        self.chart.set(best);
+        let alpha = self.model.call_in_chart(best, "momenta", &[q, qdot])?;
+        Ok(q.iter().chain(&alpha).copied().collect())
+    }
+
     /// The reduced item `name` in the active chart.
     fn call(&self, name: &str, arguments: &[&[f64]]) -> Vec<f64> {
         evaluated(self.model.call_in_chart(self.chart.get(), name, arguments))
