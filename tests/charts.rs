@@ -10,7 +10,7 @@
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince};
 use chaplygin::runtime::record::Table;
 use chaplygin::runtime::simulate::{Simulation, Summary};
-use chaplygin::runtime::system::{Dalembert, Momenta, Reduced, ReducedPortHamiltonian};
+use chaplygin::runtime::system::{Dalembert, Reduced, ReducedPortHamiltonian};
 use std::f64::consts::FRAC_PI_2;
 
 chaplygin::model! {

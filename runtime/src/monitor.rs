@@ -148,10 +148,11 @@ pub fn pivot_ratio<const N: usize, const C: usize>(
         }
         minor.swap(k, pivot);
         determinant *= minor[k][k];
-        for i in k + 1..C {
-            let factor = minor[i][k] / minor[k][k];
-            for j in k..C {
-                minor[i][j] -= factor * minor[k][j];
+        let pivot_row = minor[k];
+        for row in minor.iter_mut().skip(k + 1) {
+            let factor = row[k] / pivot_row[k];
+            for (entry, p) in row.iter_mut().zip(pivot_row).skip(k) {
+                *entry -= factor * p;
             }
         }
     }
