@@ -236,10 +236,10 @@ pub trait ModelNames {
 
 /// A model in its reduced form closed by a [`Controller`]: an
 /// [`OdeSystem`] in `x = (q, alpha)` with `u = controller(t, x)`, in the
-/// active chart of D ([`ReducedPortHamiltonian::charts`]; chart 0 at the
-/// start, changed by the simulation loop where it degenerates, see
-/// [`crate::simulate::Observed::change_chart`]). A feedback reads the
-/// state of the active chart.
+/// active chart of D ([`ReducedPortHamiltonian::charts`]; chart 0, or the
+/// best at the start with [`Reduced::initial_state`], changed by the
+/// simulation loop where it degenerates). A feedback reads the state of the
+/// active chart.
 #[derive(Clone, Debug)]
 pub struct Reduced<'a, M, F, const P: usize> {
     model: &'a M,
