@@ -105,3 +105,35 @@ fn derive_lists_the_charts() {
         "{text}"
     );
 }
+
+/// The planar pendulum in Cartesian coordinates
+/// (`tests/models/planar_pendulum.model`): its row `2 x dot(x) + 2 z
+/// dot(z)` solved for `dot(x)` divides by `x`, which vanishes where the bob
+/// passes below or above the pivot (and the chart of `dot(z)` where `z`
+/// does). Let go at `(0.6, 0.8)` it swings round and round, through `x = 0`
+/// three times in 5 s, switching between the two charts (seven times), with
+/// its energy kept.
+#[test]
+fn the_cartesian_pendulum_swings_through_x_0_by_switching_charts() {
+    let pendulum = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/models/planar_pendulum.model"
+    );
+    let (summary, header, rows) = simulate(
+        "pendulum",
+        &[pendulum, "--initial", "x=0.6", "--t-end", "5"],
+    );
+    let x = column(&header, &rows, "x");
+    let crossings = x
+        .windows(2)
+        .filter(|w| w[0].signum() != w[1].signum())
+        .count();
+    assert_eq!(crossings, 3);
+    assert!(switches(&summary) >= 2 * crossings, "{summary}");
+    let energy = column(&header, &rows, "energy");
+    let drift = energy
+        .iter()
+        .map(|e| (e - energy[0]).abs())
+        .fold(0.0, f64::max);
+    assert!(drift < 1e-12 * energy[0], "{drift:e}");
+}
