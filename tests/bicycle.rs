@@ -49,7 +49,10 @@ fn swept(name: &str, sweep: &str) -> Vec<(f64, Vec<Complex<f64>>)> {
     text.lines()
         .skip(1)
         .map(|line| {
-            let fields: Vec<f64> = line.split(',').map(|f| f.parse().expect("a number")).collect();
+            let fields: Vec<f64> = line
+                .split(',')
+                .map(|f| f.parse().expect("a number"))
+                .collect();
             let eigenvalues = fields[1..]
                 .chunks(2)
                 .map(|pair| Complex::new(pair[0], pair[1]))
@@ -61,7 +64,11 @@ fn swept(name: &str, sweep: &str) -> Vec<(f64, Vec<Complex<f64>>)> {
 
 /// The eigenvalues but the zero of the conserved front-wheel spin.
 fn nonzero(eigenvalues: &[Complex<f64>]) -> Vec<Complex<f64>> {
-    eigenvalues.iter().copied().filter(|s| s.norm() > 1e-9).collect()
+    eigenvalues
+        .iter()
+        .copied()
+        .filter(|s| s.norm() > 1e-9)
+        .collect()
 }
 
 #[test]
@@ -111,6 +118,12 @@ fn the_weave_and_capsize_speeds_are_the_papers_to_1e_6() {
     let end = stability_change("bicycle-capsize", "v=6.0241:6.0243:0.000001", true);
     // The first stable grid point lies within one step above the weave speed,
     // the first unstable one within one step above the capsize speed.
-    assert!(onset >= weave && onset - weave <= 1e-6 + 1e-12, "{onset} vs {weave}");
-    assert!(end >= capsize && end - capsize <= 1e-6 + 1e-12, "{end} vs {capsize}");
+    assert!(
+        onset >= weave && onset - weave <= 1e-6 + 1e-12,
+        "{onset} vs {weave}"
+    );
+    assert!(
+        end >= capsize && end - capsize <= 1e-6 + 1e-12,
+        "{end} vs {capsize}"
+    );
 }

@@ -2,14 +2,9 @@
 //! `derive` shows what the mechanism sections derived, a broken mechanism
 //! file is reported at its `file:line:col`.
 
-use std::process::{Command, Output};
+mod support;
 
-fn chaplygin(arguments: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_chaplygin"))
-        .args(arguments)
-        .output()
-        .expect("the binary runs")
-}
+use support::{chaplygin, read_csv};
 
 #[test]
 fn list_offers_the_mechanisms() {
@@ -79,22 +74,6 @@ fn a_broken_mechanism_file_is_reported_at_its_token() {
 /// A scratch directory of this test process.
 fn scratch(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("cli-mechanism-{name}-{}", std::process::id()))
-}
-
-/// The header and the rows of a CSV file the command wrote.
-fn read_csv(path: &std::path::Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let text = std::fs::read_to_string(path).expect("the file is written");
-    let mut lines = text.lines();
-    let header = lines.next().expect("a header");
-    let columns = header.split(',').map(String::from).collect();
-    let rows = lines
-        .map(|line| {
-            line.split(',')
-                .map(|v| v.parse().expect("a number"))
-                .collect()
-        })
-        .collect();
-    (columns, rows)
 }
 
 /// Runs `simulate` into a scratch directory and returns the trajectory's

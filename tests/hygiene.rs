@@ -95,3 +95,22 @@ fn the_run_time_solve_works_amid_shadowed_names() {
     }
     assert!(towed.constraint_residual(&q, &qddot)[0].abs() < 1e-12);
 }
+
+/// The towed sleigh has no symmetry: its blade solved for `dot(y)` divides
+/// by `cos(theta)`, so it has a second chart, solved for `dot(x)`, whose
+/// items compile and agree with chart 0 amid the shadowed names.
+#[test]
+fn chart_items_work_amid_shadowed_names() {
+    use chaplygin::runtime::system::ReducedPortHamiltonian;
+    assert_eq!(Towed::CHARTS, [[1], [0]]);
+    let towed = Towed::default();
+    let x = [0.3, -0.2, 0.5, 0.4, 0.7, -0.1, 0.2];
+    let moved = towed.change_chart(0, 1, &x);
+    let (h0, h1) = (
+        towed.chart_hamiltonian(0, &x),
+        towed.chart_hamiltonian(1, &moved),
+    );
+    assert!((h0 - h1).abs() < 1e-12 * h0.abs(), "{h0} vs {h1}");
+    assert!(towed.chart_constraint_violation(1, &moved) < 1e-12);
+    assert!((towed.chart_fit(1, &x) - 0.5f64.sin()).abs() < 1e-15);
+}

@@ -135,6 +135,10 @@ pub struct InterpretedModel {
     defaults: Vec<f64>,
     parameters: Vec<f64>,
     functions: Vec<Interpreted>,
+    /// The reduced items of each other chart of D (chart 1, 2, ...).
+    chart_functions: Vec<Vec<Interpreted>>,
+    /// Each chart's dependent speeds, chart 0 first.
+    charts: Vec<Vec<usize>>,
     report: String,
     /// With a symmetry, the coordinates the group acts on.
     group: Option<Vec<usize>>,
@@ -161,15 +165,11 @@ impl InterpretedModel {
             .and_then(|derivation| emit::emit(&mut model, &constraints, &derivation));
         over_budget(&model)?;
         let emitted = emitted?;
-        let functions = emitted
-            .functions
+        let functions = interpreted(emitted.functions);
+        let chart_functions = emitted
+            .chart_functions
             .into_iter()
-            .filter_map(|function| {
-                let name = function.name;
-                function
-                    .lowered
-                    .map(|lowered| Interpreted { name, lowered })
-            })
+            .map(interpreted)
             .collect();
         let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
         let defaults = model.parameter_defaults();
@@ -185,6 +185,8 @@ impl InterpretedModel {
             parameters: defaults.clone(),
             defaults,
             functions,
+            chart_functions,
+            charts: emitted.charts,
             report: emitted.report,
             group: model
                 .symmetry
@@ -261,13 +263,60 @@ impl InterpretedModel {
     /// a matrix is returned row-major. `acceleration` returns `qddot` then
     /// `lambda`.
     pub fn call(&self, name: &str, arguments: &[&[f64]]) -> Result<Vec<f64>, CallError> {
-        let function = self
-            .functions
-            .iter()
-            .find(|f| f.name == name)
-            .ok_or_else(|| CallError::UnknownFunction {
+        self.call_among(&self.functions, name, arguments)
+    }
+
+    /// The dependent speeds of each chart of D, chart 0 (the basis the
+    /// other functions use) first; one chart unless that basis degenerates
+    /// where the constraint rows stay independent
+    /// ([`crate::derive::constraints::charts`]).
+    pub fn charts(&self) -> &[Vec<usize>] {
+        &self.charts
+    }
+
+    /// The reduced item `name` (`velocities`, `momenta`, `hamiltonian`,
+    /// `hamiltonian_gradient`, `structure_matrix`, `input_matrix`,
+    /// `reduced_rhs`, `reduced_rhs_jacobian`) in `chart`, as
+    /// [`InterpretedModel::call`]; chart 0 is [`InterpretedModel::call`].
+    pub fn call_in_chart(
+        &self,
+        chart: usize,
+        name: &str,
+        arguments: &[&[f64]],
+    ) -> Result<Vec<f64>, CallError> {
+        match chart.checked_sub(1) {
+            None => self.call(name, arguments),
+            Some(other) => {
+                let functions = self
+                    .chart_functions
+                    .get(other)
+                    .map_or(&[][..], Vec::as_slice);
+                self.call_among(functions, name, arguments)
+            }
+        }
+    }
+
+    /// How well `chart` fits at `q`: its pivot ratio
+    /// `|det A_r(q)| / prod_i |A_i(q)|` (0 for a chart the model lacks).
+    pub fn chart_fit(&self, chart: usize, q: &[f64]) -> Result<f64, CallError> {
+        let a = self.constraint_matrix(q)?;
+        Ok(self.charts.get(chart).map_or(0.0, |dependent| {
+            crate::derive::constraints::charts::pivot_ratio(&a, self.sizes.n, dependent)
+        }))
+    }
+
+    /// The function `name` among `functions`.
+    fn call_among(
+        &self,
+        functions: &[Interpreted],
+        name: &str,
+        arguments: &[&[f64]],
+    ) -> Result<Vec<f64>, CallError> {
+        let function = functions.iter().find(|f| f.name == name).ok_or_else(|| {
+            CallError::UnknownFunction {
                 name: name.to_string(),
-            })?;
+            }
+        })?;
         let lowered = &function.lowered;
         let inputs = self.inputs(function.name, &lowered.arguments, arguments)?;
         lowered
@@ -476,6 +525,19 @@ impl InterpretedModel {
         let (qddot, _) = self.acceleration(&q, &qdot, u)?;
         Ok(shape.iter().map(|&i| qddot[i]).collect())
     }
+}
+
+/// The emitted functions that have a program, by name.
+fn interpreted(functions: Vec<emit::Function>) -> Vec<Interpreted> {
+    functions
+        .into_iter()
+        .filter_map(|function| {
+            let name = function.name;
+            function
+                .lowered
+                .map(|lowered| Interpreted { name, lowered })
+        })
+        .collect()
 }
 
 fn names(model: &Model) -> Names {

@@ -102,6 +102,33 @@ macro_rules! reduced_items {
     }};
 }
 
+/// Calls every chart item of a model with several charts of D (the
+/// `ReducedPortHamiltonian` chart methods, which call the `..._chart{i}`
+/// items) in every chart, at a state of chart 0 moved into each.
+macro_rules! chart_items {
+    ($model:expr, $type:ty, $t:expr) => {{
+        let t: f64 = $t;
+        let model = &$model;
+        let mut x = [0.0; <$type>::S];
+        for (i, value) in x.iter_mut().enumerate() {
+            *value = 0.1 * i as f64 + t;
+        }
+        let u = [0.3 - t; <$type>::P];
+        for chart in 0..ReducedPortHamiltonian::charts(model) {
+            let x = black_box(model.change_chart(0, chart, black_box(&x)));
+            black_box(model.chart_fit(chart, &x));
+            black_box(model.chart_rhs(chart, &x, &u));
+            black_box(model.chart_rhs_jacobian(chart, &x, &u));
+            black_box(model.chart_hamiltonian(chart, &x));
+            black_box(model.chart_hamiltonian_gradient(chart, &x));
+            black_box(model.chart_structure_matrix(chart, &x));
+            black_box(model.chart_input_matrix(chart, &x));
+            black_box(model.chart_constraint_violation(chart, &x));
+            black_box(model.chart_regularity(chart, &x));
+        }
+    }};
+}
+
 #[test]
 fn generated_functions_do_not_allocate() {
     let board = Snakeboard::default();
@@ -201,9 +228,11 @@ fn mechanism_items_do_not_allocate() {
             black_box(caster.positions(black_box(&q7)));
             black_box(caster.acceleration(black_box(&q7), black_box(&v7), &[0.0; 2]));
             reduced_items!(caster, CasterRobot, t);
+            chart_items!(caster, CasterRobot, t);
         }
     });
     assert_eq!(counted, 0);
+    assert_eq!(CasterRobot::CHARTS.len(), 2);
 }
 
 #[test]

@@ -450,3 +450,49 @@ fn wrong_lengths_and_names_are_structured_errors() {
     assert_eq!(error.name, "mass");
     assert_eq!(error.known, ["m", "inertia", "a"]);
 }
+
+/// The towed sleigh has no symmetry and two charts of D (its blade solved
+/// for `dot(y)`, then for `dot(x)`): the second chart's items, interpreted
+/// through `call_in_chart`, agree with the compiled `..._chart1` items, and
+/// `chart_fit` with the compiled pivot ratio.
+#[test]
+fn the_second_charts_items_are_interpreted_as_compiled() {
+    use chaplygin::runtime::system::ReducedPortHamiltonian;
+    let interpreted = InterpretedModel::from_source(&source("Towed")).expect("compiles");
+    assert_eq!(interpreted.charts(), [vec![1], vec![0]]);
+    let towed = Towed::default();
+    let mut random = Random(0x5eed_c4a7);
+    let mut agreement = Agreement::default();
+    let call = |name: &str, arguments: &[&[f64]]| {
+        interpreted
+            .call_in_chart(1, name, arguments)
+            .expect("evaluates")
+    };
+    for _ in 0..STATES {
+        let (x, u): ([f64; 7], [f64; 1]) = (random.array(), random.array());
+        let (q, alpha) = ([x[0], x[1], x[2], x[3]], [x[4], x[5], x[6]]);
+        let qdot = towed.velocities_chart1(&q, &alpha);
+        agreement.check("velocities", &qdot, &call("velocities", &[&q, &alpha]));
+        let momenta = towed.momenta_chart1(&q, &qdot);
+        agreement.check("momenta", &momenta, &call("momenta", &[&q, &qdot]));
+        let hamiltonian = towed.hamiltonian_chart1(&x);
+        agreement.check("hamiltonian", &[hamiltonian], &call("hamiltonian", &[&x]));
+        let gradient = towed.hamiltonian_gradient_chart1(&x);
+        let found = call("hamiltonian_gradient", &[&x]);
+        agreement.check("hamiltonian_gradient", &gradient, &found);
+        let structure = towed.structure_matrix_chart1(&x);
+        let found = call("structure_matrix", &[&x]);
+        agreement.check("structure_matrix", structure.as_flattened(), &found);
+        let input = towed.input_matrix_chart1(&x);
+        let found = call("input_matrix", &[&x]);
+        agreement.check("input_matrix", input.as_flattened(), &found);
+        let rhs = towed.reduced_rhs_chart1(&x, &u);
+        agreement.check("reduced_rhs", &rhs, &call("reduced_rhs", &[&x, &u]));
+        let jacobian = towed.reduced_rhs_jacobian_chart1(&x, &u);
+        let found = call("reduced_rhs_jacobian", &[&x, &u]);
+        agreement.check("reduced_rhs_jacobian", jacobian.as_flattened(), &found);
+        let fit = interpreted.chart_fit(1, &q).expect("evaluates");
+        agreement.check("chart_fit", &[towed.chart_fit(1, &x)], &[fit]);
+    }
+    agreement.report("Towed, chart 1");
+}

@@ -110,6 +110,55 @@ where
     hadamard_ratio(matrix_from_rows(&rows))
 }
 
+/// How well a chart of D fits (MATH.md 1.1): with the dependent speeds
+/// `dependent` (columns `r` of A), the basis `[I; -A_r^-1 A_s]` is regular
+/// where the minor `det A_r` is not zero, and its pivot ratio
+/// `|det A_r| / prod_i |A_i|` is in `[0, 1]` (Hadamard's inequality on the
+/// rows of `A_r`, each no longer than its row of A). By Cauchy-Binet
+/// `sum_r det(A_r)^2 = det(A A^T)`, so where the rows are independent some
+/// choice has a ratio bounded away from 0.
+///
+/// ```
+/// use chaplygin_runtime::monitor::pivot_ratio;
+/// let theta: f64 = 1.2;
+/// let blade = [[-theta.sin(), theta.cos(), 0.0]];
+/// assert!((pivot_ratio(&blade, &[1]) - theta.cos()).abs() < 1e-15);
+/// assert!((pivot_ratio(&blade, &[0]) - theta.sin()).abs() < 1e-15);
+/// ```
+pub fn pivot_ratio<const N: usize, const C: usize>(
+    constraints: &[[f64; N]; C],
+    dependent: &[usize; C],
+) -> f64 {
+    let scale: f64 = constraints
+        .iter()
+        .map(|row| row.iter().map(|v| v * v).sum::<f64>().sqrt())
+        .product();
+    if scale == 0.0 {
+        return 0.0;
+    }
+    let mut minor: [[f64; C]; C] =
+        core::array::from_fn(|i| core::array::from_fn(|k| constraints[i][dependent[k]]));
+    let mut determinant = 1.0;
+    for k in 0..C {
+        let pivot = (k..C)
+            .max_by(|&a, &b| minor[a][k].abs().total_cmp(&minor[b][k].abs()))
+            .unwrap_or(k);
+        if minor[pivot][k] == 0.0 {
+            return 0.0;
+        }
+        minor.swap(k, pivot);
+        determinant *= minor[k][k];
+        let pivot_row = minor[k];
+        for row in minor.iter_mut().skip(k + 1) {
+            let factor = row[k] / pivot_row[k];
+            for (entry, p) in row.iter_mut().zip(pivot_row).skip(k) {
+                *entry -= factor * p;
+            }
+        }
+    }
+    determinant.abs() / scale
+}
+
 /// `det(m) / prod_i |m_i|`, the determinant over the product of the rows'
 /// norms: at most 1 in magnitude (Hadamard's inequality), 0 when a row is
 /// zero. [`reduced_regularity`] of the matrix `[A; V^T]`.

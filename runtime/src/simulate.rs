@@ -14,6 +14,17 @@
 //! within a step (a signed measure crossing zero between two steps). The
 //! rows recorded until then stay recorded and the recorder is finished
 //! (flushed) on every exit.
+//!
+//! A formulation with several charts (the reduced form of a model whose
+//! basis of D degenerates where the constraint rows do not) is then asked
+//! to change its chart ([`Observed::change_chart`]): where the active
+//! chart's pivot ratio is below [`CHART_SWITCH`] times the best one's, the
+//! state moves into the best chart through its velocity and the run goes
+//! on there (the re-selection of independent coordinates of Wehage & Haug,
+//! "Generalized coordinate partitioning for dimension reduction in analysis
+//! of constrained dynamic systems", J. Mech. Design 104, 1982). The
+//! switches are counted in [`Summary::chart_switches`] and each row records
+//! its chart.
 
 mod advance;
 mod observed;
@@ -21,7 +32,9 @@ mod outcome;
 mod run;
 
 pub use advance::Advance;
-pub use observed::{MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, Regularity};
+pub use observed::{
+    CHART_SWITCH, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, Regularity, better_chart,
+};
 pub use outcome::{SimulationError, Summary};
 
 use crate::record::Recorder;

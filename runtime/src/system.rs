@@ -13,8 +13,11 @@
 //! [`Controller`] (a constant, an open-loop `u(t)`, or a feedback `u(t, x)`)
 //! into an [`OdeSystem`].
 
+mod reduced;
+
 pub use crate::law::Constant;
 use crate::law::Controller;
+pub use reduced::Reduced;
 
 /// A first-order system `xdot = f(t, x)` in `D` states.
 pub trait OdeSystem<const D: usize> {
@@ -76,6 +79,59 @@ pub trait ReducedPortHamiltonian<const S: usize, const P: usize> {
     /// most 1; it vanishes, and changes sign when crossed transversally,
     /// where the constraint rows or the momentum basis lose rank.
     fn regularity(&self, x: &[f64; S]) -> f64;
+
+    /// The number of charts of D: 1, unless the tool's basis of D
+    /// degenerates where the constraint rows stay independent; then chart 0
+    /// is that basis and the others choose other dependent speeds (README,
+    /// "Chart switching"). Every chart has the state layout `(q, alpha)`,
+    /// `alpha` the momenta of its own basis; the `chart_*` methods are the
+    /// items above in a chart, and chart 0's are the items above.
+    fn charts(&self) -> usize {
+        1
+    }
+    /// How well `chart` fits at the configuration of `x`: its pivot ratio
+    /// `|det A_r(q)| / prod_i |A_i(q)|` ([`crate::monitor::pivot_ratio`]),
+    /// 0 where its basis degenerates.
+    fn chart_fit(&self, _chart: usize, _x: &[f64; S]) -> f64 {
+        1.0
+    }
+    /// The state `x` of chart `from` in chart `to`: the same configuration,
+    /// and the momenta of `to` of the velocity `x` has in `from`.
+    fn change_chart(&self, _from: usize, _to: usize, x: &[f64; S]) -> [f64; S] {
+        *x
+    }
+    /// [`ReducedPortHamiltonian::reduced_rhs`] in `chart`.
+    fn chart_rhs(&self, _chart: usize, x: &[f64; S], u: &[f64; P]) -> [f64; S] {
+        self.reduced_rhs(x, u)
+    }
+    /// [`ReducedPortHamiltonian::reduced_rhs_jacobian`] in `chart`.
+    fn chart_rhs_jacobian(&self, _chart: usize, x: &[f64; S], u: &[f64; P]) -> [[f64; S]; S] {
+        self.reduced_rhs_jacobian(x, u)
+    }
+    /// [`ReducedPortHamiltonian::hamiltonian`] in `chart`.
+    fn chart_hamiltonian(&self, _chart: usize, x: &[f64; S]) -> f64 {
+        self.hamiltonian(x)
+    }
+    /// [`ReducedPortHamiltonian::hamiltonian_gradient`] in `chart`.
+    fn chart_hamiltonian_gradient(&self, _chart: usize, x: &[f64; S]) -> [f64; S] {
+        self.hamiltonian_gradient(x)
+    }
+    /// [`ReducedPortHamiltonian::structure_matrix`] in `chart`.
+    fn chart_structure_matrix(&self, _chart: usize, x: &[f64; S]) -> [[f64; S]; S] {
+        self.structure_matrix(x)
+    }
+    /// [`ReducedPortHamiltonian::input_matrix`] in `chart`.
+    fn chart_input_matrix(&self, _chart: usize, x: &[f64; S]) -> [[f64; P]; S] {
+        self.input_matrix(x)
+    }
+    /// [`ReducedPortHamiltonian::constraint_violation`] in `chart`.
+    fn chart_constraint_violation(&self, _chart: usize, x: &[f64; S]) -> f64 {
+        self.constraint_violation(x)
+    }
+    /// [`ReducedPortHamiltonian::regularity`] in `chart`.
+    fn chart_regularity(&self, _chart: usize, x: &[f64; S]) -> f64 {
+        self.regularity(x)
+    }
 }
 
 /// The Lagrange-d'Alembert equations in `(q, qdot)`: `N` coordinates, `C`
@@ -116,6 +172,15 @@ pub trait Momenta<const N: usize, const K: usize> {
     fn momenta(&self, q: &[f64; N], qdot: &[f64; N]) -> [f64; K];
     /// `qdot = g^-1 h^T alpha`.
     fn velocities(&self, q: &[f64; N], alpha: &[f64; K]) -> [f64; N];
+    /// [`Momenta::momenta`] in chart `chart` of the reduced form (see
+    /// [`ReducedPortHamiltonian::charts`]); chart 0's are `momenta`.
+    fn chart_momenta(&self, _chart: usize, q: &[f64; N], qdot: &[f64; N]) -> [f64; K] {
+        self.momenta(q, qdot)
+    }
+    /// [`Momenta::velocities`] in chart `chart`; chart 0's are `velocities`.
+    fn chart_velocities(&self, _chart: usize, q: &[f64; N], alpha: &[f64; K]) -> [f64; N] {
+        self.velocities(q, alpha)
+    }
 }
 
 /// The momentum equation of a model with a symmetry (MATH.md section 4):
@@ -173,102 +238,6 @@ pub trait ModelNames {
     const INPUTS: &'static [&'static str];
     /// The constraints, as declared.
     const CONSTRAINTS: &'static [&'static str];
-}
-
-/// A model in its reduced form closed by a [`Controller`]: an
-/// [`OdeSystem`] in `x = (q, alpha)` with `u = controller(t, x)`.
-#[derive(Clone, Copy, Debug)]
-pub struct Reduced<'a, M, F, const P: usize> {
-    model: &'a M,
-    controller: F,
-}
-
-impl<'a, M, F, const P: usize> Reduced<'a, M, F, P> {
-    /// `model` driven by `controller`: a [`Constant`], a closure `u(t)`,
-    /// or a [`crate::law::Feedback`] `u(t, x)`.
-    pub fn new(model: &'a M, controller: F) -> Self {
-        Self { model, controller }
-    }
-
-    /// The model.
-    pub fn model(&self) -> &'a M {
-        self.model
-    }
-
-    /// The controller.
-    pub fn controller(&self) -> &F {
-        &self.controller
-    }
-}
-
-impl<'a, M, const P: usize> Reduced<'a, M, Constant<P>, P> {
-    /// `model` driven by the constant input `u`.
-    pub fn constant(model: &'a M, u: [f64; P]) -> Self {
-        Self::new(model, Constant(u))
-    }
-}
-
-impl<M, F, const S: usize, const P: usize> OdeSystem<S> for Reduced<'_, M, F, P>
-where
-    M: ReducedPortHamiltonian<S, P>,
-    F: Controller<S, P>,
-{
-    fn rhs(&self, t: f64, x: &[f64; S]) -> [f64; S] {
-        self.model.reduced_rhs(x, &self.controller.input(t, x))
-    }
-}
-
-impl<M, F, const S: usize, const P: usize> Jacobian<S> for Reduced<'_, M, F, P>
-where
-    M: ReducedPortHamiltonian<S, P>,
-    F: Controller<S, P>,
-{
-    /// `df/dx + G(x) du/dx`: the model's exact Jacobian at fixed `u`, and
-    /// the feedback's through the input matrix.
-    fn jacobian(&self, t: f64, x: &[f64; S]) -> [[f64; S]; S] {
-        let u = self.controller.input(t, x);
-        let mut jacobian = self.model.reduced_rhs_jacobian(x, &u);
-        let (g, du) = (
-            self.model.input_matrix(x),
-            self.controller.input_jacobian(t, x),
-        );
-        for (row, g_row) in jacobian.iter_mut().zip(&g) {
-            for (j, entry) in row.iter_mut().enumerate() {
-                *entry += (0..P).map(|l| g_row[l] * du[l][j]).sum::<f64>();
-            }
-        }
-        jacobian
-    }
-}
-
-impl<M, F, const S: usize, const P: usize> Energy<S> for Reduced<'_, M, F, P>
-where
-    M: ReducedPortHamiltonian<S, P>,
-    F: Controller<S, P>,
-{
-    fn energy(&self, x: &[f64; S]) -> f64 {
-        self.model.hamiltonian(x)
-    }
-}
-
-impl<M, F, const S: usize, const P: usize> Structured<S> for Reduced<'_, M, F, P>
-where
-    M: ReducedPortHamiltonian<S, P>,
-    F: Controller<S, P>,
-{
-    fn structure_matrix(&self, x: &[f64; S]) -> [[f64; S]; S] {
-        self.model.structure_matrix(x)
-    }
-
-    fn energy_gradient(&self, x: &[f64; S]) -> [f64; S] {
-        self.model.hamiltonian_gradient(x)
-    }
-
-    /// `G(x) u(t, x)`.
-    fn forcing(&self, t: f64, x: &[f64; S]) -> [f64; S] {
-        let (g, u) = (self.model.input_matrix(x), self.controller.input(t, x));
-        core::array::from_fn(|i| (0..P).map(|l| g[i][l] * u[l]).sum())
-    }
 }
 
 /// A model's Lagrange-d'Alembert equations closed by a [`Controller`]: an

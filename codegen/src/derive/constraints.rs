@@ -54,6 +54,7 @@
 mod at_points;
 mod basis;
 mod body_frame;
+pub mod charts;
 
 use at_points::{growth_vector_at_point, is_exact_row_at_points, is_involutive_at_points};
 pub use basis::{DistributionBasis, default_point, distribution_basis};
@@ -138,6 +139,9 @@ impl Method {
 pub struct ConstraintAnalysis {
     /// The basis of D.
     pub basis: DistributionBasis,
+    /// Other charts of D, where `basis` degenerates with the rows
+    /// independent ([`charts`]); empty when it does nowhere.
+    pub charts: Vec<DistributionBasis>,
     /// `(rank D^1, rank D^2, ...)`, strictly increasing, the first entry k.
     pub growth: Vec<usize>,
     /// False when the growth vector was cut short by the budget: later
@@ -178,12 +182,14 @@ pub fn analyse(model: &mut Model) -> Result<ConstraintAnalysis, Diagnostics> {
 
 fn derive_analysis(model: &mut Model) -> Result<ConstraintAnalysis, AnalysisError> {
     let basis = distribution_basis(model)?;
+    let charts = charts::alternative_charts(model, &basis)?;
     let (integrable, integrability_method) = integrability(model, &basis)?;
     let (growth, growth_complete, growth_method) = growth(model, &basis)?;
     let classification = classify(model, integrable, &growth, growth_complete);
     let exact_rows = exact_rows(model)?;
     Ok(ConstraintAnalysis {
         basis,
+        charts,
         growth,
         growth_complete,
         growth_method,

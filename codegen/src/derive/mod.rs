@@ -33,6 +33,21 @@ pub struct Derivation {
     /// holonomic constraints do not restrict the shape alone
     /// ([`MOMENTUM_WITH_HOLONOMIC`]).
     pub momentum: Option<Momentum>,
+    /// The reduced form in each other chart of D
+    /// ([`constraints::charts`]), in order.
+    pub charts: Vec<Chart>,
+}
+
+/// The reduced form in one other chart of D: the same state layout
+/// `(q, alpha)`, with `alpha` the momenta of that chart's basis.
+#[derive(Clone, Debug)]
+pub struct Chart {
+    /// The chart's dependent speeds.
+    pub dependent: Vec<usize>,
+    /// The reduced form on the chart's basis.
+    pub reduced: PortHamiltonian,
+    /// Its items, each in its chosen form.
+    pub items: Items,
 }
 
 /// Why a model with a symmetry and holonomic constraints has no momentum
@@ -63,11 +78,26 @@ pub fn derivation(
         }
         _ => None,
     };
+    let charts = constraints
+        .charts
+        .iter()
+        .map(|basis| {
+            let reduced = port_hamiltonian::derive(model, basis)?;
+            let items = port_hamiltonian::items::items(model, &reduced)?;
+            Ok(Chart {
+                dependent: basis.dependent.clone(),
+                reduced,
+                items,
+            })
+        })
+        .collect::<Result<Vec<_>, port_hamiltonian::PortHamiltonianError>>()
+        .map_err(|e| internal(model, &e))?;
     Ok(Derivation {
         lagrange_dalembert,
         reduced,
         reduced_items,
         momentum,
+        charts,
     })
 }
 

@@ -73,15 +73,10 @@ pub(super) fn sizes_section(model: &Model) -> Section {
 }
 
 pub(super) fn constraints_section(model: &mut Model, analysis: &ConstraintAnalysis) -> Section {
-    let speeds = |indices: &[usize]| -> Vec<String> {
-        indices
-            .iter()
-            .map(|&i| format!("dot({})", model.coordinates[i].declared.name))
-            .collect()
-    };
+    let basis = &analysis.basis;
     let (dependent, independent) = (
-        speeds(&analysis.basis.dependent),
-        speeds(&analysis.basis.independent),
+        basis.speed_names(model, &basis.dependent),
+        basis.speed_names(model, &basis.independent),
     );
     let (exact_rows, exact_text): (Vec<Value>, Vec<String>) = model
         .constraints

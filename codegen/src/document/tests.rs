@@ -180,3 +180,35 @@ fn a_structured_reduced_form_is_described_not_expanded() {
             .expect("valid JSON");
     assert!(json["port_hamiltonian"].is_object(), "{json}");
 }
+
+/// The sleigh's basis of D is chosen on the body rows: its speeds are the
+/// blade's forward and sideways velocities along the body's axes and the
+/// turning rate, named after the se2 factor's coordinates.
+#[test]
+fn a_body_frame_basis_names_its_speeds_after_the_body_velocity() {
+    let text = document(SLEIGH, Format::Text);
+    assert!(text.contains("dependent speeds: v_y_body"), "{text}");
+    assert!(
+        text.contains("independent speeds: v_x_body, omega_theta"),
+        "{text}"
+    );
+    let latex = document(SLEIGH, Format::Latex);
+    assert!(
+        latex.contains(r"\item[independent speeds] v\_x\_body, omega\_theta"),
+        "{latex}"
+    );
+    let json: Value = serde_json::from_str(&document(SLEIGH, Format::Json)).expect("JSON");
+    assert_eq!(
+        json["constraints"]["independent_speeds"],
+        serde_json::json!(["v_x_body", "omega_theta"])
+    );
+    // without a symmetry the speeds are the coordinates' own
+    let plain = document(
+        &SLEIGH.replace("symmetry: se2(x, y, theta),", ""),
+        Format::Text,
+    );
+    assert!(
+        plain.contains("independent speeds: dot(x), dot(theta)"),
+        "{plain}"
+    );
+}

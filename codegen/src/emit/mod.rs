@@ -75,6 +75,11 @@ pub(crate) struct Lowered {
 pub(crate) struct Emitted {
     pub(crate) items: TokenStream,
     pub(crate) functions: Vec<Function>,
+    /// The reduced items of each other chart of D (chart 1, 2, ...).
+    pub(crate) chart_functions: Vec<Vec<Function>>,
+    /// The dependent speeds of every chart, chart 0 (the model's own
+    /// basis) first; only chart 0 without other charts.
+    pub(crate) charts: Vec<Vec<usize>>,
     pub(crate) report: String,
 }
 
@@ -103,9 +108,34 @@ pub(crate) fn emit(
     let acceleration_jacobian =
         linearization::acceleration_jacobian(model, &derivation.lagrange_dalembert)?;
     functions.extend([acceleration, acceleration_jacobian]);
-    let (reduced, reduced_report) =
+    let (reduced, mut reduced_report) =
         port_hamiltonian::functions(model, &derivation.reduced, &derivation.reduced_items)?;
     functions.extend(reduced);
+    let charts: Vec<Vec<usize>> = std::iter::once(constraints.basis.dependent.clone())
+        .chain(
+            derivation
+                .charts
+                .iter()
+                .map(|chart| chart.dependent.clone()),
+        )
+        .collect();
+    let chart_functions = derivation
+        .charts
+        .iter()
+        .enumerate()
+        .map(|(i, chart)| {
+            port_hamiltonian::chart_functions(
+                model,
+                i + 1,
+                &chart.dependent,
+                &chart.reduced,
+                &chart.items,
+            )
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if let Some(line) = charts_line(model, &charts) {
+        reduced_report.line(line);
+    }
     let mut sections = vec![solve_report, reduced_report];
     if let Some(momentum) = &derivation.momentum {
         let (reduction, reduction_report) = momentum::functions(model, momentum, &functions)?;
@@ -116,9 +146,13 @@ pub(crate) fn emit(
     }
     let report = report_text(model, constraints, sections, &functions);
     let report_item = report_constant(&report);
-    let items = functions.iter().map(|f| &f.item);
+    let items = functions
+        .iter()
+        .chain(chart_functions.iter().flatten())
+        .map(|f| &f.item);
     let name = &model.name;
-    let implementations = traits::implementations(model, derivation.momentum.is_some());
+    let chart_constant = traits::charts_constant(model, &charts);
+    let implementations = traits::implementations(model, &charts, derivation.momentum.is_some());
     let linearization = linearization::implementation(model);
     let items = quote! {
         #definition
@@ -126,6 +160,7 @@ pub(crate) fn emit(
             #constants
             #mechanism_constants
             #report_item
+            #chart_constant
             #(#items)*
         }
         #implementations
@@ -134,8 +169,33 @@ pub(crate) fn emit(
     Ok(Emitted {
         items,
         functions,
+        chart_functions,
+        charts,
         report,
     })
+}
+
+/// The report's line on the charts of D, the dependent speeds of each;
+/// none with one chart.
+fn charts_line(model: &Model, charts: &[Vec<usize>]) -> Option<String> {
+    if charts.len() == 1 {
+        return None;
+    }
+    let listed: Vec<String> = charts
+        .iter()
+        .enumerate()
+        .map(|(i, dependent)| {
+            let speeds: Vec<String> = dependent
+                .iter()
+                .map(|&j| format!("dot({})", model.coordinates[j].declared.name))
+                .collect();
+            format!("{i}: {}", speeds.join(", "))
+        })
+        .collect();
+    Some(format!(
+        "charts (dependent speeds; the runtime switches where the active one degenerates): {}",
+        listed.join("; ")
+    ))
 }
 
 fn report_text(

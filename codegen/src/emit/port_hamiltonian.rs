@@ -44,6 +44,43 @@ pub(super) fn functions(
     Ok((functions, section))
 }
 
+/// The items of the reduced form in the other chart `chart` (1, 2, ...)
+/// with the dependent speeds `dependent`: those the runtime's chart methods
+/// call, each named `{item}_chart{chart}` (`output` and `output_jacobian`
+/// only in chart 0).
+pub(super) fn chart_functions(
+    model: &mut Model,
+    chart: usize,
+    dependent: &[usize],
+    reduced: &PortHamiltonian,
+    items: &Items,
+) -> Result<Vec<Function>, Diagnostics> {
+    let speeds: Vec<String> = dependent
+        .iter()
+        .map(|&j| format!("dot({})", model.coordinates[j].declared.name))
+        .collect();
+    SPECS
+        .iter()
+        .filter(|spec| !matches!(spec.item, Item::Output | Item::OutputJacobian))
+        .map(|spec| {
+            let (signature, shape) = signature(model, reduced, spec);
+            let signature = Signature {
+                doc: format!(
+                    "In chart {chart} (dependent speeds {}): {}",
+                    speeds.join(", "),
+                    signature.doc
+                ),
+                ..signature
+            };
+            let name = Ident::new(&format!("{}_chart{chart}", spec.name), Span::call_site());
+            let size = |size: Size| size.of(model, reduced);
+            named_item(model, signature, name, items.outputs(spec.item), |values| {
+                assembled(shape, values, size)
+            })
+        })
+        .collect()
+}
+
 /// What the report says of the reduced form (MATH.md section 3).
 fn report_section(model: &mut Model, reduced: &PortHamiltonian) -> Section {
     let mut section = Section::new("Reduced port-Hamiltonian form (Duindam & Stramigioli)");
@@ -108,6 +145,18 @@ pub(super) fn item(
     outputs: &[ExprId],
     assemble: impl Fn(&[TokenStream]) -> TokenStream,
 ) -> Result<Function, Diagnostics> {
+    let name = Ident::new(signature.name, Span::call_site());
+    named_item(model, signature, name, outputs, assemble)
+}
+
+/// [`item`] emitted under the name `name`.
+fn named_item(
+    model: &Model,
+    signature: Signature,
+    name: Ident,
+    outputs: &[ExprId],
+    assemble: impl Fn(&[TokenStream]) -> TokenStream,
+) -> Result<Function, Diagnostics> {
     let body = function_body(model, &signature.arguments, outputs, assemble)?;
     let f64 = f64_type();
     let parameters = signature.arguments.iter().map(|argument| {
@@ -116,7 +165,6 @@ pub(super) fn item(
         quote!(#name: &[#f64; #length])
     });
     let (doc, returns, statements) = (&signature.doc, &signature.returns, &body.statements);
-    let name = Ident::new(signature.name, Span::call_site());
     let item = quote! {
         #[doc = #doc]
         pub fn #name(&self, #(#parameters),*) -> #returns {
@@ -400,6 +448,15 @@ fn emit_item(
     items: &Items,
     spec: &Spec,
 ) -> Result<Function, Diagnostics> {
+    let (signature, shape) = signature(model, reduced, spec);
+    let size = |size: Size| size.of(model, reduced);
+    item(model, signature, items.outputs(spec.item), |values| {
+        assembled(shape, values, size)
+    })
+}
+
+/// The signature of one row of [`SPECS`], and its shape.
+fn signature(model: &Model, reduced: &PortHamiltonian, spec: &Spec) -> (Signature, Shape) {
     let size = |size: Size| size.of(model, reduced);
     let returns = match spec.shape {
         Shape::Scalar => f64_type(),
@@ -412,17 +469,16 @@ fn emit_item(
         arguments: spec.arguments.of(model, reduced),
         returns,
     };
-    let shape = spec.shape;
-    item(
-        model,
-        signature,
-        items.outputs(spec.item),
-        |values| match shape {
-            Shape::Scalar => quote!(#(#values)*),
-            Shape::Vector(_) => vector_literal(values),
-            Shape::Matrix(rows, columns) => rows_literal(values, size(rows), size(columns)),
-        },
-    )
+    (signature, spec.shape)
+}
+
+/// The return value of an item of `shape` from its values.
+fn assembled(shape: Shape, values: &[TokenStream], size: impl Fn(Size) -> usize) -> TokenStream {
+    match shape {
+        Shape::Scalar => quote!(#(#values)*),
+        Shape::Vector(_) => vector_literal(values),
+        Shape::Matrix(rows, columns) => rows_literal(values, size(rows), size(columns)),
+    }
 }
 
 #[cfg(test)]

@@ -86,13 +86,14 @@ pub(super) fn constraints(model: &mut Model, analysis: &ConstraintAnalysis) -> S
     let mut section = Section::new("Constraints (Frobenius, Chow, Moore)");
     let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
     section.line(format!("sizes: n = {n}, c = {c}, k = {k}, p = {p}"));
+    let basis = &analysis.basis;
     section.line(format!(
         "dependent speeds: {}",
-        speeds(model, &analysis.basis.dependent)
+        speeds(basis.speed_names(model, &basis.dependent))
     ));
     section.line(format!(
         "independent speeds: {}",
-        speeds(model, &analysis.basis.independent)
+        speeds(basis.speed_names(model, &basis.independent))
     ));
     match &analysis.basis.fields {
         Some(fields) => {
@@ -174,11 +175,8 @@ fn count(n: u64) -> String {
     }
 }
 
-fn speeds(model: &Model, indices: &[usize]) -> String {
-    let names: Vec<String> = indices
-        .iter()
-        .map(|&i| format!("dot({})", model.coordinates[i].declared.name))
-        .collect();
+/// The speeds' names, or `none`.
+fn speeds(names: Vec<String>) -> String {
     if names.is_empty() {
         "none".to_string()
     } else {

@@ -13,9 +13,145 @@ use crate::model::{GroupFactor, Model, Symmetry};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-/// The runtime trait impls of `model`'s struct (`MomentumEquations` when
-/// `momentum` was derived).
-pub(crate) fn implementations(model: &Model, momentum: bool) -> TokenStream {
+/// `CHARTS`, the dependent speeds of each chart of D, when there are
+/// several (nothing otherwise).
+pub(crate) fn charts_constant(model: &Model, charts: &[Vec<usize>]) -> TokenStream {
+    if charts.len() < 2 {
+        return TokenStream::new();
+    }
+    let (c, count) = (model.c(), charts.len());
+    let rows = charts.iter().map(|dependent| {
+        let columns = dependent.iter().map(|&j| Literal::usize_unsuffixed(j));
+        quote!([#(#columns),*])
+    });
+    quote! {
+        /// The charts of D: each chart's dependent speeds (coordinate
+        /// indices), chart 0 the basis the other items use. The items
+        /// named `..._chart{i}` are the reduced form in chart `i`.
+        pub const CHARTS: [[::core::primitive::usize; #c]; #count] = [#(#rows),*];
+    }
+}
+
+/// The `match` calling `item` (`item_chart{i}` in chart `i`) with `arguments`.
+fn in_chart(
+    model: &Model,
+    count: usize,
+    chart: TokenStream,
+    item: &str,
+    arguments: TokenStream,
+) -> TokenStream {
+    let name = &model.name;
+    let base = proc_macro2::Ident::new(item, proc_macro2::Span::call_site());
+    let arms = (1..count).map(|i| {
+        let charted =
+            proc_macro2::Ident::new(&format!("{item}_chart{i}"), proc_macro2::Span::call_site());
+        let i = Literal::usize_unsuffixed(i);
+        quote!(#i => #name::#charted(self, #arguments),)
+    });
+    quote! {
+        match #chart {
+            #(#arms)*
+            _ => #name::#base(self, #arguments),
+        }
+    }
+}
+
+/// The `ReducedPortHamiltonian` chart methods of a model with several
+/// charts (nothing otherwise: the trait's defaults, one chart).
+fn chart_methods(model: &Model, charts: &[Vec<usize>]) -> TokenStream {
+    let count = charts.len();
+    if count < 2 {
+        return TokenStream::new();
+    }
+    let name = &model.name;
+    let f64 = f64_type();
+    let (n, k, p) = (model.n(), model.k(), model.p());
+    let s = n + k;
+    let call =
+        |item: &str, arguments: TokenStream| in_chart(model, count, quote!(chart), item, arguments);
+    let velocities_from = in_chart(model, count, quote!(from), "velocities", quote!(&q, &alpha));
+    let momenta_to = in_chart(model, count, quote!(to), "momenta", quote!(&q, &qdot));
+    let velocities = call("velocities", quote!(&q, &alpha));
+    let unit_velocities = call("velocities", quote!(&q, &unit));
+    let rhs = call("reduced_rhs", quote!(x, u));
+    let rhs_jacobian = call("reduced_rhs_jacobian", quote!(x, u));
+    let hamiltonian = call("hamiltonian", quote!(x));
+    let gradient = call("hamiltonian_gradient", quote!(x));
+    let structure = call("structure_matrix", quote!(x));
+    let input_matrix = call("input_matrix", quote!(x));
+    let split = quote! {
+        let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
+        let alpha: [#f64; #k] = ::core::array::from_fn(|i| x[#n + i]);
+    };
+    quote! {
+        fn charts(&self) -> ::core::primitive::usize {
+            #count
+        }
+        fn chart_fit(&self, chart: ::core::primitive::usize, x: &[#f64; #s]) -> #f64 {
+            let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
+            match #name::CHARTS.get(chart) {
+                ::core::option::Option::Some(dependent) => {
+                    ::chaplygin::runtime::monitor::pivot_ratio(&#name::constraint_matrix(self, &q), dependent)
+                }
+                ::core::option::Option::None => 0.0,
+            }
+        }
+        fn change_chart(
+            &self,
+            from: ::core::primitive::usize,
+            to: ::core::primitive::usize,
+            x: &[#f64; #s],
+        ) -> [#f64; #s] {
+            #split
+            let qdot = #velocities_from;
+            let alpha = #momenta_to;
+            ::core::array::from_fn(|i| if i < #n { q[i] } else { alpha[i - #n] })
+        }
+        fn chart_rhs(&self, chart: ::core::primitive::usize, x: &[#f64; #s], u: &[#f64; #p]) -> [#f64; #s] {
+            #rhs
+        }
+        fn chart_rhs_jacobian(
+            &self,
+            chart: ::core::primitive::usize,
+            x: &[#f64; #s],
+            u: &[#f64; #p],
+        ) -> [[#f64; #s]; #s] {
+            #rhs_jacobian
+        }
+        fn chart_hamiltonian(&self, chart: ::core::primitive::usize, x: &[#f64; #s]) -> #f64 {
+            #hamiltonian
+        }
+        fn chart_hamiltonian_gradient(&self, chart: ::core::primitive::usize, x: &[#f64; #s]) -> [#f64; #s] {
+            #gradient
+        }
+        fn chart_structure_matrix(&self, chart: ::core::primitive::usize, x: &[#f64; #s]) -> [[#f64; #s]; #s] {
+            #structure
+        }
+        fn chart_input_matrix(&self, chart: ::core::primitive::usize, x: &[#f64; #s]) -> [[#f64; #p]; #s] {
+            #input_matrix
+        }
+        fn chart_constraint_violation(&self, chart: ::core::primitive::usize, x: &[#f64; #s]) -> #f64 {
+            #split
+            let qdot = #velocities;
+            #name::constraint_residual(self, &q, &qdot)
+                .iter()
+                .fold(0.0, |worst: #f64, r| worst.max(r.abs()))
+        }
+        fn chart_regularity(&self, chart: ::core::primitive::usize, x: &[#f64; #s]) -> #f64 {
+            let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
+            let basis: [[#f64; #n]; #k] = ::core::array::from_fn(|j| {
+                let unit: [#f64; #k] = ::core::array::from_fn(|i| #f64::from(i == j));
+                #unit_velocities
+            });
+            ::chaplygin::runtime::monitor::reduced_regularity(&#name::constraint_matrix(self, &q), &basis)
+        }
+    }
+}
+
+/// The runtime trait impls of `model`'s struct, with the chart methods
+/// when `charts` (each chart's dependent speeds) has several, and
+/// `MomentumEquations` when `momentum` was derived.
+pub(crate) fn implementations(model: &Model, charts: &[Vec<usize>], momentum: bool) -> TokenStream {
     let name = &model.name;
     let f64 = f64_type();
     let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
@@ -40,10 +176,46 @@ pub(crate) fn implementations(model: &Model, momentum: bool) -> TokenStream {
         .as_ref()
         .filter(|_| momentum)
         .map(|symmetry| momentum_equations(model, symmetry));
+    let chart_methods = chart_methods(model, charts);
+    let chart_momenta = (charts.len() > 1).then(|| {
+        let momenta = in_chart(
+            model,
+            charts.len(),
+            quote!(chart),
+            "momenta",
+            quote!(q, qdot),
+        );
+        let velocities = in_chart(
+            model,
+            charts.len(),
+            quote!(chart),
+            "velocities",
+            quote!(q, alpha),
+        );
+        quote! {
+            fn chart_momenta(
+                &self,
+                chart: ::core::primitive::usize,
+                q: &[#f64; #n],
+                qdot: &[#f64; #n],
+            ) -> [#f64; #k] {
+                #momenta
+            }
+            fn chart_velocities(
+                &self,
+                chart: ::core::primitive::usize,
+                q: &[#f64; #n],
+                alpha: &[#f64; #k],
+            ) -> [#f64; #n] {
+                #velocities
+            }
+        }
+    });
     quote! {
         #momentum_equations
 
         impl #system::ReducedPortHamiltonian<#s, #p> for #name {
+            #chart_methods
             fn reduced_rhs(&self, x: &[#f64; #s], u: &[#f64; #p]) -> [#f64; #s] {
                 #name::reduced_rhs(self, x, u)
             }
@@ -88,6 +260,7 @@ pub(crate) fn implementations(model: &Model, momentum: bool) -> TokenStream {
         }
 
         impl #system::Momenta<#n, #k> for #name {
+            #chart_momenta
             fn momenta(&self, q: &[#f64; #n], qdot: &[#f64; #n]) -> [#f64; #k] {
                 #name::momenta(self, q, qdot)
             }

@@ -260,7 +260,8 @@ where
 
 impl<'a, M, F, const N: usize, const P: usize, const D: usize> Surface<Reduced<'a, M, F, P>, N, D> {
     /// The reduced form `(q, alpha)` kept on the model's `H` configuration
-    /// constraints (`C` constraint rows, `K` momenta, `D = N + K`).
+    /// constraints (`C` constraint rows, `K` momenta, `D = N + K`), in the
+    /// active chart of D.
     pub fn reduced<const C: usize, const K: usize, const H: usize>(
         system: Reduced<'a, M, F, P>,
     ) -> Self
@@ -270,11 +271,12 @@ impl<'a, M, F, const N: usize, const P: usize, const D: usize> Surface<Reduced<'
         let kept = kept::<Reduced<'a, M, F, P>, N, H, D>(
             |system, x| {
                 let model = system.model();
-                model.velocities(&configuration_of(x), &tail::<K, D>(x))
+                model.chart_velocities(system.chart(), &configuration_of(x), &tail::<K, D>(x))
             },
             |system, q, qdot| {
                 let qdot = dalembert_velocity::<M, N, C, P>(system.model(), q, qdot)?;
-                Ok(joined(q, &system.model().momenta(q, &qdot)))
+                let alpha = system.model().chart_momenta(system.chart(), q, &qdot);
+                Ok(joined(q, &alpha))
             },
         );
         Self::with(system, kept)

@@ -55,6 +55,33 @@ pub trait Observed<const D: usize>: Energy<D> {
     fn holonomic_residual(&self, _x: &[f64; D]) -> Option<f64> {
         None
     }
+    /// The active chart of D, `None` for a formulation with one chart (no
+    /// `chart` column).
+    fn chart(&self) -> Option<usize> {
+        None
+    }
+    /// Where the active chart fits worse than [`CHART_SWITCH`] times the
+    /// best chart at `x`, makes the best one active and moves `x` into it
+    /// (the same configuration and velocity); whether it did. By default
+    /// (one chart) it never does.
+    fn change_chart(&self, _x: &mut [f64; D]) -> bool {
+        false
+    }
+}
+
+/// A chart is changed where it fits worse than this fraction of the best
+/// chart (pivot ratios, [`crate::monitor::pivot_ratio`]); the margin keeps
+/// a run from switching back and forth.
+pub const CHART_SWITCH: f64 = 0.5;
+
+/// The chart to change to at a configuration where `fit(chart)` measures
+/// each of `charts` charts and `active` is active, if any (see
+/// [`Observed::change_chart`]).
+pub fn better_chart(charts: usize, active: usize, fit: impl Fn(usize) -> f64) -> Option<usize> {
+    let (best, best_fit) = (0..charts)
+        .map(|chart| (chart, fit(chart)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))?;
+    (fit(active) < CHART_SWITCH * best_fit).then_some(best)
 }
 
 /// The reduced form's measure (see [`crate::monitor::reduced_regularity`]).
@@ -118,15 +145,29 @@ where
     }
 
     fn constraint_residual(&self, x: &[f64; S]) -> f64 {
-        self.model().constraint_violation(x)
+        self.model().chart_constraint_violation(self.chart(), x)
     }
 
     fn regularity(&self, x: &[f64; S]) -> Regularity {
         Regularity {
             quantity: REDUCED,
-            value: self.model().regularity(x),
+            value: self.model().chart_regularity(self.chart(), x),
             signed: true,
         }
+    }
+
+    fn chart(&self) -> Option<usize> {
+        (self.model().charts() > 1).then(|| Reduced::chart(self))
+    }
+
+    fn change_chart(&self, x: &mut [f64; S]) -> bool {
+        let (model, active) = (self.model(), Reduced::chart(self));
+        let Some(best) = better_chart(model.charts(), active, |c| model.chart_fit(c, x)) else {
+            return false;
+        };
+        *x = model.change_chart(active, best, x);
+        self.set_chart(best);
+        true
     }
 }
 
@@ -292,5 +333,13 @@ where
 
     fn holonomic_residual(&self, x: &[f64; D]) -> Option<f64> {
         Surface::holonomic_residual(self, x)
+    }
+
+    fn chart(&self) -> Option<usize> {
+        self.system().chart()
+    }
+
+    fn change_chart(&self, x: &mut [f64; D]) -> bool {
+        self.system().change_chart(x)
     }
 }

@@ -85,4 +85,7 @@ pub struct Summary<const D: usize> {
     pub max_holonomic_residual: f64,
     /// The smallest `|regularity|` over the steps.
     pub min_regularity: f64,
+    /// How often the run changed the chart of D
+    /// ([`super::Observed::change_chart`]).
+    pub chart_switches: usize,
 }

@@ -52,6 +52,7 @@ where
                 max_constraint_residual: system.constraint_residual(&x),
                 max_holonomic_residual: system.holonomic_residual(&x).unwrap_or(0.0),
                 min_regularity: regularity.value.abs(),
+                chart_switches: 0,
             },
             recorder,
         };
@@ -87,6 +88,7 @@ where
             (self.t, self.x) = (t_next, x);
             self.check(regularity)?;
             self.regularity = regularity;
+            self.change_chart();
             self.update_summary(i);
             if i % self.settings.record_every == 0 || i == steps {
                 self.record()?;
@@ -122,6 +124,16 @@ where
         })
     }
 
+    /// Changes the chart where the active one degenerates
+    /// ([`Observed::change_chart`]), counting the switch; the sign of the
+    /// regularity measure is compared in the new chart from then on.
+    fn change_chart(&mut self) {
+        if self.system.change_chart(&mut self.x) {
+            self.summary.chart_switches += 1;
+            self.regularity = self.system.regularity(&self.x);
+        }
+    }
+
     fn update_summary(&mut self, steps: usize) {
         let energy = self.system.energy(&self.x);
         let drift = (energy - self.energy0).abs()
@@ -155,6 +167,8 @@ where
         self.row.push(self.system.energy(x));
         self.row.push(self.system.constraint_residual(x));
         self.row.extend(self.system.holonomic_residual(x));
+        self.row
+            .extend(self.system.chart().map(|chart| chart as f64));
         self.recorder
             .record(&self.row)
             .map_err(|source| SimulationError::Recording { t, source })
@@ -162,8 +176,8 @@ where
 }
 
 /// `t`, the state's names, the inputs' names, `energy`,
-/// `constraint_residual`, and `holonomic_residual` when the system keeps
-/// configuration constraints.
+/// `constraint_residual`, `holonomic_residual` when the system keeps
+/// configuration constraints, and `chart` when it has several charts.
 fn columns<S: Observed<D>, const D: usize>(system: &S, x: &[f64; D]) -> Vec<String> {
     let mut columns = vec!["t".to_string()];
     columns.extend(system.state_names());
@@ -171,6 +185,9 @@ fn columns<S: Observed<D>, const D: usize>(system: &S, x: &[f64; D]) -> Vec<Stri
     columns.extend(["energy".to_string(), "constraint_residual".to_string()]);
     if system.holonomic_residual(x).is_some() {
         columns.push("holonomic_residual".to_string());
+    }
+    if system.chart().is_some() {
+        columns.push("chart".to_string());
     }
     columns
 }

@@ -55,6 +55,16 @@ pub trait Formulation {
     fn holonomic_residual(&self, _x: &[f64]) -> Option<f64> {
         None
     }
+    /// The active chart of D, if the formulation has several (see
+    /// [`Observed::chart`]).
+    fn chart(&self) -> Option<usize> {
+        None
+    }
+    /// Moves `x` into a better chart where the active one degenerates (see
+    /// [`Observed::change_chart`]); whether it did.
+    fn change_chart(&self, _x: &mut [f64]) -> bool {
+        false
+    }
 }
 
 /// The structured form of a `D`-dimensional system, when it has one.
@@ -161,6 +171,17 @@ impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
     fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
         self.system.holonomic_residual(&array(x))
     }
+
+    fn chart(&self) -> Option<usize> {
+        self.system.chart()
+    }
+
+    fn change_chart(&self, x: &mut [f64]) -> bool {
+        let mut state = array(x);
+        let changed = self.system.change_chart(&mut state);
+        x.copy_from_slice(&state);
+        changed
+    }
 }
 
 /// A [`Formulation`] of dimension `D` as a fixed-size runtime system.
@@ -240,6 +261,14 @@ impl<const D: usize> Observed<D> for Sized<'_, D> {
 
     fn holonomic_residual(&self, x: &[f64; D]) -> Option<f64> {
         self.0.holonomic_residual(x)
+    }
+
+    fn chart(&self) -> Option<usize> {
+        self.0.chart()
+    }
+
+    fn change_chart(&self, x: &mut [f64; D]) -> bool {
+        self.0.change_chart(x)
     }
 }
 

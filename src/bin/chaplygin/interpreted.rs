@@ -15,7 +15,9 @@ use chaplygin::runtime::monitor::{gram_regularity, hadamard_ratio};
 use chaplygin::runtime::nalgebra::DMatrix;
 use chaplygin::runtime::projection::ProjectionError;
 use chaplygin::runtime::simulate::Regularity;
+use chaplygin::runtime::simulate::better_chart;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
+use std::cell::Cell;
 use surface::{holonomic_residual, keeps_configuration, onto_surface};
 
 /// The interpreter failed on a call whose arguments the formulation sized
@@ -47,12 +49,44 @@ pub struct Unrepresentable {
     pub error: f64,
 }
 
-/// The reduced form `x = (q, alpha)` of an interpreted model.
+/// The reduced form `x = (q, alpha)` of an interpreted model, in its
+/// active chart of D (chart 0 at the start; see `Formulation::change_chart`).
 pub struct InterpretedReduced {
     /// The model.
     pub model: InterpretedModel,
     /// The inputs `u(t)`.
     pub inputs: InputLaw,
+    chart: Cell<usize>,
+}
+
+impl InterpretedReduced {
+    /// `model` driven by `inputs`, in chart 0.
+    pub fn new(model: InterpretedModel, inputs: InputLaw) -> Self {
+        Self {
+            model,
+            inputs,
+            chart: Cell::new(0),
+        }
+    }
+
+    /// The state `(q, alpha)` of `q` moving with `qdot`, in the chart that
+    /// fits best at `q`, which becomes the active chart.
+    pub fn initial_state(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, CallError> {
+        let fits = (0..self.model.charts().len())
+            .map(|chart| self.model.chart_fit(chart, q))
+            .collect::<Result<Vec<f64>, _>>()?;
+        let best = (0..fits.len())
+            .max_by(|&a, &b| fits[a].total_cmp(&fits[b]))
+            .unwrap_or(0);
+        self.chart.set(best);
+        let alpha = self.model.call_in_chart(best, "momenta", &[q, qdot])?;
+        Ok(q.iter().chain(&alpha).copied().collect())
+    }
+
+    /// The reduced item `name` in the active chart.
+    fn call(&self, name: &str, arguments: &[&[f64]]) -> Vec<f64> {
+        evaluated(self.model.call_in_chart(self.chart.get(), name, arguments))
+    }
 }
 
 /// The Lagrange-d'Alembert form `x = (q, qdot)` of an interpreted model.
@@ -112,16 +146,16 @@ impl Formulation for InterpretedReduced {
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
         let u = inputs_at(&self.model, &self.inputs, t);
-        xdot.copy_from_slice(&evaluated(self.model.reduced_rhs(x, &u)));
+        xdot.copy_from_slice(&self.call("reduced_rhs", &[x, &u]));
     }
 
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
         let u = inputs_at(&self.model, &self.inputs, t);
-        jacobian.copy_from_slice(&evaluated(self.model.reduced_rhs_jacobian(x, &u)));
+        jacobian.copy_from_slice(&self.call("reduced_rhs_jacobian", &[x, &u]));
     }
 
     fn energy(&self, x: &[f64]) -> f64 {
-        evaluated(self.model.hamiltonian(x))
+        self.call("hamiltonian", &[x])[0]
     }
 
     fn is_structured(&self) -> bool {
@@ -136,9 +170,9 @@ impl Formulation for InterpretedReduced {
         gradient: &mut [f64],
         forcing: &mut [f64],
     ) {
-        j.copy_from_slice(&evaluated(self.model.structure_matrix(x)));
-        gradient.copy_from_slice(&evaluated(self.model.hamiltonian_gradient(x)));
-        let b = evaluated(self.model.input_matrix(x));
+        j.copy_from_slice(&self.call("structure_matrix", &[x]));
+        gradient.copy_from_slice(&self.call("hamiltonian_gradient", &[x]));
+        let b = self.call("input_matrix", &[x]);
         let u = inputs_at(&self.model, &self.inputs, t);
         let p = u.len();
         for (i, f) in forcing.iter_mut().enumerate() {
@@ -152,7 +186,7 @@ impl Formulation for InterpretedReduced {
 
     fn constraint_residual(&self, x: &[f64]) -> f64 {
         let (q, alpha) = split(x, self.model.sizes().n);
-        residual(&self.model, q, &evaluated(self.model.velocities(q, alpha)))
+        residual(&self.model, q, &self.call("velocities", &[q, alpha]))
     }
 
     /// `det[A; V^T]` over its rows' norms, as the compiled models' `regularity`.
@@ -162,7 +196,7 @@ impl Formulation for InterpretedReduced {
         let mut rows = evaluated(self.model.constraint_matrix(q));
         for j in 0..sizes.k {
             let unit: Vec<f64> = (0..sizes.k).map(|i| f64::from(u8::from(i == j))).collect();
-            rows.extend(evaluated(self.model.velocities(q, &unit)));
+            rows.extend(self.call("velocities", &[q, &unit]));
         }
         Regularity {
             quantity: chaplygin::runtime::simulate::REDUCED,
@@ -173,20 +207,47 @@ impl Formulation for InterpretedReduced {
 
     /// With configuration constraints, `(q, qdot = velocities(q, alpha))`
     /// kept on them ([`onto_surface`]) and `alpha = momenta(q, qdot)` of
-    /// the result; without, the state cannot leave the constraints.
+    /// the result, both in the active chart; without, the state cannot
+    /// leave the constraints.
     fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
         if !keeps_configuration(&self.model) {
             return Ok(());
         }
         let (q, alpha) = x.split_at_mut(self.model.sizes().n);
-        let mut qdot = evaluated(self.model.velocities(q, alpha));
+        let chart = self.chart.get();
+        let mut qdot = evaluated(self.model.call_in_chart(chart, "velocities", &[q, alpha]));
         onto_surface(&self.model, q, &mut qdot)?;
-        alpha.copy_from_slice(&evaluated(self.model.momenta(q, &qdot)));
+        alpha.copy_from_slice(&evaluated(self.model.call_in_chart(
+            chart,
+            "momenta",
+            &[q, &qdot],
+        )));
         Ok(())
     }
 
     fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
         holonomic_residual(&self.model, &x[..self.model.sizes().n])
+    }
+
+    fn chart(&self) -> Option<usize> {
+        (self.model.charts().len() > 1).then(|| self.chart.get())
+    }
+
+    /// As the compiled reduced form's (`Observed::change_chart`): the state
+    /// moves into the best chart through its velocity.
+    fn change_chart(&self, x: &mut [f64]) -> bool {
+        let (model, active) = (&self.model, self.chart.get());
+        let n = model.sizes().n;
+        let fit = |chart| evaluated(model.chart_fit(chart, &x[..n]));
+        let Some(best) = better_chart(model.charts().len(), active, fit) else {
+            return false;
+        };
+        let (q, alpha) = split(x, n);
+        let qdot = self.call("velocities", &[q, alpha]);
+        let moved = evaluated(model.call_in_chart(best, "momenta", &[q, &qdot]));
+        x[n..].copy_from_slice(&moved);
+        self.chart.set(best);
+        true
     }
 }
 

@@ -135,9 +135,8 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
     let inputs: InputLaw = Box::new(move |t, u| schedule.at(t, u));
     match args.formulation {
         Kind::Reduced => {
-            let alpha = model.momenta(&start.q, &start.qdot)?;
-            let x0: Vec<f64> = start.q.iter().chain(&alpha).copied().collect();
-            let reduced = InterpretedReduced { model, inputs };
+            let reduced = InterpretedReduced::new(model, inputs);
+            let x0 = reduced.initial_state(&start.q, &start.qdot)?;
             let points = interpreted_points(&reduced.model);
             execute(&reduced, &x0, args, (None, points))
         }
@@ -251,10 +250,10 @@ where
     let points = compiled_points::<M, N>(&model, points);
     match args.formulation {
         Kind::Reduced => {
-            let alpha = model.momenta(&array(&start.q), &array(&start.qdot));
-            let x0: Vec<f64> = start.q.iter().chain(&alpha).copied().collect();
+            let system = Reduced::new(&model, u);
+            let x0: [f64; S] = system.initial_state(&array(&start.q), &array(&start.qdot));
             execute(
-                &Typed::<_, S>::structured(Surface::reduced(Reduced::new(&model, u))),
+                &Typed::<_, S>::structured(Surface::reduced(system)),
                 &x0,
                 args,
                 (None, points),

@@ -9,7 +9,7 @@
 
 use super::body_frame::BodyFrame;
 use super::{EXACT_BASIS_PRODUCTS, Field};
-use crate::model::Model;
+use crate::model::{GroupFactor, Model};
 use crate::sym::{ExprMatrix, Matrix, MatrixError, RationalFunction, SymbolId};
 
 /// A basis of the constraint distribution D and how it was chosen.
@@ -31,16 +31,66 @@ pub struct DistributionBasis {
     pub body_frame: bool,
 }
 
+impl DistributionBasis {
+    /// The names of the speeds at the coordinate indices `indices`:
+    /// `dot(q)` for a coordinate's own speed; for a body-frame basis, the
+    /// body velocity's components on each `se2(x, y, theta)` factor,
+    /// `v_x_body` and `v_y_body` (the velocity of the frame's origin along
+    /// the body's own axes, `cos(theta) dot(x) + sin(theta) dot(y)` and
+    /// `-sin(theta) dot(x) + cos(theta) dot(y)`) and `omega_theta` (the
+    /// turning rate, `dot(theta)`), named after the factor's coordinates.
+    pub fn speed_names(&self, model: &Model, indices: &[usize]) -> Vec<String> {
+        indices.iter().map(|&i| self.speed_name(model, i)).collect()
+    }
+
+    fn speed_name(&self, model: &Model, i: usize) -> String {
+        let name = |j: usize| model.coordinates[j].declared.name.as_str();
+        let factors = match (&model.symmetry, self.body_frame) {
+            (Some(symmetry), true) => symmetry.factors.as_slice(),
+            _ => &[],
+        };
+        for factor in factors {
+            if let GroupFactor::Se2 { x, y, theta } = *factor {
+                match i {
+                    _ if i == x || i == y => return format!("v_{}_body", name(i)),
+                    _ if i == theta => return format!("omega_{}", name(i)),
+                    _ => {}
+                }
+            }
+        }
+        format!("dot({})", name(i))
+    }
+}
+
 /// Chooses the dependent speeds at the defaults and solves for a basis of
 /// D: as expressions always, in normal form within [`EXACT_BASIS_PRODUCTS`].
 pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, MatrixError> {
-    let n = model.n();
     let dependent = pivot_columns(model);
-    let independent: Vec<usize> = (0..n).filter(|j| !dependent.contains(j)).collect();
     let frame = match model.momentum_basis {
         None => BodyFrame::of(model)?,
         Some(_) => None,
     };
+    basis_on(model, dependent, frame)
+}
+
+/// The basis of D with the speeds `dependent` solved for, on the
+/// coordinates' rows `A(q)` (another chart of D, [`super::charts`]).
+pub(super) fn basis_with_dependent(
+    model: &mut Model,
+    dependent: Vec<usize>,
+) -> Result<DistributionBasis, MatrixError> {
+    basis_on(model, dependent, None)
+}
+
+/// The basis of D with the speeds `dependent` solved for: on the body rows
+/// when `frame` is given, on `A(q)` otherwise.
+fn basis_on(
+    model: &mut Model,
+    dependent: Vec<usize>,
+    frame: Option<BodyFrame>,
+) -> Result<DistributionBasis, MatrixError> {
+    let n = model.n();
+    let independent: Vec<usize> = (0..n).filter(|j| !dependent.contains(j)).collect();
     let a = match &frame {
         Some(frame) => frame.constraints.clone(),
         None => model.constraint_expressions.clone(),
@@ -154,11 +204,17 @@ const VANISHING_PIVOT: f64 = 1e-9;
 /// pivot column of each row is the one of largest magnitude there. `None`
 /// when a pivot vanishes (A is singular at the defaults).
 fn pivots_at_defaults(model: &mut Model) -> Option<Vec<usize>> {
-    let (n, c) = (model.n(), model.c());
     let defaults = default_point(model);
-    let mut values = model
+    let values = model
         .constraint_matrix
         .evaluate(&mut model.store, &|s| defaults(s));
+    pivots_of(values, model.n(), model.c())
+}
+
+/// Gaussian elimination with partial pivoting on the `c x n` row-major
+/// values of A at a point: the pivot column of each row is the one of
+/// largest magnitude there. `None` when a pivot vanishes there.
+pub(super) fn pivots_of(mut values: Vec<f64>, n: usize, c: usize) -> Option<Vec<usize>> {
     let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let mut pivots: Vec<usize> = Vec::with_capacity(c);
     for row in 0..c {

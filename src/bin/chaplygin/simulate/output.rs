@@ -167,6 +167,7 @@ struct Report {
     energy_drift: f64,
     max_constraint_residual: f64,
     max_holonomic_residual: Option<f64>,
+    chart_switches: usize,
     seconds: f64,
 }
 
@@ -182,10 +183,10 @@ impl std::fmt::Display for Report {
             self.energy_drift,
             self.max_constraint_residual
         )?;
-        match self.max_holonomic_residual {
-            Some(residual) => write!(f, "; max holonomic residual {residual:.3e}"),
-            None => Ok(()),
+        if let Some(residual) = self.max_holonomic_residual {
+            write!(f, "; max holonomic residual {residual:.3e}")?;
         }
+        write!(f, "; chart switches {}", self.chart_switches)
     }
 }
 
@@ -218,6 +219,7 @@ where
         energy_drift: summary.energy_drift,
         max_constraint_residual: summary.max_constraint_residual,
         max_holonomic_residual: holonomic.then_some(summary.max_holonomic_residual),
+        chart_switches: summary.chart_switches,
         seconds: started.elapsed().as_secs_f64(),
     })
 }

@@ -1,0 +1,139 @@
+//! Chart switching through the command line (README, "Chart switching"):
+//! a `.model` file whose basis of D degenerates where its constraint row
+//! does not (`tests/models/sleigh_no_symmetry.model`) runs through those
+//! configurations in the interpreted reduced form, the summary line counts
+//! the switches and `trajectory.csv` has a `chart` column; a model with one
+//! chart reports no switch and has no such column.
+
+mod support;
+
+use std::f64::consts::PI;
+use std::path::PathBuf;
+use support::{chaplygin, read_csv};
+
+const FIXTURE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/models/sleigh_no_symmetry.model"
+);
+
+/// Runs `simulate` with `arguments` into a fresh directory `name`: the
+/// summary line, the CSV's header and its rows.
+fn simulate(name: &str, arguments: &[&str]) -> (String, Vec<String>, Vec<Vec<f64>>) {
+    let out: PathBuf =
+        std::env::temp_dir().join(format!("chaplygin-charts-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let mut all = vec!["simulate"];
+    all.extend(arguments);
+    all.extend(["--out", out.to_str().expect("path")]);
+    let output = chaplygin(&all);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{arguments:?}: {stderr}");
+    let summary = String::from_utf8_lossy(&output.stdout)
+        .lines()
+        .next()
+        .expect("a summary line")
+        .to_string();
+    let (header, rows) = read_csv(&out.join("trajectory.csv"));
+    (summary, header, rows)
+}
+
+/// The values of the column `name`.
+fn column(header: &[String], rows: &[Vec<f64>], name: &str) -> Vec<f64> {
+    let at = header.iter().position(|h| h == name).expect("a column");
+    rows.iter().map(|row| row[at]).collect()
+}
+
+/// Asserts the recorded energies differ from the first by less than 1e-12
+/// of it.
+fn assert_energy_kept(energy: &[f64]) {
+    let drift = energy
+        .iter()
+        .map(|e| (e - energy[0]).abs())
+        .fold(0.0, f64::max);
+    assert!(drift < 1e-12 * energy[0], "{drift:e}");
+}
+
+/// The number after `chart switches ` in a summary line.
+fn switches(summary: &str) -> usize {
+    summary
+        .split("chart switches ")
+        .nth(1)
+        .and_then(|rest| rest.split(|c: char| !c.is_ascii_digit()).next())
+        .and_then(|count| count.parse().ok())
+        .unwrap_or_else(|| panic!("no switch count in {summary}"))
+}
+
+#[test]
+fn a_model_file_runs_through_its_basis_singularities_by_switching_charts() {
+    let (summary, header, rows) = simulate(
+        "sleigh",
+        &[
+            FIXTURE,
+            "--initial",
+            "dot(x)=-0.2",
+            "--initial",
+            "dot(theta)=3",
+            "--t-end",
+            "20",
+        ],
+    );
+    assert!(summary.contains("discrete-gradient"), "{summary}");
+    let theta = column(&header, &rows, "theta");
+    // theta passes pi/2, 3 pi/2, 5 pi/2 and 7 pi/2, where the chart of
+    // dot(y) degenerates: into the chart of dot(x) and back each time
+    assert!(theta.last().expect("rows") > &(3.5 * PI), "{summary}");
+    let count = switches(&summary);
+    assert!(count >= 7, "{summary}");
+    let chart = column(&header, &rows, "chart");
+    assert_eq!(chart.windows(2).filter(|w| w[0] != w[1]).count(), count);
+    assert!(chart.iter().all(|&c| c == 0.0 || c == 1.0));
+    assert_energy_kept(&column(&header, &rows, "energy"));
+    let residual = column(&header, &rows, "constraint_residual");
+    assert!(residual.iter().all(|&r| r < 1e-9));
+}
+
+#[test]
+fn a_model_with_one_chart_reports_no_switch_and_no_chart_column() {
+    let (summary, header, _) = simulate("one-chart", &["sleigh", "--t-end", "1"]);
+    assert_eq!(switches(&summary), 0, "{summary}");
+    assert!(!header.iter().any(|h| h == "chart"), "{header:?}");
+}
+
+#[test]
+fn derive_lists_the_charts() {
+    let output = chaplygin(&["derive", FIXTURE]);
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        text.contains(
+            "the runtime switches where the active one degenerates): 0: dot(y); 1: dot(x)"
+        ),
+        "{text}"
+    );
+}
+
+/// The planar pendulum in Cartesian coordinates
+/// (`tests/models/planar_pendulum.model`): its row `2 x dot(x) + 2 z
+/// dot(z)` solved for `dot(x)` divides by `x`, which vanishes where the bob
+/// passes below or above the pivot (and the chart of `dot(z)` where `z`
+/// does). Let go at `(0.6, 0.8)` it swings round and round, through `x = 0`
+/// three times in 5 s, switching between the two charts (seven times), with
+/// its energy kept.
+#[test]
+fn the_cartesian_pendulum_swings_through_x_0_by_switching_charts() {
+    let pendulum = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/models/planar_pendulum.model"
+    );
+    let (summary, header, rows) = simulate(
+        "pendulum",
+        &[pendulum, "--initial", "x=0.6", "--t-end", "5"],
+    );
+    let x = column(&header, &rows, "x");
+    let crossings = x
+        .windows(2)
+        .filter(|w| w[0].signum() != w[1].signum())
+        .count();
+    assert_eq!(crossings, 3);
+    assert!(switches(&summary) >= 2 * crossings, "{summary}");
+    assert_energy_kept(&column(&header, &rows, "energy"));
+}
