@@ -1,0 +1,240 @@
+use super::{LagrangeDalembert, Strategy, derive};
+use crate::ir;
+use crate::model::{Model, check};
+use crate::sym::zero::SplitMix;
+use crate::sym::{ExprId, SymbolId};
+use crate::syntax::parse_str;
+use chaplygin_runtime::nalgebra::{DMatrix, DVector};
+use std::collections::HashMap;
+
+const SLEIGH: &str = include_str!("../../../../models/sleigh.model");
+const CHAIN: &str = r#"
+pub struct Chain {
+coordinates: [x, y, theta, a1, a2, a3],
+parameters: [m = 1.0, l = 0.7, k = 2.0],
+kinetic_energy: m/2*(dot(x)^2 + dot(y)^2) + m/2*dot(theta)^2
+    + m/2*((dot(x) - l*sin(theta + a1)*(dot(theta) + dot(a1)))^2
+        + (dot(y) + l*cos(theta + a1)*(dot(theta) + dot(a1)))^2)
+    + m/2*((dot(x) - l*sin(theta + a2)*(dot(theta) + dot(a2)))^2
+        + (dot(y) + l*cos(theta + a2)*(dot(theta) + dot(a2)))^2)
+    + m/2*((dot(x) - l*sin(theta + a3)*(dot(theta) + dot(a3)))^2
+        + (dot(y) + l*cos(theta + a3)*(dot(theta) + dot(a3)))^2),
+potential_energy: k/2*(a1^2 + a2^2 + a3^2),
+constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y), locked = dot(a3) - dot(a1)],
+inputs: [s1 = a1, s2 = a2],
+}
+"#;
+const TOWED: &str = r#"
+pub struct Towed {
+coordinates: [x, y, theta, alpha],
+parameters: [m = 1.0, inertia = 0.1, a = 0.5, mp = 0.3, l = 0.7, k = 2.0],
+kinetic_energy: m/2*((dot(x) - a*sin(theta)*dot(theta))^2
+    + (dot(y) + a*cos(theta)*dot(theta))^2) + inertia/2*dot(theta)^2
+    + mp/2*((dot(x) - l*sin(theta + alpha)*(dot(theta) + dot(alpha)))^2
+    + (dot(y) + l*cos(theta + alpha)*(dot(theta) + dot(alpha)))^2),
+potential_energy: k/2*alpha^2,
+constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
+inputs: [steer = alpha],
+}
+"#;
+
+fn derived(source: &str) -> (Model, LagrangeDalembert) {
+    let mut model = check(&parse_str(source).expect("parses")).expect("checks");
+    let derivation = derive(&mut model).expect("derives");
+    (model, derivation)
+}
+
+#[test]
+fn the_closed_form_solves_the_equations_exactly() {
+    for source in [crate::fixtures::SNAKEBOARD, SLEIGH] {
+        let (model, derivation) = derived(source);
+        let atoms = model.store.atoms();
+        let system = &derivation.saddle_point;
+        let solution = derivation.closed_form.as_ref().expect("derived");
+        let a = &system.constraint_matrix;
+        let balance = system
+            .mass_matrix
+            .mul(&solution.accelerations, atoms)
+            .and_then(|m| m.sub(&a.transpose().mul(&solution.multipliers, atoms)?, atoms))
+            .and_then(|m| m.sub(&system.force, atoms))
+            .expect("fits");
+        assert!(balance.is_zero(), "g qddot - A^T lambda - f must vanish");
+        let acceleration_constraint = a
+            .mul(&solution.accelerations, atoms)
+            .and_then(|m| {
+                m.sub(
+                    system.drift.exact().expect("small models' drift is exact"),
+                    atoms,
+                )
+            })
+            .expect("fits");
+        assert!(
+            acceleration_constraint.is_zero(),
+            "A qddot + Adot qdot must vanish"
+        );
+    }
+}
+
+/// Random coordinates, velocities and inputs; parameters at their defaults.
+fn random_point(model: &Model, inputs: &[SymbolId], seed: u64) -> HashMap<SymbolId, f64> {
+    let mut random = SplitMix::new(seed);
+    let mut values: HashMap<SymbolId, f64> = model
+        .parameters
+        .iter()
+        .map(|p| (p.variable.symbol, p.default.to_f64()))
+        .collect();
+    for &symbol in model
+        .coordinate_symbols()
+        .iter()
+        .chain(&model.velocities)
+        .chain(inputs)
+    {
+        values.insert(symbol, random.uniform(-2.0, 2.0));
+    }
+    values
+}
+
+/// `(qddot, lambda)` from the saddle-point pieces solved by the
+/// runtime's Gaussian elimination with partial pivoting, an independent
+/// solve of the same system.
+fn pivoted_solution<const M: usize>(
+    model: &mut Model,
+    derivation: &LagrangeDalembert,
+    values: &HashMap<SymbolId, f64>,
+) -> Vec<f64> {
+    let (n, c) = (model.n(), model.c());
+    assert_eq!(n + c, M);
+    let value_of = |s: SymbolId| values[&s];
+    let system = &derivation.saddle_point;
+    let g = system.mass_matrix.evaluate(&mut model.store, &value_of);
+    let a = system
+        .constraint_matrix
+        .evaluate(&mut model.store, &value_of);
+    let force = system.force.evaluate(&mut model.store, &value_of);
+    let drift: Vec<f64> = system
+        .drift
+        .expressions(&mut model.store)
+        .entries()
+        .iter()
+        .map(|&e| model.store.evaluate(e, &value_of))
+        .collect();
+    let mut matrix = [[0.0; M]; M];
+    for i in 0..n {
+        matrix[i][..n].copy_from_slice(&g[i * n..(i + 1) * n]);
+    }
+    for r in 0..c {
+        for j in 0..n {
+            matrix[n + r][j] = a[r * n + j];
+            matrix[j][n + r] = a[r * n + j];
+        }
+    }
+    let mut rhs = [0.0; M];
+    rhs[..n].copy_from_slice(&force);
+    rhs[n..].copy_from_slice(&drift);
+    let solution = DMatrix::from_fn(M, M, |i, j| matrix[i][j])
+        .lu()
+        .solve(&DVector::from_column_slice(&rhs))
+        .expect("a regular saddle-point system");
+    let (accelerations, mu) = solution.as_slice().split_at(n);
+    accelerations
+        .iter()
+        .copied()
+        .chain(mu.iter().map(|m| -m))
+        .collect()
+}
+
+/// The closed form (when derived) and the solution by blocks against the
+/// pivoted solve, at random points.
+fn assert_strategies_agree<const M: usize>(source: &str) {
+    let (mut model, derivation) = derived(source);
+    for seed in 0..20 {
+        let values = random_point(&model, &derivation.inputs, seed);
+        let value_of = |s: SymbolId| values[&s];
+        let pivoted = pivoted_solution::<M>(&mut model, &derivation, &values);
+        let by_blocks = model
+            .store
+            .evaluate_many(&derivation.numeric_solution, &value_of);
+        let mut solutions = vec![("by blocks", by_blocks)];
+        if let Some(closed_form) = &derivation.closed_form {
+            let mut symbolic = closed_form
+                .accelerations
+                .evaluate(&mut model.store, &value_of);
+            symbolic.extend(
+                closed_form
+                    .multipliers
+                    .evaluate(&mut model.store, &value_of),
+            );
+            solutions.push(("closed form", symbolic));
+        }
+        for (name, solution) in solutions {
+            for (s, p) in solution.iter().zip(&pivoted) {
+                assert!(
+                    (s - p).abs() <= 1e-10 * (1.0 + p.abs()),
+                    "{name}, seed {seed}: {solution:?} vs {pivoted:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn both_solutions_agree_on_the_snakeboard_and_the_sleigh() {
+    assert_strategies_agree::<7>(crate::fixtures::SNAKEBOARD);
+    assert_strategies_agree::<4>(SLEIGH);
+}
+
+/// The weighted cost of `outputs` once lowered ([`ir::Program::weighted_cost`]).
+fn lowered_weight(model: &Model, d: &LagrangeDalembert, outputs: &[ExprId]) -> u64 {
+    let mut arguments = model.coordinate_symbols();
+    arguments.extend(&model.velocities);
+    arguments.extend(&d.inputs);
+    arguments.extend(model.parameter_symbols());
+    ir::lower(&model.store, &arguments, outputs)
+        .expect("every symbol is an argument")
+        .weighted_cost()
+}
+
+/// The strategy the DAG estimate chooses is the one whose lowered
+/// program weighs less (the closed form on a tie): the sleigh's and the
+/// snakeboard's closed forms are cheap, the towed sleigh's dense coupled
+/// metric does not invert cheaply in closed form.
+#[test]
+fn the_estimate_chooses_the_strategy_that_lowers_cheaper() {
+    for (name, source) in [
+        ("snakeboard", crate::fixtures::SNAKEBOARD),
+        ("sleigh", SLEIGH),
+        ("towed", TOWED),
+    ] {
+        let (mut model, d) = derived(source);
+        let closed_form = d.closed_form.as_ref().expect("within the limits");
+        let closed_form = closed_form.outputs(&mut model);
+        let symbolic = lowered_weight(&model, &d, &closed_form);
+        let numeric = lowered_weight(&model, &d, &d.numeric_solution);
+        println!(
+            "{name}: lowered weights closed form {symbolic}, by blocks {numeric}; \
+             estimated {:?} -> {:?}",
+            d.weighted_costs, d.strategy
+        );
+        let expected = if symbolic <= numeric {
+            Strategy::Symbolic
+        } else {
+            Strategy::Numeric
+        };
+        assert_eq!(d.strategy, expected, "{name}");
+    }
+    assert_strategies_agree::<5>(TOWED);
+}
+
+/// A sleigh towing three pendulums: one dense 6 x 6 block of `g`, past
+/// the limit, so no closed form is attempted (it would not finish).
+#[test]
+fn a_large_dense_metric_goes_numeric_without_a_closed_form() {
+    let (model, d) = derived(CHAIN);
+    assert_eq!(
+        model.mass_matrix.diagonal_blocks(),
+        [vec![0, 1, 2, 3, 4, 5]]
+    );
+    assert!(d.closed_form.is_none() && d.weighted_costs.0.is_none());
+    assert_eq!(d.strategy, Strategy::Numeric);
+    assert_strategies_agree::<8>(CHAIN);
+}
