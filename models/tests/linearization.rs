@@ -448,6 +448,12 @@ fn the_pendulums_coordinates_follow_its_configuration_constraints() {
         linearize(&model, &swinging, &[0.0], &[]),
         Err(SteadyError::NotSteady { quantity, .. }) if quantity == "dot(theta)"
     ));
+    // Every coordinate given, on the rod: nothing is left to solve, and the
+    // point stands.
+    let given = [Some(0.0), Some(0.0), Some(-pendulum.l)];
+    let hanging = OperatingPoint::solve(&model, &given, &[Some(0.0), None, None])
+        .expect("the given configuration meets the constraints");
+    assert_eq!(hanging.q, [0.0, 0.0, -pendulum.l]);
     let inconsistent = OperatingPoint::solve(&model, &[Some(0.0), Some(0.5), None], &[None; 3]);
     assert_eq!(
         inconsistent,

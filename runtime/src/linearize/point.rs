@@ -1,7 +1,9 @@
 //! An operating point `(q, qdot)` from the coordinates and velocities
 //! given (INTERFACE.md section 5, `--at`).
 //!
-//! - Coordinates: those given are fixed; of the others, one per
+//! - Coordinates: those given are fixed, the others 0 when that meets
+//!   `f(q) = 0` already (the upright bicycle given its pitch, where `df/dq`
+//!   vanishes on the lean and the steer); else, of the others, one per
 //!   configuration constraint (the pivots of `df/dq` on them, by complete
 //!   pivoting) is solved from `f(q) = 0` by Newton's method, and the rest
 //!   are 0. Newton starts from 0, or from [`GENERIC_START`] where `df/dq`
@@ -130,6 +132,9 @@ pub fn configuration(model: &dyn Dynamics, given: &[Option<f64>]) -> Result<Vec<
     if names.is_empty() {
         return Ok(q);
     }
+    if meets(model, &q) {
+        return Ok(q);
+    }
     let unset: Vec<usize> = (0..q.len()).filter(|&i| given[i].is_none()).collect();
     let mut chosen = solvable(model, &q, &unset);
     if chosen.len() < names.len() {
@@ -153,6 +158,13 @@ pub fn configuration(model: &dyn Dynamics, given: &[Option<f64>]) -> Result<Vec<
     Ok(q)
 }
 
+/// Whether `q` meets `f(q) = 0` to round-off (Newton's criterion).
+fn meets(model: &dyn Dynamics, q: &[f64]) -> bool {
+    let scale = q.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    largest(model.holonomic_residual(q).as_slice())
+        .is_none_or(|(_, value)| value.abs() <= 1e-13 * scale)
+}
+
 /// The pivots `(constraint, coordinate)` of `df/dq` at `q` among the
 /// coordinates `unset`.
 fn solvable(model: &dyn Dynamics, q: &[f64], unset: &[usize]) -> Vec<(usize, usize)> {
@@ -167,16 +179,15 @@ fn newton(
     solved: &[usize],
     names: &[String],
 ) -> Result<(), PointError> {
-    let scale = q.iter().fold(1.0f64, |m, v| m.max(v.abs()));
     let mut closest: Option<(usize, f64)> = None;
     for step in 0..=NEWTON_STEPS {
+        if meets(model, q) {
+            return Ok(());
+        }
         let residual = model.holonomic_residual(q);
         let Some((worst, value)) = largest(residual.as_slice()) else {
             return Ok(());
         };
-        if value.abs() <= 1e-13 * scale {
-            return Ok(());
-        }
         if closest.is_none_or(|(_, best)| value.abs() < best.abs()) {
             closest = Some((worst, value));
         }
