@@ -137,13 +137,24 @@ fn preserved(
     if let Some(decided) = store.attempt(EXACT_INVARIANCE_PRODUCTS, exact) {
         return decided;
     }
-    let expression = store.expression_of(form);
-    let moved = store.substitute(expression, action)?;
-    let difference = store.sub(moved, expression);
-    match all_zero_at_points(store, &[], &[difference], |values| values[0] == 0) {
+    match preserved_at_points(store, form, action)? {
         Ok(preserved) => Ok(preserved),
         Err(_) => exact(store),
     }
+}
+
+/// `f(g q, g_* qdot) - f(q, qdot)` at two random points.
+fn preserved_at_points(
+    store: &mut Store,
+    form: &RationalFunction,
+    action: &HashMap<SymbolId, ExprId>,
+) -> Result<Result<bool, Outside>, SymError> {
+    let expression = store.expression_of(form);
+    let moved = store.substitute(expression, action)?;
+    let difference = store.sub(moved, expression);
+    Ok(all_zero_at_points(store, &[], &[difference], |values| {
+        values[0] == 0
+    }))
 }
 
 /// `f(g q, g_* qdot) = f(q, qdot)` by the normal form of the difference.
@@ -208,14 +219,27 @@ fn constraints_preserved(
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<bool, SymError> {
-    let (c, n) = (a.rows(), a.columns());
-    if c == 0 {
+    if a.rows() == 0 {
         return Ok(true);
     }
     let exact = |store: &mut Store| exactly_constraints_preserved(store, a, velocities, action);
     if let Some(decided) = store.attempt(EXACT_INVARIANCE_PRODUCTS, exact) {
         return decided;
     }
+    match constraints_preserved_at_points(store, a, velocities, action)? {
+        Ok(preserved) => Ok(preserved),
+        Err(_) => exact(store),
+    }
+}
+
+/// The rank of `A(q)` stacked on the transformed rows at two random points.
+fn constraints_preserved_at_points(
+    store: &mut Store,
+    a: &Matrix,
+    velocities: &[SymbolId],
+    action: &HashMap<SymbolId, ExprId>,
+) -> Result<Result<bool, Outside>, SymError> {
+    let (c, n) = (a.rows(), a.columns());
     let mut moved = Vec::with_capacity(c * n);
     for i in 0..c {
         let residual = moved_residual(store, a, i, velocities, action)?;
@@ -224,10 +248,7 @@ fn constraints_preserved(
         }
     }
     let in_row_space = |values: &[u64]| modular::rank(values.to_vec(), 2 * c, n) == c;
-    match all_zero_at_points(store, a.entries(), &moved, in_row_space) {
-        Ok(preserved) => Ok(preserved),
-        Err(_) => exact(store),
-    }
+    Ok(all_zero_at_points(store, a.entries(), &moved, in_row_space))
 }
 
 /// `sum_j A_ij(g q) (g_* qdot)_j` as an expression.
@@ -280,4 +301,50 @@ fn exactly_constraints_preserved(
     let atoms = store.atoms().clone();
     let rank = Matrix::new(2 * c, n, stacked).map_or(0, |m| m.rank(&atoms));
     Ok(rank == c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{constraints_preserved_at_points, group_action, preserved_at_points};
+    use crate::model::check;
+    use crate::sym::{Matrix, Poly, RationalFunction};
+    use crate::syntax::parse_str;
+
+    const SLEIGH: &str = include_str!("../../../models/sleigh.model");
+
+    /// At random points, as exactly: the sleigh's energy and blade row are
+    /// invariant under its se2, a potential `x` and a row `dot(x) = 0` are not.
+    #[test]
+    fn invariance_is_decided_at_points_as_by_normal_forms() {
+        let mut model = check(&parse_str(SLEIGH).expect("parses")).expect("checks");
+        let symmetry = model.symmetry.clone().expect("se2");
+        let velocities = model.velocities.clone();
+        let store = &mut model.store;
+        let action =
+            group_action(store, &symmetry, &model.coordinates, &velocities).expect("an action");
+        let x =
+            RationalFunction::from_poly(Poly::atom(store.symbol_atom(model.coordinates[0].symbol)));
+        for (form, invariant) in [(&model.kinetic_energy, true), (&x, false)] {
+            let decided = preserved_at_points(store, form, &action)
+                .expect("substitutes")
+                .expect("in the class");
+            assert_eq!(decided, invariant, "{form:?}");
+        }
+        let forward = Matrix::new(
+            1,
+            3,
+            vec![
+                RationalFunction::one(),
+                RationalFunction::zero(),
+                RationalFunction::zero(),
+            ],
+        )
+        .expect("1 x 3");
+        for (rows, invariant) in [(&model.constraint_matrix, true), (&forward, false)] {
+            let decided = constraints_preserved_at_points(store, rows, &velocities, &action)
+                .expect("substitutes")
+                .expect("in the class");
+            assert_eq!(decided, invariant, "{rows:?}");
+        }
+    }
 }

@@ -283,3 +283,23 @@ fn the_body_frame_basis_has_no_group_coordinate_in_a_denominator() {
         }
     }
 }
+
+/// Moore's test at random points agrees with the exact one: a sleigh's
+/// blade row is not exact, `d(x^2 + y^2) = 2 x dot(x) + 2 y dot(y)` is.
+#[test]
+fn moores_test_at_points_agrees_with_the_exact_test() {
+    let mut model = constrained(
+        "x, y, theta",
+        "blade = -sin(theta)*dot(x) + cos(theta)*dot(y), circle = 2*x*dot(x) + 2*y*dot(y)",
+    );
+    let exact = super::exact_rows(&mut model).expect("decided");
+    assert_eq!(exact, [false, true]);
+    for (row, expected) in exact.iter().enumerate() {
+        let entries: Vec<_> = (0..model.n())
+            .map(|j| model.constraint_matrix.get(row, j).clone())
+            .collect();
+        let at_points =
+            super::at_points::is_exact_row_at_points(&mut model, &entries).expect("in the class");
+        assert_eq!(at_points, *expected, "row {row}");
+    }
+}

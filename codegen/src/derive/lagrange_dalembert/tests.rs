@@ -238,3 +238,32 @@ fn a_large_dense_metric_goes_numeric_without_a_closed_form() {
     assert_eq!(d.strategy, Strategy::Numeric);
     assert_strategies_agree::<8>(CHAIN);
 }
+
+/// The structured `-Adot qdot` (derivatives of the rows' expressions) takes
+/// the values of the exact one at random states.
+#[test]
+fn the_structured_drift_is_the_exact_drift() {
+    for source in [crate::fixtures::SNAKEBOARD, SLEIGH, CHAIN] {
+        let (mut model, derivation) = derived(source);
+        let exact = derivation
+            .saddle_point
+            .drift
+            .exact()
+            .expect("small models' drift is exact")
+            .clone();
+        let structured = super::structured_drift(&mut model);
+        for seed in 1..=5 {
+            let values = random_point(&model, &derivation.inputs, seed);
+            let value_of = |s: SymbolId| values[&s];
+            let exact_values = exact.evaluate(&mut model.store, &value_of);
+            for (i, &entry) in structured.entries().iter().enumerate() {
+                let value = model.store.evaluate(entry, &value_of);
+                assert!(
+                    (value - exact_values[i]).abs() <= 1e-12 * (1.0 + exact_values[i].abs()),
+                    "row {i}: {value} vs {}",
+                    exact_values[i]
+                );
+            }
+        }
+    }
+}

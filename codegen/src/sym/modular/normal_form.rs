@@ -128,3 +128,65 @@ impl Store {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::sym::modular::{Values, at_defined_points};
+    use crate::sym::{Function, Matrix, Rational, RationalFunction, Store, SymbolKind};
+
+    /// `(store, r, cos y)` with `r = sqrt(1 + sin(x)^2)`.
+    fn store_with_root() -> (Store, crate::sym::ExprId, crate::sym::ExprId) {
+        let mut store = Store::new();
+        let x = store.declare("x", SymbolKind::Coordinate);
+        let y = store.declare("y", SymbolKind::Coordinate);
+        let (x, y) = (store.symbol(x), store.symbol(y));
+        let sine = store.apply(Function::Sin, x).expect("applies");
+        let square = store.pow(sine, Rational::integer(2)).expect("applies");
+        let one = store.integer(1);
+        let radicand = store.add2(one, square);
+        let root = store.sqrt(radicand).expect("applies");
+        let cosine = store.apply(Function::Cos, y).expect("applies");
+        (store, root, cosine)
+    }
+
+    /// The normal form (a root atom reduced by `r^2 = u`, a cleared
+    /// denominator) and the expression it came from take the same value:
+    /// the atoms' evaluation against the DAG's.
+    #[test]
+    fn a_normal_form_with_a_root_evaluates_as_its_expression() {
+        let (mut store, root, cosine) = store_with_root();
+        let product = store.mul2(root, cosine);
+        let reciprocal = store.pow(root, Rational::integer(-3)).expect("applies");
+        let expression = store.add2(product, reciprocal);
+        let form = store.normal(expression).expect("in the class");
+        let pairs = at_defined_points(4, |point| {
+            let from_form = store
+                .clone()
+                .evaluate_normal_modular(std::slice::from_ref(&form), &mut Values::at(point))?;
+            let from_expression = store.evaluate_modular(&[expression], &point)?;
+            Ok((from_form[0], from_expression[0]))
+        })
+        .expect("four points where 1 + sin(x)^2 is a square");
+        for (from_form, from_expression) in pairs {
+            assert_eq!(from_form, from_expression);
+        }
+    }
+
+    /// Rows `(r, 1)`, `cos(y) (r, 1)`, `(1, 0)`: the first alone has full
+    /// rank, the second depends on it, and the three have rank 2.
+    #[test]
+    fn prefixes_of_full_rank_are_found_and_dependent_rows_are_not() {
+        let (mut store, root, cosine) = store_with_root();
+        let scaled = store.mul2(cosine, root);
+        let entries: Vec<RationalFunction> = [root, store.integer(1), scaled, cosine]
+            .into_iter()
+            .map(|e| store.normal(e).expect("in the class"))
+            .chain([RationalFunction::one(), RationalFunction::zero()])
+            .collect();
+        let rows = Matrix::new(3, 2, entries).expect("3 x 2");
+        let full = store
+            .prefixes_of_full_rank_at_points(&rows)
+            .expect("in the class");
+        assert_eq!(full, [true, false, false]);
+    }
+}
