@@ -22,6 +22,8 @@
 //!
 //! **Growth vector.** With `D^1 = D` and `D^{j+1} = D^j + [D, D^j]`, the
 //! exact generic ranks `(rank D^1, rank D^2, ...)` until they stop growing
+//! or reach `n - h` (`h` holonomic constraints `f = 0`: every `df`
+//! annihilates D and, `ker df` being integrable, its brackets)
 //! (generic: at almost every configuration; a rank that drops on a thin set,
 //! such as the snakeboard's basis at `phi = +-pi/2`, is not seen).
 //! Each level brackets the basis fields with the fields the previous level
@@ -285,7 +287,7 @@ fn growth_vector(model: &mut Model, basis: &[Field]) -> Result<Vec<usize>, Matri
     let mut span = Vec::new();
     let mut newest = independent_additions(model, &mut span, basis.to_vec())?;
     let mut growth = vec![span.len()];
-    while span.len() < model.n() && !newest.is_empty() {
+    while span.len() < reachable_bound(model) && !newest.is_empty() {
         let brackets = brackets_with(model, basis, &newest)?;
         newest = independent_additions(model, &mut span, brackets)?;
         if newest.is_empty() {
@@ -294,6 +296,13 @@ fn growth_vector(model: &mut Model, basis: &[Field]) -> Result<Vec<usize>, Matri
         growth.push(span.len());
     }
     Ok(growth)
+}
+
+/// The largest rank the growth of D can reach: `n - h` with `h` holonomic
+/// constraints. Each `df` annihilates D, and `ker df` is integrable, so it
+/// annihilates every bracket of D too: the motion stays on `f = const`.
+pub(super) fn reachable_bound(model: &Model) -> usize {
+    model.n() - model.mechanism.holonomic.len()
 }
 
 /// Every `[X, Y]` with X a basis field and Y one of `newest`.

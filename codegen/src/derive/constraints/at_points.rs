@@ -89,7 +89,7 @@ fn growth_at(
     let mut span = SpanAtPoint::new(model.n(), point);
     let mut newest = span.additions(model, fields.clone())?;
     let mut growth = vec![span.rank()];
-    while span.rank() < model.n() && !newest.is_empty() {
+    while span.rank() < super::reachable_bound(model) && !newest.is_empty() {
         let mut brackets = Vec::with_capacity(fields.len() * newest.len());
         for x in &fields {
             for y in &newest {

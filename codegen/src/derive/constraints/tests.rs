@@ -303,3 +303,18 @@ fn moores_test_at_points_agrees_with_the_exact_test() {
         assert_eq!(at_points, *expected, "row {row}");
     }
 }
+
+/// The benchmark bicycle: 8 coordinates, four rolling rows and the front
+/// contact's height, so 3 speeds are free (lean, steer, forward); its
+/// brackets reach every direction the height constraint allows, n - 1 = 7,
+/// and the growth is complete there though it never reaches n.
+#[test]
+fn the_bicycles_growth_stops_at_its_holonomic_constraint() {
+    let mut bicycle = model(include_str!("../../../../models/bicycle.model"));
+    let analysis = analyse(&mut bicycle).expect("analysed");
+    assert_eq!(analysis.growth.first(), Some(&3));
+    assert_eq!(analysis.growth.last(), Some(&7));
+    assert!(analysis.growth_complete);
+    assert!(!analysis.integrable);
+    assert_eq!(analysis.classification, Classification::Nonholonomic);
+}
