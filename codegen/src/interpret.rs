@@ -161,6 +161,7 @@ impl InterpretedModel {
     /// [`crate::generate`] takes), keeping the functions' programs.
     pub fn from_source(source: &str) -> Result<InterpretedModel, Diagnostics> {
         let (mut model, constraints) = analysed_model(source)?;
+        model.emits_rust = false;
         let emitted = crate::derive::derivation(&mut model, &constraints)
             .and_then(|derivation| emit::emit(&mut model, &constraints, &derivation));
         over_budget(&model)?;

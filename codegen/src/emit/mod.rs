@@ -389,9 +389,16 @@ pub(crate) fn function_body(
     }
     let program = ir::lower(&model.store, &symbols, outputs)
         .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
-    let emitted = program
-        .emit(&sources)
-        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
+    let emitted = if model.emits_rust {
+        program
+            .emit(&sources)
+            .map_err(|e| Diagnostics::internal(model.name.span(), e))?
+    } else {
+        ir::Emitted {
+            statements: TokenStream::new(),
+            outputs: vec![TokenStream::new(); outputs.len()],
+        }
+    };
     let mut used: Vec<&'static str> = program
         .instructions()
         .iter()

@@ -146,6 +146,7 @@ pub fn check_within(syntax: &ModelSyntax, budget: Budget) -> Result<Model, Diagn
         visibility: syntax.visibility.clone(),
         options,
         store: checker.store,
+        emits_rust: true,
         coordinates,
         velocities,
         parameters,
