@@ -13,8 +13,11 @@
 #[allow(dead_code)]
 #[path = "../models/tests/support/benchmark_bicycle.rs"]
 mod benchmark_bicycle;
+#[path = "support/canonical_form.rs"]
+mod canonical_form;
 
 use benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
+use canonical_form::{assert_entries, printed_matrix};
 use nalgebra::{Complex, Matrix2};
 use std::path::PathBuf;
 use std::process::Command;
@@ -166,39 +169,6 @@ const PUBLISHED: [(&str, [[f64; 2]; 2]); 4] = [
     ("K2", [[0.0, 76.59734589573222], [0.0, 2.65431523794604]]),
 ];
 
-/// The matrix printed under `name:`: a header row naming the columns, then
-/// one row per coordinate, its name first.
-fn printed_matrix(text: &str, name: &str) -> [[f64; 2]; 2] {
-    let mut lines = text
-        .lines()
-        .skip_while(|line| *line != format!("{name}:"))
-        .skip(1);
-    let header: Vec<&str> = lines.next().expect("a header").split_whitespace().collect();
-    assert_eq!(header, ["phi", "delta"], "{text}");
-    let mut row = |coordinate: &str| -> [f64; 2] {
-        let fields: Vec<&str> = lines.next().expect("a row").split_whitespace().collect();
-        assert_eq!(fields[0], coordinate, "{text}");
-        [fields[1], fields[2]].map(|field| field.parse().expect("a number"))
-    };
-    [row("phi"), row("delta")]
-}
-
-/// Every entry of `found` within 1e-12 of `expected`'s, relative (absolute
-/// where it is 0).
-fn assert_entries(found: &[[f64; 2]; 2], expected: &[[f64; 2]; 2], what: &str) {
-    for i in 0..2 {
-        for j in 0..2 {
-            let (f, e) = (found[i][j], expected[i][j]);
-            let scale = if e == 0.0 { 1.0 } else { e.abs() };
-            assert!(
-                (f - e).abs() <= 1e-12 * scale,
-                "{what}[{i}][{j}]: {f:.16e} vs {e:.16e}, {:e} relative",
-                (f - e).abs() / scale
-            );
-        }
-    }
-}
-
 fn rows(matrix: &Matrix2<f64>) -> [[f64; 2]; 2] {
     [
         [matrix[(0, 0)], matrix[(0, 1)]],
@@ -216,7 +186,7 @@ fn the_declared_bicycles_canonical_form_is_the_papers_to_1e_12() {
     let CanonicalMatrices { m, c1, k0, k2 } = BenchmarkParameters::benchmark().canonical();
     let closed_form = [("M", m), ("C1", c1), ("K0", k0), ("K2", k2)];
     for ((name, published), (_, closed)) in PUBLISHED.iter().zip(closed_form) {
-        let found = printed_matrix(&text, name);
+        let found = printed_matrix(&text, name, ["phi", "delta"]);
         assert_entries(&found, published, &format!("{name} (published)"));
         assert_entries(&found, &rows(&closed), &format!("{name} (appendix A)"));
     }

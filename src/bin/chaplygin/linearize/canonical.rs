@@ -161,8 +161,8 @@ pub fn canonical_form(
 fn gravity(parameters: &BTreeMap<String, f64>, name: &str) -> Result<f64, CanonicalRequestError> {
     let problem = match parameters.get(name) {
         None => "no parameter of the model",
-        Some(&value) if value == 0.0 => "0",
-        Some(&value) => return Ok(value),
+        Some(&value) if value != 0.0 => return Ok(value),
+        Some(_) => "0",
     };
     Err(CanonicalRequestError::Gravity {
         name: name.to_string(),
@@ -205,7 +205,7 @@ fn describe(form: &CanonicalForm, request: &Request, g: f64) -> String {
 }
 
 /// `name`, then a header row of `q` and one row per coordinate, every entry
-/// to 16 significant digits.
+/// to 16 significant digits (a zero printed without its sign).
 fn named_matrix(name: &str, matrix: &DMatrix<f64>, q: &[String]) -> String {
     let width = q.iter().map(String::len).max().unwrap_or(0);
     let mut text = format!("{name}:\n{:width$}", "");
@@ -216,7 +216,7 @@ fn named_matrix(name: &str, matrix: &DMatrix<f64>, q: &[String]) -> String {
     for (i, row) in q.iter().enumerate() {
         let _ = write!(text, "{row:width$}");
         for j in 0..q.len() {
-            let _ = write!(text, " {:>23.15e}", matrix[(i, j)]);
+            let _ = write!(text, " {:>23.15e}", matrix[(i, j)] + 0.0);
         }
         text.push('\n');
     }
