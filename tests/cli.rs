@@ -1172,6 +1172,10 @@ fn canonical_requests_without_a_canonical_form_are_one_line_errors() {
         ]),
         &["`jw` is a parameter"],
     );
+    assert_one_line_error(
+        &snakeboard(&[&straight[..], &["--canonical", "psi,phi", "--param", "m=0"]].concat()),
+        &["--canonical-gravity", "`m` is 0"],
+    );
     // The torso alone: the wheels' rate enters its equation (C1's jt/r).
     assert_one_line_error(
         &snakeboard(&[&straight[..], &["--canonical", "psi"]].concat()),

@@ -1,5 +1,6 @@
 //! `chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
-//! [--param NAME=VALUE]... [--out DIR]` (INTERFACE.md section 5): the
+//! [--param NAME=VALUE]... [--out DIR] [--canonical Q1,Q2,... --canonical-speed
+//! VAR[=V1,V2] [--canonical-gravity NAME]]` (INTERFACE.md section 5): the
 //! operating point from `--at` (`chaplygin::runtime::linearize::point`),
 //! the linear system about it with the symmetry reduced and the constraints
 //! eliminated (`chaplygin::runtime::linearize::steady`), its eigenvalues;
@@ -43,8 +44,9 @@ pub struct LinearizeArgs {
     /// A built-in model's name, or the path of a `.model` file.
     pub model: String,
     /// A coordinate (`phi=0`) or a velocity (`dot(theta)=-v/r`) of the
-    /// operating point; EXPR may use the parameters and the sweep variable.
-    #[arg(long = "at", value_parser = at)]
+    /// operating point; EXPR may use the parameters, the sweep variable and
+    /// the `--canonical-speed` variable.
+    #[arg(long = "at", value_name = "NAME=EXPR", value_parser = at)]
     pub at: Vec<(String, String)>,
     /// Sweep VAR from START to STOP (included when on the grid) by STEP.
     #[arg(long, value_parser = sweep::parse)]
@@ -60,6 +62,7 @@ pub struct LinearizeArgs {
     /// (`phi,delta`); f are the inputs, one per coordinate.
     #[arg(
         long,
+        value_name = "Q1,Q2,...",
         value_delimiter = ',',
         requires = "canonical_speed",
         conflicts_with = "sweep"
@@ -67,11 +70,16 @@ pub struct LinearizeArgs {
     pub canonical: Vec<String>,
     /// The speed v of `--canonical`: a variable the `--at` expressions use,
     /// set to 1 and 2 (`VAR`) or to V1 and V2 (`VAR=V1,V2`).
-    #[arg(long, value_parser = canonical::speed, requires = "canonical")]
+    #[arg(
+        long,
+        value_name = "VAR[=V1,V2]",
+        value_parser = canonical::speed,
+        requires = "canonical"
+    )]
     pub canonical_speed: Option<CanonicalSpeed>,
     /// The gravity parameter of `--canonical`: K0 is the speed-independent
     /// stiffness divided by its value.
-    #[arg(long, default_value = "g", requires = "canonical")]
+    #[arg(long, value_name = "NAME", default_value = "g", requires = "canonical")]
     pub canonical_gravity: String,
 }
 

@@ -222,3 +222,16 @@ fn named_matrix(name: &str, matrix: &DMatrix<f64>, q: &[String]) -> String {
     }
     text
 }
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_speeds_default_to_1_and_2() {
+        let speed = |text| super::speed(text).map(|s| (s.variable, s.values));
+        assert_eq!(speed("v"), Ok(("v".to_string(), (1.0, 2.0))));
+        assert_eq!(speed("v=3, 7"), Ok(("v".to_string(), (3.0, 7.0))));
+        for bad in ["", "v=3", "v=3,7,9", "v=a,b", "dot(v)", "v=1,inf"] {
+            assert!(speed(bad).is_err(), "{bad}");
+        }
+    }
+}
