@@ -3,14 +3,22 @@
 //! wheels, the front contact's height as a holonomic constraint), through
 //! `chaplygin linearize bicycle`: its eigenvalues against the paper's closed
 //! form, written out independently from the 25 parameters in
-//! `models/tests/support/benchmark_bicycle.rs`, and its stable speed range.
+//! `models/tests/support/benchmark_bicycle.rs`, its stable speed range, and
+//! its canonical form `M qddot + v C1 qdot + (g K0 + v^2 K2) q = f` in lean
+//! `phi` and steer `delta` (the paper's equation (2.2)) against the matrices
+//! the paper publishes for table 1 (quoted in MATH.md section 6) and against
+//! the closed form of its appendix A, every entry to 1e-12 relative (1e-12
+//! absolute where it is 0). Each command derives the bicycle once.
 
 #[allow(dead_code)]
 #[path = "../models/tests/support/benchmark_bicycle.rs"]
 mod benchmark_bicycle;
+#[path = "support/canonical_form.rs"]
+mod canonical_form;
 
-use benchmark_bicycle::BenchmarkParameters;
-use nalgebra::Complex;
+use benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
+use canonical_form::{assert_entries, printed_matrix};
+use nalgebra::{Complex, Matrix2};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -28,16 +36,13 @@ const UPRIGHT: [&str; 10] = [
     "delta=0",
 ];
 
-/// `eigenvalues.csv` of `chaplygin linearize bicycle ... --sweep SWEEP`:
-/// per grid speed, the eigenvalues.
-fn swept(name: &str, sweep: &str) -> Vec<(f64, Vec<Complex<f64>>)> {
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&out);
+/// The standard output of a successful `chaplygin linearize bicycle` about
+/// upright running with `arguments` added.
+fn upright(arguments: &[&str]) -> String {
     let output = Command::new(env!("CARGO_BIN_EXE_chaplygin"))
         .args(["linearize", "bicycle"])
         .args(UPRIGHT)
-        .args(["--sweep", sweep, "--out"])
-        .arg(&out)
+        .args(arguments)
         .output()
         .expect("runs");
     assert!(
@@ -45,6 +50,15 @@ fn swept(name: &str, sweep: &str) -> Vec<(f64, Vec<Complex<f64>>)> {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
+    String::from_utf8(output.stdout).expect("UTF-8")
+}
+
+/// `eigenvalues.csv` of `chaplygin linearize bicycle ... --sweep SWEEP`:
+/// per grid speed, the eigenvalues.
+fn swept(name: &str, sweep: &str) -> Vec<(f64, Vec<Complex<f64>>)> {
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&out);
+    upright(&["--sweep", sweep, "--out", out.to_str().expect("UTF-8")]);
     let text = std::fs::read_to_string(out.join("eigenvalues.csv")).expect("written");
     text.lines()
         .skip(1)
@@ -126,4 +140,54 @@ fn the_weave_and_capsize_speeds_are_the_papers_to_1e_6() {
         end >= capsize && end - capsize <= 1e-6 + 1e-12,
         "{end} vs {capsize}"
     );
+}
+
+/// The matrices of Meijaard et al. (2007), section 5 (MATH.md section 6),
+/// rows `(phi, delta)`.
+const PUBLISHED: [(&str, [[f64; 2]; 2]); 4] = [
+    (
+        "M",
+        [
+            [80.81722, 2.31941332208709],
+            [2.31941332208709, 0.29784188199686],
+        ],
+    ),
+    (
+        "C1",
+        [
+            [0.0, 33.86641391492494],
+            [-0.85035641456978, 1.68540397397560],
+        ],
+    ),
+    (
+        "K0",
+        [
+            [-80.95, -2.59951685249872],
+            [-2.59951685249872, -0.80329488458618],
+        ],
+    ),
+    ("K2", [[0.0, 76.59734589573222], [0.0, 2.65431523794604]]),
+];
+
+fn rows(matrix: &Matrix2<f64>) -> [[f64; 2]; 2] {
+    [
+        [matrix[(0, 0)], matrix[(0, 1)]],
+        [matrix[(1, 0)], matrix[(1, 1)]],
+    ]
+}
+
+#[test]
+fn the_declared_bicycles_canonical_form_is_the_papers_to_1e_12() {
+    let text = upright(&["--canonical", "phi,delta", "--canonical-speed", "v"]);
+    assert!(
+        text.contains("at v = 1 and v = 2") && text.contains("divided by g = 9.81"),
+        "{text}"
+    );
+    let CanonicalMatrices { m, c1, k0, k2 } = BenchmarkParameters::benchmark().canonical();
+    let closed_form = [("M", m), ("C1", c1), ("K0", k0), ("K2", k2)];
+    for ((name, published), (_, closed)) in PUBLISHED.iter().zip(closed_form) {
+        let found = printed_matrix(&text, name, ["phi", "delta"]);
+        assert_entries(&found, published, &format!("{name} (published)"));
+        assert_entries(&found, &rows(&closed), &format!("{name} (appendix A)"));
+    }
 }

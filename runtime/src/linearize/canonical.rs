@@ -9,8 +9,10 @@
 //! steady motions at the speeds `v1 != v2`, both with the coordinates `q`
 //! and their speeds `dot(q)` among the independent entries of the state and
 //! one input per coordinate (`f`, a generalized force on it). The rows of
-//! `dot(q)` read `qddot = A_q q + A_v qdot + B_v f` (the other independent
-//! entries must not enter them: their columns vanish), so
+//! `dot(q)` read `qddot = A_q q + A_v qdot + B_v f`: the other independent
+//! entries must not enter them (their columns vanish, to
+//! [`DECOUPLED`] times the rows' largest entry), else the coordinates do not
+//! decouple and there is no canonical form in them. Then
 //!
 //! ```text
 //! M = B_v^-1,   v C1 = -M A_v,   X(v) = g K0 + v^2 K2 = -M A_q,
@@ -23,6 +25,10 @@
 
 use super::LinearSystem;
 use nalgebra::DMatrix;
+
+/// Below this times the largest entry of the rows of `dot(q)` (at least 1),
+/// another entry's column in them counts as zero.
+pub const DECOUPLED: f64 = 1e-9;
 
 /// `M`, `C1`, `K0`, `K2`.
 #[derive(Clone, Debug, PartialEq)]
@@ -51,6 +57,18 @@ pub enum CanonicalError {
         /// The inputs.
         columns: usize,
     },
+    /// Another entry of the state enters the rows of the speeds.
+    #[error(
+        "`{entry}` enters the equation of `{speed}` (coefficient {value:e}): the coordinates do not decouple from the rest of the state"
+    )]
+    Coupled {
+        /// The other entry.
+        entry: String,
+        /// The speed whose row it enters.
+        speed: String,
+        /// Its coefficient there.
+        value: f64,
+    },
     /// The two speeds do not separate `K0` from `K2`.
     #[error("the speeds {0} and {1} must differ in magnitude and be nonzero")]
     Speeds(f64, f64),
@@ -77,6 +95,19 @@ fn rows_of(
         .collect::<Result<_, _>>()?;
     let v: Vec<usize> = speeds.iter().map(|s| index(s)).collect::<Result<_, _>>()?;
     let speed_rows = linear.a.select_rows(&v);
+    let bound = DECOUPLED * speed_rows.amax().max(1.0);
+    for (column, entry) in linear.state.iter().enumerate() {
+        if q.contains(&column) || v.contains(&column) {
+            continue;
+        }
+        if let Some(row) = (0..v.len()).find(|&row| speed_rows[(row, column)].abs() > bound) {
+            return Err(CanonicalError::Coupled {
+                entry: entry.clone(),
+                speed: speeds[row].to_string(),
+                value: speed_rows[(row, column)],
+            });
+        }
+    }
     Ok((
         speed_rows.select_columns(&q),
         speed_rows.select_columns(&v),
@@ -90,9 +121,9 @@ impl CanonicalForm {
     /// state, gravity `g` (see the module documentation).
     ///
     /// # Errors
-    /// [`CanonicalError`]: a name not in the state, inputs that are not one
-    /// invertible force per coordinate, speeds that do not separate `K0`
-    /// from `K2`.
+    /// [`CanonicalError`]: a name not in the state, another entry of the
+    /// state in the rows of the speeds, inputs that are not one invertible
+    /// force per coordinate, speeds that do not separate `K0` from `K2`.
     pub fn from_linearizations(
         (slow, v1): (&LinearSystem, f64),
         (fast, v2): (&LinearSystem, f64),

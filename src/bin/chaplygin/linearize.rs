@@ -1,12 +1,16 @@
 //! `chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
-//! [--param NAME=VALUE]... [--out DIR]` (INTERFACE.md section 5): the
+//! [--param NAME=VALUE]... [--out DIR] [--canonical Q1,Q2,... --canonical-speed
+//! VAR[=V1,V2] [--canonical-gravity NAME]]` (INTERFACE.md section 5): the
 //! operating point from `--at` (`chaplygin::runtime::linearize::point`),
 //! the linear system about it with the symmetry reduced and the constraints
 //! eliminated (`chaplygin::runtime::linearize::steady`), its eigenvalues;
 //! with `--sweep`, `DIR/eigenvalues.csv`, `DIR/eigenvalues.png` and the
-//! intervals of VAR where the motion is asymptotically stable. The inputs
-//! are zero.
+//! intervals of VAR where the motion is asymptotically stable; with
+//! `--canonical Q1,Q2 --canonical-speed VAR`, the canonical form
+//! `M qddot + v C1 qdot + (g K0 + v^2 K2) q = f` of Meijaard et al. (2007)
+//! in those coordinates (`canonical`). The inputs are zero.
 
+mod canonical;
 mod expression;
 mod sweep;
 
@@ -19,6 +23,7 @@ use crate::models::{
     snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
 use crate::simulate::set_model_parameters;
+pub use canonical::CanonicalSpeed;
 use chaplygin::plot::{EigenvalueSweep, write_eigenvalue_plot};
 use chaplygin::runtime::linearize::{
     self as runtime_linearize, Dynamics, LinearSystem, Linearization, OperatingPoint, PointError,
@@ -39,8 +44,9 @@ pub struct LinearizeArgs {
     /// A built-in model's name, or the path of a `.model` file.
     pub model: String,
     /// A coordinate (`phi=0`) or a velocity (`dot(theta)=-v/r`) of the
-    /// operating point; EXPR may use the parameters and the sweep variable.
-    #[arg(long = "at", value_parser = at)]
+    /// operating point; EXPR may use the parameters, the sweep variable and
+    /// the `--canonical-speed` variable.
+    #[arg(long = "at", value_name = "NAME=EXPR", value_parser = at)]
     pub at: Vec<(String, String)>,
     /// Sweep VAR from START to STOP (included when on the grid) by STEP.
     #[arg(long, value_parser = sweep::parse)]
@@ -51,6 +57,30 @@ pub struct LinearizeArgs {
     /// Where `--sweep` writes `eigenvalues.csv` and `eigenvalues.png`.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
+    /// Print the canonical form M qddot + v C1 qdot + (g K0 + v^2 K2) q = f
+    /// (Meijaard et al. 2007) in these coordinates, comma-separated
+    /// (`phi,delta`); f are the inputs, one per coordinate.
+    #[arg(
+        long,
+        value_name = "Q1,Q2,...",
+        value_delimiter = ',',
+        requires = "canonical_speed",
+        conflicts_with = "sweep"
+    )]
+    pub canonical: Vec<String>,
+    /// The speed v of `--canonical`: a variable the `--at` expressions use,
+    /// set to 1 and 2 (`VAR`) or to V1 and V2 (`VAR=V1,V2`).
+    #[arg(
+        long,
+        value_name = "VAR[=V1,V2]",
+        value_parser = canonical::speed,
+        requires = "canonical"
+    )]
+    pub canonical_speed: Option<CanonicalSpeed>,
+    /// The gravity parameter of `--canonical`: K0 is the speed-independent
+    /// stiffness divided by its value.
+    #[arg(long, value_name = "NAME", default_value = "g", requires = "canonical")]
+    pub canonical_gravity: String,
 }
 
 /// `NAME=EXPR`.
@@ -166,8 +196,20 @@ fn analyse(
     parameters: BTreeMap<String, f64>,
     args: &LinearizeArgs,
 ) -> Result<(), Box<dyn Error>> {
+    if let Some(speed) = &args.canonical_speed {
+        let request = canonical::Request {
+            coordinates: &args.canonical,
+            speed,
+            gravity: &args.canonical_gravity,
+        };
+        print!(
+            "{}",
+            canonical::canonical_form(model, &parameters, &args.at, &request)?
+        );
+        return Ok(());
+    }
     let Some(sweep) = &args.sweep else {
-        let linear = linearize_at(model, &parameters, &args.at)?;
+        let linear = linearize_at(model, &parameters, &args.at, &[])?;
         print!("{}", describe(&linear));
         return Ok(());
     };
@@ -180,7 +222,7 @@ fn analyse(
     for &value in &values {
         let mut names = parameters.clone();
         names.insert(sweep.variable.clone(), value);
-        let linear = linearize_at(model, &names, &args.at).map_err(|source| {
+        let linear = linearize_at(model, &names, &args.at, &[]).map_err(|source| {
             LinearizeError::AtSweepValue {
                 variable: sweep.variable.clone(),
                 value,
@@ -222,11 +264,13 @@ fn analyse(
     Ok(())
 }
 
-/// The point `--at` describes with the names bound, linearized.
+/// The point `--at` describes with the names bound, linearized, the
+/// entries named `independent` kept in the state.
 fn linearize_at(
     model: &dyn Dynamics,
     names: &BTreeMap<String, f64>,
     at: &[(String, String)],
+    independent: &[&str],
 ) -> Result<LinearSystem, LinearizeError> {
     let coordinates = model.coordinates();
     let velocities = runtime_linearize::point::velocity_names(&coordinates);
@@ -252,7 +296,12 @@ fn linearize_at(
     }
     let point = OperatingPoint::solve(model, &q, &qdot)?;
     let u = vec![0.0; model.inputs()];
-    Ok(runtime_linearize::linearize(model, &point, &u, &[])?)
+    Ok(runtime_linearize::linearize(
+        model,
+        &point,
+        &u,
+        independent,
+    )?)
 }
 
 /// The state, the eigenvalues and the verdict of one linearization.

@@ -8,6 +8,7 @@
 //!                          [--param NAME=VALUE]... [--initial NAME=VALUE]... [--input NAME=VALUE]...
 //! chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
 //!                           [--param NAME=VALUE]... [--out DIR]
+//!                           [--canonical Q1,Q2,... --canonical-speed VAR[=V1,V2] [--canonical-gravity NAME]]
 //! ```
 //!
 //! MODEL is a built-in model's name or the path of a `.model` file, which

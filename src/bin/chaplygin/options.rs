@@ -29,7 +29,8 @@ enum Action {
     /// Simulate a model, writing `trajectory.csv` and PNG plots.
     Simulate(Box<SimulateArgs>),
     /// Linearize about a steady motion and print the eigenvalues; with
-    /// `--sweep`, write `eigenvalues.csv` and `eigenvalues.png`.
+    /// `--sweep`, write `eigenvalues.csv` and `eigenvalues.png`; with
+    /// `--canonical`, print the canonical form M, C1, K0, K2.
     Linearize(Box<LinearizeArgs>),
 }
 
