@@ -5,7 +5,14 @@
 //! projects the configuration onto `f(q) = 0` ([`super::configuration`]),
 //! then the velocity onto `ker A(q)` at the projected configuration in the
 //! kinetic-energy metric ([`super::dalembert_velocity`]), and the run
-//! records `max |f(q)|`.
+//! records `max |f(q)|`. Moving `q` changes the energy `T + V` by
+//! `dE/dq . dq` at every step (with the discrete gradient, which keeps it
+//! to round-off between projections, this was the whole drift), so the
+//! projected velocity is then scaled by `s = sqrt((E - V(q)) / T(q, qdot))`
+//! back to the energy `E` the step arrived with: a projection onto the
+//! manifold of all the invariants (Hairer, Lubich & Wanner, *Geometric
+//! Numerical Integration*, 2nd ed., section IV.4); the scaled velocity
+//! stays in `ker A(q)`, and `s` differs from 1 by the small energy change.
 //!
 //! Each formulation's state starts with `q`; the rest is rebuilt exactly
 //! from the projected `(q, qdot)`:
@@ -216,18 +223,33 @@ impl<S, const N: usize, const D: usize> Surface<S, N, D> {
     }
 
     /// `x` with its configuration on `f(q) = 0` and its velocity on
-    /// `ker A(q)` there, as the module documentation says; the
-    /// formulation's own projection follows in the simulation loop.
+    /// `ker A(q)` there at the energy of `x`, as the module documentation
+    /// says; the formulation's own projection follows in the simulation
+    /// loop.
     ///
     /// # Errors
     /// As [`configuration`] and [`super::velocity`].
-    pub fn project_state(&self, x: [f64; D]) -> Result<[f64; D], ProjectionError> {
+    pub fn project_state(&self, x: [f64; D]) -> Result<[f64; D], ProjectionError>
+    where
+        S: Energy<D>,
+    {
         let Some(kept) = &self.kept else {
             return Ok(x);
         };
         let qdot = (kept.velocity)(&self.system, &x);
         let q = (kept.configuration)(&self.system, &configuration_of(&x), self.settings)?;
-        (kept.state)(&self.system, &q, &qdot)
+        let projected = (kept.state)(&self.system, &q, &qdot)?;
+        let potential = self
+            .system
+            .energy(&(kept.state)(&self.system, &q, &[0.0; N])?);
+        let kinetic = self.system.energy(&projected) - potential;
+        let squared_scale = (self.system.energy(&x) - potential) / kinetic;
+        if kinetic > 0.0 && squared_scale > 0.0 {
+            let scale = squared_scale.sqrt();
+            (kept.state)(&self.system, &q, &qdot.map(|v| v * scale))
+        } else {
+            Ok(projected)
+        }
     }
 
     /// `max |f(q)|` at `x`, `None` without configuration constraints.

@@ -115,7 +115,7 @@ pub const BUILT_IN: [BuiltIn; 8] = [
 ];
 
 /// A built-in model the CLI runs through the interpreter: a name, what it
-/// is, and its model-language source.
+/// is, its model-language source and its default motion.
 pub struct Interpreted {
     /// Its name on the command line.
     pub name: &'static str,
@@ -123,6 +123,9 @@ pub struct Interpreted {
     pub about: &'static str,
     /// Its model-language source.
     pub source: &'static str,
+    /// The default motion: `--initial` assignments of velocities (the
+    /// others solved from the constraints), from `q = 0`.
+    pub default_motion: &'static [(&'static str, &'static str)],
 }
 
 /// The built-in models run through the interpreter. The benchmark
@@ -134,11 +137,27 @@ pub const INTERPRETED: [Interpreted; 1] = [Interpreted {
     name: "bicycle",
     about: "benchmark bicycle of Meijaard et al. (2007), declared as a mechanism (interpreted)",
     source: include_str!("../../../models/bicycle.model"),
+    // Upright at 5 m/s, in the self-stable speed range, pushed sideways:
+    // the lean oscillation decays.
+    default_motion: &[
+        ("dot(theta_r)", "-5/rR"),
+        ("dot(phi)", "0.5"),
+        ("dot(delta)", "0"),
+    ],
 }];
 
 /// The built-in model called `name`.
 pub fn built_in(name: &str) -> Option<&'static BuiltIn> {
     BUILT_IN.iter().find(|model| model.name == name)
+}
+
+/// The default motion of the interpreted built-in called `name`
+/// ([`Interpreted::default_motion`]), none for any other model.
+pub fn default_motion(name: &str) -> &'static [(&'static str, &'static str)] {
+    INTERPRETED
+        .iter()
+        .find(|model| model.name == name)
+        .map_or(&[], |model| model.default_motion)
 }
 
 /// The names of the built-in models, comma-separated.

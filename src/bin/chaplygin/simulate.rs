@@ -38,9 +38,10 @@ use chaplygin::runtime::system::{
     Dalembert, Holonomic, ModelNames, Momenta, Momentum, MomentumEquations, Parameters, Reduced,
     ReducedPortHamiltonian,
 };
+use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
 use chaplygin_codegen::interpret::InterpretedModel;
 use output::{Points, execute};
-use start::{InputError, Kinematics, compiled_start, initial_state};
+use start::{InputError, Kinematics, compiled_start, initial_state, initial_values};
 use std::error::Error;
 
 /// Runs `chaplygin simulate`.
@@ -49,7 +50,10 @@ use std::error::Error;
 /// Bad input, a failed simulation, or an I/O error.
 pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
     let model = match catalog::lookup(&args.model)? {
-        Source::File { path, text } => return interpreted(&path, &text, args),
+        Source::File { path, text } => {
+            let default_motion = catalog::default_motion(&args.model);
+            return interpreted(&path, &text, default_motion, args);
+        }
         Source::BuiltIn(model) => model,
     };
     match model.compiled {
@@ -88,13 +92,19 @@ pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
             })),
         ),
         // No symmetry: the interpreter runs it from its text.
-        Compiled::CasterRobot => interpreted(model.name, model.source, args),
+        Compiled::CasterRobot => interpreted(model.name, model.source, &[], args),
     }
 }
 
-/// A `.model` file through the IR interpreter, at rest at `q = 0` unless
-/// `--initial` says otherwise.
-fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
+/// A `.model` file through the IR interpreter, from `q = 0` with the
+/// velocities of `default_motion` (`dot(q)` assignments; at rest without
+/// any) unless `--initial` says otherwise.
+fn interpreted(
+    path: &str,
+    text: &str,
+    default_motion: &[(&str, &str)],
+    args: &SimulateArgs,
+) -> Result<(), Box<dyn Error>> {
     if args.controller == Controller::Energy {
         return Err(no_controller(path).into());
     }
@@ -105,6 +115,15 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
     set_parameters(&known, &args.params, &mut |name, value| {
         model.set_parameter(name, value).is_ok()
     })?;
+    let parameters: Vec<(&str, f64)> = known
+        .iter()
+        .copied()
+        .zip(model.parameter_values().iter().copied())
+        .collect();
+    let initial = initial_values(
+        &with_default_motion(&args.initial, default_motion),
+        &parameters,
+    )?;
     let coordinates: Vec<&str> = names.coordinates.iter().map(String::as_str).collect();
     let constraints: Vec<&str> = names.constraints.iter().map(String::as_str).collect();
     let n = coordinates.len();
@@ -121,16 +140,11 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
             },
             holonomic: Some(&dynamics),
         },
-        &args.initial,
+        &initial,
         &mut [],
     )?;
     let InterpretedDynamics(model) = dynamics;
     let input_names: Vec<&str> = names.inputs.iter().map(String::as_str).collect();
-    let parameters: Vec<(&str, f64)> = known
-        .iter()
-        .copied()
-        .zip(model.parameter_values().iter().copied())
-        .collect();
     let schedule = InputSchedule::new(&input_names, &args.inputs, &parameters)?;
     let inputs: InputLaw = Box::new(move |t, u| schedule.at(t, u));
     match args.formulation {
@@ -147,6 +161,12 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
             execute(&dalembert, &x0, args, (None, points))
         }
         Kind::Momentum => {
+            if model.shape().is_some() && model.arguments("momentum_rhs").is_none() {
+                return Err(InputError::Unsupported(format!(
+                    "`{path}`: the momentum formulation is {MOMENTUM_WITH_HOLONOMIC}: use --formulation reduced or lagrange"
+                ))
+                .into());
+            }
             let momentum = InterpretedMomentum::new(model, inputs).ok_or_else(|| {
                 InputError::Unsupported(format!(
                     "`{path}` declares no symmetry: the momentum formulation needs one"
@@ -157,6 +177,21 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
             execute(&momentum, &x0, args, (None, points))
         }
     }
+}
+
+/// The `--initial` assignments `given`, after those of `default_motion`
+/// when `given` names no velocity (coordinates given keep their place:
+/// the default velocities are solved at them).
+fn with_default_motion(
+    given: &[(String, String)],
+    default_motion: &[(&str, &str)],
+) -> Vec<(String, String)> {
+    let moving = given.iter().any(|(name, _)| name.starts_with("dot("));
+    let defaults = default_motion
+        .iter()
+        .filter(|_| !moving)
+        .map(|(name, text)| (name.to_string(), text.to_string()));
+    defaults.chain(given.iter().cloned()).collect()
 }
 
 /// The points an interpreted model declares, `None` without any.

@@ -5,6 +5,16 @@
 //! `ker A(q)` at the projected configuration in the kinetic-energy metric
 //! (`projection::velocity`). Each formulation rebuilds the rest of its
 //! state from the projected `(q, qdot)`.
+//!
+//! Moving `q` onto `f(q) = 0` changes the energy `E = T(q, qdot) + V(q)` by
+//! `dE/dq . dq`, a little at every step: with the discrete gradient, which
+//! conserves `E` to round-off between projections, this was the whole of
+//! the drift. The projection therefore keeps the energy the step arrived
+//! with, as a projection onto the manifold of all the invariants (Hairer,
+//! Lubich & Wanner, *Geometric Numerical Integration*, 2nd ed., section
+//! IV.4): the projected velocity, in `ker A(q)`, is scaled by
+//! `s = sqrt((E - V(q)) / T(q, qdot))`, which stays in `ker A(q)` and
+//! differs from 1 by the projection's own small change of `E`.
 
 use crate::interpreted::evaluated;
 use chaplygin::runtime::nalgebra::{DMatrix, DVector, Dyn};
@@ -26,7 +36,7 @@ pub(crate) fn holonomic_residual(model: &InterpretedModel, q: &[f64]) -> Option<
 }
 
 /// `q` onto `f(q) = 0` (unchanged without configuration constraints),
-/// then `qdot` onto `ker A(q)` there.
+/// then `qdot` onto `ker A(q)` there, at the energy it had.
 ///
 /// # Errors
 /// A configuration constraint Newton's method cannot meet, named with its
@@ -37,6 +47,7 @@ pub(crate) fn onto_surface(
     qdot: &mut [f64],
 ) -> Result<(), ProjectionError> {
     let sizes = model.sizes();
+    let energy = evaluated(model.energy(q, qdot));
     if keeps_configuration(model) {
         let names: Vec<&str> = model.names().holonomic.iter().map(String::as_str).collect();
         let h = names.len();
@@ -66,5 +77,18 @@ pub(crate) fn onto_surface(
         &DVector::from_column_slice(qdot),
     )?;
     qdot.copy_from_slice(projected.as_slice());
+    restore_energy(model, q, qdot, energy);
     Ok(())
+}
+
+/// `qdot` scaled so that the energy at `(q, qdot)` is `energy`, when a
+/// positive scale does it (not at rest, nor above the energy).
+fn restore_energy(model: &InterpretedModel, q: &[f64], qdot: &mut [f64], energy: f64) {
+    let potential = evaluated(model.energy(q, &vec![0.0; q.len()]));
+    let kinetic = evaluated(model.energy(q, qdot)) - potential;
+    let squared_scale = (energy - potential) / kinetic;
+    if kinetic > 0.0 && squared_scale > 0.0 {
+        let scale = squared_scale.sqrt();
+        qdot.iter_mut().for_each(|v| *v *= scale);
+    }
 }

@@ -34,10 +34,12 @@ pub struct SimulateArgs {
     #[arg(long = "param", value_parser = assignment)]
     pub params: Vec<(String, f64)>,
     /// An initial coordinate `q=VALUE`, velocity `dot(q)=VALUE` or
-    /// controller state (repeatable). Velocities not given are zero when any
-    /// is given; otherwise the model's default motion is used.
-    #[arg(long = "initial", value_parser = assignment)]
-    pub initial: Vec<(String, f64)>,
+    /// controller state (repeatable); VALUE is a number or an expression of
+    /// the model's parameters (`dot(theta_r)=-5/rR`). When a velocity is
+    /// given, those not given are solved from the constraints (an error
+    /// names any left free); otherwise the model's default motion is used.
+    #[arg(long = "initial", value_parser = input_assignment)]
+    pub initial: Vec<(String, String)>,
     /// An input `NAME=EXPRESSION` with `--controller none` (repeatable): a
     /// constant (`u1=0.1`) or an expression of the time `t` and the model's
     /// parameters in the model language (`u1=0.3*sin(2*t)`).

@@ -3,6 +3,8 @@
 //! model's parameters (`0.1`, `0.3*sin(2*t)`, `u0*exp(-t/tau)`), with the
 //! language's operators `+ - * / ^` and functions `sin cos tan sqrt exp ln`;
 //! open-loop gaits run without writing Rust. Inputs not given are zero.
+//! The values of `--initial NAME=EXPRESSION` are read the same way, as
+//! constants of the parameters (`dot(theta_r)=-5/rR`).
 
 use super::start::InputError;
 use chaplygin_codegen::syntax::{self, BinaryOperator, Expr, Value};
@@ -72,6 +74,15 @@ enum Law {
 }
 
 impl Law {
+    fn depends_on_time(&self) -> bool {
+        match self {
+            Law::Number(_) => false,
+            Law::Time => true,
+            Law::Call(_, operand) | Law::Negate(operand) => operand.depends_on_time(),
+            Law::Binary(_, left, right) => left.depends_on_time() || right.depends_on_time(),
+        }
+    }
+
     fn at(&self, t: f64) -> f64 {
         match self {
             Law::Number(value) => *value,
@@ -146,6 +157,21 @@ impl InputSchedule {
     }
 }
 
+/// The value of `text`, an expression of the parameters (name and value)
+/// in the model language; the reason it is none, else.
+pub fn constant(text: &str, parameters: &[(&str, f64)]) -> Result<f64, String> {
+    let law = parse(text, parameters)?;
+    if law.depends_on_time() {
+        return Err("`t` is not known at the start: use numbers and parameters".into());
+    }
+    let value = law.at(0.0);
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(format!("the value {value} is not finite"))
+    }
+}
+
 /// `text` read by the model language's parser (as the value of a section)
 /// and resolved against `t` and the parameters.
 fn parse(text: &str, parameters: &[(&str, f64)]) -> Result<Law, String> {
@@ -208,7 +234,7 @@ fn resolve(expr: &Expr, parameters: &[(&str, f64)]) -> Result<Law, String> {
 
 #[cfg(test)]
 mod tests {
-    use super::{InputLawError, InputSchedule};
+    use super::{InputLawError, InputSchedule, constant};
 
     fn given(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
         pairs
@@ -228,6 +254,22 @@ mod tests {
         let t = 0.7f64;
         let u: [f64; 3] = schedule.array(t);
         assert_eq!(u, [0.3 * (2.0 * t).sin(), 0.0, -9.0 / t + 0.15]);
+    }
+
+    #[test]
+    fn initial_values_are_constants_of_the_parameters() {
+        assert_eq!(constant("-5/rR", &[("rR", 0.3)]), Ok(-5.0 / 0.3));
+        assert!(
+            constant("2*t", &[])
+                .unwrap_err()
+                .contains("`t` is not known")
+        );
+        assert!(
+            constant("1/rR", &[("rR", 0.0)])
+                .unwrap_err()
+                .contains("not finite")
+        );
+        assert!(constant("v", &[]).unwrap_err().contains("`v` is neither"));
     }
 
     #[test]

@@ -6,7 +6,8 @@
 //! [`InputError`] stated in one line (also an `--input` naming no input).
 
 use super::arguments::SimulateArgs;
-use super::{CompiledModel, array};
+use super::inputs::constant;
+use super::{CompiledModel, array, parameter_values};
 use crate::catalog::BuiltIn;
 use chaplygin::runtime::linearize::point::{configuration, solve_velocities, velocity_names};
 use chaplygin::runtime::linearize::{Compiled, Dynamics, Linearization, PointError};
@@ -33,6 +34,16 @@ pub enum InputError {
         states: &'static str,
         /// The names there are.
         known: String,
+    },
+    /// An `--initial` value is not a constant of the parameters.
+    #[error("--initial {name}={text}: {reason}")]
+    InitialValue {
+        /// What was given a value.
+        name: String,
+        /// The value as given.
+        text: String,
+        /// What is wrong with it.
+        reason: String,
     },
     /// `--input` names no input.
     #[error("unknown input `{name}` (inputs: {known})")]
@@ -92,6 +103,26 @@ pub(crate) fn set_model_parameters<M: Parameters>(
         }
         true
     })
+}
+
+/// The `--initial` assignments with their values, expressions of the
+/// `parameters` (name and value), evaluated.
+pub(super) fn initial_values(
+    given: &[(String, String)],
+    parameters: &[(&str, f64)],
+) -> Result<Vec<(String, f64)>, InputError> {
+    given
+        .iter()
+        .map(|(name, text)| {
+            constant(text, parameters)
+                .map(|value| (name.clone(), value))
+                .map_err(|reason| InputError::InitialValue {
+                    name: name.clone(),
+                    text: text.clone(),
+                    reason,
+                })
+        })
+        .collect()
 }
 
 /// The initial configuration and velocity.
@@ -204,7 +235,7 @@ where
             },
             holonomic: Some(&Compiled::<M, N, C, P, H>::holonomic(model)),
         },
-        &args.initial,
+        &initial_values(&args.initial, &parameter_values(*model))?,
         controller_states,
     )
 }
