@@ -176,30 +176,13 @@ fn all_zero_at_points(
     expressions: &[ExprId],
     holds: impl Fn(&[u64]) -> bool,
 ) -> Result<bool, Outside> {
-    let mut defined_points = 0;
-    let mut outside = None;
-    for point in modular::points() {
+    let verdicts = modular::at_defined_points(modular::SEEDS.len(), |point| {
         let mut values = Values::at(point);
-        let evaluated =
-            store
-                .evaluate_normal_modular(forms, &mut values)
-                .and_then(|mut evaluated| {
-                    evaluated.extend(values.of(store, expressions)?);
-                    Ok(evaluated)
-                });
-        match evaluated {
-            Ok(evaluated) if !holds(&evaluated) => return Ok(false),
-            Ok(_) => defined_points += 1,
-            Err(undefined @ Outside::Undefined { .. }) => outside = Some(undefined),
-            Err(not_in_class) => return Err(not_in_class),
-        }
-        if defined_points == 2 {
-            return Ok(true);
-        }
-    }
-    Err(outside.unwrap_or(Outside::Undefined {
-        expr: "every point drawn".to_string(),
-    }))
+        let mut evaluated = store.evaluate_normal_modular(forms, &mut values)?;
+        evaluated.extend(values.of(store, expressions)?);
+        Ok(holds(&evaluated))
+    })?;
+    Ok(verdicts.into_iter().all(|holds| holds))
 }
 
 fn transformed(
