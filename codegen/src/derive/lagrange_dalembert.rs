@@ -287,7 +287,7 @@ impl SaddlePointSystem {
     pub fn solution_by_blocks(&self, model: &mut Model) -> Result<Vec<ExprId>, MatrixError> {
         let a = model.constraint_expressions.clone();
         let store = &mut model.store;
-        let g = ExprMatrix::of(&self.mass_matrix, store);
+        let g = model.energy_expressions.mass_matrix.clone();
         let force = ExprMatrix::of(&self.force, store);
         let drift = self.drift.expressions(store);
         let (lower, pivots) = store.ldl(&g)?;

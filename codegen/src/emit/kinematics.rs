@@ -1,9 +1,7 @@
 //! The configuration-level items: `mass_matrix`, `energy`,
 //! `constraint_matrix`, `constraint_residual`.
 
-use super::{
-    Function, coordinates, expressions, f64_type, function_body, matrix_literal, velocities,
-};
+use super::{Function, coordinates, f64_type, function_body, matrix_literal, velocities};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
 use crate::sym::ExprMatrix;
@@ -21,7 +19,7 @@ pub(super) fn functions(model: &mut Model) -> Result<Vec<Function>, Diagnostics>
 
 fn mass_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
     let n = model.n();
-    let outputs = expressions(model, &model.mass_matrix.clone());
+    let outputs = model.energy_expressions.mass_matrix.entries().to_vec();
     let body = function_body(model, &[coordinates(model)], &outputs, |values| {
         matrix_literal(values, n)
     })?;
@@ -44,9 +42,8 @@ fn mass_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
 
 fn energy(model: &mut Model) -> Result<Function, Diagnostics> {
     let n = model.n();
-    let atoms = model.store.atoms().clone();
-    let total = model.kinetic_energy.add(&model.potential_energy, &atoms);
-    let outputs = vec![model.store.expression_of(&total)];
+    let energies = &model.energy_expressions;
+    let outputs = vec![model.store.add2(energies.kinetic, energies.potential)];
     let arguments = [coordinates(model), velocities(model)];
     let body = function_body(model, &arguments, &outputs, |values| quote!(#(#values)*))?;
     let f64 = f64_type();

@@ -23,7 +23,7 @@ pub use check::{check, check_within};
 pub use mechanism::Mechanism;
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
-use crate::sym::{ExprMatrix, Matrix, Rational, RationalFunction, Store, SymbolId};
+use crate::sym::{ExprId, ExprMatrix, Matrix, Rational, RationalFunction, Store, SymbolId};
 use proc_macro2::{Ident, Span, TokenStream};
 
 /// A name the user declared, with where they declared it.
@@ -97,6 +97,20 @@ pub struct MomentumBasis {
     pub rows: Matrix,
 }
 
+/// The energies and the metric as expressions
+/// ([`crate::sym::Store::compact_expression`]): the normal forms written out,
+/// or for a mechanism's large entries the expressions they were derived as
+/// from the bodies' velocities (equal to the normal forms).
+#[derive(Clone, Debug)]
+pub struct EnergyExpressions {
+    /// `T(q, qdot)`.
+    pub kinetic: ExprId,
+    /// `V(q)`.
+    pub potential: ExprId,
+    /// `g(q) = d^2 T / d qdot^2`, n x n.
+    pub mass_matrix: ExprMatrix,
+}
+
 /// A checked model.
 #[derive(Clone, Debug)]
 pub struct Model {
@@ -127,6 +141,8 @@ pub struct Model {
     pub potential_energy: RationalFunction,
     /// `g(q)`, n x n, symmetric.
     pub mass_matrix: Matrix,
+    /// `T`, `V` and `g` as the expressions emitted code computes them.
+    pub energy_expressions: EnergyExpressions,
     /// The constraint names (`c1, c2, ...` when derived from a distribution).
     pub constraints: Vec<Declared>,
     /// `A(q)`, c x n, full row rank.

@@ -50,9 +50,9 @@ pub(super) fn derive(
     let n = model.n();
     let coordinates = model.coordinate_symbols();
     let store = &mut model.store;
-    let g = ExprMatrix::of(&model.mass_matrix, store);
+    let g = model.energy_expressions.mass_matrix.clone();
     let b = ExprMatrix::of(&model.input_matrix, store);
-    let potential = store.expression_of(&model.potential_energy);
+    let potential = model.energy_expressions.potential;
     let maps = Maps::of(store, fields, &g)?;
     let alpha = symbols_column(store, momenta);
     let u = symbols_column(store, inputs);

@@ -5,10 +5,6 @@ use super::mechanisms::MechanismParts;
 use super::*;
 use crate::sym::ExprMatrix;
 
-/// The most terms a derived row's entry may have to be emitted from its
-/// normal form ([`Checker::entry_expressions`]).
-const EXPANDED_ENTRY_TERMS: usize = 64;
-
 /// The term products the exact rank confirming a dependent row may take.
 const EXACT_RANK_PRODUCTS: u64 = 2_000_000;
 
@@ -45,11 +41,9 @@ impl Checker {
             .then_some((names, a, a_expressions))
     }
 
-    /// The entries of a derived row as expressions: each normal form
-    /// written out, unless it has more than [`EXPANDED_ENTRY_TERMS`] terms;
-    /// then the derivative of the expression the row was derived as in
-    /// that velocity (a rolling wheel's contact carries a square root
-    /// whose normal forms are far larger than the derivation's DAG).
+    /// The entries of a derived row as expressions
+    /// ([`Store::compact_expression`]): each normal form written out, or the
+    /// derivative of the expression the row was derived as in that velocity.
     fn entry_expressions(
         &mut self,
         entries: &[RationalFunction],
@@ -60,17 +54,8 @@ impl Checker {
             .iter()
             .zip(velocities)
             .map(|(entry, velocity)| {
-                let terms = entry.numerator().terms().len()
-                    + entry
-                        .denominator()
-                        .iter()
-                        .map(|(f, _)| f.terms().len())
-                        .sum::<usize>();
-                if terms <= EXPANDED_ENTRY_TERMS {
-                    self.store.expression_of(entry)
-                } else {
-                    self.store.derivative(derived_as, velocity)
-                }
+                let derivative = self.store.derivative(derived_as, velocity);
+                self.store.compact_expression(entry, derivative)
             })
             .collect()
     }

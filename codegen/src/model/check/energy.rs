@@ -1,8 +1,10 @@
 //! The energies: the metric from the kinetic energy or a declared mass
 //! matrix, positive definite; the potential free of velocities.
 
+use super::mechanisms::MechanismParts;
 use super::*;
-use crate::model::Mechanism;
+use crate::model::{EnergyExpressions, Mechanism};
+use crate::sym::ExprMatrix;
 
 impl Checker {
     // ----- energies ------------------------------------------------------
@@ -50,6 +52,75 @@ impl Checker {
             self.rule_positive_definite(&g, section.key.span(), coordinates, parameters);
         }
         Some((energy, g))
+    }
+
+    /// `T`, `V` and `g` as expressions: each normal form written out, or
+    /// when it is large ([`crate::sym::Store::compact_expression`]) the
+    /// declared part written out plus the bodies' energies as they were
+    /// derived, and `g_ij` as their second derivative in `qdot_i`, `qdot_j`.
+    pub(super) fn energy_expressions(
+        &mut self,
+        (kinetic, g): (&RationalFunction, &Matrix),
+        potential: &RationalFunction,
+        mechanism: &MechanismParts,
+        velocities: &[SymbolId],
+    ) -> Option<EnergyExpressions> {
+        let (bodies_kinetic, bodies_potential) = mechanism.energies_derived_as;
+        let kinetic_derived_as =
+            self.derived_as(kinetic, &mechanism.mechanism.kinetic_energy, bodies_kinetic);
+        let potential_derived_as = self.derived_as(
+            potential,
+            &mechanism.mechanism.potential_energy,
+            bodies_potential,
+        );
+        let mass_matrix = if mechanism.mechanism.kinetic_energy.is_zero() {
+            ExprMatrix::of(g, &mut self.store)
+        } else {
+            self.metric_derived_as(g, kinetic_derived_as, velocities)?
+        };
+        Some(EnergyExpressions {
+            kinetic: self.store.compact_expression(kinetic, kinetic_derived_as),
+            potential: self
+                .store
+                .compact_expression(potential, potential_derived_as),
+            mass_matrix,
+        })
+    }
+
+    /// `g_ij` written out, or when large as `d^2 T / d qdot_i d qdot_j` of
+    /// the expression `T` was derived as.
+    fn metric_derived_as(
+        &mut self,
+        g: &Matrix,
+        kinetic_derived_as: ExprId,
+        velocities: &[SymbolId],
+    ) -> Option<ExprMatrix> {
+        let rates: Vec<ExprId> = velocities
+            .iter()
+            .map(|&v| self.store.derivative(kinetic_derived_as, v))
+            .collect();
+        let n = velocities.len();
+        let mut entries = vec![self.store.integer(0); n * n];
+        for (j, &vj) in velocities.iter().enumerate() {
+            let column = self.store.derivatives(&rates, vj);
+            for (i, derived_as) in column.into_iter().enumerate() {
+                entries[i * n + j] = self.store.compact_expression(g.get(i, j), derived_as);
+            }
+        }
+        ExprMatrix::new(n, n, entries).ok()
+    }
+
+    /// `total` as the declared part (`total - bodies`) written out plus the
+    /// expression the bodies' part was derived as.
+    fn derived_as(
+        &mut self,
+        total: &RationalFunction,
+        bodies: &RationalFunction,
+        bodies_derived_as: ExprId,
+    ) -> ExprId {
+        let declared = total.sub(bodies, self.store.atoms());
+        let declared = self.store.expression_of(&declared);
+        self.store.add2(declared, bodies_derived_as)
     }
 
     pub(super) fn metric_of_kinetic_energy(

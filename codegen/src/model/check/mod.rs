@@ -136,10 +136,22 @@ pub fn check_within(syntax: &ModelSyntax, budget: Budget) -> Result<Model, Diagn
         );
         return Err(checker.diagnostics);
     };
-    let velocities = coordinates
+    let velocities: Vec<SymbolId> = coordinates
         .iter()
         .map(|c| checker.store.velocity_of(c.symbol))
         .collect();
+    let Some(energy_expressions) = checker.energy_expressions(
+        (&kinetic_energy, &mass_matrix),
+        &potential_energy,
+        &mechanism,
+        &velocities,
+    ) else {
+        checker.diagnostics.error(
+            syntax.name.span(),
+            "the energies could not be written as expressions",
+        );
+        return Err(checker.diagnostics);
+    };
     Ok(Model {
         name: syntax.name.clone(),
         docs: syntax.docs.clone(),
@@ -153,6 +165,7 @@ pub fn check_within(syntax: &ModelSyntax, budget: Budget) -> Result<Model, Diagn
         kinetic_energy,
         potential_energy,
         mass_matrix,
+        energy_expressions,
         constraints: constraint_names,
         constraint_matrix,
         constraint_expressions,

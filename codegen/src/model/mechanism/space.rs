@@ -156,20 +156,21 @@ fn elementary_rotation(
     })
 }
 
-/// `d e / dt = sum_i (d e / d q_i) qdot_i` of an expression of the configuration.
+/// `d e / dt = sum_i (d e / d q_i) qdot_i` of an expression of the
+/// configuration, differentiated on its DAG: the partials share the
+/// expression's own sub-expressions instead of expanding them.
 pub(in crate::model) fn time_derivative(
     store: &mut Store,
     expression: ExprId,
     coordinates: &[SymbolId],
 ) -> Result<ExprId, SymError> {
-    let form = store.normal(expression)?;
+    let zero = store.integer(0);
     let mut terms = Vec::with_capacity(coordinates.len());
     for &coordinate in coordinates {
-        let partial = store.derivative_of_normal(&form, coordinate)?;
-        if partial.is_zero() {
+        let partial = store.derivative(expression, coordinate);
+        if partial == zero {
             continue;
         }
-        let partial = store.expression_of(&partial);
         let velocity = store.velocity_of(coordinate);
         let velocity = store.symbol(velocity);
         terms.push(store.mul2(partial, velocity));

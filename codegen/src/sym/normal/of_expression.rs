@@ -10,6 +10,10 @@ use crate::sym::poly::{Atom, AtomId, Atoms, Poly};
 /// The largest multiple angle expanded; larger ones stay opaque atoms.
 const MAX_MULTIPLE_ANGLE: i64 = 64;
 
+/// The most terms (numerator and denominator factors together) a normal
+/// form may have to be computed written out ([`Store::compact_expression`]).
+pub const EXPANDED_TERMS: usize = 64;
+
 impl Store {
     /// The normal form of an expression (memoized).
     ///
@@ -202,6 +206,24 @@ impl Store {
             factors.push(self.pow_of_expression(base, Rational::integer(-(*multiplicity as i64))));
         }
         self.mul(&factors)
+    }
+
+    /// The expression to compute a normal form by: the form written out
+    /// when it has at most [`EXPANDED_TERMS`] terms, else `derived_as`, the
+    /// expression it was derived from (a mechanism's rotation chain, whose
+    /// expanded products are far larger than the chain).
+    pub fn compact_expression(&mut self, form: &RationalFunction, derived_as: ExprId) -> ExprId {
+        let terms = form.numerator.terms().len()
+            + form
+                .denominator
+                .iter()
+                .map(|(factor, _)| factor.terms().len())
+                .sum::<usize>();
+        if terms <= EXPANDED_TERMS {
+            self.expression_of(form)
+        } else {
+            derived_as
+        }
     }
 
     /// Rebuilds an expression from a polynomial.

@@ -235,13 +235,14 @@ impl Checker {
         }
     }
 
-    /// `T` and `V` of the bodies, in normal form.
+    /// `T` and `V` of the bodies: the expressions they were derived as, and
+    /// their normal forms.
     pub(super) fn body_energies(
         &mut self,
         bodies: &[(Declared, Body)],
         gravity: &Vector,
         q: &[SymbolId],
-    ) -> Option<(RationalFunction, RationalFunction)> {
+    ) -> Option<BodyEnergies> {
         let mut kinetic = Vec::new();
         let mut potential = Vec::new();
         for (_, body) in bodies {
@@ -250,9 +251,18 @@ impl Checker {
         }
         let kinetic = self.store.add(&kinetic);
         let potential = self.store.add(&potential);
-        Some((
-            self.store.normal(kinetic).ok()?,
-            self.store.normal(potential).ok()?,
-        ))
+        Some(BodyEnergies {
+            kinetic: self.store.normal(kinetic).ok()?,
+            potential: self.store.normal(potential).ok()?,
+            derived_as: (kinetic, potential),
+        })
     }
+}
+
+/// The bodies' `T` and `V` in normal form, and the expressions they were
+/// derived as.
+pub(in crate::model::check) struct BodyEnergies {
+    pub(in crate::model::check) kinetic: RationalFunction,
+    pub(in crate::model::check) potential: RationalFunction,
+    pub(in crate::model::check) derived_as: (ExprId, ExprId),
 }

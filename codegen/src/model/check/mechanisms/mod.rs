@@ -24,6 +24,8 @@ pub(super) struct MechanismParts {
     /// Each row's linear form in the velocities: its normal form and the
     /// expression it was derived as.
     pub(super) rows: Vec<(RationalFunction, ExprId)>,
+    /// The expressions the bodies' `T` and `V` were derived as.
+    pub(super) energies_derived_as: (ExprId, ExprId),
 }
 
 /// A frame's declaration: `name = rotate(parent, axis, angle)`.
@@ -47,10 +49,12 @@ impl Checker {
             .iter()
             .any(|s| sections.contains_key(*s))
         {
+            let zero = self.store.integer(0);
             return Some(MechanismParts {
                 mechanism: Mechanism::none(),
                 names: Vec::new(),
                 rows: Vec::new(),
+                energies_derived_as: (zero, zero),
             });
         }
         let reference = Reference(
@@ -78,7 +82,7 @@ impl Checker {
             return None;
         }
         rows.extend(velocity_forms);
-        let (kinetic_energy, potential_energy) = self.body_energies(&bodies, &gravity, &q)?;
+        let energies = self.body_energies(&bodies, &gravity, &q)?;
         let orientations = self.normal_rows(
             space
                 .declared_frames()
@@ -96,14 +100,15 @@ impl Checker {
                 orientations,
                 points,
                 positions,
-                kinetic_energy,
-                potential_energy,
+                kinetic_energy: energies.kinetic,
+                potential_energy: energies.potential,
                 contacts,
                 holonomic,
                 holonomic_residual,
             },
             names,
             rows,
+            energies_derived_as: energies.derived_as,
         })
     }
 
