@@ -75,7 +75,7 @@ pub struct SaddlePointSystem {
     /// `A(q)`, c x n.
     pub constraint_matrix: Matrix,
     /// `B u - C - dV/dq`, n x 1.
-    pub force: Matrix,
+    pub force: Force,
     /// `-Adot qdot`, c x 1.
     pub drift: Drift,
 }
@@ -108,6 +108,24 @@ impl Drift {
         }
     }
 }
+
+/// `B u - C - dV/dq`: its normal forms when they fit
+/// [`EXACT_FORCE_PRODUCTS`], and the expressions `acceleration` computes it
+/// by: the normal forms written out, or the derivatives of the energies
+/// taken on the DAG they were derived as ([`crate::model::EnergyExpressions`]),
+/// whichever [`crate::ir::estimated_weight`] finds cheaper (a mechanism's
+/// `T` expanded is far larger than its bodies' sum, and so are the normal
+/// forms of its derivatives).
+#[derive(Clone, Debug)]
+pub struct Force {
+    /// The normal forms, n x 1, when within budget.
+    pub exact: Option<Matrix>,
+    /// The expressions emitted, n x 1.
+    pub expressions: ExprMatrix,
+}
+
+/// The term products the exact `B u - C - dV/dq` may take.
+pub const EXACT_FORCE_PRODUCTS: u64 = 2_000_000;
 
 /// The term products the exact `Adot qdot` may take.
 pub const EXACT_DRIFT_PRODUCTS: u64 = 2_000_000;
@@ -208,7 +226,7 @@ fn declare_inputs(model: &mut Model) -> Vec<SymbolId> {
 /// The terms of the equations, as columns.
 struct Terms {
     /// `B u - C - dV/dq`, n x 1.
-    force: Matrix,
+    force: Force,
     /// `Adot qdot`, c x 1, when its normal forms fit [`EXACT_DRIFT_PRODUCTS`].
     constraint_drift: Option<Matrix>,
 }
@@ -217,11 +235,7 @@ impl Terms {
     fn of(model: &mut Model, inputs: &[SymbolId]) -> Result<Terms, DerivationError> {
         let atoms = model.store.atoms().clone();
         let velocity = symbol_column(model, &model.velocities.clone())?;
-        let input = symbol_column(model, inputs)?;
-        let applied = model.input_matrix.mul(&input, &atoms)?;
-        let coriolis = coriolis(model, &velocity)?;
-        let gradient = potential_gradient(model)?;
-        let force = applied.sub(&coriolis, &atoms)?.sub(&gradient, &atoms)?;
+        let force = Force::of(model, inputs)?;
         let constraint_drift = model
             .attempt(EXACT_DRIFT_PRODUCTS, |model| {
                 let residual = model.constraint_matrix.mul(&velocity, &atoms)?;
@@ -236,14 +250,15 @@ impl Terms {
 
     /// `lambda = (A g^-1 A^T)^-1 (-A g^-1 f - Adot qdot)`, `qddot = g^-1 (f + A^T lambda)`.
     fn closed_form(&self, model: &Model) -> Result<Option<ClosedForm>, MatrixError> {
-        let Some(constraint_drift) = &self.constraint_drift else {
+        let (Some(constraint_drift), Some(force)) = (&self.constraint_drift, &self.force.exact)
+        else {
             return Ok(None);
         };
         let atoms = model.store.atoms();
         let (g, a) = (&model.mass_matrix, &model.constraint_matrix);
         let a_transpose = a.transpose();
         let g_inverse_a_transpose = g.solve(&a_transpose, atoms)?;
-        let g_inverse_force = g.solve(&self.force, atoms)?;
+        let g_inverse_force = g.solve(force, atoms)?;
         let schur = a.mul(&g_inverse_a_transpose, atoms)?;
         let schur_rhs = a
             .mul(&g_inverse_force, atoms)?
@@ -288,7 +303,7 @@ impl SaddlePointSystem {
         let a = model.constraint_expressions.clone();
         let store = &mut model.store;
         let g = model.energy_expressions.mass_matrix.clone();
-        let force = ExprMatrix::of(&self.force, store);
+        let force = self.force.expressions.clone();
         let drift = self.drift.expressions(store);
         let (lower, pivots) = store.ldl(&g)?;
         let w = store.forward_substitution(&lower, &a.transpose());
@@ -312,7 +327,7 @@ impl SaddlePointSystem {
     pub fn outputs(&self, model: &mut Model) -> Vec<ExprId> {
         let mut outputs = self.mass_matrix.to_expressions(&mut model.store);
         outputs.extend(model.constraint_expressions.entries());
-        outputs.extend(self.force.to_expressions(&mut model.store));
+        outputs.extend(self.force.expressions.entries());
         outputs.extend(self.drift.expressions(&mut model.store).entries());
         outputs
     }
@@ -347,20 +362,85 @@ fn symbol_column(model: &mut Model, symbols: &[SymbolId]) -> Result<Matrix, Matr
     Matrix::new(entries.len(), 1, entries)
 }
 
-/// `C = d(g qdot)/dq qdot - dT/dq`.
-fn coriolis(model: &mut Model, velocity: &Matrix) -> Result<Matrix, DerivationError> {
-    let atoms = model.store.atoms().clone();
-    let momentum = model.mass_matrix.mul(velocity, &atoms)?;
-    let transport = directional_derivative(model, &momentum, velocity)?;
-    let kinetic = model.kinetic_energy.clone();
-    let kinetic_gradient = gradient(model, &kinetic)?;
-    Ok(transport.sub(&kinetic_gradient, &model.store.atoms().clone())?)
+impl Force {
+    /// The exact force within [`EXACT_FORCE_PRODUCTS`], and the cheaper
+    /// of its written-out and structured expressions.
+    fn of(model: &mut Model, inputs: &[SymbolId]) -> Result<Force, DerivationError> {
+        let exact = model
+            .attempt(EXACT_FORCE_PRODUCTS, |model| exact_force(model, inputs))
+            .transpose()?;
+        let structured = structured_force(model, inputs)?;
+        let expressions = match &exact {
+            Some(exact) => {
+                let written = ExprMatrix::of(exact, &mut model.store);
+                let weight = |m: &ExprMatrix| ir::estimated_weight(&model.store, m.entries());
+                if weight(&written) <= weight(&structured) {
+                    written
+                } else {
+                    structured
+                }
+            }
+            None => structured,
+        };
+        Ok(Force { exact, expressions })
+    }
 }
 
-/// `dV/dq` as a column.
-fn potential_gradient(model: &mut Model) -> Result<Matrix, DerivationError> {
+/// `B u - C - dV/dq` in normal form, with `C = d(g qdot)/dq qdot - dT/dq`.
+fn exact_force(model: &mut Model, inputs: &[SymbolId]) -> Result<Matrix, DerivationError> {
+    let atoms = model.store.atoms().clone();
+    let velocity = symbol_column(model, &model.velocities.clone())?;
+    let input = symbol_column(model, inputs)?;
+    let applied = model.input_matrix.mul(&input, &atoms)?;
+    let momentum = model.mass_matrix.mul(&velocity, &atoms)?;
+    let transport = directional_derivative(model, &momentum, &velocity)?;
+    let kinetic = model.kinetic_energy.clone();
     let potential = model.potential_energy.clone();
-    gradient(model, &potential)
+    let energy_gradient = gradient(model, &kinetic)?.sub(&gradient(model, &potential)?, &atoms)?;
+    Ok(applied
+        .sub(&transport, &atoms)?
+        .add(&energy_gradient, &atoms)?)
+}
+
+/// `B u - d/dt(dT/dqdot) + dT/dq - dV/dq` as expressions, the time
+/// derivative `sum_k d(dT/dqdot)/dq_k qdot_k` and the gradients taken on the
+/// DAG of the energies' expressions.
+fn structured_force(model: &mut Model, inputs: &[SymbolId]) -> Result<ExprMatrix, MatrixError> {
+    let coordinates = model.coordinate_symbols();
+    let (kinetic, potential) = (
+        model.energy_expressions.kinetic,
+        model.energy_expressions.potential,
+    );
+    let store = &mut model.store;
+    let b = ExprMatrix::of(&model.input_matrix, store);
+    let u = ExprMatrix::column(inputs.iter().map(|&s| store.symbol(s)).collect());
+    let applied = b.mul(&u, store)?;
+    let momenta: Vec<ExprId> = model
+        .velocities
+        .iter()
+        .map(|&v| store.derivative(kinetic, v))
+        .collect();
+    let mut transport: Vec<Vec<ExprId>> = vec![Vec::new(); coordinates.len()];
+    for (&q, &v) in coordinates.iter().zip(&model.velocities) {
+        let velocity = store.symbol(v);
+        for (i, rate) in store.derivatives(&momenta, q).into_iter().enumerate() {
+            transport[i].push(store.mul2(rate, velocity));
+        }
+    }
+    let entries = coordinates
+        .iter()
+        .zip(transport)
+        .enumerate()
+        .map(|(i, (&q, transport))| {
+            let transport = store.add(&transport);
+            let kinetic_rate = store.derivative(kinetic, q);
+            let potential_rate = store.derivative(potential, q);
+            let lost = store.add2(transport, potential_rate);
+            let gained = store.add2(applied.get(i, 0), kinetic_rate);
+            store.sub(gained, lost)
+        })
+        .collect();
+    Ok(ExprMatrix::column(entries))
 }
 
 /// `d f/dq` as an n x 1 column.

@@ -201,18 +201,30 @@ pub(super) fn dalembert_section(model: &mut Model, derivation: &LagrangeDalember
                 label("B", "B"),
                 &model.input_matrix.clone(),
             ),
-            matrix_item(
-                model,
-                "force",
-                label(
-                    "B u - C - dV/dq",
-                    "B u - C - \\frac{\\partial V}{\\partial q}",
-                ),
-                &system.force,
-            ),
+            force_item(model, &system.force),
             drift_item(model, &system.drift),
             word_fact("solve", "acceleration computed by", solve),
         ],
+    }
+}
+
+/// `B u - C - dV/dq` as a matrix when exact; a statement of how it is
+/// computed when not.
+fn force_item(model: &mut Model, force: &lagrange_dalembert::Force) -> Item {
+    let text = "B u - C - dV/dq";
+    match &force.exact {
+        Some(exact) => matrix_item(
+            model,
+            "force",
+            label(text, "B u - C - \\frac{\\partial V}{\\partial q}"),
+            exact,
+        ),
+        None => word_fact(
+            "force",
+            text,
+            "structured: the derivatives of the energies' expressions, not expanded \
+             (the exact form exceeds its derivation budget)",
+        ),
     }
 }
 

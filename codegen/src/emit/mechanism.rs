@@ -4,10 +4,10 @@
 //! (`f(q)`) and `holonomic_jacobian(q)` (`df/dq`, by exact
 //! differentiation). A model without mechanism sections has them empty.
 
-use super::{Function, coordinates, expressions, f64_type, function_body, matrix_literal};
+use super::{Function, coordinates, f64_type, function_body, matrix_literal};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
-use crate::sym::Matrix;
+use crate::sym::ExprId;
 use proc_macro2::TokenStream;
 use quote::quote;
 
@@ -58,7 +58,7 @@ pub(super) fn functions(model: &mut Model) -> Result<Vec<Function>, Diagnostics>
 
 fn orientations(model: &mut Model) -> Result<Function, Diagnostics> {
     let (n, frames) = (model.n(), model.mechanism.frames.len());
-    let outputs = expressions(model, &model.mechanism.orientations.clone());
+    let outputs = model.mechanism.expressions.orientations.entries().to_vec();
     let body = function_body(model, &[coordinates(model)], &outputs, |values| {
         let matrices = values.chunks(9).map(|entries| matrix_literal(entries, 3));
         quote!([#(#matrices),*])
@@ -83,7 +83,7 @@ fn orientations(model: &mut Model) -> Result<Function, Diagnostics> {
 
 fn positions(model: &mut Model) -> Result<Function, Diagnostics> {
     let (n, points) = (model.n(), model.mechanism.points.len());
-    let outputs = expressions(model, &model.mechanism.positions.clone());
+    let outputs = model.mechanism.expressions.positions.entries().to_vec();
     let body = function_body(model, &[coordinates(model)], &outputs, |values| {
         matrix_literal(values, 3)
     })?;
@@ -106,7 +106,12 @@ fn positions(model: &mut Model) -> Result<Function, Diagnostics> {
 
 fn holonomic_residual(model: &mut Model) -> Result<Function, Diagnostics> {
     let (n, h) = (model.n(), model.mechanism.holonomic.len());
-    let outputs = expressions(model, &model.mechanism.holonomic_residual.clone());
+    let outputs = model
+        .mechanism
+        .expressions
+        .holonomic_residual
+        .entries()
+        .to_vec();
     let body = function_body(
         model,
         &[coordinates(model)],
@@ -130,27 +135,29 @@ fn holonomic_residual(model: &mut Model) -> Result<Function, Diagnostics> {
     })
 }
 
-/// `df/dq`, `h x n`.
-fn holonomic_jacobian_matrix(model: &mut Model) -> Result<Matrix, Diagnostics> {
+/// `df/dq`, `h x n`, by exact differentiation: each entry's normal form
+/// written out, or when large the derivative of the expression the residual
+/// is computed by ([`crate::sym::Store::compact_expression`]).
+fn holonomic_jacobian_matrix(model: &mut Model) -> Result<Vec<ExprId>, Diagnostics> {
     let residual = model.mechanism.holonomic_residual.clone();
+    let computed = model.mechanism.expressions.holonomic_residual.clone();
     let mut entries = Vec::new();
-    for f in residual.entries() {
+    for (f, &computed) in residual.entries().iter().zip(computed.entries()) {
         for coordinate in model.coordinate_symbols() {
             let partial = model
                 .store
                 .derivative_of_normal(f, coordinate)
                 .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
-            entries.push(partial);
+            let derived_as = model.store.derivative(computed, coordinate);
+            entries.push(model.store.compact_expression(&partial, derived_as));
         }
     }
-    Matrix::new(residual.rows(), model.n(), entries)
-        .map_err(|e| Diagnostics::internal(model.name.span(), e))
+    Ok(entries)
 }
 
-fn holonomic_jacobian(model: &mut Model, jacobian: &Matrix) -> Result<Function, Diagnostics> {
+fn holonomic_jacobian(model: &mut Model, outputs: &[ExprId]) -> Result<Function, Diagnostics> {
     let (n, h) = (model.n(), model.mechanism.holonomic.len());
-    let outputs = expressions(model, jacobian);
-    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+    let body = function_body(model, &[coordinates(model)], outputs, |values| {
         matrix_literal(values, n)
     })?;
     let f64 = f64_type();

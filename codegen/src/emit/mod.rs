@@ -42,7 +42,7 @@ use crate::derive::constraints::ConstraintAnalysis;
 use crate::diagnostic::Diagnostics;
 use crate::ir::{self, Op, OperationCount};
 use crate::model::Model;
-use crate::sym::{ExprId, Matrix, SymbolId};
+use crate::sym::{ExprId, SymbolId};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
@@ -329,10 +329,6 @@ pub(crate) fn velocities(model: &Model) -> Argument {
         name: "qdot",
         symbols: model.velocities.clone(),
     }
-}
-
-pub(crate) fn expressions(model: &mut Model, matrix: &Matrix) -> Vec<ExprId> {
-    matrix.to_expressions(&mut model.store)
 }
 
 pub(crate) fn matrix_literal(values: &[TokenStream], columns: usize) -> TokenStream {

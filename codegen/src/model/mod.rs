@@ -20,7 +20,7 @@ pub mod mechanism;
 mod tests;
 
 pub use check::{check, check_within};
-pub use mechanism::Mechanism;
+pub use mechanism::{Mechanism, MechanismExpressions};
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::sym::{ExprId, ExprMatrix, Matrix, Rational, RationalFunction, Store, SymbolId};

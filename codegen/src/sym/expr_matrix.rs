@@ -43,6 +43,15 @@ impl ExprMatrix {
         })
     }
 
+    /// A matrix of no rows, `columns` wide.
+    pub fn empty(columns: usize) -> ExprMatrix {
+        ExprMatrix {
+            rows: 0,
+            columns,
+            entries: Vec::new(),
+        }
+    }
+
     /// The zero matrix.
     pub fn zeros(store: &mut Store, rows: usize, columns: usize) -> ExprMatrix {
         let zero = store.integer(0);

@@ -8,6 +8,9 @@ use chaplygin_runtime::nalgebra::{DMatrix, DVector};
 use std::collections::HashMap;
 
 const SLEIGH: &str = include_str!("../../../../models/sleigh.model");
+const ROLLING_DISK_3D: &str = include_str!("../../../../models/rolling_disk_3d.model");
+const SNAKEBOARD_BODIES: &str = include_str!("../../../../models/snakeboard_bodies.model");
+const BICYCLE: &str = include_str!("../../../../models/bicycle.model");
 const CHAIN: &str = r#"
 pub struct Chain {
 coordinates: [x, y, theta, a1, a2, a3],
@@ -56,7 +59,16 @@ fn the_closed_form_solves_the_equations_exactly() {
             .mass_matrix
             .mul(&solution.accelerations, atoms)
             .and_then(|m| m.sub(&a.transpose().mul(&solution.multipliers, atoms)?, atoms))
-            .and_then(|m| m.sub(&system.force, atoms))
+            .and_then(|m| {
+                m.sub(
+                    system
+                        .force
+                        .exact
+                        .as_ref()
+                        .expect("small models' force is exact"),
+                    atoms,
+                )
+            })
             .expect("fits");
         assert!(balance.is_zero(), "g qddot - A^T lambda - f must vanish");
         let acceleration_constraint = a
@@ -110,7 +122,13 @@ fn pivoted_solution<const M: usize>(
     let a = system
         .constraint_matrix
         .evaluate(&mut model.store, &value_of);
-    let force = system.force.evaluate(&mut model.store, &value_of);
+    let force: Vec<f64> = system
+        .force
+        .expressions
+        .entries()
+        .iter()
+        .map(|&e| model.store.evaluate(e, &value_of))
+        .collect();
     let drift: Vec<f64> = system
         .drift
         .expressions(&mut model.store)
@@ -266,4 +284,75 @@ fn the_structured_drift_is_the_exact_drift() {
             }
         }
     }
+}
+
+/// The structured force (derivatives of the energies' expressions) has the
+/// exact force's normal form, on declared energies and on mechanisms, and
+/// the force emitted takes its values at random states.
+#[test]
+fn the_structured_force_is_the_exact_force() {
+    for source in [
+        crate::fixtures::SNAKEBOARD,
+        TOWED,
+        CHAIN,
+        ROLLING_DISK_3D,
+        SNAKEBOARD_BODIES,
+    ] {
+        let (mut model, derivation) = derived(source);
+        let force = &derivation.saddle_point.force;
+        let exact = force.exact.clone().expect("small models' force is exact");
+        let structured = super::structured_force(&mut model, &derivation.inputs).expect("fits");
+        for (i, &entry) in structured.entries().iter().enumerate() {
+            let form = model.store.normal(entry).expect("within budget");
+            let difference = form.sub(exact.get(i, 0), model.store.atoms());
+            assert!(difference.is_zero(), "{}: entry {i}", model.name);
+        }
+        assert_force_values(&mut model, &derivation, 5, 1e-12);
+    }
+}
+
+/// The force emitted takes the exact force's values at `points` random
+/// states, to `tolerance` relative.
+fn assert_force_values(
+    model: &mut Model,
+    derivation: &LagrangeDalembert,
+    points: u64,
+    tolerance: f64,
+) {
+    let force = &derivation.saddle_point.force;
+    let exact = force.exact.as_ref().expect("exact");
+    for seed in 1..=points {
+        let values = random_point(model, &derivation.inputs, seed);
+        let value_of = |s: SymbolId| values[&s];
+        let exact_values = exact.evaluate(&mut model.store, &value_of);
+        for (i, &entry) in force.expressions.entries().iter().enumerate() {
+            let value = model.store.evaluate(entry, &value_of);
+            assert!(
+                (value - exact_values[i]).abs() <= tolerance * (1.0 + exact_values[i].abs()),
+                "{}, entry {i}: {value} vs {}",
+                model.name,
+                exact_values[i]
+            );
+        }
+    }
+}
+
+/// The force emitted is the cheaper of the two forms: the benchmark
+/// bicycle's structured force (the derivatives of its four bodies' energies)
+/// weighs a fraction of its normal forms written out, and takes their values
+/// at random states.
+#[test]
+fn the_bicycle_emits_its_structured_force() {
+    let (mut model, derivation) = derived(BICYCLE);
+    let force = &derivation.saddle_point.force;
+    let exact = force.exact.clone().expect("within its budget");
+    let written = crate::sym::ExprMatrix::of(&exact, &mut model.store);
+    let weight = |entries: &[ExprId]| ir::estimated_weight(&model.store, entries);
+    let (emitted, written) = (
+        weight(force.expressions.entries()),
+        weight(written.entries()),
+    );
+    println!("bicycle force: emitted {emitted}, written out {written}");
+    assert!(emitted * 4 < written, "{emitted} vs {written}");
+    assert_force_values(&mut model, &derivation, 3, 1e-10);
 }

@@ -19,7 +19,7 @@ pub(super) mod vector;
 mod tests;
 
 use super::Declared;
-use crate::sym::{Matrix, RationalFunction};
+use crate::sym::{ExprMatrix, Matrix, RationalFunction};
 
 /// What a model's mechanism sections declare, in normal form.
 #[derive(Clone, Debug)]
@@ -42,6 +42,23 @@ pub struct Mechanism {
     pub holonomic: Vec<Declared>,
     /// `f(q)`, one row each: `h x 1`.
     pub holonomic_residual: Matrix,
+    /// The same orientations, positions and residuals as the emitted code
+    /// computes them.
+    pub expressions: MechanismExpressions,
+}
+
+/// A mechanism's orientations, positions and holonomic residuals as
+/// expressions ([`crate::sym::Store::compact_expression`]): each normal
+/// form written out, or when large the expression it was derived as along
+/// the rotation chain (equal to it).
+#[derive(Clone, Debug)]
+pub struct MechanismExpressions {
+    /// `nf x 9`, as [`Mechanism::orientations`].
+    pub orientations: ExprMatrix,
+    /// `np x 3`, as [`Mechanism::positions`].
+    pub positions: ExprMatrix,
+    /// `h x 1`, as [`Mechanism::holonomic_residual`].
+    pub holonomic_residual: ExprMatrix,
 }
 
 impl Mechanism {
@@ -57,6 +74,11 @@ impl Mechanism {
             contacts: Vec::new(),
             holonomic: Vec::new(),
             holonomic_residual: Matrix::zeros(0, 1),
+            expressions: MechanismExpressions {
+                orientations: ExprMatrix::empty(9),
+                positions: ExprMatrix::empty(3),
+                holonomic_residual: ExprMatrix::empty(1),
+            },
         }
     }
 

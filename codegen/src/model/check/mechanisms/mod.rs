@@ -11,9 +11,10 @@ mod frames;
 
 use super::energy::first_velocity_span;
 use super::*;
-use crate::model::mechanism::Mechanism;
 use crate::model::mechanism::evaluate::{Evaluator, Reference};
 use crate::model::mechanism::space::{GROUND, ORIGIN, Space};
+use crate::model::mechanism::{Mechanism, MechanismExpressions};
+use crate::sym::ExprMatrix;
 use proc_macro2::Ident;
 
 /// A mechanism and the constraint rows it contributes (contacts, then the
@@ -83,16 +84,19 @@ impl Checker {
         }
         rows.extend(velocity_forms);
         let energies = self.body_energies(&bodies, &gravity, &q)?;
-        let orientations = self.normal_rows(
-            space
-                .declared_frames()
-                .iter()
-                .map(|(_, f)| f.rotation.to_vec()),
-            9,
-        )?;
-        let positions =
-            self.normal_rows(space.declared_points().iter().map(|(_, p)| p.to_vec()), 3)?;
-        let holonomic_residual = self.normal_rows(residual.into_iter().map(|f| vec![f]), 1)?;
+        let orientations: Vec<ExprId> = space
+            .declared_frames()
+            .iter()
+            .flat_map(|(_, f)| f.rotation.to_vec())
+            .collect();
+        let positions: Vec<ExprId> = space
+            .declared_points()
+            .iter()
+            .flat_map(|(_, p)| p.to_vec())
+            .collect();
+        let (orientations, orientation_expressions) = self.normal_rows(&orientations, 9)?;
+        let (positions, position_expressions) = self.normal_rows(&positions, 3)?;
+        let (holonomic_residual, residual_expressions) = self.normal_rows(&residual, 1)?;
         let names = contacts.iter().chain(&holonomic).cloned().collect();
         Some(MechanismParts {
             mechanism: Mechanism {
@@ -105,6 +109,11 @@ impl Checker {
                 contacts,
                 holonomic,
                 holonomic_residual,
+                expressions: MechanismExpressions {
+                    orientations: orientation_expressions,
+                    positions: position_expressions,
+                    holonomic_residual: residual_expressions,
+                },
             },
             names,
             rows,
@@ -124,19 +133,21 @@ impl Checker {
         }
     }
 
-    /// Rows of normal forms, `width` entries each.
-    fn normal_rows(
-        &mut self,
-        rows: impl Iterator<Item = Vec<ExprId>>,
-        width: usize,
-    ) -> Option<Matrix> {
-        let mut entries = Vec::new();
-        for row in rows {
-            for id in row {
-                entries.push(self.store.normal(id).ok()?);
-            }
+    /// Rows of `width` entries: their normal forms, and the expressions to
+    /// compute them by ([`crate::sym::Store::compact_expression`]).
+    fn normal_rows(&mut self, entries: &[ExprId], width: usize) -> Option<(Matrix, ExprMatrix)> {
+        let mut forms = Vec::with_capacity(entries.len());
+        let mut expressions = Vec::with_capacity(entries.len());
+        for &id in entries {
+            let form = self.store.normal(id).ok()?;
+            expressions.push(self.store.compact_expression(&form, id));
+            forms.push(form);
         }
-        Matrix::new(entries.len() / width, width, entries).ok()
+        let rows = entries.len() / width;
+        Some((
+            Matrix::new(rows, width, forms).ok()?,
+            ExprMatrix::new(rows, width, expressions).ok()?,
+        ))
     }
 
     /// Values in mechanism sections depend on the configuration only.
