@@ -154,3 +154,19 @@ pub mod caster_robot {
     /// The model's declaration in the model language.
     pub const MODEL_TEXT: &str = include_str!("../caster_robot.model");
 }
+
+pub mod bicycle {
+    //! The Whipple-Carvallo benchmark bicycle of Meijaard, Papadopoulos,
+    //! Ruina and Schwab (2007), declared as a mechanism (INTERFACE.md
+    //! section 6): a rear frame with rider, a front frame with handlebar, two
+    //! knife-edge wheels rolling without slipping, the front contact's height
+    //! a holonomic constraint fixing the pitch `theta_b`. Coordinates
+    //! `(x_p, y_p, psi, phi, theta_b, delta, theta_r, theta_f)` in the paper's
+    //! conventions (x forward, y right, z down; forward speed
+    //! `v = -rR dot(theta_r)`), parameters named and valued as the paper's
+    //! table 1. Upright (`phi = delta = theta_b = 0`) is on the constraint.
+    include!(concat!(env!("OUT_DIR"), "/bicycle.rs"));
+
+    /// The model's declaration in the model language.
+    pub const MODEL_TEXT: &str = include_str!("../bicycle.model");
+}

@@ -16,9 +16,9 @@ use chaplygin::runtime::system::LagrangeDalembert;
 use chaplygin::runtime::system::{Constant, Dalembert, Reduced, ReducedPortHamiltonian};
 use chaplygin_models::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin_models::{
-    caster_robot::CasterRobot, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
-    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
-    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
+    bicycle::Bicycle, caster_robot::CasterRobot, differential_drive::DifferentialDrive,
+    rolling_disk::RollingDisk, rolling_disk_3d::RollingDisk3d, sleigh::Sleigh,
+    sleigh_bodies::SleighBodies, snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
 use common::towed::Towed;
 use snake3::Snake3;
@@ -233,6 +233,36 @@ fn mechanism_items_do_not_allocate() {
     });
     assert_eq!(counted, 0);
     assert_eq!(CasterRobot::CHARTS.len(), 2);
+}
+
+/// Every item of the benchmark bicycle, the largest built-in model.
+#[test]
+fn the_bicycles_items_do_not_allocate() {
+    let bicycle = Bicycle::default();
+    let counted = allocations(|| {
+        for i in 0..100 {
+            let t = i as f64 * 1e-2;
+            let q = [t, -t, 0.3 + t, 0.1, 0.05 - t / 10.0, 0.2 - t, 1.0, -t];
+            let qdot = [1.0, 0.5, -0.2, t, 0.3, 0.1, -10.0, -8.0];
+            let u = [t, 0.5];
+            black_box(bicycle.mass_matrix(black_box(&q)));
+            black_box(bicycle.energy(black_box(&q), black_box(&qdot)));
+            black_box(bicycle.constraint_matrix(black_box(&q)));
+            black_box(bicycle.constraint_residual(black_box(&q), black_box(&qdot)));
+            black_box(bicycle.orientations(black_box(&q)));
+            black_box(bicycle.positions(black_box(&q)));
+            black_box(bicycle.holonomic_residual(black_box(&q)));
+            black_box(bicycle.holonomic_jacobian(black_box(&q)));
+            black_box(bicycle.acceleration(black_box(&q), black_box(&qdot), black_box(&u)));
+            black_box(bicycle.acceleration_jacobian(
+                black_box(&q),
+                black_box(&qdot),
+                black_box(&u),
+            ));
+            reduced_items!(bicycle, Bicycle, t);
+        }
+    });
+    assert_eq!(counted, 0);
 }
 
 #[test]
