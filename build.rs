@@ -15,6 +15,7 @@ fn main() {
         "sleigh_bodies",
         "snakeboard_bodies",
         "caster_robot",
+        "bicycle",
     ];
     let builder = models
         .iter()

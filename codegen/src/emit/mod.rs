@@ -227,6 +227,8 @@ pub(crate) fn f64_type() -> TokenStream {
     quote!(::core::primitive::f64)
 }
 
+/// The model's struct, one field per parameter under the name declared
+/// (`rR`, `IBxx` in the benchmark bicycle's notation: no snake-case lint).
 fn parameter_struct(model: &Model) -> TokenStream {
     let name = &model.name;
     let visibility = &model.visibility;
@@ -251,6 +253,7 @@ fn parameter_struct(model: &Model) -> TokenStream {
     quote! {
         #(#docs)*
         #[derive(::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, ::core::cmp::PartialEq)]
+        #[allow(non_snake_case)]
         #visibility struct #name {
             #(#[doc = #field_docs] pub #fields: #f64,)*
         }

@@ -72,6 +72,27 @@ fn pythagoras() {
     f.assert_exactly_nonzero(wrong);
 }
 
+/// The store's own rewrites cancel a sum against its negation, and a
+/// sum's terms against a scaled sum of some of them, without normal forms;
+/// a scaled sum that cancels nothing stays one term.
+#[test]
+fn sums_cancel_when_built() {
+    let mut f = Fixture::new(&["a", "b", "c"], &[]);
+    let (a, b, c) = (f.var("a"), f.var("b"), f.var("c"));
+    let sine = f.call(Function::Sin, a);
+    let two_b = f.store.add2(b, b);
+    let pair = f.store.add(&[sine, two_b]);
+    let zero = f.store.integer(0);
+    assert_eq!(f.store.sub(pair, pair), zero);
+    let three = f.store.add(&[sine, two_b, c]);
+    assert_eq!(f.store.sub(three, pair), c);
+    let doubled = f.store.add2(three, three);
+    let kept = f.store.sub(doubled, pair);
+    let minus_pair = f.store.neg(pair);
+    assert!(f.store.children(kept).contains(&minus_pair));
+    assert_eq!(f.store.display(kept).to_string().matches("sin").count(), 2);
+}
+
 #[test]
 fn angle_addition() {
     let mut f = Fixture::new(&["a", "b"], &[]);

@@ -27,40 +27,82 @@ impl Store {
     }
 
     /// The sum of `terms`, flattened, with like terms `c*x + d*x` collected.
+    /// A scaled sum `c*(a + b)` stays one term unless each of its terms is
+    /// a term of the sum already and one of them cancels: then it is
+    /// distributed, so that `(a + b) - (a + b)` is 0 and
+    /// `(a + b + c) - (a + b)` is `c`.
     pub fn add(&mut self, terms: &[ExprId]) -> ExprId {
-        let mut constant = Rational::ZERO;
-        let mut coefficients: Vec<(ExprId, Rational)> = Vec::new();
-        let mut positions: HashMap<ExprId, usize> = HashMap::default();
+        let mut like = LikeTerms::default();
+        let mut scaled_sums = Vec::new();
         let mut pending: Vec<ExprId> = terms.to_vec();
         while let Some(term) = pending.pop() {
             match self.node(term) {
-                Node::Number(value) => constant = constant.add(value),
+                Node::Number(value) => like.constant = like.constant.add(value),
                 Node::Add(children) => pending.extend(children.iter().copied()),
                 _ => {
                     let (coefficient, rest) = self.split_coefficient(term);
-                    match positions.get(&rest) {
-                        Some(&at) => coefficients[at].1 = coefficients[at].1.add(&coefficient),
-                        None => {
-                            positions.insert(rest, coefficients.len());
-                            coefficients.push((rest, coefficient));
-                        }
+                    if matches!(self.node(rest), Node::Add(_)) {
+                        scaled_sums.push((rest, coefficient));
+                    } else {
+                        like.collect(rest, coefficient);
                     }
                 }
             }
         }
-        let mut children: Vec<ExprId> = coefficients
+        for (sum, coefficient) in scaled_sums {
+            self.add_scaled_sum(&mut like, sum, coefficient);
+        }
+        let mut children: Vec<ExprId> = like
+            .coefficients
             .into_iter()
             .filter(|(_, c)| !c.is_zero())
             .map(|(rest, c)| self.scale(rest, c))
             .collect();
         children.sort_unstable();
-        if !constant.is_zero() {
-            children.insert(0, self.number(constant));
+        if !like.constant.is_zero() {
+            children.insert(0, self.number(like.constant));
         }
         match children.len() {
             0 => self.integer(0),
             1 => children[0],
             _ => self.intern(Node::Add(children.into_boxed_slice())),
+        }
+    }
+
+    /// Adds `coefficient * sum` to `like`: distributed when each term of
+    /// `sum` is already a term there and one cancels, else as one term.
+    fn add_scaled_sum(&mut self, like: &mut LikeTerms, sum: ExprId, coefficient: Rational) {
+        let Node::Add(children) = self.node(sum).clone() else {
+            unreachable!("a scaled sum's rest is a sum");
+        };
+        let terms: Vec<ExprId> = children
+            .iter()
+            .copied()
+            .filter(|&child| !matches!(self.node(child), Node::Number(_)))
+            .collect();
+        let split: Vec<(Rational, ExprId)> = terms
+            .into_iter()
+            .map(|child| self.split_coefficient(child))
+            .collect();
+        let cancels = |(c, rest): &(Rational, ExprId)| {
+            like.positions
+                .get(rest)
+                .is_some_and(|&at| like.coefficients[at].1.add(&c.mul(&coefficient)).is_zero())
+        };
+        let present = split
+            .iter()
+            .all(|(_, rest)| like.positions.contains_key(rest));
+        if !(present && split.iter().any(cancels)) {
+            like.collect(sum, coefficient);
+            return;
+        }
+        for &child in children.iter() {
+            if let Node::Number(value) = self.node(child) {
+                like.constant = like.constant.add(&value.mul(&coefficient));
+            }
+        }
+        for (c, rest) in split {
+            like.collect(rest, c.mul(&coefficient));
         }
     }
 
@@ -306,5 +348,27 @@ impl Store {
     /// `function(argument)` for an argument known not to be a constant.
     pub(crate) fn apply_to_expression(&mut self, function: Function, argument: ExprId) -> ExprId {
         self.intern(Node::Call(function, argument))
+    }
+}
+
+/// The terms of a sum being built: a constant and each distinct term's
+/// coefficient, in order of appearance.
+#[derive(Default)]
+struct LikeTerms {
+    constant: Rational,
+    coefficients: Vec<(ExprId, Rational)>,
+    positions: HashMap<ExprId, usize>,
+}
+
+impl LikeTerms {
+    /// Adds `coefficient * rest`.
+    fn collect(&mut self, rest: ExprId, coefficient: Rational) {
+        match self.positions.get(&rest) {
+            Some(&at) => self.coefficients[at].1 = self.coefficients[at].1.add(&coefficient),
+            None => {
+                self.positions.insert(rest, self.coefficients.len());
+                self.coefficients.push((rest, coefficient));
+            }
+        }
     }
 }
