@@ -11,8 +11,14 @@
 //! ```
 //!
 //! `C` is computed as `d(g qdot)/dq qdot - dT/dq` with `T = 1/2 qdot^T g qdot`,
-//! the same sum regrouped. `lambda` are the constraint forces for the rows of
-//! `A` exactly as declared. Two ways to solve for `(qddot, lambda)`:
+//! the same sum regrouped, on normal forms ([`Force::exact`]); the force
+//! emitted ([`Force::expressions`]) is the cheaper of those written out and
+//! the same terms taken on expressions: `d/dt dT/dqdot - dT/dq` of the
+//! declared `T` differentiated on its DAG, and for each declared body Kane's
+//! form `m J_v^T a + J_w^T (I alpha + omega x I omega)`
+//! ([`crate::model::BodyMotion`]), which for the benchmark bicycle weighs a
+//! twenty-fifth of the normal forms. `lambda` are the constraint forces for
+//! the rows of `A` exactly as declared. Two ways to solve for `(qddot, lambda)`:
 //!
 //! - **symbolic**: with exact inverses (block by block, [`Matrix::solve`]),
 //!   `lambda = (A g^-1 A^T)^-1 (A g^-1 (C + dV/dq - B u) - Adot qdot)` and
@@ -402,15 +408,15 @@ fn exact_force(model: &mut Model, inputs: &[SymbolId]) -> Result<Matrix, Derivat
         .add(&energy_gradient, &atoms)?)
 }
 
-/// `B u - d/dt(dT/dqdot) + dT/dq - dV/dq` as expressions, the time
-/// derivative `sum_k d(dT/dqdot)/dq_k qdot_k` and the gradients taken on the
-/// DAG of the energies' expressions.
+/// `B u - d/dt(dT/dqdot) + dT/dq - dV/dq` at `qddot = 0` as expressions:
+/// for the declared part of `T`, the time derivative
+/// `sum_k d(dT/dqdot)/dq_k qdot_k` and the gradients taken on the DAG of its
+/// expression; for each declared body, Kane's form of the same terms
+/// ([`crate::model::BodyMotion::velocity_terms`]).
 fn structured_force(model: &mut Model, inputs: &[SymbolId]) -> Result<ExprMatrix, MatrixError> {
     let coordinates = model.coordinate_symbols();
-    let (kinetic, potential) = (
-        model.energy_expressions.kinetic,
-        model.energy_expressions.potential,
-    );
+    let energies = &model.energy_expressions;
+    let (kinetic, potential) = (energies.declared_kinetic, energies.potential);
     let store = &mut model.store;
     let b = ExprMatrix::of(&model.input_matrix, store);
     let u = ExprMatrix::column(inputs.iter().map(|&s| store.symbol(s)).collect());
@@ -420,22 +426,27 @@ fn structured_force(model: &mut Model, inputs: &[SymbolId]) -> Result<ExprMatrix
         .iter()
         .map(|&v| store.derivative(kinetic, v))
         .collect();
-    let mut transport: Vec<Vec<ExprId>> = vec![Vec::new(); coordinates.len()];
+    let mut lost: Vec<Vec<ExprId>> = vec![Vec::new(); coordinates.len()];
     for (&q, &v) in coordinates.iter().zip(&model.velocities) {
         let velocity = store.symbol(v);
         for (i, rate) in store.derivatives(&momenta, q).into_iter().enumerate() {
-            transport[i].push(store.mul2(rate, velocity));
+            lost[i].push(store.mul2(rate, velocity));
+        }
+    }
+    for body in &energies.bodies {
+        let terms = body.velocity_terms(store, &coordinates, &model.velocities);
+        for (lost, term) in lost.iter_mut().zip(terms) {
+            lost.push(term);
         }
     }
     let entries = coordinates
         .iter()
-        .zip(transport)
+        .zip(lost)
         .enumerate()
-        .map(|(i, (&q, transport))| {
-            let transport = store.add(&transport);
+        .map(|(i, (&q, mut lost))| {
+            lost.push(store.derivative(potential, q));
+            let lost = store.add(&lost);
             let kinetic_rate = store.derivative(kinetic, q);
-            let potential_rate = store.derivative(potential, q);
-            let lost = store.add2(transport, potential_rate);
             let gained = store.add2(applied.get(i, 0), kinetic_rate);
             store.sub(gained, lost)
         })

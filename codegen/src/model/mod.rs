@@ -20,6 +20,7 @@ pub mod mechanism;
 mod tests;
 
 pub use check::{check, check_within};
+pub use mechanism::bodies::BodyMotion;
 pub use mechanism::{Mechanism, MechanismExpressions};
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
@@ -107,8 +108,15 @@ pub struct EnergyExpressions {
     pub kinetic: ExprId,
     /// `V(q)`.
     pub potential: ExprId,
-    /// `g(q) = d^2 T / d qdot^2`, n x n.
+    /// `g(q) = d^2 T / d qdot^2`, n x n: for a mechanism's large entries
+    /// the declared part's second derivatives plus the bodies' Kane form
+    /// ([`BodyMotion::mass_matrix`]).
     pub mass_matrix: ExprMatrix,
+    /// The part of `T` declared as an energy (`T` less the bodies'), its
+    /// normal form written out.
+    pub declared_kinetic: ExprId,
+    /// The declared bodies' motions.
+    pub bodies: Vec<BodyMotion>,
 }
 
 /// A checked model.

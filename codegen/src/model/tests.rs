@@ -279,3 +279,71 @@ fn the_bicycles_rows_keep_their_derivation_and_its_values() {
     let kept = crate::ir::estimated_weight(&model.store, model.constraint_expressions.entries());
     assert!(kept * 2 < written_out, "{kept} vs {written_out}");
 }
+
+/// Kane's form of the bodies' metric, `sum m J_v^T J_v + J_w^T I J_w`,
+/// has the normal forms of `d^2 T / d qdot^2` of the bodies' `T`, exactly,
+/// for bodies turning in three dimensions (the leaning disk, the caster
+/// robot's wheels and fork) and a particle (the sleigh's).
+#[test]
+fn the_bodies_kane_metric_is_the_hessian_of_their_energy() {
+    for source in [
+        include_str!("../../../models/rolling_disk_3d.model"),
+        include_str!("../../../models/caster_robot.model"),
+        include_str!("../../../models/sleigh_bodies.model"),
+    ] {
+        let mut model = checked(source);
+        let velocities = model.velocities.clone();
+        let n = velocities.len();
+        let kinetic = model.mechanism.kinetic_energy.clone();
+        let rates = model
+            .store
+            .jacobian(std::slice::from_ref(&kinetic), &velocities)
+            .expect("fits");
+        let hessian = model
+            .store
+            .jacobian(rates.entries(), &velocities)
+            .expect("fits");
+        let mut kane = vec![model.store.integer(0); n * n];
+        for body in model.energy_expressions.bodies.clone() {
+            let entries = body.mass_matrix(&mut model.store, &velocities);
+            for (sum, entry) in kane.iter_mut().zip(entries) {
+                *sum = model.store.add2(*sum, entry);
+            }
+        }
+        for (index, &entry) in kane.iter().enumerate() {
+            let form = model.store.normal(entry).expect("fits");
+            let exact = hessian.get(index / n, index % n);
+            let difference = form.sub(exact, model.store.atoms());
+            assert!(difference.is_zero(), "{}: g[{index}]", model.name);
+        }
+    }
+}
+
+/// The benchmark bicycle's `g` as the emitted code computes it (its large
+/// entries in Kane's form) takes the values of its exact normal forms.
+#[test]
+fn the_bicycles_metric_as_computed_takes_its_exact_values() {
+    let mut model = checked(include_str!("../../../models/bicycle.model"));
+    let mut random = crate::sym::zero::SplitMix::new(11);
+    let values: std::collections::HashMap<_, f64> = model
+        .store
+        .symbols()
+        .map(|(id, _)| (id, random.uniform(-1.0, 1.0)))
+        .collect();
+    let value_of = |s| values[&s];
+    let n = model.n();
+    for i in 0..n {
+        for j in 0..n {
+            let exact = model
+                .store
+                .evaluate_normal(&model.mass_matrix.get(i, j).clone(), &value_of);
+            let emitted = model
+                .store
+                .evaluate(model.energy_expressions.mass_matrix.get(i, j), &value_of);
+            assert!(
+                (exact - emitted).abs() <= 1e-12 * (1.0 + exact.abs()),
+                "g[{i}][{j}]: {exact} vs {emitted}"
+            );
+        }
+    }
+}

@@ -338,9 +338,9 @@ fn assert_force_values(
 }
 
 /// The force emitted is the cheaper of the two forms: the benchmark
-/// bicycle's structured force (the derivatives of its four bodies' energies)
-/// weighs a fraction of its normal forms written out, and takes their values
-/// at random states.
+/// bicycle's structured force (Kane's form of its four bodies' inertia
+/// forces) weighs a fraction of its normal forms written out, and takes
+/// their values at random states.
 #[test]
 fn the_bicycle_emits_its_structured_force() {
     let (mut model, derivation) = derived(BICYCLE);
@@ -353,6 +353,6 @@ fn the_bicycle_emits_its_structured_force() {
         weight(written.entries()),
     );
     println!("bicycle force: emitted {emitted}, written out {written}");
-    assert!(emitted * 4 < written, "{emitted} vs {written}");
+    assert!(emitted * 10 < written, "{emitted} vs {written}");
     assert_force_values(&mut model, &derivation, 3, 1e-10);
 }

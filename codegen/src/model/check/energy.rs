@@ -3,7 +3,7 @@
 
 use super::mechanisms::MechanismParts;
 use super::*;
-use crate::model::{EnergyExpressions, Mechanism};
+use crate::model::{BodyMotion, EnergyExpressions, Mechanism};
 use crate::sym::ExprMatrix;
 
 impl Checker {
@@ -56,8 +56,9 @@ impl Checker {
 
     /// `T`, `V` and `g` as expressions: each normal form written out, or
     /// when it is large ([`crate::sym::Store::compact_expression`]) the
-    /// declared part written out plus the bodies' energies as they were
-    /// derived, and `g_ij` as their second derivative in `qdot_i`, `qdot_j`.
+    /// declared part written out plus the bodies' part as it was derived:
+    /// their energies, and for `g` their Kane form
+    /// ([`crate::model::BodyMotion::mass_matrix`]).
     pub(super) fn energy_expressions(
         &mut self,
         (kinetic, g): (&RationalFunction, &Matrix),
@@ -66,17 +67,15 @@ impl Checker {
         velocities: &[SymbolId],
     ) -> Option<EnergyExpressions> {
         let (bodies_kinetic, bodies_potential) = mechanism.energies_derived_as;
-        let kinetic_derived_as =
-            self.derived_as(kinetic, &mechanism.mechanism.kinetic_energy, bodies_kinetic);
-        let potential_derived_as = self.derived_as(
-            potential,
-            &mechanism.mechanism.potential_energy,
-            bodies_potential,
-        );
-        let mass_matrix = if mechanism.mechanism.kinetic_energy.is_zero() {
+        let declared_kinetic = self.declared_part(kinetic, &mechanism.mechanism.kinetic_energy);
+        let declared_potential =
+            self.declared_part(potential, &mechanism.mechanism.potential_energy);
+        let kinetic_derived_as = self.store.add2(declared_kinetic, bodies_kinetic);
+        let potential_derived_as = self.store.add2(declared_potential, bodies_potential);
+        let mass_matrix = if mechanism.motions.is_empty() {
             ExprMatrix::of(g, &mut self.store)
         } else {
-            self.metric_derived_as(g, kinetic_derived_as, velocities)?
+            self.metric_derived_as(g, declared_kinetic, &mechanism.motions, velocities)?
         };
         Some(EnergyExpressions {
             kinetic: self.store.compact_expression(kinetic, kinetic_derived_as),
@@ -84,43 +83,49 @@ impl Checker {
                 .store
                 .compact_expression(potential, potential_derived_as),
             mass_matrix,
+            declared_kinetic,
+            bodies: mechanism.motions.clone(),
         })
     }
 
     /// `g_ij` written out, or when large as `d^2 T / d qdot_i d qdot_j` of
-    /// the expression `T` was derived as.
+    /// the declared `T` plus the bodies' Kane form.
     fn metric_derived_as(
         &mut self,
         g: &Matrix,
-        kinetic_derived_as: ExprId,
+        declared_kinetic: ExprId,
+        bodies: &[BodyMotion],
         velocities: &[SymbolId],
     ) -> Option<ExprMatrix> {
         let rates: Vec<ExprId> = velocities
             .iter()
-            .map(|&v| self.store.derivative(kinetic_derived_as, v))
+            .map(|&v| self.store.derivative(declared_kinetic, v))
             .collect();
         let n = velocities.len();
         let mut entries = vec![self.store.integer(0); n * n];
         for (j, &vj) in velocities.iter().enumerate() {
-            let column = self.store.derivatives(&rates, vj);
-            for (i, derived_as) in column.into_iter().enumerate() {
-                entries[i * n + j] = self.store.compact_expression(g.get(i, j), derived_as);
+            for (i, declared) in self.store.derivatives(&rates, vj).into_iter().enumerate() {
+                entries[i * n + j] = declared;
             }
+        }
+        for body in bodies {
+            let body_entries = body.mass_matrix(&mut self.store, velocities);
+            for (entry, body_entry) in entries.iter_mut().zip(body_entries) {
+                *entry = self.store.add2(*entry, body_entry);
+            }
+        }
+        for (index, entry) in entries.iter_mut().enumerate() {
+            *entry = self
+                .store
+                .compact_expression(g.get(index / n, index % n), *entry);
         }
         ExprMatrix::new(n, n, entries).ok()
     }
 
-    /// `total` as the declared part (`total - bodies`) written out plus the
-    /// expression the bodies' part was derived as.
-    fn derived_as(
-        &mut self,
-        total: &RationalFunction,
-        bodies: &RationalFunction,
-        bodies_derived_as: ExprId,
-    ) -> ExprId {
+    /// The declared part of an energy, `total - bodies`, written out.
+    fn declared_part(&mut self, total: &RationalFunction, bodies: &RationalFunction) -> ExprId {
         let declared = total.sub(bodies, self.store.atoms());
-        let declared = self.store.expression_of(&declared);
-        self.store.add2(declared, bodies_derived_as)
+        self.store.expression_of(&declared)
     }
 
     pub(super) fn metric_of_kinetic_energy(

@@ -34,31 +34,24 @@ pub(in crate::model) struct Body {
 }
 
 impl Body {
-    /// `T = 1/2 m v_C . v_C + 1/2 omega_F . I omega_F`.
-    pub(in crate::model) fn kinetic_energy(
+    /// `v_C` and `omega_F`, as [`BodyMotion`].
+    pub(in crate::model) fn motion(
         &self,
         store: &mut Store,
         coordinates: &[SymbolId],
-    ) -> Result<ExprId, SymError> {
-        let v = velocity(store, &self.center, coordinates)?;
-        let speed_squared = vector::inner(store, &v, &v);
-        let translation = store.mul2(self.mass, speed_squared);
-        let omega = self
+    ) -> Result<BodyMotion, SymError> {
+        let velocity = velocity(store, &self.center, coordinates)?;
+        let angular_velocity = self
             .frame
             .to_frame_axes(store, &self.frame.angular_velocity);
-        let spun: Vector = [0, 1, 2].map(|row| {
-            let products: Vec<ExprId> = (0..3)
-                .map(|k| store.mul2(self.inertia[3 * row + k], omega[k]))
-                .collect();
-            store.add(&products)
-        });
-        let rotation = vector::inner(store, &omega, &spun);
-        let twice = store.add2(translation, rotation);
-        let one_half = half(store);
-        Ok(store.mul2(one_half, twice))
+        Ok(BodyMotion {
+            mass: self.mass,
+            inertia: self.inertia,
+            velocity,
+            angular_velocity,
+        })
     }
 
-    /// `V = -m g . (C - origin)`.
     pub(in crate::model) fn potential_energy(&self, store: &mut Store, gravity: &Vector) -> ExprId {
         let height = vector::inner(store, gravity, &self.center);
         let weight = store.mul2(self.mass, height);
@@ -76,5 +69,126 @@ impl Body {
         let arm = vector::sub(store, point, &self.center);
         let turning = vector::cross(store, &self.frame.angular_velocity, &arm);
         Ok(vector::add(store, &v, &turning))
+    }
+}
+
+/// What the equations of motion read of a body: `m`, `I` about the centre
+/// in the body's axes, the centre's velocity `v_C` (ground axes) and the
+/// angular velocity `omega_F` (the body's axes), both linear in `qdot`.
+///
+/// With the partial velocities `J_v = d v_C / d qdot`, `J_w = d omega_F / d
+/// qdot` and the rates at `qddot = 0`, `a = sum_k (d v_C / d q_k) qdot_k`
+/// and `alpha = sum_k (d omega_F / d q_k) qdot_k`, the body's part of
+/// Lagrange's equations is Kane's (Kane & Levinson, *Dynamics: Theory and
+/// Applications*, 1985, ch. 6; Moore, "Nonholonomic Constraints"):
+///
+/// ```text
+/// d/dt dT/dqdot - dT/dq = g_b qddot + m J_v^T a + J_w^T (I alpha + omega_F x I omega_F)
+/// g_b = m J_v^T J_v + J_w^T I J_w
+/// ```
+///
+/// each a handful of derivatives of `v_C` and `omega_F`, where the same
+/// terms from `T` take second derivatives of the whole energy.
+#[derive(Clone, Debug)]
+pub struct BodyMotion {
+    /// `m`.
+    pub mass: ExprId,
+    /// `I` about the centre in the body's axes, row-major.
+    pub inertia: [ExprId; 9],
+    /// `v_C` in ground axes.
+    pub velocity: Vector,
+    /// `omega_F` in the body's axes.
+    pub angular_velocity: Vector,
+}
+
+impl BodyMotion {
+    /// `T = 1/2 m v_C . v_C + 1/2 omega_F . I omega_F`.
+    pub(in crate::model) fn kinetic_energy(&self, store: &mut Store) -> ExprId {
+        let speed_squared = vector::inner(store, &self.velocity, &self.velocity);
+        let translation = store.mul2(self.mass, speed_squared);
+        let spun = self.spun(store, &self.angular_velocity);
+        let rotation = vector::inner(store, &self.angular_velocity, &spun);
+        let twice = store.add2(translation, rotation);
+        let one_half = half(store);
+        store.mul2(one_half, twice)
+    }
+
+    /// `I w`.
+    fn spun(&self, store: &mut Store, w: &Vector) -> Vector {
+        [0, 1, 2].map(|row| {
+            let products: Vec<ExprId> = (0..3)
+                .map(|k| store.mul2(self.inertia[3 * row + k], w[k]))
+                .collect();
+            store.add(&products)
+        })
+    }
+
+    /// `J_v` and `J_w`: column `i` the derivatives in `velocities[i]`.
+    fn partial_velocities(&self, store: &mut Store, velocities: &[SymbolId]) -> Vec<[Vector; 2]> {
+        velocities
+            .iter()
+            .map(|&v| {
+                let translation = self.velocity.map(|e| store.derivative(e, v));
+                let rotation = self.angular_velocity.map(|e| store.derivative(e, v));
+                [translation, rotation]
+            })
+            .collect()
+    }
+
+    /// `g_b`, `n x n` row-major.
+    pub fn mass_matrix(&self, store: &mut Store, velocities: &[SymbolId]) -> Vec<ExprId> {
+        let partials = self.partial_velocities(store, velocities);
+        let spun: Vec<Vector> = partials
+            .iter()
+            .map(|[_, rotation]| self.spun(store, rotation))
+            .collect();
+        let n = velocities.len();
+        let mut entries = Vec::with_capacity(n * n);
+        for [translation_i, rotation_i] in &partials {
+            for ([translation_j, _], spun_j) in partials.iter().zip(&spun) {
+                let along = vector::inner(store, translation_i, translation_j);
+                let along = store.mul2(self.mass, along);
+                let about = vector::inner(store, rotation_i, spun_j);
+                entries.push(store.add2(along, about));
+            }
+        }
+        entries
+    }
+
+    /// `m J_v^T a + J_w^T (I alpha + omega_F x I omega_F)`: the body's
+    /// velocity terms of `d/dt dT/dqdot - dT/dq` (see the type's documentation).
+    pub fn velocity_terms(
+        &self,
+        store: &mut Store,
+        coordinates: &[SymbolId],
+        velocities: &[SymbolId],
+    ) -> Vec<ExprId> {
+        let rates: Vec<ExprId> = velocities.iter().map(|&v| store.symbol(v)).collect();
+        let rate_of = |store: &mut Store, e: ExprId| {
+            let terms: Vec<ExprId> = coordinates
+                .iter()
+                .zip(&rates)
+                .map(|(&q, &rate)| {
+                    let partial = store.derivative(e, q);
+                    store.mul2(partial, rate)
+                })
+                .collect();
+            store.add(&terms)
+        };
+        let acceleration = self.velocity.map(|e| rate_of(store, e));
+        let acceleration = vector::scale(store, self.mass, &acceleration);
+        let angular_acceleration = self.angular_velocity.map(|e| rate_of(store, e));
+        let spun_rate = self.spun(store, &angular_acceleration);
+        let momentum = self.spun(store, &self.angular_velocity);
+        let gyroscopic = vector::cross(store, &self.angular_velocity, &momentum);
+        let torque = vector::add(store, &spun_rate, &gyroscopic);
+        self.partial_velocities(store, velocities)
+            .iter()
+            .map(|[translation, rotation]| {
+                let along = vector::inner(store, translation, &acceleration);
+                let about = vector::inner(store, rotation, &torque);
+                store.add2(along, about)
+            })
+            .collect()
     }
 }

@@ -10,7 +10,7 @@
 //! differentiation ([`space`]), so everything downstream (constraint
 //! analysis, the formulations, the documents) works unchanged.
 
-pub(super) mod bodies;
+pub mod bodies;
 pub(super) mod evaluate;
 pub(super) mod space;
 pub(super) mod vector;

@@ -2,7 +2,7 @@
 //! inertia; particles; the gravity field; the bodies' energies.
 
 use super::super::*;
-use crate::model::mechanism::bodies::Body;
+use crate::model::mechanism::bodies::{Body, BodyMotion};
 use crate::model::mechanism::evaluate::Reference;
 use crate::model::mechanism::space::{self, GROUND, Space};
 use crate::model::mechanism::vector::{self, Vector};
@@ -235,19 +235,22 @@ impl Checker {
         }
     }
 
-    /// `T` and `V` of the bodies: the expressions they were derived as, and
-    /// their normal forms.
+    /// `T` and `V` of the bodies: the expressions they were derived as,
+    /// their normal forms, and each body's motion.
     pub(super) fn body_energies(
         &mut self,
         bodies: &[(Declared, Body)],
         gravity: &Vector,
         q: &[SymbolId],
     ) -> Option<BodyEnergies> {
+        let mut motions = Vec::new();
         let mut kinetic = Vec::new();
         let mut potential = Vec::new();
         for (_, body) in bodies {
-            kinetic.push(body.kinetic_energy(&mut self.store, q).ok()?);
+            let motion = body.motion(&mut self.store, q).ok()?;
+            kinetic.push(motion.kinetic_energy(&mut self.store));
             potential.push(body.potential_energy(&mut self.store, gravity));
+            motions.push(motion);
         }
         let kinetic = self.store.add(&kinetic);
         let potential = self.store.add(&potential);
@@ -255,14 +258,16 @@ impl Checker {
             kinetic: self.store.normal(kinetic).ok()?,
             potential: self.store.normal(potential).ok()?,
             derived_as: (kinetic, potential),
+            motions,
         })
     }
 }
 
-/// The bodies' `T` and `V` in normal form, and the expressions they were
-/// derived as.
+/// The bodies' `T` and `V` in normal form, the expressions they were
+/// derived as, and the bodies' motions.
 pub(in crate::model::check) struct BodyEnergies {
     pub(in crate::model::check) kinetic: RationalFunction,
     pub(in crate::model::check) potential: RationalFunction,
     pub(in crate::model::check) derived_as: (ExprId, ExprId),
+    pub(in crate::model::check) motions: Vec<BodyMotion>,
 }

@@ -11,6 +11,7 @@ mod frames;
 
 use super::energy::first_velocity_span;
 use super::*;
+use crate::model::mechanism::bodies::BodyMotion;
 use crate::model::mechanism::evaluate::{Evaluator, Reference};
 use crate::model::mechanism::space::{GROUND, ORIGIN, Space};
 use crate::model::mechanism::{Mechanism, MechanismExpressions};
@@ -27,6 +28,8 @@ pub(super) struct MechanismParts {
     pub(super) rows: Vec<(RationalFunction, ExprId)>,
     /// The expressions the bodies' `T` and `V` were derived as.
     pub(super) energies_derived_as: (ExprId, ExprId),
+    /// Each body's motion, for Kane's form of its inertia forces.
+    pub(super) motions: Vec<BodyMotion>,
 }
 
 /// A frame's declaration: `name = rotate(parent, axis, angle)`.
@@ -56,6 +59,7 @@ impl Checker {
                 names: Vec::new(),
                 rows: Vec::new(),
                 energies_derived_as: (zero, zero),
+                motions: Vec::new(),
             });
         }
         let reference = Reference(
@@ -118,6 +122,7 @@ impl Checker {
             names,
             rows,
             energies_derived_as: energies.derived_as,
+            motions: energies.motions,
         })
     }
 
