@@ -4,8 +4,8 @@
 points, four bodies, two rolling contacts and the front contact's height as
 a holonomic constraint, with the paper's table 1 as parameter values.
 
-The equations are those of `casadi_peer.py` (MATH.md section 2), with the
-potential's gradient: the saddle-point system
+The equations are built and timed by `casadi_peer.py` (MATH.md section 2),
+with the potential's gradient: the saddle-point system
 
     [[g, -A^T], [A, 0]] (qddot, lambda) = (B u - C - dV/dq, -Adot qdot)
 
@@ -22,14 +22,11 @@ seen to compute the same equations.
 Usage: python casadi_bicycle.py
 """
 
-import os
-import subprocess
 import tempfile
-import time
 
 import casadi as ca
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+from casadi_peer import study
 
 # Meijaard et al. (2007), table 1.
 P = dict(w=1.02, c=0.08, lam=0.3141592653589793, g=9.81, rR=0.3, mR=2.0,
@@ -119,41 +116,16 @@ def bicycle():
             + contact_rows('front_wheel', front_hub, front_contact)
             + [velocity(front_contact[2])])
     forces = ca.vertcat(0, 0, 0, u[0], 0, u[1], 0, 0)
-    return q, qd, u, kinetic, potential, ca.vertcat(*rows), forces
-
-
-def lagrange_dalembert(q, qd, u, kinetic, potential, constraints, forces):
-    g = ca.hessian(kinetic, qd)[0]
-    coriolis = ca.jtimes(ca.mtimes(g, qd), q, qd) - ca.gradient(kinetic, q)
-    a = ca.jacobian(constraints, qd)
-    a_rate = ca.jtimes(ca.mtimes(a, qd), q, qd)
-    c = a.shape[0]
-    system = ca.blockcat([[g, -a.T], [a, ca.SX.zeros(c, c)]])
-    force = forces - coriolis - ca.gradient(potential, q)
-    solution = ca.solve(system, ca.vertcat(force, -a_rate))
-    return ca.Function('acceleration', [q, qd, u], [solution])
+    return q, qd, u, kinetic, ca.vertcat(*rows), forces, potential
 
 
 def main():
-    start = time.perf_counter()
-    function = lagrange_dalembert(*bicycle())
-    derivation = time.perf_counter() - start
+    model = bicycle()
+    with tempfile.TemporaryDirectory() as directory:
+        function = study('bicycle', model, directory)
     state = [[0.3 * (k + 1) / (i + 2.0) for k in range(size)] for i, size in enumerate([8, 8, 2])]
     values = function(*state).full().ravel()
     print('BICYCLE_STATE ' + ' '.join(f'{x:.15e}' for x in values))
-    with tempfile.TemporaryDirectory() as directory:
-        source = os.path.join(directory, 'bicycle.c')
-        function.generate('bicycle.c', {'with_header': True})
-        os.replace('bicycle.c', source)
-        os.replace('bicycle.h', os.path.join(directory, 'bicycle.h'))
-        binary = os.path.join(directory, 'bicycle')
-        subprocess.run(['gcc', '-O3', '-o', binary, '-include', os.path.join(directory, 'bicycle.h'),
-                        os.path.join(HERE, 'timing.c'), source, '-lm'], check=True)
-        output = subprocess.run([binary, '8', '8', '2'], check=True,
-                                capture_output=True, text=True).stdout.split()
-        size = os.path.getsize(source)
-    print(f'bicycle: SX function built in {derivation:.3f} s, {function.n_instructions()} '
-          f'instructions, {size} bytes of C; compiled C {float(output[0]):.1f} ns/call', flush=True)
 
 
 if __name__ == '__main__':

@@ -57,18 +57,22 @@ def snake(links):
     return q, qd, u, kinetic, ca.vertcat(*rows), ca.vertcat(*forces)
 
 
-def lagrange_dalembert(q, qd, u, kinetic, constraints, forces):
+def lagrange_dalembert(q, qd, u, kinetic, constraints, forces, potential=None):
     g = ca.hessian(kinetic, qd)[0]
     coriolis = ca.jtimes(ca.mtimes(g, qd), q, qd) - ca.gradient(kinetic, q)
     a = ca.jacobian(constraints, qd)
     a_rate = ca.jtimes(ca.mtimes(a, qd), q, qd)
     c = a.shape[0]
     system = ca.blockcat([[g, -a.T], [a, ca.SX.zeros(c, c)]])
-    solution = ca.solve(system, ca.vertcat(forces - coriolis, -a_rate))
+    force = forces - coriolis
+    if potential is not None:
+        force = force - ca.gradient(potential, q)
+    solution = ca.solve(system, ca.vertcat(force, -a_rate))
     return ca.Function('acceleration', [q, qd, u], [solution])
 
 
 def study(name, model, directory):
+    """Builds, compiles and times one model's function; returns it."""
     start = time.perf_counter()
     function = lagrange_dalembert(*model)
     derivation = time.perf_counter() - start
@@ -83,7 +87,9 @@ def study(name, model, directory):
     output = subprocess.run([binary] + [str(s) for s in sizes], check=True,
                             capture_output=True, text=True).stdout.split()
     print(f'{name}: SX function built in {derivation:.3f} s, {function.n_instructions()} '
-          f'instructions; compiled C {float(output[0]):.1f} ns/call', flush=True)
+          f'instructions, {os.path.getsize(source)} bytes of C; compiled C '
+          f'{float(output[0]):.1f} ns/call', flush=True)
+    return function
 
 
 def main():

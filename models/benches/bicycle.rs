@@ -12,6 +12,9 @@
 //!
 //! Run with `cargo bench -p chaplygin-models --bench bicycle`.
 
+// The timing loop shared with the snakeboard benchmark, whose ratios and
+// random states this benchmark does not use.
+#[allow(dead_code)]
 mod timing;
 
 use chaplygin::runtime::linearize::{Compiled, OperatingPoint, linearize};

@@ -245,13 +245,9 @@ fn the_sleighs_documented_momentum_basis_is_accepted() {
     assert!(errors(&wrong).contains("momentum-basis row `turning` is not in g(D)"));
 }
 
-/// The benchmark bicycle's rows as the emitted code computes them (the
-/// rolling rows' entries as the expressions they were derived as) take the
-/// values of their exact normal forms, at a fraction of the weight of the
-/// normal forms written out.
-#[test]
-fn the_bicycles_rows_keep_their_derivation_and_its_values() {
-    let mut model = checked(include_str!("../../../models/bicycle.model"));
+/// The values of `exact` and `computed` at one random point, entry by
+/// entry, to 1e-12 relative.
+fn assert_same_values(model: &mut Model, exact: &Matrix, computed: &crate::sym::ExprMatrix) {
     let mut random = crate::sym::zero::SplitMix::new(7);
     let values: std::collections::HashMap<_, f64> = model
         .store
@@ -259,27 +255,35 @@ fn the_bicycles_rows_keep_their_derivation_and_its_values() {
         .map(|(id, _)| (id, random.uniform(-1.0, 1.0)))
         .collect();
     let value_of = |s| values[&s];
-    let (rows, columns) = (model.c(), model.n());
-    for i in 0..rows {
-        for j in 0..columns {
-            let exact = model
-                .store
-                .evaluate_normal(&model.constraint_matrix.get(i, j).clone(), &value_of);
-            let emitted = model
-                .store
-                .evaluate(model.constraint_expressions.get(i, j), &value_of);
+    for i in 0..exact.rows() {
+        for j in 0..exact.columns() {
+            let expected = model.store.evaluate_normal(exact.get(i, j), &value_of);
+            let found = model.store.evaluate(computed.get(i, j), &value_of);
             assert!(
-                (exact - emitted).abs() <= 1e-12 * (1.0 + exact.abs()),
-                "A[{i}][{j}]: {exact} vs {emitted}"
+                (expected - found).abs() <= 1e-12 * (1.0 + expected.abs()),
+                "[{i}][{j}]: {expected} vs {found}"
             );
         }
     }
+}
+
+/// The benchmark bicycle's rows as the emitted code computes them (the
+/// rolling rows' entries as the expressions they were derived as) take the
+/// values of their exact normal forms, at a fraction of the weight of the
+/// normal forms written out.
+#[test]
+fn the_bicycles_rows_keep_their_derivation_and_its_values() {
+    let mut model = checked(include_str!("../../../models/bicycle.model"));
+    let (exact, computed) = (
+        model.constraint_matrix.clone(),
+        model.constraint_expressions.clone(),
+    );
+    assert_same_values(&mut model, &exact, &computed);
     let expanded = model.constraint_matrix.to_expressions(&mut model.store);
     let written_out = crate::ir::estimated_weight(&model.store, &expanded);
     let kept = crate::ir::estimated_weight(&model.store, model.constraint_expressions.entries());
     assert!(kept * 2 < written_out, "{kept} vs {written_out}");
 }
-
 /// Kane's form of the bodies' metric, `sum m J_v^T J_v + J_w^T I J_w`,
 /// has the normal forms of `d^2 T / d qdot^2` of the bodies' `T`, exactly,
 /// for bodies turning in three dimensions (the leaning disk, the caster
@@ -324,26 +328,9 @@ fn the_bodies_kane_metric_is_the_hessian_of_their_energy() {
 #[test]
 fn the_bicycles_metric_as_computed_takes_its_exact_values() {
     let mut model = checked(include_str!("../../../models/bicycle.model"));
-    let mut random = crate::sym::zero::SplitMix::new(11);
-    let values: std::collections::HashMap<_, f64> = model
-        .store
-        .symbols()
-        .map(|(id, _)| (id, random.uniform(-1.0, 1.0)))
-        .collect();
-    let value_of = |s| values[&s];
-    let n = model.n();
-    for i in 0..n {
-        for j in 0..n {
-            let exact = model
-                .store
-                .evaluate_normal(&model.mass_matrix.get(i, j).clone(), &value_of);
-            let emitted = model
-                .store
-                .evaluate(model.energy_expressions.mass_matrix.get(i, j), &value_of);
-            assert!(
-                (exact - emitted).abs() <= 1e-12 * (1.0 + exact.abs()),
-                "g[{i}][{j}]: {exact} vs {emitted}"
-            );
-        }
-    }
+    let (exact, computed) = (
+        model.mass_matrix.clone(),
+        model.energy_expressions.mass_matrix.clone(),
+    );
+    assert_same_values(&mut model, &exact, &computed);
 }
