@@ -2,9 +2,9 @@
 //! listing of `chaplygin list`.
 
 use crate::models::{
-    caster_robot::CasterRobot, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
-    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
-    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
+    bicycle::Bicycle, caster_robot::CasterRobot, differential_drive::DifferentialDrive,
+    rolling_disk::RollingDisk, rolling_disk_3d::RollingDisk3d, sleigh::Sleigh,
+    sleigh_bodies::SleighBodies, snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
 
 /// Which compiled model a built-in name stands for.
@@ -26,6 +26,19 @@ pub enum Compiled {
     SnakeboardBodies,
     /// [`CasterRobot`].
     CasterRobot,
+    /// [`Bicycle`].
+    Bicycle,
+}
+
+/// A built-in model's default motion, from its default configuration.
+#[derive(Clone, Copy, Debug)]
+pub enum Motion {
+    /// `velocities(q, alpha)` with these momenta `alpha`.
+    Momenta(&'static [f64]),
+    /// These `dot(q)` assignments (expressions of the parameters, as
+    /// `--initial` takes them), the other velocities solved from the
+    /// constraints; used when `--initial` gives no velocity.
+    Velocities(&'static [(&'static str, &'static str)]),
 }
 
 /// A built-in model.
@@ -41,20 +54,19 @@ pub struct BuiltIn {
     pub compiled: Compiled,
     /// The default configuration.
     pub q: &'static [f64],
-    /// The default momenta `alpha` (the default motion is
-    /// `velocities(q, alpha)`).
-    pub alpha: &'static [f64],
+    /// The default motion.
+    pub motion: Motion,
 }
 
 /// The built-in models.
-pub const BUILT_IN: [BuiltIn; 8] = [
+pub const BUILT_IN: [BuiltIn; 9] = [
     BuiltIn {
         name: "snakeboard",
         about: "snakeboard of Duindam & Stramigioli (2004), paper's momentum basis",
         source: include_str!("../../../models/snakeboard.model"),
         compiled: Compiled::Snakeboard,
         q: &[0.0, 0.0, 0.0, 0.0, 0.3],
-        alpha: &[1.0, 0.5, 0.025],
+        motion: Motion::Momenta(&[1.0, 0.5, 0.025]),
     },
     BuiltIn {
         name: "sleigh",
@@ -62,7 +74,7 @@ pub const BUILT_IN: [BuiltIn; 8] = [
         source: include_str!("../../../models/sleigh.model"),
         compiled: Compiled::Sleigh,
         q: &[0.0, 0.0, -0.5],
-        alpha: &[1.0, 0.5],
+        motion: Motion::Momenta(&[1.0, 0.5]),
     },
     BuiltIn {
         name: "rolling-disk",
@@ -70,7 +82,7 @@ pub const BUILT_IN: [BuiltIn; 8] = [
         source: include_str!("../../../models/rolling_disk.model"),
         compiled: Compiled::RollingDisk,
         q: &[0.0, 0.0, 0.0, 0.0],
-        alpha: &[0.5, 0.2],
+        motion: Motion::Momenta(&[0.5, 0.2]),
     },
     BuiltIn {
         name: "differential-drive",
@@ -78,7 +90,7 @@ pub const BUILT_IN: [BuiltIn; 8] = [
         source: include_str!("../../../models/differential_drive.model"),
         compiled: Compiled::DifferentialDrive,
         q: &[0.0, 0.0, 0.0, 0.0, 0.0],
-        alpha: &[0.2, 0.1],
+        motion: Motion::Momenta(&[0.2, 0.1]),
     },
     BuiltIn {
         name: "rolling-disk-3d",
@@ -86,7 +98,7 @@ pub const BUILT_IN: [BuiltIn; 8] = [
         source: include_str!("../../../models/rolling_disk_3d.model"),
         compiled: Compiled::RollingDisk3d,
         q: &[0.0, 0.0, 0.0, 0.1, 0.0],
-        alpha: &[0.1, 0.0, 2.0],
+        motion: Motion::Momenta(&[0.1, 0.0, 2.0]),
     },
     BuiltIn {
         name: "sleigh-bodies",
@@ -94,7 +106,7 @@ pub const BUILT_IN: [BuiltIn; 8] = [
         source: include_str!("../../../models/sleigh_bodies.model"),
         compiled: Compiled::SleighBodies,
         q: &[0.0, 0.0, -0.5],
-        alpha: &[1.0, 0.5],
+        motion: Motion::Momenta(&[1.0, 0.5]),
     },
     BuiltIn {
         name: "snakeboard-bodies",
@@ -102,7 +114,7 @@ pub const BUILT_IN: [BuiltIn; 8] = [
         source: include_str!("../../../models/snakeboard_bodies.model"),
         compiled: Compiled::SnakeboardBodies,
         q: &[0.0, 0.0, 0.0, 0.0, 0.3],
-        alpha: &[1.0, 0.5, 0.025],
+        motion: Motion::Momenta(&[1.0, 0.5, 0.025]),
     },
     BuiltIn {
         name: "caster-robot",
@@ -110,63 +122,32 @@ pub const BUILT_IN: [BuiltIn; 8] = [
         source: include_str!("../../../models/caster_robot.model"),
         compiled: Compiled::CasterRobot,
         q: &[0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.0],
-        alpha: &[0.5, 0.2],
+        motion: Motion::Momenta(&[0.5, 0.2]),
+    },
+    BuiltIn {
+        name: "bicycle",
+        about: "benchmark bicycle of Meijaard et al. (2007), declared as a mechanism",
+        source: include_str!("../../../models/bicycle.model"),
+        compiled: Compiled::Bicycle,
+        q: &[0.0; 8],
+        // Upright at 5 m/s, in the self-stable speed range, pushed sideways:
+        // the lean oscillation decays.
+        motion: Motion::Velocities(&[
+            ("dot(theta_r)", "-5/rR"),
+            ("dot(phi)", "0.5"),
+            ("dot(delta)", "0"),
+        ]),
     },
 ];
-
-/// A built-in model the CLI runs through the interpreter: a name, what it
-/// is, its model-language source and its default motion.
-pub struct Interpreted {
-    /// Its name on the command line.
-    pub name: &'static str,
-    /// What it is.
-    pub about: &'static str,
-    /// Its model-language source.
-    pub source: &'static str,
-    /// The default motion: `--initial` assignments of velocities (the
-    /// others solved from the constraints), from `q = 0`.
-    pub default_motion: &'static [(&'static str, &'static str)],
-}
-
-/// The built-in models run through the interpreter. The benchmark
-/// bicycle's front contact puts a square root in its rolling rows, and the
-/// straight-line code emitted for it (about 100 MB, most of it
-/// `acceleration_jacobian`) is too large to compile as Rust; the
-/// interpreter derives and runs the same programs in seconds.
-pub const INTERPRETED: [Interpreted; 1] = [Interpreted {
-    name: "bicycle",
-    about: "benchmark bicycle of Meijaard et al. (2007), declared as a mechanism (interpreted)",
-    source: include_str!("../../../models/bicycle.model"),
-    // Upright at 5 m/s, in the self-stable speed range, pushed sideways:
-    // the lean oscillation decays.
-    default_motion: &[
-        ("dot(theta_r)", "-5/rR"),
-        ("dot(phi)", "0.5"),
-        ("dot(delta)", "0"),
-    ],
-}];
 
 /// The built-in model called `name`.
 pub fn built_in(name: &str) -> Option<&'static BuiltIn> {
     BUILT_IN.iter().find(|model| model.name == name)
 }
 
-/// The default motion of the interpreted built-in called `name`
-/// ([`Interpreted::default_motion`]), none for any other model.
-pub fn default_motion(name: &str) -> &'static [(&'static str, &'static str)] {
-    INTERPRETED
-        .iter()
-        .find(|model| model.name == name)
-        .map_or(&[], |model| model.default_motion)
-}
-
 /// The names of the built-in models, comma-separated.
 pub fn names() -> String {
-    let names: Vec<&str> = BUILT_IN
-        .iter()
-        .map(|model| model.name)
-        .chain(INTERPRETED.iter().map(|model| model.name))
-        .collect();
+    let names: Vec<&str> = BUILT_IN.iter().map(|model| model.name).collect();
     names.join(", ")
 }
 
@@ -240,6 +221,10 @@ fn facts(compiled: Compiled) -> ([usize; 4], &'static str) {
             ],
             CasterRobot::REPORT,
         ),
+        Compiled::Bicycle => (
+            [Bicycle::N, Bicycle::C, Bicycle::K, Bicycle::P],
+            Bicycle::REPORT,
+        ),
     }
 }
 
@@ -256,12 +241,6 @@ pub fn listing() -> String {
             model.name,
             classification(report),
             model.about
-        ));
-    }
-    for model in &INTERPRETED {
-        text.push_str(&format!(
-            "{:<20} {:>2} {:>2} {:>2} {:>2}  {:<30} {}\n",
-            model.name, "-", "-", "-", "-", "(derived when run)", model.about
         ));
     }
     text
@@ -297,12 +276,6 @@ pub struct UnknownModel {
 pub fn lookup(model: &str) -> Result<Source, UnknownModel> {
     if let Some(built_in) = built_in(model) {
         return Ok(Source::BuiltIn(built_in));
-    }
-    if let Some(interpreted) = INTERPRETED.iter().find(|built_in| built_in.name == model) {
-        return Ok(Source::File {
-            path: format!("{model}.model"),
-            text: interpreted.source.to_string(),
-        });
     }
     std::fs::read_to_string(model)
         .map(|text| Source::File {

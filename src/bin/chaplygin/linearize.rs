@@ -18,7 +18,7 @@ use crate::catalog::{self, Compiled, Source};
 use crate::derive::Rejected;
 use crate::interpreted::dynamics::InterpretedDynamics;
 use crate::models::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    bicycle::Bicycle, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
     rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
     snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
@@ -29,7 +29,7 @@ use chaplygin::runtime::linearize::{
     self as runtime_linearize, Dynamics, LinearSystem, Linearization, OperatingPoint, PointError,
     SteadyError,
 };
-use chaplygin::runtime::system::{ModelNames, Parameters};
+use chaplygin::runtime::system::{Holonomic, ModelNames, Parameters};
 use chaplygin_codegen::interpret::InterpretedModel;
 use expression::{ExpressionError, evaluate};
 use std::collections::BTreeMap;
@@ -139,13 +139,14 @@ pub fn run(args: &LinearizeArgs) -> Result<(), Box<dyn Error>> {
     match catalog::lookup(&args.model)? {
         Source::File { path, text } => interpreted(&path, &text, args),
         Source::BuiltIn(built_in) => match built_in.compiled {
-            Compiled::Snakeboard => compiled::<Snakeboard, 5, 2, 2>(args),
-            Compiled::Sleigh => compiled::<Sleigh, 3, 1, 0>(args),
-            Compiled::RollingDisk => compiled::<RollingDisk, 4, 2, 2>(args),
-            Compiled::DifferentialDrive => compiled::<DifferentialDrive, 5, 3, 2>(args),
-            Compiled::RollingDisk3d => compiled::<RollingDisk3d, 5, 2, 2>(args),
-            Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 0>(args),
-            Compiled::SnakeboardBodies => compiled::<SnakeboardBodies, 5, 2, 2>(args),
+            Compiled::Snakeboard => compiled::<Snakeboard, 5, 2, 2, 0>(args),
+            Compiled::Sleigh => compiled::<Sleigh, 3, 1, 0, 0>(args),
+            Compiled::RollingDisk => compiled::<RollingDisk, 4, 2, 2, 0>(args),
+            Compiled::DifferentialDrive => compiled::<DifferentialDrive, 5, 3, 2, 0>(args),
+            Compiled::RollingDisk3d => compiled::<RollingDisk3d, 5, 2, 2, 0>(args),
+            Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 0, 0>(args),
+            Compiled::SnakeboardBodies => compiled::<SnakeboardBodies, 5, 2, 2, 0>(args),
+            Compiled::Bicycle => compiled::<Bicycle, 8, 5, 2, 1>(args),
             // No symmetry: the interpreter runs it from its text.
             Compiled::CasterRobot => interpreted(built_in.name, built_in.source, args),
         },
@@ -170,12 +171,13 @@ fn interpreted(path: &str, text: &str, args: &LinearizeArgs) -> Result<(), Box<d
     analyse(&InterpretedDynamics(model), parameters, args)
 }
 
-/// A built-in model with its `--param` values.
-fn compiled<M, const N: usize, const C: usize, const P: usize>(
+/// A built-in model with its `--param` values and its `H` configuration
+/// constraints.
+fn compiled<M, const N: usize, const C: usize, const P: usize, const H: usize>(
     args: &LinearizeArgs,
 ) -> Result<(), Box<dyn Error>>
 where
-    M: Linearization<N, C, P> + ModelNames + Parameters + Default,
+    M: Linearization<N, C, P> + Holonomic<N, H> + ModelNames + Parameters + Default,
 {
     let mut model = M::default();
     set_model_parameters(&mut model, &args.params, &mut [])?;
@@ -184,7 +186,7 @@ where
         .filter_map(|&name| Some((name.to_string(), *model.parameter_mut(name)?)))
         .collect();
     analyse(
-        &runtime_linearize::Compiled::<M, N, C, P, 0>::new(&model),
+        &runtime_linearize::Compiled::<M, N, C, P, H>::holonomic(&model),
         parameters,
         args,
     )

@@ -17,14 +17,14 @@ pub(crate) use arguments::assignment;
 use inputs::InputSchedule;
 pub(crate) use start::{set_model_parameters, set_parameters};
 
-use crate::catalog::{self, BuiltIn, Compiled, Source};
+use crate::catalog::{self, BuiltIn, Compiled, Motion, Source};
 use crate::derive::Rejected;
 use crate::formulation::Typed;
 use crate::interpreted::dynamics::InterpretedDynamics;
 use crate::interpreted::{InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced};
 use crate::models::energy_control::{ClosedLoop, EnergyController};
 use crate::models::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    bicycle::Bicycle, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
     rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
     snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
@@ -35,13 +35,13 @@ use chaplygin::runtime::linearize::Linearization;
 use chaplygin::runtime::nalgebra::{Const, DMatrix};
 use chaplygin::runtime::projection::Surface;
 use chaplygin::runtime::system::{
-    Dalembert, Holonomic, ModelNames, Momenta, Momentum, MomentumEquations, Parameters, Reduced,
-    ReducedPortHamiltonian,
+    Dalembert, Holonomic, LagrangeDalembert, ModelNames, Momenta, Momentum, MomentumEquations,
+    Parameters, Reduced, ReducedPortHamiltonian,
 };
 use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
 use chaplygin_codegen::interpret::InterpretedModel;
 use output::{Points, execute};
-use start::{InputError, Kinematics, compiled_start, initial_state, initial_values};
+use start::{InputError, Kinematics, Start, compiled_start, initial_state, initial_values};
 use std::error::Error;
 
 /// Runs `chaplygin simulate`.
@@ -50,61 +50,77 @@ use std::error::Error;
 /// Bad input, a failed simulation, or an I/O error.
 pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
     let model = match catalog::lookup(&args.model)? {
-        Source::File { path, text } => {
-            let default_motion = catalog::default_motion(&args.model);
-            return interpreted(&path, &text, default_motion, args);
-        }
+        Source::File { path, text } => return interpreted(&path, &text, args),
         Source::BuiltIn(model) => model,
     };
     match model.compiled {
         Compiled::Snakeboard if args.controller == Controller::Energy => {
             energy_controlled(model, args)
         }
-        Compiled::Snakeboard => {
-            compiled::<Snakeboard, 5, 2, 3, 2, 8, 10, 2, 1, 8, 0>(model, args, None)
-        }
-        Compiled::Sleigh => compiled::<Sleigh, 3, 1, 2, 0, 5, 6, 0, 2, 5, 0>(model, args, None),
-        Compiled::RollingDisk => {
-            compiled::<RollingDisk, 4, 2, 2, 2, 6, 8, 1, 1, 6, 0>(model, args, None)
-        }
-        Compiled::DifferentialDrive => {
-            compiled::<DifferentialDrive, 5, 3, 2, 2, 7, 10, 2, 0, 7, 0>(model, args, None)
-        }
-        Compiled::RollingDisk3d => compiled::<RollingDisk3d, 5, 2, 3, 2, 8, 10, 1, 2, 8, 0>(
+        Compiled::Snakeboard => compiled::<Snakeboard, 5, 2, 3, 2, 8, 10, 0>(
+            model,
+            args,
+            None,
+            Ok(momentum::<Snakeboard, 5, 2, 2, 1, 2, 8, 0>),
+        ),
+        Compiled::Sleigh => compiled::<Sleigh, 3, 1, 2, 0, 5, 6, 0>(
+            model,
+            args,
+            None,
+            Ok(momentum::<Sleigh, 3, 1, 0, 2, 0, 5, 0>),
+        ),
+        Compiled::RollingDisk => compiled::<RollingDisk, 4, 2, 2, 2, 6, 8, 0>(
+            model,
+            args,
+            None,
+            Ok(momentum::<RollingDisk, 4, 2, 1, 1, 2, 6, 0>),
+        ),
+        Compiled::DifferentialDrive => compiled::<DifferentialDrive, 5, 3, 2, 2, 7, 10, 0>(
+            model,
+            args,
+            None,
+            Ok(momentum::<DifferentialDrive, 5, 3, 2, 0, 2, 7, 0>),
+        ),
+        Compiled::RollingDisk3d => compiled::<RollingDisk3d, 5, 2, 3, 2, 8, 10, 0>(
             model,
             args,
             Some((&RollingDisk3d::POINTS, |disk, q| {
                 disk.positions(&array(q)).as_flattened().to_vec()
             })),
+            Ok(momentum::<RollingDisk3d, 5, 2, 1, 2, 2, 8, 0>),
         ),
-        Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 2, 0, 5, 6, 0, 2, 5, 0>(
+        Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 2, 0, 5, 6, 0>(
             model,
             args,
             Some((&SleighBodies::POINTS, |sleigh, q| {
                 sleigh.positions(&array(q)).as_flattened().to_vec()
             })),
+            Ok(momentum::<SleighBodies, 3, 1, 0, 2, 0, 5, 0>),
         ),
-        Compiled::SnakeboardBodies => compiled::<SnakeboardBodies, 5, 2, 3, 2, 8, 10, 2, 1, 8, 0>(
+        Compiled::SnakeboardBodies => compiled::<SnakeboardBodies, 5, 2, 3, 2, 8, 10, 0>(
             model,
             args,
             Some((&SnakeboardBodies::POINTS, |board, q| {
                 board.positions(&array(q)).as_flattened().to_vec()
             })),
+            Ok(momentum::<SnakeboardBodies, 5, 2, 2, 1, 2, 8, 0>),
+        ),
+        Compiled::Bicycle => compiled::<Bicycle, 8, 5, 3, 2, 11, 16, 1>(
+            model,
+            args,
+            Some((&Bicycle::POINTS, |bicycle, q| {
+                bicycle.positions(&array(q)).as_flattened().to_vec()
+            })),
+            Err(MOMENTUM_WITH_HOLONOMIC),
         ),
         // No symmetry: the interpreter runs it from its text.
-        Compiled::CasterRobot => interpreted(model.name, model.source, &[], args),
+        Compiled::CasterRobot => interpreted(model.name, model.source, args),
     }
 }
 
-/// A `.model` file through the IR interpreter, from `q = 0` with the
-/// velocities of `default_motion` (`dot(q)` assignments; at rest without
-/// any) unless `--initial` says otherwise.
-fn interpreted(
-    path: &str,
-    text: &str,
-    default_motion: &[(&str, &str)],
-    args: &SimulateArgs,
-) -> Result<(), Box<dyn Error>> {
+/// A `.model` file through the IR interpreter, from rest at `q = 0` unless
+/// `--initial` says otherwise.
+fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
     if args.controller == Controller::Energy {
         return Err(no_controller(path).into());
     }
@@ -120,10 +136,7 @@ fn interpreted(
         .copied()
         .zip(model.parameter_values().iter().copied())
         .collect();
-    let initial = initial_values(
-        &with_default_motion(&args.initial, default_motion),
-        &parameters,
-    )?;
+    let initial = initial_values(&args.initial, &parameters)?;
     let coordinates: Vec<&str> = names.coordinates.iter().map(String::as_str).collect();
     let constraints: Vec<&str> = names.constraints.iter().map(String::as_str).collect();
     let n = coordinates.len();
@@ -177,21 +190,6 @@ fn interpreted(
             execute(&momentum, &x0, args, (None, points))
         }
     }
-}
-
-/// The `--initial` assignments `given`, after those of `default_motion`
-/// when `given` names no velocity (coordinates given keep their place:
-/// the default velocities are solved at them).
-fn with_default_motion(
-    given: &[(String, String)],
-    default_motion: &[(&str, &str)],
-) -> Vec<(String, String)> {
-    let moving = given.iter().any(|(name, _)| name.starts_with("dot("));
-    let defaults = default_motion
-        .iter()
-        .filter(|_| !moving)
-        .map(|(name, text)| (name.to_string(), text.to_string()));
-    defaults.chain(given.iter().cloned()).collect()
 }
 
 /// The points an interpreted model declares, `None` without any.
@@ -250,9 +248,19 @@ where
 {
 }
 
+/// How a compiled model with a symmetry runs in the momentum formulation
+/// ([`momentum`]), or why it has none.
+type MomentumRun<M> = Result<
+    for<'a> fn(&'a M, &Start, &InputSchedule, &SimulateArgs, Option<Points<'a>>) -> RunResult,
+    &'static str,
+>;
+
+/// What a run returns.
+type RunResult = Result<(), Box<dyn Error>>;
+
 /// A compiled model with constant inputs, in any formulation: `D = 2 N`
-/// states in `(q, qdot)`; `R` shape coordinates, `MP` momenta and
-/// `DM = N + R + MP` states in `(q, rdot, p)`.
+/// states in `(q, qdot)`, `S = N + K` in `(q, alpha)`, the momentum
+/// formulation by `momentum`.
 fn compiled<
     M,
     const N: usize,
@@ -261,17 +269,15 @@ fn compiled<
     const P: usize,
     const S: usize,
     const D: usize,
-    const R: usize,
-    const MP: usize,
-    const DM: usize,
     const H: usize,
 >(
     built_in: &BuiltIn,
     args: &SimulateArgs,
     points: Option<CompiledPoints<M>>,
-) -> Result<(), Box<dyn Error>>
+    momentum: MomentumRun<M>,
+) -> RunResult
 where
-    M: CompiledModel<N, C, K, P, S> + MomentumEquations<N, R, MP, P> + Holonomic<N, H>,
+    M: CompiledModel<N, C, K, P, S> + Holonomic<N, H>,
     Const<N>: Square,
 {
     if args.controller == Controller::Energy {
@@ -303,13 +309,43 @@ where
                 (None, points),
             )
         }
-        Kind::Momentum => {
-            let system = Momentum::new(&model, u);
-            let x0: [f64; DM] = system.initial_state(&array(&start.q), &array(&start.qdot));
-            let kept = Surface::momentum(system);
-            execute(&Typed::<_, DM>::plain(kept), &x0, args, (None, points))
-        }
+        Kind::Momentum => match momentum {
+            Ok(run) => run(&model, &start, &inputs, args, points),
+            Err(reason) => Err(InputError::Unsupported(format!(
+                "`{}`: the momentum formulation is {reason}: use --formulation reduced or lagrange",
+                built_in.name
+            ))
+            .into()),
+        },
     }
+}
+
+/// The momentum formulation of a compiled model with a symmetry: `R` shape
+/// coordinates, `MP` momenta and `DM = N + R + MP` states in `(q, rdot, p)`.
+fn momentum<
+    M,
+    const N: usize,
+    const C: usize,
+    const R: usize,
+    const MP: usize,
+    const P: usize,
+    const DM: usize,
+    const H: usize,
+>(
+    model: &M,
+    start: &Start,
+    inputs: &InputSchedule,
+    args: &SimulateArgs,
+    points: Option<Points<'_>>,
+) -> RunResult
+where
+    M: MomentumEquations<N, R, MP, P> + LagrangeDalembert<N, C, P> + Holonomic<N, H> + ModelNames,
+    Const<N>: Square,
+{
+    let system = Momentum::new(model, |t: f64| inputs.array::<P>(t));
+    let x0: [f64; DM] = system.initial_state(&array(&start.q), &array(&start.qdot));
+    let kept = Surface::momentum(system);
+    execute(&Typed::<_, DM>::plain(kept), &x0, args, (None, points))
 }
 
 /// The snakeboard under the energy-based controller (MATH.md 3.2), from
@@ -347,7 +383,7 @@ fn energy_controlled(built_in: &BuiltIn, args: &SimulateArgs) -> Result<(), Box<
     let (mut xt, mut xw) = (1.0, 0.5);
     let at_rest = BuiltIn {
         q: &[0.0; 5],
-        alpha: &[0.0; 3],
+        motion: Motion::Momenta(&[0.0; 3]),
         ..*built_in
     };
     let start = compiled_start::<Snakeboard, 5, 2, 3, 2, 8, 0>(

@@ -9,6 +9,10 @@ use std::path::Path;
 /// The grid points a sweep may take.
 const MAX_POINTS: usize = 1_000_000;
 
+/// The most decimal places of START and STEP whose grid points are rounded
+/// to decimals.
+const MAX_DECIMALS: i32 = 9;
+
 /// A swept variable and its grid.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sweep {
@@ -81,7 +85,10 @@ pub fn parse(text: &str) -> Result<Sweep, String> {
 
 impl Sweep {
     /// `START + i STEP` for `i = 0, 1, ...` up to STOP, STOP included when
-    /// it is on the grid (to round-off: within 1e-9 steps).
+    /// it is on the grid (to round-off: within 1e-9 steps). When START and
+    /// STEP are decimals of at most [`MAX_DECIMALS`] places, each point is
+    /// the double nearest its decimal value (`0:10:0.01` has `6.02`, not
+    /// `0.01 * 602 = 6.0200000000000005`).
     ///
     /// # Errors
     /// [`SweepError`]: a step that is not positive, an empty range, too
@@ -108,9 +115,26 @@ impl Sweep {
                 points: intervals + 1.0,
             });
         }
-        Ok((0..=intervals as usize)
-            .map(|i| self.start + i as f64 * self.step)
-            .collect())
+        let points = 0..=intervals as usize;
+        Ok(match self.decimal_scale() {
+            Some(scale) => {
+                let (start, step) = (self.start * scale, self.step * scale);
+                points
+                    .map(|i| (start + i as f64 * step).round() / scale)
+                    .collect()
+            }
+            None => points.map(|i| self.start + i as f64 * self.step).collect(),
+        })
+    }
+
+    /// `10^d` for the fewest decimal places `d` that write START and STEP
+    /// (to 1e-9 of a unit in the last place), if at most [`MAX_DECIMALS`].
+    fn decimal_scale(&self) -> Option<f64> {
+        (0..=MAX_DECIMALS).map(|d| 10f64.powi(d)).find(|scale| {
+            [self.start, self.step].iter().all(|x| {
+                ((x * scale).round() - x * scale).abs() <= 1e-9 * (1.0 + (x * scale).abs())
+            })
+        })
     }
 }
 
@@ -172,6 +196,24 @@ mod tests {
         assert!((grid[10] - 1.0).abs() < 1e-15);
         let off = parse("v=0:1:0.3").expect("parses").grid().expect("a grid");
         assert_eq!(off.len(), 4);
+    }
+
+    /// Each point of a decimal grid is the double its decimal parses to.
+    #[test]
+    fn decimal_grids_have_decimal_points() {
+        let grid = parse("v=0:10:0.01")
+            .expect("parses")
+            .grid()
+            .expect("a grid");
+        assert_eq!(grid.len(), 1001);
+        assert_eq!(grid[602], "6.02".parse::<f64>().expect("a number"));
+        assert_eq!(grid[430], 4.3);
+        let fine = parse("v=4.2923:4.2925:0.000001").expect("parses");
+        let fine = fine.grid().expect("a grid");
+        assert_eq!(fine.len(), 201);
+        assert_eq!(fine[83], 4.292383);
+        let third = parse("v=0:1:0.3333333333333").expect("parses");
+        assert_eq!(third.grid().expect("a grid").len(), 4);
     }
 
     #[test]

@@ -8,7 +8,7 @@
 use super::arguments::SimulateArgs;
 use super::inputs::constant;
 use super::{CompiledModel, array, parameter_values};
-use crate::catalog::BuiltIn;
+use crate::catalog::{BuiltIn, Motion};
 use chaplygin::runtime::linearize::point::{configuration, solve_velocities, velocity_names};
 use chaplygin::runtime::linearize::{Compiled, Dynamics, Linearization, PointError};
 use chaplygin::runtime::nalgebra::DMatrix;
@@ -202,9 +202,9 @@ pub(super) fn initial_state(
     Ok(Start { q, qdot })
 }
 
-/// [`initial_state`] for a compiled model, whose default motion is
-/// `velocities(q, alpha)` with the built-in default momenta, and whose `H`
-/// configuration constraints solve the coordinates not given.
+/// [`initial_state`] for a compiled model, whose default motion is the
+/// built-in's ([`Motion`]), and whose `H` configuration constraints solve
+/// the coordinates not given.
 pub(super) fn compiled_start<
     M,
     const N: usize,
@@ -222,7 +222,10 @@ pub(super) fn compiled_start<
 where
     M: CompiledModel<N, C, K, P, S> + Holonomic<N, H>,
 {
-    let alpha: [f64; K] = array(built_in.alpha);
+    let (alpha, given): ([f64; K], Vec<(String, String)>) = match built_in.motion {
+        Motion::Momenta(alpha) => (array(alpha), args.initial.clone()),
+        Motion::Velocities(defaults) => ([0.0; K], with_default_motion(&args.initial, defaults)),
+    };
     initial_state(
         &Kinematics {
             coordinates: M::COORDINATES,
@@ -235,9 +238,24 @@ where
             },
             holonomic: Some(&Compiled::<M, N, C, P, H>::holonomic(model)),
         },
-        &initial_values(&args.initial, &parameter_values(*model))?,
+        &initial_values(&given, &parameter_values(*model))?,
         controller_states,
     )
+}
+
+/// The `--initial` assignments `given`, after the `defaults` when `given`
+/// names no velocity (coordinates given keep their place: the default
+/// velocities are solved at them).
+fn with_default_motion(
+    given: &[(String, String)],
+    defaults: &[(&str, &str)],
+) -> Vec<(String, String)> {
+    let moving = given.iter().any(|(name, _)| name.starts_with("dot("));
+    let defaults = defaults
+        .iter()
+        .filter(|_| !moving)
+        .map(|(name, text)| (name.to_string(), text.to_string()));
+    defaults.chain(given.iter().cloned()).collect()
 }
 
 fn unknown_initial(
