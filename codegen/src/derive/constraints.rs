@@ -64,7 +64,7 @@ pub use basis::{DistributionBasis, default_point, distribution_basis};
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::model::Model;
 use crate::sym::modular::Outside;
-use crate::sym::{Matrix, MatrixError, RationalFunction};
+use crate::sym::{ExprId, Matrix, MatrixError, RationalFunction};
 
 /// The term products the exact basis of D may take.
 pub const EXACT_BASIS_PRODUCTS: u64 = 1_000_000;
@@ -370,22 +370,34 @@ fn columns_of(matrix: &Matrix) -> Vec<Field> {
 }
 
 /// Moore's mixed-partials test, per row: `d a_i / d q_j = d a_j / d q_i`,
-/// exactly within [`EXACT_ANALYSIS_PRODUCTS`], else at random points.
+/// exactly within [`EXACT_ANALYSIS_PRODUCTS`] when the row's normal forms
+/// are written out ([`RationalFunction::is_written_out`]), else at random points on
+/// the expressions the row was derived as.
 fn exact_rows(model: &mut Model) -> Result<Vec<bool>, AnalysisError> {
     (0..model.constraint_matrix.rows())
         .map(|row| {
             let entries: Field = (0..model.n())
                 .map(|j| model.constraint_matrix.get(row, j).clone())
                 .collect();
-            let exact = model.attempt(EXACT_ANALYSIS_PRODUCTS, |model| {
-                let coordinates = model.coordinate_symbols();
-                let jacobian = model.store.jacobian(&entries, &coordinates)?;
-                let asymmetry = jacobian.sub(&jacobian.transpose(), model.store.atoms())?;
-                Ok::<bool, MatrixError>(asymmetry.is_zero())
-            });
+            let written_out = entries.iter().all(RationalFunction::is_written_out);
+            let exact = written_out
+                .then(|| {
+                    model.attempt(EXACT_ANALYSIS_PRODUCTS, |model| {
+                        let coordinates = model.coordinate_symbols();
+                        let jacobian = model.store.jacobian(&entries, &coordinates)?;
+                        let asymmetry = jacobian.sub(&jacobian.transpose(), model.store.atoms())?;
+                        Ok::<bool, MatrixError>(asymmetry.is_zero())
+                    })
+                })
+                .flatten();
             match exact {
                 Some(decided) => Ok(decided?),
-                None => is_exact_row_at_points(model, &entries),
+                None => {
+                    let expressions: Vec<ExprId> = (0..model.n())
+                        .map(|j| model.constraint_expressions.get(row, j))
+                        .collect();
+                    is_exact_row_at_points(model, &expressions)
+                }
             }
         })
         .collect()

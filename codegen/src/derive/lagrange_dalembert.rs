@@ -86,9 +86,10 @@ pub struct SaddlePointSystem {
     pub drift: Drift,
 }
 
-/// `-Adot qdot`: exact normal forms within [`EXACT_DRIFT_PRODUCTS`], else
-/// expressions (the square root in a rolling wheel's contact point makes
-/// the normal forms of its rows' derivatives too large to form).
+/// `-Adot qdot`: exact normal forms within [`EXACT_DRIFT_PRODUCTS`] when
+/// the rows are written out ([`Matrix::is_written_out`]), else expressions
+/// (the square root in a rolling wheel's contact point makes the normal
+/// forms of its rows' derivatives too large to form).
 #[derive(Clone, Debug)]
 pub enum Drift {
     /// Normal forms.
@@ -116,8 +117,9 @@ impl Drift {
 }
 
 /// `B u - C - dV/dq`: its normal forms when they fit
-/// [`EXACT_FORCE_PRODUCTS`], and the expressions `acceleration` computes it
-/// by: the normal forms written out, or the derivatives of the energies
+/// [`EXACT_FORCE_PRODUCTS`] and `g` is written out ([`Matrix::is_written_out`];
+/// the force's normal forms come from `g`'s derivatives), and the expressions
+/// `acceleration` computes it by: the normal forms written out, or the derivatives of the energies
 /// taken on the DAG they were derived as ([`crate::model::EnergyExpressions`]),
 /// whichever [`crate::ir::estimated_weight`] finds cheaper (a mechanism's
 /// `T` expanded is far larger than its bodies' sum, and so are the normal
@@ -242,12 +244,16 @@ impl Terms {
         let atoms = model.store.atoms().clone();
         let velocity = symbol_column(model, &model.velocities.clone())?;
         let force = Force::of(model, inputs)?;
-        let constraint_drift = model
-            .attempt(EXACT_DRIFT_PRODUCTS, |model| {
-                let residual = model.constraint_matrix.mul(&velocity, &atoms)?;
-                directional_derivative(model, &residual, &velocity)
-            })
-            .transpose()?;
+        let exact_drift = |model: &mut Model| {
+            let residual = model.constraint_matrix.mul(&velocity, &atoms)?;
+            directional_derivative(model, &residual, &velocity)
+        };
+        let constraint_drift = match model.constraint_matrix.is_written_out() {
+            true => model
+                .attempt(EXACT_DRIFT_PRODUCTS, exact_drift)
+                .transpose()?,
+            false => None,
+        };
         Ok(Terms {
             force,
             constraint_drift,
@@ -369,12 +375,15 @@ fn symbol_column(model: &mut Model, symbols: &[SymbolId]) -> Result<Matrix, Matr
 }
 
 impl Force {
-    /// The exact force within [`EXACT_FORCE_PRODUCTS`], and the cheaper
-    /// of its written-out and structured expressions.
+    /// The exact force within [`EXACT_FORCE_PRODUCTS`] when `g` is written
+    /// out, and the cheaper of its written-out and structured expressions.
     fn of(model: &mut Model, inputs: &[SymbolId]) -> Result<Force, DerivationError> {
-        let exact = model
-            .attempt(EXACT_FORCE_PRODUCTS, |model| exact_force(model, inputs))
-            .transpose()?;
+        let exact = match model.mass_matrix.is_written_out() {
+            true => model
+                .attempt(EXACT_FORCE_PRODUCTS, |model| exact_force(model, inputs))
+                .transpose()?,
+            false => None,
+        };
         let structured = structured_force(model, inputs)?;
         let expressions = match &exact {
             Some(exact) => {

@@ -11,16 +11,19 @@
 //! exact rank of the stacked rows stays `c` (Koon & Marsden, section 2).
 //!
 //! Each part is decided exactly within [`EXACT_INVARIANCE_PRODUCTS`] term
-//! products. Beyond (a bicycle's rolling rows carry a square root in every
-//! entry), it is decided by evaluation modulo a prime at random points
-//! ([`crate::sym::modular`]): a non-zero difference, or a stacked rank above
-//! `c`, at a point proves the part not invariant; agreement at two points
-//! holds for every group element with probability above `1 - 1e-15`.
+//! products when its normal forms are written out
+//! ([`Matrix::is_written_out`]). Beyond (a
+//! bicycle's rolling rows carry a square root in every entry), it is decided
+//! by evaluation modulo a prime at random points ([`crate::sym::modular`]),
+//! the rows as the expressions they were derived as: a non-zero difference,
+//! or a stacked rank above `c`, at a point proves the part not invariant;
+//! agreement at two points holds for every group element with probability
+//! above `1 - 1e-15`.
 
 use super::{GroupFactor, Symmetry, Variable};
 use crate::sym::modular::{self, Outside, Values};
 use crate::sym::{
-    ExprId, Function, Matrix, RationalFunction, Store, SymError, SymbolId, SymbolKind,
+    ExprId, ExprMatrix, Function, Matrix, RationalFunction, Store, SymError, SymbolId, SymbolKind,
 };
 use std::collections::HashMap;
 
@@ -50,9 +53,13 @@ impl Broken {
 pub(super) struct Invariants<'a> {
     pub(super) coordinates: &'a [Variable],
     pub(super) velocities: &'a [SymbolId],
-    pub(super) kinetic_energy: &'a RationalFunction,
-    pub(super) potential_energy: &'a RationalFunction,
+    /// `T`: its normal form and the expression it is computed by.
+    pub(super) kinetic_energy: (&'a RationalFunction, ExprId),
+    /// `V`: its normal form and the expression it is computed by.
+    pub(super) potential_energy: (&'a RationalFunction, ExprId),
     pub(super) constraint_matrix: &'a Matrix,
+    /// `A` as the expressions its rows were derived as.
+    pub(super) constraint_expressions: &'a ExprMatrix,
 }
 
 /// The first part of the model the group does not preserve, if any.
@@ -68,7 +75,8 @@ pub(super) fn first_broken(
     if !preserved(store, model.potential_energy, &action)? {
         return Ok(Some(Broken::PotentialEnergy));
     }
-    if !constraints_preserved(store, model.constraint_matrix, model.velocities, &action)? {
+    let rows = (model.constraint_matrix, model.constraint_expressions);
+    if !constraints_preserved(store, rows, model.velocities, &action)? {
         return Ok(Some(Broken::Constraints));
     }
     Ok(None)
@@ -127,17 +135,20 @@ fn group_action(
     Ok(action)
 }
 
-/// `f(g q, g_* qdot) = f(q, qdot)`.
+/// `f(g q, g_* qdot) = f(q, qdot)`, of the normal form `form` computed by
+/// `expression`.
 fn preserved(
     store: &mut Store,
-    form: &RationalFunction,
+    (form, expression): (&RationalFunction, ExprId),
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<bool, SymError> {
     let exact = |store: &mut Store| exactly_preserved(store, form, action);
-    if let Some(decided) = store.attempt(EXACT_INVARIANCE_PRODUCTS, exact) {
+    if form.is_written_out()
+        && let Some(decided) = store.attempt(EXACT_INVARIANCE_PRODUCTS, exact)
+    {
         return decided;
     }
-    match preserved_at_points(store, form, action)? {
+    match preserved_at_points(store, expression, action)? {
         Ok(preserved) => Ok(preserved),
         Err(_) => exact(store),
     }
@@ -146,10 +157,9 @@ fn preserved(
 /// `f(g q, g_* qdot) - f(q, qdot)` at two random points.
 fn preserved_at_points(
     store: &mut Store,
-    form: &RationalFunction,
+    expression: ExprId,
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<Result<bool, Outside>, SymError> {
-    let expression = store.expression_of(form);
     let moved = store.substitute(expression, action)?;
     let difference = store.sub(moved, expression);
     Ok(all_zero_at_points(store, &[], &[difference], |values| {
@@ -198,7 +208,7 @@ fn transformed(
 /// The transformed constraint rows stay in the row space of `A(q)`.
 fn constraints_preserved(
     store: &mut Store,
-    a: &Matrix,
+    (a, expressions): (&Matrix, &ExprMatrix),
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<bool, SymError> {
@@ -206,10 +216,12 @@ fn constraints_preserved(
         return Ok(true);
     }
     let exact = |store: &mut Store| exactly_constraints_preserved(store, a, velocities, action);
-    if let Some(decided) = store.attempt(EXACT_INVARIANCE_PRODUCTS, exact) {
+    if a.is_written_out()
+        && let Some(decided) = store.attempt(EXACT_INVARIANCE_PRODUCTS, exact)
+    {
         return decided;
     }
-    match constraints_preserved_at_points(store, a, velocities, action)? {
+    match constraints_preserved_at_points(store, expressions, velocities, action)? {
         Ok(preserved) => Ok(preserved),
         Err(_) => exact(store),
     }
@@ -218,26 +230,26 @@ fn constraints_preserved(
 /// The rank of `A(q)` stacked on the transformed rows at two random points.
 fn constraints_preserved_at_points(
     store: &mut Store,
-    a: &Matrix,
+    a: &ExprMatrix,
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<Result<bool, Outside>, SymError> {
     let (c, n) = (a.rows(), a.columns());
-    let mut moved = Vec::with_capacity(c * n);
+    let mut stacked = a.entries().to_vec();
     for i in 0..c {
         let residual = moved_residual(store, a, i, velocities, action)?;
         for &velocity in velocities {
-            moved.push(store.derivative(residual, velocity));
+            stacked.push(store.derivative(residual, velocity));
         }
     }
     let in_row_space = |values: &[u64]| modular::rank(values.to_vec(), 2 * c, n) == c;
-    Ok(all_zero_at_points(store, a.entries(), &moved, in_row_space))
+    Ok(all_zero_at_points(store, &[], &stacked, in_row_space))
 }
 
 /// `sum_j A_ij(g q) (g_* qdot)_j` as an expression.
 fn moved_residual(
     store: &mut Store,
-    a: &Matrix,
+    a: &ExprMatrix,
     i: usize,
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
@@ -246,9 +258,8 @@ fn moved_residual(
         .iter()
         .enumerate()
         .map(|(j, &velocity)| {
-            let entry = store.expression_of(a.get(i, j));
             let velocity = store.symbol(velocity);
-            store.mul2(entry, velocity)
+            store.mul2(a.get(i, j), velocity)
         })
         .collect();
     let residual = store.add(&terms);
@@ -290,7 +301,7 @@ fn exactly_constraints_preserved(
 mod tests {
     use super::{constraints_preserved_at_points, group_action, preserved_at_points};
     use crate::model::check;
-    use crate::sym::{Matrix, Poly, RationalFunction};
+    use crate::sym::{ExprMatrix, Matrix, Poly, RationalFunction};
     use crate::syntax::parse_str;
 
     const SLEIGH: &str = include_str!("../../../models/sleigh.model");
@@ -308,7 +319,8 @@ mod tests {
         let x =
             RationalFunction::from_poly(Poly::atom(store.symbol_atom(model.coordinates[0].symbol)));
         for (form, invariant) in [(&model.kinetic_energy, true), (&x, false)] {
-            let decided = preserved_at_points(store, form, &action)
+            let expression = store.expression_of(form);
+            let decided = preserved_at_points(store, expression, &action)
                 .expect("substitutes")
                 .expect("in the class");
             assert_eq!(decided, invariant, "{form:?}");
@@ -324,7 +336,8 @@ mod tests {
         )
         .expect("1 x 3");
         for (rows, invariant) in [(&model.constraint_matrix, true), (&forward, false)] {
-            let decided = constraints_preserved_at_points(store, rows, &velocities, &action)
+            let rows = ExprMatrix::of(rows, store);
+            let decided = constraints_preserved_at_points(store, &rows, &velocities, &action)
                 .expect("substitutes")
                 .expect("in the class");
             assert_eq!(decided, invariant, "{rows:?}");

@@ -197,6 +197,12 @@ impl Matrix {
         }
     }
 
+    /// True when every entry is written out
+    /// ([`RationalFunction::is_written_out`]).
+    pub fn is_written_out(&self) -> bool {
+        self.entries.iter().all(RationalFunction::is_written_out)
+    }
+
     /// True when every entry is exactly zero.
     pub fn is_zero(&self) -> bool {
         self.entries.iter().all(RationalFunction::is_zero)

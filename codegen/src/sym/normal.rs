@@ -27,6 +27,8 @@
 
 mod of_expression;
 
+pub use of_expression::EXPANDED_TERMS;
+
 use super::number::Rational;
 use super::poly::{AtomId, Atoms, Poly};
 
@@ -113,6 +115,15 @@ impl RationalFunction {
     /// A size measure: terms in the numerator and denominator factors.
     pub fn size(&self) -> usize {
         self.numerator.len() + self.denominator.iter().map(|(f, _)| f.len()).sum::<usize>()
+    }
+
+    /// True when the form is written out as an expression
+    /// ([`super::Store::compact_expression`]: at most [`EXPANDED_TERMS`]
+    /// terms). Exact derivations on larger forms (a rolling wheel's contact
+    /// rows, a mechanism's energy) are not attempted: they exceed their
+    /// budgets after spending them.
+    pub fn is_written_out(&self) -> bool {
+        self.size() <= EXPANDED_TERMS
     }
 
     /// `-self`.

@@ -7,7 +7,7 @@
 use super::{AnalysisError, DistributionBasis, STRUCTURED_GROWTH_NODES};
 use crate::model::Model;
 use crate::sym::modular::{self, Outside, Point, Values};
-use crate::sym::{ExprId, ExprMatrix, RationalFunction};
+use crate::sym::{ExprId, ExprMatrix};
 
 /// Frobenius at random points: `A [X_i, X_j]` evaluated modulo a prime at
 /// two points; a non-zero value proves D not integrable.
@@ -35,10 +35,9 @@ pub(super) fn is_involutive_at_points(
 /// non-zero at a point proves the row not exact.
 pub(super) fn is_exact_row_at_points(
     model: &mut Model,
-    row: &[RationalFunction],
+    entries: &[ExprId],
 ) -> Result<bool, AnalysisError> {
     let coordinates = model.coordinate_symbols();
-    let entries: Vec<ExprId> = row.iter().map(|a| model.store.expression_of(a)).collect();
     let mut asymmetries = Vec::new();
     for (i, &a_i) in entries.iter().enumerate() {
         for (j, &a_j) in entries.iter().enumerate().skip(i + 1) {

@@ -10,7 +10,7 @@
 use super::body_frame::BodyFrame;
 use super::{EXACT_BASIS_PRODUCTS, Field};
 use crate::model::{GroupFactor, Model};
-use crate::sym::{ExprMatrix, Matrix, MatrixError, RationalFunction, SymbolId};
+use crate::sym::{ExprMatrix, Matrix, MatrixError, RationalFunction, Store, SymbolId};
 
 /// A basis of the constraint distribution D and how it was chosen.
 #[derive(Clone, Debug)]
@@ -63,7 +63,8 @@ impl DistributionBasis {
 }
 
 /// Chooses the dependent speeds at the defaults and solves for a basis of
-/// D: as expressions always, in normal form within [`EXACT_BASIS_PRODUCTS`].
+/// D: as expressions always, in normal form within [`EXACT_BASIS_PRODUCTS`]
+/// when the rows are written out ([`crate::sym::Matrix::is_written_out`]).
 pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, MatrixError> {
     let dependent = pivot_columns(model);
     let frame = match model.momentum_basis {
@@ -118,21 +119,25 @@ fn basis_on(
             .mul(&field_expressions, &mut model.store)?;
     }
     let exact_a = &model.constraint_matrix;
-    let fields = model
-        .store
-        .attempt(EXACT_BASIS_PRODUCTS, |store| match &frame {
-            Some(frame) => {
-                let body = exact_fields(
-                    &frame.exact_constraints(store)?,
-                    &dependent,
-                    &independent,
-                    store.atoms(),
-                )?;
-                frame.exact_to_coordinates(store)?.mul(&body, store.atoms())
-            }
-            None => exact_fields(exact_a, &dependent, &independent, store.atoms()),
-        })
-        .transpose()?;
+    let exact = |store: &mut Store| match &frame {
+        Some(frame) => {
+            let body = exact_fields(
+                &frame.exact_constraints(store)?,
+                &dependent,
+                &independent,
+                store.atoms(),
+            )?;
+            frame.exact_to_coordinates(store)?.mul(&body, store.atoms())
+        }
+        None => exact_fields(exact_a, &dependent, &independent, store.atoms()),
+    };
+    let fields = match exact_a.is_written_out() {
+        true => model
+            .store
+            .attempt(EXACT_BASIS_PRODUCTS, exact)
+            .transpose()?,
+        false => None,
+    };
     Ok(DistributionBasis {
         field_expressions,
         fields,
@@ -143,11 +148,7 @@ fn basis_on(
 }
 
 /// The columns `indices` of `a`, in that order.
-fn expression_columns_at(
-    a: &ExprMatrix,
-    indices: &[usize],
-    store: &mut crate::sym::Store,
-) -> ExprMatrix {
+fn expression_columns_at(a: &ExprMatrix, indices: &[usize], store: &mut Store) -> ExprMatrix {
     let mut columns = ExprMatrix::zeros(store, a.rows(), indices.len());
     for i in 0..a.rows() {
         for (k, &j) in indices.iter().enumerate() {

@@ -296,7 +296,7 @@ fn moores_test_at_points_agrees_with_the_exact_test() {
     assert_eq!(exact, [false, true]);
     for (row, expected) in exact.iter().enumerate() {
         let entries: Vec<_> = (0..model.n())
-            .map(|j| model.constraint_matrix.get(row, j).clone())
+            .map(|j| model.constraint_expressions.get(row, j))
             .collect();
         let at_points =
             super::at_points::is_exact_row_at_points(&mut model, &entries).expect("in the class");

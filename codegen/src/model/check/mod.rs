@@ -101,21 +101,38 @@ pub fn check_within(syntax: &ModelSyntax, budget: Budget) -> Result<Model, Diagn
         _ => None,
     };
     let symmetry = checker.symmetry(sections.get("symmetry"), &coordinates);
-    if let (Some(symmetry), Some((kinetic_energy, _)), Some(potential_energy), Some((_, a, _))) =
-        (&symmetry, &energy, &potential_energy, &constraints)
-    {
-        let velocities: Vec<SymbolId> = coordinates
-            .iter()
-            .map(|c| checker.store.velocity_of(c.symbol))
-            .collect();
+    let velocities: Vec<SymbolId> = coordinates
+        .iter()
+        .map(|c| checker.store.velocity_of(c.symbol))
+        .collect();
+    let energy_expressions = match (&energy, &potential_energy, &mechanism) {
+        (Some((kinetic, g)), Some(potential), Some(parts)) => {
+            checker.energy_expressions((kinetic, g), potential, parts, &velocities)
+        }
+        _ => None,
+    };
+    if let (
+        Some(symmetry),
+        Some((kinetic_energy, _)),
+        Some(potential_energy),
+        Some((_, a, a_expressions)),
+        Some(expressions),
+    ) = (
+        &symmetry,
+        &energy,
+        &potential_energy,
+        &constraints,
+        &energy_expressions,
+    ) {
         checker.rule_invariant(
             symmetry,
             &Invariants {
                 coordinates: &coordinates,
                 velocities: &velocities,
-                kinetic_energy,
-                potential_energy,
+                kinetic_energy: (kinetic_energy, expressions.kinetic),
+                potential_energy: (potential_energy, expressions.potential),
                 constraint_matrix: a,
+                constraint_expressions: a_expressions,
             },
         );
     }
@@ -128,27 +145,19 @@ pub fn check_within(syntax: &ModelSyntax, budget: Budget) -> Result<Model, Diagn
         Some((constraint_names, constraint_matrix, constraint_expressions)),
         Some((input_names, input_matrix)),
         Some(mechanism),
-    ) = (energy, potential_energy, constraints, inputs, mechanism)
+        Some(energy_expressions),
+    ) = (
+        energy,
+        potential_energy,
+        constraints,
+        inputs,
+        mechanism,
+        energy_expressions,
+    )
     else {
         checker.diagnostics.error(
             syntax.name.span(),
             "the model could not be checked (an earlier error was not reported)",
-        );
-        return Err(checker.diagnostics);
-    };
-    let velocities: Vec<SymbolId> = coordinates
-        .iter()
-        .map(|c| checker.store.velocity_of(c.symbol))
-        .collect();
-    let Some(energy_expressions) = checker.energy_expressions(
-        (&kinetic_energy, &mass_matrix),
-        &potential_energy,
-        &mechanism,
-        &velocities,
-    ) else {
-        checker.diagnostics.error(
-            syntax.name.span(),
-            "the energies could not be written as expressions",
         );
         return Err(checker.diagnostics);
     };

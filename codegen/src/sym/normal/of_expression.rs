@@ -213,13 +213,7 @@ impl Store {
     /// expression it was derived from (a mechanism's rotation chain, whose
     /// expanded products are far larger than the chain).
     pub fn compact_expression(&mut self, form: &RationalFunction, derived_as: ExprId) -> ExprId {
-        let terms = form.numerator.terms().len()
-            + form
-                .denominator
-                .iter()
-                .map(|(factor, _)| factor.terms().len())
-                .sum::<usize>();
-        if terms <= EXPANDED_TERMS {
+        if form.is_written_out() {
             self.expression_of(form)
         } else {
             derived_as
