@@ -223,7 +223,7 @@ fn force_item(model: &mut Model, force: &lagrange_dalembert::Force) -> Item {
             "force",
             text,
             "structured: the derivatives of the energies' expressions, not expanded \
-             (the exact form exceeds its derivation budget)",
+             (the exact form is too large to derive)",
         ),
     }
 }
@@ -241,7 +241,7 @@ fn drift_item(model: &mut Model, drift: &lagrange_dalembert::Drift) -> Item {
             "drift",
             "-Adot qdot",
             "structured: the derivatives of the rows along qdot, not expanded \
-             (the exact form exceeds its derivation budget)",
+             (the exact form is too large to derive)",
         ),
     }
 }
@@ -259,7 +259,7 @@ fn basis_item(model: &mut Model, analysis: &ConstraintAnalysis) -> Item {
             "basis",
             "X = [X1 ... Xk], a basis of D",
             "structured: the dependent speeds by elimination of A, not expanded \
-             (the exact form exceeds its derivation budget)",
+             (the exact form is too large to derive)",
         ),
     }
 }
@@ -334,7 +334,7 @@ fn structured_items(reduced: &PortHamiltonian) -> Vec<Item> {
         word_fact(
             "derivation",
             "reduced form derived",
-            "structured (the exact form exceeds its derivation budget): h = X^T g, \
+            "structured (the exact form is too large to derive): h = X^T g, \
              gbar_inv = X^T g X, gbar by elimination, Gamma = gbar S gbar with \
              S_ab = alpha_c dh^c(X_a, X_b); qdot = X alpha, \
              alphadot = gbar (-X^T dHbar/dq + S alpha + X^T B u); Jbar skew by construction",

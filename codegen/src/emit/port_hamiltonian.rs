@@ -121,7 +121,7 @@ fn report_section(model: &mut Model, reduced: &PortHamiltonian) -> Section {
                 reduced.facts_method.describe()
             ));
             section.line(
-                "derived structured (the exact form exceeds its derivation budget): \
+                "derived structured (the exact form is too large to derive): \
                  gbar_inv = X^T g X and gbar by elimination, not expanded; \
                  Jbar skew-symmetric: yes (by construction)",
             );

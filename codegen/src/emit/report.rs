@@ -107,7 +107,7 @@ pub(super) fn constraints(model: &mut Model, analysis: &ConstraintAnalysis) -> S
         None => {
             section.line(
                 "basis of D: structured, the dependent speeds by elimination of A \
-                 (the exact form exceeds its derivation budget)",
+                 (the exact form is too large to derive)",
             );
         }
     }
