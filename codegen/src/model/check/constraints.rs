@@ -26,13 +26,12 @@ impl Checker {
             .iter()
             .map(|entry| self.store.expression_of(entry))
             .collect();
-        for (declared, (form, derived_as)) in mechanism.names.iter().zip(&mechanism.rows) {
+        for (declared, (coefficients, derived_as)) in mechanism.names.iter().zip(&mechanism.rows) {
             if !self.rule_unique_in_section(&names, &declared.name, declared.span) {
                 return None;
             }
-            let coefficients = self.velocity_coefficients(form)?;
-            expressions.extend(self.entry_expressions(&coefficients, *derived_as));
-            entries.extend(coefficients);
+            expressions.extend(self.entry_expressions(coefficients, *derived_as));
+            entries.extend(coefficients.iter().cloned());
             names.push(declared.clone());
         }
         let a = Matrix::new(names.len(), n, entries).ok()?;

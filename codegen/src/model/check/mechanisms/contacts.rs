@@ -2,6 +2,7 @@
 //! holonomic constraints free of velocities.
 
 use super::super::*;
+use super::Row;
 use crate::model::mechanism::bodies::Body;
 use crate::model::mechanism::evaluate::Reference;
 use crate::model::mechanism::space::{self, Space};
@@ -16,7 +17,7 @@ impl Checker {
         reference: &Reference,
         bodies: &[(Declared, Body)],
         q: &[SymbolId],
-    ) -> (Vec<Declared>, Vec<(RationalFunction, ExprId)>) {
+    ) -> (Vec<Declared>, Vec<Row>) {
         let mut names = Vec::new();
         let mut rows = Vec::new();
         let Some(list) = section.and_then(|s| self.list(s)) else {
@@ -55,7 +56,7 @@ impl Checker {
         reference: &Reference,
         bodies: &[(Declared, Body)],
         q: &[SymbolId],
-    ) -> Option<Vec<(RationalFunction, ExprId)>> {
+    ) -> Option<Vec<Row>> {
         let Value::Expr(Expr::Call {
             function,
             arguments,
@@ -79,7 +80,9 @@ impl Checker {
             .iter()
             .map(|d| {
                 let slip = vector::inner(&mut self.store, d, &v);
-                Some((self.store.normal(slip).ok()?, slip))
+                self.linear_coefficients(slip, q)
+                    .ok()
+                    .map(|row| (row, slip))
             })
             .collect()
     }
@@ -149,7 +152,7 @@ impl Checker {
         space: &Space,
         reference: &Reference,
         q: &[SymbolId],
-    ) -> (Vec<Declared>, Vec<ExprId>, Vec<(RationalFunction, ExprId)>) {
+    ) -> (Vec<Declared>, Vec<ExprId>, Vec<Row>) {
         let (mut names, mut residuals, mut forms) = (Vec::new(), Vec::new(), Vec::new());
         let Some(list) = section.and_then(|s| self.list(s)) else {
             return (names, residuals, forms);
@@ -173,8 +176,12 @@ impl Checker {
             let Ok(rate) = space::time_derivative(&mut self.store, f, q) else {
                 continue;
             };
-            let Some(form) = self.normal(rate, expr.first_span()) else {
-                continue;
+            let form = match self.linear_coefficients(rate, q) {
+                Ok(form) => form,
+                Err(error) => {
+                    self.diagnostics.error(expr.first_span(), error.to_string());
+                    continue;
+                }
             };
             names.push(declared);
             residuals.push(f);

@@ -15,7 +15,7 @@ use crate::model::mechanism::bodies::BodyMotion;
 use crate::model::mechanism::evaluate::{Evaluator, Reference};
 use crate::model::mechanism::space::{GROUND, ORIGIN, Space};
 use crate::model::mechanism::{Mechanism, MechanismExpressions};
-use crate::sym::ExprMatrix;
+use crate::sym::{ExprMatrix, SymError};
 use proc_macro2::Ident;
 
 /// A mechanism and the constraint rows it contributes (contacts, then the
@@ -23,14 +23,17 @@ use proc_macro2::Ident;
 pub(super) struct MechanismParts {
     pub(super) mechanism: Mechanism,
     pub(super) names: Vec<Declared>,
-    /// Each row's linear form in the velocities: its normal form and the
-    /// expression it was derived as.
-    pub(super) rows: Vec<(RationalFunction, ExprId)>,
+    /// Each row's linear form in the velocities ([`Row`]).
+    pub(super) rows: Vec<Row>,
     /// The expressions the bodies' `T` and `V` were derived as.
     pub(super) energies_derived_as: (ExprId, ExprId),
     /// Each body's motion, for Kane's form of its inertia forces.
     pub(super) motions: Vec<BodyMotion>,
 }
+
+/// A row linear in the velocities: the normal form of each velocity's
+/// coefficient, in coordinate order, and the expression it was derived as.
+pub(super) type Row = (Vec<RationalFunction>, ExprId);
 
 /// A frame's declaration: `name = rotate(parent, axis, angle)`.
 struct FrameDeclaration<'a> {
@@ -153,6 +156,24 @@ impl Checker {
             Matrix::new(rows, width, forms).ok()?,
             ExprMatrix::new(rows, width, expressions).ok()?,
         ))
+    }
+
+    /// The normal forms of the coefficients of `form`, linear in the
+    /// velocities of `q`: `d form / d qdot_j` taken on its DAG, then each in
+    /// normal form (the whole row's normal form, a rolling wheel's square
+    /// root in every term, is never formed).
+    fn linear_coefficients(
+        &mut self,
+        form: ExprId,
+        q: &[SymbolId],
+    ) -> Result<Vec<RationalFunction>, SymError> {
+        q.iter()
+            .map(|&coordinate| {
+                let velocity = self.store.velocity_of(coordinate);
+                let coefficient = self.store.derivative(form, velocity);
+                self.store.normal(coefficient)
+            })
+            .collect()
     }
 
     /// Values in mechanism sections depend on the configuration only.
