@@ -164,7 +164,7 @@ fn simulate_writes_the_leaning_disks_contact_and_centre_tracks() {
 }
 
 #[test]
-fn simulate_writes_the_caster_robots_wheel_contact_tracks_through_the_interpreter() {
+fn simulate_writes_the_caster_robots_wheel_contact_tracks() {
     let tables = simulate_tracks(
         "caster-tracks",
         &["caster-robot", "--t-end", "1", "--input", "u_left=1"],

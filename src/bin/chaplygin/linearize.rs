@@ -18,9 +18,9 @@ use crate::catalog::{self, Compiled, Source};
 use crate::derive::Rejected;
 use crate::interpreted::dynamics::InterpretedDynamics;
 use crate::models::{
-    bicycle::Bicycle, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
-    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
-    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
+    bicycle::Bicycle, caster_robot::CasterRobot, differential_drive::DifferentialDrive,
+    rolling_disk::RollingDisk, rolling_disk_3d::RollingDisk3d, sleigh::Sleigh,
+    sleigh_bodies::SleighBodies, snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
 use crate::simulate::set_model_parameters;
 pub use canonical::CanonicalSpeed;
@@ -147,8 +147,7 @@ pub fn run(args: &LinearizeArgs) -> Result<(), Box<dyn Error>> {
             Compiled::SleighBodies => compiled::<SleighBodies, 3, 1, 0, 0>(args),
             Compiled::SnakeboardBodies => compiled::<SnakeboardBodies, 5, 2, 2, 0>(args),
             Compiled::Bicycle => compiled::<Bicycle, 8, 5, 2, 1>(args),
-            // No symmetry: the interpreter runs it from its text.
-            Compiled::CasterRobot => interpreted(built_in.name, built_in.source, args),
+            Compiled::CasterRobot => compiled::<CasterRobot, 7, 5, 2, 0>(args),
         },
     }
 }

@@ -24,9 +24,9 @@ use crate::interpreted::dynamics::InterpretedDynamics;
 use crate::interpreted::{InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced};
 use crate::models::energy_control::{ClosedLoop, EnergyController};
 use crate::models::{
-    bicycle::Bicycle, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
-    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
-    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
+    bicycle::Bicycle, caster_robot::CasterRobot, differential_drive::DifferentialDrive,
+    rolling_disk::RollingDisk, rolling_disk_3d::RollingDisk3d, sleigh::Sleigh,
+    sleigh_bodies::SleighBodies, snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
 use arguments::{Controller, Formulation as Kind};
 use chaplygin::plot;
@@ -113,8 +113,14 @@ pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
             })),
             Err(MOMENTUM_WITH_HOLONOMIC),
         ),
-        // No symmetry: the interpreter runs it from its text.
-        Compiled::CasterRobot => interpreted(model.name, model.source, args),
+        Compiled::CasterRobot => compiled::<CasterRobot, 7, 5, 2, 2, 9, 14, 0>(
+            model,
+            args,
+            Some((&CasterRobot::POINTS, |robot, q| {
+                robot.positions(&array(q)).as_flattened().to_vec()
+            })),
+            Err(NO_SYMMETRY),
+        ),
     }
 }
 
@@ -247,6 +253,10 @@ where
         + Copy,
 {
 }
+
+/// Why a model without a symmetry has no momentum formulation.
+const NO_SYMMETRY: &str = "not derived: the model declares no symmetry, and the momentum \
+     equation is the symmetry's";
 
 /// How a compiled model with a symmetry runs in the momentum formulation
 /// ([`momentum`]), or why it has none.
