@@ -6,6 +6,7 @@
 //! differences, its formulations against each other, and the interpreter's
 //! programs of the same text against the compiled functions.
 
+mod common;
 #[allow(dead_code)]
 mod support;
 
@@ -14,6 +15,7 @@ use chaplygin::runtime::linearize::point::configuration;
 use chaplygin::runtime::linearize::{Compiled, OperatingPoint, linearize};
 use chaplygin_codegen::interpret::InterpretedModel;
 use chaplygin_models::bicycle::{Bicycle, MODEL_TEXT};
+use common::{assert_close, check_jacobians};
 use support::benchmark_bicycle::BenchmarkParameters;
 
 /// Upright straight running at `v`: `dot(theta_r) = -v / rR`, lean, steer
@@ -73,23 +75,6 @@ fn leaning(bicycle: &Bicycle) -> [f64; 8] {
     std::array::from_fn(|i| q[i])
 }
 
-/// `|exact - differenced| <= 1e-6 max(1, |exact|)` entry by entry.
-fn assert_close<const R: usize, const K: usize>(
-    exact: &[[f64; K]; R],
-    differenced: &[[f64; K]; R],
-    what: &str,
-) {
-    for i in 0..R {
-        for j in 0..K {
-            let (e, d) = (exact[i][j], differenced[i][j]);
-            assert!(
-                (e - d).abs() <= 1e-6 * e.abs().max(1.0),
-                "{what}[{i}][{j}]: exact {e}, central differences {d}"
-            );
-        }
-    }
-}
-
 /// The exact `acceleration_jacobian` and `holonomic_jacobian` are the
 /// central differences of `acceleration` and `holonomic_residual`, leaning,
 /// steered and rolling.
@@ -98,24 +83,7 @@ fn the_compiled_jacobians_are_the_derivatives() {
     let bicycle = Bicycle::default();
     let q = leaning(&bicycle);
     let qdot = [1.2, -0.3, 0.4, 0.3, 0.05, -0.4, -10.0, -8.0];
-    let u = [0.7, -0.2];
-    let qddot = |q: &[f64; 8], qdot: &[f64; 8], u: &[f64; 2]| bicycle.acceleration(q, qdot, u).0;
-    let (by_q, by_qdot, by_u) = bicycle.acceleration_jacobian(&q, &qdot, &u);
-    assert_close(
-        &by_q,
-        &central_difference_jacobian(|q| qddot(q, &qdot, &u), &q),
-        "d qddot/dq",
-    );
-    assert_close(
-        &by_qdot,
-        &central_difference_jacobian(|qdot| qddot(&q, qdot, &u), &qdot),
-        "d qddot/dqdot",
-    );
-    assert_close(
-        &by_u,
-        &central_difference_jacobian(|u| qddot(&q, &qdot, u), &u),
-        "d qddot/du",
-    );
+    check_jacobians(&bicycle, q, qdot, [0.7, -0.2]);
     assert_close(
         &bicycle.holonomic_jacobian(&q),
         &central_difference_jacobian(|q| bicycle.holonomic_residual(q), &q),

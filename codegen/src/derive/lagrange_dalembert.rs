@@ -443,7 +443,7 @@ fn structured_force(model: &mut Model, inputs: &[SymbolId]) -> Result<ExprMatrix
         }
     }
     for body in &energies.bodies {
-        let terms = body.velocity_terms(store, &coordinates, &model.velocities);
+        let terms = body.velocity_terms(store, &coordinates, &model.velocities)?;
         for (lost, term) in lost.iter_mut().zip(terms) {
             lost.push(term);
         }

@@ -288,3 +288,51 @@ pub fn rk4(
     }
     states
 }
+
+/// `|exact - differenced| <= 1e-6 max(1, |exact|)` entry by entry (central
+/// differences are good to about 1e-10 relative on these smooth functions;
+/// the bound leaves room for their round-off on larger entries).
+pub fn assert_close<const R: usize, const K: usize>(
+    exact: &[[f64; K]; R],
+    differenced: &[[f64; K]; R],
+    what: &str,
+) {
+    for i in 0..R {
+        for j in 0..K {
+            let (e, d) = (exact[i][j], differenced[i][j]);
+            assert!(
+                (e - d).abs() <= 1e-6 * e.abs().max(1.0),
+                "{what}[{i}][{j}]: exact {e}, central differences {d}"
+            );
+        }
+    }
+}
+
+/// Compares the three exact Jacobians of `model` with central differences
+/// of its `acceleration` at `(q, qdot, u)`.
+pub fn check_jacobians<M, const N: usize, const C: usize, const P: usize>(
+    model: &M,
+    q: [f64; N],
+    qdot: [f64; N],
+    u: [f64; P],
+) where
+    M: chaplygin::runtime::linearize::Linearization<N, C, P>,
+{
+    let (by_q, by_qdot, by_u) = model.acceleration_jacobian(&q, &qdot, &u);
+    let qddot = |q: &[f64; N], qdot: &[f64; N], u: &[f64; P]| model.acceleration(q, qdot, u).0;
+    assert_close(
+        &by_q,
+        &chaplygin::runtime::linalg::central_difference_jacobian(|q| qddot(q, &qdot, &u), &q),
+        "d qddot/dq",
+    );
+    assert_close(
+        &by_qdot,
+        &chaplygin::runtime::linalg::central_difference_jacobian(|qdot| qddot(&q, qdot, &u), &qdot),
+        "d qddot/dqdot",
+    );
+    assert_close(
+        &by_u,
+        &chaplygin::runtime::linalg::central_difference_jacobian(|u| qddot(&q, &qdot, u), &u),
+        "d qddot/du",
+    );
+}

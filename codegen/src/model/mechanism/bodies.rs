@@ -162,33 +162,22 @@ impl BodyMotion {
         store: &mut Store,
         coordinates: &[SymbolId],
         velocities: &[SymbolId],
-    ) -> Vec<ExprId> {
-        let rates: Vec<ExprId> = velocities.iter().map(|&v| store.symbol(v)).collect();
-        let rate_of = |store: &mut Store, e: ExprId| {
-            let terms: Vec<ExprId> = coordinates
-                .iter()
-                .zip(&rates)
-                .map(|(&q, &rate)| {
-                    let partial = store.derivative(e, q);
-                    store.mul2(partial, rate)
-                })
-                .collect();
-            store.add(&terms)
-        };
-        let acceleration = self.velocity.map(|e| rate_of(store, e));
+    ) -> Result<Vec<ExprId>, SymError> {
+        let acceleration = velocity(store, &self.velocity, coordinates)?;
         let acceleration = vector::scale(store, self.mass, &acceleration);
-        let angular_acceleration = self.angular_velocity.map(|e| rate_of(store, e));
+        let angular_acceleration = velocity(store, &self.angular_velocity, coordinates)?;
         let spun_rate = self.spun(store, &angular_acceleration);
         let momentum = self.spun(store, &self.angular_velocity);
         let gyroscopic = vector::cross(store, &self.angular_velocity, &momentum);
         let torque = vector::add(store, &spun_rate, &gyroscopic);
-        self.partial_velocities(store, velocities)
+        Ok(self
+            .partial_velocities(store, velocities)
             .iter()
             .map(|[translation, rotation]| {
                 let along = vector::inner(store, translation, &acceleration);
                 let about = vector::inner(store, rotation, &torque);
                 store.add2(along, about)
             })
-            .collect()
+            .collect())
     }
 }
