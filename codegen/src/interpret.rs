@@ -25,6 +25,9 @@
 //! [`InterpretedModel::reconstructed_velocity`] compose `body_velocity` with
 //! `acceleration` and with the group's action as the emitted code does.
 
+mod charts;
+
+use crate::derive::constraints::ChartFit;
 use crate::derive::momentum::group_coordinates;
 use crate::derive::port_hamiltonian::momentum_names;
 use crate::diagnostic::Diagnostics;
@@ -137,8 +140,8 @@ pub struct InterpretedModel {
     functions: Vec<Interpreted>,
     /// The reduced items of each other chart of D (chart 1, 2, ...).
     chart_functions: Vec<Vec<Interpreted>>,
-    /// Each chart's dependent speeds, chart 0 first.
-    charts: Vec<Vec<usize>>,
+    /// How each chart derived at build time fits, chart 0 first.
+    charts: Vec<ChartFit>,
     report: String,
     /// With a symmetry, the coordinates the group acts on.
     group: Option<Vec<usize>>,
@@ -265,45 +268,6 @@ impl InterpretedModel {
     /// `lambda`.
     pub fn call(&self, name: &str, arguments: &[&[f64]]) -> Result<Vec<f64>, CallError> {
         self.call_among(&self.functions, name, arguments)
-    }
-
-    /// The dependent speeds of each chart of D, chart 0 (the basis the
-    /// other functions use) first; one chart unless that basis degenerates
-    /// where the constraint rows stay independent
-    /// ([`crate::derive::constraints::charts`]).
-    pub fn charts(&self) -> &[Vec<usize>] {
-        &self.charts
-    }
-
-    /// The reduced item `name` (`velocities`, `momenta`, `hamiltonian`,
-    /// `hamiltonian_gradient`, `structure_matrix`, `input_matrix`,
-    /// `reduced_rhs`, `reduced_rhs_jacobian`) in `chart`, as
-    /// [`InterpretedModel::call`]; chart 0 is [`InterpretedModel::call`].
-    pub fn call_in_chart(
-        &self,
-        chart: usize,
-        name: &str,
-        arguments: &[&[f64]],
-    ) -> Result<Vec<f64>, CallError> {
-        match chart.checked_sub(1) {
-            None => self.call(name, arguments),
-            Some(other) => {
-                let functions = self
-                    .chart_functions
-                    .get(other)
-                    .map_or(&[][..], Vec::as_slice);
-                self.call_among(functions, name, arguments)
-            }
-        }
-    }
-
-    /// How well `chart` fits at `q`: its pivot ratio
-    /// `|det A_r(q)| / prod_i |A_i(q)|` (0 for a chart the model lacks).
-    pub fn chart_fit(&self, chart: usize, q: &[f64]) -> Result<f64, CallError> {
-        let a = self.constraint_matrix(q)?;
-        Ok(self.charts.get(chart).map_or(0.0, |dependent| {
-            crate::derive::constraints::charts::pivot_ratio(&a, self.sizes.n, dependent)
-        }))
     }
 
     /// The function `name` among `functions`.

@@ -30,6 +30,7 @@ pub mod law;
 pub mod linalg;
 pub mod linearize;
 pub mod monitor;
+pub mod partition;
 pub mod phase;
 pub mod projection;
 pub mod record;

@@ -36,8 +36,10 @@
 
 use crate::arrays::matrix_from_rows;
 use crate::linalg::{Square, cholesky};
+use crate::linearize::GroupFactor;
 use nalgebra::allocator::Allocator;
-use nalgebra::{Const, DefaultAllocator, Dim, OMatrix};
+use nalgebra::storage::{Storage, StorageMut};
+use nalgebra::{Const, DefaultAllocator, Dim, Matrix, OMatrix};
 
 /// `det[A; V^T] / (prod |A_i| prod |V_j|)` (see the module documentation);
 /// `N = C + K`.
@@ -128,35 +130,155 @@ where
 pub fn pivot_ratio<const N: usize, const C: usize>(
     constraints: &[[f64; N]; C],
     dependent: &[usize; C],
-) -> f64 {
-    let scale: f64 = constraints
-        .iter()
-        .map(|row| row.iter().map(|v| v * v).sum::<f64>().sqrt())
-        .product();
+) -> f64
+where
+    Const<C>: Square,
+{
+    signed_pivot_ratio(&matrix_from_rows(constraints), dependent).abs()
+}
+
+/// [`pivot_ratio`] with its sign, `det A_r / prod_i |A_i|`, for rows `a`
+/// of any size (`c x n`, fixed or dynamic; `dependent` has `c` entries):
+/// it changes sign where a path crosses the minor's zero set
+/// transversally. 0 when a row of `a` vanishes.
+///
+/// ```
+/// use chaplygin_runtime::monitor::signed_pivot_ratio;
+/// use chaplygin_runtime::nalgebra::DMatrix;
+/// let rows = DMatrix::from_row_slice(2, 3, &[1.0, 2.0, 0.0, 0.0, 1.0, 1.0]);
+/// let ratio = signed_pivot_ratio(&rows, &[1, 0]);
+/// assert!((ratio - (-1.0 / (5f64.sqrt() * 2f64.sqrt()))).abs() < 1e-15);
+/// ```
+pub fn signed_pivot_ratio<C, N, S>(a: &Matrix<f64, C, N, S>, dependent: &[usize]) -> f64
+where
+    C: Square,
+    N: Dim,
+    S: Storage<f64, C, N>,
+    DefaultAllocator: Allocator<C, C> + Allocator<C>,
+{
+    let scale: f64 = a.row_iter().map(|row| row.norm()).product();
     if scale == 0.0 {
         return 0.0;
     }
-    let mut minor: [[f64; C]; C] =
-        core::array::from_fn(|i| core::array::from_fn(|k| constraints[i][dependent[k]]));
-    let mut determinant = 1.0;
-    for k in 0..C {
-        let pivot = (k..C)
-            .max_by(|&a, &b| minor[a][k].abs().total_cmp(&minor[b][k].abs()))
-            .unwrap_or(k);
-        if minor[pivot][k] == 0.0 {
-            return 0.0;
-        }
-        minor.swap(k, pivot);
-        determinant *= minor[k][k];
-        let pivot_row = minor[k];
-        for row in minor.iter_mut().skip(k + 1) {
-            let factor = row[k] / pivot_row[k];
-            for (entry, p) in row.iter_mut().zip(pivot_row).skip(k) {
-                *entry -= factor * p;
+    let rows = a.shape_generic().0;
+    let minor = OMatrix::<f64, C, C>::from_fn_generic(rows, rows, |i, k| a[(i, dependent[k])]);
+    minor.determinant() / scale
+}
+
+/// The constraint rows as they act on the body velocity, `A(q) L(q)`
+/// (MATH.md 4: `qdot = L(q) (xi, rdot)`, `L` the rotation `R(theta)` on each
+/// `se2` factor's `(x, y)` and the identity elsewhere): the rows a basis
+/// chosen in the body frame is eliminated on, up to a rotation of the rows
+/// that leaves their minors' determinants unchanged. `a` is `c x n`
+/// (fixed or dynamic), `q` the configuration.
+///
+/// ```
+/// use chaplygin_runtime::linearize::GroupFactor;
+/// use chaplygin_runtime::monitor::in_body_frame;
+/// use chaplygin_runtime::nalgebra::DMatrix;
+/// // The blade (-sin theta, cos theta, 0): its body row is (0, 1, 0).
+/// let theta: f64 = 0.7;
+/// let mut rows = DMatrix::from_row_slice(1, 3, &[-theta.sin(), theta.cos(), 0.0]);
+/// in_body_frame(&mut rows, &[GroupFactor::Se2 { x: 0, y: 1, theta: 2 }], &[0.0, 0.0, theta]);
+/// assert!(rows[(0, 0)].abs() < 1e-15 && (rows[(0, 1)] - 1.0).abs() < 1e-15);
+/// ```
+pub fn in_body_frame<C, N, S>(a: &mut Matrix<f64, C, N, S>, factors: &[GroupFactor], q: &[f64])
+where
+    C: Dim,
+    N: Dim,
+    S: StorageMut<f64, C, N>,
+{
+    for factor in factors {
+        if let GroupFactor::Se2 { x, y, theta } = *factor {
+            let (sin, cos) = q[theta].sin_cos();
+            for i in 0..a.nrows() {
+                let (ax, ay) = (a[(i, x)], a[(i, y)]);
+                a[(i, x)] = ax * cos + ay * sin;
+                a[(i, y)] = -ax * sin + ay * cos;
             }
         }
     }
-    determinant.abs() / scale
+}
+
+/// A pivot below this fraction of A's largest entry counts as vanishing
+/// ([`partial_pivots`]).
+pub const VANISHING_PIVOT: f64 = 1e-9;
+
+/// The dependent speeds Gaussian elimination with partial pivoting picks
+/// on the rows `a` (`c x n`): row by row, the remaining column of largest
+/// magnitude, written into `pivots` (`c` entries). It is the choice of
+/// coordinate partitioning (Wehage & Haug 1982) and fits well wherever the
+/// rows are independent. `false` when a pivot vanishes (below
+/// [`VANISHING_PIVOT`] times the largest entry): the rows are dependent.
+///
+/// ```
+/// use chaplygin_runtime::monitor::partial_pivots;
+/// use chaplygin_runtime::nalgebra::DMatrix;
+/// let blade = DMatrix::from_row_slice(1, 3, &[-0.9, 0.1, 0.0]);
+/// let mut pivots = [0];
+/// assert!(partial_pivots(&blade, &mut pivots));
+/// assert_eq!(pivots, [0]);
+/// let parallel = DMatrix::from_row_slice(2, 2, &[1.0, 1.0, 2.0, 2.0]);
+/// assert!(!partial_pivots(&parallel, &mut [0, 0]));
+/// ```
+pub fn partial_pivots<C, N, S>(a: &Matrix<f64, C, N, S>, pivots: &mut [usize]) -> bool
+where
+    C: Dim,
+    N: Dim,
+    S: Storage<f64, C, N>,
+    DefaultAllocator: Allocator<C, N>,
+{
+    let mut m = a.clone_owned();
+    let (rows, columns) = m.shape();
+    let scale = m.amax();
+    for row in 0..rows {
+        let chosen = &pivots[..row];
+        let Some(column) = (0..columns)
+            .filter(|j| !chosen.contains(j))
+            .max_by(|&x, &y| m[(row, x)].abs().total_cmp(&m[(row, y)].abs()))
+        else {
+            return false;
+        };
+        let pivot = m[(row, column)];
+        if !(pivot.abs() > VANISHING_PIVOT * scale) {
+            return false;
+        }
+        for below in row + 1..rows {
+            let factor = m[(below, column)] / pivot;
+            for j in 0..columns {
+                m[(below, j)] -= factor * m[(row, j)];
+            }
+        }
+        pivots[row] = column;
+    }
+    true
+}
+
+/// How far the rows `a` (`c x n`) are from dependent: the Gram ratio
+/// `det(A A^T) / prod_i |A_i|^2`, in `[0, 1]` (Hadamard), zero exactly
+/// where they are dependent (up to round-off) and 0 when a row vanishes.
+///
+/// ```
+/// use chaplygin_runtime::monitor::gram_ratio;
+/// use chaplygin_runtime::nalgebra::DMatrix;
+/// let orthogonal = DMatrix::from_row_slice(2, 3, &[1.0, 0.0, 0.0, 0.0, 3.0, 0.0]);
+/// assert_eq!(gram_ratio(&orthogonal), 1.0);
+/// let parallel = DMatrix::from_row_slice(2, 3, &[1.0, 2.0, 0.0, 2.0, 4.0, 0.0]);
+/// assert!(gram_ratio(&parallel).abs() < 1e-15);
+/// ```
+pub fn gram_ratio<C, N, S>(a: &Matrix<f64, C, N, S>) -> f64
+where
+    C: Square,
+    N: Dim,
+    S: Storage<f64, C, N>,
+    DefaultAllocator: Allocator<C, C> + Allocator<N, C> + Allocator<C>,
+{
+    let gram = a * a.transpose();
+    let scale: f64 = gram.diagonal().iter().product();
+    if scale == 0.0 {
+        return 0.0;
+    }
+    gram.determinant() / scale
 }
 
 /// `det(m) / prod_i |m_i|`, the determinant over the product of the rows'

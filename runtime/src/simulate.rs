@@ -33,7 +33,8 @@ mod run;
 
 pub use advance::Advance;
 pub use observed::{
-    CHART_SWITCH, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, Regularity, better_chart,
+    CHART_SWITCH, GENERATED_CHART, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, RUNTIME_CHART,
+    Regularity, next_chart,
 };
 pub use outcome::{SimulationError, Summary};
 

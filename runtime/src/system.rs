@@ -80,20 +80,37 @@ pub trait ReducedPortHamiltonian<const S: usize, const P: usize> {
     /// where the constraint rows or the momentum basis lose rank.
     fn regularity(&self, x: &[f64; S]) -> f64;
 
-    /// The number of charts of D: 1, unless the tool's basis of D
-    /// degenerates where the constraint rows stay independent; then chart 0
-    /// is that basis and the others choose other dependent speeds (README,
-    /// "Chart switching"). Every chart has the state layout `(q, alpha)`,
-    /// `alpha` the momenta of its own basis; the `chart_*` methods are the
-    /// items above in a chart, and chart 0's are the items above.
+    /// The number of charts of D derived at build time: 1, unless the
+    /// basis of D degenerates where the constraint rows stay independent;
+    /// then chart 0 is that basis and the others choose other dependent
+    /// speeds (README, "Chart switching"). Indices from `charts()` on are
+    /// run-time charts ([`crate::partition`]): chart `charts() + i` solves
+    /// for the `i`-th set of dependent speeds ([`crate::partition::index_of`]).
+    /// Every chart has the state layout `(q, alpha)`, `alpha` the momenta
+    /// of its own basis; the `chart_*` methods are the items above in a
+    /// chart, and chart 0's are the items above.
     fn charts(&self) -> usize {
         1
     }
-    /// How well `chart` fits at the configuration of `x`: its pivot ratio
-    /// `|det A_r(q)| / prod_i |A_i(q)|` ([`crate::monitor::pivot_ratio`]),
-    /// 0 where its basis degenerates.
+    /// How well `chart` fits at the configuration of `x`, in `[0, 1]`: its
+    /// pivot ratio `|det A_r(q)| / prod_i |A_i(q)|`
+    /// ([`crate::monitor::pivot_ratio`]; for a basis chosen in the body
+    /// frame, on the rows [`crate::monitor::in_body_frame`]), or for a
+    /// declared momentum basis `|regularity|`; 0 where its basis
+    /// degenerates.
     fn chart_fit(&self, _chart: usize, _x: &[f64; S]) -> f64 {
         1.0
+    }
+    /// The run-time chart that partial pivoting picks at the configuration
+    /// of `x` ([`crate::partition::pivoted`]); `None` for a model without
+    /// run-time charts or where the constraint rows are dependent.
+    fn pivoted_chart(&self, _x: &[f64; S]) -> Option<usize> {
+        None
+    }
+    /// Whether a run may change charts: several charts derived at build
+    /// time, or run-time charts (a generated model with constraint rows).
+    fn switches_charts(&self) -> bool {
+        self.charts() > 1
     }
     /// The state `x` of chart `from` in chart `to`: the same configuration,
     /// and the momenta of `to` of the velocity `x` has in `from`.

@@ -59,7 +59,7 @@ mod body_frame;
 pub mod charts;
 
 use at_points::{growth_vector_at_point, is_exact_row_at_points, is_involutive_at_points};
-pub use basis::{DistributionBasis, default_point, distribution_basis};
+pub use basis::{ChartFit, DistributionBasis, default_point, distribution_basis};
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::model::Model;
@@ -142,8 +142,8 @@ pub struct ConstraintAnalysis {
     /// The basis of D.
     pub basis: DistributionBasis,
     /// Other charts of D, where `basis` degenerates with the rows
-    /// independent ([`charts`]); empty when it does nowhere.
-    pub charts: Vec<DistributionBasis>,
+    /// independent, and the singular sets found ([`charts`]).
+    pub charts: charts::Charts,
     /// `(rank D^1, rank D^2, ...)`, strictly increasing, the first entry k.
     pub growth: Vec<usize>,
     /// False when the growth vector was cut short by the budget: later
@@ -167,6 +167,9 @@ pub enum AnalysisError {
     /// The engine failed on a matrix.
     #[error(transparent)]
     Matrix(#[from] MatrixError),
+    /// The charts of D could not be found.
+    #[error(transparent)]
+    Charts(#[from] charts::ChartsError),
     /// The model is too large for normal forms and its expressions are
     /// outside the class evaluated modulo a prime.
     #[error("the constraint analysis is too large for normal forms, and {0}")]

@@ -44,6 +44,8 @@ pub struct Derivation {
 pub struct Chart {
     /// The chart's dependent speeds.
     pub dependent: Vec<usize>,
+    /// How the runtime measures where it fits.
+    pub fit: constraints::ChartFit,
     /// The reduced form on the chart's basis.
     pub reduced: PortHamiltonian,
     /// Its items, each in its chosen form.
@@ -80,12 +82,14 @@ pub fn derivation(
     };
     let charts = constraints
         .charts
+        .alternatives
         .iter()
         .map(|basis| {
             let reduced = port_hamiltonian::derive(model, basis)?;
             let items = port_hamiltonian::items::items(model, &reduced)?;
             Ok(Chart {
                 dependent: basis.dependent.clone(),
+                fit: basis.fit(),
                 reduced,
                 items,
             })

@@ -38,7 +38,7 @@ pub mod report;
 mod traits;
 
 use crate::derive::Derivation;
-use crate::derive::constraints::ConstraintAnalysis;
+use crate::derive::constraints::{ChartFit, ConstraintAnalysis};
 use crate::diagnostic::Diagnostics;
 use crate::ir::{self, Op, OperationCount};
 use crate::model::Model;
@@ -77,9 +77,9 @@ pub(crate) struct Emitted {
     pub(crate) functions: Vec<Function>,
     /// The reduced items of each other chart of D (chart 1, 2, ...).
     pub(crate) chart_functions: Vec<Vec<Function>>,
-    /// The dependent speeds of every chart, chart 0 (the model's own
-    /// basis) first; only chart 0 without other charts.
-    pub(crate) charts: Vec<Vec<usize>>,
+    /// How every chart derived at build time fits, chart 0 (the model's
+    /// own basis) first; only chart 0 without other charts.
+    pub(crate) charts: Vec<ChartFit>,
     pub(crate) report: String,
 }
 
@@ -111,13 +111,12 @@ pub(crate) fn emit(
     let (reduced, mut reduced_report) =
         port_hamiltonian::functions(model, &derivation.reduced, &derivation.reduced_items)?;
     functions.extend(reduced);
-    let charts: Vec<Vec<usize>> = std::iter::once(constraints.basis.dependent.clone())
-        .chain(
-            derivation
-                .charts
-                .iter()
-                .map(|chart| chart.dependent.clone()),
-        )
+    let primary = match derivation.reduced.declared_basis {
+        true => ChartFit::Declared,
+        false => constraints.basis.fit(),
+    };
+    let charts: Vec<ChartFit> = std::iter::once(primary)
+        .chain(derivation.charts.iter().map(|chart| chart.fit.clone()))
         .collect();
     let chart_functions = derivation
         .charts
@@ -177,20 +176,14 @@ pub(crate) fn emit(
 
 /// The report's line on the charts of D, the dependent speeds of each;
 /// none with one chart.
-fn charts_line(model: &Model, charts: &[Vec<usize>]) -> Option<String> {
+fn charts_line(model: &Model, charts: &[ChartFit]) -> Option<String> {
     if charts.len() == 1 {
         return None;
     }
     let listed: Vec<String> = charts
         .iter()
         .enumerate()
-        .map(|(i, dependent)| {
-            let speeds: Vec<String> = dependent
-                .iter()
-                .map(|&j| format!("dot({})", model.coordinates[j].declared.name))
-                .collect();
-            format!("{i}: {}", speeds.join(", "))
-        })
+        .map(|(i, fit)| format!("{i}: {}", fit.describe(model)))
         .collect();
     Some(format!(
         "charts (dependent speeds; the runtime switches where the active one degenerates): {}",

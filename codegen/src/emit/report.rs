@@ -15,7 +15,7 @@
 //! part of the contract users and tests read (`growth vector (3, 4, 5)`).
 
 use super::Function;
-use crate::derive::constraints::{ConstraintAnalysis, Method};
+use crate::derive::constraints::{ConstraintAnalysis, Method, charts};
 use crate::model::Model;
 use crate::sym::RationalFunction;
 
@@ -110,6 +110,9 @@ pub(super) fn constraints(model: &mut Model, analysis: &ConstraintAnalysis) -> S
                  (the exact form is too large to derive)",
             );
         }
+    }
+    for line in charts::report_lines(model, &analysis.basis, &analysis.charts) {
+        section.line(line);
     }
     section.line(format!(
         "integrable (A [X_i, X_j] = 0 for all i, j): {}",

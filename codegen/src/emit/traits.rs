@@ -8,37 +8,57 @@
 //! `::chaplygin::runtime::monitor` with the model's sizes.
 
 use super::f64_type;
+use crate::derive::constraints::ChartFit;
 use crate::derive::momentum::group_coordinates;
 use crate::model::{GroupFactor, Model, Symmetry};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-/// `CHARTS`, the dependent speeds of each chart of D, when there are
-/// several (nothing otherwise).
-pub(crate) fn charts_constant(model: &Model, charts: &[Vec<usize>]) -> TokenStream {
-    if charts.len() < 2 {
+/// `CHARTS`, the dependent speeds of each chart of D derived at build time,
+/// when there are several and none is a declared momentum basis (nothing
+/// otherwise).
+pub(crate) fn charts_constant(model: &Model, charts: &[ChartFit]) -> TokenStream {
+    let dependent: Vec<&Vec<usize>> = charts
+        .iter()
+        .filter_map(|fit| match fit {
+            ChartFit::Coordinates(dependent) | ChartFit::Body(dependent) => Some(dependent),
+            ChartFit::Declared => None,
+        })
+        .collect();
+    if charts.len() < 2 || dependent.len() < charts.len() {
         return TokenStream::new();
     }
     let (c, count) = (model.c(), charts.len());
-    let rows = charts.iter().map(|dependent| {
+    let rows = dependent.iter().map(|dependent| {
         let columns = dependent.iter().map(|&j| Literal::usize_unsuffixed(j));
         quote!([#(#columns),*])
     });
     quote! {
-        /// The charts of D: each chart's dependent speeds (coordinate
-        /// indices), chart 0 the basis the other items use. The items
-        /// named `..._chart{i}` are the reduced form in chart `i`.
+        /// The charts of D derived at build time: each chart's dependent
+        /// speeds (coordinate indices, or body-velocity indices for a
+        /// basis chosen in the body frame), chart 0 the basis the other
+        /// items use. The items named `..._chart{i}` are the reduced form
+        /// in chart `i`.
         pub const CHARTS: [[::core::primitive::usize; #c]; #count] = [#(#rows),*];
     }
 }
 
-/// The `match` calling `item` (`item_chart{i}` in chart `i`) with `arguments`.
+/// What a chart method computes in a run-time chart: an expression of
+/// `chart` (a `chaplygin_runtime::partition::RuntimeChart`), and its value
+/// for an index past the last run-time chart.
+struct Runtime {
+    value: TokenStream,
+    missing: TokenStream,
+}
+
+/// The `match` calling `item` (`item_chart{i}` in generated chart `i`)
+/// with `arguments`, and `runtime` in the run-time charts.
 fn in_chart(
     model: &Model,
     count: usize,
     chart: TokenStream,
-    item: &str,
-    arguments: TokenStream,
+    (item, arguments): (&str, TokenStream),
+    runtime: Runtime,
 ) -> TokenStream {
     let name = &model.name;
     let base = proc_macro2::Ident::new(item, proc_macro2::Span::call_site());
@@ -48,53 +68,166 @@ fn in_chart(
         let i = Literal::usize_unsuffixed(i);
         quote!(#i => #name::#charted(self, #arguments),)
     });
+    let generated = Literal::usize_unsuffixed(count);
+    let with_chart = with_chart(model);
+    let Runtime { value, missing } = runtime;
     quote! {
         match #chart {
+            0 => #name::#base(self, #arguments),
             #(#arms)*
-            _ => #name::#base(self, #arguments),
+            index => #with_chart(self, index - #generated, |chart| #value).unwrap_or(#missing),
         }
     }
 }
 
-/// The `ReducedPortHamiltonian` chart methods of a model with several
-/// charts (nothing otherwise: the trait's defaults, one chart).
-fn chart_methods(model: &Model, charts: &[Vec<usize>]) -> TokenStream {
-    let count = charts.len();
-    if count < 2 {
+/// `chaplygin_runtime::partition::with_chart` at the model's sizes.
+fn with_chart(model: &Model) -> TokenStream {
+    let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
+    quote!(::chaplygin::runtime::partition::with_chart::<Self, #n, #c, #k, #p, _>)
+}
+
+/// The expression of a chart's fit at the configuration `q` (and state `x`).
+fn fit_of(model: &Model, fit: &ChartFit) -> TokenStream {
+    let name = &model.name;
+    let (n, c, p) = (model.n(), model.c(), model.p());
+    let monitor = quote!(::chaplygin::runtime::monitor);
+    let columns = |dependent: &[usize]| {
+        let columns = dependent.iter().map(|&j| Literal::usize_unsuffixed(j));
+        quote!([#(#columns),*])
+    };
+    match fit {
+        ChartFit::Coordinates(dependent) => {
+            let dependent = columns(dependent);
+            quote!(#monitor::pivot_ratio(&#name::constraint_matrix(self, &q), &#dependent))
+        }
+        ChartFit::Body(dependent) => {
+            let dependent = columns(dependent);
+            quote! {{
+                let mut rows = ::chaplygin::runtime::arrays::matrix_from_rows(
+                    &#name::constraint_matrix(self, &q),
+                );
+                #monitor::in_body_frame(
+                    &mut rows,
+                    <#name as ::chaplygin::runtime::linearize::Linearization<#n, #c, #p>>::SYMMETRY,
+                    &q,
+                );
+                #monitor::signed_pivot_ratio(&rows, &#dependent).abs()
+            }}
+        }
+        ChartFit::Declared => {
+            let s = n + model.k();
+            quote! {
+                <#name as ::chaplygin::runtime::system::ReducedPortHamiltonian<#s, #p>>::regularity(self, x).abs()
+            }
+        }
+    }
+}
+
+/// The `ReducedPortHamiltonian` chart methods of a model with constraint
+/// rows: its generated charts `charts` and the run-time charts after them
+/// (nothing without constraints: the trait's defaults, one chart).
+fn chart_methods(model: &Model, charts: &[ChartFit]) -> TokenStream {
+    if model.c() == 0 {
         return TokenStream::new();
     }
-    let name = &model.name;
+    let count = charts.len();
     let f64 = f64_type();
     let (n, k, p) = (model.n(), model.k(), model.p());
     let s = n + k;
-    let call =
-        |item: &str, arguments: TokenStream| in_chart(model, count, quote!(chart), item, arguments);
-    let velocities_from = in_chart(model, count, quote!(from), "velocities", quote!(&q, &alpha));
-    let momenta_to = in_chart(model, count, quote!(to), "momenta", quote!(&q, &qdot));
-    let velocities = call("velocities", quote!(&q, &alpha));
-    let unit_velocities = call("velocities", quote!(&q, &unit));
-    let rhs = call("reduced_rhs", quote!(x, u));
-    let rhs_jacobian = call("reduced_rhs_jacobian", quote!(x, u));
-    let hamiltonian = call("hamiltonian", quote!(x));
-    let gradient = call("hamiltonian_gradient", quote!(x));
-    let structure = call("structure_matrix", quote!(x));
-    let input_matrix = call("input_matrix", quote!(x));
-    let split = quote! {
-        let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
-        let alpha: [#f64; #k] = ::core::array::from_fn(|i| x[#n + i]);
+    let nan = quote!(#f64::NAN);
+    let call = |item: &str, arguments: TokenStream, runtime: Runtime| {
+        in_chart(model, count, quote!(chart), (item, arguments), runtime)
     };
+    let vector = |size: usize, fill: TokenStream| Runtime {
+        value: quote!(::chaplygin::runtime::partition::vector::<#size>(|out| #fill)),
+        missing: quote!([#nan; #size]),
+    };
+    let matrix = |rows: usize, columns: usize, fill: TokenStream| Runtime {
+        value: quote!(::chaplygin::runtime::partition::matrix::<#rows, #columns>(|out| #fill)),
+        missing: quote!([[#nan; #columns]; #rows]),
+    };
+    let scalar = |value: TokenStream, missing: TokenStream| Runtime { value, missing };
+    let velocities_from = in_chart(
+        model,
+        count,
+        quote!(from),
+        ("velocities", quote!(&q, &alpha)),
+        vector(n, quote!(chart.velocities(&q, &alpha, out))),
+    );
+    let momenta_to = in_chart(
+        model,
+        count,
+        quote!(to),
+        ("momenta", quote!(&q, &qdot)),
+        vector(k, quote!(chart.momenta(&qdot, out))),
+    );
+    let rhs = call(
+        "reduced_rhs",
+        quote!(x, u),
+        vector(s, quote!(chart.rhs(x, u, out))),
+    );
+    let rhs_jacobian = call(
+        "reduced_rhs_jacobian",
+        quote!(x, u),
+        matrix(s, s, quote!(chart.rhs_jacobian(x, u, out))),
+    );
+    let hamiltonian = call(
+        "hamiltonian",
+        quote!(x),
+        scalar(quote!(chart.hamiltonian(x)), nan.clone()),
+    );
+    let gradient = call(
+        "hamiltonian_gradient",
+        quote!(x),
+        vector(s, quote!(chart.hamiltonian_gradient(x, out))),
+    );
+    let structure = call(
+        "structure_matrix",
+        quote!(x),
+        matrix(s, s, quote!(chart.structure_matrix(x, out))),
+    );
+    let input_matrix = call(
+        "input_matrix",
+        quote!(x),
+        matrix(s, p, quote!(chart.input_matrix(x, out))),
+    );
+    let velocities = call(
+        "velocities",
+        quote!(&q, &alpha),
+        vector(n, quote!(chart.velocities(&q, &alpha, out))),
+    );
+    let unit_velocities = call(
+        "velocities",
+        quote!(&q, &unit),
+        vector(n, quote!(chart.velocities(&q, &unit, out))),
+    );
+    let fits = charts.iter().enumerate().map(|(i, fit)| {
+        let i = Literal::usize_unsuffixed(i);
+        let fit = fit_of(model, fit);
+        quote!(#i => #fit,)
+    });
+    let generated = Literal::usize_unsuffixed(count);
+    let with_chart = with_chart(model);
+    let (c, name) = (model.c(), &model.name);
+    let configuration = quote!(let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]););
     quote! {
         fn charts(&self) -> ::core::primitive::usize {
             #count
         }
+        fn switches_charts(&self) -> ::core::primitive::bool {
+            true
+        }
         fn chart_fit(&self, chart: ::core::primitive::usize, x: &[#f64; #s]) -> #f64 {
-            let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
-            match #name::CHARTS.get(chart) {
-                ::core::option::Option::Some(dependent) => {
-                    ::chaplygin::runtime::monitor::pivot_ratio(&#name::constraint_matrix(self, &q), dependent)
-                }
-                ::core::option::Option::None => 0.0,
+            #configuration
+            match chart {
+                #(#fits)*
+                index => #with_chart(self, index - #generated, |chart| chart.fit(&q)).unwrap_or(0.0),
             }
+        }
+        fn pivoted_chart(&self, x: &[#f64; #s]) -> ::core::option::Option<::core::primitive::usize> {
+            #configuration
+            let model = ::chaplygin::runtime::partition::Compiled::<Self, #n, #c, #k, #p>(self);
+            ::chaplygin::runtime::partition::pivoted(&model, &q).map(|index| #generated + index)
         }
         fn change_chart(
             &self,
@@ -102,7 +235,8 @@ fn chart_methods(model: &Model, charts: &[Vec<usize>]) -> TokenStream {
             to: ::core::primitive::usize,
             x: &[#f64; #s],
         ) -> [#f64; #s] {
-            #split
+            #configuration
+            let alpha: [#f64; #k] = ::core::array::from_fn(|i| x[#n + i]);
             let qdot = #velocities_from;
             let alpha = #momenta_to;
             ::core::array::from_fn(|i| if i < #n { q[i] } else { alpha[i - #n] })
@@ -131,14 +265,15 @@ fn chart_methods(model: &Model, charts: &[Vec<usize>]) -> TokenStream {
             #input_matrix
         }
         fn chart_constraint_violation(&self, chart: ::core::primitive::usize, x: &[#f64; #s]) -> #f64 {
-            #split
+            #configuration
+            let alpha: [#f64; #k] = ::core::array::from_fn(|i| x[#n + i]);
             let qdot = #velocities;
             #name::constraint_residual(self, &q, &qdot)
                 .iter()
                 .fold(0.0, |worst: #f64, r| worst.max(r.abs()))
         }
         fn chart_regularity(&self, chart: ::core::primitive::usize, x: &[#f64; #s]) -> #f64 {
-            let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
+            #configuration
             let basis: [[#f64; #n]; #k] = ::core::array::from_fn(|j| {
                 let unit: [#f64; #k] = ::core::array::from_fn(|i| #f64::from(i == j));
                 #unit_velocities
@@ -151,7 +286,7 @@ fn chart_methods(model: &Model, charts: &[Vec<usize>]) -> TokenStream {
 /// The runtime trait impls of `model`'s struct, with the chart methods
 /// when `charts` (each chart's dependent speeds) has several, and
 /// `MomentumEquations` when `momentum` was derived.
-pub(crate) fn implementations(model: &Model, charts: &[Vec<usize>], momentum: bool) -> TokenStream {
+pub(crate) fn implementations(model: &Model, charts: &[ChartFit], momentum: bool) -> TokenStream {
     let name = &model.name;
     let f64 = f64_type();
     let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
@@ -177,20 +312,24 @@ pub(crate) fn implementations(model: &Model, charts: &[Vec<usize>], momentum: bo
         .filter(|_| momentum)
         .map(|symmetry| momentum_equations(model, symmetry));
     let chart_methods = chart_methods(model, charts);
-    let chart_momenta = (charts.len() > 1).then(|| {
+    let chart_momenta = (model.c() > 0).then(|| {
+        let (count, vector) = (charts.len(), |size: usize, fill: TokenStream| Runtime {
+            value: quote!(::chaplygin::runtime::partition::vector::<#size>(|out| #fill)),
+            missing: quote!([#f64::NAN; #size]),
+        });
         let momenta = in_chart(
             model,
-            charts.len(),
+            count,
             quote!(chart),
-            "momenta",
-            quote!(q, qdot),
+            ("momenta", quote!(q, qdot)),
+            vector(k, quote!(chart.momenta(qdot, out))),
         );
         let velocities = in_chart(
             model,
-            charts.len(),
+            count,
             quote!(chart),
-            "velocities",
-            quote!(q, alpha),
+            ("velocities", quote!(q, alpha)),
+            vector(n, quote!(chart.velocities(q, alpha, out))),
         );
         quote! {
             fn chart_momenta(

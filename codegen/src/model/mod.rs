@@ -62,23 +62,8 @@ pub struct Options {
 }
 
 /// One factor of a symmetry group acting on coordinates (indices into the
-/// coordinate list).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum GroupFactor {
-    /// The special Euclidean group of the plane on `(x, y, theta)`.
-    Se2 {
-        /// Index of `x`.
-        x: usize,
-        /// Index of `y`.
-        y: usize,
-        /// Index of the heading `theta`.
-        theta: usize,
-    },
-    /// Translations of one coordinate.
-    Translation(usize),
-    /// Rotations of one angle.
-    Rotation(usize),
-}
+/// coordinate list): the runtime's type, which the generated code names too.
+pub use chaplygin_runtime::linearize::GroupFactor;
 
 /// A declared symmetry group: the product of its factors.
 #[derive(Clone, Debug)]

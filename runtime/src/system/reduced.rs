@@ -3,6 +3,7 @@
 
 use super::{Energy, Jacobian, Momenta, OdeSystem, ReducedPortHamiltonian, Structured};
 use crate::law::{Constant, Controller};
+use crate::simulate::next_chart;
 use core::cell::Cell;
 
 /// A model in its reduced form closed by a [`Controller`]: an
@@ -41,7 +42,9 @@ impl<'a, M, F, const P: usize> Reduced<'a, M, F, P> {
 
     /// The state `(q, alpha)` of the configuration `q` moving with `qdot`
     /// (a velocity the constraints allow), in the chart that fits best at
-    /// `q`, which becomes the active chart; `S = N + K`.
+    /// `q` (a run-time chart where no generated one fits,
+    /// [`crate::simulate::next_chart`]), which becomes the active chart;
+    /// `S = N + K`.
     pub fn initial_state<const N: usize, const K: usize, const S: usize>(
         &self,
         q: &[f64; N],
@@ -51,11 +54,14 @@ impl<'a, M, F, const P: usize> Reduced<'a, M, F, P> {
         M: ReducedPortHamiltonian<S, P> + Momenta<N, K>,
     {
         const { assert!(S == N + K, "the state (q, alpha) has S = N + K entries") };
+        let model = self.model;
         let configuration: [f64; S] = core::array::from_fn(|i| if i < N { q[i] } else { 0.0 });
-        let fit = |chart| self.model.chart_fit(chart, &configuration);
-        let best = (0..self.model.charts())
+        let fit = |chart| model.chart_fit(chart, &configuration);
+        let best = (0..model.charts())
             .max_by(|&a, &b| fit(a).total_cmp(&fit(b)))
             .unwrap_or(0);
+        let pivoted = model.pivoted_chart(&configuration);
+        let best = next_chart(model.charts(), best, fit, pivoted).unwrap_or(best);
         self.set_chart(best);
         let alpha = self.model.chart_momenta(best, q, qdot);
         core::array::from_fn(|i| if i < N { q[i] } else { alpha[i - N] })

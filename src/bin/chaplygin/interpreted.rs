@@ -15,7 +15,7 @@ use chaplygin::runtime::monitor::{gram_regularity, hadamard_ratio};
 use chaplygin::runtime::nalgebra::DMatrix;
 use chaplygin::runtime::projection::ProjectionError;
 use chaplygin::runtime::simulate::Regularity;
-use chaplygin::runtime::simulate::better_chart;
+use chaplygin::runtime::simulate::next_chart;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 use std::cell::Cell;
 use surface::{holonomic_residual, keeps_configuration, onto_surface};
@@ -72,12 +72,13 @@ impl InterpretedReduced {
     /// The state `(q, alpha)` of `q` moving with `qdot`, in the chart that
     /// fits best at `q`, which becomes the active chart.
     pub fn initial_state(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, CallError> {
-        let fits = (0..self.model.charts().len())
-            .map(|chart| self.model.chart_fit(chart, q))
-            .collect::<Result<Vec<f64>, _>>()?;
-        let best = (0..fits.len())
-            .max_by(|&a, &b| fits[a].total_cmp(&fits[b]))
+        let model = &self.model;
+        let fit = |chart| model.chart_fit(chart, q).unwrap_or(0.0);
+        let best = (0..model.charts().len())
+            .max_by(|&a, &b| fit(a).total_cmp(&fit(b)))
             .unwrap_or(0);
+        let pivoted = model.pivoted_chart(q);
+        let best = next_chart(model.charts().len(), best, fit, pivoted).unwrap_or(best);
         self.chart.set(best);
         let alpha = self.model.call_in_chart(best, "momenta", &[q, qdot])?;
         Ok(q.iter().chain(&alpha).copied().collect())
@@ -191,16 +192,10 @@ impl Formulation for InterpretedReduced {
 
     /// `det[A; V^T]` over its rows' norms, as the compiled models' `regularity`.
     fn regularity(&self, x: &[f64]) -> Regularity {
-        let sizes = self.model.sizes();
-        let q = &x[..sizes.n];
-        let mut rows = evaluated(self.model.constraint_matrix(q));
-        for j in 0..sizes.k {
-            let unit: Vec<f64> = (0..sizes.k).map(|i| f64::from(u8::from(i == j))).collect();
-            rows.extend(self.call("velocities", &[q, &unit]));
-        }
+        let q = &x[..self.model.sizes().n];
         Regularity {
             quantity: chaplygin::runtime::simulate::REDUCED,
-            value: hadamard_ratio(DMatrix::from_row_slice(sizes.n, sizes.n, &rows)),
+            value: evaluated(self.model.chart_regularity(self.chart.get(), q)),
             signed: true,
         }
     }
@@ -230,16 +225,17 @@ impl Formulation for InterpretedReduced {
     }
 
     fn chart(&self) -> Option<usize> {
-        (self.model.charts().len() > 1).then(|| self.chart.get())
+        (self.model.sizes().c > 0).then(|| self.chart.get())
     }
 
     /// As the compiled reduced form's (`Observed::change_chart`): the state
-    /// moves into the best chart through its velocity.
+    /// moves into the next chart through its velocity.
     fn change_chart(&self, x: &mut [f64]) -> bool {
         let (model, active) = (&self.model, self.chart.get());
         let n = model.sizes().n;
         let fit = |chart| evaluated(model.chart_fit(chart, &x[..n]));
-        let Some(best) = better_chart(model.charts().len(), active, fit) else {
+        let pivoted = model.pivoted_chart(&x[..n]);
+        let Some(best) = next_chart(model.charts().len(), active, fit, pivoted) else {
             return false;
         };
         let (q, alpha) = split(x, n);

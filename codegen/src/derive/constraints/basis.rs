@@ -11,6 +11,8 @@ use super::body_frame::BodyFrame;
 use super::{EXACT_BASIS_PRODUCTS, Field};
 use crate::model::{GroupFactor, Model};
 use crate::sym::{ExprMatrix, Matrix, MatrixError, RationalFunction, Store, SymbolId};
+use chaplygin_runtime::monitor::partial_pivots;
+use chaplygin_runtime::nalgebra::DMatrix;
 
 /// A basis of the constraint distribution D and how it was chosen.
 #[derive(Clone, Debug)]
@@ -32,33 +34,76 @@ pub struct DistributionBasis {
 }
 
 impl DistributionBasis {
-    /// The names of the speeds at the coordinate indices `indices`:
-    /// `dot(q)` for a coordinate's own speed; for a body-frame basis, the
-    /// body velocity's components on each `se2(x, y, theta)` factor,
-    /// `v_x_body` and `v_y_body` (the velocity of the frame's origin along
-    /// the body's own axes, `cos(theta) dot(x) + sin(theta) dot(y)` and
-    /// `-sin(theta) dot(x) + cos(theta) dot(y)`) and `omega_theta` (the
-    /// turning rate, `dot(theta)`), named after the factor's coordinates.
-    pub fn speed_names(&self, model: &Model, indices: &[usize]) -> Vec<String> {
-        indices.iter().map(|&i| self.speed_name(model, i)).collect()
+    /// How the runtime measures where this basis fits: the pivot ratio of
+    /// its dependent speeds on the rows it was eliminated on.
+    pub fn fit(&self) -> ChartFit {
+        match self.body_frame {
+            true => ChartFit::Body(self.dependent.clone()),
+            false => ChartFit::Coordinates(self.dependent.clone()),
+        }
     }
 
-    fn speed_name(&self, model: &Model, i: usize) -> String {
-        let name = |j: usize| model.coordinates[j].declared.name.as_str();
-        let factors = match (&model.symmetry, self.body_frame) {
-            (Some(symmetry), true) => symmetry.factors.as_slice(),
-            _ => &[],
-        };
-        for factor in factors {
-            if let GroupFactor::Se2 { x, y, theta } = *factor {
-                match i {
-                    _ if i == x || i == y => return format!("v_{}_body", name(i)),
-                    _ if i == theta => return format!("omega_{}", name(i)),
-                    _ => {}
-                }
+    /// The names of the speeds at the coordinate indices `indices`
+    /// ([`speed_names`] in this basis's frame).
+    pub fn speed_names(&self, model: &Model, indices: &[usize]) -> Vec<String> {
+        speed_names(model, indices, self.body_frame)
+    }
+}
+
+/// The names of the speeds at the coordinate indices `indices`: `dot(q)`
+/// for a coordinate's own speed; in the body frame, the body velocity's
+/// components on each `se2(x, y, theta)` factor, `v_x_body` and `v_y_body`
+/// (the velocity of the frame's origin along the body's own axes,
+/// `cos(theta) dot(x) + sin(theta) dot(y)` and
+/// `-sin(theta) dot(x) + cos(theta) dot(y)`) and `omega_theta` (the turning
+/// rate, `dot(theta)`), named after the factor's coordinates.
+pub fn speed_names(model: &Model, indices: &[usize], body_frame: bool) -> Vec<String> {
+    indices
+        .iter()
+        .map(|&i| speed_name(model, i, body_frame))
+        .collect()
+}
+
+fn speed_name(model: &Model, i: usize, body_frame: bool) -> String {
+    let name = |j: usize| model.coordinates[j].declared.name.as_str();
+    let factors = match (&model.symmetry, body_frame) {
+        (Some(symmetry), true) => symmetry.factors.as_slice(),
+        _ => &[],
+    };
+    for factor in factors {
+        if let GroupFactor::Se2 { x, y, theta } = *factor {
+            match i {
+                _ if i == x || i == y => return format!("v_{}_body", name(i)),
+                _ if i == theta => return format!("omega_{}", name(i)),
+                _ => {}
             }
         }
-        format!("dot({})", name(i))
+    }
+    format!("dot({})", name(i))
+}
+
+/// How the runtime measures where a chart of the reduced form fits, in
+/// `[0, 1]` and 0 where its basis degenerates (`chaplygin_runtime::system::ReducedPortHamiltonian::chart_fit`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ChartFit {
+    /// The pivot ratio of these dependent speeds on the coordinates' rows
+    /// `A(q)`.
+    Coordinates(Vec<usize>),
+    /// The pivot ratio of these dependent body speeds on the rows acting on
+    /// the body velocity, `A(q) L(q)` ([`super::body_frame`]).
+    Body(Vec<usize>),
+    /// A declared momentum basis: `|det[A; V^T]|` over its rows' norms.
+    Declared,
+}
+
+impl ChartFit {
+    /// The chart in words: its dependent speeds, or the declared basis.
+    pub fn describe(&self, model: &Model) -> String {
+        match self {
+            ChartFit::Coordinates(dependent) => speed_names(model, dependent, false).join(", "),
+            ChartFit::Body(dependent) => speed_names(model, dependent, true).join(", "),
+            ChartFit::Declared => "the declared momentum basis".to_string(),
+        }
     }
 }
 
@@ -81,6 +126,17 @@ pub(super) fn basis_with_dependent(
     dependent: Vec<usize>,
 ) -> Result<DistributionBasis, MatrixError> {
     basis_on(model, dependent, None)
+}
+
+/// The basis of D with the body speeds `dependent` solved for, on the
+/// body rows (another chart of a basis chosen in the body frame,
+/// [`super::charts`]).
+pub(super) fn basis_in_body_frame(
+    model: &mut Model,
+    dependent: Vec<usize>,
+) -> Result<DistributionBasis, MatrixError> {
+    let frame = BodyFrame::of(model)?;
+    basis_on(model, dependent, frame)
 }
 
 /// The basis of D with the speeds `dependent` solved for: on the body rows
@@ -196,48 +252,18 @@ fn pivot_columns(model: &mut Model) -> Vec<usize> {
     pivots_at_defaults(model).unwrap_or_else(|| generic_pivots(model))
 }
 
-/// A pivot smaller than this, relative to A's largest entry at the defaults,
-/// counts as vanishing there (the choice only needs to be regular; the solve
-/// that follows is exact).
-const VANISHING_PIVOT: f64 = 1e-9;
-
-/// Gaussian elimination with partial pivoting on A at the defaults: the
-/// pivot column of each row is the one of largest magnitude there. `None`
-/// when a pivot vanishes (A is singular at the defaults).
+/// Gaussian elimination with partial pivoting on A at the defaults
+/// (`chaplygin_runtime::monitor::partial_pivots`): the pivot column of each
+/// row is the one of largest magnitude there. `None` when a pivot vanishes
+/// (A is singular at the defaults).
 fn pivots_at_defaults(model: &mut Model) -> Option<Vec<usize>> {
     let defaults = default_point(model);
     let values = model
         .constraint_matrix
         .evaluate(&mut model.store, &|s| defaults(s));
-    pivots_of(values, model.n(), model.c())
-}
-
-/// Gaussian elimination with partial pivoting on the `c x n` row-major
-/// values of A at a point: the pivot column of each row is the one of
-/// largest magnitude there. `None` when a pivot vanishes there.
-pub(super) fn pivots_of(mut values: Vec<f64>, n: usize, c: usize) -> Option<Vec<usize>> {
-    let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut pivots: Vec<usize> = Vec::with_capacity(c);
-    for row in 0..c {
-        let column = (0..n).filter(|j| !pivots.contains(j)).max_by(|&a, &b| {
-            values[row * n + a]
-                .abs()
-                .total_cmp(&values[row * n + b].abs())
-        })?;
-        let pivot = values[row * n + column];
-        let regular = pivot.abs() > VANISHING_PIVOT * scale;
-        if !regular {
-            return None;
-        }
-        for below in row + 1..c {
-            let factor = values[below * n + column] / pivot;
-            for j in 0..n {
-                values[below * n + j] -= factor * values[row * n + j];
-            }
-        }
-        pivots.push(column);
-    }
-    Some(pivots)
+    let rows = DMatrix::from_row_slice(model.c(), model.n(), &values);
+    let mut pivots = vec![0; model.c()];
+    partial_pivots(&rows, &mut pivots).then_some(pivots)
 }
 
 /// Exact elimination on A: the pivot of each row is its first column with a

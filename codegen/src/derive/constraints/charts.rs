@@ -8,7 +8,10 @@
 //! exactly where the minor `det A_r(q)` is not zero. Pivots chosen at the
 //! defaults can vanish elsewhere where A keeps full rank: the sleigh's
 //! blade `-sin(theta) xdot + cos(theta) ydot = 0` solved for `ydot` divides
-//! by `cos(theta)`. How well a chart fits at `q` is its pivot ratio
+//! by `cos(theta)`; the benchmark bicycle's basis chosen in the body frame,
+//! with the rear wheel's rate independent, degenerates where the front
+//! wheel turns across the frame. How well a chart fits at `q` is its pivot
+//! ratio
 //!
 //! ```text
 //! rho_r(q) = |det A_r(q)| / prod_i |A_i(q)|   (at most 1, Hadamard)
@@ -16,201 +19,362 @@
 //!
 //! and by Cauchy-Binet `sum_r det(A_r)^2 = det(A A^T)`, so wherever the rows
 //! are independent some choice of dependent speeds has a ratio bounded
-//! away from 0. The charts are chosen at build time on a fixed set of
-//! sample configurations (each coordinate alone at `+-pi/2, pi/4, 3 pi/4,
-//! 1, -2`, where trigonometric minors vanish, then pseudo-random points in
-//! `[-pi, pi]^n`; parameters at their defaults): where every chart so far
-//! degenerates, its ratio below [`DEGENERATE`] times that of the columns
-//! Gaussian elimination with partial pivoting picks there, those columns
-//! become a new chart, up to [`MOST_CHARTS`]. A chart that is only worse
-//! than another somewhere (the caster robot's, by a factor 2.5 at a swivel
-//! of `pi/2`) needs no other.
-//! Points where the rows themselves are dependent (a Gram ratio
-//! `det(A A^T) / prod_i |A_i|^2` below [`DEPENDENT_ROWS`]) are genuine
-//! singularities, which no chart removes, and are skipped.
+//! away from 0: the one Gaussian elimination with partial pivoting picks
+//! there (`chaplygin_runtime::monitor::partial_pivots`) is the reference.
 //!
-//! Only the basis on the coordinates' rows has charts: a declared momentum
-//! basis is the user's, and a basis chosen on the body rows of a symmetric
-//! model ([`super::body_frame`]) depends on the shape alone.
+//! Every chart's singular set is located ([`search`]: points on random
+//! lines through the configuration space where its minor vanishes). A
+//! point where the rows themselves are dependent (a Gram ratio
+//! `det(A A^T) / prod_i |A_i|^2` below [`DEPENDENT_ROWS`]) is a singularity
+//! of the mechanics, which no chart removes. At any other point found,
+//! unless some chart so far fits at least [`COVERED`] times the reference,
+//! the reference's columns become a new chart, whose own singular set is
+//! searched in turn, up to [`MOST_CHARTS`]. The rows are the basis's own:
+//! the coordinates' rows `A(q)`, or for a basis chosen in the body frame
+//! ([`super::body_frame`]) the body rows, whose charts depend on the shape
+//! alone. A declared momentum basis is the user's: where it degenerates
+//! the runtime hands over to a chart chosen at run time
+//! (`chaplygin_runtime::partition`), as it does wherever no chart derived
+//! here fits.
+//!
+//! [`SingularSet`] records what was found for each chart and which other
+//! chart covers it; the derivation report lists them.
+
+mod search;
 
 use super::DistributionBasis;
-use super::basis::{basis_with_dependent, default_point, pivots_of};
+use super::basis::{basis_with_dependent, speed_names};
+use super::body_frame::BodyFrame;
+use crate::derive::momentum::group_coordinates;
+use crate::ir::IrError;
 use crate::model::Model;
-use crate::sym::MatrixError;
+use crate::sym::{ExprMatrix, MatrixError, RationalFunction};
+use chaplygin_runtime::monitor::{gram_ratio, partial_pivots, signed_pivot_ratio};
+use chaplygin_runtime::nalgebra::DMatrix;
+use search::{FrameRows, RowsAt};
+
+pub use search::{LINES, SAMPLES};
 
 /// The most charts a model gets, its own basis included.
 pub const MOST_CHARTS: usize = 4;
 
-/// A chart degenerates at a sample point when its pivot ratio there is
-/// below this fraction of the partially pivoted choice's.
-pub const DEGENERATE: f64 = 1e-3;
+/// A chart covers a point where its pivot ratio is at least this fraction
+/// of the partially pivoted choice's there: where none does, the runtime
+/// hands over to the run-time chart (the same fraction).
+pub const COVERED: f64 = chaplygin_runtime::simulate::RUNTIME_CHART;
 
 /// A Gram ratio below this marks dependent rows: a genuine singularity.
 pub const DEPENDENT_ROWS: f64 = 1e-9;
 
-/// The other charts of D beside `primary`, each a basis with other
-/// dependent speeds; none when `primary` is regular at every sample point
-/// (or is the declared or body-frame basis).
+/// The most points a [`SingularSet`] keeps (the search may find more).
+const KEPT_POINTS: usize = 64;
+
+/// The charts of D beside the model's basis, and where each degenerates.
+#[derive(Clone, Debug)]
+pub struct Charts {
+    /// The other charts, each a basis with other dependent speeds.
+    pub alternatives: Vec<DistributionBasis>,
+    /// The singular set found for each chart, chart 0 (the model's basis)
+    /// first.
+    pub singular_sets: Vec<SingularSet>,
+}
+
+/// What the search found of one chart's singular set.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SingularSet {
+    /// The chart's minor `det A_r` written out, when it is short (its
+    /// numerator in normal form: the set is where it vanishes).
+    pub determinant: Option<String>,
+    /// Configurations found on the set with the rows independent (at most
+    /// [`KEPT_POINTS`]), each of all n coordinates.
+    pub points: Vec<Vec<f64>>,
+    /// Configurations found on the set where the rows are dependent.
+    pub dependent_rows: Vec<Vec<f64>>,
+    /// The other charts that fit best at `points`, none when there are no
+    /// such points.
+    pub cover: Option<Cover>,
+}
+
+/// Which charts cover a singular set's points, and how well.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cover {
+    /// The charts that fit best at some point found, in increasing order.
+    pub charts: Vec<usize>,
+    /// The smallest, over the points found, of the best of those charts'
+    /// pivot ratio over the partially pivoted choice's there.
+    pub ratio: f64,
+}
+
+/// Why the charts could not be found.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ChartsError {
+    /// A basis could not be derived.
+    #[error(transparent)]
+    Matrix(#[from] MatrixError),
+    /// The rows could not be lowered for evaluation.
+    #[error("the constraint rows: {0}")]
+    Program(#[from] IrError),
+}
+
+/// The other charts of D beside `primary` and the singular sets of all;
+/// none for a declared momentum basis or without constraints.
 pub fn alternative_charts(
     model: &mut Model,
     primary: &DistributionBasis,
-) -> Result<Vec<DistributionBasis>, MatrixError> {
-    if primary.body_frame || model.momentum_basis.is_some() || model.c() == 0 {
-        return Ok(Vec::new());
+) -> Result<Charts, ChartsError> {
+    let none = Charts {
+        alternatives: Vec::new(),
+        singular_sets: Vec::new(),
+    };
+    if model.momentum_basis.is_some() || model.c() == 0 || model.k() == 0 {
+        return Ok(none);
     }
-    let (n, c) = (model.n(), model.c());
+    let frame = Frame::of(model, primary.body_frame)?;
+    let rows = FrameRows::new(model, &frame.rows, frame.varying.clone())?;
     let mut charts = vec![primary.dependent.clone()];
-    for point in sample_points(n) {
-        if charts.len() == MOST_CHARTS {
-            break;
-        }
-        let values = constraint_values(model, &point);
-        if gram_ratio(&values, n, c) < DEPENDENT_ROWS {
-            continue;
-        }
-        let Some(pivots) = pivots_of(values.clone(), n, c) else {
-            continue;
-        };
-        let best = charts
-            .iter()
-            .map(|dependent| pivot_ratio(&values, n, dependent))
-            .fold(0.0, f64::max);
-        if best < DEGENERATE * pivot_ratio(&values, n, &pivots) {
-            charts.push(pivots);
-        }
+    let mut found: Vec<Vec<RowsAt>> = Vec::new();
+    while found.len() < charts.len() {
+        let points = search::singular_points(&rows, &charts[found.len()]);
+        cover_points(&mut charts, &points);
+        found.push(points);
     }
-    charts
+    let singular_sets = found
+        .iter()
+        .enumerate()
+        .map(|(i, points)| singular_set(model, &frame, &charts, i, points))
+        .collect();
+    let alternatives = charts
         .into_iter()
         .skip(1)
-        .map(|dependent| basis_with_dependent(model, dependent))
-        .collect()
-}
-
-/// `|det A_r| / prod_i |A_i|` for the `c x n` row-major values of A and
-/// the dependent columns `r` (0 when a row vanishes).
-pub fn pivot_ratio(values: &[f64], n: usize, dependent: &[usize]) -> f64 {
-    let c = dependent.len();
-    let minor: Vec<f64> = (0..c)
-        .flat_map(|i| dependent.iter().map(move |&j| values[i * n + j]))
-        .collect();
-    let norms: f64 = (0..c)
-        .map(|i| {
-            values[i * n..(i + 1) * n]
-                .iter()
-                .map(|v| v * v)
-                .sum::<f64>()
-                .sqrt()
+        .map(|dependent| match primary.body_frame {
+            true => super::basis::basis_in_body_frame(model, dependent),
+            false => basis_with_dependent(model, dependent),
         })
-        .product();
-    if norms == 0.0 {
-        return 0.0;
-    }
-    determinant(minor, c).abs() / norms
+        .collect::<Result<_, _>>()?;
+    Ok(Charts {
+        alternatives,
+        singular_sets,
+    })
 }
 
-/// `det(A A^T) / prod_i |A_i|^2`, in `[0, 1]`.
-fn gram_ratio(values: &[f64], n: usize, c: usize) -> f64 {
-    let row = |i: usize| &values[i * n..(i + 1) * n];
-    let gram: Vec<f64> = (0..c * c)
-        .map(|at| {
-            row(at / c)
-                .iter()
-                .zip(row(at % c))
-                .map(|(a, b)| a * b)
-                .sum()
+/// Adds charts until each of `points` where the rows are independent is
+/// covered (some chart fits at least [`COVERED`] times partial pivoting's
+/// choice there) or [`MOST_CHARTS`] is reached: greedily, the partially
+/// pivoted choice at an uncovered point that covers the most of them.
+fn cover_points(charts: &mut Vec<Vec<usize>>, points: &[RowsAt]) {
+    let references: Vec<(&RowsAt, Vec<usize>, f64)> = points
+        .iter()
+        .filter(|at| gram_ratio(&at.rows) >= DEPENDENT_ROWS)
+        .filter_map(|at| {
+            let reference = pivoted(&at.rows)?;
+            let fit = signed_pivot_ratio(&at.rows, &reference).abs();
+            Some((at, reference, fit))
         })
         .collect();
-    let scale: f64 = (0..c).map(|i| gram[i * c + i]).product();
-    if scale == 0.0 {
-        return 0.0;
-    }
-    determinant(gram, c) / scale
-}
-
-/// The determinant of a `size x size` row-major matrix, by elimination with
-/// partial pivoting.
-fn determinant(mut m: Vec<f64>, size: usize) -> f64 {
-    let mut det = 1.0;
-    for k in 0..size {
-        let pivot = (k..size)
-            .max_by(|&a, &b| m[a * size + k].abs().total_cmp(&m[b * size + k].abs()))
-            .unwrap_or(k);
-        if m[pivot * size + k] == 0.0 {
-            return 0.0;
-        }
-        if pivot != k {
-            for j in 0..size {
-                m.swap(k * size + j, pivot * size + j);
-            }
-            det = -det;
-        }
-        det *= m[k * size + k];
-        for i in k + 1..size {
-            let factor = m[i * size + k] / m[k * size + k];
-            for j in k..size {
-                m[i * size + j] -= factor * m[k * size + j];
-            }
-        }
-    }
-    det
-}
-
-/// A's values at the coordinates `point`, parameters at their defaults.
-fn constraint_values(model: &mut Model, point: &[f64]) -> Vec<f64> {
-    let defaults = default_point(model);
-    let coordinates: Vec<_> = model.coordinates.iter().map(|c| c.symbol).collect();
-    let value = |s| match coordinates.iter().position(|&c| c == s) {
-        Some(i) => point[i],
-        None => defaults(s),
+    let covers = |chart: &[usize], (at, _, fit): &(&RowsAt, Vec<usize>, f64)| {
+        signed_pivot_ratio(&at.rows, chart).abs() >= COVERED * fit
     };
-    model.constraint_matrix.evaluate(&mut model.store, &value)
+    loop {
+        let uncovered: Vec<_> = references
+            .iter()
+            .filter(|point| !charts.iter().any(|chart| covers(chart, point)))
+            .collect();
+        if uncovered.is_empty() || charts.len() == MOST_CHARTS {
+            return;
+        }
+        let Some((_, best, _)) = uncovered.iter().max_by_key(|(_, candidate, _)| {
+            uncovered
+                .iter()
+                .filter(|point| covers(candidate, point))
+                .count()
+        }) else {
+            return;
+        };
+        charts.push(best.clone());
+    }
 }
 
-/// The sample configurations of the module documentation.
-fn sample_points(n: usize) -> Vec<Vec<f64>> {
-    use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
-    let single = [FRAC_PI_2, -FRAC_PI_2, FRAC_PI_4, 3.0 * FRAC_PI_4, 1.0, -2.0];
-    let mut points: Vec<Vec<f64>> = (0..n)
-        .flat_map(|i| {
-            single.iter().map(move |&v| {
-                let mut point = vec![0.0; n];
-                point[i] = v;
-                point
-            })
+/// The rows a basis is eliminated on and the coordinates they depend on.
+struct Frame {
+    rows: ExprMatrix,
+    varying: Vec<usize>,
+    body: bool,
+}
+
+impl Frame {
+    fn of(model: &mut Model, body: bool) -> Result<Frame, MatrixError> {
+        let all: Vec<usize> = (0..model.n()).collect();
+        let body_frame = match body {
+            true => BodyFrame::of(model)?,
+            false => None,
+        };
+        Ok(match (body_frame, &model.symmetry) {
+            (Some(frame), Some(symmetry)) => {
+                let group = group_coordinates(&symmetry.factors);
+                Frame {
+                    rows: frame.constraints,
+                    varying: all.into_iter().filter(|i| !group.contains(i)).collect(),
+                    body: true,
+                }
+            }
+            _ => Frame {
+                rows: model.constraint_expressions.clone(),
+                varying: all,
+                body: false,
+            },
         })
-        .collect();
-    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
-    let mut uniform = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    for _ in 0..32 {
-        points.push((0..n).map(|_| PI * (2.0 * uniform() - 1.0)).collect());
     }
-    points
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+/// The dependent speeds partial pivoting picks on `rows`, row by row (the
+/// order the exact elimination of a basis pivots in); `None` where a pivot
+/// vanishes.
+fn pivoted(rows: &DMatrix<f64>) -> Option<Vec<usize>> {
+    let mut pivots = vec![0; rows.nrows()];
+    partial_pivots(rows, &mut pivots).then_some(pivots)
+}
 
-    #[test]
-    fn pivot_ratios_of_the_blade_row_are_the_heading_cosine_and_sine() {
-        let theta: f64 = 0.3;
-        let row = [-theta.sin(), theta.cos(), 0.0];
-        assert!((pivot_ratio(&row, 3, &[1]) - theta.cos()).abs() < 1e-15);
-        assert!((pivot_ratio(&row, 3, &[0]) - theta.sin()).abs() < 1e-15);
-        assert_eq!(pivot_ratio(&row, 3, &[2]), 0.0);
+/// Chart `chart`'s singular set from the points found on it.
+fn singular_set(
+    model: &mut Model,
+    frame: &Frame,
+    charts: &[Vec<usize>],
+    chart: usize,
+    points: &[RowsAt],
+) -> SingularSet {
+    let (regular, dependent): (Vec<&RowsAt>, Vec<&RowsAt>) = points
+        .iter()
+        .partition(|at| gram_ratio(&at.rows) >= DEPENDENT_ROWS);
+    let relative = |at: &RowsAt, other: usize| {
+        let reference = pivoted(&at.rows).map_or(0.0, |r| signed_pivot_ratio(&at.rows, &r).abs());
+        signed_pivot_ratio(&at.rows, &charts[other]).abs() / reference
+    };
+    let best_other = |at: &RowsAt| {
+        (0..charts.len())
+            .filter(|&other| other != chart)
+            .map(|other| (other, relative(at, other)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+    };
+    let mut covering: Vec<usize> = Vec::new();
+    let mut worst = f64::INFINITY;
+    for at in &regular {
+        let (other, ratio) = best_other(at).unwrap_or((chart, 0.0));
+        if !covering.contains(&other) {
+            covering.push(other);
+        }
+        worst = worst.min(ratio);
     }
+    covering.sort_unstable();
+    let cover = (!regular.is_empty()).then_some(Cover {
+        charts: covering,
+        ratio: worst,
+    });
+    let kept = |points: Vec<&RowsAt>| -> Vec<Vec<f64>> {
+        points
+            .into_iter()
+            .take(KEPT_POINTS)
+            .map(|at| at.q.clone())
+            .collect()
+    };
+    SingularSet {
+        determinant: determinant_text(model, frame, &charts[chart]),
+        points: kept(regular),
+        dependent_rows: kept(dependent),
+        cover,
+    }
+}
 
-    #[test]
-    fn parallel_rows_have_a_vanishing_gram_ratio() {
-        let rows = [1.0, 2.0, 0.0, 2.0, 4.0, 0.0];
-        assert!(gram_ratio(&rows, 3, 2).abs() < 1e-15);
-        let rows = [1.0, 0.0, 0.0, 0.0, 3.0, 0.0];
-        assert_eq!(gram_ratio(&rows, 3, 2), 1.0);
-        assert_eq!(determinant(vec![0.0, 1.0, 1.0, 0.0], 2), -1.0);
+/// The longest text of a minor's determinant the report prints.
+const SHORT: usize = 80;
+
+/// The numerator of `det A_r` on the frame's rows, written out, when the
+/// rows are and it is short.
+fn determinant_text(model: &mut Model, frame: &Frame, dependent: &[usize]) -> Option<String> {
+    let c = model.c();
+    let rows: Vec<usize> = (0..c).collect();
+    let minor = match frame.body {
+        true => BodyFrame::of(model)
+            .ok()
+            .flatten()?
+            .exact_constraints(&mut model.store)
+            .ok()?,
+        false => model.constraint_matrix.clone(),
+    };
+    if !minor.is_written_out() {
+        return None;
     }
+    let minor = minor.submatrix(&rows, dependent);
+    let determinant = model
+        .attempt(super::EXACT_ANALYSIS_PRODUCTS, |model| {
+            minor.determinant(model.store.atoms())
+        })?
+        .ok()?;
+    let numerator = RationalFunction::from_poly(determinant.numerator().clone());
+    let expression = model.store.expression_of(&numerator);
+    let text = model.store.display(expression).to_string();
+    (text.len() <= SHORT).then_some(text)
+}
+
+/// The report's lines on the charts and their singular sets.
+pub fn report_lines(model: &Model, basis: &DistributionBasis, charts: &Charts) -> Vec<String> {
+    if charts.singular_sets.is_empty() {
+        return Vec::new();
+    }
+    let frame = match basis.body_frame {
+        true => "the shape coordinates (the body rows)",
+        false => "the coordinates",
+    };
+    let mut lines = vec![format!(
+        "singular sets of the charts of D ({LINES} random lines through {frame}, parameters at \
+         their defaults):"
+    )];
+    let name = |i: usize| model.coordinates[i].declared.name.clone();
+    let at = |q: &[f64], varying: &dyn Fn(usize) -> bool| {
+        let values: Vec<String> = (0..q.len())
+            .filter(|&i| varying(i))
+            .map(|i| format!("{} = {:.4}", name(i), q[i]))
+            .collect();
+        values.join(", ")
+    };
+    let group = model
+        .symmetry
+        .as_ref()
+        .filter(|_| basis.body_frame)
+        .map(|symmetry| group_coordinates(&symmetry.factors))
+        .unwrap_or_default();
+    let varying = |i: usize| !group.contains(&i);
+    let dependent = std::iter::once(&basis.dependent)
+        .chain(charts.alternatives.iter().map(|chart| &chart.dependent));
+    for (i, (set, dependent)) in charts.singular_sets.iter().zip(dependent).enumerate() {
+        let speeds = speed_names(model, dependent, basis.body_frame).join(", ");
+        let determinant = set
+            .determinant
+            .as_ref()
+            .map_or_else(String::new, |text| format!(" where {text} = 0"));
+        let found = match set.points.first() {
+            None => "none found".to_string(),
+            Some(q) => format!(
+                "degenerates{determinant}: {} points found, e.g. {}",
+                set.points.len(),
+                at(q, &varying)
+            ),
+        };
+        lines.push(format!("  chart {i} (dependent {speeds}): {found}"));
+        if let Some(cover) = &set.cover {
+            let charts: Vec<String> = cover.charts.iter().map(usize::to_string).collect();
+            lines.push(format!(
+                "    covered by chart {} (pivot ratio at least {:.3} times partial pivoting's there)",
+                charts.join(" and "),
+                cover.ratio
+            ));
+        }
+        if let Some(q) = set.dependent_rows.first() {
+            lines.push(format!(
+                "    and where the rows are dependent (a singularity of the mechanics): {} points, e.g. {}",
+                set.dependent_rows.len(),
+                at(q, &varying)
+            ));
+        }
+    }
+    lines
 }

@@ -9,7 +9,6 @@ use crate::interpreted::evaluated;
 use chaplygin::runtime::linearize::{Dynamics, GroupFactor};
 use chaplygin::runtime::nalgebra::{DMatrix, DVector};
 use chaplygin_codegen::interpret::InterpretedModel;
-use chaplygin_codegen::model;
 
 /// An interpreted model seen as [`Dynamics`].
 pub struct InterpretedDynamics(pub InterpretedModel);
@@ -32,15 +31,7 @@ impl Dynamics for InterpretedDynamics {
     }
 
     fn symmetry(&self) -> Vec<GroupFactor> {
-        self.0
-            .symmetry()
-            .iter()
-            .map(|factor| match *factor {
-                model::GroupFactor::Se2 { x, y, theta } => GroupFactor::Se2 { x, y, theta },
-                model::GroupFactor::Translation(i) => GroupFactor::Translation(i),
-                model::GroupFactor::Rotation(i) => GroupFactor::Rotation(i),
-            })
-            .collect()
+        self.0.symmetry().to_vec()
     }
 
     fn holonomic_residual(&self, q: &[f64]) -> DVector<f64> {

@@ -1,0 +1,156 @@
+//! The charts of D of an interpreted model: those derived at build time
+//! ([`crate::derive::constraints::charts`]) and, after them, the run-time
+//! charts of coordinate partitioning (`chaplygin_runtime::partition`),
+//! numbered as the generated code numbers them.
+
+use super::{CallError, InterpretedModel};
+use crate::derive::constraints::ChartFit;
+use chaplygin_runtime::monitor::{hadamard_ratio, in_body_frame, signed_pivot_ratio};
+use chaplygin_runtime::nalgebra::{DMatrix, DVector, Dyn};
+use chaplygin_runtime::partition::{self, Constrained, RuntimeChart};
+
+impl Constrained for InterpretedModel {
+    type N = Dyn;
+    type C = Dyn;
+    type K = Dyn;
+    type P = Dyn;
+
+    fn dimensions(&self) -> (Dyn, Dyn, Dyn, Dyn) {
+        let sizes = self.sizes;
+        (Dyn(sizes.n), Dyn(sizes.c), Dyn(sizes.k), Dyn(sizes.p))
+    }
+
+    /// NaN entries where the interpreter refuses the call (it cannot for
+    /// the sizes the run-time chart passes).
+    fn constraint_matrix(&self, q: &[f64]) -> DMatrix<f64> {
+        let (n, c) = (self.sizes.n, self.sizes.c);
+        let values =
+            InterpretedModel::constraint_matrix(self, q).unwrap_or_else(|_| vec![f64::NAN; c * n]);
+        DMatrix::from_row_slice(c, n, &values)
+    }
+
+    fn mass_matrix(&self, q: &[f64]) -> DMatrix<f64> {
+        let n = self.sizes.n;
+        let values =
+            InterpretedModel::mass_matrix(self, q).unwrap_or_else(|_| vec![f64::NAN; n * n]);
+        DMatrix::from_row_slice(n, n, &values)
+    }
+
+    fn acceleration(&self, q: &[f64], qdot: &[f64], u: &[f64]) -> DVector<f64> {
+        let n = self.sizes.n;
+        let qddot = InterpretedModel::acceleration(self, q, qdot, u)
+            .map_or_else(|_| vec![f64::NAN; n], |(qddot, _)| qddot);
+        DVector::from_vec(qddot)
+    }
+
+    fn energy(&self, q: &[f64], qdot: &[f64]) -> f64 {
+        InterpretedModel::energy(self, q, qdot).unwrap_or(f64::NAN)
+    }
+}
+
+impl InterpretedModel {
+    /// How each chart of D derived at build time fits, chart 0 (the basis
+    /// the other functions use) first; one chart unless that basis
+    /// degenerates where the constraint rows stay independent. Charts from
+    /// `charts().len()` on are run-time charts.
+    pub fn charts(&self) -> &[ChartFit] {
+        &self.charts
+    }
+
+    /// How well `chart` fits at `q`, in `[0, 1]` (as the generated
+    /// `chart_fit`): a pivot ratio, or for a declared momentum basis
+    /// `|det[A; V^T]|` over its rows' norms; 0 past the last chart.
+    pub fn chart_fit(&self, chart: usize, q: &[f64]) -> Result<f64, CallError> {
+        let rows = Constrained::constraint_matrix(self, q);
+        Ok(match self.charts.get(chart) {
+            Some(ChartFit::Coordinates(dependent)) => signed_pivot_ratio(&rows, dependent).abs(),
+            Some(ChartFit::Body(dependent)) => {
+                let mut rows = rows;
+                in_body_frame(&mut rows, &self.symmetry, q);
+                signed_pivot_ratio(&rows, dependent).abs()
+            }
+            Some(ChartFit::Declared) => self.chart_regularity(chart, q)?.abs(),
+            None => self
+                .runtime_chart(chart)
+                .map_or(0.0, |runtime| runtime.fit(q)),
+        })
+    }
+
+    /// `det[A; V^T]` over its rows' norms in `chart`, `V` the velocities
+    /// of unit momenta (`chaplygin_runtime::monitor::reduced_regularity`).
+    pub fn chart_regularity(&self, chart: usize, q: &[f64]) -> Result<f64, CallError> {
+        let (n, k) = (self.sizes.n, self.sizes.k);
+        let mut rows = InterpretedModel::constraint_matrix(self, q)?;
+        for j in 0..k {
+            let unit: Vec<f64> = (0..k).map(|i| f64::from(u8::from(i == j))).collect();
+            rows.extend(self.call_in_chart(chart, "velocities", &[q, &unit])?);
+        }
+        Ok(hadamard_ratio(DMatrix::from_row_slice(n, n, &rows)))
+    }
+
+    /// The run-time chart partial pivoting picks at `q`; `None` without
+    /// constraint rows or where they are dependent.
+    pub fn pivoted_chart(&self, q: &[f64]) -> Option<usize> {
+        partition::pivoted(self, q).map(|index| self.charts.len() + index)
+    }
+
+    /// The reduced item `name` (`velocities`, `momenta`, `hamiltonian`,
+    /// `hamiltonian_gradient`, `structure_matrix`, `input_matrix`,
+    /// `reduced_rhs`, `reduced_rhs_jacobian`) in `chart`, as
+    /// [`InterpretedModel::call`]; chart 0 is [`InterpretedModel::call`].
+    pub fn call_in_chart(
+        &self,
+        chart: usize,
+        name: &str,
+        arguments: &[&[f64]],
+    ) -> Result<Vec<f64>, CallError> {
+        match chart.checked_sub(1) {
+            None => self.call(name, arguments),
+            Some(other) if other < self.chart_functions.len() => {
+                self.call_among(&self.chart_functions[other], name, arguments)
+            }
+            Some(_) => self.call_in_runtime_chart(chart, name, arguments),
+        }
+    }
+
+    /// The run-time chart `chart`, if it is one.
+    fn runtime_chart(&self, chart: usize) -> Option<RuntimeChart<'_, InterpretedModel>> {
+        let index = chart.checked_sub(self.charts.len())?;
+        RuntimeChart::new(self, index)
+    }
+
+    /// [`InterpretedModel::call_in_chart`] in a run-time chart; the
+    /// arguments are checked against chart 0's function of that name.
+    fn call_in_runtime_chart(
+        &self,
+        chart: usize,
+        name: &str,
+        arguments: &[&[f64]],
+    ) -> Result<Vec<f64>, CallError> {
+        let unknown = || CallError::UnknownFunction {
+            name: format!("{name} (in chart {chart})"),
+        };
+        let layout = self.arguments(name).ok_or_else(unknown)?;
+        self.inputs(name, &layout, arguments)?;
+        let runtime = self.runtime_chart(chart).ok_or_else(unknown)?;
+        let (s, p) = (self.sizes.s, self.sizes.p);
+        let sized = |len: usize, fill: &dyn Fn(&mut [f64])| {
+            let mut out = vec![f64::NAN; len];
+            fill(&mut out);
+            out
+        };
+        Ok(match (name, arguments) {
+            ("velocities", [q, alpha]) => sized(q.len(), &|out| runtime.velocities(q, alpha, out)),
+            ("momenta", [_, qdot]) => sized(self.sizes.k, &|out| runtime.momenta(qdot, out)),
+            ("reduced_rhs", [x, u]) => sized(s, &|out| runtime.rhs(x, u, out)),
+            ("reduced_rhs_jacobian", [x, u]) => {
+                sized(s * s, &|out| runtime.rhs_jacobian(x, u, out))
+            }
+            ("hamiltonian", [x]) => vec![runtime.hamiltonian(x)],
+            ("hamiltonian_gradient", [x]) => sized(s, &|out| runtime.hamiltonian_gradient(x, out)),
+            ("structure_matrix", [x]) => sized(s * s, &|out| runtime.structure_matrix(x, out)),
+            ("input_matrix", [x]) => sized(s * p, &|out| runtime.input_matrix(x, out)),
+            _ => return Err(unknown()),
+        })
+    }
+}
