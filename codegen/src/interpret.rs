@@ -35,6 +35,8 @@ use crate::emit::{self, Lowered};
 use crate::ir::IrError;
 use crate::model::{GroupFactor, Model};
 use crate::{analysed_model, over_budget};
+use chaplygin_runtime::simulate::GuardedValue;
+use chaplygin_runtime::system::Guard;
 
 /// The names of a model and its sizes.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -142,6 +144,9 @@ pub struct InterpretedModel {
     chart_functions: Vec<Vec<Interpreted>>,
     /// How each chart derived at build time fits, chart 0 first.
     charts: Vec<ChartFit>,
+    /// The guards of the model's own expressions, in the order of the
+    /// `domain` function's values.
+    guards: Vec<(String, Guard)>,
     report: String,
     /// With a symmetry, the coordinates the group acts on.
     group: Option<Vec<usize>>,
@@ -191,6 +196,11 @@ impl InterpretedModel {
             functions,
             chart_functions,
             charts: emitted.charts,
+            guards: emitted
+                .guards
+                .into_iter()
+                .map(|guarded| (guarded.description, guarded.guard))
+                .collect(),
             report: emitted.report,
             group: model
                 .symmetry
@@ -268,6 +278,34 @@ impl InterpretedModel {
     /// `lambda`.
     pub fn call(&self, name: &str, arguments: &[&[f64]]) -> Result<Vec<f64>, CallError> {
         self.call_among(&self.functions, name, arguments)
+    }
+
+    /// The model's guarded expressions at `q` (the generated `DOMAIN` and
+    /// `domain`).
+    pub fn domain(&self, q: &[f64]) -> Result<Vec<GuardedValue>, CallError> {
+        let values = self.call("domain", &[q])?;
+        Ok(self
+            .guards
+            .iter()
+            .zip(values)
+            .map(|((description, guard), value)| GuardedValue {
+                description: description.clone(),
+                guard: *guard,
+                value,
+            })
+            .collect())
+    }
+
+    /// The names of the constraint rows that are dependent at `q`
+    /// (`chaplygin_runtime::monitor::dependent_rows`).
+    pub fn dependent_rows(&self, q: &[f64]) -> Result<Vec<String>, CallError> {
+        let (n, c) = (self.sizes.n, self.sizes.c);
+        let rows = self.constraint_matrix(q)?;
+        let rows = chaplygin_runtime::nalgebra::DMatrix::from_row_slice(c, n, &rows);
+        Ok(chaplygin_runtime::monitor::dependent_rows(&rows)
+            .into_iter()
+            .map(|i| self.names.constraints[i].clone())
+            .collect())
     }
 
     /// The function `name` among `functions`.

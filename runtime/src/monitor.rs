@@ -39,7 +39,7 @@ use crate::linalg::{Square, cholesky};
 use crate::linearize::GroupFactor;
 use nalgebra::allocator::Allocator;
 use nalgebra::storage::{Storage, StorageMut};
-use nalgebra::{Const, DefaultAllocator, Dim, Matrix, OMatrix};
+use nalgebra::{Const, DMatrix, DefaultAllocator, Dim, Matrix, OMatrix};
 
 /// `det[A; V^T] / (prod |A_i| prod |V_j|)` (see the module documentation);
 /// `N = C + K`.
@@ -198,6 +198,45 @@ where
             }
         }
     }
+}
+
+/// Rows whose Gram ratio ([`gram_ratio`]) is below this are named as
+/// dependent where a run stops ([`dependent_rows`]).
+pub const DEPENDENT_ROWS: f64 = 1e-4;
+
+/// The rows of `a` (`c x n`) taking part in a dependency among them, where
+/// their Gram ratio is below [`DEPENDENT_ROWS`] (none otherwise): the rows
+/// with a weight of at least a tenth of the largest in the null vector of
+/// the normalized rows' Gram matrix (its eigenvector of the smallest
+/// eigenvalue).
+///
+/// ```
+/// use chaplygin_runtime::monitor::dependent_rows;
+/// use chaplygin_runtime::nalgebra::DMatrix;
+/// // The snakeboard's wheel rows at phi = pi/2: (-cos, -sin, 0) and (cos, sin, 0).
+/// let rows = DMatrix::from_row_slice(3, 3, &[-1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0]);
+/// assert_eq!(dependent_rows(&rows), vec![0, 2]);
+/// let regular = DMatrix::from_row_slice(2, 3, &[1.0, 0.0, 0.0, 0.0, 1.0, 0.0]);
+/// assert!(dependent_rows(&regular).is_empty());
+/// ```
+pub fn dependent_rows(a: &DMatrix<f64>) -> Vec<usize> {
+    if a.nrows() == 0 || gram_ratio(a) >= DEPENDENT_ROWS {
+        return Vec::new();
+    }
+    let mut normalized = a.clone();
+    for mut row in normalized.row_iter_mut() {
+        let norm = row.norm();
+        if norm > 0.0 {
+            row /= norm;
+        }
+    }
+    let eigen = (&normalized * normalized.transpose()).symmetric_eigen();
+    let smallest = eigen.eigenvalues.imin();
+    let null = eigen.eigenvectors.column(smallest);
+    let largest = null.amax();
+    (0..a.nrows())
+        .filter(|&i| null[i].abs() >= 0.1 * largest)
+        .collect()
 }
 
 /// A pivot below this fraction of A's largest entry counts as vanishing

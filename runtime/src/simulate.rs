@@ -27,14 +27,16 @@
 //! its chart.
 
 mod advance;
+mod ends;
 mod observed;
 mod outcome;
 mod run;
 
 pub use advance::Advance;
+pub use ends::{NEAR_BOUNDARY, PREDICTED, REACHED};
 pub use observed::{
-    CHART_SWITCH, GENERATED_CHART, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, RUNTIME_CHART,
-    Regularity, next_chart,
+    CHART_SWITCH, GENERATED_CHART, GuardedValue, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED,
+    RUNTIME_CHART, Regularity, next_chart,
 };
 pub use outcome::{SimulationError, Summary};
 

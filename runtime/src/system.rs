@@ -237,6 +237,37 @@ pub trait MomentumEquations<const N: usize, const R: usize, const K: usize, cons
     }
 }
 
+/// What an expression of a model needs to stay defined
+/// ([`Domain::DOMAIN`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Guard {
+    /// Its value must stay positive (the argument of a square root or a
+    /// logarithm).
+    Positive,
+    /// It must not vanish: its sign stays what it was (a divisor).
+    NonZero,
+}
+
+/// Where a model's equations are defined (README, "Where a run ends"):
+/// its own expressions' square roots, logarithms, divisions and tangents,
+/// each with a [`Guard`], and its constraint rows, which must stay
+/// independent. A run evaluates them where a step fails, to name what the
+/// step crossed. Generated models implement it; the defaults declare
+/// nothing.
+pub trait Domain {
+    /// Each guarded expression, described (what, where, what must hold),
+    /// with its guard.
+    const DOMAIN: &'static [(&'static str, Guard)] = &[];
+    /// The guarded expressions' values at the configuration `q`, in the
+    /// order of [`Domain::DOMAIN`].
+    fn domain(&self, _q: &[f64], _values: &mut [f64]) {}
+    /// The constraint rows `A(q)`, `c x n` row-major into `rows`; `false`
+    /// when the model does not give them.
+    fn constraint_rows(&self, _q: &[f64], _rows: &mut [f64]) -> bool {
+        false
+    }
+}
+
 /// A generated model's parameters, by name.
 pub trait Parameters {
     /// The parameters, in declared order.

@@ -28,6 +28,7 @@
 //! named by absolute paths (`::core::primitive::f64`), so the items compile
 //! under `#![deny(warnings)]` whatever the caller has in scope.
 
+mod domain;
 mod kinematics;
 mod lagrange_dalembert;
 mod linearization;
@@ -77,6 +78,8 @@ pub(crate) struct Emitted {
     pub(crate) functions: Vec<Function>,
     /// The reduced items of each other chart of D (chart 1, 2, ...).
     pub(crate) chart_functions: Vec<Vec<Function>>,
+    /// The guards of the model's own expressions ([`crate::model::domain`]).
+    pub(crate) guards: Vec<crate::model::domain::Guarded>,
     /// How every chart derived at build time fits, chart 0 (the model's
     /// own basis) first; only chart 0 without other charts.
     pub(crate) charts: Vec<ChartFit>,
@@ -101,8 +104,11 @@ pub(crate) fn emit(
     let definition = parameter_struct(model);
     let constants = constants(model);
     let mechanism_constants = mechanism::constants(model);
+    let guards = crate::model::domain::guards(model)
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     let mut functions = kinematics::functions(model)?;
     functions.extend(mechanism::functions(model)?);
+    functions.push(domain::function(model, &guards)?);
     let (acceleration, solve_report) =
         lagrange_dalembert::acceleration(model, &derivation.lagrange_dalembert)?;
     let acceleration_jacobian =
@@ -135,7 +141,7 @@ pub(crate) fn emit(
     if let Some(line) = charts_line(model, &charts) {
         reduced_report.line(line);
     }
-    let mut sections = vec![solve_report, reduced_report];
+    let mut sections = vec![domain::report(&guards), solve_report, reduced_report];
     if let Some(momentum) = &derivation.momentum {
         let (reduction, reduction_report) = momentum::functions(model, momentum, &functions)?;
         functions.extend(reduction);
@@ -151,6 +157,7 @@ pub(crate) fn emit(
         .map(|f| &f.item);
     let name = &model.name;
     let chart_constant = traits::charts_constant(model, &charts);
+    let domain_constant = domain::constant(&guards);
     let implementations = traits::implementations(model, &charts, derivation.momentum.is_some());
     let linearization = linearization::implementation(model);
     let items = quote! {
@@ -160,6 +167,7 @@ pub(crate) fn emit(
             #mechanism_constants
             #report_item
             #chart_constant
+            #domain_constant
             #(#items)*
         }
         #implementations
@@ -167,6 +175,7 @@ pub(crate) fn emit(
     };
     Ok(Emitted {
         items,
+        guards,
         functions,
         chart_functions,
         charts,

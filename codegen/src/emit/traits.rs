@@ -428,6 +428,19 @@ pub(crate) fn implementations(model: &Model, charts: &[ChartFit], momentum: bool
             const CONSTRAINTS: &'static [&'static ::core::primitive::str] = &#name::CONSTRAINTS;
         }
 
+        impl #system::Domain for #name {
+            const DOMAIN: &'static [(&'static ::core::primitive::str, #system::Guard)] = &#name::DOMAIN;
+            fn domain(&self, q: &[#f64], values: &mut [#f64]) {
+                let q: [#f64; #n] = ::core::array::from_fn(|i| q[i]);
+                values.copy_from_slice(&#name::domain(self, &q));
+            }
+            fn constraint_rows(&self, q: &[#f64], rows: &mut [#f64]) -> ::core::primitive::bool {
+                let q: [#f64; #n] = ::core::array::from_fn(|i| q[i]);
+                rows.copy_from_slice(#name::constraint_matrix(self, &q).as_flattened());
+                true
+            }
+        }
+
         impl #system::Holonomic<#n, #h> for #name {
             const HOLONOMIC: [&'static ::core::primitive::str; #h] = #name::HOLONOMIC;
             fn holonomic_residual(&self, q: &[#f64; #n]) -> [#f64; #h] {

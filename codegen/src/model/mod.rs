@@ -13,6 +13,7 @@
 //! at once.
 
 mod check;
+pub mod domain;
 mod invariance;
 mod lower;
 pub mod mechanism;

@@ -9,11 +9,19 @@ use nalgebra::{Const, SMatrix, SVector};
 /// When Newton's method stops.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Settings {
-    /// Stop when the update is at most `tolerance * max(1, |y|)` (max norms).
+    /// Stop when the update is at most `tolerance * max(1, |y|)` (max norms),
+    /// or when it has stagnated below [`STAGNATION`] times that scale: it
+    /// no longer halves from one iteration to the next, the iteration
+    /// having reached the round-off of its residual (the discrete
+    /// gradient's difference quotient of a large energy over a small step).
     pub(crate) tolerance: f64,
     /// Iterations allowed.
     pub(crate) max_iterations: usize,
 }
+
+/// An update that no longer halves is accepted below this fraction of
+/// `max(1, |y|)` (see [`Settings::tolerance`]).
+pub(crate) const STAGNATION: f64 = 1e-9;
 
 /// Why Newton's method stopped without a root.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,6 +47,7 @@ where
 {
     let mut update = f64::INFINITY;
     for iteration in 1..=settings.max_iterations {
+        let previous = update;
         let (value, jacobian) = residual(&y);
         if !(value.iter().all(|v| v.is_finite()) && jacobian.iter().all(|v| v.is_finite())) {
             return Err(Failure::NonFinite);
@@ -52,7 +61,9 @@ where
         for (yi, di) in y.iter_mut().zip(delta) {
             *yi -= di;
         }
-        if update <= settings.tolerance * max_norm(&y).max(1.0) {
+        let scale = max_norm(&y).max(1.0);
+        let stagnated = update > 0.5 * previous && update <= STAGNATION * scale;
+        if update <= settings.tolerance * scale || stagnated {
             return Ok(y);
         }
         if !update.is_finite() {

@@ -7,13 +7,13 @@
 use crate::control::{Interconnection, PortHamiltonianController};
 use crate::law::Controller;
 use crate::linalg::Square;
-use crate::monitor::momentum_regularity;
+use crate::monitor::{dependent_rows, momentum_regularity};
 use crate::projection::{self, ProjectionError, Surface};
 use crate::system::{
-    Dalembert, Energy, LagrangeDalembert, ModelNames, Momentum, MomentumEquations, Reduced,
-    ReducedPortHamiltonian, split,
+    Dalembert, Domain, Energy, Guard, LagrangeDalembert, ModelNames, Momentum, MomentumEquations,
+    Reduced, ReducedPortHamiltonian, split,
 };
-use nalgebra::Const;
+use nalgebra::{Const, DMatrix};
 
 /// A regularity measure's value at a state, and what it measures.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,6 +60,17 @@ pub trait Observed<const D: usize>: Energy<D> {
     fn chart(&self) -> Option<usize> {
         None
     }
+    /// The model's guarded expressions at `x` ([`crate::system::Domain`]),
+    /// none by default.
+    fn domain(&self, _x: &[f64; D]) -> Vec<GuardedValue> {
+        Vec::new()
+    }
+    /// The names of the constraint rows that are dependent at `x`
+    /// ([`crate::monitor::dependent_rows`]); none where they are
+    /// independent, and by default.
+    fn dependent_rows(&self, _x: &[f64; D]) -> Vec<String> {
+        Vec::new()
+    }
     /// Where the active chart fits worse than [`CHART_SWITCH`] times the
     /// best chart at `x`, makes the best one active and moves `x` into it
     /// (the same configuration and velocity); whether it did. By default
@@ -67,6 +78,65 @@ pub trait Observed<const D: usize>: Energy<D> {
     fn change_chart(&self, _x: &mut [f64; D]) -> bool {
         false
     }
+}
+
+/// A guarded expression of a model at a state ([`Observed::domain`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GuardedValue {
+    /// What it guards, where, and what must hold.
+    pub description: String,
+    /// What must hold.
+    pub guard: Guard,
+    /// Its value.
+    pub value: f64,
+}
+
+impl GuardedValue {
+    /// Whether the guard fails at this value where it held at `reference`
+    /// (a positive value turned non-positive, or a divisor's sign lost;
+    /// NaN fails).
+    pub fn fails_from(&self, reference: f64) -> bool {
+        match self.guard {
+            Guard::Positive => reference > 0.0 && !(self.value > 0.0),
+            Guard::NonZero => reference != 0.0 && !(self.value * reference > 0.0),
+        }
+    }
+
+    /// Whether the guard fails at this value on its own.
+    pub fn fails(&self) -> bool {
+        match self.guard {
+            Guard::Positive => !(self.value > 0.0),
+            Guard::NonZero => !(self.value != 0.0 && self.value.is_finite()),
+        }
+    }
+}
+
+/// The guarded expressions of `model` at the configuration `q`.
+fn domain_of<M: Domain>(model: &M, q: &[f64]) -> Vec<GuardedValue> {
+    let mut values = vec![0.0; M::DOMAIN.len()];
+    model.domain(q, &mut values);
+    M::DOMAIN
+        .iter()
+        .zip(values)
+        .map(|(&(description, guard), value)| GuardedValue {
+            description: description.to_string(),
+            guard,
+            value,
+        })
+        .collect()
+}
+
+/// The names of `model`'s constraint rows that are dependent at `q`.
+fn dependent_rows_of<M: Domain + ModelNames>(model: &M, q: &[f64]) -> Vec<String> {
+    let (c, n) = (M::CONSTRAINTS.len(), M::COORDINATES.len());
+    let mut rows = vec![0.0; c * n];
+    if !model.constraint_rows(&q[..n], &mut rows) {
+        return Vec::new();
+    }
+    dependent_rows(&DMatrix::from_row_slice(c, n, &rows))
+        .into_iter()
+        .map(|i| M::CONSTRAINTS[i].to_string())
+        .collect()
 }
 
 /// A chart is changed where it fits worse than this fraction of the best
@@ -178,9 +248,17 @@ fn owned(names: &[&str]) -> Vec<String> {
 
 impl<M, F, const S: usize, const P: usize> Observed<S> for Reduced<'_, M, F, P>
 where
-    M: ReducedPortHamiltonian<S, P> + ModelNames,
+    M: ReducedPortHamiltonian<S, P> + ModelNames + Domain,
     F: Controller<S, P>,
 {
+    fn domain(&self, x: &[f64; S]) -> Vec<GuardedValue> {
+        domain_of(self.model(), &x[..M::COORDINATES.len()])
+    }
+
+    fn dependent_rows(&self, x: &[f64; S]) -> Vec<String> {
+        dependent_rows_of(self.model(), &x[..M::COORDINATES.len()])
+    }
+
     fn state_names(&self) -> Vec<String> {
         owned(&[M::COORDINATES, M::MOMENTA].concat())
     }
@@ -224,9 +302,17 @@ where
 impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> Observed<D>
     for Dalembert<'_, M, F, N, C, P>
 where
-    M: LagrangeDalembert<N, C, P> + ModelNames,
+    M: LagrangeDalembert<N, C, P> + ModelNames + Domain,
     F: Controller<D, P>,
 {
+    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
+        domain_of(self.model(), &x[..M::COORDINATES.len()])
+    }
+
+    fn dependent_rows(&self, x: &[f64; D]) -> Vec<String> {
+        dependent_rows_of(self.model(), &x[..M::COORDINATES.len()])
+    }
+
     fn state_names(&self) -> Vec<String> {
         let velocities = M::COORDINATES.iter().map(|q| format!("dot({q})"));
         owned(M::COORDINATES)
@@ -274,10 +360,18 @@ impl<
     const D: usize,
 > Observed<D> for Momentum<'_, M, F, N, R, K, C, P>
 where
-    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P> + ModelNames,
+    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P> + ModelNames + Domain,
     F: Controller<D, P>,
     Const<N>: Square,
 {
+    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
+        domain_of(self.model(), &x[..M::COORDINATES.len()])
+    }
+
+    fn dependent_rows(&self, x: &[f64; D]) -> Vec<String> {
+        dependent_rows_of(self.model(), &x[..M::COORDINATES.len()])
+    }
+
     /// The coordinates, `dot(r)` for the shape velocities, `p1..pK`.
     fn state_names(&self) -> Vec<String> {
         let shape_velocities = M::SHAPE.map(|i| format!("dot({})", M::COORDINATES[i]));
@@ -322,9 +416,17 @@ where
 impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> Observed<D>
     for Interconnection<M, K, S, NC, P>
 where
-    M: ReducedPortHamiltonian<S, P> + ModelNames,
+    M: ReducedPortHamiltonian<S, P> + ModelNames + Domain,
     K: PortHamiltonianController<S, NC, P>,
 {
+    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
+        domain_of(&self.plant, &x[..M::COORDINATES.len()])
+    }
+
+    fn dependent_rows(&self, x: &[f64; D]) -> Vec<String> {
+        dependent_rows_of(&self.plant, &x[..M::COORDINATES.len()])
+    }
+
     fn state_names(&self) -> Vec<String> {
         owned(&[M::COORDINATES, M::MOMENTA, &K::STATES].concat())
     }
@@ -383,6 +485,14 @@ where
 
     fn holonomic_residual(&self, x: &[f64; D]) -> Option<f64> {
         Surface::holonomic_residual(self, x)
+    }
+
+    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
+        self.system().domain(x)
+    }
+
+    fn dependent_rows(&self, x: &[f64; D]) -> Vec<String> {
+        self.system().dependent_rows(x)
     }
 
     fn chart(&self) -> Option<usize> {

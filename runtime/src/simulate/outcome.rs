@@ -19,12 +19,16 @@ pub enum SimulationError {
     Integration(#[from] integrate::Error),
     /// The formulation degenerates at this configuration.
     #[error(
-        "singular configuration at t = {t}: the {quantity} {how} ({value:.3e}, threshold {threshold:.0e}) at {}",
+        "singular configuration at t = {t}: {}the {quantity} {how} ({value:.3e}, threshold {threshold:.0e}) at {}",
+        dependency(rows),
         named(state_names, state)
     )]
     Singular {
         /// Time of the first state found singular.
         t: f64,
+        /// The constraint rows that are dependent there (a singularity of
+        /// the mechanics), none when they are independent.
+        rows: Vec<String>,
         /// What degenerates.
         quantity: &'static str,
         /// `"vanishes"`, or `"changed sign in the step to t"` for a crossing.
@@ -36,6 +40,29 @@ pub enum SimulationError {
         /// The state's names.
         state_names: Vec<String>,
         /// The state.
+        state: Vec<f64>,
+    },
+    /// A step left the domain of the model's own expressions, or came to
+    /// its end: a square root or logarithm of a non-positive value, a
+    /// divisor through zero, or one of them near zero where the step failed
+    /// (`crate::system::Domain`, [`super::NEAR_BOUNDARY`]).
+    #[error(
+        "the step from t = {t} leaves the model's domain: {expression} (it is {value:.3e}, {at_start:.3e} at the start) at {}",
+        named(state_names, state)
+    )]
+    Undefined {
+        /// Time at the start of the step (the initial time for an initial
+        /// state outside the domain).
+        t: f64,
+        /// The guarded expression, where it is and what must hold.
+        expression: String,
+        /// Its value at `state`.
+        value: f64,
+        /// Its value at the start of the run.
+        at_start: f64,
+        /// The state's names.
+        state_names: Vec<String>,
+        /// The state at which it fails: on the step's explicit predictor.
         state: Vec<f64>,
     },
     /// The state could not be kept on the constraint manifold.
@@ -54,6 +81,14 @@ pub enum SimulationError {
         /// The I/O error.
         source: std::io::Error,
     },
+}
+
+/// `the constraint rows a, b are dependent: ` when some are.
+fn dependency(rows: &[String]) -> String {
+    match rows {
+        [] => String::new(),
+        rows => format!("the constraint rows {} are dependent: ", rows.join(", ")),
+    }
 }
 
 /// `name = value, ...`.

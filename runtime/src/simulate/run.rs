@@ -1,6 +1,7 @@
 //! A run in progress: the loop that advances, checks the regularity,
 //! updates the summary and records.
 
+use super::ends::Ends;
 use super::{Advance, Observed, Regularity, Simulation, SimulationError, Summary};
 use crate::integrate;
 use crate::record::Recorder;
@@ -13,6 +14,7 @@ pub(super) struct Run<'a, M, S, R, const D: usize> {
     pub(super) t: f64,
     x: [f64; D],
     energy0: f64,
+    ends: Ends<'a, S, D>,
     regularity: Regularity,
     row: Vec<f64>,
     inputs: usize,
@@ -41,6 +43,7 @@ where
             t: t0,
             x,
             energy0: system.energy(&x),
+            ends: Ends::new(system, &x, settings.singular_below),
             regularity,
             row: Vec::with_capacity(columns.len()),
             inputs: system.input_names().len(),
@@ -60,6 +63,7 @@ where
             .start(&columns)
             .map_err(|source| SimulationError::Recording { t: t0, source })?;
         run.check(run.regularity)?;
+        run.ends.at_start(t0, &x)?;
         run.record()?;
         Ok(run)
     }
@@ -76,17 +80,22 @@ where
             } else {
                 t0 + i as f64 * self.settings.step
             };
+            let (t, h) = (self.t, t_next - self.t);
             let x = self
                 .settings
                 .method
-                .advance(self.system, self.t, &self.x, t_next)?;
-            let x = self
-                .system
-                .project(x)
-                .map_err(|source| SimulationError::Projection { t: t_next, source })?;
+                .advance(self.system, t, &self.x, t_next)
+                .map_err(|error| self.ends.explain(t, &self.x, h, error.into()))?;
+            let x = self.system.project(x).map_err(|source| {
+                let projection = SimulationError::Projection { t: t_next, source };
+                self.ends.explain(t, &self.x, h, projection)
+            })?;
+            self.ends.reached(t, &self.x, &x)?;
             let regularity = self.system.regularity(&x);
-            (self.t, self.x) = (t_next, x);
-            self.check(regularity)?;
+            let previous = core::mem::replace(&mut self.x, x);
+            self.t = t_next;
+            self.check(regularity)
+                .map_err(|singular| self.ends.explain(t, &previous, h, singular))?;
             self.regularity = regularity;
             self.change_chart();
             self.update_summary(i);
@@ -111,6 +120,7 @@ where
         }
         Err(SimulationError::Singular {
             t: self.t,
+            rows: self.system.dependent_rows(&self.x),
             quantity: regularity.quantity,
             how: if vanishes {
                 "vanishes"

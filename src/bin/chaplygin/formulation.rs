@@ -7,7 +7,7 @@
 //! runtime system of dimension `D`, chosen at run time by [`with_dimension!`].
 
 use chaplygin::runtime::projection::ProjectionError;
-use chaplygin::runtime::simulate::{Observed, Regularity};
+use chaplygin::runtime::simulate::{GuardedValue, Observed, Regularity};
 use chaplygin::runtime::system::{Energy, Jacobian, OdeSystem, Structured};
 
 /// A closed system `xdot = f(t, x)` with what the simulation loop observes.
@@ -54,6 +54,15 @@ pub trait Formulation {
     /// The largest `|f(q)|` of the configuration constraints kept, if any.
     fn holonomic_residual(&self, _x: &[f64]) -> Option<f64> {
         None
+    }
+    /// The model's guarded expressions at `x` (see [`Observed::domain`]).
+    fn domain(&self, _x: &[f64]) -> Vec<GuardedValue> {
+        Vec::new()
+    }
+    /// The constraint rows dependent at `x` (see
+    /// [`Observed::dependent_rows`]).
+    fn dependent_rows(&self, _x: &[f64]) -> Vec<String> {
+        Vec::new()
     }
     /// The active chart of D, if the formulation has several (see
     /// [`Observed::chart`]).
@@ -172,6 +181,14 @@ impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
         self.system.holonomic_residual(&array(x))
     }
 
+    fn domain(&self, x: &[f64]) -> Vec<GuardedValue> {
+        self.system.domain(&array(x))
+    }
+
+    fn dependent_rows(&self, x: &[f64]) -> Vec<String> {
+        self.system.dependent_rows(&array(x))
+    }
+
     fn chart(&self) -> Option<usize> {
         self.system.chart()
     }
@@ -261,6 +278,14 @@ impl<const D: usize> Observed<D> for Sized<'_, D> {
 
     fn holonomic_residual(&self, x: &[f64; D]) -> Option<f64> {
         self.0.holonomic_residual(x)
+    }
+
+    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
+        self.0.domain(x)
+    }
+
+    fn dependent_rows(&self, x: &[f64; D]) -> Vec<String> {
+        self.0.dependent_rows(x)
     }
 
     fn chart(&self) -> Option<usize> {

@@ -14,8 +14,8 @@ use crate::formulation::Formulation;
 use chaplygin::runtime::monitor::{gram_regularity, hadamard_ratio};
 use chaplygin::runtime::nalgebra::DMatrix;
 use chaplygin::runtime::projection::ProjectionError;
-use chaplygin::runtime::simulate::Regularity;
 use chaplygin::runtime::simulate::next_chart;
+use chaplygin::runtime::simulate::{GuardedValue, Regularity};
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 use std::cell::Cell;
 use surface::{holonomic_residual, keeps_configuration, onto_surface};
@@ -220,6 +220,14 @@ impl Formulation for InterpretedReduced {
         Ok(())
     }
 
+    fn domain(&self, x: &[f64]) -> Vec<GuardedValue> {
+        evaluated(self.model.domain(&x[..self.model.sizes().n]))
+    }
+
+    fn dependent_rows(&self, x: &[f64]) -> Vec<String> {
+        evaluated(self.model.dependent_rows(&x[..self.model.sizes().n]))
+    }
+
     fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
         holonomic_residual(&self.model, &x[..self.model.sizes().n])
     }
@@ -297,6 +305,14 @@ impl Formulation for InterpretedDalembert {
     fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
         let (q, qdot) = x.split_at_mut(self.model.sizes().n);
         onto_surface(&self.model, q, qdot)
+    }
+
+    fn domain(&self, x: &[f64]) -> Vec<GuardedValue> {
+        evaluated(self.model.domain(&x[..self.model.sizes().n]))
+    }
+
+    fn dependent_rows(&self, x: &[f64]) -> Vec<String> {
+        evaluated(self.model.dependent_rows(&x[..self.model.sizes().n]))
     }
 
     fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
@@ -502,6 +518,14 @@ impl Formulation for InterpretedMomentum {
         onto_surface(&self.model, &mut q, &mut qdot)?;
         x.copy_from_slice(&self.state(&q, &qdot));
         Ok(())
+    }
+
+    fn domain(&self, x: &[f64]) -> Vec<GuardedValue> {
+        evaluated(self.model.domain(&x[..self.model.sizes().n]))
+    }
+
+    fn dependent_rows(&self, x: &[f64]) -> Vec<String> {
+        evaluated(self.model.dependent_rows(&x[..self.model.sizes().n]))
     }
 
     fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {

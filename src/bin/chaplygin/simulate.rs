@@ -35,8 +35,8 @@ use chaplygin::runtime::linearize::Linearization;
 use chaplygin::runtime::nalgebra::{Const, DMatrix};
 use chaplygin::runtime::projection::Surface;
 use chaplygin::runtime::system::{
-    Dalembert, Holonomic, LagrangeDalembert, ModelNames, Momenta, Momentum, MomentumEquations,
-    Parameters, Reduced, ReducedPortHamiltonian,
+    Dalembert, Domain, Holonomic, LagrangeDalembert, ModelNames, Momenta, Momentum,
+    MomentumEquations, Parameters, Reduced, ReducedPortHamiltonian,
 };
 use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
 use chaplygin_codegen::interpret::InterpretedModel;
@@ -235,6 +235,7 @@ trait CompiledModel<const N: usize, const C: usize, const K: usize, const P: usi
     + Linearization<N, C, P>
     + Momenta<N, K>
     + ModelNames
+    + Domain
     + Parameters
     + Default
     + Copy
@@ -248,6 +249,7 @@ where
         + Linearization<N, C, P>
         + Momenta<N, K>
         + ModelNames
+        + Domain
         + Parameters
         + Default
         + Copy,
@@ -349,7 +351,11 @@ fn momentum<
     points: Option<Points<'_>>,
 ) -> RunResult
 where
-    M: MomentumEquations<N, R, MP, P> + LagrangeDalembert<N, C, P> + Holonomic<N, H> + ModelNames,
+    M: MomentumEquations<N, R, MP, P>
+        + LagrangeDalembert<N, C, P>
+        + Holonomic<N, H>
+        + ModelNames
+        + Domain,
     Const<N>: Square,
 {
     let system = Momentum::new(model, |t: f64| inputs.array::<P>(t));

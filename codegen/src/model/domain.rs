@@ -1,0 +1,138 @@
+//! Where the model's own expressions are defined: the guards of its square
+//! roots, logarithms, divisions and tangents.
+//!
+//! A model written by its energy or declared as a mechanism can leave its
+//! domain: the benchmark bicycle's front contact,
+//! `front_hub - rF unit(cross(fork.y, cross(fork.y, ground.z)))`, divides
+//! by the square root of `|fork.y x (fork.y x z)|^2`, which vanishes where
+//! the front wheel's plane lies flat. Each such operation of the
+//! expressions the emitted code computes (the points, the holonomic
+//! constraints, the constraint rows, the frames, the energies and the mass
+//! matrix, in that order) gives one guard, named after the first of them
+//! it appears in:
+//!
+//! | operation | guard | holds where |
+//! |---|---|---|
+//! | `b^(1/2)`, `b^(-1/2)`, another fractional power, `ln(b)` | `b` | `b > 0` |
+//! | `b^(-k)` | `b` | `b != 0` (its sign kept) |
+//! | `tan(a)` | `cos(a)` | `cos(a) != 0` (its sign kept) |
+//!
+//! A run evaluates them where a step fails and names the one the step
+//! crossed (`chaplygin_runtime::system::Domain`).
+
+use super::Model;
+use crate::sym::{ExprId, Function, Node, SymError};
+use chaplygin_runtime::system::Guard;
+
+/// One guarded expression.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Guarded {
+    /// What it guards, where, and what must hold.
+    pub description: String,
+    /// The expression whose value is checked.
+    pub expression: ExprId,
+    /// What must hold.
+    pub guard: Guard,
+}
+
+/// The longest expression text a description prints.
+const SHORT: usize = 72;
+
+/// The guards of `model`'s expressions, in the order of the module
+/// documentation, each once.
+pub fn guards(model: &mut Model) -> Result<Vec<Guarded>, SymError> {
+    let mut guards: Vec<Guarded> = Vec::new();
+    for (source, roots) in sources(model) {
+        for id in model.store.reachable(&roots) {
+            let Some((operation, base, guard)) = guarded(model, id)? else {
+                continue;
+            };
+            if guards.iter().any(|g| g.expression == base) {
+                continue;
+            }
+            let description = describe(model, operation, &source, base, guard);
+            guards.push(Guarded {
+                description,
+                expression: base,
+                guard,
+            });
+        }
+    }
+    Ok(guards)
+}
+
+/// The operation at `id`, if it has a guard: its name, the guarded
+/// expression and what must hold.
+fn guarded(
+    model: &mut Model,
+    id: ExprId,
+) -> Result<Option<(&'static str, ExprId, Guard)>, SymError> {
+    Ok(match model.store.node(id).clone() {
+        Node::Pow(base, exponent) if model.store.as_number(base).is_none() => {
+            match exponent.to_small() {
+                Some((n, 1)) if n < 0 => Some(("a division", base, Guard::NonZero)),
+                Some((_, 1)) => None,
+                Some((1, 2)) | Some((-1, 2)) => Some(("a square root", base, Guard::Positive)),
+                _ => Some(("a fractional power", base, Guard::Positive)),
+            }
+        }
+        Node::Call(Function::Ln, argument) => Some(("a logarithm", argument, Guard::Positive)),
+        Node::Call(Function::Tan, argument) => {
+            let cosine = model.store.apply(Function::Cos, argument)?;
+            Some(("a tangent", cosine, Guard::NonZero))
+        }
+        _ => None,
+    })
+}
+
+/// The named expressions searched, in order.
+fn sources(model: &Model) -> Vec<(String, Vec<ExprId>)> {
+    let mechanism = &model.mechanism;
+    let mut sources = Vec::new();
+    for (i, point) in mechanism.points.iter().enumerate() {
+        let row = (0..3).map(|j| mechanism.expressions.positions.get(i, j));
+        sources.push((format!("point `{}`", point.name), row.collect()));
+    }
+    for (i, constraint) in mechanism.holonomic.iter().enumerate() {
+        let residual = mechanism.expressions.holonomic_residual.get(i, 0);
+        sources.push((
+            format!("holonomic constraint `{}`", constraint.name),
+            vec![residual],
+        ));
+    }
+    let n = model.n();
+    for (i, constraint) in model.constraints.iter().enumerate() {
+        let row = (0..n).map(|j| model.constraint_expressions.get(i, j));
+        sources.push((format!("constraint `{}`", constraint.name), row.collect()));
+    }
+    for (i, frame) in mechanism.frames.iter().enumerate() {
+        let rotation = (0..9).map(|j| mechanism.expressions.orientations.get(i, j));
+        sources.push((format!("frame `{}`", frame.name), rotation.collect()));
+    }
+    let energies = &model.energy_expressions;
+    sources.push(("the kinetic energy".to_string(), vec![energies.kinetic]));
+    sources.push(("the potential energy".to_string(), vec![energies.potential]));
+    sources.push((
+        "the mass matrix".to_string(),
+        energies.mass_matrix.entries().to_vec(),
+    ));
+    sources
+}
+
+/// `a square root in point `front_contact`: sqrt(...) needs ... > 0`.
+fn describe(model: &Model, operation: &str, source: &str, base: ExprId, guard: Guard) -> String {
+    let mut text = model.store.display(base).to_string();
+    if text.len() > SHORT {
+        let cut = (0..=SHORT)
+            .rev()
+            .find(|&i| text.is_char_boundary(i))
+            .unwrap_or(0);
+        text.truncate(cut);
+        text.push_str("...");
+    }
+    let holds = match guard {
+        Guard::Positive => "must stay positive",
+        Guard::NonZero => "must not vanish",
+    };
+    format!("{operation} in {source}: {text} {holds}")
+}
