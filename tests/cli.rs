@@ -668,7 +668,8 @@ fn the_discrete_gradient_says_where_and_why_a_step_goes_non_finite() {
 }
 
 /// `--input NAME=EXPRESSION`: the model language's expressions of `t` and
-/// the parameters, recorded as applied; a name that is neither is refused.
+/// the parameters, recorded as applied; a name that is neither, nor a
+/// coordinate, is refused (feedback laws of the state: `tests/cli_stop.rs`).
 #[test]
 fn inputs_are_expressions_of_time_and_the_parameters() {
     for (law, expected) in [
@@ -703,7 +704,7 @@ fn inputs_are_expressions_of_time_and_the_parameters() {
         &racer("law", "lagrange", "rk4", &["--input", "u1=0.2*cos(2*s)"]).0,
         &[
             "--input u1=0.2*cos(2*s)",
-            "`s` is neither `t` nor a parameter",
+            "`s` is not `t`, a parameter or a coordinate",
         ],
     );
 }

@@ -92,6 +92,12 @@ impl<const S: usize> Observed<S> for Reduced<'_, S> {
         inputs.copy_from_slice(&self.u);
     }
 
+    fn configuration_velocity(&self, x: &[f64; S], q: &mut [f64], qdot: &mut [f64]) {
+        let (configuration, alpha) = x.split_at(self.model.sizes().n);
+        q.copy_from_slice(configuration);
+        qdot.copy_from_slice(&self.model.velocities(configuration, alpha).unwrap());
+    }
+
     fn constraint_residual(&self, x: &[f64; S]) -> f64 {
         let (q, alpha) = x.split_at(self.model.sizes().n);
         let qdot = self.model.velocities(q, alpha).unwrap();

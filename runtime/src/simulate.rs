@@ -1,11 +1,16 @@
 //! The simulation loop: a formulation closed by its controller (an
 //! [`Observed`] system), an integrator ([`Advance`]), a time span and step,
-//! and a [`Recorder`].
+//! an optional stop condition ([`StopCondition`]), and a [`Recorder`].
 //!
 //! ```text
 //! Simulation::new(Midpoint::default()).span(0.0, 30.0).step(0.01)
 //!     .run(&Reduced::new(&board, controller), x0, &mut CsvRecorder::create("trajectory.csv")?)
 //! ```
+//!
+//! With [`Simulation::stop_when`] the run ends cleanly where a condition
+//! `g(t, x) > 0` first holds, the crossing located within its step to
+//! [`CROSSING_TOLERANCE`] in `t` ([`stop`](self::stop)); the last row
+//! recorded is the state there and [`Summary::stopped`] says why.
 //!
 //! At every step the loop checks the state is finite, and the formulation's
 //! regularity measure ([`crate::monitor`]): the run stops with
@@ -31,6 +36,7 @@ mod ends;
 mod observed;
 mod outcome;
 mod run;
+pub mod stop;
 
 pub use advance::Advance;
 pub use ends::{NEAR_BOUNDARY, PREDICTED, REACHED};
@@ -39,24 +45,28 @@ pub use observed::{
     RUNTIME_CHART, Regularity, next_chart,
 };
 pub use outcome::{SimulationError, Summary};
+pub use stop::{CROSSING_TOLERANCE, Never, Stop, StopCondition};
 
 use crate::record::Recorder;
 use run::Run;
 
 /// A simulation's settings: the integrator, the time span, the step, how
-/// often to record, and the regularity threshold.
+/// often to record, the regularity threshold, and the stop condition `C`
+/// ([`Never`] unless [`Simulation::stop_when`] sets one).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Simulation<M> {
+pub struct Simulation<M, C = Never> {
     method: M,
     span: (f64, f64),
     step: f64,
     record_every: usize,
     singular_below: f64,
+    condition: C,
 }
 
 impl<M> Simulation<M> {
     /// A run with `method` over `[0, 10]` with steps of `0.01`, recording
-    /// every step, stopping where the regularity measure falls below `1e-6`.
+    /// every step, stopping where the regularity measure falls below `1e-6`,
+    /// without a stop condition.
     pub fn new(method: M) -> Self {
         Self {
             method,
@@ -64,6 +74,24 @@ impl<M> Simulation<M> {
             step: 0.01,
             record_every: 1,
             singular_below: 1e-6,
+            condition: Never,
+        }
+    }
+}
+
+impl<M, C> Simulation<M, C> {
+    /// End the run cleanly where `condition` first holds (see [`stop`]):
+    /// the crossing is located within its step, the last row recorded is
+    /// the state there, and [`Summary::stopped`] is the condition's
+    /// description.
+    pub fn stop_when<E>(self, condition: E) -> Simulation<M, E> {
+        Simulation {
+            method: self.method,
+            span: self.span,
+            step: self.step,
+            record_every: self.record_every,
+            singular_below: self.singular_below,
+            condition,
         }
     }
 
@@ -114,7 +142,8 @@ impl<M> Simulation<M> {
         Ok(steps as usize)
     }
 
-    /// Runs `system` from `x0`, recording into `recorder`.
+    /// Runs `system` from `x0` to the end of the span, or to where the stop
+    /// condition first holds, recording into `recorder`.
     ///
     /// # Errors
     /// See [`SimulationError`]; the rows recorded before it stay recorded.
@@ -127,6 +156,7 @@ impl<M> Simulation<M> {
     where
         S: Observed<D>,
         M: Advance<S, D>,
+        C: StopCondition<D>,
         R: Recorder,
     {
         self.run_with_progress(system, x0, recorder, |_| {})
@@ -147,6 +177,7 @@ impl<M> Simulation<M> {
     where
         S: Observed<D>,
         M: Advance<S, D>,
+        C: StopCondition<D>,
         R: Recorder,
     {
         let steps = self.steps()?;

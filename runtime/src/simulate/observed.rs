@@ -1,8 +1,8 @@
 //! What the simulation loop observes of a system ([`Observed`]): its
-//! columns, inputs, energy, constraint residual and regularity measure
-//! ([`Regularity`]), for each formulation closed by its controller; and how
-//! it keeps a state on the constraint manifold after a step
-//! ([`Observed::project`]).
+//! columns, inputs, configuration and velocity, energy, constraint residual
+//! and regularity measure ([`Regularity`]), for each formulation closed by
+//! its controller; and how it keeps a state on the constraint manifold
+//! after a step ([`Observed::project`]).
 
 use crate::control::{Interconnection, PortHamiltonianController};
 use crate::law::Controller;
@@ -37,6 +37,11 @@ pub trait Observed<const D: usize>: Energy<D> {
     /// The inputs applied at `(t, x)`, written into `inputs` (as many as
     /// [`Observed::input_names`]).
     fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]);
+    /// The configuration `q` and its velocity `qdot` at `x`, written into
+    /// `q` and `qdot` (as long as the model's coordinates): what a law of
+    /// the mechanics `u(t, q, qdot)` or a stop condition reads, whatever
+    /// the formulation's state.
+    fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]);
     /// The largest `|A(q) qdot|` at `x`.
     fn constraint_residual(&self, x: &[f64; D]) -> f64;
     /// The regularity measure at `x`.
@@ -242,6 +247,23 @@ where
     }
 }
 
+/// `q` and the velocity `qdot` of a reduced state `x = (q, alpha)`: the
+/// first block row of the reduced form, `qdot = g^-1 h^T alpha` (MATH.md
+/// section 3), which the inputs do not enter, in `chart`.
+fn reduced_configuration_velocity<M, const S: usize, const P: usize>(
+    model: &M,
+    chart: usize,
+    x: &[f64; S],
+    q: &mut [f64],
+    qdot: &mut [f64],
+) where
+    M: ReducedPortHamiltonian<S, P>,
+{
+    let n = q.len();
+    q.copy_from_slice(&x[..n]);
+    qdot.copy_from_slice(&model.chart_rhs(chart, x, &[0.0; P])[..n]);
+}
+
 fn owned(names: &[&str]) -> Vec<String> {
     names.iter().map(|name| name.to_string()).collect()
 }
@@ -268,7 +290,12 @@ where
     }
 
     fn inputs(&self, t: f64, x: &[f64; S], inputs: &mut [f64]) {
-        inputs.copy_from_slice(&self.controller().input(t, x));
+        let chart = Reduced::chart(self);
+        inputs.copy_from_slice(&self.controller().chart_input(chart, t, x));
+    }
+
+    fn configuration_velocity(&self, x: &[f64; S], q: &mut [f64], qdot: &mut [f64]) {
+        reduced_configuration_velocity(self.model(), Reduced::chart(self), x, q, qdot);
     }
 
     fn constraint_residual(&self, x: &[f64; S]) -> f64 {
@@ -327,6 +354,11 @@ where
 
     fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
         inputs.copy_from_slice(&self.controller().input(t, x));
+    }
+
+    fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
+        q.copy_from_slice(&x[..N]);
+        qdot.copy_from_slice(&x[N..]);
     }
 
     fn constraint_residual(&self, x: &[f64; D]) -> f64 {
@@ -391,8 +423,15 @@ where
         inputs.copy_from_slice(&self.controller().input(t, x));
     }
 
+    /// `q` and the reconstructed velocity.
+    fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
+        let (configuration, velocity) = Momentum::configuration_velocity(self, x);
+        q.copy_from_slice(&configuration);
+        qdot.copy_from_slice(&velocity);
+    }
+
     fn constraint_residual(&self, x: &[f64; D]) -> f64 {
-        let (q, qdot) = self.configuration_velocity(x);
+        let (q, qdot) = Momentum::configuration_velocity(self, x);
         largest_residual(self.model(), &q, &qdot)
     }
 
@@ -439,6 +478,11 @@ where
         inputs.copy_from_slice(&self.input(z));
     }
 
+    /// The plant's (in its chart 0).
+    fn configuration_velocity(&self, z: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
+        reduced_configuration_velocity(&self.plant, 0, &Self::split(z).0, q, qdot);
+    }
+
     fn constraint_residual(&self, z: &[f64; D]) -> f64 {
         self.plant.constraint_violation(&Self::split(z).0)
     }
@@ -466,6 +510,10 @@ where
 
     fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
         self.system().inputs(t, x, inputs);
+    }
+
+    fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
+        self.system().configuration_velocity(x, q, qdot);
     }
 
     fn constraint_residual(&self, x: &[f64; D]) -> f64 {

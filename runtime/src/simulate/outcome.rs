@@ -1,4 +1,5 @@
-//! How a run ends: the [`Summary`] of a finished run, or the
+//! How a run ends: the [`Summary`] of a finished run (at the end of its
+//! span, or where its stop condition came to hold), or the
 //! [`SimulationError`] that stopped it.
 
 use crate::integrate;
@@ -123,4 +124,8 @@ pub struct Summary<const D: usize> {
     /// How often the run changed the chart of D
     /// ([`super::Observed::change_chart`]).
     pub chart_switches: usize,
+    /// Why the run ended before the end of its span: the description of
+    /// the stop condition that came to hold at [`Summary::t`]
+    /// ([`super::Simulation::stop_when`]); `None` for a run to the end.
+    pub stopped: Option<String>,
 }

@@ -1,14 +1,18 @@
-//! A run in progress: the loop that advances, checks the regularity,
-//! updates the summary and records.
+//! A run in progress: the loop that advances, stops where the stop
+//! condition comes to hold, checks the regularity, updates the summary and
+//! records.
 
 use super::ends::Ends;
-use super::{Advance, Observed, Regularity, Simulation, SimulationError, Summary};
+use super::{
+    Advance, CROSSING_TOLERANCE, Observed, Regularity, Simulation, SimulationError, StopCondition,
+    Summary,
+};
 use crate::integrate;
 use crate::record::Recorder;
 
 /// A run in progress.
-pub(super) struct Run<'a, M, S, R, const D: usize> {
-    settings: &'a Simulation<M>,
+pub(super) struct Run<'a, M, C, S, R, const D: usize> {
+    settings: &'a Simulation<M, C>,
     system: &'a S,
     pub(super) recorder: &'a mut R,
     pub(super) t: f64,
@@ -21,14 +25,17 @@ pub(super) struct Run<'a, M, S, R, const D: usize> {
     pub(super) summary: Summary<D>,
 }
 
-impl<'a, M, S, R, const D: usize> Run<'a, M, S, R, D>
+impl<'a, M, C, S, R, const D: usize> Run<'a, M, C, S, R, D>
 where
     S: Observed<D>,
     M: Advance<S, D>,
+    C: StopCondition<D>,
     R: Recorder,
 {
+    /// The run at its first state, recorded; stopped already where the
+    /// stop condition holds there.
     pub(super) fn start(
-        settings: &'a Simulation<M>,
+        settings: &'a Simulation<M, C>,
         system: &'a S,
         x0: [f64; D],
         recorder: &'a mut R,
@@ -56,6 +63,7 @@ where
                 max_holonomic_residual: system.holonomic_residual(&x).unwrap_or(0.0),
                 min_regularity: regularity.value.abs(),
                 chart_switches: 0,
+                stopped: None,
             },
             recorder,
         };
@@ -65,9 +73,14 @@ where
         run.check(run.regularity)?;
         run.ends.at_start(t0, &x)?;
         run.record()?;
+        if run.holds(t0, &x) {
+            run.stop();
+        }
         Ok(run)
     }
 
+    /// The steps to the end of the span, or to where the stop condition
+    /// comes to hold.
     pub(super) fn advance_all(
         &mut self,
         steps: usize,
@@ -75,36 +88,86 @@ where
     ) -> Result<(), SimulationError> {
         let (t0, t_end) = self.settings.span;
         for i in 1..=steps {
+            if self.summary.stopped.is_some() {
+                break;
+            }
             let t_next = if i == steps {
                 t_end
             } else {
                 t0 + i as f64 * self.settings.step
             };
-            let (t, h) = (self.t, t_next - self.t);
-            let x = self
-                .settings
-                .method
-                .advance(self.system, t, &self.x, t_next)
-                .map_err(|error| self.ends.explain(t, &self.x, h, error.into()))?;
-            let x = self.system.project(x).map_err(|source| {
-                let projection = SimulationError::Projection { t: t_next, source };
-                self.ends.explain(t, &self.x, h, projection)
-            })?;
-            self.ends.reached(t, &self.x, &x)?;
-            let regularity = self.system.regularity(&x);
-            let previous = core::mem::replace(&mut self.x, x);
-            self.t = t_next;
+            let t = self.t;
+            let mut end = (t_next, self.step_to(t_next)?);
+            let stops = self.holds(end.0, &end.1);
+            if stops {
+                end = self.crossing(t_next, end.1)?;
+            }
+            let regularity = self.system.regularity(&end.1);
+            let previous = core::mem::replace(&mut self.x, end.1);
+            self.t = end.0;
             self.check(regularity)
-                .map_err(|singular| self.ends.explain(t, &previous, h, singular))?;
+                .map_err(|singular| self.ends.explain(t, &previous, end.0 - t, singular))?;
             self.regularity = regularity;
             self.change_chart();
             self.update_summary(i);
-            if i % self.settings.record_every == 0 || i == steps {
+            if stops || i % self.settings.record_every == 0 || i == steps {
                 self.record()?;
                 progress((self.t - t0) / (t_end - t0));
             }
+            if stops {
+                self.stop();
+            }
         }
         Ok(())
+    }
+
+    /// The state at `t_next` advanced from the current one and projected
+    /// onto the constraints ([`Observed::project`]), inside the model's
+    /// domain; a failure explained where its cause is known ([`Ends`]).
+    fn step_to(&self, t_next: f64) -> Result<[f64; D], SimulationError> {
+        let (t, h) = (self.t, t_next - self.t);
+        let x = self
+            .settings
+            .method
+            .advance(self.system, t, &self.x, t_next)
+            .map_err(|error| self.ends.explain(t, &self.x, h, error.into()))?;
+        let x = self.system.project(x).map_err(|source| {
+            let projection = SimulationError::Projection { t: t_next, source };
+            self.ends.explain(t, &self.x, h, projection)
+        })?;
+        self.ends.reached(t, &self.x, &x)?;
+        Ok(x)
+    }
+
+    /// Whether the stop condition holds at `(t, x)`.
+    fn holds(&self, t: f64, x: &[f64; D]) -> bool {
+        self.settings.condition.value(t, x) > 0.0
+    }
+
+    /// Where the stop condition comes to hold in the step from the current
+    /// state to `(t_next, x_next)`, where it holds: the step's length
+    /// bisected to [`CROSSING_TOLERANCE`], each trial state advanced from
+    /// the step's start; the first time found to hold and its state.
+    fn crossing(&self, t_next: f64, x_next: [f64; D]) -> Result<(f64, [f64; D]), SimulationError> {
+        let (mut below, mut above) = (0.0, t_next - self.t);
+        let mut found = (t_next, x_next);
+        while above - below > CROSSING_TOLERANCE {
+            let length = 0.5 * (below + above);
+            let t = self.t + length;
+            let x = self.step_to(t)?;
+            if self.holds(t, &x) {
+                (above, found) = (length, (t, x));
+            } else {
+                below = length;
+            }
+        }
+        Ok(found)
+    }
+
+    /// Ends the run where it is, saying why in the summary.
+    fn stop(&mut self) {
+        let description = self.settings.condition.description();
+        self.summary.stopped = Some(description.to_string());
     }
 
     /// [`SimulationError::Singular`] when `regularity` at the current state

@@ -10,8 +10,10 @@ use core::cell::Cell;
 /// [`OdeSystem`] in `x = (q, alpha)` with `u = controller(t, x)`, in the
 /// active chart of D ([`ReducedPortHamiltonian::charts`]; chart 0, or the
 /// best at the start with [`Reduced::initial_state`], changed by the
-/// simulation loop where it degenerates). A feedback reads the state of the
-/// active chart.
+/// simulation loop where it degenerates). The controller is asked for the
+/// input in the active chart ([`Controller::chart_input`]), so that a law
+/// of the configuration and velocity reads the velocity of the state in it
+/// ([`crate::law::ChartFeedback`]).
 #[derive(Clone, Debug)]
 pub struct Reduced<'a, M, F, const P: usize> {
     model: &'a M,
@@ -21,7 +23,8 @@ pub struct Reduced<'a, M, F, const P: usize> {
 
 impl<'a, M, F, const P: usize> Reduced<'a, M, F, P> {
     /// `model` driven by `controller`: a [`Constant`], a closure `u(t)`,
-    /// or a [`crate::law::Feedback`] `u(t, x)`.
+    /// a [`crate::law::Feedback`] `u(t, x)`, or a
+    /// [`crate::law::ChartFeedback`] `u(chart, t, x)`.
     pub fn new(model: &'a M, controller: F) -> Self {
         Self {
             model,
@@ -91,8 +94,9 @@ where
     F: Controller<S, P>,
 {
     fn rhs(&self, t: f64, x: &[f64; S]) -> [f64; S] {
-        self.model
-            .chart_rhs(self.chart(), x, &self.controller.input(t, x))
+        let chart = self.chart();
+        let u = self.controller.chart_input(chart, t, x);
+        self.model.chart_rhs(chart, x, &u)
     }
 }
 
@@ -104,12 +108,12 @@ where
     /// `df/dx + G(x) du/dx`: the model's exact Jacobian at fixed `u`, and
     /// the feedback's through the input matrix.
     fn jacobian(&self, t: f64, x: &[f64; S]) -> [[f64; S]; S] {
-        let u = self.controller.input(t, x);
         let chart = self.chart();
+        let u = self.controller.chart_input(chart, t, x);
         let mut jacobian = self.model.chart_rhs_jacobian(chart, x, &u);
         let (g, du) = (
             self.model.chart_input_matrix(chart, x),
-            self.controller.input_jacobian(t, x),
+            self.controller.chart_input_jacobian(chart, t, x),
         );
         for (row, g_row) in jacobian.iter_mut().zip(&g) {
             for (j, entry) in row.iter_mut().enumerate() {
@@ -145,9 +149,10 @@ where
 
     /// `G(x) u(t, x)`.
     fn forcing(&self, t: f64, x: &[f64; S]) -> [f64; S] {
+        let chart = self.chart();
         let (g, u) = (
-            self.model.chart_input_matrix(self.chart(), x),
-            self.controller.input(t, x),
+            self.model.chart_input_matrix(chart, x),
+            self.controller.chart_input(chart, t, x),
         );
         core::array::from_fn(|i| (0..P).map(|l| g[i][l] * u[l]).sum())
     }

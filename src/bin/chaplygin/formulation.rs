@@ -39,6 +39,9 @@ pub trait Formulation {
     }
     /// The inputs applied at `(t, x)`.
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]);
+    /// The configuration and its velocity at `x` (see
+    /// [`Observed::configuration_velocity`]).
+    fn configuration_velocity(&self, x: &[f64], q: &mut [f64], qdot: &mut [f64]);
     /// The largest `|A(q) qdot|`.
     fn constraint_residual(&self, x: &[f64]) -> f64;
     /// The regularity measure.
@@ -164,6 +167,10 @@ impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
         self.system.inputs(t, &array(x), inputs);
     }
 
+    fn configuration_velocity(&self, x: &[f64], q: &mut [f64], qdot: &mut [f64]) {
+        self.system.configuration_velocity(&array(x), q, qdot);
+    }
+
     fn constraint_residual(&self, x: &[f64]) -> f64 {
         self.system.constraint_residual(&array(x))
     }
@@ -261,6 +268,10 @@ impl<const D: usize> Observed<D> for Sized<'_, D> {
 
     fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
         self.0.inputs(t, x, inputs);
+    }
+
+    fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
+        self.0.configuration_velocity(x, q, qdot);
     }
 
     fn constraint_residual(&self, x: &[f64; D]) -> f64 {

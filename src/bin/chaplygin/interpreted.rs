@@ -1,7 +1,8 @@
 //! A `.model` file simulated without recompiling: its emitted functions run
 //! through the IR interpreter (`chaplygin_codegen::interpret`), in the
 //! reduced, the Lagrange-d'Alembert or (with a symmetry) the momentum
-//! formulation, with inputs given as functions of time.
+//! formulation, with inputs given as functions of the time, the
+//! configuration and its velocity ([`InputLaw`]).
 //!
 //! The interpreter evaluates the same straight-line programs the compiled
 //! code is emitted from, so a `.model` file and the compiled model agree to
@@ -31,8 +32,33 @@ fn split(x: &[f64], n: usize) -> (&[f64], &[f64]) {
     x.split_at(n)
 }
 
-/// The inputs `u(t)`, written into a slice of the model's inputs.
-pub type InputLaw = Box<dyn Fn(f64, &mut [f64])>;
+/// `u(t, q, qdot)`, written into a slice of the model's inputs.
+pub type Law = Box<dyn Fn(f64, &[f64], &[f64], &mut [f64])>;
+
+/// The inputs `u(t, q, qdot)` of the time, the configuration and its
+/// velocity, as each formulation reads them off its state
+/// ([`Formulation::configuration_velocity`]).
+pub struct InputLaw {
+    /// The law.
+    pub law: Law,
+    /// Whether the law reads `q` and `qdot`: else they are not computed
+    /// (and given empty).
+    pub reads_state: bool,
+}
+
+impl InputLaw {
+    /// The inputs at `t` and the state `x` of `formulation`, written into
+    /// `u`.
+    fn apply(&self, formulation: &dyn Formulation, n: usize, t: f64, x: &[f64], u: &mut [f64]) {
+        if self.reads_state {
+            let (mut q, mut qdot) = (vec![0.0; n], vec![0.0; n]);
+            formulation.configuration_velocity(x, &mut q, &mut qdot);
+            (self.law)(t, &q, &qdot, u);
+        } else {
+            (self.law)(t, &[], &[], u);
+        }
+    }
+}
 
 /// The momentum formulation cannot represent an initial velocity: the one
 /// reconstructed from its momenta differs.
@@ -54,7 +80,7 @@ pub struct Unrepresentable {
 pub struct InterpretedReduced {
     /// The model.
     pub model: InterpretedModel,
-    /// The inputs `u(t)`.
+    /// The inputs, read in the active chart.
     pub inputs: InputLaw,
     chart: Cell<usize>,
 }
@@ -94,14 +120,20 @@ impl InterpretedReduced {
 pub struct InterpretedDalembert {
     /// The model.
     pub model: InterpretedModel,
-    /// The inputs `u(t)`.
+    /// The inputs.
     pub inputs: InputLaw,
 }
 
-/// The inputs at `t`, as many as the model has.
-fn inputs_at(model: &InterpretedModel, law: &InputLaw, t: f64) -> Vec<f64> {
+/// The inputs `formulation` of `model` applies at `(t, x)`, as many as the
+/// model has.
+fn inputs_at(
+    formulation: &dyn Formulation,
+    model: &InterpretedModel,
+    t: f64,
+    x: &[f64],
+) -> Vec<f64> {
     let mut u = vec![0.0; model.sizes().p];
-    law(t, &mut u);
+    formulation.inputs(t, x, &mut u);
     u
 }
 
@@ -146,13 +178,26 @@ impl Formulation for InterpretedReduced {
     }
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
-        let u = inputs_at(&self.model, &self.inputs, t);
+        let u = inputs_at(self, &self.model, t, x);
         xdot.copy_from_slice(&self.call("reduced_rhs", &[x, &u]));
     }
 
+    /// The model's exact Jacobian at fixed `u`, and a feedback's
+    /// `B(x) du/dx`, `du/dx` by central differences, as the compiled
+    /// reduced form's.
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
-        let u = inputs_at(&self.model, &self.inputs, t);
+        let u = inputs_at(self, &self.model, t, x);
         jacobian.copy_from_slice(&self.call("reduced_rhs_jacobian", &[x, &u]));
+        if self.inputs.reads_state {
+            let b = self.call("input_matrix", &[x]);
+            let du = central_differences(x, u.len(), |x, u| self.inputs(t, x, u));
+            let (d, p) = (x.len(), u.len());
+            for (i, row) in jacobian.chunks_mut(d).enumerate() {
+                for (j, entry) in row.iter_mut().enumerate() {
+                    *entry += (0..p).map(|l| b[i * p + l] * du[l * d + j]).sum::<f64>();
+                }
+            }
+        }
     }
 
     fn energy(&self, x: &[f64]) -> f64 {
@@ -174,15 +219,22 @@ impl Formulation for InterpretedReduced {
         j.copy_from_slice(&self.call("structure_matrix", &[x]));
         gradient.copy_from_slice(&self.call("hamiltonian_gradient", &[x]));
         let b = self.call("input_matrix", &[x]);
-        let u = inputs_at(&self.model, &self.inputs, t);
+        let u = inputs_at(self, &self.model, t, x);
         let p = u.len();
         for (i, f) in forcing.iter_mut().enumerate() {
             *f = (0..p).map(|l| b[i * p + l] * u[l]).sum();
         }
     }
 
-    fn inputs(&self, t: f64, _x: &[f64], inputs: &mut [f64]) {
-        (self.inputs)(t, inputs);
+    fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
+        self.inputs.apply(self, self.model.sizes().n, t, x, inputs);
+    }
+
+    /// `qdot = velocities(q, alpha)` in the active chart.
+    fn configuration_velocity(&self, x: &[f64], q: &mut [f64], qdot: &mut [f64]) {
+        let (configuration, alpha) = split(x, self.model.sizes().n);
+        q.copy_from_slice(configuration);
+        qdot.copy_from_slice(&self.call("velocities", &[configuration, alpha]));
     }
 
     fn constraint_residual(&self, x: &[f64]) -> f64 {
@@ -268,7 +320,7 @@ impl Formulation for InterpretedDalembert {
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
         let (q, qdot) = split(x, self.model.sizes().n);
-        let u = inputs_at(&self.model, &self.inputs, t);
+        let u = inputs_at(self, &self.model, t, x);
         let (qddot, _) = evaluated(self.model.acceleration(q, qdot, &u));
         xdot[..q.len()].copy_from_slice(qdot);
         xdot[q.len()..].copy_from_slice(&qddot);
@@ -276,7 +328,7 @@ impl Formulation for InterpretedDalembert {
 
     /// Central differences, as the compiled Lagrange-d'Alembert adapter.
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
-        central_differences(self, t, x, jacobian);
+        jacobian.copy_from_slice(&rhs_jacobian(self, t, x));
     }
 
     fn energy(&self, x: &[f64]) -> f64 {
@@ -284,8 +336,14 @@ impl Formulation for InterpretedDalembert {
         evaluated(self.model.energy(q, qdot))
     }
 
-    fn inputs(&self, t: f64, _x: &[f64], inputs: &mut [f64]) {
-        (self.inputs)(t, inputs);
+    fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
+        self.inputs.apply(self, self.model.sizes().n, t, x, inputs);
+    }
+
+    fn configuration_velocity(&self, x: &[f64], q: &mut [f64], qdot: &mut [f64]) {
+        let (configuration, velocity) = split(x, self.model.sizes().n);
+        q.copy_from_slice(configuration);
+        qdot.copy_from_slice(velocity);
     }
 
     fn constraint_residual(&self, x: &[f64]) -> f64 {
@@ -320,23 +378,31 @@ impl Formulation for InterpretedDalembert {
     }
 }
 
-/// `df/dx` of `formulation` by central differences into `jacobian`
-/// (row-major), as the compiled adapters without a symbolic Jacobian.
-fn central_differences(formulation: &dyn Formulation, t: f64, x: &[f64], jacobian: &mut [f64]) {
+/// The derivative of `f: x -> y` (`m` values) at `x` by central
+/// differences, row-major (`m` rows), as the compiled adapters take the
+/// Jacobians they have no symbolic form of.
+fn central_differences(x: &[f64], m: usize, f: impl Fn(&[f64], &mut [f64])) -> Vec<f64> {
     let d = x.len();
-    let (mut plus, mut minus) = (vec![0.0; d], vec![0.0; d]);
+    let (mut plus, mut minus) = (vec![0.0; m], vec![0.0; m]);
     let mut shifted = x.to_vec();
+    let mut derivative = vec![0.0; m * d];
     for j in 0..d {
         let step = f64::EPSILON.cbrt() * x[j].abs().max(1.0);
         shifted[j] = x[j] + step;
-        formulation.rhs(t, &shifted, &mut plus);
+        f(&shifted, &mut plus);
         shifted[j] = x[j] - step;
-        formulation.rhs(t, &shifted, &mut minus);
+        f(&shifted, &mut minus);
         shifted[j] = x[j];
-        for i in 0..d {
-            jacobian[i * d + j] = (plus[i] - minus[i]) / (2.0 * step);
+        for i in 0..m {
+            derivative[i * d + j] = (plus[i] - minus[i]) / (2.0 * step);
         }
     }
+    derivative
+}
+
+/// `df/dx` of `formulation` by central differences.
+fn rhs_jacobian(formulation: &dyn Formulation, t: f64, x: &[f64]) -> Vec<f64> {
+    central_differences(x, x.len(), |x, xdot| formulation.rhs(t, x, xdot))
 }
 
 /// The momentum equation `x = (q, rdot, p)` of an interpreted model with a
@@ -352,7 +418,7 @@ pub struct InterpretedMomentum {
     pub model: InterpretedModel,
     /// The indices of the shape coordinates `r` in `q`.
     pub shape: Vec<usize>,
-    /// The inputs `u(t)`.
+    /// The inputs, read at the reconstructed velocity.
     pub inputs: InputLaw,
 }
 
@@ -373,7 +439,7 @@ impl InterpretedMomentum {
     /// degenerates at this shape.
     pub fn initial_state(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Unrepresentable> {
         let x = self.state(q, qdot);
-        let (_, reconstructed) = self.configuration_velocity(&x);
+        let (_, reconstructed) = self.reconstructed(&x);
         let scale = qdot.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
         let names = &self.model.names().coordinates;
         match reconstructed
@@ -406,7 +472,7 @@ impl InterpretedMomentum {
     }
 
     /// The configuration and its reconstructed velocity at `x`.
-    fn configuration_velocity<'x>(&self, x: &'x [f64]) -> (&'x [f64], Vec<f64>) {
+    fn reconstructed<'x>(&self, x: &'x [f64]) -> (&'x [f64], Vec<f64>) {
         let (q, rdot, p) = self.split(x);
         (q, evaluated(self.model.reconstructed_velocity(q, rdot, p)))
     }
@@ -436,7 +502,7 @@ impl Formulation for InterpretedMomentum {
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
         let (q, rdot, p) = self.split(x);
-        let u = inputs_at(&self.model, &self.inputs, t);
+        let u = inputs_at(self, &self.model, t, x);
         let r: Vec<f64> = self.shape.iter().map(|&i| q[i]).collect();
         let qdot = evaluated(self.model.reconstructed_velocity(q, rdot, p));
         let rddot = evaluated(self.model.shape_acceleration(&r, rdot, p, &u));
@@ -459,21 +525,27 @@ impl Formulation for InterpretedMomentum {
 
     /// Central differences, as the compiled momentum adapter.
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
-        central_differences(self, t, x, jacobian);
+        jacobian.copy_from_slice(&rhs_jacobian(self, t, x));
     }
 
     /// The energy at the reconstructed velocity.
     fn energy(&self, x: &[f64]) -> f64 {
-        let (q, qdot) = self.configuration_velocity(x);
+        let (q, qdot) = self.reconstructed(x);
         evaluated(self.model.energy(q, &qdot))
     }
 
-    fn inputs(&self, t: f64, _x: &[f64], inputs: &mut [f64]) {
-        (self.inputs)(t, inputs);
+    fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
+        self.inputs.apply(self, self.model.sizes().n, t, x, inputs);
+    }
+
+    fn configuration_velocity(&self, x: &[f64], q: &mut [f64], qdot: &mut [f64]) {
+        let (configuration, velocity) = self.reconstructed(x);
+        q.copy_from_slice(configuration);
+        qdot.copy_from_slice(&velocity);
     }
 
     fn constraint_residual(&self, x: &[f64]) -> f64 {
-        let (q, qdot) = self.configuration_velocity(x);
+        let (q, qdot) = self.reconstructed(x);
         residual(&self.model, q, &qdot)
     }
 
@@ -513,7 +585,7 @@ impl Formulation for InterpretedMomentum {
         if !keeps_configuration(&self.model) {
             return Ok(());
         }
-        let (q, qdot) = self.configuration_velocity(x);
+        let (q, qdot) = self.reconstructed(x);
         let (mut q, mut qdot) = (q.to_vec(), qdot);
         onto_surface(&self.model, &mut q, &mut qdot)?;
         x.copy_from_slice(&self.state(&q, &qdot));

@@ -3,18 +3,22 @@
 //! ```text
 //! chaplygin list
 //! chaplygin derive MODEL [--format text|latex|json]
-//! chaplygin simulate MODEL [--formulation reduced|lagrange] [--integrator rk4|dopri5|midpoint|discrete-gradient]
-//!                          [--controller none|energy] [--t-end T] [--dt H] [--out DIR]
-//!                          [--param NAME=VALUE]... [--initial NAME=VALUE]... [--input NAME=VALUE]...
+//! chaplygin simulate MODEL [--formulation reduced|lagrange|momentum] [--integrator rk4|dopri5|midpoint|discrete-gradient]
+//!                          [--controller none|energy] [--t-end T] [--dt H] [--stop-when COND] [--out DIR]
+//!                          [--param NAME=VALUE]... [--initial NAME=EXPRESSION]... [--input NAME=EXPRESSION]...
 //! chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
 //!                           [--param NAME=VALUE]... [--out DIR]
 //!                           [--canonical Q1,Q2,... --canonical-speed VAR[=V1,V2] [--canonical-gravity NAME]]
 //! ```
 //!
 //! MODEL is a built-in model's name or the path of a `.model` file, which
-//! runs through the IR interpreter without recompiling. Every failure of a
-//! run is one line on standard error and a non-zero exit status (a malformed
-//! command line gets clap's usage message).
+//! runs through the IR interpreter without recompiling. `--input` laws are
+//! expressions of `t`, the parameters, the coordinates and their velocities
+//! `dot(q)` (feedback laws such as `steer_torque=50*phi+50*dot(phi)`);
+//! `--stop-when` ends a run cleanly where one comparison of these and the
+//! inputs first holds (`'abs(phi) > 1'`). Every failure of a run is one line
+//! on standard error and a non-zero exit status (a malformed command line
+//! gets clap's usage message).
 
 mod catalog;
 mod derive;

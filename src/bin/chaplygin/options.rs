@@ -26,7 +26,8 @@ enum Action {
         #[arg(long, value_enum, default_value_t = derive::Format::Text)]
         format: derive::Format,
     },
-    /// Simulate a model, writing `trajectory.csv` and PNG plots.
+    /// Simulate a model to `--t-end`, or to where `--stop-when` holds,
+    /// writing `trajectory.csv` and PNG plots.
     Simulate(Box<SimulateArgs>),
     /// Linearize about a steady motion and print the eigenvalues; with
     /// `--sweep`, write `eigenvalues.csv` and `eigenvalues.png`; with

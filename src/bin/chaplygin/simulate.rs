@@ -1,8 +1,12 @@
 //! `chaplygin simulate`: a model (built-in and compiled, or a `.model` file
 //! interpreted), its parameters and initial state from the command line, a
-//! formulation closed by a controller, an integrator; the run writes
-//! `trajectory.csv` (INTERFACE.md section 3) and the plots, and prints the
-//! energy drift and the largest constraint residual. A model with
+//! formulation closed by a controller (the `--input` laws of the time and
+//! the state, read in every formulation at its configuration and velocity:
+//! `(q, qdot)`, `(q, velocities(q, alpha))` in the active chart, or
+//! `(q, reconstructed_velocity(q, rdot, p))`), an integrator and a
+//! `--stop-when` condition; the run writes `trajectory.csv` (INTERFACE.md
+//! section 3) and the plots, and prints the energy drift and the largest
+//! constraint residual, and where and why it stopped. A model with
 //! configuration constraints is kept on `f(q) = 0` after every step, in
 //! every formulation (`projection::Surface` for a compiled model, the
 //! interpreted adapters' own projection for a `.model` file).
@@ -11,10 +15,11 @@ mod arguments;
 mod inputs;
 mod output;
 mod start;
+mod stop;
 
 pub use arguments::SimulateArgs;
 pub(crate) use arguments::assignment;
-use inputs::InputSchedule;
+use inputs::{InputSchedule, Scope};
 pub(crate) use start::{set_model_parameters, set_parameters};
 
 use crate::catalog::{self, BuiltIn, Compiled, Motion, Source};
@@ -30,6 +35,7 @@ use crate::models::{
 };
 use arguments::{Controller, Formulation as Kind};
 use chaplygin::plot;
+use chaplygin::runtime::law::{ChartFeedback, Feedback};
 use chaplygin::runtime::linalg::Square;
 use chaplygin::runtime::linearize::Linearization;
 use chaplygin::runtime::nalgebra::{Const, DMatrix};
@@ -164,20 +170,28 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
     )?;
     let InterpretedDynamics(model) = dynamics;
     let input_names: Vec<&str> = names.inputs.iter().map(String::as_str).collect();
-    let schedule = InputSchedule::new(&input_names, &args.inputs, &parameters)?;
-    let inputs: InputLaw = Box::new(move |t, u| schedule.at(t, u));
+    let scope = Scope {
+        parameters: &parameters,
+        coordinates: &coordinates,
+        inputs: &input_names,
+    };
+    let schedule = InputSchedule::new(&input_names, &args.inputs, &parameters, &coordinates)?;
+    let inputs = InputLaw {
+        reads_state: schedule.reads_state(),
+        law: Box::new(move |t, q, qdot, u| schedule.at(t, q, qdot, u)),
+    };
     match args.formulation {
         Kind::Reduced => {
             let reduced = InterpretedReduced::new(model, inputs);
             let x0 = reduced.initial_state(&start.q, &start.qdot)?;
             let points = interpreted_points(&reduced.model);
-            execute(&reduced, &x0, args, (None, points))
+            execute(&reduced, &x0, (args, &scope), (None, points))
         }
         Kind::Lagrange => {
             let x0: Vec<f64> = start.q.iter().chain(&start.qdot).copied().collect();
             let dalembert = InterpretedDalembert { model, inputs };
             let points = interpreted_points(&dalembert.model);
-            execute(&dalembert, &x0, args, (None, points))
+            execute(&dalembert, &x0, (args, &scope), (None, points))
         }
         Kind::Momentum => {
             if model.shape().is_some() && model.arguments("momentum_rhs").is_none() {
@@ -193,7 +207,7 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
             })?;
             let x0 = momentum.initial_state(&start.q, &start.qdot)?;
             let points = interpreted_points(&momentum.model);
-            execute(&momentum, &x0, args, (None, points))
+            execute(&momentum, &x0, (args, &scope), (None, points))
         }
     }
 }
@@ -263,16 +277,20 @@ const NO_SYMMETRY: &str = "not derived: the model declares no symmetry, and the 
 /// How a compiled model with a symmetry runs in the momentum formulation
 /// ([`momentum`]), or why it has none.
 type MomentumRun<M> = Result<
-    for<'a> fn(&'a M, &Start, &InputSchedule, &SimulateArgs, Option<Points<'a>>) -> RunResult,
+    for<'a> fn(&'a M, &Start, &InputSchedule, Arguments<'_>, Option<Points<'a>>) -> RunResult,
     &'static str,
 >;
+
+/// The arguments of a run and the names its expressions may use.
+type Arguments<'a> = (&'a SimulateArgs, &'a Scope<'a>);
 
 /// What a run returns.
 type RunResult = Result<(), Box<dyn Error>>;
 
-/// A compiled model with constant inputs, in any formulation: `D = 2 N`
-/// states in `(q, qdot)`, `S = N + K` in `(q, alpha)`, the momentum
-/// formulation by `momentum`.
+/// A compiled model closed by its `--input` laws, in any formulation:
+/// `D = 2 N` states in `(q, qdot)`, `S = N + K` in `(q, alpha)` (the laws
+/// read the velocities of the active chart), the momentum formulation by
+/// `momentum`.
 fn compiled<
     M,
     const N: usize,
@@ -298,31 +316,41 @@ where
     let mut model = M::default();
     set_model_parameters(&mut model, &args.params, &mut [])?;
     let start = compiled_start::<M, N, C, K, P, S, H>(&model, built_in, args, &mut [])?;
-    let inputs = InputSchedule::new(M::INPUTS, &args.inputs, &parameter_values(model))?;
-    let u = |t: f64| inputs.array::<P>(t);
+    let parameters = parameter_values(model);
+    let inputs = InputSchedule::new(M::INPUTS, &args.inputs, &parameters, M::COORDINATES)?;
+    let scope = Scope {
+        parameters: &parameters,
+        coordinates: M::COORDINATES,
+        inputs: M::INPUTS,
+    };
     let points = compiled_points::<M, N>(&model, points);
     match args.formulation {
         Kind::Reduced => {
-            let system = Reduced::new(&model, u);
+            let law = ChartFeedback(|chart, t, x: &[f64; S]| {
+                let (q, alpha): ([f64; N], [f64; K]) = (array(&x[..N]), array(&x[N..]));
+                inputs.array::<P>(t, &q, &model.chart_velocities(chart, &q, &alpha))
+            });
+            let system = Reduced::new(&model, law);
             let x0: [f64; S] = system.initial_state(&array(&start.q), &array(&start.qdot));
             execute(
                 &Typed::<_, S>::structured(Surface::reduced(system)),
                 &x0,
-                args,
+                (args, &scope),
                 (None, points),
             )
         }
         Kind::Lagrange => {
+            let law = Feedback(|t, x: &[f64; D]| inputs.array::<P>(t, &x[..N], &x[N..]));
             let x0: Vec<f64> = start.q.iter().chain(&start.qdot).copied().collect();
             execute(
-                &Typed::<_, D>::plain(Surface::dalembert(Dalembert::new(&model, u))),
+                &Typed::<_, D>::plain(Surface::dalembert(Dalembert::new(&model, law))),
                 &x0,
-                args,
+                (args, &scope),
                 (None, points),
             )
         }
         Kind::Momentum => match momentum {
-            Ok(run) => run(&model, &start, &inputs, args, points),
+            Ok(run) => run(&model, &start, &inputs, (args, &scope), points),
             Err(reason) => Err(InputError::Unsupported(format!(
                 "`{}`: the momentum formulation is {reason}: use --formulation reduced or lagrange",
                 built_in.name
@@ -333,7 +361,8 @@ where
 }
 
 /// The momentum formulation of a compiled model with a symmetry: `R` shape
-/// coordinates, `MP` momenta and `DM = N + R + MP` states in `(q, rdot, p)`.
+/// coordinates, `MP` momenta and `DM = N + R + MP` states in `(q, rdot, p)`,
+/// the `--input` laws read at the reconstructed velocity.
 fn momentum<
     M,
     const N: usize,
@@ -347,7 +376,7 @@ fn momentum<
     model: &M,
     start: &Start,
     inputs: &InputSchedule,
-    args: &SimulateArgs,
+    arguments: Arguments<'_>,
     points: Option<Points<'_>>,
 ) -> RunResult
 where
@@ -358,10 +387,15 @@ where
         + Domain,
     Const<N>: Square,
 {
-    let system = Momentum::new(model, |t: f64| inputs.array::<P>(t));
+    let law = Feedback(|t, x: &[f64; DM]| {
+        let q: [f64; N] = array(&x[..N]);
+        let (rdot, p): ([f64; R], [f64; MP]) = (array(&x[N..N + R]), array(&x[N + R..]));
+        inputs.array::<P>(t, &q, &model.reconstructed_velocity(&q, &rdot, &p))
+    });
+    let system = Momentum::new(model, law);
     let x0: [f64; DM] = system.initial_state(&array(&start.q), &array(&start.qdot));
     let kept = Surface::momentum(system);
-    execute(&Typed::<_, DM>::plain(kept), &x0, args, (None, points))
+    execute(&Typed::<_, DM>::plain(kept), &x0, arguments, (None, points))
 }
 
 /// The snakeboard under the energy-based controller (MATH.md 3.2), from
@@ -416,6 +450,17 @@ fn energy_controlled(built_in: &BuiltIn, args: &SimulateArgs) -> Result<(), Box<
         .chain(&[xt, xw])
         .copied()
         .collect();
+    let mut parameters = parameter_values(board);
+    parameters.extend([
+        ("a", controller.a),
+        ("kt", controller.kt),
+        ("kw", controller.kw),
+    ]);
+    let scope = Scope {
+        parameters: &parameters,
+        coordinates: &Snakeboard::COORDINATES,
+        inputs: &Snakeboard::INPUTS,
+    };
     let closed_loop = ClosedLoop::new(board, controller);
     let figure4 = plot::Figure4 {
         alpha1: "group".into(),
@@ -428,7 +473,7 @@ fn energy_controlled(built_in: &BuiltIn, args: &SimulateArgs) -> Result<(), Box<
     execute(
         &Typed::<_, 10>::structured(closed_loop),
         &x0,
-        args,
+        (args, &scope),
         (Some(figure4), None),
     )
 }

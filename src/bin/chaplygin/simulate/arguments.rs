@@ -16,9 +16,9 @@ pub struct SimulateArgs {
     /// keeps the energy of any conservative model; midpoint otherwise].
     #[arg(long, value_enum)]
     pub integrator: Option<Integrator>,
-    /// The controller closing the inputs: `none` applies the constant
-    /// `--input` values (zero by default); `energy` is the energy-based
-    /// snakeboard controller of Duindam & Stramigioli (reduced form only).
+    /// The controller closing the inputs: `none` applies the `--input`
+    /// laws (zero by default); `energy` is the energy-based snakeboard
+    /// controller of Duindam & Stramigioli (reduced form only).
     #[arg(long, value_enum, default_value_t = Controller::None)]
     pub controller: Controller,
     /// The final time.
@@ -27,6 +27,13 @@ pub struct SimulateArgs {
     /// The step (for dopri5, the interval between recorded states).
     #[arg(long, default_value_t = 0.01)]
     pub dt: f64,
+    /// End the run where a condition first holds: one comparison
+    /// `EXPR < EXPR` or `EXPR > EXPR` of `t`, the coordinates, velocities
+    /// `dot(q)`, inputs and parameters (`'abs(phi) > 1'`). The crossing is
+    /// located within its step to 1e-9 in t; the trajectory's last row is
+    /// there and the summary ends with `stopped at t = T: COND`.
+    #[arg(long, value_name = "COND")]
+    pub stop_when: Option<String>,
     /// The directory for `trajectory.csv` and the plots.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
@@ -41,8 +48,11 @@ pub struct SimulateArgs {
     #[arg(long = "initial", value_parser = input_assignment)]
     pub initial: Vec<(String, String)>,
     /// An input `NAME=EXPRESSION` with `--controller none` (repeatable): a
-    /// constant (`u1=0.1`) or an expression of the time `t` and the model's
-    /// parameters in the model language (`u1=0.3*sin(2*t)`).
+    /// constant (`u1=0.1`) or an expression in the model language of the
+    /// time `t`, the model's parameters (`u1=0.3*sin(2*t)`) and the state,
+    /// coordinates and velocities `dot(q)`, for a feedback law
+    /// (`steer_torque=-10*phi-2*dot(phi)`); functions sin cos tan sqrt exp
+    /// ln abs.
     #[arg(long = "input", value_parser = input_assignment)]
     pub inputs: Vec<(String, String)>,
 }
@@ -75,7 +85,7 @@ pub enum Integrator {
 /// Which controller closes the inputs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Controller {
-    /// Constant inputs (`--input`, zero by default).
+    /// The `--input` laws (zero by default).
     None,
     /// The energy-based snakeboard controller (MATH.md 3.2).
     Energy,

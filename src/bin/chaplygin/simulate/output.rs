@@ -1,18 +1,21 @@
-//! A run and what it writes: the simulation with the chosen integrator,
-//! `trajectory.csv`, the plots, and the summary printed; for a model that
+//! A run and what it writes: the simulation with the chosen integrator
+//! and the `--stop-when` condition, `trajectory.csv`, the plots, and the
+//! summary printed; for a model that
 //! declares points (INTERFACE.md section 4), `tracks.csv`: `t` and each
 //! point's position in ground axes (`P.x`, `P.y`, `P.z`) at every recorded
 //! row, whose ground tracks (x, y) `path.png` draws with the path.
 
 use super::arguments::{Integrator, SimulateArgs};
+use super::inputs::Scope;
 use super::start::InputError;
+use super::stop::{Comparison, stop_condition};
 use crate::formulation::{Formulation, Sized, with_dimension};
 use chaplygin::plot;
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, Rk4};
 use chaplygin::runtime::linalg::Square;
 use chaplygin::runtime::nalgebra::Const;
 use chaplygin::runtime::record::{CsvRecorder, Recorder, Table};
-use chaplygin::runtime::simulate::{Advance, Simulation, Summary};
+use chaplygin::runtime::simulate::{Advance, Simulation, StopCondition, Summary};
 use std::error::Error;
 use std::io;
 use std::time::{Duration, Instant};
@@ -33,15 +36,21 @@ pub(super) struct Points<'a> {
 }
 
 /// Runs `formulation` from `x0` with the chosen integrator (or the
-/// formulation's default, see [`Integrator::chosen_or_default`]), writing
-/// `trajectory.csv`, with `points` `tracks.csv`, and the plots into
+/// formulation's default, see [`Integrator::chosen_or_default`]) until
+/// `--stop-when`, read against the names of `scope`, holds or the end,
+/// writing `trajectory.csv`, with `points` `tracks.csv`, and the plots into
 /// `--out`, and prints the summary.
 pub(super) fn execute(
     formulation: &dyn Formulation,
     x0: &[f64],
-    args: &SimulateArgs,
+    (args, scope): (&SimulateArgs, &Scope<'_>),
     (figure4, points): (Option<plot::Figure4>, Option<Points<'_>>),
 ) -> Result<(), Box<dyn Error>> {
+    let stop = args
+        .stop_when
+        .as_deref()
+        .map(|text| Comparison::parse(text, scope))
+        .transpose()?;
     let integrator = Integrator::chosen_or_default(args.integrator, formulation.is_structured());
     if integrator == Integrator::DiscreteGradient && !formulation.is_structured() {
         return Err(InputError::Unsupported(
@@ -52,7 +61,12 @@ pub(super) fn execute(
     std::fs::create_dir_all(&args.out)?;
     let csv_path = args.out.join("trajectory.csv");
     let mut recorder = Both(CsvRecorder::create(&csv_path)?, Table::new());
-    let outcome = with_dimension!(x0.len(), D => integrate::<D>(formulation, x0, (integrator, args), &mut recorder),
+    let run = Settings {
+        integrator,
+        args,
+        stop: stop.as_ref(),
+    };
+    let outcome = with_dimension!(x0.len(), D => integrate::<D>(formulation, x0, &run, &mut recorder),
         _ => Err(InputError::Unsupported(format!(
             "the state has {} entries; the command line runs up to {}",
             x0.len(),
@@ -159,6 +173,14 @@ fn ground_tracks(tracks: &Table) -> Vec<(plot::Track, usize)> {
         .collect()
 }
 
+/// What a run is made with: the integrator, the arguments and the stop
+/// condition.
+struct Settings<'a> {
+    integrator: Integrator,
+    args: &'a SimulateArgs,
+    stop: Option<&'a Comparison>,
+}
+
 /// What a finished run prints.
 struct Report {
     integrator: Integrator,
@@ -168,6 +190,7 @@ struct Report {
     max_constraint_residual: f64,
     max_holonomic_residual: Option<f64>,
     chart_switches: usize,
+    stopped: Option<String>,
     seconds: f64,
 }
 
@@ -186,7 +209,11 @@ impl std::fmt::Display for Report {
         if let Some(residual) = self.max_holonomic_residual {
             write!(f, "; max holonomic residual {residual:.3e}")?;
         }
-        write!(f, "; chart switches {}", self.chart_switches)
+        write!(f, "; chart switches {}", self.chart_switches)?;
+        if let Some(condition) = &self.stopped {
+            write!(f, "; stopped at t = {}: {condition}", self.t)?;
+        }
+        Ok(())
     }
 }
 
@@ -194,7 +221,7 @@ impl std::fmt::Display for Report {
 fn integrate<const D: usize>(
     formulation: &dyn Formulation,
     x0: &[f64],
-    (integrator, args): (Integrator, &SimulateArgs),
+    settings: &Settings<'_>,
     recorder: &mut impl Recorder,
 ) -> Result<Report, Box<dyn Error>>
 where
@@ -202,38 +229,45 @@ where
 {
     let system = Sized::<D>(formulation);
     let x0: [f64; D] = core::array::from_fn(|i| x0[i]);
+    let stop = settings
+        .stop
+        .map(|comparison| stop_condition::<D>(formulation, comparison));
+    let run = (settings.args, stop);
     let started = Instant::now();
-    let summary = match integrator {
-        Integrator::Rk4 => run_with(Rk4, &system, x0, args, recorder),
-        Integrator::Midpoint => run_with(Midpoint::default(), &system, x0, args, recorder),
+    let summary = match settings.integrator {
+        Integrator::Rk4 => run_with(Rk4, &system, x0, run, recorder),
+        Integrator::Midpoint => run_with(Midpoint::default(), &system, x0, run, recorder),
         Integrator::DiscreteGradient => {
-            run_with(DiscreteGradient::default(), &system, x0, args, recorder)
+            run_with(DiscreteGradient::default(), &system, x0, run, recorder)
         }
-        Integrator::Dopri5 => run_with(DormandPrince::default(), &system, x0, args, recorder),
+        Integrator::Dopri5 => run_with(DormandPrince::default(), &system, x0, run, recorder),
     }?;
     let holonomic = formulation.holonomic_residual(x0.as_slice()).is_some();
     Ok(Report {
-        integrator,
+        integrator: settings.integrator,
         steps: summary.steps,
         t: summary.t,
         energy_drift: summary.energy_drift,
         max_constraint_residual: summary.max_constraint_residual,
         max_holonomic_residual: holonomic.then_some(summary.max_holonomic_residual),
         chart_switches: summary.chart_switches,
+        stopped: summary.stopped,
         seconds: started.elapsed().as_secs_f64(),
     })
 }
 
-/// One integrator's run, with a progress bar once it has taken a second.
-fn run_with<M, const D: usize>(
+/// One integrator's run until `stop` holds, with a progress bar once it
+/// has taken a second.
+fn run_with<M, C, const D: usize>(
     method: M,
     system: &Sized<'_, D>,
     x0: [f64; D],
-    args: &SimulateArgs,
+    (args, stop): (&SimulateArgs, C),
     recorder: &mut impl Recorder,
 ) -> Result<Summary<D>, Box<dyn Error>>
 where
     M: for<'a> Advance<Sized<'a, D>, D>,
+    C: StopCondition<D>,
 {
     let bar = indicatif::ProgressBar::with_draw_target(
         Some(1000),
@@ -249,6 +283,7 @@ where
     let summary = Simulation::new(method)
         .span(0.0, args.t_end)
         .step(args.dt)
+        .stop_when(stop)
         .run_with_progress(system, x0, recorder, progress);
     bar.finish_and_clear();
     Ok(summary?)

@@ -1,0 +1,167 @@
+//! `--stop-when COND` (INTERFACE.md section 3): a run ends cleanly where
+//! COND first holds. COND is one comparison `EXPR < EXPR` or `EXPR > EXPR`
+//! of `t`, the coordinates, their velocities `dot(q)`, the inputs and the
+//! parameters ([`super::inputs`]: `'abs(phi) > 1'`). It holds where its
+//! larger side minus its smaller side is positive: the event function whose
+//! crossing the simulation loop locates within its step
+//! (`chaplygin::runtime::simulate::stop`), read at a state through the
+//! formulation's configuration, velocity and inputs.
+
+use super::inputs::{Expression, Point, Scope};
+use crate::formulation::Formulation;
+use chaplygin::runtime::simulate::Stop;
+use std::cell::RefCell;
+
+/// Why a `--stop-when` condition cannot be used.
+#[derive(Debug, thiserror::Error)]
+pub enum StopError {
+    /// Neither `<` nor `>`.
+    #[error("--stop-when {text}: no comparison `<` or `>`")]
+    NoComparison {
+        /// The condition as given.
+        text: String,
+    },
+    /// More than one `<` or `>`.
+    #[error("--stop-when {text}: {count} comparisons; a condition is one `<` or `>`")]
+    Comparisons {
+        /// The condition as given.
+        text: String,
+        /// How many.
+        count: usize,
+    },
+    /// A side is not an expression of the names in scope.
+    #[error("--stop-when {text}: {reason}")]
+    Side {
+        /// The condition as given.
+        text: String,
+        /// What is wrong with the side.
+        reason: String,
+    },
+}
+
+/// A `--stop-when` condition: `larger > smaller`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Comparison {
+    text: String,
+    larger: Expression,
+    smaller: Expression,
+    coordinates: usize,
+}
+
+impl Comparison {
+    /// `text` split at its one `<` or `>`, each side resolved against
+    /// `scope`.
+    ///
+    /// # Errors
+    /// No comparison, several, or a side that is not an expression of the
+    /// names in `scope`.
+    pub fn parse(text: &str, scope: &Scope<'_>) -> Result<Self, StopError> {
+        let at: Vec<usize> = text.match_indices(['<', '>']).map(|(i, _)| i).collect();
+        let i = match at.as_slice() {
+            [i] => *i,
+            [] => {
+                return Err(StopError::NoComparison { text: text.into() });
+            }
+            several => {
+                return Err(StopError::Comparisons {
+                    text: text.into(),
+                    count: several.len(),
+                });
+            }
+        };
+        let side = |side: &str| {
+            Expression::parse(side.trim(), scope).map_err(|reason| StopError::Side {
+                text: text.into(),
+                reason,
+            })
+        };
+        let (left, right) = (side(&text[..i])?, side(&text[i + 1..])?);
+        let (larger, smaller) = if text[i..].starts_with('>') {
+            (left, right)
+        } else {
+            (right, left)
+        };
+        Ok(Self {
+            text: text.into(),
+            larger,
+            smaller,
+            coordinates: scope.coordinates.len(),
+        })
+    }
+
+    /// The condition as given.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The event function at `point`: positive where the condition holds.
+    fn value(&self, point: &Point<'_>) -> f64 {
+        self.larger.at(point) - self.smaller.at(point)
+    }
+}
+
+/// The simulation loop's stop condition of `comparison` on the states of
+/// `formulation` (of dimension `D`): its event function at the time, the
+/// configuration and velocity
+/// ([`Formulation::configuration_velocity`]) and the inputs of a state.
+pub fn stop_condition<'a, const D: usize>(
+    formulation: &'a dyn Formulation,
+    comparison: &'a Comparison,
+) -> Stop<&'a str, impl Fn(f64, &[f64; D]) -> f64 + 'a> {
+    let inputs = RefCell::new(vec![0.0; formulation.input_names().len()]);
+    let n = comparison.coordinates;
+    Stop::new(comparison.text(), move |t, x: &[f64; D]| {
+        let (mut q, mut qdot) = ([0.0; D], [0.0; D]);
+        formulation.configuration_velocity(x, &mut q[..n], &mut qdot[..n]);
+        let mut u = inputs.borrow_mut();
+        formulation.inputs(t, x, &mut u);
+        comparison.value(&Point {
+            t,
+            q: &q[..n],
+            qdot: &qdot[..n],
+            u: &u,
+        })
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Comparison, Point, Scope, StopError};
+
+    const SCOPE: Scope<'static> = Scope {
+        parameters: &[("k", 2.0)],
+        coordinates: &["x", "phi"],
+        inputs: &["u1"],
+    };
+
+    fn value(text: &str, point: &Point<'_>) -> f64 {
+        Comparison::parse(text, &SCOPE).unwrap().value(point)
+    }
+
+    #[test]
+    fn a_comparison_is_the_difference_of_its_sides() {
+        let point = Point {
+            t: 0.5,
+            q: &[3.0, -1.5],
+            qdot: &[0.25, 4.0],
+            u: &[7.0],
+        };
+        assert_eq!(value("abs(phi) > 1", &point), 0.5);
+        assert_eq!(value("abs(phi) < 1", &point), -0.5);
+        assert_eq!(value("k*t + dot(phi) < u1 - x", &point), 7.0 - 3.0 - 5.0);
+    }
+
+    #[test]
+    fn one_comparison_of_known_names() {
+        let error = |text: &str| Comparison::parse(text, &SCOPE).unwrap_err();
+        assert!(matches!(error("phi"), StopError::NoComparison { .. }));
+        assert!(matches!(
+            error("0 < phi < 1"),
+            StopError::Comparisons { count: 2, .. }
+        ));
+        assert_eq!(
+            error("psi > 1").to_string(),
+            "--stop-when psi > 1: `psi` is not `t`, a parameter, a coordinate or an input"
+        );
+    }
+}
