@@ -176,3 +176,92 @@ fn a_run_starts_in_the_chart_that_fits_best() {
         .expect("runs from the singular heading of chart 0");
     assert!(summary.energy_drift < 1e-12, "{summary:?}");
 }
+
+/// The run-time chart solved for `dot(y)` ([`chaplygin::runtime::partition`],
+/// numbered after the derived charts by its dependent speeds) is chart 0
+/// computed numerically from `A(q)`, `g(q)`, the accelerations and the
+/// energy: at random states its flow and energy equal the reduced form's
+/// exact items (derived in normal form) to round-off, its energy gradient
+/// to the central differences' 1e-8, and its structure matrix is
+/// skew-symmetric with `Jbar dH/dx` the flow.
+#[test]
+fn a_run_time_chart_is_a_derived_chart_computed_numerically() {
+    use chaplygin::runtime::partition::index_of;
+    let sleigh = SleighNoSymmetry::default();
+    let runtime = sleigh.charts() + index_of(3, &[1]);
+    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut uniform = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for _ in 0..50 {
+        let x: [f64; 5] = core::array::from_fn(|_| 1.4 * uniform());
+        let close = |a: f64, b: f64, tolerance: f64| (a - b).abs() <= tolerance * b.abs().max(1.0);
+        let (flow, exact) = (
+            sleigh.chart_rhs(runtime, &x, &[]),
+            sleigh.reduced_rhs(&x, &[]),
+        );
+        assert!(
+            (0..5).all(|i| close(flow[i], exact[i], 1e-12)),
+            "{flow:?} vs {exact:?}"
+        );
+        assert!(close(
+            sleigh.chart_hamiltonian(runtime, &x),
+            sleigh.hamiltonian(&x),
+            1e-14
+        ));
+        let gradient = sleigh.chart_hamiltonian_gradient(runtime, &x);
+        let exact = sleigh.hamiltonian_gradient(&x);
+        assert!(
+            (0..5).all(|i| close(gradient[i], exact[i], 1e-8)),
+            "{gradient:?} vs {exact:?}"
+        );
+        let j = sleigh.chart_structure_matrix(runtime, &x);
+        assert!((0..5).all(|a| (0..5).all(|b| j[a][b] == -j[b][a])));
+        for (i, row) in j.iter().enumerate() {
+            let applied: f64 = row.iter().zip(&gradient).map(|(a, b)| a * b).sum();
+            assert!(
+                close(applied, flow[i], 1e-8),
+                "row {i}: {applied} vs {}",
+                flow[i]
+            );
+        }
+        assert!(sleigh.chart_fit(runtime, &x) > 0.0);
+    }
+}
+
+/// The discrete gradient in a run-time chart keeps the energy to
+/// round-off, and follows the Lagrange-d'Alembert reference to its second
+/// order (the distance falls about 4 times when the step halves), for the
+/// 0.4 s the sleigh turns before this chart's singular heading `pi/2`.
+#[test]
+fn the_discrete_gradient_keeps_the_energy_in_a_run_time_chart() {
+    use chaplygin::runtime::integrate::FixedStep;
+    use chaplygin::runtime::partition::index_of;
+    use chaplygin::runtime::system::Energy;
+    let sleigh = SleighNoSymmetry::default();
+    let runtime = sleigh.charts() + index_of(3, &[1]);
+    let reference = reference();
+    let distance = |h: f64| {
+        let system = Reduced::constant(&sleigh, []);
+        let x0: [f64; 5] = system.initial_state(&Q0, &QDOT0);
+        let mut x = sleigh.change_chart(system.chart(), runtime, &x0);
+        system.set_chart(runtime);
+        let energy = system.energy(&x);
+        let steps = (0.4 / h).round() as usize;
+        for i in 0..steps {
+            x = DiscreteGradient::default()
+                .step(&system, i as f64 * h, &x, h)
+                .expect("a step");
+            assert!((system.energy(&x) - energy).abs() < 1e-13 * energy);
+        }
+        // the reference is recorded every 0.01 s: its row at t = 0.4
+        (0..3)
+            .map(|i| (x[i] - reference[40][i]).abs())
+            .fold(0.0, f64::max)
+    };
+    let (coarse, fine) = (distance(0.01), distance(0.005));
+    assert!(coarse < 1e-3 && fine < coarse / 3.5, "{coarse:e}, {fine:e}");
+}

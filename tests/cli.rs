@@ -310,12 +310,14 @@ fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
         &output,
         &[
             "singular configuration at t = 0.",
+            "the constraint rows front, back are dependent",
             "phi = 1.57",
             "det[A; V^T]",
         ],
     );
     let (header, rows) = read_csv(&out.join("trajectory.csv"));
-    assert_eq!(header.len(), 1 + 8 + 2 + 2);
+    // t, the state, the inputs, energy, constraint_residual and chart
+    assert_eq!(header.len(), 1 + 8 + 2 + 2 + 1);
     assert!(rows.len() > 10 && rows.iter().flatten().all(|v| v.is_finite()));
     assert!(rows.last().unwrap()[0] < 0.6);
 }
@@ -426,7 +428,8 @@ fn the_momentum_formulation_of_a_model_file_follows_the_compiled_model() {
     );
 }
 
-/// The roller racer (`tests/models/roller_racer.model`).
+/// The roller racer (`tests/models/roller_racer.model`; its runs in
+/// every formulation: `tests/cli_racers.rs`).
 const RACER: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/tests/models/roller_racer.model"
@@ -462,209 +465,6 @@ fn racer(
 fn column_of(table: &Csv, name: &str) -> Vec<f64> {
     let index = table.0.iter().position(|c| c == name).expect(name);
     table.1.iter().map(|row| row[index]).collect()
-}
-
-/// The energy gained over the run minus the joint torque's work
-/// `sum u1(t + h/2) (phi(t + h) - phi(t))`, `u1` the law of time given.
-fn energy_minus_work(table: &Csv, u1: impl Fn(f64) -> f64) -> f64 {
-    let (t, phi, energy) = (
-        column_of(table, "t"),
-        column_of(table, "phi"),
-        column_of(table, "energy"),
-    );
-    let work: f64 = (1..t.len())
-        .map(|i| u1((t[i - 1] + t[i]) / 2.0) * (phi[i] - phi[i - 1]))
-        .sum();
-    energy[energy.len() - 1] - energy[0] - work
-}
-
-/// The racer's gait: the joint driven by `u1 = 0.2 cos(2 t)` from a straight
-/// roll (`phi = 0`, `dot(x) = 1`, `dot(phi) = 0`) swings `phi` by +-0.06 and keeps the
-/// heading within 0.4 rad. Every integrator of the reduced and the
-/// Lagrange-d'Alembert forms runs the 40 s with the constraints at
-/// round-off (the Lagrange form projected after each step), and the energy
-/// gained is the torque's work: to round-off with the discrete gradient
-/// (its discrete power balance is exact), to 1e-6 with the midpoint rule.
-/// The momentum form starts at `phi = 0` too: its derived basis
-/// `e(phi)` is free of the factor `sin(phi)` the elimination leaves.
-#[test]
-fn the_roller_racer_gait_runs_40_s_on_its_constraints_with_its_energy_balanced() {
-    let gait = [
-        "--input",
-        "u1=0.2*cos(2*t)",
-        "--initial",
-        "dot(x)=1",
-        "--initial",
-        "dot(phi)=0",
-        "--t-end",
-        "40",
-    ];
-    let u1 = |t: f64| 0.2 * (2.0 * t).cos();
-    for (formulation, integrator) in [
-        ("reduced", "rk4"),
-        ("reduced", "dopri5"),
-        ("reduced", "midpoint"),
-        ("reduced", "discrete-gradient"),
-        ("lagrange", "rk4"),
-        ("lagrange", "dopri5"),
-        ("lagrange", "midpoint"),
-        ("momentum", "rk4"),
-        ("momentum", "dopri5"),
-    ] {
-        let (output, table) = racer("gait", formulation, integrator, &gait);
-        let context = format!("{formulation} {integrator}");
-        assert!(output.status.success(), "{context}: {}", stderr(&output));
-        assert!(stdout(&output).contains(&format!("steps of {integrator}")));
-        let table = table.unwrap();
-        assert_eq!(*column_of(&table, "t").last().unwrap(), 40.0, "{context}");
-        let residual = column_of(&table, "constraint_residual");
-        assert!(residual.iter().all(|r| *r < 1e-9), "{context}");
-        let balance = energy_minus_work(&table, u1).abs();
-        match integrator {
-            "discrete-gradient" => assert!(balance < 1e-12, "{context}: {balance:e}"),
-            "midpoint" => assert!(balance < 1e-6, "{context}: {balance:e}"),
-            _ => {}
-        }
-    }
-}
-
-/// The racer circling under a constant torque `u1 = 0.02` from `phi = 0.3`
-/// (`phi` stays in (0.3, 1.4)): the Lagrange-d'Alembert, the momentum and the reduced
-/// forms run 40 s with every integrator, on the constraints, the energy
-/// gained equal to `u1` times the joint's turn (to 1e-6 with the
-/// higher-order integrators, to round-off with the discrete gradient; the
-/// midpoint rule's O(h^2) energy error of this non-quadratic energy is of
-/// order 1e-4 here). The reduced form's basis of D is chosen in the body
-/// frame, so its heading turns through `+-pi/2` again and again.
-#[test]
-fn the_roller_racer_circling_runs_40_s_in_every_form() {
-    let circling = [
-        "--input",
-        "u1=0.02",
-        "--initial",
-        "phi=0.3",
-        "--initial",
-        "dot(x)=1",
-        // the front axle's no-slip row: dot(theta) = sin(phi) / (d1 cos(phi) - d2)
-        "--initial",
-        "dot(theta)=1.6633259780808927",
-        "--t-end",
-        "40",
-    ];
-    let runs = ["lagrange", "momentum"]
-        .into_iter()
-        .flat_map(|formulation| ["rk4", "dopri5", "midpoint"].map(|i| (formulation, i)))
-        .chain(["rk4", "dopri5", "midpoint", "discrete-gradient"].map(|i| ("reduced", i)));
-    for (formulation, integrator) in runs {
-        let (output, table) = racer("circling", formulation, integrator, &circling);
-        let context = format!("{formulation} {integrator}");
-        assert!(output.status.success(), "{context}: {}", stderr(&output));
-        let table = table.unwrap();
-        assert_eq!(*column_of(&table, "t").last().unwrap(), 40.0, "{context}");
-        let residual = column_of(&table, "constraint_residual");
-        assert!(residual.iter().all(|r| *r < 1e-9), "{context}");
-        let balance = energy_minus_work(&table, |_| 0.02).abs();
-        match integrator {
-            "discrete-gradient" => assert!(balance < 1e-12, "{context}: {balance:e}"),
-            "midpoint" => {}
-            _ => assert!(balance < 1e-6, "{context}: {balance:e}"),
-        }
-        let headings = column_of(&table, "theta");
-        let crossings = headings
-            .windows(2)
-            .filter(|w| {
-                ((w[0] / std::f64::consts::PI - 0.5).floor())
-                    != ((w[1] / std::f64::consts::PI - 0.5).floor())
-            })
-            .count();
-        assert!(crossings >= 4, "{context}: {crossings} crossings of +-pi/2");
-    }
-}
-
-/// The racer's joint swinging through `phi = 0`: the derived momentum basis
-/// has its factor `sin(phi)` divided out, so the momentum form's
-/// reconstruction stays regular there (its measure, which would change sign
-/// at a degenerate basis and stop the run, keeps away from zero), and the
-/// run ends where the Lagrange-d'Alembert form's does.
-#[test]
-fn the_racer_swings_through_phi_0_in_the_momentum_form() {
-    let swing = [
-        "--initial",
-        "phi=0.1",
-        "--initial",
-        "dot(x)=1",
-        "--initial",
-        "dot(phi)=-0.5",
-        "--t-end",
-        "2",
-    ];
-    let (output, momentum) = racer("swing", "momentum", "rk4", &swing);
-    assert!(output.status.success(), "{}", stderr(&output));
-    let (output, lagrange) = racer("swing", "lagrange", "rk4", &swing);
-    assert!(output.status.success(), "{}", stderr(&output));
-    let (momentum, lagrange) = (momentum.unwrap(), lagrange.unwrap());
-    let phi = column_of(&momentum, "phi");
-    assert!(phi.iter().any(|v| *v < -0.01), "the joint swings through 0");
-    for name in ["x", "y", "theta", "phi"] {
-        let (a, b) = (column_of(&momentum, name), column_of(&lagrange, name));
-        let (a, b) = (a.last().unwrap(), b.last().unwrap());
-        assert!((a - b).abs() < 1e-6, "{name}: {a} vs {b}");
-    }
-}
-
-/// The sleigh with a declared momentum basis `(g X)^T` for the coordinate
-/// basis `X = [(1, tan(theta), 0), (0, 0, 1)]`, degenerate at heading +-pi/2.
-const TAN_SLEIGH: &str = "
-pub struct TanSleigh {
-    coordinates: [x, y, theta],
-    parameters: [m = 1.0, inertia = 0.1, a = 0.5],
-    kinetic_energy: m/2*((dot(x) - a*sin(theta)*dot(theta))^2
-        + (dot(y) + a*cos(theta)*dot(theta))^2) + inertia/2*dot(theta)^2,
-    constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
-    momentum_basis: [
-        forward = [m, m*tan(theta), 0],
-        turning = [-m*a*sin(theta), m*a*cos(theta), inertia + m*a^2],
-    ],
-}
-";
-
-/// The discrete gradient's step across a heading singularity (a declared
-/// momentum basis with `tan(theta)`) used to end in a NaN state: Newton's
-/// update, measured by `f64::max`, dropped the NaN entries of an iterate
-/// where the energy is not finite and passed for converged. Now the step
-/// stops at the non-finite residual, saying where (t, h, the finite state
-/// before the step) and why.
-#[test]
-fn the_discrete_gradient_says_where_and_why_a_step_goes_non_finite() {
-    let out = scratch("nan");
-    std::fs::create_dir_all(&out).unwrap();
-    let model = out.join("tan_sleigh.model");
-    std::fs::write(&model, TAN_SLEIGH).unwrap();
-    let output = chaplygin(&[
-        "simulate",
-        model.to_str().unwrap(),
-        "--formulation",
-        "reduced",
-        "--integrator",
-        "discrete-gradient",
-        "--initial",
-        "theta=1.2",
-        "--initial",
-        "dot(theta)=1",
-        "--initial",
-        "dot(x)=0.1",
-        "--out",
-        out.join("run").to_str().unwrap(),
-    ]);
-    assert_one_line_error(
-        &output,
-        &[
-            "non-finite residual of the implicit step's equation at a Newton iterate",
-            "in the step from t = 0.4 (h = 0.01",
-            "state [0.0243",
-        ],
-    );
-    assert!(!stderr(&output).contains("NaN"), "{}", stderr(&output));
 }
 
 /// `--input NAME=EXPRESSION`: the model language's expressions of `t` and

@@ -147,6 +147,9 @@ pub struct InterpretedModel {
     /// The guards of the model's own expressions, in the order of the
     /// `domain` function's values.
     guards: Vec<(String, Guard)>,
+    /// The momentum basis's divisors that depend on the parameters alone,
+    /// described, in the order of the `basis_divisors` function's values.
+    basis_divisors: Vec<String>,
     report: String,
     /// With a symmetry, the coordinates the group acts on.
     group: Option<Vec<usize>>,
@@ -201,6 +204,7 @@ impl InterpretedModel {
                 .into_iter()
                 .map(|guarded| (guarded.description, guarded.guard))
                 .collect(),
+            basis_divisors: emitted.basis_divisors,
             report: emitted.report,
             group: model
                 .symmetry
@@ -289,8 +293,28 @@ impl InterpretedModel {
             .iter()
             .zip(values)
             .map(|((description, guard), value)| GuardedValue {
-                description: description.clone(),
+                description: description.clone().into(),
                 guard: *guard,
+                value,
+            })
+            .collect())
+    }
+
+    /// The momentum basis's divisors that depend on the parameters alone
+    /// (the generated `BASIS_DIVISORS` and `basis_divisors`), as guards
+    /// that must not vanish; none without a momentum equation.
+    pub fn basis_divisors(&self) -> Result<Vec<GuardedValue>, CallError> {
+        if self.basis_divisors.is_empty() {
+            return Ok(Vec::new());
+        }
+        let values = self.call("basis_divisors", &[])?;
+        Ok(self
+            .basis_divisors
+            .iter()
+            .zip(values)
+            .map(|(description, value)| GuardedValue {
+                description: description.clone().into(),
+                guard: Guard::NonZero,
                 value,
             })
             .collect())

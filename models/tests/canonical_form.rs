@@ -17,7 +17,7 @@ use chaplygin::runtime::linearize::{
     linearize,
 };
 use chaplygin::runtime::nalgebra::{DMatrix, Matrix2, Vector2};
-use chaplygin::runtime::system::{LagrangeDalembert, ModelNames};
+use chaplygin::runtime::system::{Domain, LagrangeDalembert, ModelNames};
 use support::benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
 
 /// Roll `phi`, steer `delta` and the rear wheel's rotation `theta_r`, with
@@ -107,6 +107,9 @@ impl Linearization<3, 0, 2> for CanonicalBicycle {
         )
     }
 }
+
+/// No guarded expressions: the defaults.
+impl Domain for CanonicalBicycle {}
 
 impl ModelNames for CanonicalBicycle {
     const COORDINATES: &'static [&'static str] = &["phi", "delta", "theta_r"];

@@ -16,6 +16,7 @@
 mod common;
 
 use chaplygin::runtime::system::MomentumEquations;
+use chaplygin_codegen::derive::constraints::ChartFit;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 use chaplygin_models::differential_drive::DifferentialDrive;
 use chaplygin_models::rolling_disk::RollingDisk;
@@ -459,7 +460,13 @@ fn wrong_lengths_and_names_are_structured_errors() {
 fn the_second_charts_items_are_interpreted_as_compiled() {
     use chaplygin::runtime::system::ReducedPortHamiltonian;
     let interpreted = InterpretedModel::from_source(&source("Towed")).expect("compiles");
-    assert_eq!(interpreted.charts(), [vec![1], vec![0]]);
+    assert_eq!(
+        interpreted.charts(),
+        [
+            ChartFit::Coordinates(vec![1]),
+            ChartFit::Coordinates(vec![0])
+        ]
+    );
     let towed = Towed::default();
     let mut random = Random(0x5eed_c4a7);
     let mut agreement = Agreement::default();

@@ -8,7 +8,7 @@ use chaplygin::runtime::linearize::{
     AccelerationJacobian, Compiled, GroupFactor, LinearSystem, Linearization, OperatingPoint,
     PointError, SteadyError, linearize,
 };
-use chaplygin::runtime::system::{Holonomic, LagrangeDalembert, ModelNames};
+use chaplygin::runtime::system::{Domain, Holonomic, LagrangeDalembert, ModelNames};
 use chaplygin_models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
     snakeboard::Snakeboard,
@@ -332,6 +332,9 @@ impl Holonomic<3, 2> for Pendulum {
         self.constraint_rows(q)
     }
 }
+
+/// No guarded expressions: the defaults.
+impl Domain for Pendulum {}
 
 impl ModelNames for Pendulum {
     const COORDINATES: &'static [&'static str] = &["theta", "x", "y"];

@@ -13,7 +13,7 @@ use chaplygin::runtime::linalg::Square;
 use chaplygin::runtime::nalgebra::Const;
 use chaplygin::runtime::simulate::Observed;
 use chaplygin::runtime::system::{
-    Dalembert, Energy, LagrangeDalembert, ModelNames, Momenta, Momentum, MomentumEquations,
+    Dalembert, Domain, Energy, LagrangeDalembert, ModelNames, Momenta, Momentum, MomentumEquations,
 };
 use chaplygin_models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
@@ -66,7 +66,11 @@ fn compare<
     alpha0: &[f64; S],
 ) -> Comparison
 where
-    M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P> + Momenta<N, S> + ModelNames,
+    M: MomentumEquations<N, R, K, P>
+        + LagrangeDalembert<N, C, P>
+        + Momenta<N, S>
+        + ModelNames
+        + Domain,
     U: Controller<D, P> + Controller<TWO_N, P> + Copy,
     Const<N>: Square,
 {

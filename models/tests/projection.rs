@@ -9,7 +9,9 @@ use chaplygin::runtime::integrate::{Midpoint, Rk4};
 use chaplygin::runtime::projection::{self, ProjectionError, Surface};
 use chaplygin::runtime::record::Table;
 use chaplygin::runtime::simulate::{Simulation, SimulationError};
-use chaplygin::runtime::system::{Constant, Dalembert, Holonomic, LagrangeDalembert, ModelNames};
+use chaplygin::runtime::system::{
+    Constant, Dalembert, Domain, Holonomic, LagrangeDalembert, ModelNames,
+};
 use chaplygin_models::sleigh::Sleigh;
 use chaplygin_models::snakeboard::Snakeboard;
 
@@ -71,6 +73,9 @@ impl Holonomic<2, 1> for Pendulum {
         [[2.0 * q[0], 2.0 * q[1]]]
     }
 }
+
+/// No guarded expressions: the defaults.
+impl Domain for Pendulum {}
 
 impl ModelNames for Pendulum {
     const COORDINATES: &'static [&'static str] = &["x", "y"];

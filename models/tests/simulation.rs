@@ -131,9 +131,14 @@ fn heading_into_phi_pi_2_stops_with_a_structured_error_not_nan() {
     let message = error.to_string();
     println!("{message}");
     assert!(message.contains("phi = 1.57"), "{message}");
-    // the rows before the error are kept, complete and finite
+    assert!(
+        message.contains("the constraint rows front, back are dependent"),
+        "{message}"
+    );
+    // the rows before the error are kept, complete and finite: t, the
+    // state, the inputs, energy, constraint_residual and chart
     let (header, rows) = parse(&csv.into_inner().unwrap());
-    assert_eq!(header.len(), 1 + 8 + 2 + 2);
+    assert_eq!(header.len(), 1 + 8 + 2 + 2 + 1);
     assert!(rows.last().unwrap()[0] < *t);
     assert!(rows.len() >= 80);
     assert!(rows.iter().flatten().all(|v| v.is_finite()));

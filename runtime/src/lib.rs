@@ -9,7 +9,8 @@
 //! - [`integrate`]: integrators over any [`system::OdeSystem`] (RK4,
 //!   Dormand-Prince 5(4), the implicit midpoint rule, Gonzalez's discrete
 //!   gradient);
-//! - [`monitor`]: where a formulation degenerates; [`projection`]: a state
+//! - [`monitor`]: where a formulation degenerates; [`partition`]: charts of
+//!   D chosen at run time (coordinate partitioning); [`projection`]: a state
 //!   moved back onto the constraint manifold after a step;
 //! - [`simulate`]: the simulation loop (integrator, span, step, regularity
 //!   checks, recording) and [`record`]: where its rows go (memory, CSV);

@@ -200,6 +200,40 @@ where
     }
 }
 
+/// How well a declared momentum basis fits, in `[0, 1]`: the smaller of
+/// its regularity `|det[A; V^T]|` over its rows' norms, which vanishes
+/// where the basis loses rank, and of each basis vector's kinetic energy
+/// `T(q, V e_j)` relative to its value at the default configuration (or
+/// its inverse, whichever is smaller), which vanishes at a pole of the
+/// basis, where the normalized measure does not see it (a momentum row
+/// `m (1, tan(theta), 0)`: the velocity of a unit momentum shrinks like
+/// `cos(theta)` while its direction stays regular). `energies` and
+/// `defaults` are those energies now and at the defaults; a default that is
+/// not positive and finite is left out.
+///
+/// ```
+/// use chaplygin_runtime::monitor::declared_basis_fit;
+/// assert_eq!(declared_basis_fit(0.8, &[0.5, 2.0], &[1.0, 1.0]), 0.5);
+/// assert_eq!(declared_basis_fit(0.3, &[1.0, 1.0], &[1.0, 1.0]), 0.3);
+/// let theta: f64 = 1.55; // near the pole of tan(theta)
+/// let fit = declared_basis_fit(0.9, &[theta.cos().powi(2), 1.0], &[1.0, 1.0]);
+/// assert!(fit < 1e-3);
+/// ```
+pub fn declared_basis_fit(regularity: f64, energies: &[f64], defaults: &[f64]) -> f64 {
+    energies
+        .iter()
+        .zip(defaults)
+        .filter(|(_, default)| default.is_finite() && **default > 0.0)
+        .map(|(energy, default)| {
+            let ratio = energy / default;
+            match ratio.is_finite() && ratio > 0.0 {
+                true => ratio.min(1.0 / ratio),
+                false => 0.0,
+            }
+        })
+        .fold(regularity.abs(), f64::min)
+}
+
 /// Rows whose Gram ratio ([`gram_ratio`]) is below this are named as
 /// dependent where a run stops ([`dependent_rows`]).
 pub const DEPENDENT_ROWS: f64 = 1e-4;
@@ -279,7 +313,7 @@ where
             return false;
         };
         let pivot = m[(row, column)];
-        if !(pivot.abs() > VANISHING_PIVOT * scale) {
+        if pivot.abs() <= VANISHING_PIVOT * scale || pivot.is_nan() {
             return false;
         }
         for below in row + 1..rows {

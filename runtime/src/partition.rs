@@ -207,14 +207,14 @@ pub fn index_of(n: usize, dependent: &[usize]) -> usize {
 pub fn dependent_of(n: usize, mut index: usize, dependent: &mut [usize]) -> bool {
     let c = dependent.len();
     let mut next = 0;
-    for i in 0..c {
+    for (i, slot) in dependent.iter_mut().enumerate() {
         loop {
             if next >= n {
                 return false;
             }
             let with_next = binomial(n - next - 1, c - i - 1);
             if index < with_next {
-                dependent[i] = next;
+                *slot = next;
                 next += 1;
                 break;
             }

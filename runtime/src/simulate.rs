@@ -12,34 +12,40 @@
 //! [`CROSSING_TOLERANCE`] in `t` ([`stop`](self::stop)); the last row
 //! recorded is the state there and [`Summary::stopped`] says why.
 //!
-//! At every step the loop checks the state is finite, and the formulation's
-//! regularity measure ([`crate::monitor`]): the run stops with
-//! [`SimulationError::Singular`], naming the time, the configuration and the
-//! quantity, when the measure falls below the threshold or changes sign
-//! within a step (a signed measure crossing zero between two steps). The
+//! At every step the loop checks the state is finite, the model's own
+//! expressions inside their domain, and the formulation's regularity
+//! measure ([`crate::monitor`]): the run stops with
+//! [`SimulationError::Singular`], naming the time, the configuration, the
+//! quantity and the constraint rows that turned dependent, when the measure
+//! falls below the threshold or changes sign within a step (a signed
+//! measure crossing zero between two steps), and with
+//! [`SimulationError::Undefined`] where a guarded expression of the model
+//! fails; a failed step is searched for what it crossed ([`ends`]). The
 //! rows recorded until then stay recorded and the recorder is finished
 //! (flushed) on every exit.
 //!
-//! A formulation with several charts (the reduced form of a model whose
-//! basis of D degenerates where the constraint rows do not) is then asked
-//! to change its chart ([`Observed::change_chart`]): where the active
-//! chart's pivot ratio is below [`CHART_SWITCH`] times the best one's, the
-//! state moves into the best chart through its velocity and the run goes
-//! on there (the re-selection of independent coordinates of Wehage & Haug,
+//! A formulation with several charts (the reduced form of a model with
+//! constraints: the charts derived at build time and the run-time charts
+//! of [`crate::partition`]) is then asked to change its chart
+//! ([`Observed::change_chart`], [`next_chart`]): where the active chart's
+//! pivot ratio is below [`CHART_SWITCH`] times the best one's, the state
+//! moves into the best chart through its velocity and the run goes on
+//! there, in the run-time chart of partial pivoting where no derived chart
+//! fits (the re-selection of independent coordinates of Wehage & Haug,
 //! "Generalized coordinate partitioning for dimension reduction in analysis
-//! of constrained dynamic systems", J. Mech. Design 104, 1982). The
-//! switches are counted in [`Summary::chart_switches`] and each row records
-//! its chart.
+//! of constrained dynamic systems", J. Mech. Design 104, 1982); a step that
+//! fails for a reason not named is taken again in that chart. The switches
+//! are counted in [`Summary::chart_switches`] and each row records its
+//! chart.
 
 mod advance;
-mod ends;
+pub mod ends;
 mod observed;
 mod outcome;
 mod run;
 pub mod stop;
 
 pub use advance::Advance;
-pub use ends::{NEAR_BOUNDARY, PREDICTED, REACHED};
 pub use observed::{
     CHART_SWITCH, GENERATED_CHART, GuardedValue, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED,
     RUNTIME_CHART, Regularity, next_chart,

@@ -231,6 +231,12 @@ pub trait MomentumEquations<const N: usize, const R: usize, const K: usize, cons
     /// body velocity moved to the coordinates' frame on the group
     /// (`R(theta) (v1, v2)` and `omega` for `se2`), `rdot` on the shape.
     fn reconstructed_velocity(&self, q: &[f64; N], rdot: &[f64; R], p: &[f64; K]) -> [f64; N];
+    /// The divisors of the momentum basis `e(r)` that depend on the
+    /// parameters alone, described: where one is zero the basis degenerates
+    /// at every configuration. None by default.
+    const BASIS_DIVISORS: &'static [&'static str] = &[];
+    /// The values of [`MomentumEquations::BASIS_DIVISORS`], in order.
+    fn basis_divisors(&self, _values: &mut [f64]) {}
     /// The shape coordinates `r` of `q`.
     fn shape(q: &[f64; N]) -> [f64; R] {
         Self::SHAPE.map(|i| q[i])

@@ -80,6 +80,9 @@ pub(crate) struct Emitted {
     pub(crate) chart_functions: Vec<Vec<Function>>,
     /// The guards of the model's own expressions ([`crate::model::domain`]).
     pub(crate) guards: Vec<crate::model::domain::Guarded>,
+    /// The momentum basis's divisors that depend on the parameters alone,
+    /// described (`BASIS_DIVISORS`).
+    pub(crate) basis_divisors: Vec<String>,
     /// How every chart derived at build time fits, chart 0 (the model's
     /// own basis) first; only chart 0 without other charts.
     pub(crate) charts: Vec<ChartFit>,
@@ -142,7 +145,14 @@ pub(crate) fn emit(
         reduced_report.line(line);
     }
     let mut sections = vec![domain::report(&guards), solve_report, reduced_report];
+    let mut basis_divisors = Vec::new();
+    let mut divisors_constant = TokenStream::new();
     if let Some(momentum) = &derivation.momentum {
+        basis_divisors = momentum::divisors(model, momentum)
+            .into_iter()
+            .map(|(description, _)| description)
+            .collect();
+        divisors_constant = momentum::divisors_constant(model, momentum);
         let (reduction, reduction_report) = momentum::functions(model, momentum, &functions)?;
         functions.extend(reduction);
         sections.push(reduction_report);
@@ -168,6 +178,7 @@ pub(crate) fn emit(
             #report_item
             #chart_constant
             #domain_constant
+            #divisors_constant
             #(#items)*
         }
         #implementations
@@ -176,6 +187,7 @@ pub(crate) fn emit(
     Ok(Emitted {
         items,
         guards,
+        basis_divisors,
         functions,
         chart_functions,
         charts,

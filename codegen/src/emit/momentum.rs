@@ -31,7 +31,7 @@ use crate::derive::momentum::Momentum;
 use crate::diagnostic::Diagnostics;
 use crate::ir::OperationCount;
 use crate::model::Model;
-use crate::sym::{Matrix, RationalFunction};
+use crate::sym::{ExprId, Matrix, RationalFunction};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
@@ -76,8 +76,69 @@ pub(super) fn functions(
         )?,
         reconstruction,
         shape,
+        basis_divisors(model, momentum)?,
     ];
     Ok((functions, section))
+}
+
+/// The divisors of the momentum basis `e(r)` that depend on the parameters
+/// alone (the factors of its entries' denominators free of the shape), each
+/// described: where one is zero the basis degenerates at every
+/// configuration (the roller racer's, normalized by its value `d1 - d2` at
+/// the defaults, at `d1 = d2`).
+pub(super) fn divisors(model: &mut Model, momentum: &Momentum) -> Vec<(String, ExprId)> {
+    let parameters = model.parameter_symbols();
+    let mut divisors: Vec<(String, ExprId)> = Vec::new();
+    for entry in momentum.basis.entries() {
+        for (factor, _) in entry.denominator() {
+            let divisor = RationalFunction::from_poly(factor.clone());
+            let expression = model.store.expression_of(&divisor);
+            let constant = model
+                .store
+                .free_symbols(expression)
+                .iter()
+                .all(|symbol| parameters.contains(symbol));
+            if constant && !divisors.iter().any(|(_, e)| *e == expression) {
+                let text = model.store.display(expression).to_string();
+                let description =
+                    format!("a division in the momentum basis e(r): {text} must not vanish");
+                divisors.push((description, expression));
+            }
+        }
+    }
+    divisors
+}
+
+/// `basis_divisors()`: the values of [`divisors`].
+fn basis_divisors(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let outputs: Vec<ExprId> = divisors(model, momentum)
+        .into_iter()
+        .map(|(_, expression)| expression)
+        .collect();
+    let signature = Signature {
+        name: "basis_divisors",
+        doc: "The divisors of the momentum basis `e(r)` that depend on the parameters \
+              alone, in the order of `BASIS_DIVISORS`: where one is zero the basis \
+              degenerates at every configuration."
+            .to_string(),
+        arguments: Vec::new(),
+        returns: vector_type(outputs.len()),
+    };
+    item(model, signature, &outputs, vector_literal)
+}
+
+/// `BASIS_DIVISORS`: the description of each of [`divisors`].
+pub(super) fn divisors_constant(model: &mut Model, momentum: &Momentum) -> TokenStream {
+    let descriptions: Vec<String> = divisors(model, momentum)
+        .into_iter()
+        .map(|(description, _)| description)
+        .collect();
+    let count = descriptions.len();
+    quote! {
+        /// The divisors of the momentum basis `e(r)` that depend on the
+        /// parameters alone, described (`basis_divisors` gives their values).
+        pub const BASIS_DIVISORS: [&'static ::core::primitive::str; #count] = [#(#descriptions),*];
+    }
 }
 
 /// The report's momentum section for a model with a symmetry whose

@@ -89,6 +89,7 @@ fn with_chart(model: &Model) -> TokenStream {
 /// The expression of a chart's fit at the configuration `q` (and state `x`).
 fn fit_of(model: &Model, fit: &ChartFit) -> TokenStream {
     let name = &model.name;
+    let f64 = f64_type();
     let (n, c, p) = (model.n(), model.c(), model.p());
     let monitor = quote!(::chaplygin::runtime::monitor);
     let columns = |dependent: &[usize]| {
@@ -115,10 +116,21 @@ fn fit_of(model: &Model, fit: &ChartFit) -> TokenStream {
             }}
         }
         ChartFit::Declared => {
-            let s = n + model.k();
-            quote! {
-                <#name as ::chaplygin::runtime::system::ReducedPortHamiltonian<#s, #p>>::regularity(self, x).abs()
-            }
+            let (s, k) = (n + model.k(), model.k());
+            quote! {{
+                let energies = |q: &[#f64; #n]| -> [#f64; #k] {
+                    let rest = #name::energy(self, q, &[0.0; #n]);
+                    ::core::array::from_fn(|j| {
+                        let unit: [#f64; #k] = ::core::array::from_fn(|i| #f64::from(i == j));
+                        #name::energy(self, q, &#name::velocities(self, q, &unit)) - rest
+                    })
+                };
+                #monitor::declared_basis_fit(
+                    <#name as ::chaplygin::runtime::system::ReducedPortHamiltonian<#s, #p>>::regularity(self, x),
+                    &energies(&q),
+                    &energies(&[0.0; #n]),
+                )
+            }}
         }
     }
 }
@@ -500,6 +512,10 @@ fn momentum_equations(model: &Model, symmetry: &Symmetry) -> TokenStream {
     quote! {
         impl #system::MomentumEquations<#n, #nr, #mp, #p> for #name {
             const SHAPE: [::core::primitive::usize; #nr] = [#(#shape_indices),*];
+            const BASIS_DIVISORS: &'static [&'static ::core::primitive::str] = &#name::BASIS_DIVISORS;
+            fn basis_divisors(&self, values: &mut [#f64]) {
+                values.copy_from_slice(&#name::basis_divisors(self));
+            }
             fn momentum(&self, q: &[#f64; #n], qdot: &[#f64; #n]) -> [#f64; #mp] {
                 #name::momentum(self, q, qdot)
             }

@@ -5,7 +5,9 @@
 
 use super::{CallError, InterpretedModel};
 use crate::derive::constraints::ChartFit;
-use chaplygin_runtime::monitor::{hadamard_ratio, in_body_frame, signed_pivot_ratio};
+use chaplygin_runtime::monitor::{
+    declared_basis_fit, hadamard_ratio, in_body_frame, signed_pivot_ratio,
+};
 use chaplygin_runtime::nalgebra::{DMatrix, DVector, Dyn};
 use chaplygin_runtime::partition::{self, Constrained, RuntimeChart};
 
@@ -69,7 +71,11 @@ impl InterpretedModel {
                 in_body_frame(&mut rows, &self.symmetry, q);
                 signed_pivot_ratio(&rows, dependent).abs()
             }
-            Some(ChartFit::Declared) => self.chart_regularity(chart, q)?.abs(),
+            Some(ChartFit::Declared) => declared_basis_fit(
+                self.chart_regularity(chart, q)?,
+                &self.unit_energies(q)?,
+                &self.unit_energies(&vec![0.0; q.len()])?,
+            ),
             None => self
                 .runtime_chart(chart)
                 .map_or(0.0, |runtime| runtime.fit(q)),
@@ -86,6 +92,20 @@ impl InterpretedModel {
             rows.extend(self.call_in_chart(chart, "velocities", &[q, &unit])?);
         }
         Ok(hadamard_ratio(DMatrix::from_row_slice(n, n, &rows)))
+    }
+
+    /// The kinetic energy of each unit momentum of chart 0 at `q`
+    /// (`chaplygin_runtime::monitor::declared_basis_fit`).
+    fn unit_energies(&self, q: &[f64]) -> Result<Vec<f64>, CallError> {
+        let (n, k) = (self.sizes.n, self.sizes.k);
+        let rest = InterpretedModel::energy(self, q, &vec![0.0; n])?;
+        (0..k)
+            .map(|j| {
+                let unit: Vec<f64> = (0..k).map(|i| f64::from(u8::from(i == j))).collect();
+                let qdot = self.call("velocities", &[q, &unit])?;
+                Ok(InterpretedModel::energy(self, q, &qdot)? - rest)
+            })
+            .collect()
     }
 
     /// The run-time chart partial pivoting picks at `q`; `None` without

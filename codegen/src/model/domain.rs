@@ -136,3 +136,63 @@ fn describe(model: &Model, operation: &str, source: &str, base: ExprId, guard: G
     };
     format!("{operation} in {source}: {text} {holds}")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::guards;
+    use crate::model::check;
+    use crate::syntax::parse_str;
+    use chaplygin_runtime::system::Guard;
+
+    /// A bead on a wire `y = ln(x)`, pushed by a spring of rest length
+    /// `sqrt(x)`, with a damper-free constraint dividing by `1 + x^2` and a
+    /// heading through `tan(theta)`: one guard of each kind, named after the
+    /// first expression each appears in.
+    const GUARDED: &str = "
+        pub struct Guarded {
+            coordinates: [x, y, theta],
+            parameters: [m = 1.0, k = 2.0],
+            kinetic_energy: m/2*(dot(x)^2 + dot(y)^2 + dot(theta)^2),
+            potential_energy: k/2*(y - sqrt(x))^2 + ln(x),
+            constraints: [
+                wire = dot(y) - dot(x)/(1 + x^2) - tan(theta)*dot(theta),
+            ],
+        }
+    ";
+
+    #[test]
+    fn each_square_root_logarithm_division_and_tangent_is_guarded() {
+        let mut model = check(&parse_str(GUARDED).expect("parses")).expect("checks");
+        let guards = guards(&mut model).expect("guards");
+        let found = |needle: &str, guard: Guard| {
+            guards
+                .iter()
+                .filter(|g| g.description.contains(needle) && g.guard == guard)
+                .count()
+        };
+        let listed: Vec<&str> = guards.iter().map(|g| g.description.as_str()).collect();
+        assert_eq!(
+            found(
+                "in constraint `wire`: 1 + x^2 must not vanish",
+                Guard::NonZero
+            ),
+            1,
+            "{listed:?}"
+        );
+        assert_eq!(
+            found(
+                "in constraint `wire`: cos(theta) must not vanish",
+                Guard::NonZero
+            ),
+            1,
+            "{listed:?}"
+        );
+        // sqrt(x) and ln(x) guard the same expression, once
+        assert_eq!(
+            found(": x must stay positive", Guard::Positive),
+            1,
+            "{listed:?}"
+        );
+        assert_eq!(guards.len(), 3, "{listed:?}");
+    }
+}

@@ -33,7 +33,7 @@ pub const NEAR_BOUNDARY: f64 = 1e-2;
 pub const REACHED: f64 = 1e-5;
 
 /// What a run knows of where its model ends.
-pub(super) struct Ends<'a, S, const D: usize> {
+pub(crate) struct Ends<'a, S, const D: usize> {
     system: &'a S,
     /// The guarded expressions at the start.
     start: Vec<GuardedValue>,
@@ -53,7 +53,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
     /// the initial state `x0` (time `t0`).
     pub(super) fn at_start(&self, t0: f64, x0: &[f64; D]) -> Result<(), SimulationError> {
         match self.start.iter().find(|guard| guard.fails()) {
-            Some(failed) => Err(self.undefined(t0, failed.clone(), x0)),
+            Some(failed) => Err(self.undefined(t0, true, failed.clone(), x0)),
             None => Ok(()),
         }
     }
@@ -71,7 +71,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
             .failed(x, next)
             .or_else(|| self.smallest_below(next, REACHED))
         {
-            Some(guard) => Err(self.undefined(t, guard, next)),
+            Some(guard) => Err(self.undefined(t, false, guard, next)),
             None => Ok(()),
         }
     }
@@ -96,7 +96,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
         };
         let undefined = predicted.iter().find_map(|next| {
             self.failed(x, next)
-                .map(|guard| self.undefined(t, guard, next))
+                .map(|guard| self.undefined(t, false, guard, next))
         });
         let rows = || {
             predicted.iter().find_map(|next| {
@@ -107,7 +107,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
         let near = || {
             predicted.iter().find_map(|next| {
                 self.smallest_below(next, NEAR_BOUNDARY)
-                    .map(|guard| self.undefined(t, guard, next))
+                    .map(|guard| self.undefined(t, false, guard, next))
             })
         };
         let singular = matches!(error, SimulationError::Singular { .. });
@@ -142,7 +142,13 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
             .map(|(guard, _)| guard)
     }
 
-    fn undefined(&self, t: f64, guard: GuardedValue, x: &[f64; D]) -> SimulationError {
+    fn undefined(
+        &self,
+        t: f64,
+        initial: bool,
+        guard: GuardedValue,
+        x: &[f64; D],
+    ) -> SimulationError {
         let at_start = self
             .start
             .iter()
@@ -150,7 +156,8 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
             .map_or(f64::NAN, |start| start.value);
         SimulationError::Undefined {
             t,
-            expression: guard.description,
+            initial,
+            expression: guard.description.into_owned(),
             value: guard.value,
             at_start,
             state_names: self.system.state_names(),
@@ -164,7 +171,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
             t,
             rows,
             quantity: regularity.quantity,
-            how: "vanishes",
+            crossed: false,
             value: regularity.value,
             threshold: self.singular_below,
             state_names: self.system.state_names(),

@@ -14,6 +14,7 @@ use crate::system::{
     Reduced, ReducedPortHamiltonian, split,
 };
 use nalgebra::{Const, DMatrix};
+use std::borrow::Cow;
 
 /// A regularity measure's value at a state, and what it measures.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -83,13 +84,22 @@ pub trait Observed<const D: usize>: Energy<D> {
     fn change_chart(&self, _x: &mut [f64; D]) -> bool {
         false
     }
+    /// Moves `x` into the run-time chart partial pivoting picks at its
+    /// configuration ([`crate::partition`]), unless that chart is active
+    /// or there is none; whether it did. The simulation loop does so where
+    /// a step fails in another chart, and takes the step again.
+    fn change_to_pivoted_chart(&self, _x: &mut [f64; D]) -> bool {
+        false
+    }
 }
 
 /// A guarded expression of a model at a state ([`Observed::domain`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct GuardedValue {
-    /// What it guards, where, and what must hold.
-    pub description: String,
+    /// What it guards, where, and what must hold (borrowed from a
+    /// generated model's constants: checking the domain after every step
+    /// copies no text).
+    pub description: Cow<'static, str>,
     /// What must hold.
     pub guard: Guard,
     /// Its value.
@@ -102,15 +112,18 @@ impl GuardedValue {
     /// NaN fails).
     pub fn fails_from(&self, reference: f64) -> bool {
         match self.guard {
-            Guard::Positive => reference > 0.0 && !(self.value > 0.0),
-            Guard::NonZero => reference != 0.0 && !(self.value * reference > 0.0),
+            Guard::Positive => reference > 0.0 && (self.value <= 0.0 || self.value.is_nan()),
+            Guard::NonZero => {
+                let kept = self.value * reference;
+                reference != 0.0 && (kept <= 0.0 || kept.is_nan())
+            }
         }
     }
 
     /// Whether the guard fails at this value on its own.
     pub fn fails(&self) -> bool {
         match self.guard {
-            Guard::Positive => !(self.value > 0.0),
+            Guard::Positive => self.value <= 0.0 || self.value.is_nan(),
             Guard::NonZero => !(self.value != 0.0 && self.value.is_finite()),
         }
     }
@@ -124,7 +137,7 @@ fn domain_of<M: Domain>(model: &M, q: &[f64]) -> Vec<GuardedValue> {
         .iter()
         .zip(values)
         .map(|(&(description, guard), value)| GuardedValue {
-            description: description.to_string(),
+            description: Cow::Borrowed(description),
             guard,
             value,
         })
@@ -324,6 +337,18 @@ where
         self.set_chart(next);
         true
     }
+
+    fn change_to_pivoted_chart(&self, x: &mut [f64; S]) -> bool {
+        let (model, active) = (self.model(), Reduced::chart(self));
+        match model.pivoted_chart(x) {
+            Some(pivoted) if pivoted != active => {
+                *x = model.change_chart(active, pivoted, x);
+                self.set_chart(pivoted);
+                true
+            }
+            _ => false,
+        }
+    }
 }
 
 impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> Observed<D>
@@ -396,8 +421,23 @@ where
     F: Controller<D, P>,
     Const<N>: Square,
 {
+    /// The model's guarded expressions and the momentum basis's divisors
+    /// ([`MomentumEquations::BASIS_DIVISORS`]), which must not vanish.
     fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
-        domain_of(self.model(), &x[..M::COORDINATES.len()])
+        let mut guards = domain_of(self.model(), &x[..N]);
+        let mut values = vec![0.0; M::BASIS_DIVISORS.len()];
+        self.model().basis_divisors(&mut values);
+        guards.extend(
+            M::BASIS_DIVISORS
+                .iter()
+                .zip(values)
+                .map(|(description, value)| GuardedValue {
+                    description: Cow::Borrowed(description),
+                    guard: Guard::NonZero,
+                    value,
+                }),
+        );
+        guards
     }
 
     fn dependent_rows(&self, x: &[f64; D]) -> Vec<String> {
@@ -549,5 +589,9 @@ where
 
     fn change_chart(&self, x: &mut [f64; D]) -> bool {
         self.system().change_chart(x)
+    }
+
+    fn change_to_pivoted_chart(&self, x: &mut [f64; D]) -> bool {
+        self.system().change_to_pivoted_chart(x)
     }
 }

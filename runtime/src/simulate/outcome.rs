@@ -20,8 +20,9 @@ pub enum SimulationError {
     Integration(#[from] integrate::Error),
     /// The formulation degenerates at this configuration.
     #[error(
-        "singular configuration at t = {t}: {}the {quantity} {how} ({value:.3e}, threshold {threshold:.0e}) at {}",
+        "singular configuration at t = {t}: {}the {quantity} {} ({value:.3e}, threshold {threshold:.0e}) at {}",
         dependency(rows),
+        if *crossed { "changed sign in the step to t" } else { "vanishes" },
         named(state_names, state)
     )]
     Singular {
@@ -32,8 +33,9 @@ pub enum SimulationError {
         rows: Vec<String>,
         /// What degenerates.
         quantity: &'static str,
-        /// `"vanishes"`, or `"changed sign in the step to t"` for a crossing.
-        how: &'static str,
+        /// Whether the measure changed sign in the step to `t` (a crossing)
+        /// rather than fell below the threshold.
+        crossed: bool,
         /// The regularity measure there.
         value: f64,
         /// The threshold it fell below.
@@ -46,15 +48,18 @@ pub enum SimulationError {
     /// A step left the domain of the model's own expressions, or came to
     /// its end: a square root or logarithm of a non-positive value, a
     /// divisor through zero, or one of them near zero where the step failed
-    /// (`crate::system::Domain`, [`super::NEAR_BOUNDARY`]).
+    /// (`crate::system::Domain`, [`super::ends`]).
     #[error(
-        "the step from t = {t} leaves the model's domain: {expression} (it is {value:.3e}, {at_start:.3e} at the start) at {}",
+        "the model's domain ends {}: {expression} (it is {value:.3e}, {at_start:.3e} at the start) at {}",
+        if *initial { format!("at the initial state, t = {t}") } else { format!("in the step from t = {t}") },
         named(state_names, state)
     )]
     Undefined {
         /// Time at the start of the step (the initial time for an initial
         /// state outside the domain).
         t: f64,
+        /// Whether the initial state is outside the domain.
+        initial: bool,
         /// The guarded expression, where it is and what must hold.
         expression: String,
         /// Its value at `state`.

@@ -41,6 +41,8 @@ where
         recorder: &'a mut R,
     ) -> Result<Self, SimulationError> {
         let t0 = settings.span.0;
+        let ends = Ends::new(system, &x0, settings.singular_below);
+        ends.at_start(t0, &x0)?;
         let x = integrate::finite_start(t0, x0)?;
         let columns = columns(system, &x);
         let regularity = system.regularity(&x);
@@ -50,7 +52,7 @@ where
             t: t0,
             x,
             energy0: system.energy(&x),
-            ends: Ends::new(system, &x, settings.singular_below),
+            ends,
             regularity,
             row: Vec::with_capacity(columns.len()),
             inputs: system.input_names().len(),
@@ -71,7 +73,6 @@ where
             .start(&columns)
             .map_err(|source| SimulationError::Recording { t: t0, source })?;
         run.check(run.regularity)?;
-        run.ends.at_start(t0, &x)?;
         run.record()?;
         if run.holds(t0, &x) {
             run.stop();
@@ -97,7 +98,7 @@ where
                 t0 + i as f64 * self.settings.step
             };
             let t = self.t;
-            let mut end = (t_next, self.step_to(t_next)?);
+            let mut end = (t_next, self.step_or_fall_back(t_next)?);
             let stops = self.holds(end.0, &end.1);
             if stops {
                 end = self.crossing(t_next, end.1)?;
@@ -137,6 +138,23 @@ where
         })?;
         self.ends.reached(t, &self.x, &x)?;
         Ok(x)
+    }
+
+    /// [`Run::step_to`], taken again in the run-time chart partial
+    /// pivoting picks where it fails in another chart for a reason not
+    /// named ([`Observed::change_to_pivoted_chart`]; the change counts as a
+    /// switch).
+    fn step_or_fall_back(&mut self, t_next: f64) -> Result<[f64; D], SimulationError> {
+        match self.step_to(t_next) {
+            Err(SimulationError::Integration(_) | SimulationError::Projection { .. })
+                if self.system.change_to_pivoted_chart(&mut self.x) =>
+            {
+                self.summary.chart_switches += 1;
+                self.regularity = self.system.regularity(&self.x);
+                self.step_to(t_next)
+            }
+            step => step,
+        }
     }
 
     /// Whether the stop condition holds at `(t, x)`.
@@ -185,11 +203,7 @@ where
             t: self.t,
             rows: self.system.dependent_rows(&self.x),
             quantity: regularity.quantity,
-            how: if vanishes {
-                "vanishes"
-            } else {
-                "changed sign in the step to t"
-            },
+            crossed: !vanishes,
             value: regularity.value,
             threshold: self.settings.singular_below,
             state_names: self.system.state_names(),

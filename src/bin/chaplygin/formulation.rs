@@ -77,6 +77,11 @@ pub trait Formulation {
     fn change_chart(&self, _x: &mut [f64]) -> bool {
         false
     }
+    /// Moves `x` into the run-time chart partial pivoting picks (see
+    /// [`Observed::change_to_pivoted_chart`]); whether it did.
+    fn change_to_pivoted_chart(&self, _x: &mut [f64]) -> bool {
+        false
+    }
 }
 
 /// The structured form of a `D`-dimensional system, when it has one.
@@ -206,6 +211,13 @@ impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
         x.copy_from_slice(&state);
         changed
     }
+
+    fn change_to_pivoted_chart(&self, x: &mut [f64]) -> bool {
+        let mut state = array(x);
+        let changed = self.system.change_to_pivoted_chart(&mut state);
+        x.copy_from_slice(&state);
+        changed
+    }
 }
 
 /// A [`Formulation`] of dimension `D` as a fixed-size runtime system.
@@ -305,6 +317,10 @@ impl<const D: usize> Observed<D> for Sized<'_, D> {
 
     fn change_chart(&self, x: &mut [f64; D]) -> bool {
         self.0.change_chart(x)
+    }
+
+    fn change_to_pivoted_chart(&self, x: &mut [f64; D]) -> bool {
+        self.0.change_to_pivoted_chart(x)
     }
 }
 

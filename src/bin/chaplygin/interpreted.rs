@@ -60,19 +60,33 @@ impl InputLaw {
     }
 }
 
-/// The momentum formulation cannot represent an initial velocity: the one
-/// reconstructed from its momenta differs.
+/// The momentum formulation cannot represent an initial velocity.
 #[derive(Debug, thiserror::Error)]
-#[error(
-    "the momentum formulation cannot represent this initial velocity: dot({coordinate}) \
-     reconstructed from the momenta is off by {error:e} (the momentum basis degenerates at \
-     this shape; see `chaplygin derive`)"
-)]
-pub struct Unrepresentable {
-    /// The coordinate whose velocity is worst reconstructed.
-    pub coordinate: String,
-    /// By how much.
-    pub error: f64,
+pub enum Unrepresentable {
+    /// The velocity reconstructed from its momenta differs.
+    #[error(
+        "the momentum formulation cannot represent this initial velocity: dot({coordinate}) \
+         reconstructed from the momenta is off by {error:e} (the momentum basis degenerates at \
+         this shape; see `chaplygin derive`)"
+    )]
+    Reconstruction {
+        /// The coordinate whose velocity is worst reconstructed.
+        coordinate: String,
+        /// By how much.
+        error: f64,
+    },
+    /// The parameters make the momentum basis degenerate at every
+    /// configuration.
+    #[error(
+        "the momentum formulation's basis degenerates at every configuration for these \
+         parameters: {expression} (it is {value:e}); use --formulation reduced or lagrange"
+    )]
+    Parameters {
+        /// The divisor that vanishes, described.
+        expression: String,
+        /// Its value.
+        value: f64,
+    },
 }
 
 /// The reduced form `x = (q, alpha)` of an interpreted model, in its
@@ -108,6 +122,16 @@ impl InterpretedReduced {
         self.chart.set(best);
         let alpha = self.model.call_in_chart(best, "momenta", &[q, qdot])?;
         Ok(q.iter().chain(&alpha).copied().collect())
+    }
+
+    /// Moves `x` into `chart` through its velocity, and makes it active.
+    fn move_to(&self, chart: usize, x: &mut [f64]) {
+        let n = self.model.sizes().n;
+        let (q, alpha) = split(x, n);
+        let qdot = self.call("velocities", &[q, alpha]);
+        let moved = evaluated(self.model.call_in_chart(chart, "momenta", &[q, &qdot]));
+        x[n..].copy_from_slice(&moved);
+        self.chart.set(chart);
     }
 
     /// The reduced item `name` in the active chart.
@@ -295,15 +319,23 @@ impl Formulation for InterpretedReduced {
         let n = model.sizes().n;
         let fit = |chart| evaluated(model.chart_fit(chart, &x[..n]));
         let pivoted = model.pivoted_chart(&x[..n]);
-        let Some(best) = next_chart(model.charts().len(), active, fit, pivoted) else {
+        let Some(next) = next_chart(model.charts().len(), active, fit, pivoted) else {
             return false;
         };
-        let (q, alpha) = split(x, n);
-        let qdot = self.call("velocities", &[q, alpha]);
-        let moved = evaluated(model.call_in_chart(best, "momenta", &[q, &qdot]));
-        x[n..].copy_from_slice(&moved);
-        self.chart.set(best);
+        self.move_to(next, x);
         true
+    }
+
+    /// As the compiled reduced form's (`Observed::change_to_pivoted_chart`).
+    fn change_to_pivoted_chart(&self, x: &mut [f64]) -> bool {
+        let n = self.model.sizes().n;
+        match self.model.pivoted_chart(&x[..n]) {
+            Some(pivoted) if pivoted != self.chart.get() => {
+                self.move_to(pivoted, x);
+                true
+            }
+            _ => false,
+        }
     }
 }
 
@@ -438,6 +470,13 @@ impl InterpretedMomentum {
     /// relative), which fails where the derived momentum basis `e(r)`
     /// degenerates at this shape.
     pub fn initial_state(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Unrepresentable> {
+        let divisors = evaluated(self.model.basis_divisors());
+        if let Some(zero) = divisors.into_iter().find(|divisor| divisor.fails()) {
+            return Err(Unrepresentable::Parameters {
+                expression: zero.description.into_owned(),
+                value: zero.value,
+            });
+        }
         let x = self.state(q, qdot);
         let (_, reconstructed) = self.reconstructed(&x);
         let scale = qdot.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
@@ -449,10 +488,12 @@ impl InterpretedMomentum {
             .map(|(i, (a, b))| (i, (a - b).abs()))
             .max_by(|a, b| a.1.total_cmp(&b.1))
         {
-            Some((i, error)) if error > 1e-9 * scale || error.is_nan() => Err(Unrepresentable {
-                coordinate: names[i].clone(),
-                error,
-            }),
+            Some((i, error)) if error > 1e-9 * scale || error.is_nan() => {
+                Err(Unrepresentable::Reconstruction {
+                    coordinate: names[i].clone(),
+                    error,
+                })
+            }
             _ => Ok(x),
         }
     }
@@ -592,8 +633,11 @@ impl Formulation for InterpretedMomentum {
         Ok(())
     }
 
+    /// The model's guarded expressions and the momentum basis's divisors.
     fn domain(&self, x: &[f64]) -> Vec<GuardedValue> {
-        evaluated(self.model.domain(&x[..self.model.sizes().n]))
+        let mut guards = evaluated(self.model.domain(&x[..self.model.sizes().n]));
+        guards.extend(evaluated(self.model.basis_divisors()));
+        guards
     }
 
     fn dependent_rows(&self, x: &[f64]) -> Vec<String> {

@@ -378,3 +378,34 @@ pub fn report_lines(model: &Model, basis: &DistributionBasis, charts: &Charts) -
     }
     lines
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::analysed_model;
+
+    /// The sleigh declared without its symmetry: its blade solved for
+    /// `dot(y)` degenerates where `cos(theta) = 0`, solved for `dot(x)` where
+    /// `sin(theta) = 0`; the lines find points of both sets to round-off,
+    /// with the minors written out, and each chart covers the other's set
+    /// as well as partial pivoting's choice does there.
+    #[test]
+    fn the_sleighs_singular_headings_are_found_and_covered() {
+        let source = include_str!("../../../../tests/models/sleigh_no_symmetry.model");
+        let (_, analysis) = analysed_model(source).expect("analyses");
+        let charts = &analysis.charts;
+        assert_eq!(charts.alternatives.len(), 1);
+        assert_eq!(charts.alternatives[0].dependent, [0]);
+        let [by_y, by_x] = &charts.singular_sets[..] else {
+            panic!("two sets: {:?}", charts.singular_sets);
+        };
+        assert_eq!(by_y.determinant.as_deref(), Some("cos(theta)"));
+        assert!(!by_y.points.is_empty() && by_y.dependent_rows.is_empty());
+        assert!(by_y.points.iter().all(|q| q[2].cos().abs() < 1e-8));
+        assert!(by_x.points.iter().all(|q| q[2].sin().abs() < 1e-8));
+        for (set, other) in [(by_y, 1), (by_x, 0)] {
+            let cover = set.cover.as_ref().expect("covered");
+            assert_eq!(cover.charts, [other]);
+            assert!((cover.ratio - 1.0).abs() < 1e-12, "{cover:?}");
+        }
+    }
+}
