@@ -25,8 +25,8 @@ use chaplygin::runtime::linalg::Square;
 use chaplygin::runtime::linearize::Linearization;
 use chaplygin::runtime::monitor::gram_ratio;
 use chaplygin::runtime::nalgebra::Const;
-use chaplygin::runtime::simulate::next_chart;
 use chaplygin::runtime::system::ReducedPortHamiltonian;
+use chaplygin::runtime::system::next_chart;
 use chaplygin_models::{
     bicycle::Bicycle, caster_robot::CasterRobot, differential_drive::DifferentialDrive,
     rolling_disk::RollingDisk, rolling_disk_3d::RollingDisk3d, sleigh::Sleigh,

@@ -36,7 +36,7 @@
 
 use crate::arrays::matrix_from_rows;
 use crate::linalg::{Square, cholesky};
-use crate::linearize::GroupFactor;
+use crate::system::GroupFactor;
 use nalgebra::allocator::Allocator;
 use nalgebra::storage::{Storage, StorageMut};
 use nalgebra::{Const, DMatrix, DefaultAllocator, Dim, Matrix, OMatrix};

@@ -9,7 +9,7 @@
 //!
 //! With [`Simulation::stop_when`] the run ends cleanly where a condition
 //! `g(t, x) > 0` first holds, the crossing located within its step to
-//! [`CROSSING_TOLERANCE`] in `t` ([`stop`](self::stop)); the last row
+//! [`CROSSING_TOLERANCE`] in `t` ([`stop`]); the last row
 //! recorded is the state there and [`Summary::stopped`] says why.
 //!
 //! At every step the loop checks the state is finite, the model's own
@@ -27,8 +27,8 @@
 //! A formulation with several charts (the reduced form of a model with
 //! constraints: the charts derived at build time and the run-time charts
 //! of [`crate::partition`]) is then asked to change its chart
-//! ([`Observed::change_chart`], [`next_chart`]): where the active chart's
-//! pivot ratio is below [`CHART_SWITCH`] times the best one's, the state
+//! ([`Observed::change_chart`], [`crate::system::next_chart`]): where the active chart's
+//! pivot ratio is below [`crate::system::CHART_SWITCH`] times the best one's, the state
 //! moves into the best chart through its velocity and the run goes on
 //! there, in the run-time chart of partial pivoting where no derived chart
 //! fits (the re-selection of independent coordinates of Wehage & Haug,
@@ -46,10 +46,7 @@ mod run;
 pub mod stop;
 
 pub use advance::Advance;
-pub use observed::{
-    CHART_SWITCH, GENERATED_CHART, GuardedValue, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED,
-    RUNTIME_CHART, Regularity, next_chart,
-};
+pub use observed::{GuardedValue, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, Regularity};
 pub use outcome::{SimulationError, Summary};
 pub use stop::{CROSSING_TOLERANCE, Never, Stop, StopCondition};
 

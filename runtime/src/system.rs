@@ -13,10 +13,12 @@
 //! [`Controller`] (a constant, an open-loop `u(t)`, or a feedback `u(t, x)`)
 //! into an [`OdeSystem`].
 
+mod charts;
 mod reduced;
 
 pub use crate::law::Constant;
 use crate::law::Controller;
+pub use charts::{CHART_SWITCH, GENERATED_CHART, RUNTIME_CHART, next_chart};
 pub use reduced::Reduced;
 
 /// A first-order system `xdot = f(t, x)` in `D` states.
@@ -75,7 +77,7 @@ pub trait ReducedPortHamiltonian<const S: usize, const P: usize> {
     fn constraint_violation(&self, x: &[f64; S]) -> f64;
     /// How far the configuration is from where the reduced form degenerates:
     /// `det[A(q); V(q)^T]` over the product of its rows' norms, `V` the
-    /// velocities of unit momenta (see [`crate::monitor`]). Its magnitude is at
+    /// velocities of unit momenta (the `monitor` module). Its magnitude is at
     /// most 1; it vanishes, and changes sign when crossed transversally,
     /// where the constraint rows or the momentum basis lose rank.
     fn regularity(&self, x: &[f64; S]) -> f64;
@@ -84,8 +86,8 @@ pub trait ReducedPortHamiltonian<const S: usize, const P: usize> {
     /// basis of D degenerates where the constraint rows stay independent;
     /// then chart 0 is that basis and the others choose other dependent
     /// speeds (README, "Chart switching"). Indices from `charts()` on are
-    /// run-time charts ([`crate::partition`]): chart `charts() + i` solves
-    /// for the `i`-th set of dependent speeds ([`crate::partition::index_of`]).
+    /// run-time charts (the `partition` module): chart `charts() + i`
+    /// solves for the `i`-th set of dependent speeds in lexicographic order.
     /// Every chart has the state layout `(q, alpha)`, `alpha` the momenta
     /// of its own basis; the `chart_*` methods are the items above in a
     /// chart, and chart 0's are the items above.
@@ -94,15 +96,15 @@ pub trait ReducedPortHamiltonian<const S: usize, const P: usize> {
     }
     /// How well `chart` fits at the configuration of `x`, in `[0, 1]`: its
     /// pivot ratio `|det A_r(q)| / prod_i |A_i(q)|`
-    /// ([`crate::monitor::pivot_ratio`]; for a basis chosen in the body
-    /// frame, on the rows [`crate::monitor::in_body_frame`]), or for a
+    /// (`monitor::pivot_ratio`; for a basis chosen in the body frame, on
+    /// the rows `monitor::in_body_frame`), or for a
     /// declared momentum basis `|regularity|`; 0 where its basis
     /// degenerates.
     fn chart_fit(&self, _chart: usize, _x: &[f64; S]) -> f64 {
         1.0
     }
     /// The run-time chart that partial pivoting picks at the configuration
-    /// of `x` ([`crate::partition::pivoted`]); `None` for a model without
+    /// of `x` (`partition::pivoted`); `None` for a model without
     /// run-time charts or where the constraint rows are dependent.
     fn pivoted_chart(&self, _x: &[f64; S]) -> Option<usize> {
         None
@@ -163,7 +165,7 @@ pub trait LagrangeDalembert<const N: usize, const C: usize, const P: usize> {
     /// How far the constraint rows are from losing rank: the Hadamard ratio
     /// `det(A g^-1 A^T) / prod_i (A g^-1 A^T)_ii` of their Gram matrix in
     /// the inverse metric, in `[0, 1]`, zero exactly where they are dependent
-    /// (see [`crate::monitor`]).
+    /// (see the `monitor` module).
     fn constraint_regularity(&self, q: &[f64; N]) -> f64;
 }
 
@@ -241,6 +243,25 @@ pub trait MomentumEquations<const N: usize, const R: usize, const K: usize, cons
     fn shape(q: &[f64; N]) -> [f64; R] {
         Self::SHAPE.map(|i| q[i])
     }
+}
+
+/// One factor of a model's symmetry group, acting on the coordinates at
+/// these indices (the model language's `symmetry` section).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroupFactor {
+    /// The special Euclidean group of the plane on `(x, y, theta)`.
+    Se2 {
+        /// Index of `x`.
+        x: usize,
+        /// Index of `y`.
+        y: usize,
+        /// Index of the heading `theta`.
+        theta: usize,
+    },
+    /// Translations of one coordinate.
+    Translation(usize),
+    /// Rotations of one angle.
+    Rotation(usize),
 }
 
 /// What an expression of a model needs to stay defined

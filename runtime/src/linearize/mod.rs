@@ -19,31 +19,13 @@ pub mod canonical;
 pub mod point;
 pub mod steady;
 
+pub use crate::system::GroupFactor;
 use crate::system::{Holonomic, LagrangeDalembert, ModelNames};
 use nalgebra::{DMatrix, DVector};
 
 pub use canonical::{CanonicalError, CanonicalForm};
 pub use point::{OperatingPoint, PointError};
 pub use steady::{LinearSystem, SteadyError, linearize};
-
-/// One factor of a model's symmetry group, acting on the coordinates at
-/// these indices (INTERFACE.md section 1, `symmetry`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum GroupFactor {
-    /// The special Euclidean group of the plane on `(x, y, theta)`.
-    Se2 {
-        /// Index of `x`.
-        x: usize,
-        /// Index of `y`.
-        y: usize,
-        /// Index of the heading `theta`.
-        theta: usize,
-    },
-    /// Translations of one coordinate.
-    Translation(usize),
-    /// Rotations of one angle.
-    Rotation(usize),
-}
 
 /// `(d qddot/dq, d qddot/dqdot, d qddot/du)` of a model with `N`
 /// coordinates and `P` inputs, row `i` the derivatives of `qddot_i`.

@@ -1,9 +1,9 @@
 //! The reduced form closed by a controller ([`Reduced`]), in the active
 //! chart of D.
 
+use super::next_chart;
 use super::{Energy, Jacobian, Momenta, OdeSystem, ReducedPortHamiltonian, Structured};
 use crate::law::{Constant, Controller};
-use crate::simulate::next_chart;
 use core::cell::Cell;
 
 /// A model in its reduced form closed by a [`Controller`]: an
@@ -46,7 +46,7 @@ impl<'a, M, F, const P: usize> Reduced<'a, M, F, P> {
     /// The state `(q, alpha)` of the configuration `q` moving with `qdot`
     /// (a velocity the constraints allow), in the chart that fits best at
     /// `q` (a run-time chart where no generated one fits,
-    /// [`crate::simulate::next_chart`]), which becomes the active chart;
+    /// [`next_chart`]), which becomes the active chart;
     /// `S = N + K`.
     pub fn initial_state<const N: usize, const K: usize, const S: usize>(
         &self,

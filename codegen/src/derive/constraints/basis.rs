@@ -44,7 +44,7 @@ impl DistributionBasis {
     }
 
     /// The names of the speeds at the coordinate indices `indices`
-    /// ([`speed_names`] in this basis's frame).
+    /// (`speed_names` in this basis's frame).
     pub fn speed_names(&self, model: &Model, indices: &[usize]) -> Vec<String> {
         speed_names(model, indices, self.body_frame)
     }
@@ -90,7 +90,7 @@ pub enum ChartFit {
     /// `A(q)`.
     Coordinates(Vec<usize>),
     /// The pivot ratio of these dependent body speeds on the rows acting on
-    /// the body velocity, `A(q) L(q)` ([`super::body_frame`]).
+    /// the body velocity, `A(q) L(q)` (the body frame of MATH.md 4).
     Body(Vec<usize>),
     /// A declared momentum basis: `|det[A; V^T]|` over its rows' norms.
     Declared,

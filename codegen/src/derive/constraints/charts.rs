@@ -22,7 +22,7 @@
 //! away from 0: the one Gaussian elimination with partial pivoting picks
 //! there (`chaplygin_runtime::monitor::partial_pivots`) is the reference.
 //!
-//! Every chart's singular set is located ([`search`]: points on random
+//! Every chart's singular set is located (the `search` module: points on random
 //! lines through the configuration space where its minor vanishes). A
 //! point where the rows themselves are dependent (a Gram ratio
 //! `det(A A^T) / prod_i |A_i|^2` below [`DEPENDENT_ROWS`]) is a singularity
@@ -31,7 +31,7 @@
 //! the reference's columns become a new chart, whose own singular set is
 //! searched in turn, up to [`MOST_CHARTS`]. The rows are the basis's own:
 //! the coordinates' rows `A(q)`, or for a basis chosen in the body frame
-//! ([`super::body_frame`]) the body rows, whose charts depend on the shape
+//! (MATH.md 4) the body rows, whose charts depend on the shape
 //! alone. A declared momentum basis is the user's: where it degenerates
 //! the runtime hands over to a chart chosen at run time
 //! (`chaplygin_runtime::partition`), as it does wherever no chart derived
@@ -61,13 +61,13 @@ pub const MOST_CHARTS: usize = 4;
 /// A chart covers a point where its pivot ratio is at least this fraction
 /// of the partially pivoted choice's there: where none does, the runtime
 /// hands over to the run-time chart (the same fraction).
-pub const COVERED: f64 = chaplygin_runtime::simulate::RUNTIME_CHART;
+pub const COVERED: f64 = chaplygin_runtime::system::RUNTIME_CHART;
 
 /// A Gram ratio below this marks dependent rows: a genuine singularity.
 pub const DEPENDENT_ROWS: f64 = 1e-9;
 
 /// The most points a [`SingularSet`] keeps (the search may find more).
-const KEPT_POINTS: usize = 64;
+pub const KEPT_POINTS: usize = 64;
 
 /// The charts of D beside the model's basis, and where each degenerates.
 #[derive(Clone, Debug)]
