@@ -114,7 +114,50 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
         undefined
             .or_else(|| if singular { None } else { rows() })
             .or_else(near)
-            .unwrap_or(error)
+            .unwrap_or_else(|| self.rows_crossed(x, error))
+    }
+
+    /// A regularity measure that changed sign in the step from `x` names
+    /// the constraint rows dependent where it crossed zero, found by
+    /// bisection on the segment from `x` to the step's end (a point within
+    /// the step's own error of the path, where the rows are far closer to
+    /// dependent than at either end); any other error is returned as it is.
+    fn rows_crossed(&self, x: &[f64; D], error: SimulationError) -> SimulationError {
+        let SimulationError::Singular {
+            t,
+            rows,
+            quantity,
+            crossed: true,
+            value,
+            threshold,
+            state_names,
+            state,
+        } = error
+        else {
+            return error;
+        };
+        let next: [f64; D] = core::array::from_fn(|i| state[i]);
+        let at = |s: f64| -> [f64; D] { core::array::from_fn(|i| x[i] + s * (next[i] - x[i])) };
+        let sign = self.system.regularity(x).value.signum();
+        let (mut low, mut high) = (0.0, 1.0);
+        for _ in 0..60 {
+            let middle = 0.5 * (low + high);
+            match self.system.regularity(&at(middle)).value.signum() == sign {
+                true => low = middle,
+                false => high = middle,
+            }
+        }
+        let dependent = self.system.dependent_rows(&at(0.5 * (low + high)));
+        SimulationError::Singular {
+            t,
+            rows: if rows.is_empty() { dependent } else { rows },
+            quantity,
+            crossed: true,
+            value,
+            threshold,
+            state_names,
+            state,
+        }
     }
 
     /// The first guarded expression that fails at `next` where it held at `x`.
