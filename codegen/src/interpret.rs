@@ -269,6 +269,17 @@ impl InterpretedModel {
         self.functions.iter().map(|f| f.name)
     }
 
+    /// Every program the model runs, with its function's name: chart 0's
+    /// functions in emission order, then each other chart's reduced items.
+    /// A program's inputs are its function's arguments, concatenated in
+    /// order, then the parameters.
+    pub fn programs(&self) -> impl Iterator<Item = (&'static str, &crate::ir::Program)> + '_ {
+        self.functions
+            .iter()
+            .chain(self.chart_functions.iter().flatten())
+            .map(|f| (f.name, &f.lowered.program))
+    }
+
     /// The arguments of the function `name`: each array's name and length, in order.
     pub fn arguments(&self, name: &str) -> Option<Vec<(&'static str, usize)>> {
         self.functions
