@@ -26,6 +26,9 @@
 //! `acceleration` and with the group's action as the emitted code does.
 
 mod charts;
+mod engine;
+
+pub use engine::{Engine, Interpreter};
 
 use crate::derive::constraints::ChartFit;
 use crate::derive::momentum::group_coordinates;
@@ -127,10 +130,12 @@ pub enum CallError {
 /// `(d qddot/dq, d qddot/dqdot, d qddot/du)`, each row-major.
 pub type Jacobians = (Vec<f64>, Vec<f64>, Vec<f64>);
 
-/// One emitted function's name and program.
+/// One emitted function's name and program, and the program's position
+/// in [`InterpretedModel::programs`] (what the engine runs it by).
 struct Interpreted {
     name: &'static str,
     lowered: Lowered,
+    index: usize,
 }
 
 /// A model's emitted functions, interpreted (see the module documentation).
@@ -151,6 +156,8 @@ pub struct InterpretedModel {
     /// described, in the order of the `basis_divisors` function's values.
     basis_divisors: Vec<String>,
     report: String,
+    /// What runs the programs.
+    engine: Box<dyn Engine>,
     /// With a symmetry, the coordinates the group acts on.
     group: Option<Vec<usize>>,
     /// The symmetry group's factors (empty without a symmetry).
@@ -177,11 +184,12 @@ impl InterpretedModel {
             .and_then(|derivation| emit::emit(&mut model, &constraints, &derivation));
         over_budget(&model)?;
         let emitted = emitted?;
-        let functions = interpreted(emitted.functions);
+        let mut indices = 0..;
+        let functions = interpreted(emitted.functions, &mut indices);
         let chart_functions = emitted
             .chart_functions
             .into_iter()
-            .map(interpreted)
+            .map(|functions| interpreted(functions, &mut indices))
             .collect();
         let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
         let defaults = model.parameter_defaults();
@@ -206,6 +214,7 @@ impl InterpretedModel {
                 .collect(),
             basis_divisors: emitted.basis_divisors,
             report: emitted.report,
+            engine: Box::new(Interpreter),
             group: model
                 .symmetry
                 .as_ref()
@@ -216,6 +225,25 @@ impl InterpretedModel {
                 .map(|symmetry| symmetry.factors.clone())
                 .unwrap_or_default(),
         })
+    }
+
+    /// Runs the programs by the engine `compile` makes of them (given in
+    /// the order of [`InterpretedModel::programs`]), for example native
+    /// code compiled at run time; where `compile` fails, its error is
+    /// returned and the engine stays as it was.
+    pub fn set_engine<E>(
+        &mut self,
+        compile: impl FnOnce(&[&crate::ir::Program]) -> Result<Box<dyn Engine>, E>,
+    ) -> Result<(), E> {
+        let programs: Vec<_> = self.programs().map(|(_, program)| program).collect();
+        self.engine = compile(&programs)?;
+        Ok(())
+    }
+
+    /// The engine that runs the programs ([`Interpreter`] unless
+    /// [`InterpretedModel::set_engine`] set another).
+    pub fn engine(&self) -> &dyn Engine {
+        self.engine.as_ref()
     }
 
     /// The names of the coordinates, parameters, inputs, constraints,
@@ -357,13 +385,14 @@ impl InterpretedModel {
         })?;
         let lowered = &function.lowered;
         let inputs = self.inputs(function.name, &lowered.arguments, arguments)?;
-        lowered
-            .program
-            .evaluate_vec(&inputs)
+        let mut outputs = vec![0.0; lowered.program.outputs().len()];
+        self.engine
+            .evaluate(function.index, &lowered.program, &inputs, &mut outputs)
             .map_err(|source| CallError::Program {
                 function: name.to_string(),
                 source,
-            })
+            })?;
+        Ok(outputs)
     }
 
     /// The program's inputs: the arguments, checked, then the parameters.
@@ -565,15 +594,21 @@ impl InterpretedModel {
     }
 }
 
-/// The emitted functions that have a program, by name.
-fn interpreted(functions: Vec<emit::Function>) -> Vec<Interpreted> {
+/// The emitted functions that have a program, by name, numbered on from
+/// `indices`.
+fn interpreted(
+    functions: Vec<emit::Function>,
+    indices: &mut std::ops::RangeFrom<usize>,
+) -> Vec<Interpreted> {
     functions
         .into_iter()
         .filter_map(|function| {
             let name = function.name;
-            function
-                .lowered
-                .map(|lowered| Interpreted { name, lowered })
+            function.lowered.map(|lowered| Interpreted {
+                name,
+                lowered,
+                index: indices.next().unwrap_or_default(),
+            })
         })
         .collect()
 }
