@@ -55,8 +55,11 @@ pub(crate) fn program_signature(isa: &dyn TargetIsa) -> Signature {
 pub(crate) struct Compiled {
     /// The function the code defines.
     pub(crate) id: FuncId,
+    /// The alignment the code needs, in bytes.
     pub(crate) alignment: u64,
+    /// The machine code.
     pub(crate) bytes: Vec<u8>,
+    /// Where the addresses of the routines go.
     pub(crate) relocs: Vec<ModuleReloc>,
 }
 
@@ -122,7 +125,7 @@ impl<'a> Translator<'a> {
     }
 }
 
-/// Where a value is reloaded from when it is read far from its definition.
+/// Where a value is read from when it has no register copy near the read.
 #[derive(Clone, Copy)]
 enum Home {
     /// Input slot `i`, loaded where it is read.
