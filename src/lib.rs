@@ -123,6 +123,15 @@ pub use chaplygin_runtime as runtime;
 #[cfg(feature = "cli")]
 pub mod plot;
 
+/// Models read from their text, every derived function compiled to native
+/// code at run time with Cranelift: [`jit::JitModel::from_source`] and
+/// [`jit::JitModel::from_file`], and [`jit::compile`] for a model already
+/// loaded. The results equal the IR interpreter's bit for bit.
+#[cfg(feature = "jit")]
+pub mod jit {
+    pub use chaplygin_jit::{JitError, JitModel, LoadError, NativePrograms, compile};
+}
+
 /// The README's examples, compiled and run as doctests.
 #[doc = include_str!("../README.md")]
 #[cfg(doctest)]

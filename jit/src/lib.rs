@@ -1,6 +1,12 @@
 //! Native code of the IR's straight-line programs, compiled at run time with
 //! Cranelift.
 //!
+//! [`JitModel::from_source`] and [`JitModel::from_file`] load a model from
+//! its text with every derived function compiled to native code: an
+//! [`InterpretedModel`](chaplygin_codegen::interpret::InterpretedModel)
+//! whose engine ([`chaplygin_codegen::interpret::Engine`]) is
+//! [`NativePrograms`]; [`compile`] does the same to a model already loaded.
+//!
 //! [`NativePrograms::compile`] turns a list of
 //! [`Program`](chaplygin_codegen::ir::Program)s (the programs of an
 //! [`InterpretedModel`](chaplygin_codegen::interpret::InterpretedModel), say)
@@ -62,6 +68,7 @@
 //! ```
 
 mod host;
+mod model;
 mod native;
 mod plan;
 mod routines;
@@ -69,6 +76,7 @@ mod translate;
 
 use chaplygin_codegen::ir::{IrError, Program};
 use cranelift_module::ModuleError;
+pub use model::{JitModel, LoadError, compile};
 use native::Code;
 use std::fmt;
 

@@ -1,0 +1,59 @@
+//! A model loaded on the JIT: every function of the interpreted model, run
+//! as native code, with the interpreter's values; errors of the text with
+//! their line and column.
+
+use chaplygin_codegen::interpret::InterpretedModel;
+use chaplygin_jit::{JitModel, LoadError};
+
+const SNAKEBOARD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/snakeboard.model");
+
+/// MATH.md 3.1 at a state: `alpha1dot = -(sin phi / r) u1`, `alpha2dot = u1`,
+/// `alpha3dot = u2`, `phidot = alpha3 / Jw`; and every function's values
+/// equal the interpreter's bit for bit.
+#[test]
+fn the_snakeboard_on_the_jit_is_the_interpreted_snakeboard() {
+    let mut jit = JitModel::from_file(SNAKEBOARD).expect("loads");
+    assert_eq!(jit.engine().name(), "jit");
+    jit.set_parameter("jw", 0.07).expect("declared");
+    let text = std::fs::read_to_string(SNAKEBOARD).expect("reads");
+    let mut interpreted = InterpretedModel::from_source(&text).expect("loads");
+    interpreted.set_parameter("jw", 0.07).expect("declared");
+    assert_eq!(interpreted.engine().name(), "interpret");
+    let phi = 0.7f64;
+    let x = [0.1, -0.2, 0.4, 0.3, phi, 1.3, -0.6, 0.8];
+    let u = [0.25, -1.5];
+    let xdot = jit.reduced_rhs(&x, &u).expect("evaluates");
+    let r = 0.5;
+    assert!((xdot[5] + phi.sin() / r * u[0]).abs() < 1e-15);
+    assert_eq!(xdot[6], u[0]);
+    assert_eq!(xdot[7], u[1]);
+    assert!((xdot[4] - 0.8 / 0.07).abs() < 1e-12);
+    for name in ["reduced_rhs", "reduced_rhs_jacobian"] {
+        let native = jit.call(name, &[&x, &u]).expect("evaluates");
+        let reference = interpreted.call(name, &[&x, &u]).expect("evaluates");
+        let bits = |values: &[f64]| values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&native), bits(&reference), "{name}");
+    }
+}
+
+/// A misspelt coordinate is reported at its line and column, a missing file
+/// by its path.
+#[test]
+fn bad_text_and_missing_files_are_errors() {
+    let text = "pub struct Broken {\n    coordinates: [x],\n    kinetic_energy: dot(y)^2,\n}\n";
+    match JitModel::from_source(text) {
+        Err(LoadError::Model {
+            diagnostics,
+            rendered,
+        }) => {
+            assert!(!diagnostics.is_empty());
+            assert!(rendered.starts_with("model:3:"), "{rendered}");
+        }
+        other => panic!("expected a model error, got {other:?}"),
+    }
+    let missing = JitModel::from_file("/nonexistent/model.model");
+    assert!(
+        matches!(&missing, Err(LoadError::Read { path, .. }) if path == "/nonexistent/model.model"),
+        "{missing:?}"
+    );
+}
