@@ -1,6 +1,7 @@
-//! Generates the built-in models for the `chaplygin` command line from the
-//! models crate's `.model` files (the command line compiles them itself: the
-//! models crate depends on this package, so this package cannot depend on it).
+//! Generates the built-in models the `chaplygin` command line compiles with
+//! rustc from the models crate's `.model` files (the models crate depends on
+//! this package, so this package cannot depend on it). The heavy built-ins,
+//! the caster robot and the bicycle, run from their text on the JIT.
 
 fn main() {
     if std::env::var_os("CARGO_FEATURE_CLI").is_none() {
@@ -14,8 +15,6 @@ fn main() {
         "rolling_disk_3d",
         "sleigh_bodies",
         "snakeboard_bodies",
-        "caster_robot",
-        "bicycle",
     ];
     let builder = models
         .iter()

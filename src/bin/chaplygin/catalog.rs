@@ -1,11 +1,13 @@
 //! The built-in models: their names, sources, default motions, and the
 //! listing of `chaplygin list`.
 
-use crate::models::{
-    bicycle::Bicycle, caster_robot::CasterRobot, differential_drive::DifferentialDrive,
-    rolling_disk::RollingDisk, rolling_disk_3d::RollingDisk3d, sleigh::Sleigh,
-    sleigh_bodies::SleighBodies, snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
+use crate::compiled::{
+    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
+    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
 };
+use chaplygin_codegen::interpret::InterpretedModel;
+use std::borrow::Cow;
 
 /// Which compiled model a built-in name stands for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -24,10 +26,6 @@ pub enum Compiled {
     SleighBodies,
     /// [`SnakeboardBodies`].
     SnakeboardBodies,
-    /// [`CasterRobot`].
-    CasterRobot,
-    /// [`Bicycle`].
-    Bicycle,
 }
 
 /// A built-in model's default motion, from its default configuration.
@@ -50,8 +48,9 @@ pub struct BuiltIn {
     pub about: &'static str,
     /// Its model-language source.
     pub source: &'static str,
-    /// The compiled model.
-    pub compiled: Compiled,
+    /// The compiled model; `None` for a model run from its text (on the
+    /// engine `--engine` chooses).
+    pub compiled: Option<Compiled>,
     /// The default configuration.
     pub q: &'static [f64],
     /// The default motion.
@@ -64,7 +63,7 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "snakeboard",
         about: "snakeboard of Duindam & Stramigioli (2004), paper's momentum basis",
         source: include_str!("../../../models/snakeboard.model"),
-        compiled: Compiled::Snakeboard,
+        compiled: Some(Compiled::Snakeboard),
         q: &[0.0, 0.0, 0.0, 0.0, 0.3],
         motion: Motion::Momenta(&[1.0, 0.5, 0.025]),
     },
@@ -72,7 +71,7 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "sleigh",
         about: "Chaplygin sleigh: a knife edge with the centre of mass ahead of it",
         source: include_str!("../../../models/sleigh.model"),
-        compiled: Compiled::Sleigh,
+        compiled: Some(Compiled::Sleigh),
         q: &[0.0, 0.0, -0.5],
         motion: Motion::Momenta(&[1.0, 0.5]),
     },
@@ -80,7 +79,7 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "rolling-disk",
         about: "vertical disk rolling without slipping (Bloch 2003, chapter 1)",
         source: include_str!("../../../models/rolling_disk.model"),
-        compiled: Compiled::RollingDisk,
+        compiled: Some(Compiled::RollingDisk),
         q: &[0.0, 0.0, 0.0, 0.0],
         motion: Motion::Momenta(&[0.5, 0.2]),
     },
@@ -88,7 +87,7 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "differential-drive",
         about: "two-wheeled differential-drive robot",
         source: include_str!("../../../models/differential_drive.model"),
-        compiled: Compiled::DifferentialDrive,
+        compiled: Some(Compiled::DifferentialDrive),
         q: &[0.0, 0.0, 0.0, 0.0, 0.0],
         motion: Motion::Momenta(&[0.2, 0.1]),
     },
@@ -96,7 +95,7 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "rolling-disk-3d",
         about: "leaning disk rolling under gravity, declared as a mechanism",
         source: include_str!("../../../models/rolling_disk_3d.model"),
-        compiled: Compiled::RollingDisk3d,
+        compiled: Some(Compiled::RollingDisk3d),
         q: &[0.0, 0.0, 0.0, 0.1, 0.0],
         motion: Motion::Momenta(&[0.1, 0.0, 2.0]),
     },
@@ -104,7 +103,7 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "sleigh-bodies",
         about: "Chaplygin sleigh declared as a body on a blade",
         source: include_str!("../../../models/sleigh_bodies.model"),
-        compiled: Compiled::SleighBodies,
+        compiled: Some(Compiled::SleighBodies),
         q: &[0.0, 0.0, -0.5],
         motion: Motion::Momenta(&[1.0, 0.5]),
     },
@@ -112,7 +111,7 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "snakeboard-bodies",
         about: "snakeboard declared as bodies and wheel contacts",
         source: include_str!("../../../models/snakeboard_bodies.model"),
-        compiled: Compiled::SnakeboardBodies,
+        compiled: Some(Compiled::SnakeboardBodies),
         q: &[0.0, 0.0, 0.0, 0.0, 0.3],
         motion: Motion::Momenta(&[1.0, 0.5, 0.025]),
     },
@@ -120,7 +119,7 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "caster-robot",
         about: "wheeled mobile robot with a passive caster, declared as a mechanism",
         source: include_str!("../../../models/caster_robot.model"),
-        compiled: Compiled::CasterRobot,
+        compiled: None,
         q: &[0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.0],
         motion: Motion::Momenta(&[0.5, 0.2]),
     },
@@ -128,7 +127,7 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "bicycle",
         about: "benchmark bicycle of Meijaard et al. (2007), declared as a mechanism",
         source: include_str!("../../../models/bicycle.model"),
-        compiled: Compiled::Bicycle,
+        compiled: None,
         q: &[0.0; 8],
         // Upright at 5 m/s, in the self-stable speed range, pushed sideways:
         // the lean oscillation decays.
@@ -159,8 +158,27 @@ fn classification(report: &str) -> &str {
         .unwrap_or("unknown")
 }
 
+/// Sizes `(n, c, k, p)` and the derivation report of a built-in model:
+/// a compiled model's constants, else derived from its text.
+fn facts(model: &BuiltIn) -> ([usize; 4], Cow<'static, str>) {
+    match model.compiled {
+        Some(compiled) => {
+            let (sizes, report) = compiled_facts(compiled);
+            (sizes, Cow::Borrowed(report))
+        }
+        None => match InterpretedModel::from_source(model.source) {
+            Ok(derived) => {
+                let sizes = derived.sizes();
+                let report = derived.report().to_string();
+                ([sizes.n, sizes.c, sizes.k, sizes.p], Cow::Owned(report))
+            }
+            Err(_) => ([0; 4], Cow::Borrowed("")),
+        },
+    }
+}
+
 /// Sizes `(n, c, k, p)` and the report of a compiled model.
-fn facts(compiled: Compiled) -> ([usize; 4], &'static str) {
+fn compiled_facts(compiled: Compiled) -> ([usize; 4], &'static str) {
     match compiled {
         Compiled::Snakeboard => (
             [Snakeboard::N, Snakeboard::C, Snakeboard::K, Snakeboard::P],
@@ -212,19 +230,6 @@ fn facts(compiled: Compiled) -> ([usize; 4], &'static str) {
             ],
             SnakeboardBodies::REPORT,
         ),
-        Compiled::CasterRobot => (
-            [
-                CasterRobot::N,
-                CasterRobot::C,
-                CasterRobot::K,
-                CasterRobot::P,
-            ],
-            CasterRobot::REPORT,
-        ),
-        Compiled::Bicycle => (
-            [Bicycle::N, Bicycle::C, Bicycle::K, Bicycle::P],
-            Bicycle::REPORT,
-        ),
     }
 }
 
@@ -235,11 +240,11 @@ pub fn listing() -> String {
         "model", "n", "c", "k", "p", "classification", "about"
     );
     for model in &BUILT_IN {
-        let ([n, c, k, p], report) = facts(model.compiled);
+        let ([n, c, k, p], report) = facts(model);
         text.push_str(&format!(
             "{:<20} {n:>2} {c:>2} {k:>2} {p:>2}  {:<30} {}\n",
             model.name,
-            classification(report),
+            classification(&report),
             model.about
         ));
     }

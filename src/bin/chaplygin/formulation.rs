@@ -16,6 +16,11 @@ pub trait Formulation {
     fn state_names(&self) -> Vec<String>;
     /// The names of the inputs.
     fn input_names(&self) -> Vec<String>;
+    /// What runs the model's functions: `rustc` for a model compiled into
+    /// the command line, else the engine's name (`jit`, `interpret`).
+    fn engine(&self) -> &'static str {
+        "rustc"
+    }
     /// `f(t, x)` into `xdot`.
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]);
     /// `df/dx` into `jacobian`, row-major.

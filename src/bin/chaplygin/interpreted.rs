@@ -1,11 +1,12 @@
-//! A `.model` file simulated without recompiling: its emitted functions run
-//! through the IR interpreter (`chaplygin_codegen::interpret`), in the
+//! A model from its text simulated without recompiling: its emitted
+//! functions' programs (`chaplygin_codegen::interpret`) run on the engine
+//! `--engine` chose (native code from the JIT, or the IR interpreter), in the
 //! reduced, the Lagrange-d'Alembert or (with a symmetry) the momentum
 //! formulation, with inputs given as functions of the time, the
 //! configuration and its velocity ([`InputLaw`]).
 //!
-//! The interpreter evaluates the same straight-line programs the compiled
-//! code is emitted from, so a `.model` file and the compiled model agree to
+//! Both engines run the same straight-line programs the compiled code is
+//! emitted from, so a `.model` file and the compiled model agree to
 //! round-off.
 
 pub mod dynamics;
@@ -201,6 +202,10 @@ impl Formulation for InterpretedReduced {
         self.model.names().inputs.clone()
     }
 
+    fn engine(&self) -> &'static str {
+        self.model.engine().name()
+    }
+
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
         let u = inputs_at(self, &self.model, t, x);
         xdot.copy_from_slice(&self.call("reduced_rhs", &[x, &u]));
@@ -348,6 +353,10 @@ impl Formulation for InterpretedDalembert {
 
     fn input_names(&self) -> Vec<String> {
         self.model.names().inputs.clone()
+    }
+
+    fn engine(&self) -> &'static str {
+        self.model.engine().name()
     }
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
@@ -539,6 +548,10 @@ impl Formulation for InterpretedMomentum {
 
     fn input_names(&self) -> Vec<String> {
         self.model.names().inputs.clone()
+    }
+
+    fn engine(&self) -> &'static str {
+        self.model.engine().name()
     }
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {

@@ -4,15 +4,19 @@
 //! chaplygin list
 //! chaplygin derive MODEL [--format text|latex|json]
 //! chaplygin simulate MODEL [--formulation reduced|lagrange|momentum] [--integrator rk4|dopri5|midpoint|discrete-gradient]
-//!                          [--controller none|energy] [--t-end T] [--dt H] [--stop-when COND] [--out DIR]
+//!                          [--controller none|energy] [--t-end T] [--dt H] [--stop-when COND]
+//!                          [--engine jit|interpret] [--out DIR]
 //!                          [--param NAME=VALUE]... [--initial NAME=EXPRESSION]... [--input NAME=EXPRESSION]...
 //! chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
-//!                           [--param NAME=VALUE]... [--out DIR]
+//!                           [--param NAME=VALUE]... [--engine jit|interpret] [--out DIR]
 //!                           [--canonical Q1,Q2,... --canonical-speed VAR[=V1,V2] [--canonical-gravity NAME]]
 //! ```
 //!
 //! MODEL is a built-in model's name or the path of a `.model` file, which
-//! runs through the IR interpreter without recompiling. `--input` laws are
+//! runs without rustc: its derived programs compiled to native code at run
+//! time (`--engine jit`, the default) or interpreted (`--engine interpret`).
+//! The light built-ins are compiled into the command line; the caster robot
+//! and the bicycle run from their text like a file. `--input` laws are
 //! expressions of `t`, the parameters, the coordinates and their velocities
 //! `dot(q)` (feedback laws such as `steer_torque=50*phi+50*dot(phi)`);
 //! `--stop-when` ends a run cleanly where one comparison of these and the
@@ -21,19 +25,14 @@
 //! gets clap's usage message).
 
 mod catalog;
+mod compiled;
 mod derive;
+mod engine;
 mod formulation;
 mod interpreted;
 mod linearize;
 mod options;
 mod simulate;
-
-/// The built-in models, compiled from the models crate's sources (this
-/// package cannot depend on that crate, which depends on it); the command
-/// line uses part of each model's API.
-#[path = "../../../models/src/lib.rs"]
-#[allow(dead_code, unused_imports)]
-mod models;
 
 use clap::Parser;
 use std::process::ExitCode;

@@ -23,16 +23,16 @@ use inputs::{InputSchedule, Scope};
 pub(crate) use start::{set_model_parameters, set_parameters};
 
 use crate::catalog::{self, BuiltIn, Compiled, Motion, Source};
-use crate::derive::Rejected;
+use crate::compiled::energy_control::{ClosedLoop, EnergyController};
+use crate::compiled::{
+    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
+    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
+    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
+};
+use crate::engine;
 use crate::formulation::Typed;
 use crate::interpreted::dynamics::InterpretedDynamics;
 use crate::interpreted::{InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced};
-use crate::models::energy_control::{ClosedLoop, EnergyController};
-use crate::models::{
-    bicycle::Bicycle, caster_robot::CasterRobot, differential_drive::DifferentialDrive,
-    rolling_disk::RollingDisk, rolling_disk_3d::RollingDisk3d, sleigh::Sleigh,
-    sleigh_bodies::SleighBodies, snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
-};
 use arguments::{Controller, Formulation as Kind};
 use chaplygin::plot;
 use chaplygin::runtime::law::{ChartFeedback, Feedback};
@@ -47,7 +47,10 @@ use chaplygin::runtime::system::{
 use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
 use chaplygin_codegen::interpret::InterpretedModel;
 use output::{Points, execute};
-use start::{InputError, Kinematics, Start, compiled_start, initial_state, initial_values};
+use start::{
+    InputError, Kinematics, Start, compiled_start, initial_state, initial_values,
+    with_default_motion,
+};
 use std::error::Error;
 
 /// Runs `chaplygin simulate`.
@@ -55,11 +58,15 @@ use std::error::Error;
 /// # Errors
 /// Bad input, a failed simulation, or an I/O error.
 pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
-    let model = match catalog::lookup(&args.model)? {
-        Source::File { path, text } => return interpreted(&path, &text, args),
-        Source::BuiltIn(model) => model,
+    let built_in = match catalog::lookup(&args.model)? {
+        Source::File { path, text } => return from_text(&path, &text, None, args),
+        Source::BuiltIn(built_in) => built_in,
     };
-    match model.compiled {
+    let Some(which) = built_in.compiled else {
+        return from_text(built_in.name, built_in.source, Some(built_in), args);
+    };
+    let model = built_in;
+    match which {
         Compiled::Snakeboard if args.controller == Controller::Energy => {
             energy_controlled(model, args)
         }
@@ -111,33 +118,23 @@ pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
             })),
             Ok(momentum::<SnakeboardBodies, 5, 2, 2, 1, 2, 8, 0>),
         ),
-        Compiled::Bicycle => compiled::<Bicycle, 8, 5, 3, 2, 11, 16, 1>(
-            model,
-            args,
-            Some((&Bicycle::POINTS, |bicycle, q| {
-                bicycle.positions(&array(q)).as_flattened().to_vec()
-            })),
-            Err(MOMENTUM_WITH_HOLONOMIC),
-        ),
-        Compiled::CasterRobot => compiled::<CasterRobot, 7, 5, 2, 2, 9, 14, 0>(
-            model,
-            args,
-            Some((&CasterRobot::POINTS, |robot, q| {
-                robot.positions(&array(q)).as_flattened().to_vec()
-            })),
-            Err(NO_SYMMETRY),
-        ),
     }
 }
 
-/// A `.model` file through the IR interpreter, from rest at `q = 0` unless
-/// `--initial` says otherwise.
-fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
+/// A model from its text (a `.model` file, or a built-in run from its
+/// text) on the engine of `--engine`, from a built-in's default
+/// configuration and motion, or a file's rest at `q = 0`, unless `--initial`
+/// says otherwise.
+fn from_text(
+    path: &str,
+    text: &str,
+    built_in: Option<&BuiltIn>,
+    args: &SimulateArgs,
+) -> Result<(), Box<dyn Error>> {
     if args.controller == Controller::Energy {
         return Err(no_controller(path).into());
     }
-    let mut model = InterpretedModel::from_source(text)
-        .map_err(|diagnostics| Rejected(diagnostics.render(path).trim_end().to_string()))?;
+    let mut model = engine::load(path, text, args.engine)?;
     let names = model.names().clone();
     let known: Vec<&str> = names.parameters.iter().map(String::as_str).collect();
     set_parameters(&known, &args.params, &mut |name, value| {
@@ -148,17 +145,30 @@ fn interpreted(path: &str, text: &str, args: &SimulateArgs) -> Result<(), Box<dy
         .copied()
         .zip(model.parameter_values().iter().copied())
         .collect();
-    let initial = initial_values(&args.initial, &parameters)?;
     let coordinates: Vec<&str> = names.coordinates.iter().map(String::as_str).collect();
     let constraints: Vec<&str> = names.constraints.iter().map(String::as_str).collect();
     let n = coordinates.len();
+    let (alpha, given) = match built_in.map(|built_in| built_in.motion) {
+        Some(Motion::Momenta(alpha)) => (alpha, args.initial.clone()),
+        Some(Motion::Velocities(defaults)) => {
+            (&[][..], with_default_motion(&args.initial, defaults))
+        }
+        None => (&[][..], args.initial.clone()),
+    };
+    let initial = initial_values(&given, &parameters)?;
     let dynamics = InterpretedDynamics(model);
     let start = initial_state(
         &Kinematics {
             coordinates: &coordinates,
             constraints: &constraints,
-            default_q: &vec![0.0; n],
-            default_motion: &|_| vec![0.0; n],
+            default_q: &built_in.map_or_else(|| vec![0.0; n], |built_in| built_in.q.to_vec()),
+            default_motion: &|q| {
+                if alpha.is_empty() {
+                    vec![0.0; n]
+                } else {
+                    crate::interpreted::evaluated(dynamics.0.velocities(q, alpha))
+                }
+            },
             constraint_matrix: &|q| {
                 let a = crate::interpreted::evaluated(dynamics.0.constraint_matrix(q));
                 DMatrix::from_row_slice(constraints.len(), n, &a)
@@ -269,10 +279,6 @@ where
         + Copy,
 {
 }
-
-/// Why a model without a symmetry has no momentum formulation.
-const NO_SYMMETRY: &str = "not derived: the model declares no symmetry, and the momentum \
-     equation is the symmetry's";
 
 /// How a compiled model with a symmetry runs in the momentum formulation
 /// ([`momentum`]), or why it has none.

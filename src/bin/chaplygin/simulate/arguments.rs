@@ -1,6 +1,7 @@
 //! The arguments of `chaplygin simulate` (INTERFACE.md section 3), and the
 //! choices they name: formulation, integrator, controller.
 
+use crate::engine::EngineChoice;
 use clap::ValueEnum;
 use std::path::PathBuf;
 
@@ -35,6 +36,10 @@ pub struct SimulateArgs {
     #[arg(long, value_name = "COND")]
     pub stop_when: Option<String>,
     /// The directory for `trajectory.csv` and the plots.
+    /// What runs a model from its text: native code compiled at run time,
+    /// or the IR interpreter.
+    #[arg(long, value_enum, default_value_t = EngineChoice::Jit)]
+    pub engine: EngineChoice,
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
     /// A model or controller parameter, `NAME=VALUE` (repeatable).

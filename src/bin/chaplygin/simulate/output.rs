@@ -184,6 +184,7 @@ struct Settings<'a> {
 /// What a finished run prints.
 struct Report {
     integrator: Integrator,
+    engine: &'static str,
     steps: usize,
     t: f64,
     energy_drift: f64,
@@ -198,11 +199,12 @@ impl std::fmt::Display for Report {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "t = {}: {} steps of {} in {:.3} s; energy drift (relative) {:.3e}; max constraint residual {:.3e}",
+            "t = {}: {} steps of {} in {:.3} s, engine {}; energy drift (relative) {:.3e}; max constraint residual {:.3e}",
             self.t,
             self.steps,
             self.integrator.name(),
             self.seconds,
+            self.engine,
             self.energy_drift,
             self.max_constraint_residual
         )?;
@@ -245,6 +247,7 @@ where
     let holonomic = formulation.holonomic_residual(x0.as_slice()).is_some();
     Ok(Report {
         integrator: settings.integrator,
+        engine: formulation.engine(),
         steps: summary.steps,
         t: summary.t,
         energy_drift: summary.energy_drift,

@@ -246,7 +246,7 @@ where
 /// The `--initial` assignments `given`, after the `defaults` when `given`
 /// names no velocity (coordinates given keep their place: the default
 /// velocities are solved at them).
-fn with_default_motion(
+pub(super) fn with_default_motion(
     given: &[(String, String)],
     defaults: &[(&str, &str)],
 ) -> Vec<(String, String)> {

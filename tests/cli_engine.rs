@@ -1,0 +1,141 @@
+//! The engines of the command line (README, "The command line"): a model
+//! from its text runs on native code compiled at run time (`--engine jit`,
+//! the default) or on the IR interpreter (`--engine interpret`), with the
+//! same numbers, since both run the same programs with the same operations;
+//! the summary names the engine, `rustc` for a built-in compiled into the
+//! command line.
+
+mod support;
+
+use std::path::PathBuf;
+use support::{chaplygin, read_csv};
+
+const BICYCLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/bicycle.model");
+const CASTER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/caster_robot.model");
+
+/// Runs `chaplygin` with `arguments` and `--out` a fresh directory `name`:
+/// standard output, and the directory.
+fn run(name: &str, arguments: &[&str]) -> (String, PathBuf) {
+    let out: PathBuf =
+        std::env::temp_dir().join(format!("chaplygin-engine-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let mut all = arguments.to_vec();
+    all.extend(["--out", out.to_str().expect("path")]);
+    let output = chaplygin(&all);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{arguments:?}: {stderr}");
+    (String::from_utf8_lossy(&output.stdout).into_owned(), out)
+}
+
+/// The summary line without its wall time.
+fn summary_without_time(stdout: &str) -> String {
+    let line = stdout.lines().next().expect("a summary line");
+    let (steps, rest) = line.split_once(" in ").expect("a time");
+    let (_, after) = rest.split_once(" s, ").expect("an engine");
+    format!("{steps} {after}")
+}
+
+/// The bicycle's file through the lean's push and the chart it runs in,
+/// in the reduced form and in the Lagrange-d'Alembert form: the JIT's
+/// trajectory is the interpreter's, digit for digit.
+#[test]
+fn the_jit_runs_the_bicycle_file_as_the_interpreter_does() {
+    for formulation in ["reduced", "lagrange"] {
+        let common = [
+            "simulate",
+            BICYCLE,
+            "--formulation",
+            formulation,
+            "--initial",
+            "dot(theta_r)=-10",
+            "--initial",
+            "dot(phi)=0.5",
+            "--initial",
+            "dot(delta)=0",
+            "--t-end",
+            "0.5",
+            "--dt",
+            "0.005",
+        ];
+        let with = |engine: &str| {
+            let mut arguments = common.to_vec();
+            arguments.extend(["--engine", engine]);
+            run(&format!("bicycle-{formulation}-{engine}"), &arguments)
+        };
+        let (jit_summary, jit_out) = with("jit");
+        let (interpreted_summary, interpreted_out) = with("interpret");
+        assert!(jit_summary.contains("engine jit"), "{jit_summary}");
+        assert!(
+            interpreted_summary.contains("engine interpret"),
+            "{interpreted_summary}"
+        );
+        let (header, rows) = read_csv(&jit_out.join("trajectory.csv"));
+        assert_eq!(rows.len(), 101, "{formulation}");
+        let phi = header.iter().position(|h| h == "phi").expect("a column");
+        assert!(rows[100][phi] > 0.05, "the lean moved: {}", rows[100][phi]);
+        let text =
+            |out: &PathBuf| std::fs::read_to_string(out.join("trajectory.csv")).expect("csv");
+        assert_eq!(text(&jit_out), text(&interpreted_out), "{formulation}");
+        assert_eq!(
+            summary_without_time(&jit_summary).replace("jit", "interpret"),
+            summary_without_time(&interpreted_summary)
+        );
+    }
+}
+
+/// The bicycle's linearization at 5 m/s from its file: the eigenvalues
+/// printed are the same on both engines.
+#[test]
+fn the_jit_linearizes_as_the_interpreter_does() {
+    let arguments = |engine| {
+        [
+            "linearize",
+            BICYCLE,
+            "--at",
+            "dot(theta_r)=-5/rR",
+            "--at",
+            "dot(psi)=0",
+            "--at",
+            "dot(phi)=0",
+            "--at",
+            "dot(delta)=0",
+            "--engine",
+            engine,
+        ]
+    };
+    let (jit, _) = run("linearize-jit", &arguments("jit"));
+    let (interpreted, _) = run("linearize-interpret", &arguments("interpret"));
+    assert!(jit.contains("asymptotically stable: yes"), "{jit}");
+    assert_eq!(jit, interpreted);
+}
+
+/// The built-ins the command line does not compile run from their text on
+/// the JIT, as their files do; the light ones are compiled (`rustc`).
+#[test]
+fn the_summary_names_the_engine_of_each_built_in() {
+    let engine_of = |model: &str| {
+        let (stdout, _) = run(
+            &format!("built-in-{model}"),
+            &["simulate", model, "--t-end", "0.05"],
+        );
+        summary_without_time(&stdout)
+    };
+    let caster = engine_of("caster-robot");
+    assert!(caster.contains("engine jit"), "{caster}");
+    assert!(engine_of("bicycle").contains("engine jit"));
+    assert!(engine_of("snakeboard").contains("engine rustc"));
+    let (file, _) = run(
+        "caster-file",
+        &[
+            "simulate",
+            CASTER,
+            "--initial",
+            "dot(phi_l)=1",
+            "--initial",
+            "dot(phi_r)=2",
+            "--t-end",
+            "0.05",
+        ],
+    );
+    assert!(file.contains("engine jit"), "{file}");
+}
