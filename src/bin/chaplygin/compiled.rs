@@ -3,7 +3,7 @@
 //! cannot depend on that crate, which depends on it), and the snakeboard's
 //! energy controller over the compiled snakeboard. The heavy built-ins
 //! (the caster robot, the bicycle) run from their text on the JIT instead
-//! (`crate::catalog`). The command line calls part of each model's
+//! (see the catalog of built-ins). The command line calls part of each model's
 //! generated API, so the rest is allowed to go unused.
 #![allow(dead_code)]
 
