@@ -122,42 +122,29 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
     /// bisection on the segment from `x` to the step's end (a point within
     /// the step's own error of the path, where the rows are far closer to
     /// dependent than at either end); any other error is returned as it is.
-    fn rows_crossed(&self, x: &[f64; D], error: SimulationError) -> SimulationError {
-        let SimulationError::Singular {
-            t,
+    fn rows_crossed(&self, x: &[f64; D], mut error: SimulationError) -> SimulationError {
+        if let SimulationError::Singular {
             rows,
-            quantity,
             crossed: true,
-            value,
-            threshold,
-            state_names,
             state,
-        } = error
-        else {
-            return error;
-        };
-        let next: [f64; D] = core::array::from_fn(|i| state[i]);
-        let at = |s: f64| -> [f64; D] { core::array::from_fn(|i| x[i] + s * (next[i] - x[i])) };
-        let sign = self.system.regularity(x).value.signum();
-        let (mut low, mut high) = (0.0, 1.0);
-        for _ in 0..60 {
-            let middle = 0.5 * (low + high);
-            match self.system.regularity(&at(middle)).value.signum() == sign {
-                true => low = middle,
-                false => high = middle,
+            ..
+        } = &mut error
+            && rows.is_empty()
+        {
+            let next: [f64; D] = core::array::from_fn(|i| state[i]);
+            let at = |s: f64| -> [f64; D] { core::array::from_fn(|i| x[i] + s * (next[i] - x[i])) };
+            let sign = self.system.regularity(x).value.signum();
+            let (mut low, mut high) = (0.0, 1.0);
+            for _ in 0..60 {
+                let middle = 0.5 * (low + high);
+                match self.system.regularity(&at(middle)).value.signum() == sign {
+                    true => low = middle,
+                    false => high = middle,
+                }
             }
+            *rows = self.system.dependent_rows(&at(0.5 * (low + high)));
         }
-        let dependent = self.system.dependent_rows(&at(0.5 * (low + high)));
-        SimulationError::Singular {
-            t,
-            rows: if rows.is_empty() { dependent } else { rows },
-            quantity,
-            crossed: true,
-            value,
-            threshold,
-            state_names,
-            state,
-        }
+        error
     }
 
     /// The first guarded expression that fails at `next` where it held at `x`.
