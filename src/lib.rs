@@ -120,6 +120,7 @@
 pub use chaplygin_macros::model;
 pub use chaplygin_runtime as runtime;
 
+pub mod energy_control;
 #[cfg(feature = "cli")]
 pub mod plot;
 

@@ -1,6 +1,6 @@
 //! The `chaplygin` binary run as a user runs it: `list`, `derive`,
-//! `simulate` (the CSV's header and energy, a `.model` file against the
-//! compiled built-in model, determinism, the plots), and bad input (one line
+//! `simulate` (the CSV's header and energy, a `.model` file on the
+//! interpreter against the built-in model on the JIT, determinism, the plots), and bad input (one line
 //! on standard error, a non-zero exit, the CSV written so far kept valid),
 //! `linearize` (eigenvalues, sweeps, and `--canonical`: the snakeboard's
 //! canonical form against a hand derivation, the benchmark bicycle's against
@@ -217,15 +217,15 @@ fn assert_same_run((header, rows): &Csv, (other_header, other_rows): &Csv) {
 }
 
 #[test]
-fn a_model_file_runs_the_same_trajectory_as_the_compiled_model() {
+fn a_model_file_on_the_interpreter_runs_the_built_ins_trajectory_on_the_jit() {
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
-    let run = |model: &str, name: &str| {
-        let mut arguments = vec![model, "--initial", "dot(phi)=0.2"];
+    let run = |model: &str, engine: &str| {
+        let mut arguments = vec![model, "--initial", "dot(phi)=0.2", "--engine", engine];
         arguments.extend(["--input", "u_torso=0.05", "--t-end", "5"]);
         arguments.extend(SNAKEBOARD_ROLLING);
-        simulated(name, &arguments)
+        simulated(&format!("snakeboard-{engine}"), &arguments)
     };
-    assert_same_run(&run("snakeboard", "compiled"), &run(file, "interpreted"));
+    assert_same_run(&run("snakeboard", "jit"), &run(file, "interpret"));
 }
 
 #[test]
@@ -391,21 +391,19 @@ fn the_momentum_formulation_follows_the_lagrange_run() {
 }
 
 /// The momentum formulation of a `.model` file through the interpreter runs
-/// the trajectory of the compiled model; a file without a symmetry is
+/// the trajectory of the built-in on the JIT; a file without a symmetry is
 /// refused in one line.
 #[test]
-fn the_momentum_formulation_of_a_model_file_follows_the_compiled_model() {
+fn the_momentum_formulation_of_a_model_file_follows_the_built_in() {
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
-    let run = |model: &str, name: &str| {
+    let run = |model: &str, engine: &str| {
         let mut arguments = vec![model, "--formulation", "momentum", "--integrator", "rk4"];
         arguments.extend(["--input", "u_torso=0.05*sin(3*t)", "--t-end", "3"]);
+        arguments.extend(["--engine", engine]);
         arguments.extend(SNAKEBOARD_ROLLING);
-        simulated(name, &arguments)
+        simulated(&format!("momentum-{engine}"), &arguments)
     };
-    assert_same_run(
-        &run("snakeboard", "momentum-compiled"),
-        &run(file, "momentum-file"),
-    );
+    assert_same_run(&run("snakeboard", "jit"), &run(file, "interpret"));
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
     let source = std::fs::read_to_string(file).unwrap();
     let without_symmetry: String = source
@@ -899,7 +897,7 @@ fn a_model_file_with_a_symmetry_stays_in_its_trough_in_the_momentum_form() {
 /// no stiffness. Without a potential there is no gravity: `m` stands in for
 /// it, and `K0` is 0 whatever it is.
 #[test]
-fn the_snakeboards_canonical_form_is_the_hand_derivation_compiled_and_interpreted() {
+fn the_snakeboards_canonical_form_is_the_hand_derivation_on_both_engines() {
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
     let (jt, jw, r) = (0.3, 0.05, 0.5);
     let expected = [
@@ -909,10 +907,12 @@ fn the_snakeboards_canonical_form_is_the_hand_derivation_compiled_and_interprete
         ("K2", [[0.0; 2]; 2]),
     ];
     let mut printed = Vec::new();
-    for model in ["snakeboard", file] {
+    for (model, engine) in [("snakeboard", "jit"), (file, "interpret")] {
         let output = chaplygin(&[
             "linearize",
             model,
+            "--engine",
+            engine,
             "--at",
             "dot(x)=v",
             "--at",

@@ -2,8 +2,7 @@
 //! from its text runs on native code compiled at run time (`--engine jit`,
 //! the default) or on the IR interpreter (`--engine interpret`), with the
 //! same numbers, since both run the same programs with the same operations;
-//! the summary names the engine, `rustc` for a built-in compiled into the
-//! command line.
+//! the summary names the engine. The built-ins run from their text too.
 
 mod support;
 
@@ -109,8 +108,8 @@ fn the_jit_linearizes_as_the_interpreter_does() {
     assert_eq!(jit, interpreted);
 }
 
-/// The built-ins the command line does not compile run from their text on
-/// the JIT, as their files do; the light ones are compiled (`rustc`).
+/// Every built-in runs from its text on the JIT by default, as files do,
+/// and on the interpreter when asked.
 #[test]
 fn the_summary_names_the_engine_of_each_built_in() {
     let engine_of = |model: &str| {
@@ -123,7 +122,19 @@ fn the_summary_names_the_engine_of_each_built_in() {
     let caster = engine_of("caster-robot");
     assert!(caster.contains("engine jit"), "{caster}");
     assert!(engine_of("bicycle").contains("engine jit"));
-    assert!(engine_of("snakeboard").contains("engine rustc"));
+    assert!(engine_of("snakeboard").contains("engine jit"));
+    let (interpreted, _) = run(
+        "built-in-interpreted",
+        &[
+            "simulate",
+            "sleigh",
+            "--t-end",
+            "0.05",
+            "--engine",
+            "interpret",
+        ],
+    );
+    assert!(summary_without_time(&interpreted).contains("engine interpret"));
     let (file, _) = run(
         "caster-file",
         &[

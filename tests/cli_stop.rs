@@ -5,7 +5,8 @@
 //! steering law and a damping drive torque are those of linear
 //! oscillators; the benchmark bicycle at 2 m/s, below its weave speed,
 //! falls without a steering law and stays upright with one. Every
-//! formulation, compiled and interpreted from the `.model` file.
+//! formulation, the built-in on the JIT and its `.model` file on the
+//! interpreter.
 
 mod support;
 
@@ -101,18 +102,20 @@ const RUNS: [(&str, &str); 9] = [
 /// no torque, so the turning rate is constant and the heading is
 /// `theta(t) = 0.1 + 0.7 t`, which exceeds 1 at `t = 0.9/0.7`. Every
 /// integrator follows a linear heading exactly, so the stop lies within
-/// the located bracket, 1e-9, of that time, in every formulation, compiled
-/// and interpreted; the last row is there, its heading 1 to 1e-9.
+/// the located bracket, 1e-9, of that time, in every formulation, on the JIT
+/// and on the interpreter; the last row is there, its heading 1 to 1e-9.
 #[test]
 fn the_sleigh_stops_where_its_heading_crosses_1() {
     let crossing = 0.9 / 0.7;
-    for model in ["sleigh", SLEIGH] {
+    for (model, engine) in [("sleigh", "jit"), (SLEIGH, "interpret")] {
         for (formulation, integrator) in RUNS {
             let context = format!("{model} {formulation} {integrator}");
             let run = simulate(
                 "sleigh",
                 &[
                     model,
+                    "--engine",
+                    engine,
                     "--formulation",
                     formulation,
                     "--integrator",
@@ -224,15 +227,17 @@ fn disk_arguments<'a>(model: &'a str, formulation: &'a str, integrator: &'a str)
 /// Under the feedback laws the disk's heading and rotation are the closed
 /// forms' in every formulation (the laws read `dot(theta)` and `dot(phi)`
 /// off the reduced momenta and the momentum form's reconstruction too),
-/// compiled and interpreted, to the integrators' orders at steps of 0.01
+/// on the JIT and on the interpreter, to the integrators' orders at steps of 0.01
 /// (measured: 3e-13 with Dormand-Prince, 1.05e-9 with RK4, 2.2e-5 with the
 /// second-order implicit methods).
 #[test]
 fn feedback_laws_close_every_formulation_as_their_closed_form_says() {
-    for model in ["rolling-disk", DISK] {
+    for (model, engine) in [("rolling-disk", "jit"), (DISK, "interpret")] {
         for (formulation, integrator) in RUNS {
             let context = format!("{model} {formulation} {integrator}");
-            let run = simulate("disk", &disk_arguments(model, formulation, integrator));
+            let mut arguments = disk_arguments(model, formulation, integrator);
+            arguments.extend(["--engine", engine]);
+            let run = simulate("disk", &arguments);
             let tolerance = match integrator {
                 "dopri5" => 1e-12,
                 "rk4" => 1e-8,

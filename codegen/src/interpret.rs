@@ -27,8 +27,10 @@
 
 mod charts;
 mod engine;
+mod fixed;
 
 pub use engine::{Engine, Interpreter};
+pub use fixed::{Fixed, SizeMismatch};
 
 use crate::derive::constraints::ChartFit;
 use crate::derive::momentum::group_coordinates;
@@ -325,14 +327,14 @@ impl InterpretedModel {
 
     /// The model's guarded expressions at `q` (the generated `DOMAIN` and
     /// `domain`).
-    pub fn domain(&self, q: &[f64]) -> Result<Vec<GuardedValue>, CallError> {
+    pub fn domain(&self, q: &[f64]) -> Result<Vec<GuardedValue<'_>>, CallError> {
         let values = self.call("domain", &[q])?;
         Ok(self
             .guards
             .iter()
             .zip(values)
             .map(|((description, guard), value)| GuardedValue {
-                description: description.clone().into(),
+                description: description.as_str().into(),
                 guard: *guard,
                 value,
             })
@@ -342,7 +344,7 @@ impl InterpretedModel {
     /// The momentum basis's divisors that depend on the parameters alone
     /// (the generated `BASIS_DIVISORS` and `basis_divisors`), as guards
     /// that must not vanish; none without a momentum equation.
-    pub fn basis_divisors(&self) -> Result<Vec<GuardedValue>, CallError> {
+    pub fn basis_divisors(&self) -> Result<Vec<GuardedValue<'_>>, CallError> {
         if self.basis_divisors.is_empty() {
             return Ok(Vec::new());
         }
@@ -352,7 +354,7 @@ impl InterpretedModel {
             .iter()
             .zip(values)
             .map(|(description, value)| GuardedValue {
-                description: description.clone().into(),
+                description: description.as_str().into(),
                 guard: Guard::NonZero,
                 value,
             })

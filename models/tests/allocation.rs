@@ -7,6 +7,7 @@
 
 mod common;
 
+use chaplygin::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin::runtime::arrays::matrix_from_rows;
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4};
 use chaplygin::runtime::linalg::{eigenvalues, solve, solve_positive_definite};
@@ -14,7 +15,6 @@ use chaplygin::runtime::projection::Surface;
 use chaplygin::runtime::simulate::Observed;
 use chaplygin::runtime::system::LagrangeDalembert;
 use chaplygin::runtime::system::{Constant, Dalembert, Reduced, ReducedPortHamiltonian};
-use chaplygin_models::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin_models::{
     bicycle::Bicycle, caster_robot::CasterRobot, differential_drive::DifferentialDrive,
     rolling_disk::RollingDisk, rolling_disk_3d::RollingDisk3d, sleigh::Sleigh,

@@ -63,7 +63,9 @@ impl LagrangeDalembert<3, 0, 2> for CanonicalBicycle {
 }
 
 impl Linearization<3, 0, 2> for CanonicalBicycle {
-    const SYMMETRY: &'static [GroupFactor] = &[GroupFactor::Rotation(2)];
+    fn symmetry(&self) -> &[GroupFactor] {
+        &[GroupFactor::Rotation(2)]
+    }
     fn mass_matrix(&self, _q: &[f64; 3]) -> [[f64; 3]; 3] {
         let m = self.matrices.m;
         [
@@ -112,10 +114,18 @@ impl Linearization<3, 0, 2> for CanonicalBicycle {
 impl Domain for CanonicalBicycle {}
 
 impl ModelNames for CanonicalBicycle {
-    const COORDINATES: &'static [&'static str] = &["phi", "delta", "theta_r"];
-    const MOMENTA: &'static [&'static str] = &["a", "b", "c"];
-    const INPUTS: &'static [&'static str] = &["t_phi", "t_delta"];
-    const CONSTRAINTS: &'static [&'static str] = &[];
+    fn coordinate_names(&self) -> &[&str] {
+        &["phi", "delta", "theta_r"]
+    }
+    fn momentum_names(&self) -> &[&str] {
+        &["a", "b", "c"]
+    }
+    fn input_names(&self) -> &[&str] {
+        &["t_phi", "t_delta"]
+    }
+    fn constraint_names(&self) -> &[&str] {
+        &[]
+    }
 }
 
 fn assert_matrix(found: &DMatrix<f64>, expected: &Matrix2<f64>, what: &str) {

@@ -22,6 +22,7 @@ use chaplygin_models::differential_drive::DifferentialDrive;
 use chaplygin_models::rolling_disk::RollingDisk;
 use chaplygin_models::sleigh::Sleigh;
 use chaplygin_models::snakeboard::Snakeboard;
+use common::random::Random;
 use common::towed::Towed;
 use snake3::Snake3;
 
@@ -67,23 +68,6 @@ fn source(name: &str) -> String {
         _ => "differential_drive",
     };
     std::fs::read_to_string(format!("{root}/{file}.model")).expect("readable")
-}
-
-/// xorshift64*: reproducible values in [-1, 1).
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let bits = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
-        2.0 * (bits as f64 / (1u64 << 53) as f64) - 1.0
-    }
-
-    fn array<const L: usize>(&mut self) -> [f64; L] {
-        std::array::from_fn(|_| self.next())
-    }
 }
 
 /// Counts of compared entries and of bit-identical ones.

@@ -301,7 +301,9 @@ impl LagrangeDalembert<3, 2, 1> for Pendulum {
 }
 
 impl Linearization<3, 2, 1> for Pendulum {
-    const SYMMETRY: &'static [GroupFactor] = &[];
+    fn symmetry(&self) -> &[GroupFactor] {
+        &[]
+    }
     fn mass_matrix(&self, _q: &[f64; 3]) -> [[f64; 3]; 3] {
         [[self.j, 0.0, 0.0], [0.0, self.m, 0.0], [0.0, 0.0, self.m]]
     }
@@ -323,7 +325,9 @@ impl Linearization<3, 2, 1> for Pendulum {
 }
 
 impl Holonomic<3, 2> for Pendulum {
-    const HOLONOMIC: [&'static str; 2] = ["rod_x", "rod_y"];
+    fn holonomic_names(&self) -> [&str; 2] {
+        ["rod_x", "rod_y"]
+    }
     fn holonomic_residual(&self, q: &[f64; 3]) -> [f64; 2] {
         let (sin, cos) = q[0].sin_cos();
         [q[1] - self.l * sin, q[2] + self.l * cos]
@@ -337,10 +341,18 @@ impl Holonomic<3, 2> for Pendulum {
 impl Domain for Pendulum {}
 
 impl ModelNames for Pendulum {
-    const COORDINATES: &'static [&'static str] = &["theta", "x", "y"];
-    const MOMENTA: &'static [&'static str] = &["p"];
-    const INPUTS: &'static [&'static str] = &["torque"];
-    const CONSTRAINTS: &'static [&'static str] = &["rod_x", "rod_y"];
+    fn coordinate_names(&self) -> &[&str] {
+        &["theta", "x", "y"]
+    }
+    fn momentum_names(&self) -> &[&str] {
+        &["p"]
+    }
+    fn input_names(&self) -> &[&str] {
+        &["torque"]
+    }
+    fn constraint_names(&self) -> &[&str] {
+        &["rod_x", "rod_y"]
+    }
 }
 
 /// About `theta = theta0` the pendulum is `(j + m l^2) theta'' = -m g l

@@ -9,11 +9,11 @@
 //!
 //! The numbers are recorded in BENCHMARKS.md.
 
+use chaplygin::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, Rk4};
 use chaplygin::runtime::record::Recorder;
 use chaplygin::runtime::simulate::{Advance, Simulation};
 use chaplygin::runtime::system::{Constant, Dalembert};
-use chaplygin_models::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin_models::snakeboard::Snakeboard;
 use std::io;
 use std::time::Instant;
@@ -48,8 +48,8 @@ impl Recorder for Extremes {
     }
 }
 
-fn long_run<M: for<'a> Advance<ClosedLoop, 10>>(name: &str, method: M) {
-    let closed_loop = ClosedLoop::new(
+fn long_run<M: for<'a> Advance<ClosedLoop<Snakeboard>, 10>>(name: &str, method: M) {
+    let closed_loop = ClosedLoop::<Snakeboard>::new(
         Snakeboard::default(),
         EnergyController {
             a: 1.0,

@@ -282,7 +282,7 @@ fn models_without_holonomic_constraints_have_none() {
     let disk = RollingDisk3d::default();
     let none: [f64; 0] = Holonomic::holonomic_residual(&disk, &[0.0; 5]);
     assert_eq!(none.len(), 0);
-    assert_eq!(<RollingDisk3d as Holonomic<5, 0>>::HOLONOMIC.len(), 0);
+    assert_eq!(Holonomic::<5, 0>::holonomic_names(&disk).len(), 0);
 }
 
 /// One classical Runge-Kutta step of `(q, qdot)` under the Lagrange-d'Alembert equations.

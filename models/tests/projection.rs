@@ -63,7 +63,9 @@ impl LagrangeDalembert<2, 1, 0> for Pendulum {
 }
 
 impl Holonomic<2, 1> for Pendulum {
-    const HOLONOMIC: [&'static str; 1] = ["rod"];
+    fn holonomic_names(&self) -> [&str; 1] {
+        ["rod"]
+    }
 
     fn holonomic_residual(&self, q: &[f64; 2]) -> [f64; 1] {
         [q[0] * q[0] + q[1] * q[1] - self.l * self.l - self.offset]
@@ -78,10 +80,18 @@ impl Holonomic<2, 1> for Pendulum {
 impl Domain for Pendulum {}
 
 impl ModelNames for Pendulum {
-    const COORDINATES: &'static [&'static str] = &["x", "y"];
-    const MOMENTA: &'static [&'static str] = &[];
-    const INPUTS: &'static [&'static str] = &[];
-    const CONSTRAINTS: &'static [&'static str] = &["rod_velocity"];
+    fn coordinate_names(&self) -> &[&str] {
+        &["x", "y"]
+    }
+    fn momentum_names(&self) -> &[&str] {
+        &[]
+    }
+    fn input_names(&self) -> &[&str] {
+        &[]
+    }
+    fn constraint_names(&self) -> &[&str] {
+        &["rod_velocity"]
+    }
 }
 
 /// At angle `angle` from the downward vertical, moving with angular speed

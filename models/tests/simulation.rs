@@ -4,17 +4,17 @@
 //! constraints at `phi = pi/2`, the sleigh's own basis at `theta = pi/2`),
 //! with the rows recorded before it kept.
 
+use chaplygin::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin::runtime::control::Feedback;
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, Rk4};
 use chaplygin::runtime::record::{CsvRecorder, Table};
 use chaplygin::runtime::simulate::{Simulation, SimulationError};
 use chaplygin::runtime::system::{Dalembert, Jacobian, OdeSystem, Reduced, ReducedPortHamiltonian};
-use chaplygin_models::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin_models::{sleigh::Sleigh, snakeboard::Snakeboard};
 use std::f64::consts::FRAC_PI_2;
 
-fn closed_loop() -> ClosedLoop {
-    ClosedLoop::new(
+fn closed_loop() -> ClosedLoop<Snakeboard> {
+    ClosedLoop::<Snakeboard>::new(
         Snakeboard::default(),
         EnergyController {
             a: 1.0,

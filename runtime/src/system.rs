@@ -177,7 +177,7 @@ pub trait LagrangeDalembert<const N: usize, const C: usize, const P: usize> {
 /// configuration for the coordinates it leaves unset.
 pub trait Holonomic<const N: usize, const H: usize> {
     /// The constraints' names, as declared.
-    const HOLONOMIC: [&'static str; H];
+    fn holonomic_names(&self) -> [&str; H];
     /// `f(q)`.
     fn holonomic_residual(&self, q: &[f64; N]) -> [f64; H];
     /// `df/dq`, one row per constraint.
@@ -214,7 +214,7 @@ pub trait Momenta<const N: usize, const K: usize> {
 /// ```
 pub trait MomentumEquations<const N: usize, const R: usize, const K: usize, const P: usize> {
     /// The indices of the shape coordinates in `q`, in declared order.
-    const SHAPE: [usize; R];
+    fn shape_indices(&self) -> [usize; R];
     /// The momenta `p = h(q) M(q) qdot` of a velocity.
     fn momentum(&self, q: &[f64; N], qdot: &[f64; N]) -> [f64; K];
     /// The unforced momentum equation's right-hand side.
@@ -236,12 +236,14 @@ pub trait MomentumEquations<const N: usize, const R: usize, const K: usize, cons
     /// The divisors of the momentum basis `e(r)` that depend on the
     /// parameters alone, described: where one is zero the basis degenerates
     /// at every configuration. None by default.
-    const BASIS_DIVISORS: &'static [&'static str] = &[];
-    /// The values of [`MomentumEquations::BASIS_DIVISORS`], in order.
+    fn basis_divisor_names(&self) -> &[&str] {
+        &[]
+    }
+    /// The values of [`MomentumEquations::basis_divisor_names`], in order.
     fn basis_divisors(&self, _values: &mut [f64]) {}
     /// The shape coordinates `r` of `q`.
-    fn shape(q: &[f64; N]) -> [f64; R] {
-        Self::SHAPE.map(|i| q[i])
+    fn shape(&self, q: &[f64; N]) -> [f64; R] {
+        self.shape_indices().map(|i| q[i])
     }
 }
 
@@ -265,7 +267,7 @@ pub enum GroupFactor {
 }
 
 /// What an expression of a model needs to stay defined
-/// ([`Domain::DOMAIN`]).
+/// ([`Domain::guards`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Guard {
     /// Its value must stay positive (the argument of a square root or a
@@ -284,9 +286,11 @@ pub enum Guard {
 pub trait Domain {
     /// Each guarded expression, described (what, where, what must hold),
     /// with its guard.
-    const DOMAIN: &'static [(&'static str, Guard)] = &[];
+    fn guards(&self) -> &[(&str, Guard)] {
+        &[]
+    }
     /// The guarded expressions' values at the configuration `q`, in the
-    /// order of [`Domain::DOMAIN`].
+    /// order of [`Domain::guards`].
     fn domain(&self, _q: &[f64], _values: &mut [f64]) {}
     /// The constraint rows `A(q)`, `c x n` row-major into `rows`; `false`
     /// when the model does not give them.
@@ -298,7 +302,7 @@ pub trait Domain {
 /// A generated model's parameters, by name.
 pub trait Parameters {
     /// The parameters, in declared order.
-    const PARAMETERS: &'static [&'static str];
+    fn parameter_names(&self) -> &[&str];
     /// The parameter called `name`, if there is one.
     fn parameter_mut(&mut self, name: &str) -> Option<&mut f64>;
 }
@@ -306,13 +310,13 @@ pub trait Parameters {
 /// The names a generated model declares, in order.
 pub trait ModelNames {
     /// The coordinates `q`.
-    const COORDINATES: &'static [&'static str];
+    fn coordinate_names(&self) -> &[&str];
     /// The momenta `alpha` of the reduced state.
-    const MOMENTA: &'static [&'static str];
+    fn momentum_names(&self) -> &[&str];
     /// The inputs `u`.
-    const INPUTS: &'static [&'static str];
+    fn input_names(&self) -> &[&str];
     /// The constraints, as declared.
-    const CONSTRAINTS: &'static [&'static str];
+    fn constraint_names(&self) -> &[&str];
 }
 
 /// A model's Lagrange-d'Alembert equations closed by a [`Controller`]: an
@@ -504,7 +508,7 @@ where
     /// The state `(q, rdot, p)` of the configuration `q` moving with
     /// `qdot` (a velocity the constraints allow).
     pub fn initial_state<const D: usize>(&self, q: &[f64; N], qdot: &[f64; N]) -> [f64; D] {
-        let rdot = M::shape(qdot);
+        let rdot = self.model.shape(qdot);
         let p = self.model.momentum(q, qdot);
         join(q, &rdot, &p)
     }
@@ -581,7 +585,7 @@ where
     fn rhs(&self, t: f64, x: &[f64; D]) -> [f64; D] {
         let (q, rdot, p) = split_momentum::<N, R, K, D>(x);
         let u = self.controller.input(t, x);
-        let r = M::shape(&q);
+        let r = self.model.shape(&q);
         let qdot = self.model.reconstructed_velocity(&q, &rdot, &p);
         let rddot = self.model.shape_acceleration(&r, &rdot, &p, &u);
         let unforced = self.model.momentum_rhs(&r, &rdot, &p);

@@ -149,7 +149,9 @@ pub(super) fn implementation(model: &Model) -> TokenStream {
         });
     quote! {
         impl #linearize::Linearization<#n, #c, #p> for #name {
-            const SYMMETRY: &'static [#linearize::GroupFactor] = &[#(#factors),*];
+            fn symmetry(&self) -> &[#linearize::GroupFactor] {
+                &[#(#factors),*]
+            }
             fn mass_matrix(&self, q: &[#f64; #n]) -> [[#f64; #n]; #n] {
                 #name::mass_matrix(self, q)
             }

@@ -109,7 +109,7 @@ fn fit_of(model: &Model, fit: &ChartFit) -> TokenStream {
                 );
                 #monitor::in_body_frame(
                     &mut rows,
-                    <#name as ::chaplygin::runtime::linearize::Linearization<#n, #c, #p>>::SYMMETRY,
+                    <#name as ::chaplygin::runtime::linearize::Linearization<#n, #c, #p>>::symmetry(self),
                     &q,
                 );
                 #monitor::signed_pivot_ratio(&rows, &#dependent).abs()
@@ -421,7 +421,9 @@ pub(crate) fn implementations(model: &Model, charts: &[ChartFit], momentum: bool
         }
 
         impl #system::Parameters for #name {
-            const PARAMETERS: &'static [&'static ::core::primitive::str] = &#name::PARAMETERS;
+            fn parameter_names(&self) -> &[&::core::primitive::str] {
+                &#name::PARAMETERS
+            }
             fn parameter_mut(
                 &mut self,
                 name: &::core::primitive::str,
@@ -434,14 +436,24 @@ pub(crate) fn implementations(model: &Model, charts: &[ChartFit], momentum: bool
         }
 
         impl #system::ModelNames for #name {
-            const COORDINATES: &'static [&'static ::core::primitive::str] = &#name::COORDINATES;
-            const MOMENTA: &'static [&'static ::core::primitive::str] = &#name::MOMENTA;
-            const INPUTS: &'static [&'static ::core::primitive::str] = &#name::INPUTS;
-            const CONSTRAINTS: &'static [&'static ::core::primitive::str] = &#name::CONSTRAINTS;
+            fn coordinate_names(&self) -> &[&::core::primitive::str] {
+                &#name::COORDINATES
+            }
+            fn momentum_names(&self) -> &[&::core::primitive::str] {
+                &#name::MOMENTA
+            }
+            fn input_names(&self) -> &[&::core::primitive::str] {
+                &#name::INPUTS
+            }
+            fn constraint_names(&self) -> &[&::core::primitive::str] {
+                &#name::CONSTRAINTS
+            }
         }
 
         impl #system::Domain for #name {
-            const DOMAIN: &'static [(&'static ::core::primitive::str, #system::Guard)] = &#name::DOMAIN;
+            fn guards(&self) -> &[(&::core::primitive::str, #system::Guard)] {
+                &#name::DOMAIN
+            }
             fn domain(&self, q: &[#f64], values: &mut [#f64]) {
                 let q: [#f64; #n] = ::core::array::from_fn(|i| q[i]);
                 values.copy_from_slice(&#name::domain(self, &q));
@@ -454,7 +466,9 @@ pub(crate) fn implementations(model: &Model, charts: &[ChartFit], momentum: bool
         }
 
         impl #system::Holonomic<#n, #h> for #name {
-            const HOLONOMIC: [&'static ::core::primitive::str; #h] = #name::HOLONOMIC;
+            fn holonomic_names(&self) -> [&::core::primitive::str; #h] {
+                #name::HOLONOMIC
+            }
             fn holonomic_residual(&self, q: &[#f64; #n]) -> [#f64; #h] {
                 #name::holonomic_residual(self, q)
             }
@@ -511,8 +525,12 @@ fn momentum_equations(model: &Model, symmetry: &Symmetry) -> TokenStream {
     let system = quote!(::chaplygin::runtime::system);
     quote! {
         impl #system::MomentumEquations<#n, #nr, #mp, #p> for #name {
-            const SHAPE: [::core::primitive::usize; #nr] = [#(#shape_indices),*];
-            const BASIS_DIVISORS: &'static [&'static ::core::primitive::str] = &#name::BASIS_DIVISORS;
+            fn shape_indices(&self) -> [::core::primitive::usize; #nr] {
+                [#(#shape_indices),*]
+            }
+            fn basis_divisor_names(&self) -> &[&::core::primitive::str] {
+                &#name::BASIS_DIVISORS
+            }
             fn basis_divisors(&self, values: &mut [#f64]) {
                 values.copy_from_slice(&#name::basis_divisors(self));
             }
@@ -540,7 +558,7 @@ fn momentum_equations(model: &Model, symmetry: &Symmetry) -> TokenStream {
                 rdot: &[#f64; #nr],
                 p: &[#f64; #mp],
             ) -> [#f64; #n] {
-                let r = <Self as #system::MomentumEquations<#n, #nr, #mp, #p>>::shape(q);
+                let r = <Self as #system::MomentumEquations<#n, #nr, #mp, #p>>::shape(self, q);
                 let xi = #name::body_velocity(self, &r, rdot, p);
                 let mut qdot = [0.0; #n];
                 #(#group_velocities)*

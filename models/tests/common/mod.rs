@@ -7,6 +7,7 @@
 
 #![allow(dead_code)]
 
+pub mod random;
 pub mod towed;
 
 /// The reduced port-Hamiltonian items of a generated model, on slices.

@@ -39,7 +39,7 @@ pub trait Linearization<const N: usize, const C: usize, const P: usize>:
     LagrangeDalembert<N, C, P>
 {
     /// The factors of the declared symmetry group (empty without one).
-    const SYMMETRY: &'static [GroupFactor];
+    fn symmetry(&self) -> &[GroupFactor];
     /// The mass matrix `g(q)`.
     fn mass_matrix(&self, q: &[f64; N]) -> [[f64; N]; N];
     /// The constraint rows `A(q)`.
@@ -90,7 +90,7 @@ pub trait Dynamics {
 type HolonomicParts<M, const N: usize, const H: usize> = (
     fn(&M, &[f64; N]) -> [f64; H],
     fn(&M, &[f64; N]) -> [[f64; N]; H],
-    &'static [&'static str],
+    fn(&M) -> [&str; H],
 );
 
 /// A generated model seen as [`Dynamics`]: `N` coordinates, `C`
@@ -105,7 +105,7 @@ impl<'a, M, const N: usize, const C: usize, const P: usize> Compiled<'a, M, N, C
     pub fn new(model: &'a M) -> Self {
         Self {
             model,
-            holonomic: (|_, _| [], |_, _| [], &[]),
+            holonomic: (|_, _| [], |_, _| [], |_| []),
         }
     }
 }
@@ -122,7 +122,7 @@ where
             holonomic: (
                 M::holonomic_residual,
                 M::holonomic_jacobian,
-                &<M as Holonomic<N, H>>::HOLONOMIC,
+                M::holonomic_names,
             ),
         }
     }
@@ -132,6 +132,11 @@ where
 /// the rest zero or is cut: the callers size their slices).
 fn array<const N: usize>(values: &[f64]) -> [f64; N] {
     core::array::from_fn(|i| values.get(i).copied().unwrap_or(0.0))
+}
+
+/// Owned copies of `names`.
+fn owned(names: &[&str]) -> Vec<String> {
+    names.iter().map(|name| name.to_string()).collect()
 }
 
 /// A row-major array as a matrix.
@@ -145,15 +150,15 @@ where
     M: Linearization<N, C, P> + ModelNames,
 {
     fn coordinates(&self) -> Vec<String> {
-        M::COORDINATES.iter().map(|s| s.to_string()).collect()
+        owned(self.model.coordinate_names())
     }
 
     fn constraints(&self) -> Vec<String> {
-        M::CONSTRAINTS.iter().map(|s| s.to_string()).collect()
+        owned(self.model.constraint_names())
     }
 
     fn holonomic(&self) -> Vec<String> {
-        self.holonomic.2.iter().map(|s| s.to_string()).collect()
+        owned(&(self.holonomic.2)(self.model))
     }
 
     fn inputs(&self) -> usize {
@@ -161,7 +166,7 @@ where
     }
 
     fn symmetry(&self) -> Vec<GroupFactor> {
-        M::SYMMETRY.to_vec()
+        Linearization::symmetry(self.model).to_vec()
     }
 
     fn holonomic_residual(&self, q: &[f64]) -> DVector<f64> {

@@ -130,8 +130,13 @@ where
             matrix_from_rows(&model.holonomic_jacobian(&q)),
         )
     };
-    configuration::<Const<N>, Const<H>>(SVector::from(*q), constraint, &M::HOLONOMIC, settings)
-        .map(Into::into)
+    configuration::<Const<N>, Const<H>>(
+        SVector::from(*q),
+        constraint,
+        &model.holonomic_names(),
+        settings,
+    )
+    .map(Into::into)
 }
 
 /// `max |f(q)|` of `model`.

@@ -36,7 +36,7 @@ pub const REACHED: f64 = 1e-5;
 pub(crate) struct Ends<'a, S, const D: usize> {
     system: &'a S,
     /// The guarded expressions at the start.
-    start: Vec<GuardedValue>,
+    start: Vec<GuardedValue<'a>>,
     singular_below: f64,
 }
 
@@ -148,7 +148,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
     }
 
     /// The first guarded expression that fails at `next` where it held at `x`.
-    fn failed(&self, x: &[f64; D], next: &[f64; D]) -> Option<GuardedValue> {
+    fn failed(&self, x: &[f64; D], next: &[f64; D]) -> Option<GuardedValue<'a>> {
         let before = self.system.domain(x);
         self.system
             .domain(next)
@@ -160,9 +160,10 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
 
     /// The guarded expression smallest relative to its value at the start,
     /// at `x`, if below `fraction` of it.
-    fn smallest_below(&self, x: &[f64; D], fraction: f64) -> Option<GuardedValue> {
-        let relative =
-            |(guard, start): &(GuardedValue, &GuardedValue)| (guard.value / start.value).abs();
+    fn smallest_below(&self, x: &[f64; D], fraction: f64) -> Option<GuardedValue<'a>> {
+        let relative = |(guard, start): &(GuardedValue<'_>, &GuardedValue<'_>)| {
+            (guard.value / start.value).abs()
+        };
         self.system
             .domain(x)
             .into_iter()
@@ -176,7 +177,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
         &self,
         t: f64,
         initial: bool,
-        guard: GuardedValue,
+        guard: GuardedValue<'_>,
         x: &[f64; D],
     ) -> SimulationError {
         let at_start = self

@@ -68,7 +68,7 @@ pub trait Observed<const D: usize>: Energy<D> {
     }
     /// The model's guarded expressions at `x` ([`crate::system::Domain`]),
     /// none by default.
-    fn domain(&self, _x: &[f64; D]) -> Vec<GuardedValue> {
+    fn domain(&self, _x: &[f64; D]) -> Vec<GuardedValue<'_>> {
         Vec::new()
     }
     /// The names of the constraint rows that are dependent at `x`
@@ -95,18 +95,17 @@ pub trait Observed<const D: usize>: Energy<D> {
 
 /// A guarded expression of a model at a state ([`Observed::domain`]).
 #[derive(Clone, Debug, PartialEq)]
-pub struct GuardedValue {
-    /// What it guards, where, and what must hold (borrowed from a
-    /// generated model's constants: checking the domain after every step
-    /// copies no text).
-    pub description: Cow<'static, str>,
+pub struct GuardedValue<'a> {
+    /// What it guards, where, and what must hold (borrowed from the model:
+    /// checking the domain after every step copies no text).
+    pub description: Cow<'a, str>,
     /// What must hold.
     pub guard: Guard,
     /// Its value.
     pub value: f64,
 }
 
-impl GuardedValue {
+impl GuardedValue<'_> {
     /// Whether the guard fails at this value where it held at `reference`
     /// (a positive value turned non-positive, or a divisor's sign lost;
     /// NaN fails).
@@ -130,10 +129,11 @@ impl GuardedValue {
 }
 
 /// The guarded expressions of `model` at the configuration `q`.
-fn domain_of<M: Domain>(model: &M, q: &[f64]) -> Vec<GuardedValue> {
-    let mut values = vec![0.0; M::DOMAIN.len()];
+fn domain_of<'a, M: Domain>(model: &'a M, q: &[f64]) -> Vec<GuardedValue<'a>> {
+    let guards = model.guards();
+    let mut values = vec![0.0; guards.len()];
     model.domain(q, &mut values);
-    M::DOMAIN
+    guards
         .iter()
         .zip(values)
         .map(|(&(description, guard), value)| GuardedValue {
@@ -146,14 +146,15 @@ fn domain_of<M: Domain>(model: &M, q: &[f64]) -> Vec<GuardedValue> {
 
 /// The names of `model`'s constraint rows that are dependent at `q`.
 fn dependent_rows_of<M: Domain + ModelNames>(model: &M, q: &[f64]) -> Vec<String> {
-    let (c, n) = (M::CONSTRAINTS.len(), M::COORDINATES.len());
+    let constraints = model.constraint_names();
+    let (c, n) = (constraints.len(), model.coordinate_names().len());
     let mut rows = vec![0.0; c * n];
     if !model.constraint_rows(&q[..n], &mut rows) {
         return Vec::new();
     }
     dependent_rows(&DMatrix::from_row_slice(c, n, &rows))
         .into_iter()
-        .map(|i| M::CONSTRAINTS[i].to_string())
+        .map(|i| constraints[i].to_string())
         .collect()
 }
 
@@ -222,20 +223,21 @@ where
     M: ReducedPortHamiltonian<S, P> + ModelNames + Domain,
     F: Controller<S, P>,
 {
-    fn domain(&self, x: &[f64; S]) -> Vec<GuardedValue> {
-        domain_of(self.model(), &x[..M::COORDINATES.len()])
+    fn domain(&self, x: &[f64; S]) -> Vec<GuardedValue<'_>> {
+        domain_of(self.model(), &x[..self.model().coordinate_names().len()])
     }
 
     fn dependent_rows(&self, x: &[f64; S]) -> Vec<String> {
-        dependent_rows_of(self.model(), &x[..M::COORDINATES.len()])
+        dependent_rows_of(self.model(), &x[..self.model().coordinate_names().len()])
     }
 
     fn state_names(&self) -> Vec<String> {
-        owned(&[M::COORDINATES, M::MOMENTA].concat())
+        let model = self.model();
+        owned(&[model.coordinate_names(), model.momentum_names()].concat())
     }
 
     fn input_names(&self) -> Vec<String> {
-        owned(M::INPUTS)
+        owned(self.model().input_names())
     }
 
     fn inputs(&self, t: f64, x: &[f64; S], inputs: &mut [f64]) {
@@ -293,24 +295,22 @@ where
     M: LagrangeDalembert<N, C, P> + ModelNames + Domain,
     F: Controller<D, P>,
 {
-    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
-        domain_of(self.model(), &x[..M::COORDINATES.len()])
+    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue<'_>> {
+        domain_of(self.model(), &x[..self.model().coordinate_names().len()])
     }
 
     fn dependent_rows(&self, x: &[f64; D]) -> Vec<String> {
-        dependent_rows_of(self.model(), &x[..M::COORDINATES.len()])
+        dependent_rows_of(self.model(), &x[..self.model().coordinate_names().len()])
     }
 
     fn state_names(&self) -> Vec<String> {
-        let velocities = M::COORDINATES.iter().map(|q| format!("dot({q})"));
-        owned(M::COORDINATES)
-            .into_iter()
-            .chain(velocities)
-            .collect()
+        let coordinates = self.model().coordinate_names();
+        let velocities = coordinates.iter().map(|q| format!("dot({q})"));
+        owned(coordinates).into_iter().chain(velocities).collect()
     }
 
     fn input_names(&self) -> Vec<String> {
-        owned(M::INPUTS)
+        owned(self.model().input_names())
     }
 
     fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
@@ -358,13 +358,14 @@ where
     Const<N>: Square,
 {
     /// The model's guarded expressions and the momentum basis's divisors
-    /// ([`MomentumEquations::BASIS_DIVISORS`]), which must not vanish.
-    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
+    /// ([`MomentumEquations::basis_divisor_names`]), which must not vanish.
+    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue<'_>> {
         let mut guards = domain_of(self.model(), &x[..N]);
-        let mut values = vec![0.0; M::BASIS_DIVISORS.len()];
+        let divisors = self.model().basis_divisor_names();
+        let mut values = vec![0.0; divisors.len()];
         self.model().basis_divisors(&mut values);
         guards.extend(
-            M::BASIS_DIVISORS
+            divisors
                 .iter()
                 .zip(values)
                 .map(|(description, value)| GuardedValue {
@@ -377,14 +378,16 @@ where
     }
 
     fn dependent_rows(&self, x: &[f64; D]) -> Vec<String> {
-        dependent_rows_of(self.model(), &x[..M::COORDINATES.len()])
+        dependent_rows_of(self.model(), &x[..self.model().coordinate_names().len()])
     }
 
     /// The coordinates, `dot(r)` for the shape velocities, `p1..pK`.
     fn state_names(&self) -> Vec<String> {
-        let shape_velocities = M::SHAPE.map(|i| format!("dot({})", M::COORDINATES[i]));
+        let coordinates = self.model().coordinate_names();
+        let shape = self.model().shape_indices();
+        let shape_velocities = shape.map(|i| format!("dot({})", coordinates[i]));
         let momenta = (1..=K).map(|i| format!("p{i}"));
-        owned(M::COORDINATES)
+        owned(coordinates)
             .into_iter()
             .chain(shape_velocities)
             .chain(momenta)
@@ -392,7 +395,7 @@ where
     }
 
     fn input_names(&self) -> Vec<String> {
-        owned(M::INPUTS)
+        owned(self.model().input_names())
     }
 
     fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
@@ -421,7 +424,7 @@ where
             value: momentum_regularity(
                 |v| model.constraint_residual(&q, v),
                 |v| model.momentum(&q, v),
-                &M::SHAPE,
+                &model.shape_indices(),
             ),
             signed: true,
         }
@@ -434,20 +437,21 @@ where
     M: ReducedPortHamiltonian<S, P> + ModelNames + Domain,
     K: PortHamiltonianController<S, NC, P>,
 {
-    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
-        domain_of(&self.plant, &x[..M::COORDINATES.len()])
+    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue<'_>> {
+        domain_of(&self.plant, &x[..self.plant.coordinate_names().len()])
     }
 
     fn dependent_rows(&self, x: &[f64; D]) -> Vec<String> {
-        dependent_rows_of(&self.plant, &x[..M::COORDINATES.len()])
+        dependent_rows_of(&self.plant, &x[..self.plant.coordinate_names().len()])
     }
 
     fn state_names(&self) -> Vec<String> {
-        owned(&[M::COORDINATES, M::MOMENTA, &K::STATES].concat())
+        let plant = &self.plant;
+        owned(&[plant.coordinate_names(), plant.momentum_names(), &K::STATES].concat())
     }
 
     fn input_names(&self) -> Vec<String> {
-        owned(M::INPUTS)
+        owned(self.plant.input_names())
     }
 
     fn inputs(&self, _t: f64, z: &[f64; D], inputs: &mut [f64]) {
@@ -511,7 +515,7 @@ where
         Surface::holonomic_residual(self, x)
     }
 
-    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
+    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue<'_>> {
         self.system().domain(x)
     }
 

@@ -1,32 +1,7 @@
 //! The built-in models: their names, sources, default motions, and the
 //! listing of `chaplygin list`.
 
-use crate::compiled::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
-    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
-    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
-};
 use chaplygin_codegen::interpret::InterpretedModel;
-use std::borrow::Cow;
-
-/// Which compiled model a built-in name stands for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Compiled {
-    /// [`Snakeboard`].
-    Snakeboard,
-    /// [`Sleigh`].
-    Sleigh,
-    /// [`RollingDisk`].
-    RollingDisk,
-    /// [`DifferentialDrive`].
-    DifferentialDrive,
-    /// [`RollingDisk3d`].
-    RollingDisk3d,
-    /// [`SleighBodies`].
-    SleighBodies,
-    /// [`SnakeboardBodies`].
-    SnakeboardBodies,
-}
 
 /// A built-in model's default motion, from its default configuration.
 #[derive(Clone, Copy, Debug)]
@@ -48,9 +23,6 @@ pub struct BuiltIn {
     pub about: &'static str,
     /// Its model-language source.
     pub source: &'static str,
-    /// The compiled model; `None` for a model run from its text (on the
-    /// engine `--engine` chooses).
-    pub compiled: Option<Compiled>,
     /// The default configuration.
     pub q: &'static [f64],
     /// The default motion.
@@ -63,7 +35,6 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "snakeboard",
         about: "snakeboard of Duindam & Stramigioli (2004), paper's momentum basis",
         source: include_str!("../../../models/snakeboard.model"),
-        compiled: Some(Compiled::Snakeboard),
         q: &[0.0, 0.0, 0.0, 0.0, 0.3],
         motion: Motion::Momenta(&[1.0, 0.5, 0.025]),
     },
@@ -71,7 +42,6 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "sleigh",
         about: "Chaplygin sleigh: a knife edge with the centre of mass ahead of it",
         source: include_str!("../../../models/sleigh.model"),
-        compiled: Some(Compiled::Sleigh),
         q: &[0.0, 0.0, -0.5],
         motion: Motion::Momenta(&[1.0, 0.5]),
     },
@@ -79,7 +49,6 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "rolling-disk",
         about: "vertical disk rolling without slipping (Bloch 2003, chapter 1)",
         source: include_str!("../../../models/rolling_disk.model"),
-        compiled: Some(Compiled::RollingDisk),
         q: &[0.0, 0.0, 0.0, 0.0],
         motion: Motion::Momenta(&[0.5, 0.2]),
     },
@@ -87,7 +56,6 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "differential-drive",
         about: "two-wheeled differential-drive robot",
         source: include_str!("../../../models/differential_drive.model"),
-        compiled: Some(Compiled::DifferentialDrive),
         q: &[0.0, 0.0, 0.0, 0.0, 0.0],
         motion: Motion::Momenta(&[0.2, 0.1]),
     },
@@ -95,7 +63,6 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "rolling-disk-3d",
         about: "leaning disk rolling under gravity, declared as a mechanism",
         source: include_str!("../../../models/rolling_disk_3d.model"),
-        compiled: Some(Compiled::RollingDisk3d),
         q: &[0.0, 0.0, 0.0, 0.1, 0.0],
         motion: Motion::Momenta(&[0.1, 0.0, 2.0]),
     },
@@ -103,7 +70,6 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "sleigh-bodies",
         about: "Chaplygin sleigh declared as a body on a blade",
         source: include_str!("../../../models/sleigh_bodies.model"),
-        compiled: Some(Compiled::SleighBodies),
         q: &[0.0, 0.0, -0.5],
         motion: Motion::Momenta(&[1.0, 0.5]),
     },
@@ -111,7 +77,6 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "snakeboard-bodies",
         about: "snakeboard declared as bodies and wheel contacts",
         source: include_str!("../../../models/snakeboard_bodies.model"),
-        compiled: Some(Compiled::SnakeboardBodies),
         q: &[0.0, 0.0, 0.0, 0.0, 0.3],
         motion: Motion::Momenta(&[1.0, 0.5, 0.025]),
     },
@@ -119,7 +84,6 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "caster-robot",
         about: "wheeled mobile robot with a passive caster, declared as a mechanism",
         source: include_str!("../../../models/caster_robot.model"),
-        compiled: None,
         q: &[0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.0],
         motion: Motion::Momenta(&[0.5, 0.2]),
     },
@@ -127,7 +91,6 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         name: "bicycle",
         about: "benchmark bicycle of Meijaard et al. (2007), declared as a mechanism",
         source: include_str!("../../../models/bicycle.model"),
-        compiled: None,
         q: &[0.0; 8],
         // Upright at 5 m/s, in the self-stable speed range, pushed sideways:
         // the lean oscillation decays.
@@ -158,78 +121,16 @@ fn classification(report: &str) -> &str {
         .unwrap_or("unknown")
 }
 
-/// Sizes `(n, c, k, p)` and the derivation report of a built-in model:
-/// a compiled model's constants, else derived from its text.
-fn facts(model: &BuiltIn) -> ([usize; 4], Cow<'static, str>) {
-    match model.compiled {
-        Some(compiled) => {
-            let (sizes, report) = compiled_facts(compiled);
-            (sizes, Cow::Borrowed(report))
+/// Sizes `(n, c, k, p)` and the derivation report of a built-in model,
+/// derived from its text.
+fn facts(model: &BuiltIn) -> ([usize; 4], String) {
+    match InterpretedModel::from_source(model.source) {
+        Ok(derived) => {
+            let sizes = derived.sizes();
+            let report = derived.report().to_string();
+            ([sizes.n, sizes.c, sizes.k, sizes.p], report)
         }
-        None => match InterpretedModel::from_source(model.source) {
-            Ok(derived) => {
-                let sizes = derived.sizes();
-                let report = derived.report().to_string();
-                ([sizes.n, sizes.c, sizes.k, sizes.p], Cow::Owned(report))
-            }
-            Err(_) => ([0; 4], Cow::Borrowed("")),
-        },
-    }
-}
-
-/// Sizes `(n, c, k, p)` and the report of a compiled model.
-fn compiled_facts(compiled: Compiled) -> ([usize; 4], &'static str) {
-    match compiled {
-        Compiled::Snakeboard => (
-            [Snakeboard::N, Snakeboard::C, Snakeboard::K, Snakeboard::P],
-            Snakeboard::REPORT,
-        ),
-        Compiled::Sleigh => ([Sleigh::N, Sleigh::C, Sleigh::K, Sleigh::P], Sleigh::REPORT),
-        Compiled::RollingDisk => (
-            [
-                RollingDisk::N,
-                RollingDisk::C,
-                RollingDisk::K,
-                RollingDisk::P,
-            ],
-            RollingDisk::REPORT,
-        ),
-        Compiled::DifferentialDrive => (
-            [
-                DifferentialDrive::N,
-                DifferentialDrive::C,
-                DifferentialDrive::K,
-                DifferentialDrive::P,
-            ],
-            DifferentialDrive::REPORT,
-        ),
-        Compiled::RollingDisk3d => (
-            [
-                RollingDisk3d::N,
-                RollingDisk3d::C,
-                RollingDisk3d::K,
-                RollingDisk3d::P,
-            ],
-            RollingDisk3d::REPORT,
-        ),
-        Compiled::SleighBodies => (
-            [
-                SleighBodies::N,
-                SleighBodies::C,
-                SleighBodies::K,
-                SleighBodies::P,
-            ],
-            SleighBodies::REPORT,
-        ),
-        Compiled::SnakeboardBodies => (
-            [
-                SnakeboardBodies::N,
-                SnakeboardBodies::C,
-                SnakeboardBodies::K,
-                SnakeboardBodies::P,
-            ],
-            SnakeboardBodies::REPORT,
-        ),
+        Err(_) => ([0; 4], String::new()),
     }
 }
 

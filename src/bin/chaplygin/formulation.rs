@@ -1,10 +1,11 @@
 //! One formulation of one model, closed by its controller, seen through
-//! slices, so that compiled models and models interpreted from a `.model`
-//! file run through the same simulation loop.
+//! slices, so that every model and formulation runs through the same
+//! simulation loop.
 //!
-//! [`Formulation`] is the object-safe view; [`Typed`] gives it to any
-//! fixed-size runtime system; [`Sized`] turns it back into a fixed-size
-//! runtime system of dimension `D`, chosen at run time by [`with_dimension!`].
+//! [`Formulation`] is the object-safe view; [`Typed`] gives it to a
+//! fixed-size structured runtime system (the snakeboard under its energy
+//! controller); [`Sized`] turns it back into a fixed-size runtime system of
+//! dimension `D`, chosen at run time by [`with_dimension!`].
 
 use chaplygin::runtime::projection::ProjectionError;
 use chaplygin::runtime::simulate::{GuardedValue, Observed, Regularity};
@@ -16,11 +17,9 @@ pub trait Formulation {
     fn state_names(&self) -> Vec<String>;
     /// The names of the inputs.
     fn input_names(&self) -> Vec<String>;
-    /// What runs the model's functions: `rustc` for a model compiled into
-    /// the command line, else the engine's name (`jit`, `interpret`).
-    fn engine(&self) -> &'static str {
-        "rustc"
-    }
+    /// What runs the model's functions: the engine's name (`jit`,
+    /// `interpret`).
+    fn engine(&self) -> &'static str;
     /// `f(t, x)` into `xdot`.
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]);
     /// `df/dx` into `jacobian`, row-major.
@@ -64,7 +63,7 @@ pub trait Formulation {
         None
     }
     /// The model's guarded expressions at `x` (see [`Observed::domain`]).
-    fn domain(&self, _x: &[f64]) -> Vec<GuardedValue> {
+    fn domain(&self, _x: &[f64]) -> Vec<GuardedValue<'_>> {
         Vec::new()
     }
     /// The constraint rows dependent at `x` (see
@@ -89,38 +88,17 @@ pub trait Formulation {
     }
 }
 
-/// The structured form of a `D`-dimensional system, when it has one.
-type StructureOf<T, const D: usize> = fn(&T, f64, &[f64; D]) -> ([[f64; D]; D], [f64; D], [f64; D]);
-
-/// A fixed-size runtime system as a [`Formulation`].
+/// A fixed-size structured runtime system as a [`Formulation`], its
+/// model's functions run by the engine it names.
 pub struct Typed<T, const D: usize> {
     system: T,
-    structure: Option<StructureOf<T, D>>,
-}
-
-impl<T: Observed<D> + Jacobian<D>, const D: usize> Typed<T, D> {
-    /// `system`, without a structured form.
-    pub fn plain(system: T) -> Self {
-        Self {
-            system,
-            structure: None,
-        }
-    }
+    engine: &'static str,
 }
 
 impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Typed<T, D> {
-    /// `system` with its structured form.
-    pub fn structured(system: T) -> Self {
-        Self {
-            system,
-            structure: Some(|system, t, x| {
-                (
-                    system.structure_matrix(x),
-                    system.energy_gradient(x),
-                    system.forcing(t, x),
-                )
-            }),
-        }
+    /// `system`, run by `engine`.
+    pub fn structured(system: T, engine: &'static str) -> Self {
+        Self { system, engine }
     }
 }
 
@@ -132,7 +110,7 @@ fn flatten<const D: usize>(matrix: &[[f64; D]; D], into: &mut [f64]) {
     into.copy_from_slice(matrix.as_flattened());
 }
 
-impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
+impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Formulation for Typed<T, D> {
     fn state_names(&self) -> Vec<String> {
         self.system.state_names()
     }
@@ -153,8 +131,12 @@ impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
         self.system.energy(&array(x))
     }
 
+    fn engine(&self) -> &'static str {
+        self.engine
+    }
+
     fn is_structured(&self) -> bool {
-        self.structure.is_some()
+        true
     }
 
     fn structure(
@@ -165,12 +147,10 @@ impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
         gradient: &mut [f64],
         forcing: &mut [f64],
     ) {
-        if let Some(structure) = self.structure {
-            let (matrix, g, f) = structure(&self.system, t, &array(x));
-            flatten(&matrix, j);
-            gradient.copy_from_slice(&g);
-            forcing.copy_from_slice(&f);
-        }
+        let x = array(x);
+        flatten(&self.system.structure_matrix(&x), j);
+        gradient.copy_from_slice(&self.system.energy_gradient(&x));
+        forcing.copy_from_slice(&self.system.forcing(t, &x));
     }
 
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
@@ -198,7 +178,7 @@ impl<T: Observed<D> + Jacobian<D>, const D: usize> Formulation for Typed<T, D> {
         self.system.holonomic_residual(&array(x))
     }
 
-    fn domain(&self, x: &[f64]) -> Vec<GuardedValue> {
+    fn domain(&self, x: &[f64]) -> Vec<GuardedValue<'_>> {
         self.system.domain(&array(x))
     }
 
@@ -308,7 +288,7 @@ impl<const D: usize> Observed<D> for Sized<'_, D> {
         self.0.holonomic_residual(x)
     }
 
-    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue> {
+    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue<'_>> {
         self.0.domain(x)
     }
 

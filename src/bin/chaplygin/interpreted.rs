@@ -301,7 +301,7 @@ impl Formulation for InterpretedReduced {
         Ok(())
     }
 
-    fn domain(&self, x: &[f64]) -> Vec<GuardedValue> {
+    fn domain(&self, x: &[f64]) -> Vec<GuardedValue<'_>> {
         evaluated(self.model.domain(&x[..self.model.sizes().n]))
     }
 
@@ -406,7 +406,7 @@ impl Formulation for InterpretedDalembert {
         onto_surface(&self.model, q, qdot)
     }
 
-    fn domain(&self, x: &[f64]) -> Vec<GuardedValue> {
+    fn domain(&self, x: &[f64]) -> Vec<GuardedValue<'_>> {
         evaluated(self.model.domain(&x[..self.model.sizes().n]))
     }
 
@@ -647,7 +647,7 @@ impl Formulation for InterpretedMomentum {
     }
 
     /// The model's guarded expressions and the momentum basis's divisors.
-    fn domain(&self, x: &[f64]) -> Vec<GuardedValue> {
+    fn domain(&self, x: &[f64]) -> Vec<GuardedValue<'_>> {
         let mut guards = evaluated(self.model.domain(&x[..self.model.sizes().n]));
         guards.extend(evaluated(self.model.basis_divisors()));
         guards

@@ -14,22 +14,14 @@ mod canonical;
 mod expression;
 mod sweep;
 
-use crate::catalog::{self, Compiled, Source};
-use crate::compiled::{
-    differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
-    rolling_disk_3d::RollingDisk3d, sleigh::Sleigh, sleigh_bodies::SleighBodies,
-    snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
-};
+use crate::catalog::{self, Source};
 use crate::engine::{self, EngineChoice};
 use crate::interpreted::dynamics::InterpretedDynamics;
-use crate::simulate::set_model_parameters;
 pub use canonical::CanonicalSpeed;
 use chaplygin::plot::{EigenvalueSweep, write_eigenvalue_plot};
 use chaplygin::runtime::linearize::{
-    self as runtime_linearize, Dynamics, LinearSystem, Linearization, OperatingPoint, PointError,
-    SteadyError,
+    self as runtime_linearize, Dynamics, LinearSystem, OperatingPoint, PointError, SteadyError,
 };
-use chaplygin::runtime::system::{Holonomic, ModelNames, Parameters};
 use expression::{ExpressionError, evaluate};
 use std::collections::BTreeMap;
 use std::error::Error;
@@ -139,24 +131,11 @@ pub enum LinearizeError {
 /// # Errors
 /// Bad input, a point that is not a steady motion, an I/O error.
 pub fn run(args: &LinearizeArgs) -> Result<(), Box<dyn Error>> {
-    match catalog::lookup(&args.model)? {
-        Source::File { path, text } => interpreted(&path, &text, args),
-        Source::BuiltIn(built_in) => match built_in.compiled {
-            Some(Compiled::Snakeboard) => compiled::<Snakeboard, 5, 2, 2, 0>(args),
-            Some(Compiled::Sleigh) => compiled::<Sleigh, 3, 1, 0, 0>(args),
-            Some(Compiled::RollingDisk) => compiled::<RollingDisk, 4, 2, 2, 0>(args),
-            Some(Compiled::DifferentialDrive) => compiled::<DifferentialDrive, 5, 3, 2, 0>(args),
-            Some(Compiled::RollingDisk3d) => compiled::<RollingDisk3d, 5, 2, 2, 0>(args),
-            Some(Compiled::SleighBodies) => compiled::<SleighBodies, 3, 1, 0, 0>(args),
-            Some(Compiled::SnakeboardBodies) => compiled::<SnakeboardBodies, 5, 2, 2, 0>(args),
-            None => interpreted(built_in.name, built_in.source, args),
-        },
-    }
-}
-
-/// A `.model` file's text (or a built-in's) on the engine of `--engine`,
-/// with its `--param` values.
-fn interpreted(path: &str, text: &str, args: &LinearizeArgs) -> Result<(), Box<dyn Error>> {
+    let source = catalog::lookup(&args.model)?;
+    let (path, text) = match &source {
+        Source::File { path, text } => (path.as_str(), text.as_str()),
+        Source::BuiltIn(built_in) => (built_in.name, built_in.source),
+    };
     let mut model = engine::load(path, text, args.engine)?;
     let known = model.names().parameters.clone();
     let known: Vec<&str> = known.iter().map(String::as_str).collect();
@@ -169,27 +148,6 @@ fn interpreted(path: &str, text: &str, args: &LinearizeArgs) -> Result<(), Box<d
         .map(|(name, value)| (name.to_string(), *value))
         .collect();
     analyse(&InterpretedDynamics(model), parameters, args)
-}
-
-/// A built-in model with its `--param` values and its `H` configuration
-/// constraints.
-fn compiled<M, const N: usize, const C: usize, const P: usize, const H: usize>(
-    args: &LinearizeArgs,
-) -> Result<(), Box<dyn Error>>
-where
-    M: Linearization<N, C, P> + Holonomic<N, H> + ModelNames + Parameters + Default,
-{
-    let mut model = M::default();
-    set_model_parameters(&mut model, &args.params, &mut [])?;
-    let parameters = M::PARAMETERS
-        .iter()
-        .filter_map(|&name| Some((name.to_string(), *model.parameter_mut(name)?)))
-        .collect();
-    analyse(
-        &runtime_linearize::Compiled::<M, N, C, P, H>::holonomic(&model),
-        parameters,
-        args,
-    )
 }
 
 /// Linearizes at one point, or over the sweep.

@@ -12,11 +12,10 @@
 //!                           [--canonical Q1,Q2,... --canonical-speed VAR[=V1,V2] [--canonical-gravity NAME]]
 //! ```
 //!
-//! MODEL is a built-in model's name or the path of a `.model` file, which
-//! runs without rustc: its derived programs compiled to native code at run
-//! time (`--engine jit`, the default) or interpreted (`--engine interpret`).
-//! The light built-ins are compiled into the command line; the caster robot
-//! and the bicycle run from their text like a file. `--input` laws are
+//! MODEL is a built-in model's name or the path of a `.model` file. Either
+//! runs from its text, without rustc: its derived programs compiled to
+//! native code at run time (`--engine jit`, the default) or interpreted
+//! (`--engine interpret`). `--input` laws are
 //! expressions of `t`, the parameters, the coordinates and their velocities
 //! `dot(q)` (feedback laws such as `steer_torque=50*phi+50*dot(phi)`);
 //! `--stop-when` ends a run cleanly where one comparison of these and the
@@ -25,7 +24,6 @@
 //! gets clap's usage message).
 
 mod catalog;
-mod compiled;
 mod derive;
 mod engine;
 mod formulation;

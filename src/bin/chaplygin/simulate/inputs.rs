@@ -261,13 +261,6 @@ impl InputSchedule {
             *input = law.at(&point);
         }
     }
-
-    /// [`InputSchedule::at`] as an array of `P`.
-    pub fn array<const P: usize>(&self, t: f64, q: &[f64], qdot: &[f64]) -> [f64; P] {
-        let mut inputs = [0.0; P];
-        self.at(t, q, qdot, &mut inputs);
-        inputs
-    }
 }
 
 /// The value of `text`, an expression of the parameters (name and value)
@@ -378,7 +371,8 @@ mod tests {
         .unwrap();
         assert!(!schedule.reads_state());
         let t = 0.7f64;
-        let u: [f64; 3] = schedule.array(t, &[], &[]);
+        let mut u = [0.0; 3];
+        schedule.at(t, &[], &[], &mut u);
         assert_eq!(u, [0.3 * (2.0 * t).sin(), 0.0, -9.0 / t + 0.15]);
     }
 
@@ -393,7 +387,8 @@ mod tests {
         .unwrap();
         assert!(schedule.reads_state());
         let (q, qdot, t) = ([1.0, 0.3], [-0.5, 0.25], 2.0);
-        let u: [f64; 2] = schedule.array(t, &q, &qdot);
+        let mut u = [0.0; 2];
+        schedule.at(t, &q, &qdot, &mut u);
         assert_eq!(u, [0.0, -10.0 * 0.3 - 2.0 * 0.25 + 0.5 * 2.0]);
     }
 

@@ -5,14 +5,10 @@
 //! `chaplygin linearize --at`, see [`configuration`]), each mistake an
 //! [`InputError`] stated in one line (also an `--input` naming no input).
 
-use super::arguments::SimulateArgs;
 use super::inputs::constant;
-use super::{CompiledModel, array, parameter_values};
-use crate::catalog::{BuiltIn, Motion};
 use chaplygin::runtime::linearize::point::{configuration, solve_velocities, velocity_names};
-use chaplygin::runtime::linearize::{Compiled, Dynamics, Linearization, PointError};
+use chaplygin::runtime::linearize::{Dynamics, PointError};
 use chaplygin::runtime::nalgebra::DMatrix;
-use chaplygin::runtime::system::{Holonomic, Parameters};
 
 /// A problem with the command's input, stated in one line.
 #[derive(Debug, thiserror::Error)]
@@ -79,30 +75,6 @@ pub(crate) fn set_parameters(
         }
     }
     Ok(())
-}
-
-/// Sets `--param` values on a compiled model's parameters or the `extra`
-/// (controller) ones.
-pub(crate) fn set_model_parameters<M: Parameters>(
-    model: &mut M,
-    given: &[(String, f64)],
-    extra: &mut [(&str, &mut f64)],
-) -> Result<(), InputError> {
-    let known: Vec<&str> = M::PARAMETERS
-        .iter()
-        .copied()
-        .chain(extra.iter().map(|(n, _)| *n))
-        .collect();
-    set_parameters(&known, given, &mut |name, value| {
-        if let Some(parameter) = model.parameter_mut(name) {
-            *parameter = value;
-        } else if let Some((_, parameter)) = extra.iter_mut().find(|(n, _)| *n == name) {
-            **parameter = value;
-        } else {
-            return false;
-        }
-        true
-    })
 }
 
 /// The `--initial` assignments with their values, expressions of the
@@ -200,47 +172,6 @@ pub(super) fn initial_state(
         )?
     };
     Ok(Start { q, qdot })
-}
-
-/// [`initial_state`] for a compiled model, whose default motion is the
-/// built-in's ([`Motion`]), and whose `H` configuration constraints solve
-/// the coordinates not given.
-pub(super) fn compiled_start<
-    M,
-    const N: usize,
-    const C: usize,
-    const K: usize,
-    const P: usize,
-    const S: usize,
-    const H: usize,
->(
-    model: &M,
-    built_in: &BuiltIn,
-    args: &SimulateArgs,
-    controller_states: &mut [(&str, &mut f64)],
-) -> Result<Start, InputError>
-where
-    M: CompiledModel<N, C, K, P, S> + Holonomic<N, H>,
-{
-    let (alpha, given): ([f64; K], Vec<(String, String)>) = match built_in.motion {
-        Motion::Momenta(alpha) => (array(alpha), args.initial.clone()),
-        Motion::Velocities(defaults) => ([0.0; K], with_default_motion(&args.initial, defaults)),
-    };
-    initial_state(
-        &Kinematics {
-            coordinates: M::COORDINATES,
-            constraints: M::CONSTRAINTS,
-            default_q: built_in.q,
-            default_motion: &|q| model.velocities(&array(q), &alpha).to_vec(),
-            constraint_matrix: &|q| {
-                let a = Linearization::constraint_matrix(model, &array(q));
-                DMatrix::from_fn(C, N, |i, j| a[i][j])
-            },
-            holonomic: Some(&Compiled::<M, N, C, P, H>::holonomic(model)),
-        },
-        &initial_values(&given, &parameter_values(*model))?,
-        controller_states,
-    )
 }
 
 /// The `--initial` assignments `given`, after the `defaults` when `given`

@@ -18,19 +18,22 @@
 //! [`EnergyController`] implements the runtime's
 //! [`PortHamiltonianController`] with `Bc = [[a sin(phi), 0], [0, 1]]`
 //! (exact derivatives) and `Jc = 0`; [`ClosedLoop`] is the runtime's
-//! [`Interconnection`] of the snakeboard with it, an [`OdeSystem`] with an
+//! [`Interconnection`] of a snakeboard with it, an [`OdeSystem`] with an
 //! exact [`Jacobian`] (for the implicit midpoint rule) and its [`Energy`] in
-//! the state `z = (q, alpha, xt, xw)` of size [`CLOSED_LOOP_STATE`].
+//! the state `z = (q, alpha, xt, xw)` of size [`CLOSED_LOOP_STATE`]. The
+//! snakeboard is any model of the paper's snakeboard (`snakeboard.model`,
+//! with its momentum basis): compiled by rustc, or read from its text
+//! (`chaplygin_codegen::interpret::Fixed`).
 //!
-//! [`OdeSystem`]: chaplygin::runtime::system::OdeSystem
-//! [`Jacobian`]: chaplygin::runtime::system::Jacobian
-//! [`Energy`]: chaplygin::runtime::system::Energy
+//! [`OdeSystem`]: crate::runtime::system::OdeSystem
+//! [`Jacobian`]: crate::runtime::system::Jacobian
+//! [`Energy`]: crate::runtime::system::Energy
 
-use super::snakeboard::Snakeboard;
-use chaplygin::runtime::control::{Interconnection, PortHamiltonianController};
+use crate::runtime::control::{Interconnection, PortHamiltonianController};
 
-/// The reduced snakeboard's state size `s = n + k`.
-const S: usize = Snakeboard::S;
+/// The reduced snakeboard's state size `s = n + k`: five coordinates
+/// `(x, y, theta, psi, phi)` and three momenta.
+pub const S: usize = 8;
 
 /// Index of `phi` in the snakeboard's state.
 const PHI: usize = 4;
@@ -77,16 +80,20 @@ impl PortHamiltonianController<S, 2, 2> for EnergyController {
     }
 }
 
-/// The snakeboard under the energy-based controller.
-pub type ClosedLoop = Interconnection<Snakeboard, EnergyController, S, 2, 2>;
+/// The snakeboard `M` under the energy-based controller.
+pub type ClosedLoop<M> = Interconnection<M, EnergyController, S, 2, 2>;
 
 /// The closed-loop state from the board's reduced state and the springs'.
 pub fn closed_loop_state(board: &[f64; S], xt: f64, xw: f64) -> [f64; CLOSED_LOOP_STATE] {
-    ClosedLoop::state(board, &[xt, xw])
+    core::array::from_fn(|i| match i {
+        i if i < S => board[i],
+        i if i == S => xt,
+        _ => xw,
+    })
 }
 
-/// The wheel pair's own energy `alpha3^2/(2 Jw) + kw xw^2/2`.
-pub fn wheel_energy(closed_loop: &ClosedLoop, z: &[f64; CLOSED_LOOP_STATE]) -> f64 {
-    let (jw, kw) = (closed_loop.plant.jw, closed_loop.controller.kw);
+/// The wheel pair's own energy `alpha3^2/(2 Jw) + kw xw^2/2`, for the
+/// wheels' inertia `jw` and the wheel spring `kw`.
+pub fn wheel_energy(jw: f64, kw: f64, z: &[f64; CLOSED_LOOP_STATE]) -> f64 {
     z[S - 1] * z[S - 1] / (2.0 * jw) + kw * z[S + 1] * z[S + 1] / 2.0
 }
