@@ -128,8 +128,11 @@ pub mod plot;
 /// code at run time with Cranelift: [`jit::JitModel::from_source`] and
 /// [`jit::JitModel::from_file`], and [`jit::compile`] for a model already
 /// loaded. The results equal the IR interpreter's bit for bit.
+/// [`jit::Fixed`] sees such a model at sizes fixed at compile time, through
+/// the runtime's traits.
 #[cfg(feature = "jit")]
 pub mod jit {
+    pub use chaplygin_codegen::interpret::{Fixed, SizeMismatch};
     pub use chaplygin_jit::{JitError, JitModel, LoadError, NativePrograms, compile};
 }
 

@@ -12,6 +12,7 @@
 mod common;
 
 use chaplygin::jit::JitModel;
+use chaplygin::jit::{Fixed, SizeMismatch};
 use chaplygin::runtime::integrate::Midpoint;
 use chaplygin::runtime::law::Feedback;
 use chaplygin::runtime::linalg::Square;
@@ -23,7 +24,6 @@ use chaplygin::runtime::system::{
     Domain, Holonomic, LagrangeDalembert, ModelNames, Momenta, MomentumEquations, Reduced,
     ReducedPortHamiltonian,
 };
-use chaplygin_codegen::interpret::{Fixed, SizeMismatch};
 use chaplygin_models::{
     bicycle::Bicycle, caster_robot::CasterRobot, differential_drive::DifferentialDrive,
     rolling_disk::RollingDisk, rolling_disk_3d::RollingDisk3d, sleigh::Sleigh,
