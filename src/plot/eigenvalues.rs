@@ -5,7 +5,7 @@
 //! eigenvalues where branches cross, so dots, not lines). The zero line of
 //! the real parts is drawn: stability is every real part below it.
 
-use super::style::{Drawn, canvas, label_style, padded_range, tick_labels, title_style};
+use super::style::{Drawn, label_style, padded_range, png, tick_labels, title_style};
 use super::{PlotError, register_font};
 use plotters::prelude::*;
 use std::ops::Range;
@@ -35,15 +35,16 @@ pub fn write_eigenvalue_plot(sweep: &EigenvalueSweep, file: &Path) -> Result<(),
         return Err(PlotError::EmptyTable);
     }
     register_font()?;
-    let root = canvas(file, SIZE)?;
-    let caption = format!("Eigenvalues against {}", sweep.variable);
-    let area = root.titled(&caption, title_style()).drawn(file)?;
-    let (upper, lower) = area.split_vertically(SIZE.1 / 2 - 30);
-    let real = points(sweep, |(re, _)| re);
-    let imaginary = points(sweep, |(_, im)| im);
-    panel(&upper, file, sweep, &real, "real part")?;
-    panel(&lower, file, sweep, &imaginary, "imaginary part")?;
-    root.present().drawn(file)
+    png(file, SIZE, |root| {
+        let caption = format!("Eigenvalues against {}", sweep.variable);
+        let area = root.titled(&caption, title_style()).drawn(file)?;
+        let (upper, lower) = area.split_vertically(SIZE.1 / 2 - 30);
+        let real = points(sweep, |(re, _)| re);
+        let imaginary = points(sweep, |(_, im)| im);
+        panel(&upper, file, sweep, &real, "real part")?;
+        panel(&lower, file, sweep, &imaginary, "imaginary part")?;
+        Ok(())
+    })
 }
 
 /// `(value, part)` of every finite eigenvalue.

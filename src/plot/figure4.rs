@@ -12,8 +12,8 @@
 //! `alpha2` in depth, and states the largest `|H - E0| / E0` along the run.
 
 use super::style::{
-    DrawResult, Drawn, canvas, centred, draw_ends, draw_legend, finite_runs, label_style,
-    padded_range, title_style,
+    DrawResult, Drawn, centred, draw_ends, draw_legend, finite_runs, label_style, padded_range,
+    png, title_style,
 };
 use super::{Figure4, PlotError, PlotSpec};
 use plotters::coord::ranged3d::Cartesian3d;
@@ -120,49 +120,50 @@ pub(super) fn draw(
     let initial = curve.iter().copied().find(finite).unwrap_or_default();
     let energy = figure4.energy(initial);
     let axes = figure4.semi_axes(energy);
-    let root = canvas(file, spec.size)?;
-    let area = root
-        .titled(
-            "Figure 4: (alpha1, alpha2, xt) on the constant-energy ellipsoid",
-            title_style(),
-        )
-        .drawn(file)?;
-    let reach = |values: &[f64], axis: f64| {
-        padded_range(
-            values
-                .iter()
-                .copied()
-                .chain([-AXIS_REACH * axis, AXIS_REACH * axis]),
-            0.02,
-        )
-    };
-    let [across, up, depth] = equal_spans([
-        reach(alpha1, axes.0),
-        reach(xt, axes.2),
-        reach(alpha2, axes.1),
-    ]);
-    let mut chart = ChartBuilder::on(&area)
-        .margin(20)
-        .build_cartesian_3d(across, up, depth)
-        .drawn(file)?;
-    chart.with_projection(|mut projection| {
-        projection.yaw = -0.7;
-        projection.pitch = 0.35;
-        projection.scale = 0.8;
-        projection.into_matrix()
-    });
-    chart
-        .configure_axes()
-        .label_style(label_style())
-        .light_grid_style(BLACK.mix(0.08))
-        .max_light_lines(4)
-        .draw()
-        .drawn(file)?;
-    draw_axis_names(&mut chart, spec, figure4, axes).drawn(file)?;
-    draw_ellipsoid(&mut chart, figure4, energy).drawn(file)?;
-    draw_trajectory(&mut chart, figure4, &curve, energy).drawn(file)?;
-    draw_legend(&mut chart, SeriesLabelPosition::UpperLeft).drawn(file)?;
-    root.present().drawn(file)
+    png(file, spec.size, |root| {
+        let area = root
+            .titled(
+                "Figure 4: (alpha1, alpha2, xt) on the constant-energy ellipsoid",
+                title_style(),
+            )
+            .drawn(file)?;
+        let reach = |values: &[f64], axis: f64| {
+            padded_range(
+                values
+                    .iter()
+                    .copied()
+                    .chain([-AXIS_REACH * axis, AXIS_REACH * axis]),
+                0.02,
+            )
+        };
+        let [across, up, depth] = equal_spans([
+            reach(alpha1, axes.0),
+            reach(xt, axes.2),
+            reach(alpha2, axes.1),
+        ]);
+        let mut chart = ChartBuilder::on(&area)
+            .margin(20)
+            .build_cartesian_3d(across, up, depth)
+            .drawn(file)?;
+        chart.with_projection(|mut projection| {
+            projection.yaw = -0.7;
+            projection.pitch = 0.35;
+            projection.scale = 0.8;
+            projection.into_matrix()
+        });
+        chart
+            .configure_axes()
+            .label_style(label_style())
+            .light_grid_style(BLACK.mix(0.08))
+            .max_light_lines(4)
+            .draw()
+            .drawn(file)?;
+        draw_axis_names(&mut chart, spec, figure4, axes).drawn(file)?;
+        draw_ellipsoid(&mut chart, figure4, energy).drawn(file)?;
+        draw_trajectory(&mut chart, figure4, &curve, energy).drawn(file)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft).drawn(file)?;
+        Ok(())
+    })
 }
 
 /// Whether every coordinate of a point is finite.

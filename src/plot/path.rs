@@ -5,8 +5,8 @@
 //! points) as thinner curves of their own colours.
 
 use super::style::{
-    DrawResult, Drawn, canvas, centred, draw_ends, draw_legend, emptiest_corner, finite_runs,
-    label_style, padded_range, tick_labels, title_style,
+    DrawResult, Drawn, centred, draw_ends, draw_legend, emptiest_corner, finite_runs, label_style,
+    padded_range, png, tick_labels, title_style,
 };
 use super::{PlanarPath, PlotError, PlotSpec};
 use plotters::coord::Shift;
@@ -58,62 +58,63 @@ pub(super) fn draw(
         .chain(tracks.iter().flat_map(|(_, track)| track))
         .copied()
         .collect();
-    let root = canvas(file, spec.size)?;
-    let area = root
-        .titled("Path in the plane", title_style())
-        .drawn(file)?;
-    let pixels = chart_builder(&area)
-        .build_cartesian_2d(0.0..1.0, 0.0..1.0)
-        .drawn(file)?
-        .plotting_area()
-        .dim_in_pixel();
-    let (x_range, y_range) = equal_scale(
-        padded_range(everything.iter().map(|p| p.0), 0.08),
-        padded_range(everything.iter().map(|p| p.1), 0.08),
-        pixels,
-    );
-    let arrow = ARROW_LENGTH * (x_range.end - x_range.start).max(y_range.end - y_range.start);
-    let legend_corner = emptiest_corner(&everything, &x_range, &y_range);
-    let (x_labels, y_labels) = (tick_labels(&x_range), tick_labels(&y_range));
-    let mut chart = chart_builder(&area)
-        .build_cartesian_2d(x_range, y_range)
-        .drawn(file)?;
-    chart
-        .configure_mesh()
-        .x_desc(spec.label(&planar.x))
-        .y_desc(spec.label(&planar.y))
-        .x_label_formatter(&x_labels)
-        .y_label_formatter(&y_labels)
-        .axis_desc_style(label_style())
-        .label_style(label_style())
-        .draw()
-        .drawn(file)?;
-    let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
-    draw_tracks(&mut chart, &tracks).drawn(file)?;
-    let path_style = BLUE.stroke_width(2);
-    chart
-        .draw_series(finite_runs(&points, finite).map(|run| PathElement::new(run, path_style)))
-        .drawn(file)?
-        .label("path")
-        .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 20, py)], path_style));
-    if let Some(heading) = &planar.heading {
-        let unit = spec.units.get(&spec.time).map(|unit| format!(" {unit}"));
-        let interval = mark_interval(&columns[&spec.time]);
-        let label = format!(
-            "heading, every {}{}",
-            format_interval(interval),
-            unit.unwrap_or_default()
+    png(file, spec.size, |root| {
+        let area = root
+            .titled("Path in the plane", title_style())
+            .drawn(file)?;
+        let pixels = chart_builder(&area)
+            .build_cartesian_2d(0.0..1.0, 0.0..1.0)
+            .drawn(file)?
+            .plotting_area()
+            .dim_in_pixel();
+        let (x_range, y_range) = equal_scale(
+            padded_range(everything.iter().map(|p| p.0), 0.08),
+            padded_range(everything.iter().map(|p| p.1), 0.08),
+            pixels,
         );
-        let marks = heading_marks(&points, &columns[heading]);
-        draw_heading_arrows(&mut chart, &marks, arrow, label).drawn(file)?;
-    }
-    let ends = [
-        points.iter().copied().find(finite),
-        points.iter().copied().rev().find(finite),
-    ];
-    draw_ends(&mut chart, ends).drawn(file)?;
-    draw_legend(&mut chart, legend_corner).drawn(file)?;
-    root.present().drawn(file)
+        let arrow = ARROW_LENGTH * (x_range.end - x_range.start).max(y_range.end - y_range.start);
+        let legend_corner = emptiest_corner(&everything, &x_range, &y_range);
+        let (x_labels, y_labels) = (tick_labels(&x_range), tick_labels(&y_range));
+        let mut chart = chart_builder(&area)
+            .build_cartesian_2d(x_range, y_range)
+            .drawn(file)?;
+        chart
+            .configure_mesh()
+            .x_desc(spec.label(&planar.x))
+            .y_desc(spec.label(&planar.y))
+            .x_label_formatter(&x_labels)
+            .y_label_formatter(&y_labels)
+            .axis_desc_style(label_style())
+            .label_style(label_style())
+            .draw()
+            .drawn(file)?;
+        let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
+        draw_tracks(&mut chart, &tracks).drawn(file)?;
+        let path_style = BLUE.stroke_width(2);
+        chart
+            .draw_series(finite_runs(&points, finite).map(|run| PathElement::new(run, path_style)))
+            .drawn(file)?
+            .label("path")
+            .legend(move |(px, py)| PathElement::new(vec![(px, py), (px + 20, py)], path_style));
+        if let Some(heading) = &planar.heading {
+            let unit = spec.units.get(&spec.time).map(|unit| format!(" {unit}"));
+            let interval = mark_interval(&columns[&spec.time]);
+            let label = format!(
+                "heading, every {}{}",
+                format_interval(interval),
+                unit.unwrap_or_default()
+            );
+            let marks = heading_marks(&points, &columns[heading]);
+            draw_heading_arrows(&mut chart, &marks, arrow, label).drawn(file)?;
+        }
+        let ends = [
+            points.iter().copied().find(finite),
+            points.iter().copied().rev().find(finite),
+        ];
+        draw_ends(&mut chart, ends).drawn(file)?;
+        draw_legend(&mut chart, legend_corner).drawn(file)?;
+        Ok(())
+    })
 }
 
 /// Each point's track, labelled `track of POINT`, in [`TRACK_COLOURS`] in turn.

@@ -7,7 +7,7 @@
 //! values below [`RESIDUAL_FLOOR`] raised to it.
 
 use super::style::{
-    Drawn, canvas, finite_bounds, finite_runs, label_style, padded_range, tick_labels, title_style,
+    Drawn, finite_bounds, finite_runs, label_style, padded_range, png, tick_labels, title_style,
 };
 use super::{PlotError, PlotSpec, RESIDUAL_FLOOR};
 use plotters::prelude::*;
@@ -166,33 +166,34 @@ fn draw_against_time(
         .copied()
         .zip(panel.values.iter().copied())
         .collect();
-    let root = canvas(file, spec.size)?;
-    let area = root.titled(&panel.caption, title_style()).drawn(file)?;
-    let time_range = padded_range(time.iter().copied(), 0.0);
-    let time_labels = tick_labels(&time_range);
-    let mut chart = ChartBuilder::on(&area)
-        .margin(20)
-        .x_label_area_size(60)
-        .y_label_area_size(100)
-        .build_cartesian_2d(time_range, y_range)
-        .drawn(file)?;
-    chart
-        .configure_mesh()
-        .x_desc(spec.label(&spec.time))
-        .x_label_formatter(&time_labels)
-        .y_desc(panel.y_desc)
-        .y_label_formatter(panel.y_format)
-        .axis_desc_style(label_style())
-        .label_style(label_style())
-        .draw()
-        .drawn(file)?;
-    let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
-    chart
-        .draw_series(
-            finite_runs(&points, finite).map(|run| PathElement::new(run, BLUE.stroke_width(1))),
-        )
-        .drawn(file)?;
-    root.present().drawn(file)
+    png(file, spec.size, |root| {
+        let area = root.titled(&panel.caption, title_style()).drawn(file)?;
+        let time_range = padded_range(time.iter().copied(), 0.0);
+        let time_labels = tick_labels(&time_range);
+        let mut chart = ChartBuilder::on(&area)
+            .margin(20)
+            .x_label_area_size(60)
+            .y_label_area_size(100)
+            .build_cartesian_2d(time_range, y_range)
+            .drawn(file)?;
+        chart
+            .configure_mesh()
+            .x_desc(spec.label(&spec.time))
+            .x_label_formatter(&time_labels)
+            .y_desc(panel.y_desc)
+            .y_label_formatter(panel.y_format)
+            .axis_desc_style(label_style())
+            .label_style(label_style())
+            .draw()
+            .drawn(file)?;
+        let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
+        chart
+            .draw_series(
+                finite_runs(&points, finite).map(|run| PathElement::new(run, BLUE.stroke_width(1))),
+            )
+            .drawn(file)?;
+        Ok(())
+    })
 }
 
 #[cfg(test)]

@@ -8,21 +8,41 @@ use plotters::prelude::*;
 use std::ops::Range;
 use std::path::Path;
 
-/// A white canvas that will be saved as the PNG `file`.
+/// Draws on a white canvas of `size` pixels with `draw` and saves it as
+/// the PNG `file` (8-bit RGB, encoded by the `png` crate).
 ///
 /// The file is created first so that an unwritable location is reported as
 /// [`PlotError::Io`] rather than as a drawing failure.
-pub(super) fn canvas(
+pub(super) fn png(
     file: &Path,
     size: (u32, u32),
-) -> Result<DrawingArea<BitMapBackend<'_>, Shift>, PlotError> {
-    std::fs::File::create(file).map_err(|source| PlotError::Io {
+    draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), PlotError>,
+) -> Result<(), PlotError> {
+    let io = |source| PlotError::Io {
         path: file.to_path_buf(),
         source,
-    })?;
-    let root = BitMapBackend::new(file, size).into_drawing_area();
-    root.fill(&WHITE).drawn(file)?;
-    Ok(root)
+    };
+    let output = std::fs::File::create(file).map_err(io)?;
+    let mut pixels = vec![0; 3 * size.0 as usize * size.1 as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
+        root.fill(&WHITE).drawn(file)?;
+        draw(&root)?;
+        root.present().drawn(file)?;
+    }
+    let mut encoder = ::png::Encoder::new(std::io::BufWriter::new(output), size.0, size.1);
+    encoder.set_color(::png::ColorType::Rgb);
+    encoder.set_depth(::png::BitDepth::Eight);
+    encoder
+        .write_header()
+        .and_then(|mut writer| writer.write_image_data(&pixels))
+        .map_err(|error| match error {
+            ::png::EncodingError::IoError(source) => io(source),
+            other => PlotError::Drawing {
+                path: file.to_path_buf(),
+                message: other.to_string(),
+            },
+        })
 }
 
 /// Conversion of plotters' errors into [`PlotError::Drawing`] for a file.
