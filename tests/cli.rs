@@ -1006,3 +1006,19 @@ fn canonical_requests_without_a_canonical_form_are_one_line_errors() {
         &["at v = 1:", "not a steady motion", "d/dt dot(theta)"],
     );
 }
+
+/// Standard output closed by its reader before the command writes (as
+/// `| head` does) ends the command quietly: no panic, no message.
+#[test]
+fn a_closed_output_ends_the_command_quietly() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_chaplygin"))
+        .args(["derive", "sleigh"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    drop(child.stdout.take());
+    let output = child.wait_with_output().expect("the binary ends");
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert_eq!(stderr(&output), "");
+}

@@ -162,16 +162,12 @@ fn analyse(
             speed,
             gravity: &args.canonical_gravity,
         };
-        print!(
-            "{}",
-            canonical::canonical_form(model, &parameters, &args.at, &request)?
-        );
-        return Ok(());
+        let form = canonical::canonical_form(model, &parameters, &args.at, &request)?;
+        return Ok(crate::say(&form)?);
     }
     let Some(sweep) = &args.sweep else {
         let linear = linearize_at(model, &parameters, &args.at, &[])?;
-        print!("{}", describe(&linear));
-        return Ok(());
+        return Ok(crate::say(&describe(&linear))?);
     };
     if parameters.contains_key(&sweep.variable) {
         return Err(LinearizeError::ParameterSwept(sweep.variable.clone()).into());
@@ -216,12 +212,14 @@ fn analyse(
         eigenvalues,
     };
     write_eigenvalue_plot(&plotted, &png_file)?;
-    println!("wrote {} and {}", csv_file.display(), png_file.display());
-    print!(
-        "{}",
-        stability(&sweep.variable, &values, &stable, conserved)
-    );
-    Ok(())
+    let wrote = format!("wrote {} and {}\n", csv_file.display(), png_file.display());
+    crate::say(&wrote)?;
+    Ok(crate::say(&stability(
+        &sweep.variable,
+        &values,
+        &stable,
+        conserved,
+    ))?)
 }
 
 /// The point `--at` describes with the names bound, linearized, the

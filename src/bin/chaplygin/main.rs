@@ -33,15 +33,34 @@ mod options;
 mod simulate;
 
 use clap::Parser;
+use std::error::Error;
+use std::io::{ErrorKind, Write};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let command = options::Command::parse();
     match command.run() {
         Ok(()) => ExitCode::SUCCESS,
+        Err(error) if closed_output(error.as_ref()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {error}");
             ExitCode::FAILURE
         }
     }
+}
+
+/// Writes `text` to standard output.
+///
+/// # Errors
+/// The output's; where it is a pipe its reader closed (`| head`), the
+/// command ends quietly (see [`closed_output`]).
+pub fn say(text: &str) -> std::io::Result<()> {
+    std::io::stdout().lock().write_all(text.as_bytes())
+}
+
+/// Whether `error` is standard output closed by its reader.
+fn closed_output(error: &(dyn Error + 'static)) -> bool {
+    error
+        .downcast_ref::<std::io::Error>()
+        .is_some_and(|error| error.kind() == ErrorKind::BrokenPipe)
 }

@@ -42,14 +42,8 @@ impl Command {
     /// A one-line description of what went wrong.
     pub fn run(self) -> Result<(), Box<dyn std::error::Error>> {
         match self.action {
-            Action::List => {
-                print!("{}", catalog::listing());
-                Ok(())
-            }
-            Action::Derive { model, format } => {
-                print!("{}", derive::document(&model, format)?);
-                Ok(())
-            }
+            Action::List => Ok(crate::say(&catalog::listing())?),
+            Action::Derive { model, format } => Ok(crate::say(&derive::document(&model, format)?)?),
             Action::Simulate(args) => simulate::run(&args),
             Action::Linearize(args) => linearize::run(&args),
         }

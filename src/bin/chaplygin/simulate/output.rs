@@ -79,15 +79,15 @@ pub(super) fn execute(
     };
     let plots = write_plots(&table, tracks.as_ref(), &args.out, figure4);
     let report = outcome?;
-    println!("{report}");
-    println!("wrote {}", csv_path.display());
+    crate::say(&format!("{report}\n"))?;
+    crate::say(&format!("wrote {}\n", csv_path.display()))?;
     if let Some(tracks) = &tracks {
         let tracks_path = args.out.join("tracks.csv");
         write_table(tracks, &tracks_path)?;
-        println!("wrote {}", tracks_path.display());
+        crate::say(&format!("wrote {}\n", tracks_path.display()))?;
     }
     for plot in plots? {
-        println!("wrote {}", plot.display());
+        crate::say(&format!("wrote {}\n", plot.display()))?;
     }
     Ok(())
 }
