@@ -142,6 +142,40 @@ fn the_weave_and_capsize_speeds_are_the_papers_to_1e_6() {
     );
 }
 
+/// The stable speed range the command prints, its ends refined between
+/// the grid's points by bisection: the paper's weave and capsize speeds.
+#[test]
+fn the_printed_stable_range_is_the_papers_weave_to_capsize() {
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bicycle-range");
+    let text = upright(&[
+        "--sweep",
+        "v=3:7:0.5",
+        "--out",
+        out.to_str().expect("UTF-8"),
+    ]);
+    let line = text
+        .lines()
+        .skip_while(|line| !line.starts_with("asymptotically stable"))
+        .nth(1)
+        .expect("an interval");
+    let reference = BenchmarkParameters::benchmark();
+    let expected = format!(
+        "  [{:.9}, {:.9}] (grid points [4.5, 6])",
+        reference.weave_speeds()[0],
+        reference.capsize_speeds()[0]
+    );
+    let ends = |line: &str| -> Vec<f64> {
+        line.trim()[1..line.trim().find(']').expect("an end")]
+            .split(", ")
+            .map(|end| end.parse().expect("a number"))
+            .collect()
+    };
+    for (found, paper) in ends(line).iter().zip(ends(&expected)) {
+        assert!((found - paper).abs() < 1e-8, "{line} vs {expected}");
+    }
+    assert!(line.ends_with("(grid points [4.5, 6])"), "{line}");
+}
+
 /// The matrices of Meijaard et al. (2007), section 5 (MATH.md section 6),
 /// rows `(phi, delta)`.
 const PUBLISHED: [(&str, [[f64; 2]; 2]); 4] = [

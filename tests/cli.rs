@@ -613,9 +613,32 @@ fn linearize_prints_the_sleighs_eigenvalues() {
     assert_eq!(printed[0], printed[1]);
 }
 
+/// The intervals printed under the line starting with `kind` (the
+/// asymptotically or the neutrally stable ones): each `(refined, grid)`.
+fn printed_intervals(text: &str, kind: &str) -> Vec<((f64, f64), (f64, f64))> {
+    let pair = |text: &str| {
+        let (a, b) = text.split_once(", ").expect("two ends");
+        (a.parse().expect("a number"), b.parse().expect("a number"))
+    };
+    text.lines()
+        .skip_while(|line| !line.starts_with(kind))
+        .skip(1)
+        .take_while(|line| line.starts_with("  ["))
+        .map(|line| {
+            let (refined, grid) = line
+                .trim()
+                .strip_prefix('[')
+                .and_then(|rest| rest.split_once("] (grid points ["))
+                .expect("an interval");
+            (pair(refined), pair(grid.trim_end_matches("])")))
+        })
+        .collect()
+}
+
 /// `--sweep` over the sleigh's speed: one CSV row per grid point (STOP
 /// included) with the hand eigenvalues `0` and `-m a v / (I + m a^2)`,
-/// the plot, and the stable interval `v > 0` on the grid.
+/// the plot, the stable interval `v > 0` on the grid with its start refined
+/// to 0, and the neutral point `v = 0`.
 #[test]
 fn linearize_sweeps_write_the_eigenvalues_and_the_stable_intervals() {
     let out = scratch("sweep");
@@ -649,8 +672,52 @@ fn linearize_sweeps_write_the_eigenvalues_and_the_stable_intervals() {
     let bytes = std::fs::read(out.join("eigenvalues.png")).expect("the plot exists");
     assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
     let text = stdout(&output);
-    assert!(text.contains("[0.25, 1]"), "{text}");
-    assert_eq!(text.matches('[').count(), 1, "{text}");
+    let stable = printed_intervals(&text, "asymptotically stable");
+    assert_eq!(stable.len(), 1, "{text}");
+    let ((start, end), grid) = stable[0];
+    assert_eq!((end, grid), (1.0, (0.25, 1.0)), "{text}");
+    assert!((0.0..1e-9).contains(&start), "{text}");
+    let neutral = printed_intervals(&text, "neutrally stable");
+    assert_eq!(neutral.len(), 1, "{text}");
+    let ((from, to), grid) = neutral[0];
+    assert_eq!(grid, (0.0, 0.0), "{text}");
+    assert!(from.abs() < 1e-9 && to.abs() < 1e-9, "{text}");
+}
+
+/// The leaning disk rolling upright at the spin rate `w`: its lean and
+/// heading oscillate without decay (every eigenvalue but the conserved
+/// quantities' zeros on the imaginary axis) exactly where `w^2 > g / (3 r)`
+/// (a uniform disk, Bloch 2003, section 1.4), `w > 2.5573` at the defaults
+/// `g = 9.81`, `r = 0.5`; the grid's end is refined to that closed form.
+/// Nowhere is it asymptotically stable: rolling conserves energy.
+#[test]
+fn the_upright_disk_is_neutrally_stable_above_its_critical_spin() {
+    let out = scratch("disk-sweep");
+    let output = chaplygin(&[
+        "linearize",
+        "rolling-disk-3d",
+        "--at",
+        "dot(theta)=w",
+        "--at",
+        "phi=0",
+        "--at",
+        "dot(phi)=0",
+        "--at",
+        "dot(psi)=0",
+        "--sweep",
+        "w=1:4:0.5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(text.contains("asymptotically stable for no w"), "{text}");
+    let neutral = printed_intervals(&text, "neutrally stable");
+    assert_eq!(neutral.len(), 1, "{text}");
+    let ((from, to), grid) = neutral[0];
+    assert_eq!((to, grid), (4.0, (3.0, 4.0)), "{text}");
+    let critical = (9.81f64 / (3.0 * 0.5)).sqrt();
+    assert!((from - critical).abs() < 1e-7, "{from} vs {critical}");
 }
 
 #[test]

@@ -6,13 +6,19 @@
 //! the operation counts of `acceleration` and `reduced_rhs` before and after
 //! CSE (from the generated `REPORT`), the `rustc -O` compile time of the
 //! generated code with a timing `main`, and the per-call time of the two
-//! functions in that program (best of several batches). It then prints the
-//! least-squares slope of `ln(quantity)` against `ln(N)` for each quantity:
-//! growth like `N^slope`.
+//! functions in that program (best of several batches); and for the same
+//! model read from its text (`chaplygin::jit`), the time to compile all its
+//! programs to native code with the JIT and the per-call time of the same
+//! two programs at the same state, and their ratio to rustc's. It then
+//! prints the least-squares slope of `ln(quantity)` against `ln(N)` for
+//! each quantity: growth like `N^slope`.
 //!
 //! Run with `cargo bench -p chaplygin-models --bench growth`.
 
+use chaplygin::jit::NativePrograms;
+use chaplygin_codegen::interpret::InterpretedModel;
 use chaplygin_models::snake::n_link_snake;
+use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::mpsc;
@@ -29,6 +35,14 @@ struct Row {
     acceleration_operations: (f64, f64),
     reduced_rhs_operations: (f64, f64),
     jacobian_operations: (f64, f64),
+    compile_seconds: f64,
+    acceleration_nanoseconds: f64,
+    reduced_rhs_nanoseconds: f64,
+    jit: Jit,
+}
+
+/// The JIT's part of a row.
+struct Jit {
     compile_seconds: f64,
     acceleration_nanoseconds: f64,
     reduced_rhs_nanoseconds: f64,
@@ -84,6 +98,55 @@ fn study(links: usize, budget: f64, workspace: &Path) -> Result<Row, String> {
         compile_seconds,
         acceleration_nanoseconds,
         reduced_rhs_nanoseconds,
+        jit: jit_study(links)?,
+    })
+}
+
+/// The model of `n_link_snake(links)` read from its text: the time to
+/// compile all its programs with the JIT, and the nanoseconds per call of
+/// its native `acceleration` and `reduced_rhs` at the state the rustc
+/// timing program uses (best of 7 batches of 10^5 calls).
+fn jit_study(links: usize) -> Result<Jit, String> {
+    let model = InterpretedModel::from_source(&n_link_snake(links))
+        .map_err(|diagnostics| diagnostics.render("n_link_snake"))?;
+    let programs: Vec<_> = model.programs().map(|(_, program)| program).collect();
+    let started = Instant::now();
+    let native = NativePrograms::compile(&programs).map_err(|error| error.to_string())?;
+    let compile_seconds = started.elapsed().as_secs_f64();
+    let sizes = model.sizes();
+    let q: Vec<f64> = (0..sizes.n).map(|i| 0.3 * (i as f64 + 1.0).sin()).collect();
+    let (alpha, u) = (vec![0.4; sizes.k], vec![0.1; sizes.p]);
+    let qdot = model
+        .velocities(&q, &alpha)
+        .map_err(|error| error.to_string())?;
+    let per_call = |name: &str, arguments: Vec<&[f64]>| -> Result<f64, String> {
+        let (index, (_, program)) = model
+            .programs()
+            .enumerate()
+            .find(|(_, (function, _))| *function == name)
+            .ok_or_else(|| format!("no program {name}"))?;
+        let inputs: Vec<f64> = arguments
+            .concat()
+            .into_iter()
+            .chain(model.parameter_values().iter().copied())
+            .collect();
+        let mut outputs = vec![0.0; program.outputs().len()];
+        let batch = |outputs: &mut [f64]| {
+            let started = Instant::now();
+            for _ in 0..100_000 {
+                let _ = native.evaluate(index, black_box(&inputs), outputs);
+                black_box(&outputs);
+            }
+            started.elapsed().as_nanos() as f64 / 100_000.0
+        };
+        Ok((0..7)
+            .map(|_| batch(&mut outputs))
+            .fold(f64::INFINITY, f64::min))
+    };
+    Ok(Jit {
+        compile_seconds,
+        acceleration_nanoseconds: per_call("acceleration", vec![&q, &qdot, &u])?,
+        reduced_rhs_nanoseconds: per_call("reduced_rhs", vec![&q, &alpha, &u])?,
     })
 }
 
@@ -187,7 +250,7 @@ fn newest_rlib(directory: &Path, prefix: &str) -> Result<PathBuf, String> {
 
 fn print_row(row: &Row) {
     println!(
-        "N = {:2}: derivation {:9.3} s | acceleration ops {:>8} -> {:>6} | reduced_rhs ops {:>8} -> {:>6} | reduced_rhs_jacobian ops after CSE {:>7} | rustc -O {:7.2} s | acceleration {:9.1} ns | reduced_rhs {:9.1} ns",
+        "N = {:2}: derivation {:9.3} s | acceleration ops {:>8} -> {:>6} | reduced_rhs ops {:>8} -> {:>6} | reduced_rhs_jacobian ops after CSE {:>7} | rustc -O {:7.2} s | acceleration {:9.1} ns | reduced_rhs {:9.1} ns | JIT compile {:6.3} s | JIT acceleration {:9.1} ns ({:.2}x rustc) | JIT reduced_rhs {:9.1} ns ({:.2}x rustc)",
         row.links,
         row.derivation_seconds,
         row.acceleration_operations.0,
@@ -198,6 +261,11 @@ fn print_row(row: &Row) {
         row.compile_seconds,
         row.acceleration_nanoseconds,
         row.reduced_rhs_nanoseconds,
+        row.jit.compile_seconds,
+        row.jit.acceleration_nanoseconds,
+        row.jit.acceleration_nanoseconds / row.acceleration_nanoseconds,
+        row.jit.reduced_rhs_nanoseconds,
+        row.jit.reduced_rhs_nanoseconds / row.reduced_rhs_nanoseconds,
     );
 }
 
@@ -206,7 +274,7 @@ type Quantity = (&'static str, fn(&Row) -> f64);
 
 /// The least-squares slope of `ln(value)` against `ln(N)` for each quantity.
 fn print_slopes(rows: &[Row]) {
-    let quantities: [Quantity; 9] = [
+    let quantities: [Quantity; 10] = [
         ("derivation time", |r| r.derivation_seconds),
         ("acceleration ops before CSE", |r| {
             r.acceleration_operations.0
@@ -222,6 +290,7 @@ fn print_slopes(rows: &[Row]) {
         ("rustc -O time", |r| r.compile_seconds),
         ("acceleration time per call", |r| r.acceleration_nanoseconds),
         ("reduced_rhs time per call", |r| r.reduced_rhs_nanoseconds),
+        ("JIT compile time", |r| r.jit.compile_seconds),
     ];
     for (name, value) in quantities {
         let points: Vec<(f64, f64)> = rows

@@ -120,15 +120,67 @@ impl LinearSystem {
         self.is_stable_modulo(self.conserved_zeros())
     }
 
-    /// Whether every eigenvalue but the `conserved` smallest in modulus
-    /// (which must be zeros) lies in the open left half plane (by
-    /// [`Self::MARGIN`]).
+    /// Whether every eigenvalue but `conserved` zeros of conserved
+    /// quantities ([`Self::free_eigenvalues`]) lies in the open left half
+    /// plane (by [`Self::MARGIN`]).
     pub fn is_stable_modulo(&self, conserved: usize) -> bool {
         let bound = -Self::MARGIN * self.a.amax().max(1.0);
-        let mut by_modulus = self.eigenvalues.clone();
-        by_modulus.sort_by(|a, b| a.norm().total_cmp(&b.norm()));
-        let (smallest, rest) = by_modulus.split_at(conserved.min(by_modulus.len()));
-        smallest.iter().all(|&e| self.is_zero(e)) && rest.iter().all(|e| e.re < bound)
+        self.free_eigenvalues(conserved)
+            .is_some_and(|free| free.iter().all(|e| e.re < bound))
+    }
+
+    /// The largest real part of the eigenvalues but `conserved` zeros of
+    /// conserved quantities ([`Self::free_eigenvalues`]; infinite where
+    /// `A` has fewer null directions): negative where the motion is
+    /// asymptotically stable, it crosses zero where stability is gained or
+    /// lost (bisected without [`Self::MARGIN`], which would move the
+    /// crossing by the margin over the rate of the real part).
+    pub fn largest_real_part_modulo(&self, conserved: usize) -> f64 {
+        self.free_eigenvalues(conserved)
+            .map_or(f64::INFINITY, |free| {
+                free.iter().map(|e| e.re).fold(f64::NEG_INFINITY, f64::max)
+            })
+    }
+
+    /// Whether the motion is neutrally (spectrally) stable: every
+    /// eigenvalue but `conserved` zeros of conserved quantities
+    /// ([`Self::free_eigenvalues`]) on the imaginary axis to round-off
+    /// (`|re|` within [`Self::MARGIN`]), as a conservative system's are
+    /// where it is stable.
+    pub fn is_neutral_modulo(&self, conserved: usize) -> bool {
+        let bound = Self::MARGIN * self.a.amax().max(1.0);
+        self.free_eigenvalues(conserved)
+            .is_some_and(|free| free.iter().all(|e| e.re.abs() <= bound))
+    }
+
+    /// The eigenvalues of `A` but `conserved` zeros of conserved
+    /// quantities, `None` where `A` has fewer null directions (singular
+    /// values within [`Self::ZERO`] `max(1, max |A_ij|)`). The null
+    /// directions are deflated exactly: with `K` the right singular vectors
+    /// of the `conserved` smallest singular values and `L` the others,
+    /// `A K = 0` makes `[L K]^T A [L K]` block triangular, so the other
+    /// eigenvalues are those of `L^T A L`. Computed from `A` itself, a
+    /// cluster of zeros would spread its rounding, of order the square root
+    /// of round-off and more, onto an eigenvalue near it (the upright disk
+    /// near its critical spin, where a pair of imaginary eigenvalues meets
+    /// the zeros).
+    pub fn free_eigenvalues(&self, conserved: usize) -> Option<Vec<Complex<f64>>> {
+        if conserved == 0 {
+            return Some(self.eigenvalues.clone());
+        }
+        let order = self.a.nrows();
+        let svd = self.a.clone().try_svd(false, true, f64::EPSILON, 10_000)?;
+        let v_t = svd.v_t?;
+        let mut by_value: Vec<usize> = (0..svd.singular_values.len()).collect();
+        by_value.sort_by(|&i, &j| svd.singular_values[j].total_cmp(&svd.singular_values[i]));
+        let (kept, null) = by_value.split_at(order.checked_sub(conserved)?);
+        let tolerance = Self::ZERO * self.a.amax().max(1.0);
+        if null.iter().any(|&i| svd.singular_values[i] > tolerance) {
+            return None;
+        }
+        let l = v_t.select_rows(kept).transpose();
+        let free = linalg::eigenvalues(l.transpose() * &self.a * l).ok()?;
+        Some(free.iter().copied().collect())
     }
 }
 
@@ -448,4 +500,64 @@ fn tangent_basis(phi: &DMatrix<f64>, chosen: &[(usize, usize)]) -> DMatrix<f64> 
         basis.set_row(z, &solved.row(i));
     }
     basis
+}
+
+#[cfg(test)]
+mod tests {
+    use super::LinearSystem;
+    use crate::linalg;
+    use nalgebra::{DMatrix, Rotation3};
+
+    /// `A = Q block Q^T`, `Q` a rotation that mixes every entry.
+    fn system(block: DMatrix<f64>) -> LinearSystem {
+        let q = DMatrix::from_iterator(
+            3,
+            3,
+            Rotation3::from_euler_angles(0.3, -0.7, 1.1)
+                .matrix()
+                .iter()
+                .copied(),
+        );
+        let a = &q * block * q.transpose();
+        let mut eigenvalues: Vec<_> = linalg::eigenvalues(a.clone())
+            .unwrap()
+            .iter()
+            .copied()
+            .collect();
+        eigenvalues.sort_by(|x, y| y.re.total_cmp(&x.re));
+        LinearSystem {
+            state: vec!["a".into(), "b".into(), "c".into()],
+            b: DMatrix::zeros(3, 0),
+            a,
+            eigenvalues,
+        }
+    }
+
+    /// A conserved zero beside a centre `+-i w`: neutral, not asymptotically
+    /// stable; damped, asymptotically stable, not neutral; with the
+    /// centre's frequency small beside the zero, still neutral (the zero
+    /// deflated exactly), and its real parts exactly 0 up to round-off.
+    #[test]
+    fn a_centre_beside_a_conserved_zero_is_neutral() {
+        for (w, damping) in [(2.0, 0.0), (2.0, 0.3), (1e-3, 0.0)] {
+            let block = DMatrix::from_row_slice(
+                3,
+                3,
+                &[0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -w * w, -damping],
+            );
+            let linear = system(block);
+            assert_eq!(linear.conserved_zeros(), 1);
+            assert_eq!(linear.is_neutral_modulo(1), damping == 0.0, "w = {w}");
+            assert_eq!(linear.is_stable_modulo(1), damping > 0.0, "w = {w}");
+            let free = linear.free_eigenvalues(1).expect("one null direction");
+            assert_eq!(free.len(), 2);
+            for e in free {
+                assert!((e.norm() - w).abs() < 1e-12 * w.max(1.0) || damping > 0.0);
+                assert!((e.re + damping / 2.0).abs() < 1e-14, "{e}");
+            }
+            assert!(linear.free_eigenvalues(2).is_none());
+            let largest = linear.largest_real_part_modulo(1);
+            assert!((largest + damping / 2.0).abs() < 1e-14, "{largest}");
+        }
+    }
 }

@@ -5,7 +5,10 @@
 //! the linear system about it with the symmetry reduced and the constraints
 //! eliminated (`chaplygin::runtime::linearize::steady`), its eigenvalues;
 //! with `--sweep`, `DIR/eigenvalues.csv`, `DIR/eigenvalues.png` and the
-//! intervals of VAR where the motion is asymptotically stable; with
+//! intervals of VAR where the motion is asymptotically stable and where it
+//! is neutrally stable (every eigenvalue but the conserved quantities'
+//! zeros on the imaginary axis), their ends refined by bisection between
+//! grid points (`sweep::refined_intervals`); with
 //! `--canonical Q1,Q2 --canonical-speed VAR`, the canonical form
 //! `M qddot + v C1 qdot + (g K0 + v^2 K2) q = f` of Meijaard et al. (2007)
 //! in those coordinates (`canonical`). The inputs are zero.
@@ -27,6 +30,7 @@ use std::collections::BTreeMap;
 use std::error::Error;
 use std::fmt::Write as _;
 use std::path::PathBuf;
+use sweep::Interval;
 pub use sweep::Sweep;
 
 /// The arguments of `chaplygin linearize`.
@@ -195,10 +199,29 @@ fn analyse(
         .map(LinearSystem::conserved_zeros)
         .min()
         .unwrap_or(0);
-    let stable: Vec<bool> = linears
-        .iter()
-        .map(|linear| linear.is_stable_modulo(conserved))
-        .collect();
+    // A grid point is stable by a margin; between grid points the change
+    // of stability is where the largest real part crosses zero.
+    let verdicts = |holds: Verdict, between: Verdict| {
+        let on_grid: Vec<bool> = linears.iter().map(|l| holds(l, conserved)).collect();
+        sweep::refined_intervals(&values, &on_grid, |value| {
+            let mut names = parameters.clone();
+            names.insert(sweep.variable.clone(), value);
+            linearize_at(model, &names, &args.at, &[])
+                .map(|linear| between(&linear, conserved))
+                .map_err(|source| LinearizeError::AtSweepValue {
+                    variable: sweep.variable.clone(),
+                    value,
+                    source: Box::new(source),
+                })
+        })
+    };
+    let stable = verdicts(LinearSystem::is_stable_modulo, |linear, conserved| {
+        linear.largest_real_part_modulo(conserved) < 0.0
+    })?;
+    let neutral = verdicts(
+        LinearSystem::is_neutral_modulo,
+        LinearSystem::is_neutral_modulo,
+    )?;
     let csv_file = args.out.join("eigenvalues.csv");
     sweep::write(
         &csv_file,
@@ -210,15 +233,18 @@ fn analyse(
         variable: sweep.variable.clone(),
         values: values.clone(),
         eigenvalues,
+        stable: stable.iter().map(|interval| interval.refined).collect(),
     };
     write_eigenvalue_plot(&plotted, &png_file)?;
     let wrote = format!("wrote {} and {}\n", csv_file.display(), png_file.display());
     crate::say(&wrote)?;
     Ok(crate::say(&stability(
         &sweep.variable,
-        &values,
-        &stable,
         conserved,
+        [
+            ("asymptotically stable", &stable),
+            ("neutrally stable", &neutral),
+        ],
     ))?)
 }
 
@@ -291,17 +317,31 @@ fn describe(linear: &LinearSystem) -> String {
     text
 }
 
-/// The intervals of the sweep where the motion is asymptotically stable.
-fn stability(variable: &str, values: &[f64], stable: &[bool], conserved: usize) -> String {
-    let intervals = sweep::stable_intervals(values, stable);
-    if intervals.is_empty() {
-        return format!("asymptotically stable for no {variable} on the grid\n");
-    }
-    let mut text = format!(
-        "asymptotically stable (modulo {conserved} zeros of conserved quantities) for {variable} in (grid points):\n"
-    );
-    for (first, last) in intervals {
-        let _ = writeln!(text, "  [{first}, {last}]");
+/// Whether a linear system about a point of the sweep is stable in some
+/// sense, the family's zeros of conserved quantities discounted.
+type Verdict = fn(&LinearSystem, usize) -> bool;
+
+/// The intervals of the sweep where the motion is asymptotically stable,
+/// then neutrally stable, each `(grid, refined)`, as printed.
+fn stability(variable: &str, conserved: usize, kinds: [(&str, &[Interval]); 2]) -> String {
+    let mut text = String::new();
+    for (kind, intervals) in kinds {
+        if intervals.is_empty() {
+            let _ = writeln!(text, "{kind} for no {variable} on the grid");
+            continue;
+        }
+        let _ = writeln!(
+            text,
+            "{kind} (modulo {conserved} zeros of conserved quantities) for {variable} in \
+             (ends refined by bisection between grid points):"
+        );
+        for interval in intervals {
+            let ((first, last), (from, to)) = (interval.grid, interval.refined);
+            let _ = writeln!(
+                text,
+                "  [{from:.9}, {to:.9}] (grid points [{first}, {last}])"
+            );
+        }
     }
     text
 }

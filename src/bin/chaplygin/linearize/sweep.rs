@@ -164,24 +164,78 @@ pub fn write(file: &Path, text: &str) -> std::io::Result<()> {
     std::fs::write(file, text)
 }
 
-/// The runs of consecutive grid values where `stable` holds, as
-/// `(first, last)` grid values.
-pub fn stable_intervals(values: &[f64], stable: &[bool]) -> Vec<(f64, f64)> {
-    let mut intervals: Vec<(f64, f64)> = Vec::new();
-    let mut previous = false;
-    for (&value, &is_stable) in values.iter().zip(stable) {
-        match (is_stable, previous) {
-            (true, true) => {
-                if let Some(last) = intervals.last_mut() {
-                    last.1 = value;
-                }
+/// A run of consecutive grid values where a property holds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interval {
+    /// Its first and last grid values.
+    pub grid: (f64, f64),
+    /// Its ends refined between grid points: where the property changes
+    /// between a grid value inside and the next one outside, the change
+    /// located by bisection to [`REFINED`] relative; a grid end stays.
+    pub refined: (f64, f64),
+}
+
+/// How closely [`refined_intervals`] locates an end, relative to
+/// `max(1, |value|)`.
+pub const REFINED: f64 = 1e-11;
+
+/// The runs of `holds` over the grid `values`, each end refined by
+/// bisection of `at` (whether the property holds at a value) between the
+/// grid values on either side of it.
+///
+/// # Errors
+/// The first error of `at`.
+pub fn refined_intervals<E>(
+    values: &[f64],
+    holds: &[bool],
+    mut at: impl FnMut(f64) -> Result<bool, E>,
+) -> Result<Vec<Interval>, E> {
+    let mut intervals = Vec::new();
+    let mut start = None;
+    for index in 0..=values.len() {
+        match (start, holds.get(index).copied().unwrap_or(false)) {
+            (None, true) => start = Some(index),
+            (Some(first), false) => {
+                let last = index - 1;
+                let refined = (
+                    match first.checked_sub(1) {
+                        Some(outside) => bisect(values[outside], values[first], &mut at)?,
+                        None => values[first],
+                    },
+                    match index < values.len() {
+                        true => bisect(values[index], values[last], &mut at)?,
+                        false => values[last],
+                    },
+                );
+                intervals.push(Interval {
+                    grid: (values[first], values[last]),
+                    refined,
+                });
+                start = None;
             }
-            (true, false) => intervals.push((value, value)),
             _ => {}
         }
-        previous = is_stable;
     }
-    intervals
+    Ok(intervals)
+}
+
+/// Where the property changes between `outside` (where it does not hold)
+/// and `inside` (where it does), to [`REFINED`]; the midpoint of the last
+/// bracket.
+fn bisect<E>(
+    mut outside: f64,
+    mut inside: f64,
+    at: &mut impl FnMut(f64) -> Result<bool, E>,
+) -> Result<f64, E> {
+    let tolerance = REFINED * inside.abs().max(1.0);
+    while (inside - outside).abs() > tolerance {
+        let middle = 0.5 * (inside + outside);
+        match at(middle)? {
+            true => inside = middle,
+            false => outside = middle,
+        }
+    }
+    Ok(0.5 * (inside + outside))
 }
 
 #[cfg(test)]
@@ -234,12 +288,34 @@ mod tests {
     fn stable_runs_become_intervals() {
         let values = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
         let stable = [false, true, true, false, true, false];
-        assert_eq!(stable_intervals(&values, &stable), [(1.0, 2.0), (4.0, 4.0)]);
+        let grid: Vec<(f64, f64)> = refined_intervals(&values, &stable, |v| Ok::<_, ()>(v < 2.5))
+            .unwrap()
+            .iter()
+            .map(|interval| interval.grid)
+            .collect();
+        assert_eq!(grid, [(1.0, 2.0), (4.0, 4.0)]);
     }
 
     #[test]
     fn the_csv_has_a_column_pair_per_eigenvalue() {
         let text = csv("v", &[0.5], &[vec![(-1.0, 2.0), (-1.0, -2.0)]]);
         assert_eq!(text, "v,re_1,im_1,re_2,im_2\n0.5,-1,2,-1,-2\n");
+    }
+
+    #[test]
+    fn interval_ends_are_refined_between_grid_points() {
+        let values: Vec<f64> = (0..=10).map(f64::from).collect();
+        let inside = |v: f64| (2.5..=std::f64::consts::PI * 2.0).contains(&v) || v > 9.5;
+        let holds: Vec<bool> = values.iter().map(|&v| inside(v)).collect();
+        let found = refined_intervals(&values, &holds, |v| Ok::<_, ()>(inside(v))).unwrap();
+        assert_eq!(found.len(), 2);
+        assert_eq!(found[0].grid, (3.0, 6.0));
+        assert!((found[0].refined.0 - 2.5).abs() <= 2.0 * REFINED * 2.5);
+        assert!((found[0].refined.1 - 2.0 * std::f64::consts::PI).abs() <= 2.0 * REFINED * 6.3);
+        assert_eq!(found[1].grid, (10.0, 10.0));
+        assert!((found[1].refined.0 - 9.5).abs() <= 2.0 * REFINED * 9.5);
+        assert_eq!(found[1].refined.1, 10.0);
+        let none = refined_intervals(&values, &[false; 11], |_| Ok::<_, ()>(false)).unwrap();
+        assert!(none.is_empty());
     }
 }
