@@ -492,7 +492,7 @@ fn coefficients(
     rdot: &[SymbolId],
     momenta: &[SymbolId],
 ) -> Result<Coefficients, MomentumError> {
-    let half = Rational::new(1, 2).unwrap_or(Rational::ONE);
+    let half = Rational::HALF;
     let by_rdot = model.store.jacobian(std::slice::from_ref(pdot), rdot)?;
     let by_p = model.store.jacobian(std::slice::from_ref(pdot), momenta)?;
     let shape = halved(model.store.jacobian(by_rdot.entries(), rdot)?, &half);

@@ -411,7 +411,7 @@ impl Flow {
         let u = column_of_symbols(model, inputs)?;
         let atoms = model.store.atoms().clone();
         let hamiltonian = quadratic_form(&alpha, &maps.metric_inverse, &atoms)?
-            .scale(&Rational::new(1, 2).unwrap_or(Rational::ONE))
+            .scale(&Rational::HALF)
             .add(&model.potential_energy, &atoms);
         let mut state = model.coordinate_symbols();
         state.extend(momenta);

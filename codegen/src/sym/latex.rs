@@ -327,7 +327,7 @@ impl Latex<'_> {
 
     /// A power with a non-negative exponent; `\sqrt` for one half.
     fn power(&self, base: ExprId, exponent: &Rational) -> String {
-        if exponent == &Rational::new(1, 2).unwrap_or(Rational::ONE) {
+        if exponent == &Rational::HALF {
             return format!("\\sqrt{{{}}}", self.render(base, 0));
         }
         let exponent = if exponent.is_integer() {

@@ -30,6 +30,8 @@ impl Rational {
     pub const ZERO: Rational = Rational(Repr::Small(0, 1));
     /// One.
     pub const ONE: Rational = Rational(Repr::Small(1, 1));
+    /// One half.
+    pub const HALF: Rational = Rational(Repr::Small(1, 2));
 
     /// The integer `n`.
     pub fn integer(n: i64) -> Rational {
@@ -378,6 +380,7 @@ mod tests {
         let third = Rational::new(1, 3).unwrap();
         let sixth = Rational::new(-1, -6).unwrap();
         assert_eq!(third.add(&sixth), Rational::new(1, 2).unwrap());
+        assert_eq!(third.add(&sixth), Rational::HALF);
         assert_eq!(third.mul(&Rational::integer(3)), Rational::ONE);
         assert_eq!(Rational::new(2, -4).unwrap().to_small(), Some((-1, 2)));
         assert!(Rational::new(1, 0).is_none());

@@ -32,7 +32,7 @@ impl Exact {
             .transpose()
             .mul(&metric_inverse.mul(&alpha, store)?, store)?
             .get(0, 0);
-        let half = store.number(Rational::new(1, 2).unwrap_or(Rational::ONE));
+        let half = store.number(Rational::HALF);
         let kinetic = store.mul2(half, twice_kinetic);
         let potential = store.expression_of(&model.potential_energy);
         let hamiltonian = store.add2(kinetic, potential);

@@ -176,7 +176,7 @@ impl Checker {
                 sum = sum.add(&term, &table);
             }
         }
-        sum.scale(&Rational::new(1, 2).unwrap_or(Rational::ONE))
+        sum.scale(&Rational::HALF)
     }
 
     /// A declared mass matrix is n x n, free of velocities, and symmetric.

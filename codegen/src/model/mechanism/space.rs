@@ -193,5 +193,5 @@ pub(in crate::model) fn velocity(
 
 /// One half, for the energies.
 pub(in crate::model) fn half(store: &mut Store) -> ExprId {
-    store.number(Rational::new(1, 2).unwrap_or(Rational::ONE))
+    store.number(Rational::HALF)
 }

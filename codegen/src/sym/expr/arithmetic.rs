@@ -297,7 +297,7 @@ impl Store {
 
     /// `sqrt(x)`, stored as `x^(1/2)`.
     pub fn sqrt(&mut self, x: ExprId) -> Result<ExprId, SymError> {
-        self.pow(x, Rational::new(1, 2).unwrap_or(Rational::ONE))
+        self.pow(x, Rational::HALF)
     }
 
     // ----- functions -----------------------------------------------------

@@ -96,7 +96,7 @@ impl Store {
         }
         let whole = floor(exponent);
         let fraction = exponent.sub(&Rational::integer(whole));
-        let is_square_root = fraction == Rational::new(1, 2).unwrap_or(Rational::ONE);
+        let is_square_root = fraction == Rational::HALF;
         let canonical_base = self.expression_of(base_form);
         let root = self.pow(canonical_base, fraction)?;
         let root_form = match self.node(root) {
