@@ -8,7 +8,8 @@
 //! **column**, so `SMatrix::from(model.mass_matrix(&q))` is the transpose of
 //! the mass matrix (the same matrix only when it is symmetric, and silently
 //! wrong for `constraint_matrix`, `input_matrix` or `structure_matrix`).
-//! [`matrix_from_rows`] and [`rows_of`] read and write rows.
+//! [`matrix_from_rows`] and [`rows_of`] read and write rows; [`leading`]
+//! makes an array of a slice, as the run-time-sized views of a model need.
 //!
 //! ```
 //! use chaplygin_runtime::arrays::{matrix_from_rows, rows_of};
@@ -52,4 +53,15 @@ pub fn matrix_from_rows<const R: usize, const C: usize>(
 /// ```
 pub fn rows_of<const R: usize, const C: usize>(m: &SMatrix<f64, R, C>) -> [[f64; C]; R] {
     core::array::from_fn(|i| core::array::from_fn(|j| m[(i, j)]))
+}
+
+/// The first `L` entries of `values` as an array, zero past its end.
+///
+/// ```
+/// use chaplygin_runtime::arrays::leading;
+/// assert_eq!(leading::<2>(&[1.0, 2.0, 3.0]), [1.0, 2.0]);
+/// assert_eq!(leading::<3>(&[1.0]), [1.0, 0.0, 0.0]);
+/// ```
+pub fn leading<const L: usize>(values: &[f64]) -> [f64; L] {
+    core::array::from_fn(|i| values.get(i).copied().unwrap_or(0.0))
 }

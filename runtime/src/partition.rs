@@ -43,6 +43,7 @@
 //! Models with run-time sizes and generated ones (through [`Compiled`]) are
 //! read alike ([`Constrained`]); on fixed sizes nothing here allocates.
 
+use crate::arrays::leading;
 use crate::linalg::Square;
 use crate::monitor::{hadamard_ratio, partial_pivots, signed_pivot_ratio};
 use crate::system::LagrangeDalembert;
@@ -138,27 +139,23 @@ where
     }
 
     fn constraint_matrix(&self, q: &[f64]) -> OMatrix<f64, Const<C>, Const<N>> {
-        crate::arrays::matrix_from_rows(&self.0.constraint_matrix(&array(q)))
+        crate::arrays::matrix_from_rows(&self.0.constraint_matrix(&leading(q)))
     }
 
     fn mass_matrix(&self, q: &[f64]) -> OMatrix<f64, Const<N>, Const<N>> {
-        crate::arrays::matrix_from_rows(&self.0.mass_matrix(&array(q)))
+        crate::arrays::matrix_from_rows(&self.0.mass_matrix(&leading(q)))
     }
 
     fn acceleration(&self, q: &[f64], qdot: &[f64], u: &[f64]) -> OVector<f64, Const<N>> {
         self.0
-            .acceleration(&array(q), &array(qdot), &array(u))
+            .acceleration(&leading(q), &leading(qdot), &leading(u))
             .0
             .into()
     }
 
     fn energy(&self, q: &[f64], qdot: &[f64]) -> f64 {
-        LagrangeDalembert::energy(self.0, &array(q), &array(qdot))
+        LagrangeDalembert::energy(self.0, &leading(q), &leading(qdot))
     }
-}
-
-fn array<const L: usize>(values: &[f64]) -> [f64; L] {
-    core::array::from_fn(|i| values[i])
 }
 
 /// `C(n, k)`, saturating at `usize::MAX`.

@@ -63,7 +63,7 @@ pub use basis::{ChartFit, DistributionBasis, default_point, distribution_basis};
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::model::Model;
-use crate::sym::modular::Outside;
+use crate::sym::modular::ModularError;
 use crate::sym::{ExprId, Matrix, MatrixError, RationalFunction};
 
 /// The term products the exact basis of D may take.
@@ -173,7 +173,7 @@ pub enum AnalysisError {
     /// The model is too large for normal forms and its expressions are
     /// outside the class evaluated modulo a prime.
     #[error("the constraint analysis is too large for normal forms, and {0}")]
-    Undecided(#[from] Outside),
+    Undecided(#[from] ModularError),
 }
 
 /// Analyses the constraints; with `#[deny_holonomic]`, integrable

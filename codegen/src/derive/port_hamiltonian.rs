@@ -50,7 +50,7 @@ mod structured;
 
 use super::constraints::{DistributionBasis, Method};
 use crate::model::Model;
-use crate::sym::modular::{self, Outside, Values};
+use crate::sym::modular::{self, ModularError, Values};
 use crate::sym::{
     Atoms, ExprId, ExprMatrix, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError,
     SymbolId, SymbolKind,
@@ -162,7 +162,7 @@ pub enum PortHamiltonianError {
     Symbolic(#[from] SymError),
     /// The structured form's facts could not be evaluated.
     #[error("reduced port-Hamiltonian form: {0}")]
-    Undecided(#[from] Outside),
+    Undecided(#[from] ModularError),
     /// `Jbar + Jbar^T` is not exactly zero: a bug of the derivation.
     #[error(
         "the derived structure matrix Jbar is not skew-symmetric (entry ({row}, {column}) of Jbar + Jbar^T is not zero)"
@@ -310,7 +310,7 @@ fn derive_exact(
 fn facts_at_points(
     model: &mut Model,
     metric_inverse: &ExprMatrix,
-) -> Result<(bool, bool), Outside> {
+) -> Result<(bool, bool), ModularError> {
     let mut rates = Vec::new();
     for q in model.coordinate_symbols() {
         rates.extend(model.store.derivatives(metric_inverse.entries(), q));

@@ -21,7 +21,7 @@
 //! above `1 - 1e-15`.
 
 use super::{GroupFactor, Symmetry, Variable};
-use crate::sym::modular::{self, Outside, Values};
+use crate::sym::modular::{self, ModularError, Values};
 use crate::sym::{
     ExprId, ExprMatrix, Function, Matrix, RationalFunction, Store, SymError, SymbolId, SymbolKind,
 };
@@ -159,7 +159,7 @@ fn preserved_at_points(
     store: &mut Store,
     expression: ExprId,
     action: &HashMap<SymbolId, ExprId>,
-) -> Result<Result<bool, Outside>, SymError> {
+) -> Result<Result<bool, ModularError>, SymError> {
     let moved = store.substitute(expression, action)?;
     let difference = store.sub(moved, expression);
     Ok(all_zero_at_points(store, &[], &[difference], |values| {
@@ -185,7 +185,7 @@ fn all_zero_at_points(
     forms: &[RationalFunction],
     expressions: &[ExprId],
     holds: impl Fn(&[u64]) -> bool,
-) -> Result<bool, Outside> {
+) -> Result<bool, ModularError> {
     let verdicts = modular::at_defined_points(modular::SEEDS.len(), |point| {
         let mut values = Values::at(point);
         let mut evaluated = store.evaluate_normal_modular(forms, &mut values)?;
@@ -233,7 +233,7 @@ fn constraints_preserved_at_points(
     a: &ExprMatrix,
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
-) -> Result<Result<bool, Outside>, SymError> {
+) -> Result<Result<bool, ModularError>, SymError> {
     let (c, n) = (a.rows(), a.columns());
     let mut stacked = a.entries().to_vec();
     for i in 0..c {

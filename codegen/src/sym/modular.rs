@@ -16,7 +16,7 @@
 //! A square root `sqrt(u)` is the principal root of `u`'s value,
 //! `u^((p + 1) / 4)` (a root because `p = 3 mod 4`), where `u`'s value is a
 //! square; where it is not, the point is not on the variety `r^2 = u` and the
-//! expression is [`Outside::Undefined`] there, so callers draw the next point
+//! expression is [`ModularError::Undefined`] there, so callers draw the next point
 //! ([`points`]). The normal form uses nothing of a root `r` but `r^2 = u`, so
 //! either root of `u` gives a point of the variety it works on
 //! ([`normal_form`] evaluates normal forms, their root atoms from their
@@ -39,7 +39,7 @@
 //!
 //! Points are drawn from a seed, so every build decides the same way.
 //! Expressions outside the class (`exp`, `ln`, fractional powers, `sin` of a
-//! non-linear argument) are not evaluated: [`Outside`].
+//! non-linear argument) are not evaluated: [`ModularError`].
 
 mod normal_form;
 
@@ -59,7 +59,7 @@ pub const POINT_DRAWS: u64 = 64;
 
 /// The points derivations evaluate at, in order: first [`SEEDS`], then
 /// further points from them, for callers that skip the points where an
-/// expression is [`Outside::Undefined`].
+/// expression is [`ModularError::Undefined`].
 pub fn points() -> impl Iterator<Item = Point> {
     (0..POINT_DRAWS).map(|draw_index| {
         let seed = SEEDS[(draw_index % 2) as usize];
@@ -68,33 +68,33 @@ pub fn points() -> impl Iterator<Item = Point> {
 }
 
 /// `evaluate` at the first `count` points of [`points`] where it is
-/// defined (skipping those where it is [`Outside::Undefined`]); an
+/// defined (skipping those where it is [`ModularError::Undefined`]); an
 /// expression outside the class is an error at once, and so is finding
 /// fewer than `count` defined points.
 pub fn at_defined_points<T>(
     count: usize,
-    mut evaluate: impl FnMut(Point) -> Result<T, Outside>,
-) -> Result<Vec<T>, Outside> {
+    mut evaluate: impl FnMut(Point) -> Result<T, ModularError>,
+) -> Result<Vec<T>, ModularError> {
     let mut results = Vec::with_capacity(count);
     let mut undefined = None;
     for point in points() {
         match evaluate(point) {
             Ok(result) => results.push(result),
-            Err(error @ Outside::Undefined { .. }) => undefined = Some(error),
+            Err(error @ ModularError::Undefined { .. }) => undefined = Some(error),
             Err(error) => return Err(error),
         }
         if results.len() == count {
             return Ok(results);
         }
     }
-    Err(undefined.unwrap_or(Outside::Undefined {
+    Err(undefined.unwrap_or(ModularError::Undefined {
         expr: "every point drawn".to_string(),
     }))
 }
 
 /// Why an expression was not evaluated at a point.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-pub enum Outside {
+pub enum ModularError {
     /// The expression leaves the class of rational trigonometric functions.
     #[error("{expr} is not a rational function of sines and cosines of integer combinations")]
     NotInClass {
@@ -174,7 +174,7 @@ impl Values {
     }
 
     /// The values of `roots` modulo [`PRIME`].
-    pub fn of(&mut self, store: &Store, roots: &[ExprId]) -> Result<Vec<u64>, Outside> {
+    pub fn of(&mut self, store: &Store, roots: &[ExprId]) -> Result<Vec<u64>, ModularError> {
         for id in store.reachable_where(roots, |id| self.values.contains_key(&id)) {
             let value = store.modular_node(id, &self.values, &self.point)?;
             self.values.insert(id, value);
@@ -185,7 +185,11 @@ impl Values {
 
 impl Store {
     /// The values of `roots` modulo [`PRIME`] at `point`.
-    pub fn evaluate_modular(&self, roots: &[ExprId], point: &Point) -> Result<Vec<u64>, Outside> {
+    pub fn evaluate_modular(
+        &self,
+        roots: &[ExprId],
+        point: &Point,
+    ) -> Result<Vec<u64>, ModularError> {
         Values::at(*point).of(self, roots)
     }
 
@@ -194,11 +198,11 @@ impl Store {
         id: ExprId,
         values: &HashMap<ExprId, u64>,
         point: &Point,
-    ) -> Result<u64, Outside> {
-        let not_in_class = || Outside::NotInClass {
+    ) -> Result<u64, ModularError> {
+        let not_in_class = || ModularError::NotInClass {
             expr: self.display(id).to_string(),
         };
-        let undefined = || Outside::Undefined {
+        let undefined = || ModularError::Undefined {
             expr: self.display(id).to_string(),
         };
         Ok(match self.node(id) {
@@ -376,7 +380,7 @@ pub fn rank(mut values: Vec<u64>, rows: usize, columns: usize) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use super::{Outside, PRIME, Point, rank};
+    use super::{ModularError, PRIME, Point, rank};
     use crate::sym::{Function, Rational, Store, SymbolKind};
 
     fn store_with_angles() -> (Store, crate::sym::ExprId, crate::sym::ExprId) {
@@ -462,7 +466,7 @@ mod tests {
         for expression in [sin_product, cube_root, exponential] {
             assert!(matches!(
                 store.evaluate_modular(&[expression], &Point::new(1)),
-                Err(Outside::NotInClass { .. })
+                Err(ModularError::NotInClass { .. })
             ));
         }
     }
@@ -480,7 +484,7 @@ mod tests {
                     assert_eq!(square, values[1], "sqrt(u)^2 = u");
                     defined += 1;
                 }
-                Err(Outside::Undefined { .. }) => undefined += 1,
+                Err(ModularError::Undefined { .. }) => undefined += 1,
                 Err(other) => panic!("in the class: {other}"),
             }
         }
@@ -509,7 +513,7 @@ mod tests {
         let quotient = store.div(x, hidden_zero).expect("not a constant zero");
         assert!(matches!(
             store.evaluate_modular(&[quotient], &Point::new(3)),
-            Err(Outside::Undefined { .. })
+            Err(ModularError::Undefined { .. })
         ));
     }
 

@@ -249,7 +249,7 @@ proptest! {
         let simplified = built.store.expression_of(&form);
         match built.store.evaluate_modular(&[simplified], &point) {
             Ok(value) => prop_assert_eq!(value, original.clone()),
-            Err(super::modular::Outside::Undefined { .. }) => {}
+            Err(super::modular::ModularError::Undefined { .. }) => {}
             Err(outside) => prop_assert!(false, "the normal form left the class: {outside}"),
         }
         prop_assert_eq!(form.is_zero(), original[0] == 0);

@@ -19,6 +19,7 @@ pub mod canonical;
 pub mod point;
 pub mod steady;
 
+use crate::arrays::leading;
 pub use crate::system::GroupFactor;
 use crate::system::{Holonomic, LagrangeDalembert, ModelNames};
 use nalgebra::{DMatrix, DVector};
@@ -128,12 +129,6 @@ where
     }
 }
 
-/// The array of a slice of length `N` (a slice of another length leaves
-/// the rest zero or is cut: the callers size their slices).
-fn array<const N: usize>(values: &[f64]) -> [f64; N] {
-    core::array::from_fn(|i| values.get(i).copied().unwrap_or(0.0))
-}
-
 /// Owned copies of `names`.
 fn owned(names: &[&str]) -> Vec<String> {
     names.iter().map(|name| name.to_string()).collect()
@@ -170,23 +165,25 @@ where
     }
 
     fn holonomic_residual(&self, q: &[f64]) -> DVector<f64> {
-        DVector::from_row_slice(&(self.holonomic.0)(self.model, &array(q)))
+        DVector::from_row_slice(&(self.holonomic.0)(self.model, &leading(q)))
     }
 
     fn holonomic_jacobian(&self, q: &[f64]) -> DMatrix<f64> {
-        matrix(&(self.holonomic.1)(self.model, &array(q)))
+        matrix(&(self.holonomic.1)(self.model, &leading(q)))
     }
 
     fn mass_matrix(&self, q: &[f64]) -> DMatrix<f64> {
-        matrix(&self.model.mass_matrix(&array(q)))
+        matrix(&self.model.mass_matrix(&leading(q)))
     }
 
     fn constraint_matrix(&self, q: &[f64]) -> DMatrix<f64> {
-        matrix(&self.model.constraint_matrix(&array(q)))
+        matrix(&self.model.constraint_matrix(&leading(q)))
     }
 
     fn acceleration(&self, q: &[f64], qdot: &[f64], u: &[f64]) -> DVector<f64> {
-        let (qddot, _) = self.model.acceleration(&array(q), &array(qdot), &array(u));
+        let (qddot, _) = self
+            .model
+            .acceleration(&leading(q), &leading(qdot), &leading(u));
         DVector::from_row_slice(&qddot)
     }
 
@@ -198,7 +195,7 @@ where
     ) -> (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>) {
         let (by_q, by_qdot, by_u) =
             self.model
-                .acceleration_jacobian(&array(q), &array(qdot), &array(u));
+                .acceleration_jacobian(&leading(q), &leading(qdot), &leading(u));
         (matrix(&by_q), matrix(&by_qdot), matrix(&by_u))
     }
 }

@@ -4,9 +4,10 @@
 //!
 //! [`Formulation`] is the object-safe view; [`Typed`] gives it to a
 //! fixed-size structured runtime system (the snakeboard under its energy
-//! controller); [`Sized`] turns it back into a fixed-size runtime system of
-//! dimension `D`, chosen at run time by [`with_dimension!`].
+//! controller); [`AtDimension`] turns it back into a fixed-size runtime
+//! system of dimension `D`, chosen at run time by [`with_dimension!`].
 
+use chaplygin::runtime::arrays::leading;
 use chaplygin::runtime::projection::ProjectionError;
 use chaplygin::runtime::simulate::{GuardedValue, Observed, Regularity};
 use chaplygin::runtime::system::{Energy, Jacobian, OdeSystem, Structured};
@@ -102,10 +103,6 @@ impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Typed<T, D> {
     }
 }
 
-fn array<const D: usize>(x: &[f64]) -> [f64; D] {
-    core::array::from_fn(|i| x[i])
-}
-
 fn flatten<const D: usize>(matrix: &[[f64; D]; D], into: &mut [f64]) {
     into.copy_from_slice(matrix.as_flattened());
 }
@@ -120,15 +117,15 @@ impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Formulation f
     }
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
-        xdot.copy_from_slice(&self.system.rhs(t, &array(x)));
+        xdot.copy_from_slice(&self.system.rhs(t, &leading(x)));
     }
 
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
-        flatten(&self.system.jacobian(t, &array(x)), jacobian);
+        flatten(&self.system.jacobian(t, &leading(x)), jacobian);
     }
 
     fn energy(&self, x: &[f64]) -> f64 {
-        self.system.energy(&array(x))
+        self.system.energy(&leading(x))
     }
 
     fn engine(&self) -> &'static str {
@@ -147,43 +144,43 @@ impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Formulation f
         gradient: &mut [f64],
         forcing: &mut [f64],
     ) {
-        let x = array(x);
+        let x = leading(x);
         flatten(&self.system.structure_matrix(&x), j);
         gradient.copy_from_slice(&self.system.energy_gradient(&x));
         forcing.copy_from_slice(&self.system.forcing(t, &x));
     }
 
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
-        self.system.inputs(t, &array(x), inputs);
+        self.system.inputs(t, &leading(x), inputs);
     }
 
     fn configuration_velocity(&self, x: &[f64], q: &mut [f64], qdot: &mut [f64]) {
-        self.system.configuration_velocity(&array(x), q, qdot);
+        self.system.configuration_velocity(&leading(x), q, qdot);
     }
 
     fn constraint_residual(&self, x: &[f64]) -> f64 {
-        self.system.constraint_residual(&array(x))
+        self.system.constraint_residual(&leading(x))
     }
 
     fn regularity(&self, x: &[f64]) -> Regularity {
-        self.system.regularity(&array(x))
+        self.system.regularity(&leading(x))
     }
 
     fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
-        x.copy_from_slice(&self.system.project(array(x))?);
+        x.copy_from_slice(&self.system.project(leading(x))?);
         Ok(())
     }
 
     fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
-        self.system.holonomic_residual(&array(x))
+        self.system.holonomic_residual(&leading(x))
     }
 
     fn domain(&self, x: &[f64]) -> Vec<GuardedValue<'_>> {
-        self.system.domain(&array(x))
+        self.system.domain(&leading(x))
     }
 
     fn dependent_rows(&self, x: &[f64]) -> Vec<String> {
-        self.system.dependent_rows(&array(x))
+        self.system.dependent_rows(&leading(x))
     }
 
     fn chart(&self) -> Option<usize> {
@@ -191,14 +188,14 @@ impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Formulation f
     }
 
     fn change_chart(&self, x: &mut [f64]) -> bool {
-        let mut state = array(x);
+        let mut state = leading(x);
         let changed = self.system.change_chart(&mut state);
         x.copy_from_slice(&state);
         changed
     }
 
     fn change_to_pivoted_chart(&self, x: &mut [f64]) -> bool {
-        let mut state = array(x);
+        let mut state = leading(x);
         let changed = self.system.change_to_pivoted_chart(&mut state);
         x.copy_from_slice(&state);
         changed
@@ -206,9 +203,9 @@ impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Formulation f
 }
 
 /// A [`Formulation`] of dimension `D` as a fixed-size runtime system.
-pub struct Sized<'a, const D: usize>(pub &'a dyn Formulation);
+pub struct AtDimension<'a, const D: usize>(pub &'a dyn Formulation);
 
-impl<const D: usize> OdeSystem<D> for Sized<'_, D> {
+impl<const D: usize> OdeSystem<D> for AtDimension<'_, D> {
     fn rhs(&self, t: f64, x: &[f64; D]) -> [f64; D] {
         let mut xdot = [0.0; D];
         self.0.rhs(t, x, &mut xdot);
@@ -216,7 +213,7 @@ impl<const D: usize> OdeSystem<D> for Sized<'_, D> {
     }
 }
 
-impl<const D: usize> Jacobian<D> for Sized<'_, D> {
+impl<const D: usize> Jacobian<D> for AtDimension<'_, D> {
     fn jacobian(&self, t: f64, x: &[f64; D]) -> [[f64; D]; D] {
         let mut jacobian = [[0.0; D]; D];
         self.0.jacobian(t, x, jacobian.as_flattened_mut());
@@ -224,13 +221,13 @@ impl<const D: usize> Jacobian<D> for Sized<'_, D> {
     }
 }
 
-impl<const D: usize> Energy<D> for Sized<'_, D> {
+impl<const D: usize> Energy<D> for AtDimension<'_, D> {
     fn energy(&self, x: &[f64; D]) -> f64 {
         self.0.energy(x)
     }
 }
 
-impl<const D: usize> Sized<'_, D> {
+impl<const D: usize> AtDimension<'_, D> {
     /// `(J, dH/dx, F)` at `(t, x)`.
     fn structure_at(&self, t: f64, x: &[f64; D]) -> ([[f64; D]; D], [f64; D], [f64; D]) {
         let (mut j, mut gradient, mut forcing) = ([[0.0; D]; D], [0.0; D], [0.0; D]);
@@ -240,7 +237,7 @@ impl<const D: usize> Sized<'_, D> {
     }
 }
 
-impl<const D: usize> Structured<D> for Sized<'_, D> {
+impl<const D: usize> Structured<D> for AtDimension<'_, D> {
     fn structure_matrix(&self, x: &[f64; D]) -> [[f64; D]; D] {
         self.structure_at(0.0, x).0
     }
@@ -254,7 +251,7 @@ impl<const D: usize> Structured<D> for Sized<'_, D> {
     }
 }
 
-impl<const D: usize> Observed<D> for Sized<'_, D> {
+impl<const D: usize> Observed<D> for AtDimension<'_, D> {
     fn state_names(&self) -> Vec<String> {
         self.0.state_names()
     }

@@ -21,6 +21,7 @@ mod stop;
 
 pub use arguments::SimulateArgs;
 pub(crate) use arguments::assignment;
+use chaplygin::runtime::arrays::leading;
 use inputs::{InputSchedule, Scope};
 pub(crate) use start::set_parameters;
 
@@ -31,7 +32,7 @@ use crate::interpreted::dynamics::InterpretedDynamics;
 use crate::interpreted::{
     InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced, evaluated,
 };
-use arguments::{Controller, Formulation as Kind};
+use arguments::{Controller, FormulationChoice};
 use chaplygin::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use chaplygin::plot;
 use chaplygin::runtime::nalgebra::DMatrix;
@@ -99,19 +100,19 @@ fn from_text(
         law: Box::new(move |t, q, qdot, u| schedule.at(t, q, qdot, u)),
     };
     match args.formulation {
-        Kind::Reduced => {
+        FormulationChoice::Reduced => {
             let reduced = InterpretedReduced::new(model, inputs);
             let x0 = reduced.initial_state(&start.q, &start.qdot)?;
             let points = interpreted_points(&reduced.model);
             execute(&reduced, &x0, (args, &scope), (None, points))
         }
-        Kind::Lagrange => {
+        FormulationChoice::Lagrange => {
             let x0: Vec<f64> = start.q.iter().chain(&start.qdot).copied().collect();
             let dalembert = InterpretedDalembert { model, inputs };
             let points = interpreted_points(&dalembert.model);
             execute(&dalembert, &x0, (args, &scope), (None, points))
         }
-        Kind::Momentum => {
+        FormulationChoice::Momentum => {
             if model.shape().is_some() && model.arguments("momentum_rhs").is_none() {
                 return Err(InputError::Unsupported(format!(
                     "`{path}`: the momentum formulation is {MOMENTUM_WITH_HOLONOMIC}: use --formulation reduced or lagrange"
@@ -198,7 +199,7 @@ fn start_of(
 /// rows, 2 inputs, no configuration constraints, 2 shape coordinates and 1
 /// momentum.
 fn energy_controlled(built_in: &BuiltIn, args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
-    if args.formulation != Kind::Reduced {
+    if args.formulation != FormulationChoice::Reduced {
         return Err(InputError::Unsupported(
             "the energy controller closes the reduced port-Hamiltonian form: use --formulation reduced".into(),
         )
@@ -257,8 +258,8 @@ fn energy_controlled(built_in: &BuiltIn, args: &SimulateArgs) -> Result<(), Box<
         &mut [("xt", &mut xt), ("xw", &mut xw)],
     )?;
     let board = Fixed::<5, 2, 2, 0, 2, 1>::new(&model)?;
-    let alpha: [f64; 3] = board.momenta(&array(&start.q), &array(&start.qdot));
-    let x = array(&start.q.iter().chain(&alpha).copied().collect::<Vec<f64>>());
+    let alpha: [f64; 3] = board.momenta(&leading(&start.q), &leading(&start.qdot));
+    let x = leading(&start.q.iter().chain(&alpha).copied().collect::<Vec<f64>>());
     let x0 = closed_loop_state(&x, xt, xw);
     let coordinates: Vec<&str> = names.coordinates.iter().map(String::as_str).collect();
     let inputs: Vec<&str> = names.inputs.iter().map(String::as_str).collect();
@@ -288,8 +289,4 @@ fn energy_controlled(built_in: &BuiltIn, args: &SimulateArgs) -> Result<(), Box<
         (args, &scope),
         (Some(figure4), None),
     )
-}
-
-fn array<const N: usize>(values: &[f64]) -> [f64; N] {
-    core::array::from_fn(|i| values[i])
 }

@@ -6,7 +6,7 @@
 
 use super::{AnalysisError, DistributionBasis, STRUCTURED_GROWTH_NODES};
 use crate::model::Model;
-use crate::sym::modular::{self, Outside, Point, Values};
+use crate::sym::modular::{self, ModularError, Point, Values};
 use crate::sym::{ExprId, ExprMatrix};
 
 /// Frobenius at random points: `A [X_i, X_j]` evaluated modulo a prime at
@@ -65,14 +65,14 @@ pub(super) fn growth_vector_at_point(
     let mut undefined = None;
     for point in modular::points() {
         match growth_at(model, basis, point, start) {
-            Err(AnalysisError::Undecided(outside @ Outside::Undefined { .. })) => {
+            Err(AnalysisError::Undecided(outside @ ModularError::Undefined { .. })) => {
                 undefined = Some(outside);
             }
             decided => return decided,
         }
     }
     Err(AnalysisError::Undecided(undefined.unwrap_or(
-        Outside::Undefined {
+        ModularError::Undefined {
             expr: "every point drawn".to_string(),
         },
     )))
@@ -134,7 +134,7 @@ impl SpanAtPoint {
         &mut self,
         model: &Model,
         candidates: Vec<Vec<ExprId>>,
-    ) -> Result<Vec<Vec<ExprId>>, Outside> {
+    ) -> Result<Vec<Vec<ExprId>>, ModularError> {
         let mut added = Vec::new();
         for candidate in candidates {
             let values = self.at_point.of(&model.store, &candidate)?;

@@ -4,7 +4,7 @@
 //! of its radicand's value, so `r^2 = u` holds at the point (the only
 //! relation the normal form uses of `r`).
 
-use super::{Outside, PRIME, Values, add, inverse, multiply, power, rank, square_root};
+use super::{ModularError, PRIME, Values, add, inverse, multiply, power, rank, square_root};
 use crate::sym::poly::{AtomId, Poly};
 use crate::sym::{Matrix, RationalFunction, Store};
 use rustc_hash::FxHashMap as HashMap;
@@ -16,7 +16,7 @@ impl Store {
         &mut self,
         forms: &[RationalFunction],
         values: &mut Values,
-    ) -> Result<Vec<u64>, Outside> {
+    ) -> Result<Vec<u64>, ModularError> {
         let mut atoms = AtomValues::default();
         forms
             .iter()
@@ -28,9 +28,10 @@ impl Store {
                     let value = power(value, i64::from(*multiplicity)).unwrap_or(0);
                     denominator = multiply(denominator, value, PRIME);
                 }
-                let reciprocal = inverse(denominator, PRIME).ok_or_else(|| Outside::Undefined {
-                    expr: "a denominator of a normal form".to_string(),
-                })?;
+                let reciprocal =
+                    inverse(denominator, PRIME).ok_or_else(|| ModularError::Undefined {
+                        expr: "a denominator of a normal form".to_string(),
+                    })?;
                 Ok(multiply(numerator, reciprocal, PRIME))
             })
             .collect()
@@ -47,12 +48,12 @@ impl AtomValues {
         store: &mut Store,
         poly: &Poly,
         values: &mut Values,
-    ) -> Result<u64, Outside> {
+    ) -> Result<u64, ModularError> {
         let mut sum = 0;
         for (monomial, coefficient) in poly.terms() {
             let mut term = coefficient
                 .residue(PRIME)
-                .ok_or_else(|| Outside::Undefined {
+                .ok_or_else(|| ModularError::Undefined {
                     expr: format!("the coefficient {coefficient}"),
                 })?;
             for &(atom, exponent) in monomial.factors() {
@@ -69,7 +70,7 @@ impl AtomValues {
         store: &mut Store,
         atom: AtomId,
         values: &mut Values,
-    ) -> Result<u64, Outside> {
+    ) -> Result<u64, ModularError> {
         if let Some(&value) = self.0.get(&atom) {
             return Ok(value);
         }
@@ -77,7 +78,7 @@ impl AtomValues {
             Some(radicand) => {
                 let value = self.of_poly(store, &radicand, values)?;
                 let root = store.expression_of_atom(atom);
-                square_root(value).ok_or_else(|| Outside::Undefined {
+                square_root(value).ok_or_else(|| ModularError::Undefined {
                     expr: store.display(root).to_string(),
                 })?
             }
@@ -99,7 +100,7 @@ impl Store {
     pub fn prefixes_of_full_rank_at_points(
         &mut self,
         matrix: &Matrix,
-    ) -> Result<Vec<bool>, Outside> {
+    ) -> Result<Vec<bool>, ModularError> {
         let columns = matrix.columns();
         let mut full = vec![false; matrix.rows()];
         let mut defined_points = 0;
@@ -108,7 +109,7 @@ impl Store {
             let values =
                 match self.evaluate_normal_modular(matrix.entries(), &mut Values::at(point)) {
                     Ok(values) => values,
-                    Err(undefined @ Outside::Undefined { .. }) => {
+                    Err(undefined @ ModularError::Undefined { .. }) => {
                         last_undefined = Some(undefined);
                         continue;
                     }

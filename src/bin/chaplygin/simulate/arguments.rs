@@ -11,8 +11,8 @@ pub struct SimulateArgs {
     /// A built-in model's name, or the path of a `.model` file.
     pub model: String,
     /// The equations integrated.
-    #[arg(long, value_enum, default_value_t = Formulation::Reduced)]
-    pub formulation: Formulation,
+    #[arg(long, value_enum, default_value_t = FormulationChoice::Reduced)]
+    pub formulation: FormulationChoice,
     /// The integrator [default: discrete-gradient for the reduced form, which
     /// keeps the energy of any conservative model; midpoint otherwise].
     #[arg(long, value_enum)]
@@ -64,7 +64,7 @@ pub struct SimulateArgs {
 
 /// Which equations are integrated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Formulation {
+pub enum FormulationChoice {
     /// The reduced port-Hamiltonian form in `(q, alpha)`.
     Reduced,
     /// The Lagrange-d'Alembert equations in `(q, qdot)`.

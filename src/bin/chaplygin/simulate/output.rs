@@ -9,7 +9,7 @@ use super::arguments::{Integrator, SimulateArgs};
 use super::inputs::Scope;
 use super::start::InputError;
 use super::stop::{Comparison, stop_condition};
-use crate::formulation::{Formulation, Sized, with_dimension};
+use crate::formulation::{AtDimension, Formulation, with_dimension};
 use chaplygin::plot;
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, Rk4};
 use chaplygin::runtime::linalg::Square;
@@ -229,7 +229,7 @@ fn integrate<const D: usize>(
 where
     Const<D>: Square,
 {
-    let system = Sized::<D>(formulation);
+    let system = AtDimension::<D>(formulation);
     let x0: [f64; D] = core::array::from_fn(|i| x0[i]);
     let stop = settings
         .stop
@@ -263,13 +263,13 @@ where
 /// has taken a second.
 fn run_with<M, C, const D: usize>(
     method: M,
-    system: &Sized<'_, D>,
+    system: &AtDimension<'_, D>,
     x0: [f64; D],
     (args, stop): (&SimulateArgs, C),
     recorder: &mut impl Recorder,
 ) -> Result<Summary<D>, Box<dyn Error>>
 where
-    M: for<'a> Advance<Sized<'a, D>, D>,
+    M: for<'a> Advance<AtDimension<'a, D>, D>,
     C: StopCondition<D>,
 {
     let bar = indicatif::ProgressBar::with_draw_target(
