@@ -13,8 +13,14 @@
 //! right, a call fails only for an item the model does not derive (the
 //! momentum equation of a model without a symmetry): its values are NaN,
 //! which a run reports as a non-finite state.
+//!
+//! Each call goes through the model's slice API, which returns its values
+//! in a new vector: unlike a generated struct's, these items allocate.
+//! Allocation-free evaluation of a model read from its text is
+//! `chaplygin_jit::NativePrograms::evaluate` on its programs.
 
 use super::{CallError, InterpretedModel};
+use chaplygin_runtime::arrays::leading;
 use chaplygin_runtime::linearize::{AccelerationJacobian, GroupFactor, Linearization};
 use chaplygin_runtime::monitor::constraint_regularity;
 use chaplygin_runtime::system::{
@@ -190,7 +196,7 @@ impl<
     fn configuration_velocity(&self, chart: usize, x: &[f64]) -> ([f64; N], [f64; N]) {
         let (q, alpha) = x.split_at(N);
         let qdot = vector(self.model.call_in_chart(chart, "velocities", &[q, alpha]));
-        (core::array::from_fn(|i| q[i]), qdot)
+        (leading(q), qdot)
     }
 
     /// The largest `|A(q) qdot|` of the state `x` in `chart`.
