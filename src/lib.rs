@@ -120,6 +120,8 @@
 pub use chaplygin_macros::model;
 pub use chaplygin_runtime as runtime;
 
+#[cfg(feature = "driver")]
+pub mod driver;
 pub mod energy_control;
 #[cfg(feature = "cli")]
 pub mod plot;

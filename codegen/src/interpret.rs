@@ -26,6 +26,7 @@
 //! `acceleration` and with the group's action as the emitted code does.
 
 mod charts;
+mod dynamics;
 mod engine;
 mod fixed;
 
@@ -42,6 +43,7 @@ use crate::model::{GroupFactor, Model};
 use crate::{analysed_model, over_budget};
 use chaplygin_runtime::simulate::GuardedValue;
 use chaplygin_runtime::system::Guard;
+use std::rc::Rc;
 
 /// The names of a model and its sizes.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -129,11 +131,19 @@ pub enum CallError {
     },
 }
 
+/// The values of a call whose arguments its caller sized: a failure is a
+/// defect of the engine, reported by a panic with the engine's error
+/// rather than by wrong numbers.
+pub fn evaluated<T>(result: Result<T, CallError>) -> T {
+    result.unwrap_or_else(|error| panic!("interpreted model: {error}"))
+}
+
 /// `(d qddot/dq, d qddot/dqdot, d qddot/du)`, each row-major.
 pub type Jacobians = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// One emitted function's name and program, and the program's position
 /// in [`InterpretedModel::programs`] (what the engine runs it by).
+#[derive(Clone)]
 struct Interpreted {
     name: &'static str,
     lowered: Lowered,
@@ -141,6 +151,10 @@ struct Interpreted {
 }
 
 /// A model's emitted functions, interpreted (see the module documentation).
+///
+/// A clone shares the engine (the native code of [`InterpretedModel::set_engine`])
+/// and has its own parameter values.
+#[derive(Clone)]
 pub struct InterpretedModel {
     names: Names,
     sizes: Sizes,
@@ -159,7 +173,7 @@ pub struct InterpretedModel {
     basis_divisors: Vec<String>,
     report: String,
     /// What runs the programs.
-    engine: Box<dyn Engine>,
+    engine: Rc<dyn Engine>,
     /// With a symmetry, the coordinates the group acts on.
     group: Option<Vec<usize>>,
     /// The symmetry group's factors (empty without a symmetry).
@@ -216,7 +230,7 @@ impl InterpretedModel {
                 .collect(),
             basis_divisors: emitted.basis_divisors,
             report: emitted.report,
-            engine: Box::new(Interpreter),
+            engine: Rc::new(Interpreter),
             group: model
                 .symmetry
                 .as_ref()
@@ -238,7 +252,7 @@ impl InterpretedModel {
         compile: impl FnOnce(&[&crate::ir::Program]) -> Result<Box<dyn Engine>, E>,
     ) -> Result<(), E> {
         let programs: Vec<_> = self.programs().map(|(_, program)| program).collect();
-        self.engine = compile(&programs)?;
+        self.engine = Rc::from(compile(&programs)?);
         Ok(())
     }
 

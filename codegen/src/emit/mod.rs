@@ -67,6 +67,7 @@ pub(crate) struct Function {
 /// The program of a function body and its layout: input slots are the
 /// elements of each argument array in order, then the parameters in
 /// declared order.
+#[derive(Clone)]
 pub(crate) struct Lowered {
     pub(crate) program: ir::Program,
     pub(crate) arguments: Vec<(&'static str, usize)>,

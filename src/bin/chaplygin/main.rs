@@ -1,4 +1,5 @@
-//! `chaplygin`: the command line of Chaplygin (INTERFACE.md section 3).
+//! `chaplygin`: the command line of Chaplygin (docs/INTERFACE.md section 3),
+//! over `chaplygin::driver`.
 //!
 //! ```text
 //! chaplygin list
@@ -23,12 +24,8 @@
 //! on standard error and a non-zero exit status (a malformed command line
 //! gets clap's usage message).
 
-mod catalog;
-mod derive;
-mod engine;
-mod formulation;
-mod interpreted;
 mod linearize;
+mod model_args;
 mod options;
 mod simulate;
 

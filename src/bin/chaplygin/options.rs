@@ -1,9 +1,10 @@
 //! The command line: its commands, and what each does with its arguments
-//! (those of `simulate` are defined with it).
+//! (those of `simulate` and `linearize` are defined with them).
 
 use crate::linearize::{self, LinearizeArgs};
 use crate::simulate::{self, SimulateArgs};
-use crate::{catalog, derive};
+use chaplygin::driver::catalog::{self, lookup};
+use chaplygin::driver::document::{self, Format};
 use clap::{Parser, Subcommand};
 
 /// Nonholonomic mechanical models compiled into verified simulators.
@@ -23,8 +24,8 @@ enum Action {
         /// A built-in model's name, or the path of a `.model` file.
         model: String,
         /// Output format.
-        #[arg(long, value_enum, default_value_t = derive::Format::Text)]
-        format: derive::Format,
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
     },
     /// Simulate a model to `--t-end`, or to where `--stop-when` holds,
     /// writing `trajectory.csv` and PNG plots.
@@ -43,7 +44,9 @@ impl Command {
     pub fn run(self) -> Result<(), Box<dyn std::error::Error>> {
         match self.action {
             Action::List => Ok(crate::say(&catalog::listing())?),
-            Action::Derive { model, format } => Ok(crate::say(&derive::document(&model, format)?)?),
+            Action::Derive { model, format } => {
+                Ok(crate::say(&document::document(&lookup(&model)?, format)?)?)
+            }
             Action::Simulate(args) => simulate::run(&args),
             Action::Linearize(args) => linearize::run(&args),
         }

@@ -1,4 +1,4 @@
-//! `chaplygin derive`: the derivation document of a model (the
+//! The derivation document of a model (the
 //! constraint analysis, the Lagrange-d'Alembert equations, the reduced
 //! port-Hamiltonian form, the momentum equation with a symmetry, the
 //! report) as text, LaTeX or JSON, from `chaplygin_codegen::document`.
@@ -15,7 +15,7 @@
 //!               "holonomic": {NAME: {"text", "latex"}, ..}}
 //! ```
 
-use crate::catalog;
+use super::catalog::Source;
 use chaplygin_codegen::diagnostic::Diagnostics;
 use chaplygin_codegen::document::{self, derive_document};
 use chaplygin_codegen::model::{Declared, Model, check};
@@ -25,7 +25,8 @@ use serde_json::{Map, Value, json};
 use std::error::Error;
 
 /// The document's format.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Format {
     /// Plain text.
     Text,
@@ -45,25 +46,43 @@ impl From<Format> for document::Format {
     }
 }
 
-/// A model rejected by the compiler: its diagnostics, `file:line:col: error: ...`.
+/// A model rejected by the compiler: its diagnostics rendered
+/// (`file:line:col: error: ...`), and the first one's place and message.
 #[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct Rejected(pub String);
+#[error("{rendered}")]
+pub struct Rejected {
+    /// Every diagnostic, one `file:line:col: error: message` each with its
+    /// source line.
+    pub rendered: String,
+    /// The first diagnostic's line, from 1.
+    pub line: usize,
+    /// The first diagnostic's column, from 1.
+    pub column: usize,
+    /// The first diagnostic's message.
+    pub message: String,
+}
 
-/// The document of `model` (a built-in name or a `.model` path).
+impl Rejected {
+    /// The `diagnostics` of the model text called `file`.
+    pub fn new(file: &str, diagnostics: &Diagnostics) -> Self {
+        let first = diagnostics.iter().next();
+        let start = first.map(|diagnostic| diagnostic.span.start());
+        Self {
+            rendered: diagnostics.render(file).trim_end().to_string(),
+            line: start.map_or(0, |start| start.line.max(1)),
+            column: start.map_or(0, |start| start.column + 1),
+            message: first.map_or_else(String::new, |diagnostic| diagnostic.message.clone()),
+        }
+    }
+}
+
+/// The derivation document of the model in `source`.
 ///
 /// # Errors
-/// An unknown model, or the model's diagnostics.
-pub fn document(model: &str, format: Format) -> Result<String, Box<dyn Error>> {
-    let source = catalog::lookup(model)?;
+/// The model's diagnostics ([`Rejected`]).
+pub fn document(source: &Source, format: Format) -> Result<String, Box<dyn Error>> {
     let rejected = |diagnostics: Diagnostics| -> Box<dyn Error> {
-        Rejected(
-            diagnostics
-                .render(&source.file_name())
-                .trim_end()
-                .to_string(),
-        )
-        .into()
+        Rejected::new(&source.file_name(), &diagnostics).into()
     };
     let text = derive_document(source.text(), format.into()).map_err(rejected)?;
     let syntax = parse_str(source.text()).map_err(rejected)?;

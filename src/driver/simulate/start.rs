@@ -3,65 +3,17 @@
 //! fixed and the others solved from `f(q) = 0`; the velocities given are
 //! fixed and the others solved from the constraints, as for
 //! `chaplygin linearize --at`, see [`configuration`]), each mistake an
-//! [`InputError`] stated in one line (also an `--input` naming no input).
+//! [`InputError`] stated in one line.
 
+use super::error::InputError;
 use super::inputs::constant;
-use chaplygin::runtime::linearize::point::{configuration, solve_velocities, velocity_names};
-use chaplygin::runtime::linearize::{Dynamics, PointError};
-use chaplygin::runtime::nalgebra::DMatrix;
-
-/// A problem with the command's input, stated in one line.
-#[derive(Debug, thiserror::Error)]
-pub enum InputError {
-    /// `--param` names no parameter.
-    #[error("unknown parameter `{name}` (parameters: {known})")]
-    UnknownParameter {
-        /// What was given.
-        name: String,
-        /// The parameters there are.
-        known: String,
-    },
-    /// `--initial` names no coordinate, velocity or controller state.
-    #[error("unknown initial value `{name}` (coordinates, `dot(q)` velocities{states}: {known})")]
-    UnknownInitial {
-        /// What was given.
-        name: String,
-        /// ", controller states" when there are some.
-        states: &'static str,
-        /// The names there are.
-        known: String,
-    },
-    /// An `--initial` value is not a constant of the parameters.
-    #[error("--initial {name}={text}: {reason}")]
-    InitialValue {
-        /// What was given a value.
-        name: String,
-        /// The value as given.
-        text: String,
-        /// What is wrong with it.
-        reason: String,
-    },
-    /// `--input` names no input.
-    #[error("unknown input `{name}` (inputs: {known})")]
-    UnknownInput {
-        /// What was given.
-        name: String,
-        /// The inputs there are.
-        known: String,
-    },
-    /// The coordinates or velocities not given cannot be solved from the
-    /// constraints (a configuration constraint no coordinate left unset
-    /// meets is named with its residual).
-    #[error(transparent)]
-    Point(#[from] PointError),
-    /// A combination the command does not run.
-    #[error("{0}")]
-    Unsupported(String),
-}
+use crate::runtime::linearize::Dynamics;
+use crate::runtime::linearize::point::{configuration, solve_velocities, velocity_names};
+use crate::runtime::nalgebra::DMatrix;
 
 /// Sets `--param` values with `set`, which says whether the name was a
 /// parameter; `known` lists them for the error.
-pub(crate) fn set_parameters(
+pub fn set_parameters(
     known: &[&str],
     given: &[(String, f64)],
     set: &mut dyn FnMut(&str, f64) -> bool,

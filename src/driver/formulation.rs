@@ -7,10 +7,10 @@
 //! controller); [`AtDimension`] turns it back into a fixed-size runtime
 //! system of dimension `D`, chosen at run time by [`with_dimension!`].
 
-use chaplygin::runtime::arrays::leading;
-use chaplygin::runtime::projection::ProjectionError;
-use chaplygin::runtime::simulate::{GuardedValue, Observed, Regularity};
-use chaplygin::runtime::system::{Energy, Jacobian, OdeSystem, Structured};
+use crate::runtime::arrays::leading;
+use crate::runtime::projection::ProjectionError;
+use crate::runtime::simulate::{GuardedValue, Observed, Regularity};
+use crate::runtime::system::{Energy, Jacobian, OdeSystem, Structured};
 
 /// A closed system `xdot = f(t, x)` with what the simulation loop observes.
 pub trait Formulation {

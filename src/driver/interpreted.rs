@@ -1,6 +1,6 @@
 //! A model from its text simulated without recompiling: its emitted
 //! functions' programs (`chaplygin_codegen::interpret`) run on the engine
-//! `--engine` chose (native code from the JIT, or the IR interpreter), in the
+//! it was loaded on (native code from the JIT, or the IR interpreter), in the
 //! reduced, the Lagrange-d'Alembert or (with a symmetry) the momentum
 //! formulation, with inputs given as functions of the time, the
 //! configuration and its velocity ([`InputLaw`]).
@@ -9,24 +9,18 @@
 //! emitted from, so a `.model` file and the compiled model agree to
 //! round-off.
 
-pub mod dynamics;
 mod surface;
 
-use crate::formulation::Formulation;
-use chaplygin::runtime::monitor::{gram_regularity, hadamard_ratio};
-use chaplygin::runtime::nalgebra::DMatrix;
-use chaplygin::runtime::projection::ProjectionError;
-use chaplygin::runtime::simulate::{GuardedValue, Regularity};
-use chaplygin::runtime::system::next_chart;
+use super::formulation::Formulation;
+use crate::runtime::monitor::{gram_regularity, hadamard_ratio};
+use crate::runtime::nalgebra::DMatrix;
+use crate::runtime::projection::ProjectionError;
+use crate::runtime::simulate::{GuardedValue, Regularity};
+use crate::runtime::system::next_chart;
+pub(crate) use chaplygin_codegen::interpret::evaluated;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 use std::cell::Cell;
 use surface::{holonomic_residual, keeps_configuration, onto_surface};
-
-/// The interpreter failed on a call whose arguments the formulation sized
-/// itself: a defect, reported instead of wrong numbers.
-pub(crate) fn evaluated<T>(result: Result<T, CallError>) -> T {
-    result.unwrap_or_else(|error| panic!("interpreted model: {error}"))
-}
 
 /// `(q, alpha)` or `(q, qdot)` split at `n`.
 fn split(x: &[f64], n: usize) -> (&[f64], &[f64]) {
@@ -181,7 +175,7 @@ fn multiplier_regularity(model: &InterpretedModel, q: &[f64]) -> Regularity {
         DMatrix::from_row_slice(sizes.c, sizes.n, &a),
     );
     Regularity {
-        quantity: chaplygin::runtime::simulate::MULTIPLIERS,
+        quantity: crate::runtime::simulate::MULTIPLIERS,
         value: gram_regularity(g, &a),
         signed: false,
     }
@@ -275,7 +269,7 @@ impl Formulation for InterpretedReduced {
     fn regularity(&self, x: &[f64]) -> Regularity {
         let q = &x[..self.model.sizes().n];
         Regularity {
-            quantity: chaplygin::runtime::simulate::REDUCED,
+            quantity: crate::runtime::simulate::REDUCED,
             value: evaluated(self.model.chart_regularity(self.chart.get(), q)),
             signed: true,
         }
@@ -626,7 +620,7 @@ impl Formulation for InterpretedMomentum {
             0.0
         };
         Regularity {
-            quantity: chaplygin::runtime::simulate::RECONSTRUCTION,
+            quantity: crate::runtime::simulate::RECONSTRUCTION,
             value,
             signed: true,
         }

@@ -9,7 +9,7 @@
 //! `--initial NAME=EXPRESSION` are constants of the parameters
 //! (`dot(theta_r)=-5/rR`).
 
-use super::start::InputError;
+use super::error::InputError;
 use chaplygin_codegen::syntax::{self, BinaryOperator, Expr, Value};
 
 /// Why an `--input` cannot be used.

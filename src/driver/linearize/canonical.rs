@@ -10,15 +10,15 @@
 //! declared order (one per coordinate). The point `--at` describes is
 //! linearized at the two values `V1`, `V2` of the speed variable VAR (1 and
 //! 2 unless given) with `q` and `dot(q)` kept independent, and
-//! `chaplygin::runtime::linearize::canonical` reads off `M`, `C1` and
+//! `crate::runtime::linearize::canonical` reads off `M`, `C1` and
 //! `X(v) = g K0 + v^2 K2`: `K2` from the difference of the two, `K0` from
 //! the rest divided by the value of the gravity parameter G (`g` unless
 //! given), all of the speed-independent stiffness taken as gravity's.
 
 use super::expression::{ExpressionError, evaluate};
 use super::{LinearizeError, linearize_at};
-use chaplygin::runtime::linearize::{CanonicalError, CanonicalForm, Dynamics, point};
-use chaplygin::runtime::nalgebra::DMatrix;
+use crate::runtime::linearize::{CanonicalError, CanonicalForm, Dynamics, point};
+use crate::runtime::nalgebra::DMatrix;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 

@@ -1,56 +1,49 @@
-//! The arguments of `chaplygin simulate` (INTERFACE.md section 3), and the
-//! choices they name: formulation, integrator, controller.
+//! What a simulation is asked for ([`Request`]: the command line's
+//! `chaplygin simulate` options, docs/INTERFACE.md section 3), and the
+//! choices it names: formulation, integrator, controller.
 
-use crate::engine::EngineChoice;
+#[cfg(feature = "cli")]
 use clap::ValueEnum;
-use std::path::PathBuf;
 
-/// The arguments of `chaplygin simulate`.
-#[derive(Debug, clap::Args)]
-pub struct SimulateArgs {
-    /// A built-in model's name, or the path of a `.model` file.
-    pub model: String,
+/// A simulation's formulation, integrator, controller, span, stop
+/// condition, parameters, initial values and input laws.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+pub struct Request {
     /// The equations integrated.
-    #[arg(long, value_enum, default_value_t = FormulationChoice::Reduced)]
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = FormulationChoice::Reduced))]
     pub formulation: FormulationChoice,
     /// The integrator [default: discrete-gradient for the reduced form, which
     /// keeps the energy of any conservative model; midpoint otherwise].
-    #[arg(long, value_enum)]
+    #[cfg_attr(feature = "cli", arg(long, value_enum))]
     pub integrator: Option<Integrator>,
     /// The controller closing the inputs: `none` applies the `--input`
     /// laws (zero by default); `energy` is the energy-based snakeboard
     /// controller of Duindam & Stramigioli (reduced form only).
-    #[arg(long, value_enum, default_value_t = Controller::None)]
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = Controller::None))]
     pub controller: Controller,
     /// The final time.
-    #[arg(long, default_value_t = 30.0)]
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = Request::T_END))]
     pub t_end: f64,
     /// The step (for dopri5, the interval between recorded states).
-    #[arg(long, default_value_t = 0.01)]
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = Request::DT))]
     pub dt: f64,
     /// End the run where a condition first holds: one comparison
     /// `EXPR < EXPR` or `EXPR > EXPR` of `t`, the coordinates, velocities
     /// `dot(q)`, inputs and parameters (`'abs(phi) > 1'`). The crossing is
     /// located within its step to 1e-9 in t; the trajectory's last row is
     /// there and the summary ends with `stopped at t = T: COND`.
-    #[arg(long, value_name = "COND")]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "COND"))]
     pub stop_when: Option<String>,
-    /// The directory for `trajectory.csv` and the plots.
-    /// What runs a model from its text: native code compiled at run time,
-    /// or the IR interpreter.
-    #[arg(long, value_enum, default_value_t = EngineChoice::Jit)]
-    pub engine: EngineChoice,
-    #[arg(long, default_value = "out")]
-    pub out: PathBuf,
     /// A model or controller parameter, `NAME=VALUE` (repeatable).
-    #[arg(long = "param", value_parser = assignment)]
+    #[cfg_attr(feature = "cli", arg(long = "param", value_parser = assignment))]
     pub params: Vec<(String, f64)>,
     /// An initial coordinate `q=VALUE`, velocity `dot(q)=VALUE` or
     /// controller state (repeatable); VALUE is a number or an expression of
     /// the model's parameters (`dot(theta_r)=-5/rR`). When a velocity is
     /// given, those not given are solved from the constraints (an error
     /// names any left free); otherwise the model's default motion is used.
-    #[arg(long = "initial", value_parser = input_assignment)]
+    #[cfg_attr(feature = "cli", arg(long = "initial", value_parser = input_assignment))]
     pub initial: Vec<(String, String)>,
     /// An input `NAME=EXPRESSION` with `--controller none` (repeatable): a
     /// constant (`u1=0.1`) or an expression in the model language of the
@@ -58,12 +51,39 @@ pub struct SimulateArgs {
     /// coordinates and velocities `dot(q)`, for a feedback law
     /// (`steer_torque=-10*phi-2*dot(phi)`); functions sin cos tan sqrt exp
     /// ln abs.
-    #[arg(long = "input", value_parser = input_assignment)]
+    #[cfg_attr(feature = "cli", arg(long = "input", value_parser = input_assignment))]
     pub inputs: Vec<(String, String)>,
 }
 
+impl Request {
+    /// The final time unless given.
+    pub const T_END: f64 = 30.0;
+    /// The step unless given.
+    pub const DT: f64 = 0.01;
+}
+
+impl Default for Request {
+    /// The reduced form from the model's default state, with the default
+    /// integrator, to [`Request::T_END`] by steps of [`Request::DT`], the
+    /// inputs zero.
+    fn default() -> Self {
+        Self {
+            formulation: FormulationChoice::Reduced,
+            integrator: None,
+            controller: Controller::None,
+            t_end: Self::T_END,
+            dt: Self::DT,
+            stop_when: None,
+            params: Vec::new(),
+            initial: Vec::new(),
+            inputs: Vec::new(),
+        }
+    }
+}
+
 /// Which equations are integrated.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(ValueEnum))]
 pub enum FormulationChoice {
     /// The reduced port-Hamiltonian form in `(q, alpha)`.
     Reduced,
@@ -75,7 +95,8 @@ pub enum FormulationChoice {
 }
 
 /// Which integrator runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(ValueEnum))]
 pub enum Integrator {
     /// Classical Runge-Kutta, order 4.
     Rk4,
@@ -88,7 +109,8 @@ pub enum Integrator {
 }
 
 /// Which controller closes the inputs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(ValueEnum))]
 pub enum Controller {
     /// The `--input` laws (zero by default).
     None,
@@ -121,6 +143,7 @@ impl Integrator {
 }
 
 /// `NAME=EXPRESSION`, the expression read later against the model.
+#[cfg(feature = "cli")]
 fn input_assignment(text: &str) -> Result<(String, String), String> {
     let (name, value) = text
         .split_once('=')
@@ -129,7 +152,7 @@ fn input_assignment(text: &str) -> Result<(String, String), String> {
 }
 
 /// `NAME=VALUE` with a finite number.
-pub(crate) fn assignment(text: &str) -> Result<(String, f64), String> {
+pub fn assignment(text: &str) -> Result<(String, f64), String> {
     let (name, value) = text
         .split_once('=')
         .ok_or_else(|| format!("expected NAME=VALUE, found `{text}`"))?;

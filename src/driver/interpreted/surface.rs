@@ -1,5 +1,5 @@
 //! An interpreted model kept on its configuration constraints `f(q) = 0`
-//! after each step, as `chaplygin::runtime::projection::Surface` keeps a
+//! after each step, as `crate::runtime::projection::Surface` keeps a
 //! compiled one: the configuration onto `f(q) = 0` (Newton's minimum-norm
 //! updates, `projection::configuration`), then the velocity onto
 //! `ker A(q)` at the projected configuration in the kinetic-energy metric
@@ -16,9 +16,9 @@
 //! `s = sqrt((E - V(q)) / T(q, qdot))`, which stays in `ker A(q)` and
 //! differs from 1 by the projection's own small change of `E`.
 
-use crate::interpreted::evaluated;
-use chaplygin::runtime::nalgebra::{DMatrix, DVector, Dyn};
-use chaplygin::runtime::projection::{self, ProjectionError, Settings};
+use super::evaluated;
+use crate::runtime::nalgebra::{DMatrix, DVector, Dyn};
+use crate::runtime::projection::{self, ProjectionError, Settings};
 use chaplygin_codegen::interpret::InterpretedModel;
 
 /// Whether `model` declares configuration constraints.

@@ -4,12 +4,12 @@
 //! parameters ([`super::inputs`]: `'abs(phi) > 1'`). It holds where its
 //! larger side minus its smaller side is positive: the event function whose
 //! crossing the simulation loop locates within its step
-//! (`chaplygin::runtime::simulate::stop`), read at a state through the
+//! (`crate::runtime::simulate::stop`), read at a state through the
 //! formulation's configuration, velocity and inputs.
 
 use super::inputs::{Expression, Point, Scope};
-use crate::formulation::Formulation;
-use chaplygin::runtime::simulate::Stop;
+use crate::driver::formulation::Formulation;
+use crate::runtime::simulate::Stop;
 use std::cell::RefCell;
 
 /// Why a `--stop-when` condition cannot be used.

@@ -1,0 +1,25 @@
+//! Models read from their text, run by name: what the `chaplygin` command
+//! line and the Python package do with a model, at sizes known at run
+//! time.
+//!
+//! - [`catalog`]: the built-in models, their sources and default motions;
+//!   [`engine`]: a model's text derived and its programs compiled to native
+//!   code ([`engine::load`]), or interpreted;
+//! - [`formulation`]: one formulation of one model, closed by its inputs,
+//!   seen through slices ([`formulation::Formulation`]), and
+//!   [`interpreted`], the reduced, Lagrange-d'Alembert and momentum
+//!   formulations of a model read from its text;
+//! - [`simulate`]: a [`simulate::Request`] (formulation, integrator,
+//!   controller, span, stop condition, parameters, initial values, input
+//!   laws) run to a table and a report;
+//! - [`linearize`]: operating points, linear systems, eigenvalue sweeps
+//!   with their intervals of stability, the canonical form;
+//! - [`document`]: the derivation document as text, LaTeX or JSON.
+
+pub mod catalog;
+pub mod document;
+pub mod engine;
+pub mod formulation;
+pub mod interpreted;
+pub mod linearize;
+pub mod simulate;

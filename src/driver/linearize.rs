@@ -1,0 +1,200 @@
+//! Linearization of a model about a steady motion (docs/INTERFACE.md
+//! section 5): the operating point from assignments `NAME=EXPR` of
+//! coordinates and velocities (`crate::runtime::linearize::point`), the
+//! linear system about it with the symmetry reduced and the constraints
+//! eliminated (`crate::runtime::linearize::steady`), its eigenvalues; over
+//! a sweep of a variable the assignments read, the intervals where the
+//! motion is asymptotically stable and where it is neutrally stable (every
+//! eigenvalue but the conserved quantities' zeros on the imaginary axis),
+//! their ends refined by bisection between grid points
+//! ([`sweep::refined_intervals`]); the canonical form
+//! `M qddot + v C1 qdot + (g K0 + v^2 K2) q = f` of Meijaard et al. (2007)
+//! ([`canonical`]).
+
+pub mod canonical;
+pub mod expression;
+pub mod sweep;
+
+use crate::runtime::linearize::{
+    self as runtime_linearize, Dynamics, LinearSystem, OperatingPoint, PointError, SteadyError,
+};
+use expression::{ExpressionError, evaluate};
+use std::collections::BTreeMap;
+use sweep::Interval;
+
+/// A problem with the assignments or the operating point, in one line.
+#[derive(Debug, thiserror::Error)]
+pub enum LinearizeError {
+    /// An assignment names neither a coordinate nor a velocity.
+    #[error("--at: unknown name `{name}` (coordinates and `dot(q)` velocities: {known})")]
+    UnknownName {
+        /// The name given.
+        name: String,
+        /// The names there are.
+        known: String,
+    },
+    /// The sweep variable is also a parameter.
+    #[error(
+        "--sweep: `{0}` is a parameter; sweep a new name and use it in --at or --param expressions"
+    )]
+    ParameterSwept(String),
+    /// An assignment's expression.
+    #[error("--at: {0}")]
+    Expression(#[from] ExpressionError),
+    /// The operating point.
+    #[error(transparent)]
+    Point(#[from] PointError),
+    /// The steady motion or its linearization.
+    #[error(transparent)]
+    Steady(#[from] SteadyError),
+    /// The grid.
+    #[error(transparent)]
+    Sweep(#[from] sweep::SweepError),
+    /// A problem at one point of a sweep.
+    #[error("at {variable} = {value}: {source}")]
+    AtSweepValue {
+        /// The sweep variable.
+        variable: String,
+        /// Its value there.
+        value: f64,
+        /// What went wrong.
+        source: Box<LinearizeError>,
+    },
+}
+
+/// The point the assignments `at` describe, their expressions reading
+/// `names`, linearized with the inputs zero, the entries named
+/// `independent` kept in the state.
+///
+/// # Errors
+/// An unknown name, an expression that does not read, or a point that is
+/// not a steady motion.
+pub fn linearize_at(
+    model: &dyn Dynamics,
+    names: &BTreeMap<String, f64>,
+    at: &[(String, String)],
+    independent: &[&str],
+) -> Result<LinearSystem, LinearizeError> {
+    let coordinates = model.coordinates();
+    let velocities = runtime_linearize::point::velocity_names(&coordinates);
+    let mut q = vec![None; coordinates.len()];
+    let mut qdot = vec![None; coordinates.len()];
+    for (name, text) in at {
+        let value = evaluate(text, names)?;
+        if let Some(i) = coordinates.iter().position(|c| c == name) {
+            q[i] = Some(value);
+        } else if let Some(i) = velocities.iter().position(|v| v == name) {
+            qdot[i] = Some(value);
+        } else {
+            return Err(LinearizeError::UnknownName {
+                name: name.clone(),
+                known: coordinates
+                    .iter()
+                    .chain(&velocities)
+                    .cloned()
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            });
+        }
+    }
+    let point = OperatingPoint::solve(model, &q, &qdot)?;
+    let u = vec![0.0; model.inputs()];
+    Ok(runtime_linearize::linearize(
+        model,
+        &point,
+        &u,
+        independent,
+    )?)
+}
+
+/// The linear systems of a sweep and where its motions are stable.
+#[derive(Debug)]
+pub struct SweepAnalysis {
+    /// The swept variable.
+    pub variable: String,
+    /// Its values.
+    pub values: Vec<f64>,
+    /// The linear system at each value.
+    pub systems: Vec<LinearSystem>,
+    /// The zeros of conserved quantities every system of the family has.
+    pub conserved: usize,
+    /// The intervals of asymptotic stability, modulo those zeros.
+    pub stable: Vec<Interval>,
+    /// The intervals of neutral (spectral) stability, modulo those zeros.
+    pub neutral: Vec<Interval>,
+}
+
+impl SweepAnalysis {
+    /// The eigenvalues at each value, `(re, im)` by descending real part.
+    pub fn eigenvalues(&self) -> Vec<Vec<(f64, f64)>> {
+        self.systems
+            .iter()
+            .map(|linear| linear.eigenvalues.iter().map(|e| (e.re, e.im)).collect())
+            .collect()
+    }
+}
+
+/// Whether a linear system about a point of the sweep is stable in some
+/// sense, the family's zeros of conserved quantities discounted.
+type Verdict = fn(&LinearSystem, usize) -> bool;
+
+/// The point of `at` linearized at each of `values` of `variable`, the
+/// expressions reading the `parameters` too, and the intervals of
+/// stability. A grid point is stable by a margin; between grid points the
+/// change of asymptotic stability is where the largest real part crosses
+/// zero.
+///
+/// # Errors
+/// The variable is a parameter, or a point of the sweep fails (named with
+/// its value).
+pub fn sweep(
+    model: &dyn Dynamics,
+    parameters: &BTreeMap<String, f64>,
+    (variable, values): (&str, &[f64]),
+    at: &[(String, String)],
+) -> Result<SweepAnalysis, LinearizeError> {
+    if parameters.contains_key(variable) {
+        return Err(LinearizeError::ParameterSwept(variable.to_string()));
+    }
+    let at_value = |value: f64| {
+        let mut names = parameters.clone();
+        names.insert(variable.to_string(), value);
+        linearize_at(model, &names, at, &[]).map_err(|source| LinearizeError::AtSweepValue {
+            variable: variable.to_string(),
+            value,
+            source: Box::new(source),
+        })
+    };
+    let systems = values
+        .iter()
+        .map(|&value| at_value(value))
+        .collect::<Result<Vec<_>, _>>()?;
+    // The zeros of conserved quantities are those every point of the family
+    // has: a point with more has an eigenvalue crossing zero.
+    let conserved = systems
+        .iter()
+        .map(LinearSystem::conserved_zeros)
+        .min()
+        .unwrap_or(0);
+    let verdicts = |holds: Verdict, between: Verdict| {
+        let on_grid: Vec<bool> = systems.iter().map(|l| holds(l, conserved)).collect();
+        sweep::refined_intervals(values, &on_grid, |value| {
+            at_value(value).map(|linear| between(&linear, conserved))
+        })
+    };
+    let stable = verdicts(LinearSystem::is_stable_modulo, |linear, conserved| {
+        linear.largest_real_part_modulo(conserved) < 0.0
+    })?;
+    let neutral = verdicts(
+        LinearSystem::is_neutral_modulo,
+        LinearSystem::is_neutral_modulo,
+    )?;
+    Ok(SweepAnalysis {
+        variable: variable.to_string(),
+        values: values.to_vec(),
+        systems,
+        conserved,
+        stable,
+        neutral,
+    })
+}

@@ -1,0 +1,225 @@
+//! A run: the simulation loop at the state's dimension with the chosen
+//! integrator and stop condition, recording every row, and its
+//! [`Report`].
+
+use super::ScopeNames;
+use super::error::InputError;
+use super::request::{Integrator, Request};
+use super::stop::{Comparison, stop_condition};
+use crate::driver::formulation::{AtDimension, Formulation, MAX_DIMENSION, with_dimension};
+use crate::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, Rk4};
+use crate::runtime::linalg::Square;
+use crate::runtime::nalgebra::Const;
+use crate::runtime::record::{Recorder, Table};
+use crate::runtime::simulate::{Advance, Simulation, StopCondition, Summary};
+use std::error::Error;
+use std::io;
+use std::time::Instant;
+
+/// What a run is made with: the integrator, the span and step, and the
+/// stop condition.
+pub(super) struct Settings {
+    integrator: Integrator,
+    t_end: f64,
+    dt: f64,
+    stop: Option<Comparison>,
+}
+
+/// What a finished run reports.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    /// The integrator that ran.
+    pub integrator: Integrator,
+    /// What ran the model's functions (`jit`, `interpret`).
+    pub engine: &'static str,
+    /// The steps taken.
+    pub steps: usize,
+    /// The time reached.
+    pub t: f64,
+    /// The largest relative change of the energy.
+    pub energy_drift: f64,
+    /// The largest `|A(q) qdot|` met.
+    pub max_constraint_residual: f64,
+    /// The largest `|f(q)|` met, with configuration constraints.
+    pub max_holonomic_residual: Option<f64>,
+    /// How many times the run changed chart.
+    pub chart_switches: usize,
+    /// The stop condition that ended the run, as given.
+    pub stopped: Option<String>,
+    /// The wall time of the run, in seconds.
+    pub seconds: f64,
+}
+
+impl std::fmt::Display for Report {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "t = {}: {} steps of {} in {:.3} s, engine {}; energy drift (relative) {:.3e}; max constraint residual {:.3e}",
+            self.t,
+            self.steps,
+            self.integrator.name(),
+            self.seconds,
+            self.engine,
+            self.energy_drift,
+            self.max_constraint_residual
+        )?;
+        if let Some(residual) = self.max_holonomic_residual {
+            write!(f, "; max holonomic residual {residual:.3e}")?;
+        }
+        write!(f, "; chart switches {}", self.chart_switches)?;
+        if let Some(condition) = &self.stopped {
+            write!(f, "; stopped at t = {}: {condition}", self.t)?;
+        }
+        Ok(())
+    }
+}
+
+impl Settings {
+    /// The settings of `request` for `formulation`, its stop condition
+    /// read against the names of `scope`: the integrator chosen, or the
+    /// formulation's default (see [`Integrator::chosen_or_default`]).
+    ///
+    /// # Errors
+    /// A stop condition that does not read, or the discrete gradient on a
+    /// formulation without structure.
+    pub(super) fn new(
+        request: &Request,
+        formulation: &dyn Formulation,
+        scope: &ScopeNames,
+    ) -> Result<Self, Box<dyn Error>> {
+        let stop = request
+            .stop_when
+            .as_deref()
+            .map(|text| scope.with_scope(|scope| Comparison::parse(text, scope)))
+            .transpose()?;
+        let structured = formulation.is_structured();
+        let integrator = Integrator::chosen_or_default(request.integrator, structured);
+        if integrator == Integrator::DiscreteGradient && !structured {
+            return Err(InputError::Unsupported(
+                "the discrete-gradient integrator needs the structured (reduced) form: use --formulation reduced".into(),
+            )
+            .into());
+        }
+        Ok(Self {
+            integrator,
+            t_end: request.t_end,
+            dt: request.dt,
+            stop,
+        })
+    }
+
+    /// Runs `formulation` from `x0` into `recorder`.
+    ///
+    /// # Errors
+    /// A state of more than [`MAX_DIMENSION`] entries, or the run's
+    /// failure.
+    pub(super) fn run(
+        &self,
+        formulation: &dyn Formulation,
+        x0: &[f64],
+        recorder: &mut Both<'_>,
+        progress: &mut dyn FnMut(f64),
+    ) -> Result<Report, Box<dyn Error>> {
+        with_dimension!(x0.len(), D => self.integrate::<D>(formulation, x0, recorder, progress),
+            _ => Err(InputError::Unsupported(format!(
+                "the state has {} entries; runs from a model's text take up to {MAX_DIMENSION}",
+                x0.len(),
+            )).into()))
+    }
+
+    /// The run in dimension `D`.
+    fn integrate<const D: usize>(
+        &self,
+        formulation: &dyn Formulation,
+        x0: &[f64],
+        recorder: &mut Both<'_>,
+        progress: &mut dyn FnMut(f64),
+    ) -> Result<Report, Box<dyn Error>>
+    where
+        Const<D>: Square,
+    {
+        let system = AtDimension::<D>(formulation);
+        let x0: [f64; D] = core::array::from_fn(|i| x0[i]);
+        let stop = self
+            .stop
+            .as_ref()
+            .map(|comparison| stop_condition::<D>(formulation, comparison));
+        let started = Instant::now();
+        let summary = match self.integrator {
+            Integrator::Rk4 => self.run_with(Rk4, &system, x0, stop, recorder, progress),
+            Integrator::Midpoint => {
+                self.run_with(Midpoint::default(), &system, x0, stop, recorder, progress)
+            }
+            Integrator::DiscreteGradient => self.run_with(
+                DiscreteGradient::default(),
+                &system,
+                x0,
+                stop,
+                recorder,
+                progress,
+            ),
+            Integrator::Dopri5 => self.run_with(
+                DormandPrince::default(),
+                &system,
+                x0,
+                stop,
+                recorder,
+                progress,
+            ),
+        }?;
+        let holonomic = formulation.holonomic_residual(x0.as_slice()).is_some();
+        Ok(Report {
+            integrator: self.integrator,
+            engine: formulation.engine(),
+            steps: summary.steps,
+            t: summary.t,
+            energy_drift: summary.energy_drift,
+            max_constraint_residual: summary.max_constraint_residual,
+            max_holonomic_residual: holonomic.then_some(summary.max_holonomic_residual),
+            chart_switches: summary.chart_switches,
+            stopped: summary.stopped,
+            seconds: started.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// One integrator's run until `stop` holds.
+    fn run_with<M, C, const D: usize>(
+        &self,
+        method: M,
+        system: &AtDimension<'_, D>,
+        x0: [f64; D],
+        stop: C,
+        recorder: &mut Both<'_>,
+        progress: &mut dyn FnMut(f64),
+    ) -> Result<Summary<D>, Box<dyn Error>>
+    where
+        M: for<'a> Advance<AtDimension<'a, D>, D>,
+        C: StopCondition<D>,
+    {
+        Ok(Simulation::new(method)
+            .span(0.0, self.t_end)
+            .step(self.dt)
+            .stop_when(stop)
+            .run_with_progress(system, x0, recorder, progress)?)
+    }
+}
+
+/// A recorder writing into a table and another recorder.
+pub(super) struct Both<'a>(pub &'a mut Table, pub &'a mut dyn Recorder);
+
+impl Recorder for Both<'_> {
+    fn start(&mut self, columns: &[String]) -> io::Result<()> {
+        self.0.start(columns)?;
+        self.1.start(columns)
+    }
+
+    fn record(&mut self, row: &[f64]) -> io::Result<()> {
+        self.0.record(row)?;
+        self.1.record(row)
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        self.0.finish()?;
+        self.1.finish()
+    }
+}
