@@ -11,6 +11,7 @@ use crate::runtime::arrays::leading;
 use crate::runtime::projection::ProjectionError;
 use crate::runtime::simulate::{GuardedValue, Observed, Regularity};
 use crate::runtime::system::{Energy, Jacobian, OdeSystem, Structured};
+use std::error::Error;
 
 /// A closed system `xdot = f(t, x)` with what the simulation loop observes.
 pub trait Formulation {
@@ -21,6 +22,13 @@ pub trait Formulation {
     /// What runs the model's functions: the engine's name (`jit`,
     /// `interpret`).
     fn engine(&self) -> &'static str;
+    /// The state of the configuration `q` moving with `qdot`; a
+    /// formulation with charts makes the one that fits best at `q` active.
+    ///
+    /// # Errors
+    /// A velocity the formulation cannot represent, or a formulation whose
+    /// state is not made of `(q, qdot)` alone (a controller's).
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Box<dyn Error>>;
     /// `f(t, x)` into `xdot`.
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]);
     /// `df/dx` into `jacobian`, row-major.
@@ -114,6 +122,11 @@ impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Formulation f
 
     fn input_names(&self) -> Vec<String> {
         self.system.input_names()
+    }
+
+    /// Not made of `(q, qdot)` alone: the controller's states complete it.
+    fn state_of(&self, _q: &[f64], _qdot: &[f64]) -> Result<Vec<f64>, Box<dyn Error>> {
+        Err("a closed loop's state includes its controller's: it is not a configuration's and a velocity's".into())
     }
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {

@@ -20,6 +20,7 @@ use crate::runtime::system::next_chart;
 pub(crate) use chaplygin_codegen::interpret::evaluated;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 use std::cell::Cell;
+use std::error::Error;
 use surface::{holonomic_residual, keeps_configuration, onto_surface};
 
 /// `(q, alpha)` or `(q, qdot)` split at `n`.
@@ -200,6 +201,10 @@ impl Formulation for InterpretedReduced {
         self.model.engine().name()
     }
 
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Box<dyn Error>> {
+        Ok(self.initial_state(q, qdot)?)
+    }
+
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
         let u = inputs_at(self, &self.model, t, x);
         xdot.copy_from_slice(&self.call("reduced_rhs", &[x, &u]));
@@ -351,6 +356,10 @@ impl Formulation for InterpretedDalembert {
 
     fn engine(&self) -> &'static str {
         self.model.engine().name()
+    }
+
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Box<dyn Error>> {
+        Ok(q.iter().chain(qdot).copied().collect())
     }
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
@@ -546,6 +555,10 @@ impl Formulation for InterpretedMomentum {
 
     fn engine(&self) -> &'static str {
         self.model.engine().name()
+    }
+
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Box<dyn Error>> {
+        Ok(self.initial_state(q, qdot)?)
     }
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {

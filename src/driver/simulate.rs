@@ -41,7 +41,9 @@ use chaplygin_codegen::interpret::{Fixed, InterpretedModel};
 use inputs::{InputSchedule, Scope};
 use run::Settings;
 use start::{Kinematics, Start, initial_state, initial_values, with_default_motion};
+use std::cell::RefCell;
 use std::error::Error;
+use std::rc::Rc;
 
 /// A formulation of a model closed by its inputs, and its initial state.
 pub struct Prepared {
@@ -51,8 +53,12 @@ pub struct Prepared {
     pub x0: Vec<f64>,
     /// The parameters' names and values.
     pub parameters: Vec<(String, f64)>,
-    /// The model, for its points' positions.
+    /// Inputs that replace the input laws while set ([`Prepared::with_inputs`]).
+    fixed_inputs: Rc<RefCell<Option<Vec<f64>>>>,
+    /// The model, for its points' positions and initial states.
     model: InterpretedModel,
+    /// The built-in it is, for its default configuration and motion.
+    built_in: Option<&'static BuiltIn>,
 }
 
 /// What a run recorded and how it ended.
@@ -140,16 +146,23 @@ pub fn prepare(loaded: Loaded, request: &Request) -> Result<Prepared, Box<dyn Er
     let start = start_of(&model, built_in, &request.initial, &parameters, &mut [])?;
     let input_names: Vec<&str> = names.inputs.iter().map(String::as_str).collect();
     let schedule = InputSchedule::new(&input_names, &request.inputs, &parameters, &coordinates)?;
+    let fixed_inputs: Rc<RefCell<Option<Vec<f64>>>> = Rc::default();
+    let fixed = Rc::clone(&fixed_inputs);
     let inputs = InputLaw {
         reads_state: schedule.reads_state(),
-        law: Box::new(move |t, q, qdot, u| schedule.at(t, q, qdot, u)),
+        law: Box::new(move |t, q, qdot, u| match fixed.borrow().as_deref() {
+            Some(given) => u.copy_from_slice(given),
+            None => schedule.at(t, q, qdot, u),
+        }),
     };
     let (formulation, x0) = closed(model.clone(), request.formulation, inputs, &start, &label)?;
     Ok(Prepared {
         formulation,
         x0,
         parameters: owned(&parameters),
+        fixed_inputs,
         model,
+        built_in,
     })
 }
 
@@ -202,6 +215,36 @@ fn closed(
 }
 
 impl Prepared {
+    /// The state of the formulation from the model's defaults and the
+    /// `given` initial values (as [`Request::initial`] takes them); a
+    /// formulation with charts makes the one that fits best active.
+    ///
+    /// # Errors
+    /// An unknown name, a value that does not read, velocities the
+    /// constraints do not determine, or a velocity the formulation cannot
+    /// represent.
+    pub fn initial_state(&self, given: &[(String, String)]) -> Result<Vec<f64>, Box<dyn Error>> {
+        let parameters: Vec<(&str, f64)> = (self.parameters.iter())
+            .map(|(name, value)| (name.as_str(), *value))
+            .collect();
+        let start = start_of(&self.model, self.built_in, given, &parameters, &mut [])?;
+        self.formulation.state_of(&start.q, &start.qdot)
+    }
+
+    /// `read` with the inputs `u` in place of the input laws (`None`: the
+    /// laws).
+    pub fn with_inputs<T>(&self, u: Option<&[f64]>, read: impl FnOnce(&dyn Formulation) -> T) -> T {
+        *self.fixed_inputs.borrow_mut() = u.map(<[f64]>::to_vec);
+        let value = read(&*self.formulation);
+        *self.fixed_inputs.borrow_mut() = None;
+        value
+    }
+
+    /// The model's number of inputs.
+    pub fn input_count(&self) -> usize {
+        self.model.sizes().p
+    }
+
     /// The names a stop condition may read: the parameters, the
     /// coordinates and the inputs.
     fn scope_names(&self) -> ScopeNames {

@@ -96,6 +96,31 @@ pub enum Error {
     },
 }
 
+impl Error {
+    /// The time at which the integration stopped (the start of the failed
+    /// step).
+    pub fn time(&self) -> f64 {
+        match self {
+            Self::NonFinite { t, .. }
+            | Self::NewtonFailure { t, .. }
+            | Self::SingularJacobian { t, .. }
+            | Self::StepSizeUnderflow { t, .. }
+            | Self::TooManySteps { t, .. } => *t,
+        }
+    }
+
+    /// The state at [`Error::time`].
+    pub fn state(&self) -> &[f64] {
+        match self {
+            Self::NonFinite { state, .. }
+            | Self::NewtonFailure { state, .. }
+            | Self::SingularJacobian { state, .. }
+            | Self::StepSizeUnderflow { state, .. }
+            | Self::TooManySteps { state, .. } => state,
+        }
+    }
+}
+
 /// What became NaN or infinite in a step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NonFiniteCause {

@@ -89,6 +89,29 @@ pub enum SimulationError {
     },
 }
 
+impl SimulationError {
+    /// The time at which the run stopped, if it started.
+    pub fn time(&self) -> Option<f64> {
+        match self {
+            Self::Settings { .. } => None,
+            Self::Integration(error) => Some(error.time()),
+            Self::Singular { t, .. }
+            | Self::Undefined { t, .. }
+            | Self::Projection { t, .. }
+            | Self::Recording { t, .. } => Some(*t),
+        }
+    }
+
+    /// The state that caused the stop, where the error has it.
+    pub fn state(&self) -> Option<&[f64]> {
+        match self {
+            Self::Integration(error) => Some(error.state()),
+            Self::Singular { state, .. } | Self::Undefined { state, .. } => Some(state),
+            Self::Settings { .. } | Self::Projection { .. } | Self::Recording { .. } => None,
+        }
+    }
+}
+
 /// `the constraint rows a, b are dependent: ` when some are.
 fn dependency(rows: &[String]) -> String {
     match rows {

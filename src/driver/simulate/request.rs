@@ -119,6 +119,14 @@ pub enum Controller {
 }
 
 impl Integrator {
+    /// Every integrator.
+    pub const ALL: [Self; 4] = [
+        Self::Rk4,
+        Self::Dopri5,
+        Self::Midpoint,
+        Self::DiscreteGradient,
+    ];
+
     /// The one chosen, or the default for a formulation that is or is not
     /// structured (`xdot = J dH/dx + F`): the discrete gradient, which keeps
     /// the energy of any conservative model to round-off, or the implicit

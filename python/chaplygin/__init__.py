@@ -1,0 +1,284 @@
+"""Chaplygin: nonholonomic mechanical models derived exactly and simulated
+at compiled speed.
+
+A model is read from its text (``load``: a ``.model`` file or the text
+itself; ``builtin``: one of ``builtins()``), derived symbolically (the
+constraint analysis, the Lagrange-d'Alembert equations, the reduced
+port-Hamiltonian form, the momentum equation with a symmetry) and its
+functions compiled to native code at run time. ``Model.simulate`` returns a
+``Trajectory`` of NumPy columns, ``Model.linearize`` a ``Linearization``
+with eigenvalues and intervals of stability, ``Model.rhs`` a right-hand side
+for ``scipy.integrate.solve_ivp``, and ``Model.sympy`` the derived matrices
+as SymPy expressions.
+
+    >>> import chaplygin
+    >>> board = chaplygin.builtin("snakeboard")
+    >>> run = board.simulate(t_end=1.0, dt=0.01)
+    >>> abs(run.summary["energy_drift"]) < 1e-12
+    True
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy
+
+from . import _chaplygin
+from ._errors import ChaplyginError, ModelError, SimulationError
+from ._sympy import derived_expressions
+
+__all__ = [
+    "ChaplyginError",
+    "Linearization",
+    "Model",
+    "ModelError",
+    "Rhs",
+    "SimulationError",
+    "Trajectory",
+    "builtin",
+    "builtins",
+    "load",
+]
+
+Rhs = _chaplygin.Rhs
+Value = Union[float, str]
+
+
+def builtins() -> List[str]:
+    """The names of the built-in models."""
+    return list(_chaplygin.builtins())
+
+
+def builtin(name: str, engine: str = "jit") -> "Model":
+    """The built-in model ``name``, its functions run by ``engine``
+    (``"jit"``, native code compiled at run time, or ``"interpret"``)."""
+    return Model(_chaplygin.builtin(name, engine))
+
+
+def load(path_or_text: str, engine: str = "jit") -> "Model":
+    """The model of the ``.model`` file at ``path_or_text``, or of the
+    model text itself. Raises ``ModelError`` (with ``line`` and ``column``)
+    for a model the compiler rejects."""
+    return Model(_chaplygin.load(str(path_or_text), engine))
+
+
+class Trajectory:
+    """A simulation's recorded rows as NumPy columns.
+
+    ``run.t`` is the time column, ``run["phi"]`` any other column by name
+    (the state's entries: coordinates, then momenta or velocities),
+    ``run.columns`` their names, ``run.data`` the ``(rows, columns)``
+    array, ``run.summary`` the run's summary (a dict), ``run.tracks`` the
+    declared points' positions (a ``Trajectory``, or ``None``).
+    """
+
+    def __init__(
+        self,
+        columns: Sequence[str],
+        data: numpy.ndarray,
+        summary: Optional[Dict[str, Any]],
+        tracks: "Optional[Trajectory]" = None,
+    ) -> None:
+        self.columns = list(columns)
+        self.data = data
+        self.summary = summary
+        self.tracks = tracks
+
+    @property
+    def t(self) -> numpy.ndarray:
+        """The time of each row."""
+        return self["t"]
+
+    def __getitem__(self, name: str) -> numpy.ndarray:
+        try:
+            return self.data[:, self.columns.index(name)]
+        except ValueError:
+            raise KeyError(f"no column {name!r} (columns: {', '.join(self.columns)})") from None
+
+    def __len__(self) -> int:
+        return self.data.shape[0]
+
+    def __repr__(self) -> str:
+        return f"Trajectory({len(self)} rows, columns {self.columns})"
+
+    def to_pandas(self) -> Any:
+        """The rows as a ``pandas.DataFrame`` (pandas must be installed)."""
+        import pandas
+
+        return pandas.DataFrame(self.data, columns=self.columns)
+
+
+class Linearization:
+    """A linearization about a steady motion, or over a sweep.
+
+    Over a sweep of ``variable``: ``values`` (``(len,)``), ``eigenvalues``
+    (``(len, modes)`` complex, each row by descending real part),
+    ``stable`` and ``neutral`` the intervals ``[(start, end), ...]`` of the
+    variable where the motion is asymptotically stable and where it is
+    neutrally stable (every eigenvalue but the zeros of conserved quantities
+    on the imaginary axis), their ends refined by bisection between grid
+    points; ``conserved`` the number of zeros discounted.
+
+    At one point: ``eigenvalues`` (``(modes,)``), ``a`` and ``b`` the linear
+    system ``x' = a x + b u`` in the variables ``state``, and ``stable``
+    and ``neutral`` booleans; ``values`` is empty.
+    """
+
+    def __init__(self, fields: Mapping[str, Any]) -> None:
+        self.variable: Optional[str] = fields.get("variable")
+        self.state: Optional[List[str]] = fields.get("state")
+        self.values: numpy.ndarray = fields.get("values", numpy.empty(0))
+        self.eigenvalues: numpy.ndarray = fields["eigenvalues"]
+        self.conserved: int = fields["conserved"]
+        self.stable = fields["stable"]
+        self.neutral = fields["neutral"]
+        self.a: Optional[numpy.ndarray] = fields.get("a")
+        self.b: Optional[numpy.ndarray] = fields.get("b")
+
+    def __repr__(self) -> str:
+        if self.variable is None:
+            return f"Linearization(eigenvalues={self.eigenvalues}, stable={self.stable})"
+        return (
+            f"Linearization({self.variable} over {len(self.values)} values, "
+            f"stable={self.stable}, neutral={self.neutral})"
+        )
+
+
+class Model:
+    """A model read from its text, derived exactly, its functions compiled.
+
+    ``name``, ``coordinates``, ``velocities`` (``dot(q)``), ``inputs``,
+    ``constraints``, ``holonomic``, ``momenta`` name its parts;
+    ``parameters`` maps each parameter to its default value.
+    """
+
+    def __init__(self, native: Any) -> None:
+        self._native = native
+
+    name = property(lambda self: self._native.name, doc="The built-in's name, or the file's path.")
+    coordinates = property(lambda self: list(self._native.coordinates), doc="The coordinates q.")
+    velocities = property(lambda self: list(self._native.velocities), doc="The velocities dot(q).")
+    inputs = property(lambda self: list(self._native.inputs), doc="The inputs u.")
+    constraints = property(lambda self: list(self._native.constraints), doc="The velocity constraints.")
+    holonomic = property(lambda self: list(self._native.holonomic), doc="The configuration constraints f(q) = 0.")
+    momenta = property(lambda self: list(self._native.momenta), doc="The reduced momenta alpha.")
+    parameters = property(lambda self: dict(self._native.parameters), doc="The parameters' default values.")
+    engine = property(lambda self: self._native.engine, doc='What runs the functions: "jit" or "interpret".')
+    report = property(lambda self: self._native.report, doc="The derivation report.")
+
+    def __repr__(self) -> str:
+        return f"Model({self.name!r}, coordinates={self.coordinates}, engine={self.engine!r})"
+
+    def simulate(
+        self,
+        t_end: float = 30.0,
+        dt: float = 0.01,
+        initial: Optional[Mapping[str, Value]] = None,
+        params: Optional[Mapping[str, float]] = None,
+        inputs: Optional[Mapping[str, Value]] = None,
+        formulation: str = "reduced",
+        integrator: Optional[str] = None,
+        stop_when: Optional[str] = None,
+        controller: str = "none",
+    ) -> Trajectory:
+        """Simulates the model from ``t = 0`` to ``t_end`` by steps ``dt``.
+
+        ``initial`` gives coordinates and velocities ``dot(q)`` (numbers, or
+        expressions of the parameters such as ``"-5/rR"``; velocities not
+        given are solved from the constraints; without any, the model's
+        default motion). ``params`` overrides parameters. ``inputs`` gives
+        each input a law: a number or an expression of ``t``, the
+        parameters, the coordinates and velocities (``"-10*phi-2*dot(phi)"``).
+        ``formulation`` is ``"reduced"``, ``"lagrange"`` or ``"momentum"``;
+        ``integrator`` ``"rk4"``, ``"dopri5"``, ``"midpoint"`` or
+        ``"discrete-gradient"`` (default: the discrete gradient for the
+        reduced form, the midpoint rule otherwise); ``stop_when`` one
+        comparison (``"abs(phi) > 1"``) that ends the run where it first
+        holds; ``controller="energy"`` closes the built-in snakeboard with
+        Duindam and Stramigioli's energy controller.
+
+        Raises ``SimulationError`` (with ``t``, ``state`` and the rows
+        before it as ``trajectory``) for a run that stops early, and
+        ``ValueError`` for input that does not read.
+        """
+        run = self._native.simulate(
+            float(t_end),
+            float(dt),
+            _dict(initial),
+            _dict(params),
+            _dict(inputs),
+            formulation,
+            integrator,
+            stop_when,
+            controller,
+        )
+        tracks = run["tracks"]
+        trajectory = Trajectory(
+            run["columns"],
+            run["data"],
+            run["summary"],
+            Trajectory(tracks[0], tracks[1], None) if tracks is not None else None,
+        )
+        failure = run["failure"]
+        if failure is not None:
+            raise SimulationError(failure["message"], failure["t"], failure["state"], trajectory)
+        return trajectory
+
+    def linearize(
+        self,
+        at: Optional[Mapping[str, Value]] = None,
+        sweep: Optional[Tuple[str, Sequence[float]]] = None,
+        params: Optional[Mapping[str, float]] = None,
+    ) -> Linearization:
+        """Linearizes about the steady motion ``at`` (coordinates and
+        velocities, numbers or expressions of the parameters and of the
+        sweep variable), with the symmetry reduced and the constraints
+        eliminated; over ``sweep=(variable, values)``, at each value."""
+        if sweep is not None:
+            variable, values = sweep
+            sweep = (str(variable), numpy.ascontiguousarray(values, dtype=float))
+        return Linearization(self._native.linearize(_dict(at), _dict(params), sweep))
+
+    def rhs(
+        self,
+        formulation: str = "reduced",
+        params: Optional[Mapping[str, float]] = None,
+        inputs: Optional[Mapping[str, Value]] = None,
+    ) -> Rhs:
+        """The right-hand side ``f(t, x, u=None)`` of a formulation, with
+        ``f.jacobian(t, x, u=None)``, ``f.state`` and
+        ``f.initial_state(initial)``; the inputs follow the ``inputs`` laws
+        unless ``u`` is given."""
+        return self._native.rhs(formulation, _dict(params), _dict(inputs))
+
+    def acceleration(
+        self,
+        q: Sequence[float],
+        qdot: Sequence[float],
+        u: Optional[Sequence[float]] = None,
+    ) -> Tuple[numpy.ndarray, numpy.ndarray]:
+        """The Lagrange-d'Alembert accelerations and constraint multipliers
+        ``(qddot, lambda)`` at ``(q, qdot)`` under the inputs ``u`` (zero if
+        ``None``)."""
+        return self._native.acceleration(_array(q), _array(qdot), None if u is None else _array(u))
+
+    def document(self, format: str = "text") -> str:
+        """The derivation document: ``"text"``, ``"latex"`` or ``"json"``."""
+        return self._native.document(format)
+
+    def sympy(self) -> Dict[str, Any]:
+        """The derived matrices as SymPy objects: ``mass_matrix``,
+        ``constraint_matrix``, ``kinetic_energy``, ``potential_energy``, and
+        the reduced form's ``structure_matrix`` and ``hamiltonian``.
+        Coordinates and parameters are symbols of their own names, a
+        velocity ``dot(q)`` is ``Symbol("dot_q")``."""
+        return derived_expressions(self.document("json"))
+
+
+def _dict(values: Optional[Mapping[str, Any]]) -> Optional[Dict[str, Any]]:
+    return None if values is None else dict(values)
+
+
+def _array(values: Sequence[float]) -> numpy.ndarray:
+    return numpy.ascontiguousarray(values, dtype=float)

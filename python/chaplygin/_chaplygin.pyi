@@ -1,0 +1,59 @@
+"""Type stubs of the native module `chaplygin._chaplygin` (the Python
+layer, `chaplygin/__init__.py`, wraps it)."""
+
+from typing import Any, Dict, List, Optional, Tuple
+
+import numpy
+
+def builtins() -> List[str]: ...
+def builtin(name: str, engine: str = "jit") -> Model: ...
+def load(path_or_text: str, engine: str = "jit") -> Model: ...
+
+class Model:
+    name: str
+    coordinates: List[str]
+    velocities: List[str]
+    inputs: List[str]
+    constraints: List[str]
+    holonomic: List[str]
+    momenta: List[str]
+    parameters: Dict[str, float]
+    engine: str
+    report: str
+    def simulate(
+        self,
+        t_end: float,
+        dt: float,
+        initial: Optional[Dict[str, Any]],
+        params: Optional[Dict[str, float]],
+        inputs: Optional[Dict[str, Any]],
+        formulation: str,
+        integrator: Optional[str],
+        stop_when: Optional[str],
+        controller: str,
+    ) -> Dict[str, Any]: ...
+    def linearize(
+        self,
+        at: Optional[Dict[str, Any]],
+        params: Optional[Dict[str, float]],
+        sweep: Optional[Tuple[str, numpy.ndarray]],
+    ) -> Dict[str, Any]: ...
+    def rhs(
+        self,
+        formulation: str,
+        params: Optional[Dict[str, float]],
+        inputs: Optional[Dict[str, Any]],
+    ) -> Rhs: ...
+    def acceleration(
+        self, q: numpy.ndarray, qdot: numpy.ndarray, u: Optional[numpy.ndarray] = None
+    ) -> Tuple[numpy.ndarray, numpy.ndarray]: ...
+    def document(self, format: str = "text") -> str: ...
+
+class Rhs:
+    """The right-hand side `f(t, x, u=None)` of one formulation of a model."""
+
+    state: List[str]
+    def __call__(self, t: float, x: numpy.ndarray, u: Optional[numpy.ndarray] = None) -> numpy.ndarray: ...
+    def jacobian(self, t: float, x: numpy.ndarray, u: Optional[numpy.ndarray] = None) -> numpy.ndarray: ...
+    def energy(self, x: numpy.ndarray) -> float: ...
+    def initial_state(self, initial: Optional[Dict[str, Any]] = None) -> numpy.ndarray: ...

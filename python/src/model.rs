@@ -1,0 +1,353 @@
+//! `chaplygin.Model` (native part): a model read from its text, its names
+//! and parameters, and what it does: simulate, linearize, accelerate,
+//! evaluate its right-hand sides, document its derivation.
+
+use crate::convert::{assignments, matrix, model_error, numbers, to_python};
+use crate::linearization;
+use crate::rhs::Rhs;
+use chaplygin::driver::catalog::Source;
+use chaplygin::driver::document::{self, Format};
+use chaplygin::driver::engine::{self, EngineChoice, Loaded};
+use chaplygin::driver::simulate::{self, Controller, FormulationChoice, Integrator, Request};
+use chaplygin::runtime::record::{Recorder, Table};
+use chaplygin::runtime::simulate::SimulationError;
+use numpy::{PyArray1, PyArray2, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::io;
+
+/// A model read from its text (a built-in's or a `.model` file's), derived
+/// exactly, its programs compiled to native code.
+#[pyclass(unsendable, module = "chaplygin._chaplygin")]
+pub struct Model {
+    loaded: Loaded,
+    source: Source,
+}
+
+impl Model {
+    /// The model of `source`, its programs run by `engine`.
+    pub fn load(py: Python<'_>, source: Source, engine: EngineChoice) -> PyResult<Self> {
+        let loaded =
+            engine::load(&source, engine).map_err(|rejected| model_error(py, &rejected))?;
+        Ok(Self { loaded, source })
+    }
+
+    /// The loaded model, cloned: a run sets its own parameters.
+    fn fresh(&self) -> Loaded {
+        self.loaded.clone()
+    }
+}
+
+/// A recorder that keeps nothing (the driver's own table keeps the rows).
+struct Nowhere;
+
+impl Recorder for Nowhere {
+    fn start(&mut self, _columns: &[String]) -> io::Result<()> {
+        Ok(())
+    }
+
+    fn record(&mut self, _row: &[f64]) -> io::Result<()> {
+        Ok(())
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        Ok(())
+    }
+}
+
+/// A table as `(columns, data)`.
+fn table<'py>(
+    py: Python<'py>,
+    table: &Table,
+) -> PyResult<(Vec<String>, Bound<'py, PyArray2<f64>>)> {
+    let values = table.rows.iter().flatten().copied().collect();
+    Ok((
+        table.columns.clone(),
+        matrix(py, values, table.columns.len())?,
+    ))
+}
+
+/// The formulation called `name`.
+fn formulation_named(name: &str) -> PyResult<FormulationChoice> {
+    match name {
+        "reduced" => Ok(FormulationChoice::Reduced),
+        "lagrange" => Ok(FormulationChoice::Lagrange),
+        "momentum" => Ok(FormulationChoice::Momentum),
+        _ => Err(PyValueError::new_err(format!(
+            "unknown formulation `{name}` (formulations: reduced, lagrange, momentum)"
+        ))),
+    }
+}
+
+/// The integrator called `name`.
+fn integrator_named(name: &str) -> PyResult<Integrator> {
+    Integrator::ALL
+        .into_iter()
+        .find(|integrator| integrator.name() == name)
+        .ok_or_else(|| {
+            let names: Vec<&str> = Integrator::ALL.iter().map(|i| i.name()).collect();
+            PyValueError::new_err(format!(
+                "unknown integrator `{name}` (integrators: {})",
+                names.join(", ")
+            ))
+        })
+}
+
+/// The controller called `name`.
+fn controller_named(name: &str) -> PyResult<Controller> {
+    match name {
+        "none" => Ok(Controller::None),
+        "energy" => Ok(Controller::Energy),
+        _ => Err(PyValueError::new_err(format!(
+            "unknown controller `{name}` (controllers: none, energy)"
+        ))),
+    }
+}
+
+/// A failed run's time, state and message, for `chaplygin.SimulationError`.
+fn failure<'py>(
+    py: Python<'py>,
+    error: &(dyn std::error::Error + 'static),
+) -> PyResult<Bound<'py, PyDict>> {
+    let failure = PyDict::new(py);
+    failure.set_item("message", error.to_string())?;
+    let simulation = error.downcast_ref::<SimulationError>();
+    failure.set_item("t", simulation.and_then(SimulationError::time))?;
+    let state = simulation
+        .and_then(SimulationError::state)
+        .map(|state| PyArray1::from_slice(py, state));
+    failure.set_item("state", state)?;
+    Ok(failure)
+}
+
+#[pymethods]
+impl Model {
+    /// The built-in's name, or the file's path (`"<string>"` for text).
+    #[getter]
+    fn name(&self) -> &str {
+        match self.loaded.built_in {
+            Some(built_in) => built_in.name,
+            None => &self.loaded.label,
+        }
+    }
+
+    /// The coordinates `q`, in order.
+    #[getter]
+    fn coordinates(&self) -> Vec<String> {
+        self.loaded.model.names().coordinates.clone()
+    }
+
+    /// The velocities `dot(q)`, in order.
+    #[getter]
+    fn velocities(&self) -> Vec<String> {
+        let coordinates = &self.loaded.model.names().coordinates;
+        coordinates.iter().map(|q| format!("dot({q})")).collect()
+    }
+
+    /// The inputs `u`, in order.
+    #[getter]
+    fn inputs(&self) -> Vec<String> {
+        self.loaded.model.names().inputs.clone()
+    }
+
+    /// The velocity constraints (rows of `A(q)`), in order.
+    #[getter]
+    fn constraints(&self) -> Vec<String> {
+        self.loaded.model.names().constraints.clone()
+    }
+
+    /// The configuration constraints `f(q) = 0`, in order.
+    #[getter]
+    fn holonomic(&self) -> Vec<String> {
+        self.loaded.model.names().holonomic.clone()
+    }
+
+    /// The reduced momenta `alpha` (the momentum basis rows), in order.
+    #[getter]
+    fn momenta(&self) -> Vec<String> {
+        self.loaded.model.names().momenta.clone()
+    }
+
+    /// The parameters and their default values.
+    #[getter]
+    fn parameters<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let parameters = PyDict::new(py);
+        let model = &self.loaded.model;
+        for (name, value) in model
+            .names()
+            .parameters
+            .iter()
+            .zip(model.parameter_values())
+        {
+            parameters.set_item(name, value)?;
+        }
+        Ok(parameters)
+    }
+
+    /// What runs the model's programs: `"jit"` or `"interpret"`.
+    #[getter]
+    fn engine(&self) -> &'static str {
+        self.loaded.model.engine().name()
+    }
+
+    /// The derivation report.
+    #[getter]
+    fn report(&self) -> &str {
+        self.loaded.model.report()
+    }
+
+    /// Simulates the model; returns `(columns, data, tracks, summary,
+    /// failure)`, `summary` a dict and `failure` `None` for a finished run,
+    /// else the other way round (the rows before the failure kept).
+    #[pyo3(signature = (t_end, dt, initial, params, inputs, formulation, integrator, stop_when, controller))]
+    #[allow(clippy::too_many_arguments)]
+    fn simulate<'py>(
+        &self,
+        py: Python<'py>,
+        t_end: f64,
+        dt: f64,
+        initial: Option<&Bound<'py, PyDict>>,
+        params: Option<&Bound<'py, PyDict>>,
+        inputs: Option<&Bound<'py, PyDict>>,
+        formulation: &str,
+        integrator: Option<&str>,
+        stop_when: Option<String>,
+        controller: &str,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let request = Request {
+            formulation: formulation_named(formulation)?,
+            integrator: integrator.map(integrator_named).transpose()?,
+            controller: controller_named(controller)?,
+            t_end,
+            dt,
+            stop_when,
+            params: numbers(params)?,
+            initial: assignments(initial)?,
+            inputs: assignments(inputs)?,
+        };
+        let finished = simulate::simulate(self.fresh(), &request, &mut Nowhere, &mut |_| {})
+            .map_err(|error| to_python(py, error))?;
+        let run = PyDict::new(py);
+        let (columns, data) = table(py, &finished.table)?;
+        run.set_item("columns", columns)?;
+        run.set_item("data", data)?;
+        let tracks = finished
+            .tracks
+            .as_ref()
+            .map(|tracks| table(py, tracks))
+            .transpose()?;
+        run.set_item("tracks", tracks)?;
+        match &finished.outcome {
+            Ok(report) => {
+                let summary = PyDict::new(py);
+                summary.set_item("t_end", report.t)?;
+                summary.set_item("steps", report.steps)?;
+                summary.set_item("integrator", report.integrator.name())?;
+                summary.set_item("engine", report.engine)?;
+                summary.set_item("energy_drift", report.energy_drift)?;
+                summary.set_item("max_constraint_residual", report.max_constraint_residual)?;
+                summary.set_item("max_holonomic_residual", report.max_holonomic_residual)?;
+                summary.set_item("chart_switches", report.chart_switches)?;
+                summary.set_item("stopped", report.stopped.clone())?;
+                summary.set_item("seconds", report.seconds)?;
+                run.set_item("summary", summary)?;
+                run.set_item("failure", py.None())?;
+            }
+            Err(error) => {
+                run.set_item("summary", py.None())?;
+                run.set_item("failure", failure(py, error.as_ref())?)?;
+            }
+        }
+        Ok(run)
+    }
+
+    /// Linearizes about the steady motion `at` (`{name: value or
+    /// expression}`), or over `sweep = (variable, values)`; returns a dict
+    /// (see `chaplygin.Linearization`).
+    #[pyo3(signature = (at, params, sweep))]
+    fn linearize<'py>(
+        &self,
+        py: Python<'py>,
+        at: Option<&Bound<'py, PyDict>>,
+        params: Option<&Bound<'py, PyDict>>,
+        sweep: Option<(String, PyReadonlyArray1<'py, f64>)>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let mut model = self.fresh().model;
+        for (name, value) in numbers(params)? {
+            model
+                .set_parameter(&name, value)
+                .map_err(|error| PyValueError::new_err(error.to_string()))?;
+        }
+        let at = assignments(at)?;
+        match sweep {
+            None => linearization::at_point(py, &model, &at),
+            Some((variable, values)) => {
+                linearization::over_sweep(py, &model, &at, (&variable, values.as_slice()?))
+            }
+        }
+    }
+
+    /// The right-hand side of a formulation, closed by the input laws.
+    #[pyo3(signature = (formulation, params, inputs))]
+    fn rhs(
+        &self,
+        py: Python<'_>,
+        formulation: &str,
+        params: Option<&Bound<'_, PyDict>>,
+        inputs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Rhs> {
+        let request = Request {
+            formulation: formulation_named(formulation)?,
+            params: numbers(params)?,
+            inputs: assignments(inputs)?,
+            ..Request::default()
+        };
+        let prepared =
+            simulate::prepare(self.fresh(), &request).map_err(|error| to_python(py, error))?;
+        Ok(Rhs::new(prepared))
+    }
+
+    /// The Lagrange-d'Alembert accelerations and multipliers
+    /// `(qddot, lambda)` at `(q, qdot)` under the inputs `u` (zero if
+    /// `None`).
+    #[pyo3(signature = (q, qdot, u = None))]
+    #[allow(clippy::type_complexity)]
+    fn acceleration<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray1<'py, f64>,
+        qdot: PyReadonlyArray1<'py, f64>,
+        u: Option<PyReadonlyArray1<'py, f64>>,
+    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+        let model = &self.loaded.model;
+        let zero = vec![0.0; model.sizes().p];
+        let u = match &u {
+            Some(u) => u.as_slice()?.to_vec(),
+            None => zero,
+        };
+        let (qddot, lambda) = model
+            .acceleration(q.as_slice()?, qdot.as_slice()?, &u)
+            .map_err(|error| PyValueError::new_err(error.to_string()))?;
+        Ok((
+            PyArray1::from_vec(py, qddot),
+            PyArray1::from_vec(py, lambda),
+        ))
+    }
+
+    /// The derivation document as `"text"`, `"latex"` or `"json"`.
+    #[pyo3(signature = (format = "text"))]
+    fn document(&self, py: Python<'_>, format: &str) -> PyResult<String> {
+        let format = match format {
+            "text" => Format::Text,
+            "latex" => Format::Latex,
+            "json" => Format::Json,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "unknown format `{format}` (formats: text, latex, json)"
+                )));
+            }
+        };
+        document::document(&self.source, format).map_err(|error| to_python(py, error))
+    }
+}

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# The Python package's tests: a virtual environment in target/python-venv,
+# the package built into it from this tree (unoptimized, sharing the
+# workspace's build of the engine), then pytest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+venv=target/python-venv
+if [ ! -x "$venv/bin/python" ]; then
+    python3 -m venv "$venv"
+fi
+"$venv/bin/python" -m pip install --quiet numpy scipy sympy pytest
+CARGO_TARGET_DIR="$PWD/target" MATURIN_PEP517_ARGS="--profile dev" \
+    "$venv/bin/python" -m pip install --quiet --force-reinstall --no-deps ./python
+"$venv/bin/python" -m pytest -q python/tests

@@ -1,0 +1,61 @@
+"""The benchmark bicycle from Python: its eigenvalues against Meijaard et al.
+(2007) and against the command line, its self-stable speed range."""
+
+import re
+
+import numpy
+import pytest
+
+import chaplygin
+
+UPRIGHT = {"dot(theta_r)": "-v/rR", "dot(phi)": 0, "dot(delta)": 0, "phi": 0, "delta": 0}
+
+# Meijaard, Papadopoulos, Ruina & Schwab (2007), Table 2, v = 5 m/s.
+PUBLISHED_AT_5 = [
+    -0.77534188219585 + 4.46486771378823j,
+    -0.77534188219585 - 4.46486771378823j,
+    -0.32286642900409,
+    -14.07838969279822,
+]
+
+
+@pytest.fixture(scope="module")
+def bicycle():
+    return chaplygin.builtin("bicycle")
+
+
+def test_the_eigenvalues_at_5_m_s_are_the_papers(bicycle):
+    linear = bicycle.linearize(at={**UPRIGHT, "dot(theta_r)": "-5/rR"})
+    nonzero = [e for e in linear.eigenvalues if abs(e) > 1e-7]
+    assert len(nonzero) == 4
+    for published in PUBLISHED_AT_5:
+        assert min(abs(e - published) for e in nonzero) < 1e-12, (published, nonzero)
+    assert linear.stable and linear.conserved == 1
+
+
+def test_the_eigenvalues_equal_the_command_lines(bicycle, command_line):
+    arguments = ["linearize", "bicycle"]
+    for name, value in {**UPRIGHT, "dot(theta_r)": "-3/rR"}.items():
+        arguments += ["--at", f"{name}={value}"]
+    text = command_line(*arguments)
+    printed = [
+        complex(float(re_), (1 if sign == "+" else -1) * float(im))
+        for re_, sign, im in re.findall(r"^\s+(\S+) ([+-]) (\S+) i", text, flags=re.M)
+    ]
+    linear = bicycle.linearize(at={**UPRIGHT, "dot(theta_r)": "-3/rR"})
+    assert len(printed) == len(linear.eigenvalues)
+    # printed with 9 decimals in scientific notation
+    for ours, theirs in zip(linear.eigenvalues, printed):
+        assert abs(ours - theirs) <= 1e-8 * max(1.0, abs(ours)), (ours, theirs)
+
+
+def test_the_self_stable_range_is_the_papers(bicycle):
+    sweep = bicycle.linearize(at=UPRIGHT, sweep=("v", numpy.linspace(0.0, 10.0, 101)))
+    assert sweep.eigenvalues.shape == (101, 5)
+    assert sweep.values.shape == (101,)
+    # Meijaard et al. (2007), section 6: weave speed 4.292382536341, capsize speed 6.024262015388.
+    [(weave, capsize)] = sweep.stable
+    assert abs(weave - 4.292382536341) < 1e-8
+    assert abs(capsize - 6.024262015388) < 1e-8
+    # each row by descending real part
+    assert numpy.all(numpy.diff(sweep.eigenvalues.real, axis=1) <= 1e-12)

@@ -1,0 +1,151 @@
+"""Models from Python: loading and its errors, simulation against SciPy's
+integrators on the package's own right-hand sides, SymPy expressions against
+MATH.md's hand-derived snakeboard, runs into a singular configuration."""
+
+import math
+
+import numpy
+import pytest
+import sympy
+from scipy.integrate import solve_ivp
+
+import chaplygin
+
+
+def test_the_built_ins_are_listed_and_load_with_their_names():
+    assert "snakeboard" in chaplygin.builtins() and "bicycle" in chaplygin.builtins()
+    board = chaplygin.builtin("snakeboard")
+    assert board.name == "snakeboard"
+    assert board.coordinates == ["x", "y", "theta", "psi", "phi"]
+    assert board.velocities[-1] == "dot(phi)"
+    assert board.inputs == ["u_torso", "u_wheels"]
+    assert board.constraints == ["front", "back"]
+    assert board.parameters == {"m": 1.0, "r": 0.5, "jt": 0.3, "jw": 0.05}
+    assert board.engine in ("jit", "interpret")
+    with pytest.raises(ValueError, match="unknown built-in model `skateboard`"):
+        chaplygin.builtin("skateboard")
+
+
+def test_a_file_and_its_text_load_the_same_model(root):
+    path = root / "models" / "sleigh.model"
+    from_file = chaplygin.load(str(path))
+    from_text = chaplygin.load(path.read_text())
+    assert (from_file.name, from_text.name) == (str(path), "<string>")
+    q, qdot = [0.1, 0.2, 0.3], [1.0, 0.3, 0.5]
+    assert numpy.array_equal(from_file.acceleration(q, qdot)[0], from_text.acceleration(q, qdot)[0])
+    with pytest.raises(FileNotFoundError):
+        chaplygin.load(str(root / "models" / "no-such.model"))
+
+
+def test_a_bad_model_raises_model_error_at_its_line_and_column():
+    text = "pub struct Bad {\n    coordinates: [x],\n    kinetic_energy: dot(x)^2 + m*dot(y)^2,\n}"
+    with pytest.raises(chaplygin.ModelError) as raised:
+        chaplygin.load(text)
+    error = raised.value
+    # `m` is the first unknown name: line 3, column 32 (from 1)
+    assert (error.line, error.column) == (3, text.splitlines()[2].index("m*") + 1)
+    assert error.message.startswith("unknown name `m`")
+    assert "<string>:3:32: error: unknown name `m`" in str(error)
+    assert "unknown name `y`" in str(error)
+
+
+def test_the_sleigh_accelerates_as_by_hand():
+    # The Chaplygin sleigh (Bloch 2003, section 1.7): at theta = 0 with the
+    # blade along x, thetadot = w and xdot = v, the constraint ydot = 0 holds;
+    # v' = a w^2 and w' = -m a v w / (j + m a^2).
+    sleigh = chaplygin.builtin("sleigh")
+    m, j, a = (sleigh.parameters[name] for name in ("m", "inertia", "a"))
+    v, w = 0.7, 0.4
+    qddot, multipliers = sleigh.acceleration([0.0, 0.0, 0.0], [v, 0.0, w])
+    assert abs(qddot[0] - a * w**2) < 1e-12
+    assert abs(qddot[2] + m * a * v * w / (j + m * a**2)) < 1e-12
+    assert multipliers.shape == (1,)
+
+
+@pytest.mark.parametrize("formulation", ["reduced", "lagrange"])
+def test_solve_ivp_on_rhs_agrees_with_the_packages_integrator(formulation):
+    disk = chaplygin.builtin("rolling-disk-3d")
+    f = disk.rhs(formulation)
+    x0 = f.initial_state()
+    assert len(x0) == len(f.state)
+    scipy_run = solve_ivp(f, (0.0, 2.0), x0, method="DOP853", rtol=1e-12, atol=1e-12)
+    assert scipy_run.success
+    own = disk.simulate(t_end=2.0, dt=0.002, formulation=formulation, integrator="rk4")
+    ours = numpy.array([own[name][-1] for name in f.state])
+    assert numpy.max(numpy.abs(scipy_run.y[:, -1] - ours)) < 1e-8
+
+
+def test_the_jacobian_is_the_derivative_of_the_rhs():
+    board = chaplygin.builtin("snakeboard")
+    f = board.rhs("reduced", inputs={"u_torso": "0.3*sin(2*t)", "u_wheels": "-phi"})
+    x = f.initial_state({"phi": 0.4, "dot(phi)": 0.2, "dot(psi)": 0.1, "dot(x)": 0.5})
+    jacobian = f.jacobian(0.3, x)
+    for j in range(len(x)):
+        step = 1e-6 * max(1.0, abs(x[j]))
+        plus, minus = x.copy(), x.copy()
+        plus[j] += step
+        minus[j] -= step
+        difference = (f(0.3, plus) - f(0.3, minus)) / (2 * step)
+        assert numpy.allclose(jacobian[:, j], difference, rtol=1e-6, atol=1e-8), j
+    # Inputs given at the call replace the laws: by MATH.md 3.1,
+    # alpha1' = -(sin(phi)/r) u1, alpha2' = u1, alpha3' = u2.
+    u = numpy.array([0.7, -0.2])
+    xdot = f(0.0, x, u)
+    r, phi = board.parameters["r"], x[4]
+    assert numpy.allclose(xdot[5:], [-math.sin(phi) / r * u[0], u[0], u[1]], atol=1e-14)
+
+
+def test_sympy_is_the_hand_derived_snakeboard():
+    derived = chaplygin.builtin("snakeboard").sympy()
+    x, y, theta, psi, phi, m, r, jt, jw = sympy.symbols("x y theta psi phi m r jt jw")
+    J = jt + m * r**2
+    # MATH.md section 3.1
+    g = sympy.Matrix([[m, 0, 0, 0, 0], [0, m, 0, 0, 0], [0, 0, J, jt, 0], [0, 0, jt, jt, 0], [0, 0, 0, 0, jw]])
+    a = sympy.Matrix([
+        [-sympy.sin(theta + phi), sympy.cos(theta + phi), r * sympy.cos(phi), 0, 0],
+        [-sympy.sin(theta - phi), sympy.cos(theta - phi), -r * sympy.cos(phi), 0, 0],
+    ])
+    assert sympy.simplify(derived["mass_matrix"] - g) == sympy.zeros(5, 5)
+    assert sympy.simplify(derived["constraint_matrix"] - a) == sympy.zeros(2, 5)
+    assert derived["potential_energy"] == 0
+    alpha1, alpha2, alpha3 = sympy.symbols("group torso wheels")
+    hamiltonian = alpha1**2 / (2 * m) + alpha2**2 / (2 * jt) + alpha3**2 / (2 * jw)
+    assert sympy.simplify(derived["hamiltonian"] - hamiltonian) == 0
+    structure = derived["structure_matrix"]
+    assert sympy.simplify(structure + structure.T) == sympy.zeros(8, 8)
+    qdot = sympy.Matrix(sympy.symbols("dot_x dot_y dot_theta dot_psi dot_phi"))
+    assert sympy.simplify(derived["kinetic_energy"] - (qdot.T * g * qdot)[0, 0] / 2) == 0
+
+
+def test_a_run_into_the_singular_configuration_raises_simulation_error():
+    board = chaplygin.builtin("snakeboard")
+    # From phi = 1.2 with phidot = alpha3/jw = 0.5 and phi'' = u_wheels/jw = 1,
+    # phi = 1.2 + t/2 + t^2/2 reaches pi/2 at t = (-1 + sqrt(1 + 8 (pi/2 - 1.2))) / 2.
+    crossing = (-1.0 + math.sqrt(1.0 + 8.0 * (math.pi / 2 - 1.2))) / 2.0
+    with pytest.raises(chaplygin.SimulationError) as raised:
+        board.simulate(t_end=2.0, dt=0.01, initial={"phi": 1.2}, inputs={"u_wheels": 0.05}, integrator="rk4")
+    error = raised.value
+    assert abs(error.t - crossing) < 0.011, (error.t, crossing)
+    assert abs(error.state[4] - math.pi / 2) < 0.02
+    assert "singular configuration" in error.message
+    assert error.trajectory.t[-1] < error.t + 1e-12
+    assert len(error.trajectory) > 10
+
+
+def test_a_trajectory_has_named_columns_and_a_summary():
+    board = chaplygin.builtin("snakeboard")
+    run = board.simulate(t_end=1.0, dt=0.01, stop_when="t > 0.5")
+    assert run.summary["stopped"] == "t > 0.5"
+    assert abs(run.t[-1] - 0.5) < 1e-9
+    assert run.summary["integrator"] == "discrete-gradient"
+    assert abs(run.summary["energy_drift"]) < 1e-12
+    assert run.summary["max_holonomic_residual"] is None
+    assert set(run.summary) >= {
+        "t_end", "steps", "integrator", "engine", "energy_drift", "max_constraint_residual",
+        "max_holonomic_residual", "chart_switches", "stopped",
+    }
+    assert numpy.array_equal(run["x"], run.data[:, run.columns.index("x")])
+    with pytest.raises(KeyError):
+        run["nothing"]
+    with pytest.raises(ValueError, match="unknown parameter `mass`"):
+        board.simulate(t_end=1.0, params={"mass": 2.0})
