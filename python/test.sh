@@ -9,7 +9,7 @@ venv=target/python-venv
 if [ ! -x "$venv/bin/python" ]; then
     python3 -m venv "$venv"
 fi
-"$venv/bin/python" -m pip install --quiet numpy scipy sympy pytest
+"$venv/bin/python" -m pip install --quiet numpy scipy sympy pytest matplotlib pandas
 CARGO_TARGET_DIR="$PWD/target" MATURIN_PEP517_ARGS="--profile dev" \
     "$venv/bin/python" -m pip install --quiet --force-reinstall --no-deps ./python
 "$venv/bin/python" -m pytest -q python/tests

@@ -270,7 +270,9 @@ class Model:
     def sympy(self) -> Dict[str, Any]:
         """The derived matrices as SymPy objects: ``mass_matrix``,
         ``constraint_matrix``, ``kinetic_energy``, ``potential_energy``, and
-        the reduced form's ``structure_matrix`` and ``hamiltonian``.
+        the reduced form's ``structure_matrix`` and ``hamiltonian`` where it
+        is derived exactly (not for a model as large as the bicycle, whose
+        reduced form is structured in the generated code).
         Coordinates and parameters are symbols of their own names, a
         velocity ``dot(q)`` is ``Symbol("dot_q")``."""
         return derived_expressions(self.document("json"))

@@ -17,9 +17,12 @@ def _names(document: Dict[str, Any]) -> List[str]:
 
 
 def derived_expressions(document_json: str) -> Dict[str, Any]:
-    """``mass_matrix``, ``constraint_matrix``, ``kinetic_energy``,
-    ``potential_energy``, ``structure_matrix`` and ``hamiltonian`` of a
-    derivation document (``Model.document("json")``), read into SymPy."""
+    """``mass_matrix``, ``constraint_matrix``, ``kinetic_energy`` and
+    ``potential_energy`` of a derivation document
+    (``Model.document("json")``), read into SymPy, and the reduced form's
+    ``structure_matrix`` and ``hamiltonian`` where it is derived exactly (a
+    model whose exact reduced form is too large, such as the bicycle, has
+    its reduced form structured in the generated code only)."""
     import sympy
 
     document = json.loads(document_json)
@@ -38,11 +41,13 @@ def derived_expressions(document_json: str) -> Dict[str, Any]:
     reduced = document["port_hamiltonian"]
     mass_matrix = matrix(lagrange["mass_matrix"])
     qdot = sympy.Matrix([symbols[f"dot_{q}"] for q in document["names"]["coordinates"]])
-    return {
+    derived = {
         "mass_matrix": mass_matrix,
         "constraint_matrix": matrix(lagrange["constraint_matrix"]),
         "kinetic_energy": sympy.expand((qdot.T * mass_matrix * qdot)[0, 0] / 2),
         "potential_energy": expression(lagrange["potential"]["text"]),
-        "structure_matrix": matrix(reduced["structure_matrix"]),
-        "hamiltonian": expression(reduced["hamiltonian"]["text"]),
     }
+    if "structure_matrix" in reduced:
+        derived["structure_matrix"] = matrix(reduced["structure_matrix"])
+        derived["hamiltonian"] = expression(reduced["hamiltonian"]["text"])
+    return derived

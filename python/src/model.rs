@@ -12,9 +12,10 @@ use chaplygin::driver::simulate::{self, Controller, FormulationChoice, Integrato
 use chaplygin::runtime::record::{Recorder, Table};
 use chaplygin::runtime::simulate::SimulationError;
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyRuntimeWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use std::ffi::CString;
 use std::io;
 
 /// A model read from its text (a built-in's or a `.model` file's), derived
@@ -30,6 +31,11 @@ impl Model {
     pub fn load(py: Python<'_>, source: Source, engine: EngineChoice) -> PyResult<Self> {
         let loaded =
             engine::load(&source, engine).map_err(|rejected| model_error(py, &rejected))?;
+        if let Some(error) = &loaded.fallback {
+            let warning = py.get_type::<PyRuntimeWarning>();
+            let message = CString::new(format!("{error}; running the interpreter"))?;
+            PyErr::warn(py, &warning, &message, 1)?;
+        }
         Ok(Self { loaded, source })
     }
 

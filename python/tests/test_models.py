@@ -145,6 +145,8 @@ def test_a_trajectory_has_named_columns_and_a_summary():
         "max_holonomic_residual", "chart_switches", "stopped",
     }
     assert numpy.array_equal(run["x"], run.data[:, run.columns.index("x")])
+    frame = run.to_pandas()
+    assert list(frame.columns) == run.columns and numpy.array_equal(frame["phi"], run["phi"])
     with pytest.raises(KeyError):
         run["nothing"]
     with pytest.raises(ValueError, match="unknown parameter `mass`"):

@@ -157,3 +157,38 @@ pub struct Summary<const D: usize> {
     /// ([`super::Simulation::stop_when`]); `None` for a run to the end.
     pub stopped: Option<String>,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::SimulationError;
+    use crate::integrate;
+
+    /// Each error with a time and a state gives them; the others say what
+    /// they lack.
+    #[test]
+    fn an_error_names_the_time_and_the_state_that_stopped_the_run() {
+        let singular = SimulationError::Singular {
+            t: 0.5,
+            rows: vec!["front".into(), "back".into()],
+            quantity: "det",
+            crossed: true,
+            value: 1e-9,
+            threshold: 1e-8,
+            state_names: vec!["x".into(), "phi".into()],
+            state: vec![0.25, 1.57],
+        };
+        assert_eq!(singular.time(), Some(0.5));
+        assert_eq!(singular.state(), Some(&[0.25, 1.57][..]));
+        let underflow = SimulationError::from(integrate::Error::StepSizeUnderflow {
+            t: 2.0,
+            h: 1e-15,
+            state: vec![3.0],
+        });
+        assert_eq!(underflow.time(), Some(2.0));
+        assert_eq!(underflow.state(), Some(&[3.0][..]));
+        let settings = SimulationError::Settings {
+            reason: "negative span".into(),
+        };
+        assert_eq!((settings.time(), settings.state()), (None, None));
+    }
+}
