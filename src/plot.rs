@@ -2,7 +2,7 @@
 //! writes them next to `trajectory.csv`.
 //!
 //! The input is a [`Table`] whose columns follow the CSV layout of
-//! INTERFACE.md section 3 (`t`, the coordinates, the rest of the state,
+//! docs/INTERFACE.md section 3 (`t`, the coordinates, the rest of the state,
 //! controller states, inputs, `energy`, `constraint_residual`); a
 //! [`PlotSpec`] names the columns each plot reads. [`write_plots`] writes:
 //!

@@ -3,7 +3,7 @@
 //! port-Hamiltonian form, the momentum equation with a symmetry, the
 //! report) as text, LaTeX or JSON, from `chaplygin_codegen::document`.
 //! For a model declared as a mechanism, each format also shows what the
-//! mechanism sections derived (INTERFACE.md section 4): the frames and
+//! mechanism sections derived (docs/INTERFACE.md section 4): the frames and
 //! points, the bodies' `T` and `V`, the rolling-contact rows of `A(q)` and
 //! the holonomic constraints `f(q)`; as a section before the constraint
 //! analysis in text and LaTeX, as the `mechanism` object in JSON:

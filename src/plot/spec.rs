@@ -134,7 +134,7 @@ pub struct PlotSpec {
 }
 
 impl Default for PlotSpec {
-    /// INTERFACE.md section 3's names: `t`; `x`, `y`, `theta`; `energy`;
+    /// docs/INTERFACE.md section 3's names: `t`; `x`, `y`, `theta`; `energy`;
     /// `constraint_residual`. No Figure 4, no units, 1024 x 768 pixels.
     fn default() -> Self {
         Self {

@@ -1,7 +1,7 @@
 //! The expressions of `--at NAME=EXPR`: numbers, names (the model's
 //! parameters, the sweep variable, `pi`), `+ - * /`, `^` (binding tighter
 //! than `*` and unary minus, right-associative), parentheses and the
-//! functions `sin cos tan sqrt exp ln` of the model language (INTERFACE.md
+//! functions `sin cos tan sqrt exp ln` of the model language (docs/INTERFACE.md
 //! section 1), evaluated on `f64`.
 
 use std::collections::BTreeMap;

@@ -1,4 +1,4 @@
-//! `--stop-when COND` (INTERFACE.md section 3): a run ends cleanly where
+//! `--stop-when COND` (docs/INTERFACE.md section 3): a run ends cleanly where
 //! COND first holds. COND is one comparison `EXPR < EXPR` or `EXPR > EXPR`
 //! of `t`, the coordinates, their velocities `dot(q)`, the inputs and the
 //! parameters ([`super::inputs`]: `'abs(phi) > 1'`). It holds where its
