@@ -14,11 +14,14 @@
 //!   laws) run to a table and a report;
 //! - [`linearize`]: operating points, linear systems, eigenvalue sweeps
 //!   with their intervals of stability, the canonical form;
+//! - [`expression`]: the expressions of input laws, stop conditions,
+//!   initial values and operating points, in the model language's syntax;
 //! - [`document`]: the derivation document as text, LaTeX or JSON.
 
 pub mod catalog;
 pub mod document;
 pub mod engine;
+pub mod expression;
 pub mod formulation;
 pub mod interpreted;
 pub mod linearize;

@@ -12,13 +12,12 @@
 //! ([`canonical`]).
 
 pub mod canonical;
-pub mod expression;
 pub mod sweep;
 
+use super::expression::{ExpressionError, constant};
 use crate::runtime::linearize::{
     self as runtime_linearize, Dynamics, LinearSystem, OperatingPoint, PointError, SteadyError,
 };
-use expression::{ExpressionError, evaluate};
 use std::collections::BTreeMap;
 use sweep::Interval;
 
@@ -38,9 +37,25 @@ pub enum LinearizeError {
         "--sweep: `{0}` is a parameter; sweep a new name and use it in --at or --param expressions"
     )]
     ParameterSwept(String),
-    /// An assignment's expression.
-    #[error("--at: {0}")]
-    Expression(#[from] ExpressionError),
+    /// An assignment's expression names what is neither a parameter nor
+    /// the sweep variable.
+    #[error("--at: `{text}`: unknown name `{name}` (known: {known})")]
+    UnknownExpressionName {
+        /// The expression.
+        text: String,
+        /// The name.
+        name: String,
+        /// The names there are.
+        known: String,
+    },
+    /// An assignment's expression does not read.
+    #[error("--at: `{text}`: {source}")]
+    Expression {
+        /// The expression.
+        text: String,
+        /// What is wrong with it.
+        source: ExpressionError,
+    },
     /// The operating point.
     #[error(transparent)]
     Point(#[from] PointError),
@@ -105,6 +120,28 @@ pub fn linearize_at(
         &u,
         independent,
     )?)
+}
+
+/// The value of the expression `text` of `names` (the parameters, the
+/// sweep variable) and `pi`.
+///
+/// # Errors
+/// An unknown name, or a text that is not a finite constant.
+pub fn evaluate(text: &str, names: &BTreeMap<String, f64>) -> Result<f64, LinearizeError> {
+    let bound: Vec<(&str, f64)> = names.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+    constant(text, &bound).map_err(|error| match error {
+        ExpressionError::UnknownName { name, .. } => LinearizeError::UnknownExpressionName {
+            text: text.to_string(),
+            name,
+            known: (names.keys().map(String::as_str).chain(["pi"]))
+                .collect::<Vec<_>>()
+                .join(", "),
+        },
+        source => LinearizeError::Expression {
+            text: text.to_string(),
+            source,
+        },
+    })
 }
 
 /// The linear systems of a sweep and where its motions are stable.

@@ -27,6 +27,7 @@ pub use stop::StopError;
 
 use super::catalog::{BuiltIn, Motion};
 use super::engine::Loaded;
+use super::expression::Scope;
 use super::formulation::{Formulation, Typed};
 use super::interpreted::{
     InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced, evaluated,
@@ -38,7 +39,7 @@ use crate::runtime::record::{Recorder, Table};
 use crate::runtime::system::Momenta;
 use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
 use chaplygin_codegen::interpret::{Fixed, InterpretedModel};
-use inputs::{InputSchedule, Scope};
+use inputs::InputSchedule;
 use run::Settings;
 use start::{Kinematics, Start, initial_state, initial_values, with_default_motion};
 use std::cell::RefCell;

@@ -15,8 +15,7 @@
 //! the rest divided by the value of the gravity parameter G (`g` unless
 //! given), all of the speed-independent stiffness taken as gravity's.
 
-use super::expression::{ExpressionError, evaluate};
-use super::{LinearizeError, linearize_at};
+use super::{LinearizeError, evaluate, linearize_at};
 use crate::runtime::linearize::{CanonicalError, CanonicalForm, Dynamics, point};
 use crate::runtime::nalgebra::DMatrix;
 use std::collections::BTreeMap;
@@ -175,7 +174,7 @@ fn gravity(parameters: &BTreeMap<String, f64>, name: &str) -> Result<f64, Canoni
 fn uses(text: &str, variable: &str, parameters: &BTreeMap<String, f64>) -> bool {
     matches!(
         evaluate(text, parameters),
-        Err(ExpressionError::UnknownName { name, .. }) if name == variable
+        Err(LinearizeError::UnknownExpressionName { name, .. }) if name == variable
     )
 }
 

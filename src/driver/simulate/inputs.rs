@@ -10,7 +10,7 @@
 //! (`dot(theta_r)=-5/rR`).
 
 use super::error::InputError;
-use chaplygin_codegen::syntax::{self, BinaryOperator, Expr, Value};
+use crate::driver::expression::{Expression, Point, Scope};
 
 /// Why an `--input` cannot be used.
 #[derive(Debug, thiserror::Error)]
@@ -29,175 +29,6 @@ pub enum InputLawError {
         /// What is wrong with it.
         reason: String,
     },
-}
-
-/// A function of the model language, or `abs`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum Function {
-    Sin,
-    Cos,
-    Tan,
-    Sqrt,
-    Exp,
-    Ln,
-    Abs,
-}
-
-impl Function {
-    fn named(name: &str) -> Option<Self> {
-        Some(match name {
-            "sin" => Self::Sin,
-            "cos" => Self::Cos,
-            "tan" => Self::Tan,
-            "sqrt" => Self::Sqrt,
-            "exp" => Self::Exp,
-            "ln" => Self::Ln,
-            "abs" => Self::Abs,
-            _ => return None,
-        })
-    }
-
-    fn at(self, x: f64) -> f64 {
-        match self {
-            Self::Sin => x.sin(),
-            Self::Cos => x.cos(),
-            Self::Tan => x.tan(),
-            Self::Sqrt => x.sqrt(),
-            Self::Exp => x.exp(),
-            Self::Ln => x.ln(),
-            Self::Abs => x.abs(),
-        }
-    }
-}
-
-/// What an expression may name besides `t`: the parameters, at their
-/// values; where the state is known, the coordinates (and their velocities
-/// `dot(q)`); where the inputs are known, the inputs.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Scope<'a> {
-    /// The parameters' names and values.
-    pub parameters: &'a [(&'a str, f64)],
-    /// The coordinates, in order.
-    pub coordinates: &'a [&'a str],
-    /// The inputs, in order.
-    pub inputs: &'a [&'a str],
-}
-
-impl Scope<'_> {
-    /// `name` is none of the names of the scope: what it could have been.
-    fn unknown(&self, name: &str) -> String {
-        let mut kinds = vec!["`t`", "a parameter"];
-        if !self.coordinates.is_empty() {
-            kinds.push("a coordinate");
-        }
-        if !self.inputs.is_empty() {
-            kinds.push("an input");
-        }
-        match kinds.as_slice() {
-            [first, last] => format!("`{name}` is neither {first} nor {last}"),
-            [rest @ .., last] => format!("`{name}` is not {} or {last}", rest.join(", ")),
-            [] => unreachable!("`t` and the parameters are always in scope"),
-        }
-    }
-}
-
-/// Where an expression is evaluated: the time, the configuration, its
-/// velocity and the inputs, each as long as its names in the [`Scope`]
-/// (empty where the scope has none).
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Point<'a> {
-    /// The time.
-    pub t: f64,
-    /// The coordinates.
-    pub q: &'a [f64],
-    /// Their velocities.
-    pub qdot: &'a [f64],
-    /// The inputs.
-    pub u: &'a [f64],
-}
-
-/// An expression resolved against a [`Scope`], the parameters' values
-/// substituted.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) enum Expression {
-    /// A number.
-    Number(f64),
-    /// The time `t`.
-    Time,
-    /// The coordinate of this index.
-    Coordinate(usize),
-    /// The velocity of the coordinate of this index.
-    Velocity(usize),
-    /// The input of this index.
-    Input(usize),
-    /// A function of an expression.
-    Call(Function, Box<Expression>),
-    /// `-operand`.
-    Negate(Box<Expression>),
-    /// `left operator right`.
-    Binary(BinaryOperator, Box<Expression>, Box<Expression>),
-}
-
-impl Expression {
-    /// `text` read by the model language's parser (as the value of a
-    /// section) and resolved against `scope`; the reason it is none, else.
-    pub(super) fn parse(text: &str, scope: &Scope<'_>) -> Result<Self, String> {
-        let model = syntax::parse_str(&format!("struct Input {{ input: {text} }}")).map_err(
-            |diagnostics| {
-                let messages: Vec<&str> = diagnostics.iter().map(|d| d.message.as_str()).collect();
-                messages.join("; ")
-            },
-        )?;
-        match model.sections.as_slice() {
-            [section] => match &section.value {
-                Value::Expr(expr) => resolve(expr, scope),
-                Value::List(_) => Err("a list where a scalar expression belongs".into()),
-            },
-            _ => Err("not one expression".into()),
-        }
-    }
-
-    /// Whether this expression or a part of it is `leaf`.
-    fn contains(&self, leaf: &impl Fn(&Expression) -> bool) -> bool {
-        leaf(self)
-            || match self {
-                Self::Call(_, operand) | Self::Negate(operand) => operand.contains(leaf),
-                Self::Binary(_, left, right) => left.contains(leaf) || right.contains(leaf),
-                _ => false,
-            }
-    }
-
-    fn reads_time(&self) -> bool {
-        self.contains(&|e| matches!(e, Self::Time))
-    }
-
-    /// Whether the expression reads the configuration or the velocity.
-    fn reads_state(&self) -> bool {
-        self.contains(&|e| matches!(e, Self::Coordinate(_) | Self::Velocity(_)))
-    }
-
-    /// The value at `point`.
-    pub(super) fn at(&self, point: &Point<'_>) -> f64 {
-        match self {
-            Self::Number(value) => *value,
-            Self::Time => point.t,
-            Self::Coordinate(i) => point.q[*i],
-            Self::Velocity(i) => point.qdot[*i],
-            Self::Input(i) => point.u[*i],
-            Self::Call(function, argument) => function.at(argument.at(point)),
-            Self::Negate(operand) => -operand.at(point),
-            Self::Binary(operator, left, right) => {
-                let (a, b) = (left.at(point), right.at(point));
-                match operator {
-                    BinaryOperator::Add => a + b,
-                    BinaryOperator::Subtract => a - b,
-                    BinaryOperator::Multiply => a * b,
-                    BinaryOperator::Divide => a / b,
-                    BinaryOperator::Power => a.powf(b),
-                }
-            }
-        }
-    }
 }
 
 /// The inputs `u(t, q, qdot)` of a run.
@@ -238,10 +69,10 @@ impl InputSchedule {
                 })
             })?;
             laws[i] =
-                Expression::parse(text, &scope).map_err(|reason| InputLawError::Expression {
+                Expression::parse(text, &scope).map_err(|error| InputLawError::Expression {
                     name: name.clone(),
                     text: text.clone(),
-                    reason,
+                    reason: error.to_string(),
                 })?;
         }
         Ok(Self { laws })
@@ -263,95 +94,10 @@ impl InputSchedule {
     }
 }
 
-/// The value of `text`, an expression of the parameters (name and value)
-/// in the model language; the reason it is none, else.
-pub fn constant(text: &str, parameters: &[(&str, f64)]) -> Result<f64, String> {
-    let scope = Scope {
-        parameters,
-        ..Scope::default()
-    };
-    let law = Expression::parse(text, &scope)?;
-    if law.reads_time() {
-        return Err("`t` is not known at the start: use numbers and parameters".into());
-    }
-    let value = law.at(&Point {
-        t: 0.0,
-        q: &[],
-        qdot: &[],
-        u: &[],
-    });
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(format!("the value {value} is not finite"))
-    }
-}
-
-/// The index of `name` in `names`.
-fn index(names: &[&str], name: &str) -> Option<usize> {
-    names.iter().position(|n| *n == name)
-}
-
-fn resolve(expr: &Expr, scope: &Scope<'_>) -> Result<Expression, String> {
-    let resolved = |e: &Expr| resolve(e, scope).map(Box::new);
-    Ok(match expr {
-        Expr::Number { literal, .. } => Expression::Number(
-            literal
-                .parse()
-                .map_err(|_| format!("`{literal}` is not a number"))?,
-        ),
-        Expr::Name(name) if name == "t" => Expression::Time,
-        Expr::Name(name) => {
-            let name = name.to_string();
-            if let Some((_, value)) = scope.parameters.iter().find(|(p, _)| *p == name) {
-                Expression::Number(*value)
-            } else if let Some(i) = index(scope.coordinates, &name) {
-                Expression::Coordinate(i)
-            } else if let Some(i) = index(scope.inputs, &name) {
-                Expression::Input(i)
-            } else {
-                return Err(scope.unknown(&name));
-            }
-        }
-        Expr::Call {
-            function,
-            arguments,
-            ..
-        } if function == "dot" => match arguments.as_slice() {
-            [Value::Expr(Expr::Name(name))] => index(scope.coordinates, &name.to_string())
-                .map(Expression::Velocity)
-                .ok_or_else(|| format!("`dot({name})`: `{name}` is not a coordinate"))?,
-            _ => return Err("`dot` takes one coordinate".into()),
-        },
-        Expr::Call {
-            function,
-            arguments,
-            ..
-        } => {
-            let known = Function::named(&function.to_string()).ok_or_else(|| {
-                format!("`{function}` is not one of sin, cos, tan, sqrt, exp, ln, abs")
-            })?;
-            match arguments.as_slice() {
-                [Value::Expr(argument)] => Expression::Call(known, resolved(argument)?),
-                _ => return Err(format!("`{function}` takes one scalar argument")),
-            }
-        }
-        Expr::Field { field, .. } => {
-            return Err(format!("a field `.{field}` is not a scalar of t"));
-        }
-        Expr::Negate { operand, .. } => Expression::Negate(resolved(operand)?),
-        Expr::Binary {
-            operator,
-            left,
-            right,
-            ..
-        } => Expression::Binary(*operator, resolved(left)?, resolved(right)?),
-    })
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{InputLawError, InputSchedule, constant};
+    use super::{InputLawError, InputSchedule};
+    use crate::driver::expression::constant;
 
     fn given(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
         pairs
@@ -399,16 +145,19 @@ mod tests {
         assert!(
             constant("2*t", &[])
                 .unwrap_err()
+                .to_string()
                 .contains("`t` is not known")
         );
         assert!(
             constant("1/rR", &[("rR", 0.0)])
                 .unwrap_err()
+                .to_string()
                 .contains("not finite")
         );
         assert!(
             constant("v", &[])
                 .unwrap_err()
+                .to_string()
                 .contains("`v` is neither `t` nor a parameter")
         );
     }

@@ -6,7 +6,7 @@
 //! [`InputError`] stated in one line.
 
 use super::error::InputError;
-use super::inputs::constant;
+use crate::driver::expression::constant;
 use crate::runtime::linearize::Dynamics;
 use crate::runtime::linearize::point::{configuration, solve_velocities, velocity_names};
 use crate::runtime::nalgebra::DMatrix;
@@ -40,10 +40,10 @@ pub(super) fn initial_values(
         .map(|(name, text)| {
             constant(text, parameters)
                 .map(|value| (name.clone(), value))
-                .map_err(|reason| InputError::InitialValue {
+                .map_err(|error| InputError::InitialValue {
                     name: name.clone(),
                     text: text.clone(),
-                    reason,
+                    reason: error.to_string(),
                 })
         })
         .collect()

@@ -7,7 +7,7 @@
 //! (`crate::runtime::simulate::stop`), read at a state through the
 //! formulation's configuration, velocity and inputs.
 
-use super::inputs::{Expression, Point, Scope};
+use crate::driver::expression::{Expression, Point, Scope};
 use crate::driver::formulation::Formulation;
 use crate::runtime::simulate::Stop;
 use std::cell::RefCell;
@@ -70,9 +70,9 @@ impl Comparison {
             }
         };
         let side = |side: &str| {
-            Expression::parse(side.trim(), scope).map_err(|reason| StopError::Side {
+            Expression::parse(side.trim(), scope).map_err(|error| StopError::Side {
                 text: text.into(),
-                reason,
+                reason: error.to_string(),
             })
         };
         let (left, right) = (side(&text[..i])?, side(&text[i + 1..])?);

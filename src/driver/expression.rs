@@ -1,0 +1,324 @@
+//! Expressions in the model language's syntax, evaluated on `f64`: its
+//! operators `+ - * / ^`, its functions `sin cos tan sqrt exp ln`, `abs`,
+//! and `pi`, of the names a [`Scope`] binds: the time `t`, the parameters
+//! (at their values), and where the state is known the coordinates `q`,
+//! their velocities `dot(q)` and the inputs. The command line's `--input`
+//! laws, `--stop-when` conditions, `--initial` values and `--at`
+//! operating points are read here (docs/INTERFACE.md sections 1, 3 and 5).
+
+use chaplygin_codegen::syntax::{self, BinaryOperator, Expr, Value};
+
+/// Why a text is not an expression of the names in scope.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ExpressionError {
+    /// A name the scope does not bind.
+    #[error("{reason}")]
+    UnknownName {
+        /// The name.
+        name: String,
+        /// What it could have been.
+        reason: String,
+    },
+    /// Not an expression, or one that misuses a function.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// A function of the model language, or `abs`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Function {
+    Sin,
+    Cos,
+    Tan,
+    Sqrt,
+    Exp,
+    Ln,
+    Abs,
+}
+
+impl Function {
+    fn named(name: &str) -> Option<Self> {
+        Some(match name {
+            "sin" => Self::Sin,
+            "cos" => Self::Cos,
+            "tan" => Self::Tan,
+            "sqrt" => Self::Sqrt,
+            "exp" => Self::Exp,
+            "ln" => Self::Ln,
+            "abs" => Self::Abs,
+            _ => return None,
+        })
+    }
+
+    fn at(self, x: f64) -> f64 {
+        match self {
+            Self::Sin => x.sin(),
+            Self::Cos => x.cos(),
+            Self::Tan => x.tan(),
+            Self::Sqrt => x.sqrt(),
+            Self::Exp => x.exp(),
+            Self::Ln => x.ln(),
+            Self::Abs => x.abs(),
+        }
+    }
+}
+
+/// What an expression may name besides `t`: the parameters, at their
+/// values; where the state is known, the coordinates (and their velocities
+/// `dot(q)`); where the inputs are known, the inputs.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Scope<'a> {
+    /// The parameters' names and values.
+    pub parameters: &'a [(&'a str, f64)],
+    /// The coordinates, in order.
+    pub coordinates: &'a [&'a str],
+    /// The inputs, in order.
+    pub inputs: &'a [&'a str],
+}
+
+impl Scope<'_> {
+    /// `name` is none of the names of the scope: what it could have been.
+    fn unknown(&self, name: &str) -> String {
+        let mut kinds = vec!["`t`", "a parameter"];
+        if !self.coordinates.is_empty() {
+            kinds.push("a coordinate");
+        }
+        if !self.inputs.is_empty() {
+            kinds.push("an input");
+        }
+        match kinds.as_slice() {
+            [first, last] => format!("`{name}` is neither {first} nor {last}"),
+            [rest @ .., last] => format!("`{name}` is not {} or {last}", rest.join(", ")),
+            [] => unreachable!("`t` and the parameters are always in scope"),
+        }
+    }
+}
+
+/// Where an expression is evaluated: the time, the configuration, its
+/// velocity and the inputs, each as long as its names in the [`Scope`]
+/// (empty where the scope has none).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Point<'a> {
+    /// The time.
+    pub t: f64,
+    /// The coordinates.
+    pub q: &'a [f64],
+    /// Their velocities.
+    pub qdot: &'a [f64],
+    /// The inputs.
+    pub u: &'a [f64],
+}
+
+/// An expression resolved against a [`Scope`], the parameters' values
+/// substituted.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Expression {
+    /// A number.
+    Number(f64),
+    /// The time `t`.
+    Time,
+    /// The coordinate of this index.
+    Coordinate(usize),
+    /// The velocity of the coordinate of this index.
+    Velocity(usize),
+    /// The input of this index.
+    Input(usize),
+    /// A function of an expression.
+    Call(Function, Box<Expression>),
+    /// `-operand`.
+    Negate(Box<Expression>),
+    /// `left operator right`.
+    Binary(BinaryOperator, Box<Expression>, Box<Expression>),
+}
+
+impl Expression {
+    /// `text` read by the model language's parser (as the value of a
+    /// section) and resolved against `scope`; the reason it is none, else.
+    pub(crate) fn parse(text: &str, scope: &Scope<'_>) -> Result<Self, ExpressionError> {
+        let model = syntax::parse_str(&format!("struct Input {{ input: {text} }}")).map_err(
+            |diagnostics| {
+                let messages: Vec<&str> = diagnostics.iter().map(|d| d.message.as_str()).collect();
+                invalid(messages.join("; "))
+            },
+        )?;
+        match model.sections.as_slice() {
+            [section] => match &section.value {
+                Value::Expr(expr) => resolve(expr, scope),
+                Value::List(_) => Err(invalid("a list where a scalar expression belongs")),
+            },
+            _ => Err(invalid("not one expression")),
+        }
+    }
+
+    /// Whether this expression or a part of it is `leaf`.
+    fn contains(&self, leaf: &impl Fn(&Expression) -> bool) -> bool {
+        leaf(self)
+            || match self {
+                Self::Call(_, operand) | Self::Negate(operand) => operand.contains(leaf),
+                Self::Binary(_, left, right) => left.contains(leaf) || right.contains(leaf),
+                _ => false,
+            }
+    }
+
+    pub(crate) fn reads_time(&self) -> bool {
+        self.contains(&|e| matches!(e, Self::Time))
+    }
+
+    /// Whether the expression reads the configuration or the velocity.
+    pub(crate) fn reads_state(&self) -> bool {
+        self.contains(&|e| matches!(e, Self::Coordinate(_) | Self::Velocity(_)))
+    }
+
+    /// The value at `point`.
+    pub(crate) fn at(&self, point: &Point<'_>) -> f64 {
+        match self {
+            Self::Number(value) => *value,
+            Self::Time => point.t,
+            Self::Coordinate(i) => point.q[*i],
+            Self::Velocity(i) => point.qdot[*i],
+            Self::Input(i) => point.u[*i],
+            Self::Call(function, argument) => function.at(argument.at(point)),
+            Self::Negate(operand) => -operand.at(point),
+            Self::Binary(operator, left, right) => {
+                let (a, b) = (left.at(point), right.at(point));
+                match operator {
+                    BinaryOperator::Add => a + b,
+                    BinaryOperator::Subtract => a - b,
+                    BinaryOperator::Multiply => a * b,
+                    BinaryOperator::Divide => a / b,
+                    BinaryOperator::Power => a.powf(b),
+                }
+            }
+        }
+    }
+}
+
+/// The value of `text`, an expression of the parameters (name and value)
+/// in the model language; the reason it is none, else.
+pub(crate) fn constant(text: &str, parameters: &[(&str, f64)]) -> Result<f64, ExpressionError> {
+    let scope = Scope {
+        parameters,
+        ..Scope::default()
+    };
+    let law = Expression::parse(text, &scope)?;
+    if law.reads_time() {
+        return Err(invalid(
+            "`t` is not known at the start: use numbers and parameters",
+        ));
+    }
+    let value = law.at(&Point {
+        t: 0.0,
+        q: &[],
+        qdot: &[],
+        u: &[],
+    });
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(invalid(format!("the value {value} is not finite")))
+    }
+}
+
+/// The index of `name` in `names`.
+fn index(names: &[&str], name: &str) -> Option<usize> {
+    names.iter().position(|n| *n == name)
+}
+
+fn resolve(expr: &Expr, scope: &Scope<'_>) -> Result<Expression, ExpressionError> {
+    let resolved = |e: &Expr| resolve(e, scope).map(Box::new);
+    Ok(match expr {
+        Expr::Number { literal, .. } => Expression::Number(
+            literal
+                .parse()
+                .map_err(|_| invalid(format!("`{literal}` is not a number")))?,
+        ),
+        Expr::Name(name) if name == "t" => Expression::Time,
+        Expr::Name(name) => {
+            let name = name.to_string();
+            if let Some((_, value)) = scope.parameters.iter().find(|(p, _)| *p == name) {
+                Expression::Number(*value)
+            } else if let Some(i) = index(scope.coordinates, &name) {
+                Expression::Coordinate(i)
+            } else if let Some(i) = index(scope.inputs, &name) {
+                Expression::Input(i)
+            } else if name == "pi" {
+                Expression::Number(std::f64::consts::PI)
+            } else {
+                let reason = scope.unknown(&name);
+                return Err(ExpressionError::UnknownName { name, reason });
+            }
+        }
+        Expr::Call {
+            function,
+            arguments,
+            ..
+        } if function == "dot" => match arguments.as_slice() {
+            [Value::Expr(Expr::Name(name))] => index(scope.coordinates, &name.to_string())
+                .map(Expression::Velocity)
+                .ok_or_else(|| invalid(format!("`dot({name})`: `{name}` is not a coordinate")))?,
+            _ => return Err(invalid("`dot` takes one coordinate")),
+        },
+        Expr::Call {
+            function,
+            arguments,
+            ..
+        } => {
+            let known = Function::named(&function.to_string()).ok_or_else(|| {
+                invalid(format!(
+                    "`{function}` is not one of sin, cos, tan, sqrt, exp, ln, abs"
+                ))
+            })?;
+            match arguments.as_slice() {
+                [Value::Expr(argument)] => Expression::Call(known, resolved(argument)?),
+                _ => return Err(invalid(format!("`{function}` takes one scalar argument"))),
+            }
+        }
+        Expr::Field { field, .. } => {
+            return Err(invalid(format!("a field `.{field}` is not a scalar of t")));
+        }
+        Expr::Negate { operand, .. } => Expression::Negate(resolved(operand)?),
+        Expr::Binary {
+            operator,
+            left,
+            right,
+            ..
+        } => Expression::Binary(*operator, resolved(left)?, resolved(right)?),
+    })
+}
+
+/// An [`ExpressionError::Invalid`].
+fn invalid(reason: impl Into<String>) -> ExpressionError {
+    ExpressionError::Invalid(reason.into())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ExpressionError, constant};
+
+    const NAMES: [(&str, f64); 2] = [("v", 2.0), ("rR", 0.5)];
+
+    #[test]
+    fn precedence_follows_the_model_language() {
+        let value = |text| constant(text, &NAMES).expect("evaluates");
+        assert_eq!(value("-v/rR"), -4.0);
+        assert_eq!(value("2^3^2"), 512.0);
+        assert_eq!(value("-2^2"), -4.0);
+        assert_eq!(value("1 + 2*3 - (4 - 1)/3"), 6.0);
+        assert_eq!(value("1.5e1 + 2E-1"), 15.2);
+        assert_eq!(value("cos(pi) + sqrt(v*v)"), 1.0);
+        assert_eq!(value("abs(-rR)"), 0.5);
+    }
+
+    #[test]
+    fn mistakes_are_named() {
+        assert!(matches!(
+            constant("w + 1", &NAMES),
+            Err(ExpressionError::UnknownName { name, .. }) if name == "w"
+        ));
+        let invalid = |text| matches!(constant(text, &NAMES), Err(ExpressionError::Invalid(_)));
+        assert!(invalid("(1 + 2"));
+        assert!(invalid("1/0"));
+        assert!(invalid("sinh(1)"));
+        assert!(invalid("t + 1"));
+    }
+}
