@@ -12,6 +12,8 @@
 //! - [`simulate`]: a [`simulate::Request`] (formulation, integrator,
 //!   controller, span, stop condition, parameters, initial values, input
 //!   laws) run to a table and a report;
+//! - [`gait`]: the motion a prescribed periodic shape trajectory makes,
+//!   cycle by cycle;
 //! - [`linearize`]: operating points, linear systems, eigenvalue sweeps
 //!   with their intervals of stability, the canonical form;
 //! - [`expression`]: the expressions of input laws, stop conditions,
@@ -23,6 +25,7 @@ pub mod document;
 pub mod engine;
 pub mod expression;
 pub mod formulation;
+pub mod gait;
 pub mod interpreted;
 pub mod linearize;
 pub mod simulate;

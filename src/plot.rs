@@ -23,7 +23,8 @@
 //!
 //! And for `chaplygin linearize --sweep`, [`write_eigenvalue_plot`] writes
 //! `eigenvalues.png`: the real and imaginary parts of the eigenvalues
-//! against the swept variable.
+//! against the swept variable; for `chaplygin gait`, [`write_path_plot`]
+//! the planar path alone.
 //!
 //! Non-finite samples (a diverged run) break the curves instead of being
 //! drawn. Text uses DejaVu Sans (Bitstream Vera license, shipped in
@@ -93,6 +94,30 @@ pub fn write_plots(table: &Table, spec: &PlotSpec, dir: &Path) -> Result<Vec<Pat
         written.push(file);
     }
     Ok(written)
+}
+
+/// Writes the planar path of `table` (columns `x`, `y` and, if present,
+/// the heading `theta`) to `file`, as `path.png` is drawn.
+///
+/// # Errors
+/// A missing `x` or `y` column, an empty table, or an I/O error.
+pub fn write_path_plot(table: &Table, file: &Path) -> Result<(), PlotError> {
+    let spec = PlotSpec {
+        energy: None,
+        constraint_residual: None,
+        ..PlotSpec::for_table(table)
+    };
+    let missing = |name: &str| PlotError::MissingColumn {
+        name: name.to_string(),
+        available: table.columns().to_vec(),
+    };
+    let planar = spec
+        .path
+        .clone()
+        .ok_or_else(|| missing(if table.has_column("x") { "y" } else { "x" }))?;
+    let columns = named_columns(table, &spec)?;
+    register_font()?;
+    path::draw(file, &spec, &planar, &columns)
 }
 
 /// The values of every column the spec names, each with a finite value.

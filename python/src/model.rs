@@ -8,7 +8,9 @@ use crate::rhs::Rhs;
 use chaplygin::driver::catalog::Source;
 use chaplygin::driver::document::{self, Format};
 use chaplygin::driver::engine::{self, EngineChoice, Loaded};
-use chaplygin::driver::simulate::{self, Controller, FormulationChoice, Integrator, Request};
+use chaplygin::driver::simulate::{
+    self, Controller, FormulationChoice, Integrator, Request, with_parameters,
+};
 use chaplygin::runtime::record::{Recorder, Table};
 use chaplygin::runtime::simulate::SimulationError;
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1};
@@ -280,11 +282,8 @@ impl Model {
         sweep: Option<(String, PyReadonlyArray1<'py, f64>)>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let mut model = self.fresh().model;
-        for (name, value) in numbers(params)? {
-            model
-                .set_parameter(&name, value)
-                .map_err(|error| PyValueError::new_err(error.to_string()))?;
-        }
+        with_parameters(&mut model, &numbers(params)?)
+            .map_err(|error| PyValueError::new_err(error.to_string()))?;
         let at = assignments(at)?;
         match sweep {
             None => linearization::at_point(py, &model, &at),

@@ -19,6 +19,8 @@
 //!   values to and from the generated code's arrays;
 //! - [`linearize`]: operating points, the steady-motion check and the
 //!   linear system about a steady motion with its eigenvalues;
+//! - [`gait`]: the motion a prescribed periodic shape trajectory makes,
+//!   cycle by cycle, at sizes known at run time;
 //! - [`phase`]: the group displacement over one period of a shape gait, split
 //!   into its geometric and dynamic parts.
 
@@ -26,6 +28,7 @@
 
 pub mod arrays;
 pub mod control;
+pub mod gait;
 pub mod integrate;
 pub mod law;
 pub mod linalg;

@@ -110,6 +110,13 @@ impl CsvRecorder<io::BufWriter<std::fs::File>> {
     }
 }
 
+/// `value` as [`CsvRecorder`] writes it (see [`write_number`]).
+pub fn shortest_decimal(value: f64) -> String {
+    let mut text = String::new();
+    write_number(&mut text, value).expect("writing to a String does not fail");
+    text
+}
+
 /// The shortest decimal that reads back to `value`: positional for
 /// magnitudes from `1e-5` to below `1e16` (and zero), scientific otherwise.
 fn write_number(field: &mut String, value: f64) -> std::fmt::Result {

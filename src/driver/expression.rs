@@ -50,6 +50,19 @@ impl Function {
         })
     }
 
+    /// The derivative at `x`.
+    fn slope(self, x: f64) -> f64 {
+        match self {
+            Self::Sin => x.cos(),
+            Self::Cos => -x.sin(),
+            Self::Tan => 1.0 / x.cos().powi(2),
+            Self::Sqrt => 0.5 / x.sqrt(),
+            Self::Exp => x.exp(),
+            Self::Ln => 1.0 / x,
+            Self::Abs => x.signum(),
+        }
+    }
+
     fn at(self, x: f64) -> f64 {
         match self {
             Self::Sin => x.sin(),
@@ -59,6 +72,26 @@ impl Function {
             Self::Exp => x.exp(),
             Self::Ln => x.ln(),
             Self::Abs => x.abs(),
+        }
+    }
+}
+
+/// `a op b` and its derivative from those of `a` and `b`.
+fn binary_rate(operator: BinaryOperator, (a, da): (f64, f64), (b, db): (f64, f64)) -> (f64, f64) {
+    match operator {
+        BinaryOperator::Add => (a + b, da + db),
+        BinaryOperator::Subtract => (a - b, da - db),
+        BinaryOperator::Multiply => (a * b, da * b + a * db),
+        BinaryOperator::Divide => (a / b, (da * b - a * db) / (b * b)),
+        BinaryOperator::Power => {
+            let value = a.powf(b);
+            let by_base = if da == 0.0 {
+                0.0
+            } else {
+                b * a.powf(b - 1.0) * da
+            };
+            let by_exponent = if db == 0.0 { 0.0 } else { value * a.ln() * db };
+            (value, by_base + by_exponent)
         }
     }
 }
@@ -167,6 +200,28 @@ impl Expression {
     /// Whether the expression reads the configuration or the velocity.
     pub(crate) fn reads_state(&self) -> bool {
         self.contains(&|e| matches!(e, Self::Coordinate(_) | Self::Velocity(_)))
+    }
+
+    /// The value and its time derivative at `t`, for an expression of `t`
+    /// and the parameters alone (forward differentiation, exact to
+    /// round-off); the state and the inputs read as constants.
+    pub(crate) fn rate(&self, t: f64) -> (f64, f64) {
+        match self {
+            Self::Number(value) => (*value, 0.0),
+            Self::Time => (t, 1.0),
+            Self::Coordinate(_) | Self::Velocity(_) | Self::Input(_) => (f64::NAN, 0.0),
+            Self::Call(function, argument) => {
+                let (x, dx) = argument.rate(t);
+                (function.at(x), function.slope(x) * dx)
+            }
+            Self::Negate(operand) => {
+                let (x, dx) = operand.rate(t);
+                (-x, -dx)
+            }
+            Self::Binary(operator, left, right) => {
+                binary_rate(*operator, left.rate(t), right.rate(t))
+            }
+        }
     }
 
     /// The value at `point`.
@@ -293,7 +348,7 @@ fn invalid(reason: impl Into<String>) -> ExpressionError {
 
 #[cfg(test)]
 mod tests {
-    use super::{ExpressionError, constant};
+    use super::{Expression, ExpressionError, Scope, constant};
 
     const NAMES: [(&str, f64); 2] = [("v", 2.0), ("rR", 0.5)];
 
@@ -307,6 +362,25 @@ mod tests {
         assert_eq!(value("1.5e1 + 2E-1"), 15.2);
         assert_eq!(value("cos(pi) + sqrt(v*v)"), 1.0);
         assert_eq!(value("abs(-rR)"), 0.5);
+    }
+
+    /// The time derivative against the closed form.
+    #[test]
+    fn the_rate_is_the_time_derivative() {
+        let scope = Scope {
+            parameters: &NAMES,
+            ..Scope::default()
+        };
+        let rate = |text| Expression::parse(text, &scope).expect("parses").rate(0.7);
+        let (value, slope) = rate("v*sin(2*t) + t^3/rR - sqrt(exp(t))");
+        let t: f64 = 0.7;
+        assert!(
+            (value - (2.0 * (2.0 * t).sin() + t.powi(3) / 0.5 - (t / 2.0).exp())).abs() < 1e-15
+        );
+        let exact = 4.0 * (2.0 * t).cos() + 3.0 * t * t / 0.5 - 0.5 * (t / 2.0).exp();
+        assert!((slope - exact).abs() < 1e-14, "{slope} vs {exact}");
+        assert_eq!(rate("2^t").1, 2f64.powf(t) * 2f64.ln());
+        assert_eq!(rate("-cos(t)/tan(v)").1, t.sin() / 2f64.tan());
     }
 
     #[test]

@@ -20,9 +20,11 @@ mod stop;
 
 pub use error::InputError;
 pub use inputs::InputLawError;
-pub use request::{Controller, FormulationChoice, Integrator, Request, assignment};
+pub use request::{
+    Controller, FormulationChoice, Integrator, Request, assignment, expression_assignment,
+};
 pub use run::Report;
-pub use start::set_parameters;
+pub use start::{set_parameters, with_parameters};
 pub use stop::StopError;
 
 use super::catalog::{BuiltIn, Motion};
@@ -133,16 +135,9 @@ pub fn prepare(loaded: Loaded, request: &Request) -> Result<Prepared, Box<dyn Er
         built_in,
         ..
     } = loaded;
+    let values = with_parameters(&mut model, &request.params)?;
     let names = model.names().clone();
-    let known: Vec<&str> = names.parameters.iter().map(String::as_str).collect();
-    set_parameters(&known, &request.params, &mut |name, value| {
-        model.set_parameter(name, value).is_ok()
-    })?;
-    let parameters: Vec<(&str, f64)> = known
-        .iter()
-        .copied()
-        .zip(model.parameter_values().iter().copied())
-        .collect();
+    let parameters = borrowed(&values);
     let coordinates: Vec<&str> = names.coordinates.iter().map(String::as_str).collect();
     let start = start_of(&model, built_in, &request.initial, &parameters, &mut [])?;
     let input_names: Vec<&str> = names.inputs.iter().map(String::as_str).collect();
@@ -160,11 +155,19 @@ pub fn prepare(loaded: Loaded, request: &Request) -> Result<Prepared, Box<dyn Er
     Ok(Prepared {
         formulation,
         x0,
-        parameters: owned(&parameters),
+        parameters: values,
         fixed_inputs,
         model,
         built_in,
     })
+}
+
+/// `(name, value)` pairs borrowing their names.
+pub(crate) fn borrowed(pairs: &[(String, f64)]) -> Vec<(&str, f64)> {
+    pairs
+        .iter()
+        .map(|(name, value)| (name.as_str(), *value))
+        .collect()
 }
 
 /// `(name, value)` pairs owning their names.
@@ -225,10 +228,13 @@ impl Prepared {
     /// constraints do not determine, or a velocity the formulation cannot
     /// represent.
     pub fn initial_state(&self, given: &[(String, String)]) -> Result<Vec<f64>, Box<dyn Error>> {
-        let parameters: Vec<(&str, f64)> = (self.parameters.iter())
-            .map(|(name, value)| (name.as_str(), *value))
-            .collect();
-        let start = start_of(&self.model, self.built_in, given, &parameters, &mut [])?;
+        let start = start_of(
+            &self.model,
+            self.built_in,
+            given,
+            &borrowed(&self.parameters),
+            &mut [],
+        )?;
         self.formulation.state_of(&start.q, &start.qdot)
     }
 

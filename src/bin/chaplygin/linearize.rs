@@ -14,7 +14,7 @@ use crate::model_args::{ModelArgs, loaded};
 use chaplygin::driver::linearize::canonical::{self, CanonicalSpeed};
 use chaplygin::driver::linearize::sweep::{self, Interval, Sweep};
 use chaplygin::driver::linearize::{LinearizeError, SweepAnalysis, linearize_at};
-use chaplygin::driver::simulate::{assignment, set_parameters};
+use chaplygin::driver::simulate::{assignment, expression_assignment, with_parameters};
 use chaplygin::plot::{EigenvalueSweep, write_eigenvalue_plot};
 use chaplygin::runtime::linearize::{Dynamics, LinearSystem};
 use std::collections::BTreeMap;
@@ -30,7 +30,7 @@ pub struct LinearizeArgs {
     /// A coordinate (`phi=0`) or a velocity (`dot(theta)=-v/r`) of the
     /// operating point; EXPR may use the parameters, the sweep variable and
     /// the `--canonical-speed` variable.
-    #[arg(long = "at", value_name = "NAME=EXPR", value_parser = at)]
+    #[arg(long = "at", value_name = "NAME=EXPR", value_parser = expression_assignment)]
     pub at: Vec<(String, String)>,
     /// Sweep VAR from START to STOP (included when on the grid) by STEP.
     #[arg(long, value_parser = sweep::parse)]
@@ -67,31 +67,14 @@ pub struct LinearizeArgs {
     pub canonical_gravity: String,
 }
 
-/// `NAME=EXPR`.
-fn at(text: &str) -> Result<(String, String), String> {
-    let (name, expression) = text
-        .split_once('=')
-        .ok_or_else(|| format!("expected NAME=EXPR, found `{text}`"))?;
-    Ok((name.trim().to_string(), expression.trim().to_string()))
-}
-
 /// Runs `chaplygin linearize`.
 ///
 /// # Errors
 /// Bad input, a point that is not a steady motion, an I/O error.
 pub fn run(args: &LinearizeArgs) -> Result<(), Box<dyn Error>> {
     let mut model = loaded(&args.model)?.model;
-    let known = model.names().parameters.clone();
-    let known: Vec<&str> = known.iter().map(String::as_str).collect();
-    set_parameters(&known, &args.params, &mut |name, value| {
-        model.set_parameter(name, value).is_ok()
-    })?;
-    let parameters = known
-        .iter()
-        .zip(model.parameter_values())
-        .map(|(name, value)| (name.to_string(), *value))
-        .collect();
-    analyse(&model, parameters, args)
+    let parameters = with_parameters(&mut model, &args.params)?;
+    analyse(&model, parameters.into_iter().collect(), args)
 }
 
 /// Linearizes at one point, or over the sweep.

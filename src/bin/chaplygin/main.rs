@@ -11,6 +11,8 @@
 //! chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
 //!                           [--param NAME=VALUE]... [--engine jit|interpret] [--out DIR]
 //!                           [--canonical Q1,Q2,... --canonical-speed VAR[=V1,V2] [--canonical-gravity NAME]]
+//! chaplygin gait MODEL --shape A,B,... --cycle NAME=EXPR... --period T [--cycles N] [--steps S]
+//!                      [--param NAME=VALUE]... [--initial pI=VALUE]... [--engine jit|interpret] [--out DIR]
 //! ```
 //!
 //! MODEL is a built-in model's name or the path of a `.model` file. Either
@@ -24,9 +26,11 @@
 //! on standard error and a non-zero exit status (a malformed command line
 //! gets clap's usage message).
 
+mod gait;
 mod linearize;
 mod model_args;
 mod options;
+mod output;
 mod simulate;
 
 use clap::Parser;

@@ -1,6 +1,7 @@
 //! The command line: its commands, and what each does with its arguments
 //! (those of `simulate` and `linearize` are defined with them).
 
+use crate::gait::{self, GaitArgs};
 use crate::linearize::{self, LinearizeArgs};
 use crate::simulate::{self, SimulateArgs};
 use chaplygin::driver::catalog::{self, lookup};
@@ -34,6 +35,9 @@ enum Action {
     /// `--sweep`, write `eigenvalues.csv` and `eigenvalues.png`; with
     /// `--canonical`, print the canonical form M, C1, K0, K2.
     Linearize(Box<LinearizeArgs>),
+    /// The net displacement per cycle of a prescribed periodic shape
+    /// trajectory, writing `cycle.csv` and `gait_path.png`.
+    Gait(Box<GaitArgs>),
 }
 
 impl Command {
@@ -49,6 +53,7 @@ impl Command {
             }
             Action::Simulate(args) => simulate::run(&args),
             Action::Linearize(args) => linearize::run(&args),
+            Action::Gait(args) => gait::run(&args),
         }
     }
 }

@@ -8,6 +8,7 @@
 //! prints the summary, where and why the run stopped.
 
 use crate::model_args::{ModelArgs, loaded};
+use crate::output::write_table;
 use chaplygin::driver::simulate::{self, Controller, Finished, Request};
 use chaplygin::plot;
 use chaplygin::runtime::record::{CsvRecorder, Recorder, Table};
@@ -124,16 +125,6 @@ impl Recorder for CsvOnStart {
     fn finish(&mut self) -> io::Result<()> {
         self.file.as_mut().map_or(Ok(()), Recorder::finish)
     }
-}
-
-/// Writes `table` as CSV at `path`.
-fn write_table(table: &Table, path: &Path) -> io::Result<()> {
-    let mut csv = CsvRecorder::create(path)?;
-    csv.start(&table.columns)?;
-    for row in &table.rows {
-        csv.record(row)?;
-    }
-    csv.finish()
 }
 
 /// The plots of what was recorded (`chaplygin::plot`), with the points'

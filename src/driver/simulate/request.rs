@@ -43,7 +43,7 @@ pub struct Request {
     /// the model's parameters (`dot(theta_r)=-5/rR`). When a velocity is
     /// given, those not given are solved from the constraints (an error
     /// names any left free); otherwise the model's default motion is used.
-    #[cfg_attr(feature = "cli", arg(long = "initial", value_parser = input_assignment))]
+    #[cfg_attr(feature = "cli", arg(long = "initial", value_parser = expression_assignment))]
     pub initial: Vec<(String, String)>,
     /// An input `NAME=EXPRESSION` with `--controller none` (repeatable): a
     /// constant (`u1=0.1`) or an expression in the model language of the
@@ -51,7 +51,7 @@ pub struct Request {
     /// coordinates and velocities `dot(q)`, for a feedback law
     /// (`steer_torque=-10*phi-2*dot(phi)`); functions sin cos tan sqrt exp
     /// ln abs.
-    #[cfg_attr(feature = "cli", arg(long = "input", value_parser = input_assignment))]
+    #[cfg_attr(feature = "cli", arg(long = "input", value_parser = expression_assignment))]
     pub inputs: Vec<(String, String)>,
 }
 
@@ -151,8 +151,7 @@ impl Integrator {
 }
 
 /// `NAME=EXPRESSION`, the expression read later against the model.
-#[cfg(feature = "cli")]
-fn input_assignment(text: &str) -> Result<(String, String), String> {
+pub fn expression_assignment(text: &str) -> Result<(String, String), String> {
     let (name, value) = text
         .split_once('=')
         .ok_or_else(|| format!("expected NAME=EXPRESSION, found `{text}`"))?;

@@ -10,6 +10,7 @@ use crate::driver::expression::constant;
 use crate::runtime::linearize::Dynamics;
 use crate::runtime::linearize::point::{configuration, solve_velocities, velocity_names};
 use crate::runtime::nalgebra::DMatrix;
+use chaplygin_codegen::interpret::InterpretedModel;
 
 /// Sets `--param` values with `set`, which says whether the name was a
 /// parameter; `known` lists them for the error.
@@ -27,6 +28,26 @@ pub fn set_parameters(
         }
     }
     Ok(())
+}
+
+/// Sets the `given` parameter values on `model`; returns every
+/// parameter's name and value.
+///
+/// # Errors
+/// A name that is no parameter of the model.
+pub fn with_parameters(
+    model: &mut InterpretedModel,
+    given: &[(String, f64)],
+) -> Result<Vec<(String, f64)>, InputError> {
+    let known = model.names().parameters.clone();
+    let names: Vec<&str> = known.iter().map(String::as_str).collect();
+    set_parameters(&names, given, &mut |name, value| {
+        model.set_parameter(name, value).is_ok()
+    })?;
+    Ok(known
+        .into_iter()
+        .zip(model.parameter_values().iter().copied())
+        .collect())
 }
 
 /// The `--initial` assignments with their values, expressions of the

@@ -1,0 +1,137 @@
+//! `chaplygin gait`: the net displacement per cycle of a prescribed shape
+//! loop against the snakeboard's hand-derived momentum equation and
+//! reconstruction (MATH.md section 4.1), integrated here independently;
+//! the cycle's CSV and path plot; the models a gait cannot move.
+
+mod support;
+
+use std::f64::consts::PI;
+use support::{chaplygin, read_csv};
+
+/// The snakeboard's gait `psi = 0.8 sin t`, `phi = 0.5 cos t` from rest by
+/// MATH.md 4.1 (m = 1, r = 0.5, Jt = 0.3): with
+/// `Delta = m r^2 + Jt sin^2 phi`,
+/// `pdot = (m r Jt cos phi / Delta) psidot phidot + (Jt sin phi cos phi / Delta) phidot p`,
+/// `v1 = r cos phi (r p - Jt sin phi psidot) / Delta`, `v2 = 0`,
+/// `omega = v1 tan phi / r`, and `(x, y, theta)' = (cos theta v1, sin theta v1, omega)`;
+/// RK4 with `steps` steps over one period. Returns `(x, y, theta)`.
+fn hand_derived_cycle(steps: usize) -> [f64; 3] {
+    let (m, r, jt) = (1.0, 0.5, 0.3);
+    let rate = |t: f64, s: [f64; 4]| {
+        let (phi, psidot, phidot) = (0.5 * t.cos(), 0.8 * t.cos(), -0.5 * t.sin());
+        let delta = m * r * r + jt * phi.sin().powi(2);
+        let p = s[3];
+        let pdot = m * r * jt * phi.cos() / delta * psidot * phidot
+            + jt * phi.sin() * phi.cos() / delta * phidot * p;
+        let v1 = r * phi.cos() * (r * p - jt * phi.sin() * psidot) / delta;
+        let omega = v1 * phi.tan() / r;
+        [s[2].cos() * v1, s[2].sin() * v1, omega, pdot]
+    };
+    let h = 2.0 * PI / steps as f64;
+    let mut s = [0.0; 4];
+    let add = |a: [f64; 4], b: [f64; 4], h: f64| core::array::from_fn(|i| a[i] + h * b[i]);
+    for k in 0..steps {
+        let t = k as f64 * h;
+        let k1 = rate(t, s);
+        let k2 = rate(t + h / 2.0, add(s, k1, h / 2.0));
+        let k3 = rate(t + h / 2.0, add(s, k2, h / 2.0));
+        let k4 = rate(t + h, add(s, k3, h));
+        s = core::array::from_fn(|i| s[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+    }
+    [s[0], s[1], s[2]]
+}
+
+/// The numbers of the line `net displacement per cycle: x = X, y = Y, theta = TH`.
+fn displacement(stdout: &str) -> [f64; 3] {
+    let line = stdout
+        .lines()
+        .find_map(|line| line.strip_prefix("net displacement per cycle: "))
+        .unwrap_or_else(|| panic!("no displacement line in {stdout}"));
+    let values: Vec<f64> = line
+        .split(", ")
+        .map(|part| part.split(" = ").nth(1).unwrap().parse().unwrap())
+        .collect();
+    [values[0], values[1], values[2]]
+}
+
+#[test]
+fn the_snakeboards_cycle_moves_it_as_the_hand_derived_equations_do() {
+    let out = std::env::temp_dir().join(format!("chaplygin-gait-{}", std::process::id()));
+    let period = format!("{}", 2.0 * PI);
+    let output = chaplygin(&[
+        "gait",
+        "snakeboard",
+        "--shape",
+        "psi,phi",
+        "--cycle",
+        "psi=0.8*sin(t)",
+        "--cycle",
+        "phi=0.5*cos(t)",
+        "--period",
+        &period,
+        "--cycles",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let moved = displacement(&stdout);
+    let expected = hand_derived_cycle(20_000);
+    assert!(
+        expected[0].abs() > 0.5,
+        "the gait moves the board: {expected:?}"
+    );
+    for (ours, theirs) in moved.iter().zip(&expected) {
+        assert!((ours - theirs).abs() < 1e-8, "{moved:?} vs {expected:?}");
+    }
+    // From rest the board ends the cycle at rest: the second cycle repeats
+    // the first in its own frame.
+    assert!(stdout.contains("cycle 2: x = -0.80702920679"), "{stdout}");
+    let (header, rows) = read_csv(&out.join("cycle.csv"));
+    assert_eq!(header, ["t", "x", "y", "theta", "psi", "phi", "p1"]);
+    assert_eq!(rows.len(), 2 * 2000 + 1);
+    let last = rows.last().unwrap();
+    assert!((last[0] - 4.0 * PI).abs() < 1e-12 && (last[5] - 0.5).abs() < 1e-12);
+    assert!(std::fs::metadata(out.join("gait_path.png")).unwrap().len() > 10_000);
+}
+
+#[test]
+fn a_gait_needs_a_shape_that_determines_the_motion() {
+    let refused = |arguments: &[&str], says: &str| {
+        let output = chaplygin(arguments);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            !output.status.success() && stderr.contains(says),
+            "{stderr}"
+        );
+    };
+    let gait = |model: &'static str, shape: &'static str, law: &'static str| {
+        vec![
+            "gait", model, "--shape", shape, "--cycle", law, "--period", "1",
+        ]
+    };
+    refused(&gait("sleigh", "a", "a=t"), "there is no shape for a gait");
+    refused(
+        &gait("rolling-disk-3d", "phi", "phi=0.1*sin(t)"),
+        "the inputs enter the momentum equation",
+    );
+    refused(
+        &gait("snakeboard", "psi", "psi=sin(t)"),
+        "no law for phi (the shape coordinates of `snakeboard.model`: psi, phi)",
+    );
+    let mut unknown_name = gait("snakeboard", "psi,phi", "psi=sin(x)");
+    unknown_name.extend(["--cycle", "phi=0"]);
+    refused(
+        &unknown_name,
+        "--cycle psi=sin(x): `x` is neither `t` nor a parameter",
+    );
+    refused(
+        &gait("snakeboard", "psi,phi", "psi=0"),
+        "--shape names psi, phi but --cycle gives laws for psi",
+    );
+}
