@@ -30,6 +30,7 @@ from ._sympy import derived_expressions
 
 __all__ = [
     "ChaplyginError",
+    "Gait",
     "Linearization",
     "Model",
     "ModelError",
@@ -145,6 +146,20 @@ class Linearization:
         )
 
 
+class Gait:
+    """What a prescribed shape loop does: ``displacements`` (``(cycles,
+    3)``, each cycle's net ``(x, y, theta)`` in the body frame at its
+    start) and ``trajectory`` (``t``, the coordinates, the momenta
+    ``p1..pK``)."""
+
+    def __init__(self, displacements: numpy.ndarray, trajectory: Trajectory) -> None:
+        self.displacements = displacements
+        self.trajectory = trajectory
+
+    def __repr__(self) -> str:
+        return f"Gait({len(self.displacements)} cycles, first {self.displacements[0]})"
+
+
 class Model:
     """A model read from its text, derived exactly, its functions compiled.
 
@@ -239,6 +254,27 @@ class Model:
             variable, values = sweep
             sweep = (str(variable), numpy.ascontiguousarray(values, dtype=float))
         return Linearization(self._native.linearize(_dict(at), _dict(params), sweep))
+
+    def gait(
+        self,
+        cycle: Mapping[str, Value],
+        period: float,
+        cycles: int = 1,
+        steps: int = 2000,
+        params: Optional[Mapping[str, float]] = None,
+        initial: Optional[Mapping[str, float]] = None,
+    ) -> "Gait":
+        """Runs a prescribed periodic shape trajectory: ``cycle`` gives each
+        shape coordinate (every coordinate the symmetry does not move) a law,
+        an expression of ``t`` and the parameters with period ``period``;
+        the group follows from the momentum equation and the reconstruction,
+        from zero momentum unless ``initial`` gives ``{"p1": ...}``. Returns
+        a ``Gait``: ``displacements`` (one row ``(x, y, theta)`` per cycle, in
+        the body frame at the cycle's start) and the ``trajectory``."""
+        run = self._native.gait(
+            dict(cycle), float(period), int(cycles), int(steps), _dict(params), _dict(initial)
+        )
+        return Gait(run["displacements"], Trajectory(run["columns"], run["data"], None))
 
     def rhs(
         self,

@@ -38,6 +38,15 @@ class Model:
         params: Optional[Dict[str, float]],
         sweep: Optional[Tuple[str, numpy.ndarray]],
     ) -> Dict[str, Any]: ...
+    def gait(
+        self,
+        cycle: Dict[str, Any],
+        period: float,
+        cycles: int,
+        steps: int,
+        params: Optional[Dict[str, float]],
+        initial: Optional[Dict[str, float]],
+    ) -> Dict[str, Any]: ...
     def rhs(
         self,
         formulation: str,

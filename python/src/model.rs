@@ -8,6 +8,7 @@ use crate::rhs::Rhs;
 use chaplygin::driver::catalog::Source;
 use chaplygin::driver::document::{self, Format};
 use chaplygin::driver::engine::{self, EngineChoice, Loaded};
+use chaplygin::driver::gait::{self, GaitRequest};
 use chaplygin::driver::simulate::{
     self, Controller, FormulationChoice, Integrator, Request, with_parameters,
 };
@@ -291,6 +292,43 @@ impl Model {
                 linearization::over_sweep(py, &model, &at, (&variable, values.as_slice()?))
             }
         }
+    }
+
+    /// Runs the shape laws `cycle` (`{name: expression of t}`, period
+    /// `period`) for `cycles` periods; returns `(columns, data,
+    /// displacements)`, one row `(x, y, theta)` per cycle.
+    #[pyo3(signature = (cycle, period, cycles, steps, params, initial))]
+    #[allow(clippy::too_many_arguments)]
+    fn gait<'py>(
+        &self,
+        py: Python<'py>,
+        cycle: &Bound<'py, PyDict>,
+        period: f64,
+        cycles: usize,
+        steps: usize,
+        params: Option<&Bound<'py, PyDict>>,
+        initial: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let request = GaitRequest {
+            cycle: assignments(Some(cycle))?,
+            period,
+            cycles,
+            steps,
+            params: numbers(params)?,
+            initial: numbers(initial)?,
+        };
+        let run = gait::gait(self.fresh(), &request).map_err(|error| to_python(py, error))?;
+        let result = PyDict::new(py);
+        let (columns, data) = table(py, &run.table)?;
+        result.set_item("columns", columns)?;
+        result.set_item("data", data)?;
+        let displacements = run
+            .cycles
+            .iter()
+            .flat_map(|cycle| cycle.displacement)
+            .collect();
+        result.set_item("displacements", matrix(py, displacements, 3)?)?;
+        Ok(result)
     }
 
     /// The right-hand side of a formulation, closed by the input laws.

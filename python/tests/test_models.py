@@ -151,3 +151,21 @@ def test_a_trajectory_has_named_columns_and_a_summary():
         run["nothing"]
     with pytest.raises(ValueError, match="unknown parameter `mass`"):
         board.simulate(t_end=1.0, params={"mass": 2.0})
+
+
+def test_a_gait_from_python_equals_the_command_lines(command_line):
+    board = chaplygin.builtin("snakeboard")
+    period = 2 * math.pi
+    gait = board.gait({"psi": "0.8*sin(t)", "phi": "0.5*cos(t)"}, period=period, cycles=2)
+    assert gait.displacements.shape == (2, 3)
+    text = command_line(
+        "gait", "snakeboard", "--shape", "psi,phi", "--cycle", "psi=0.8*sin(t)",
+        "--cycle", "phi=0.5*cos(t)", "--period", repr(period), "--out", "target/python-gait",
+    )
+    line = next(l for l in text.splitlines() if l.startswith("net displacement per cycle: "))
+    printed = [float(part.split(" = ")[1]) for part in line.split(": ", 1)[1].split(", ")]
+    assert numpy.array_equal(gait.displacements[0], printed)
+    assert gait.trajectory.columns == ["t", "x", "y", "theta", "psi", "phi", "p1"]
+    assert len(gait.trajectory) == 4001
+    with pytest.raises(ValueError, match="no law for phi"):
+        board.gait({"psi": "sin(t)"}, period=period)
