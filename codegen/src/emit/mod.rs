@@ -74,7 +74,7 @@ pub(crate) struct Lowered {
 }
 
 /// A model's items, its emitted functions and its report text.
-pub(crate) struct Emitted {
+pub(crate) struct EmittedModel {
     pub(crate) items: TokenStream,
     pub(crate) functions: Vec<Function>,
     /// The reduced items of each other chart of D (chart 1, 2, ...).
@@ -104,7 +104,7 @@ pub(crate) fn emit(
     model: &mut Model,
     constraints: &ConstraintAnalysis,
     derivation: &Derivation,
-) -> Result<Emitted, Diagnostics> {
+) -> Result<EmittedModel, Diagnostics> {
     let definition = parameter_struct(model);
     let constants = constants(model);
     let mechanism_constants = mechanism::constants(model);
@@ -185,7 +185,7 @@ pub(crate) fn emit(
         #implementations
         #linearization
     };
-    Ok(Emitted {
+    Ok(EmittedModel {
         items,
         guards,
         basis_divisors,
@@ -408,7 +408,7 @@ pub(crate) fn function_body(
             .emit(&sources)
             .map_err(|e| Diagnostics::internal(model.name.span(), e))?
     } else {
-        ir::Emitted {
+        ir::RustProgram {
             statements: TokenStream::new(),
             outputs: vec![TokenStream::new(); outputs.len()],
         }

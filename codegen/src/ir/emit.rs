@@ -21,9 +21,9 @@ use super::{Instruction, IrError, Op, Program, Value};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{ToTokens, quote};
 
-/// Emitted Rust for a program.
+/// A program written out as Rust: its statements and its outputs.
 #[derive(Clone, Debug)]
-pub struct Emitted {
+pub struct RustProgram {
     /// The `let` statements computing every value, in order.
     pub statements: TokenStream,
     /// One expression per output, valid after `statements`.
@@ -36,7 +36,7 @@ impl Program {
     ///
     /// Fails with [`IrError::InputCount`] unless there is one expression per
     /// input slot.
-    pub fn emit(&self, inputs: &[TokenStream]) -> Result<Emitted, IrError> {
+    pub fn emit(&self, inputs: &[TokenStream]) -> Result<RustProgram, IrError> {
         self.check_inputs(inputs.len())?;
         let statements = self
             .instructions
@@ -48,7 +48,7 @@ impl Program {
             .iter()
             .map(|&value| name(value).into_token_stream())
             .collect();
-        Ok(Emitted {
+        Ok(RustProgram {
             statements,
             outputs,
         })

@@ -82,7 +82,7 @@ mod properties;
 mod tests;
 
 pub use cost::estimated_weight;
-pub use emit::Emitted;
+pub use emit::RustProgram;
 pub use lower::lower;
 
 use crate::sym::Rational;

@@ -1,6 +1,6 @@
 //! Unit tests of lowering, counting, printing, interpretation and emission.
 
-use super::{Emitted, IrError, Op, OperationCount, Program, lower};
+use super::{RustProgram, IrError, Op, OperationCount, Program, lower};
 use crate::sym::{ExprId, Function, Rational, Store, SymbolId, SymbolKind};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -37,7 +37,7 @@ pub(super) fn emit_function(name: &str, program: &Program, inputs: usize) -> Str
             quote!(q[#i])
         })
         .collect();
-    let Ok(Emitted {
+    let Ok(RustProgram {
         statements,
         outputs,
     }) = program.emit(&slots)
@@ -472,7 +472,7 @@ fn an_emitted_function_parses_as_rust() {
     let third = s.add(&[half, first, second]);
     let program = lower(&s, &symbols, &[first, second, third]).unwrap();
     let inputs = [quote!(q[0]), quote!(q[1]), quote!(p[0])];
-    let Emitted {
+    let RustProgram {
         statements,
         outputs,
     } = program.emit(&inputs).unwrap();
