@@ -50,7 +50,8 @@ mod structured;
 
 use super::constraints::{DistributionBasis, Method};
 use crate::model::Model;
-use crate::sym::modular::{self, ModularError, Values};
+use crate::sym::modular::{self, ModularError};
+use crate::sym::residues::Values;
 use crate::sym::{
     Atoms, ExprId, ExprMatrix, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError,
     SymbolId, SymbolKind,

@@ -11,6 +11,7 @@ pub mod modular;
 pub mod normal;
 pub mod number;
 pub mod poly;
+pub mod residues;
 pub mod zero;
 
 pub use budget::{Budget, DEFAULT_DERIVATION_BUDGET};
