@@ -1,6 +1,6 @@
 //! The normal form: expressions as rational functions of atoms.
 //!
-//! [`Store::normal`] turns an expression into a [`RationalFunction`]
+//! [`Store::normal`](crate::sym::Store::normal) turns an expression into a [`RationalFunction`]
 //! `N / (f_1^k_1 ... f_m^k_m)`:
 //!
 //! - trigonometric functions of integer combinations of symbols are expanded,

@@ -7,7 +7,7 @@
 //! `no_slip` direction gives the constraint row `d . v_P = 0`, and each
 //! holonomic constraint `f(q) = 0` its velocity form `(df/dq) qdot = 0`.
 //! Orientations come from the rotation chain and velocities from exact
-//! differentiation ([`space`]), so everything downstream (constraint
+//! differentiation (the module `space`), so everything downstream (constraint
 //! analysis, the formulations, the documents) works unchanged.
 
 pub mod bodies;
