@@ -5,6 +5,7 @@ pub mod diff;
 pub mod eval;
 pub mod expr;
 pub mod expr_matrix;
+pub mod ids;
 pub mod latex;
 pub mod matrix;
 pub mod modular;
