@@ -1,6 +1,6 @@
 //! Model texts shared by the crate's tests.
 
-/// The snakeboard of MATH.md 3.1, as INTERFACE.md section 1 declares it.
+/// The snakeboard of MATH.md 3.1, as docs/INTERFACE.md section 1 declares it.
 pub(crate) const SNAKEBOARD: &str = r#"
 /// Snakeboard with J = Jt + m r^2 (Duindam & Stramigioli 2004).
 pub struct Snakeboard {

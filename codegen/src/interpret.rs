@@ -34,7 +34,6 @@ pub use engine::{Engine, Interpreter};
 pub use fixed::{Fixed, SizeMismatch};
 
 use crate::derive::constraints::ChartFit;
-use crate::derive::momentum::group_coordinates;
 use crate::derive::port_hamiltonian::momentum_names;
 use crate::diagnostic::Diagnostics;
 use crate::emit::{self, Lowered};
@@ -234,7 +233,7 @@ impl InterpretedModel {
             group: model
                 .symmetry
                 .as_ref()
-                .map(|symmetry| group_coordinates(&symmetry.factors)),
+                .map(|symmetry| symmetry.group_coordinates()),
             symmetry: model
                 .symmetry
                 .as_ref()

@@ -6,7 +6,7 @@
 //! tokens --syntax::parse--> ModelSyntax --model::check--> Model --derive--> analyses --emit--> Rust items
 //! ```
 //!
-//! The symbolic engine [`sym`] holds every expression; [`derive`] decides
+//! The symbolic engine [`sym`] holds every expression; [`derive`](mod@derive) decides
 //! what each item computes (by costs estimated on the expression DAG);
 //! [`ir`] lowers those expressions to straight-line code with common
 //! subexpressions shared, which [`emit`] splices into allocation-free Rust. [`expand`] is what the

@@ -8,7 +8,7 @@
 //! [`NativePrograms`]; [`compile`] does the same to a model already loaded.
 //!
 //! [`NativePrograms::compile`] turns a list of
-//! [`Program`](chaplygin_codegen::ir::Program)s (the programs of an
+//! [`Program`]s (the programs of an
 //! [`InterpretedModel`](chaplygin_codegen::interpret::InterpretedModel), say)
 //! into machine code for the host, one function per program in one JIT
 //! module, and [`NativePrograms::evaluate`] runs one of them: the same

@@ -1,5 +1,5 @@
 //! nalgebra values to and from the arrays of the generated API
-//! (INTERFACE.md section 2): vectors `[f64; n]`, matrices `[[f64; n]; m]`
+//! (docs/INTERFACE.md section 2): vectors `[f64; n]`, matrices `[[f64; n]; m]`
 //! row-major, `m[i][j]` in row `i`, column `j`.
 //!
 //! Vectors convert both ways with nalgebra's own `From`:

@@ -169,7 +169,7 @@ pub trait LagrangeDalembert<const N: usize, const C: usize, const P: usize> {
     fn constraint_regularity(&self, q: &[f64; N]) -> f64;
 }
 
-/// Configuration constraints `f(q) = 0` (INTERFACE.md section 4, `holonomic`):
+/// Configuration constraints `f(q) = 0` (docs/INTERFACE.md section 4, `holonomic`):
 /// `N` coordinates, `H` constraints. Generated models implement it, with
 /// `H = 0` when they declare none. Their velocity forms `(df/dq) qdot = 0`
 /// are among the model's constraint rows already; the runtime uses `f` itself

@@ -114,7 +114,7 @@ fn holonomic_rows_restrict_the_shape(model: &Model) -> bool {
     let Some(symmetry) = &model.symmetry else {
         return false;
     };
-    let group = momentum::group_coordinates(&symmetry.factors);
+    let group = symmetry.group_coordinates();
     let rows = model.constraint_matrix.rows();
     let first_holonomic = rows - model.mechanism.holonomic.len();
     (first_holonomic..rows).any(|i| {

@@ -120,13 +120,8 @@ pub enum MomentumError {
 
 /// Derives the momentum equation and the reconstruction of `model`.
 pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
-    let factors = model
-        .symmetry
-        .as_ref()
-        .ok_or(MomentumError::NoSymmetry)?
-        .factors
-        .clone();
-    let group = group_coordinates(&factors);
+    let symmetry = model.symmetry.as_ref().ok_or(MomentumError::NoSymmetry)?;
+    let (factors, group) = (symmetry.factors.clone(), symmetry.group_coordinates());
     let shape: Vec<usize> = (0..model.n()).filter(|i| !group.contains(i)).collect();
     let body = BodyForm::of(model, &group, &shape)?;
     let basis = body_basis(&body.constraints_group, model.store.atoms())?;
@@ -180,18 +175,6 @@ fn reconstruction(
         .transpose()
         .mul(&omega, atoms)?
         .sub(&connection.mul(rdot, atoms)?, atoms)
-}
-
-/// The group coordinates, factor by factor: `x, y, theta` for `se2`, the
-/// coordinate for an abelian factor. The body velocity `xi` has this layout.
-pub(crate) fn group_coordinates(factors: &[GroupFactor]) -> Vec<usize> {
-    factors
-        .iter()
-        .flat_map(|factor| match *factor {
-            GroupFactor::Se2 { x, y, theta } => vec![x, y, theta],
-            GroupFactor::Translation(q) | GroupFactor::Rotation(q) => vec![q],
-        })
-        .collect()
 }
 
 /// For each `se2` factor: where its `(v1, v2, omega)` start in `xi`, and the

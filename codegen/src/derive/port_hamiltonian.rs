@@ -32,14 +32,14 @@
 //! **Exact and structured.** With a declared basis every matrix is derived
 //! in exact normal form ([`Exact`]). With the tool's basis the exact form is
 //! attempted first, on a nested budget of [`EXACT_REDUCED_PRODUCTS`] term
-//! products; when it does not fit, the form is derived [`structured`]: from
-//! the basis `X` of D as the elimination of the constraints writes it,
-//! without expanding anything ([`Forms`]), which grows with the number of
-//! operations instead of the number of expanded terms (for a chain of N
-//! wheeled links, polynomially in N instead of exponentially). With the
-//! exact form, each item has two forms, the expanded entries and the
-//! products of the matrices' entries ([`forms`]); [`items`] keeps the one
-//! estimated cheaper. Without the exact
+//! products; when it does not fit, the form is derived structured (the
+//! module `structured`): from the basis `X` of D as the elimination of the
+//! constraints writes it, without expanding anything ([`Forms`]), which
+//! grows with the number of operations instead of the number of expanded
+//! terms (for a chain of N wheeled links, polynomially in N instead of
+//! exponentially). With the exact form, each item has two forms, the
+//! expanded entries and the products of the matrices' entries (the module
+//! `forms`); [`items`] keeps the one estimated cheaper. Without the exact
 //! form, `Jbar` is skew by construction and the facts on `gbar` are decided
 //! at random points modulo a prime ([`crate::sym::modular`]: "not constant"
 //! and "not diagonal" proved, "constant" and "diagonal" probable).
@@ -50,7 +50,8 @@ mod structured;
 
 use super::constraints::{DistributionBasis, Method};
 use crate::model::Model;
-use crate::sym::modular::{self, ModularError, Values};
+use crate::sym::modular::{self, ModularError};
+use crate::sym::residues::Values;
 use crate::sym::{
     Atoms, ExprId, ExprMatrix, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError,
     SymbolId, SymbolKind,
@@ -90,7 +91,7 @@ pub enum Form {
     /// In exact normal form: always for a declared basis, for the tool's
     /// basis when it fits [`EXACT_REDUCED_PRODUCTS`].
     Exact(Exact),
-    /// Structured ([`structured`]), for the tool's basis when the exact form
+    /// Structured (the module `structured`), for the tool's basis when the exact form
     /// does not fit.
     Structured(Forms),
 }

@@ -1,4 +1,4 @@
-//! The derivation report emitted as `REPORT: &str` (INTERFACE.md section 2).
+//! The derivation report emitted as `REPORT: &str` (docs/INTERFACE.md section 2).
 //!
 //! A [`Report`] is a list of sections, each a title and plain lines, rendered
 //! as text:

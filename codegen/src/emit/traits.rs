@@ -9,7 +9,6 @@
 
 use super::f64_type;
 use crate::derive::constraints::ChartFit;
-use crate::derive::momentum::group_coordinates;
 use crate::model::{GroupFactor, Model, Symmetry};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -510,7 +509,7 @@ fn momentum_equations(model: &Model, symmetry: &Symmetry) -> TokenStream {
     let name = &model.name;
     let f64 = f64_type();
     let (n, p) = (model.n(), model.p());
-    let group = group_coordinates(&symmetry.factors);
+    let group = symmetry.group_coordinates();
     let shape: Vec<usize> = (0..n).filter(|i| !group.contains(i)).collect();
     // The momenta span the group directions the constraints allow: the
     // derivation refuses constraints that restrict the shape velocities, so

@@ -138,7 +138,7 @@ impl PowerForm {
 
 /// The estimated weighted cost of computing `outputs`: every node reachable
 /// from them once, a sum or product of `n` operands `n - 1` operations, a
-/// power by its [`PowerForm`] (an inverse power one division, as if its
+/// power by its form (`PowerForm`: an inverse power one division, as if its
 /// reciprocal were shared, which lowering does for a repeated divisor), a
 /// call 20, the sine and cosine of one argument one `sin_cos`. It is
 /// computed in one pass over the DAG, without building a program; lowering

@@ -21,7 +21,8 @@
 //! above `1 - 1e-15`.
 
 use super::{GroupFactor, Symmetry, Variable};
-use crate::sym::modular::{self, ModularError, Values};
+use crate::sym::modular::{self, ModularError};
+use crate::sym::residues::Values;
 use crate::sym::{
     ExprId, ExprMatrix, Function, Matrix, RationalFunction, Store, SymError, SymbolId, SymbolKind,
 };

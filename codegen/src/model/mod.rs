@@ -75,6 +75,21 @@ pub struct Symmetry {
     pub span: Span,
 }
 
+impl Symmetry {
+    /// The group coordinates, factor by factor: `x, y, theta` for `se2`,
+    /// the coordinate for an abelian factor. The body velocity `xi` of the
+    /// momentum equation has this layout.
+    pub fn group_coordinates(&self) -> Vec<usize> {
+        self.factors
+            .iter()
+            .flat_map(|factor| match *factor {
+                GroupFactor::Se2 { x, y, theta } => vec![x, y, theta],
+                GroupFactor::Translation(q) | GroupFactor::Rotation(q) => vec![q],
+            })
+            .collect()
+    }
+}
+
 /// A declared momentum basis `h(q)`: k one-forms spanning `g(D)`.
 #[derive(Clone, Debug)]
 pub struct MomentumBasis {

@@ -6,40 +6,21 @@
 //! parents (the store is a topologically sorted DAG). Constructors apply only
 //! cheap, always-valid rewrites (flattening, constant folding, collecting
 //! `c*x + d*x` and `x^a * x^b`, sorting operands); the canonical form used for
-//! exact zero tests lives in [`super::normal`].
+//! exact zero tests lives in [`super::normal`], and the store computes and
+//! memoizes each expression's normal form (`expr/normal_form.rs`).
 
 mod arithmetic;
 mod display;
+mod normal_form;
 #[cfg(test)]
 mod tests;
 
+pub use super::ids::{ExprId, SymbolId};
 pub use display::Displayed;
 
 use super::number::Rational;
 use rustc_hash::{FxHashMap as HashMap, FxHashSet};
 use std::fmt;
-
-/// Handle of an expression in a [`Store`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct ExprId(pub(crate) u32);
-
-impl ExprId {
-    /// Position of the node in its store (children come before parents).
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
-
-/// Handle of a symbol in a [`Store`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct SymbolId(pub(crate) u32);
-
-impl SymbolId {
-    /// Position of the symbol in its store, in declaration order.
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
 
 /// What a symbol stands for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -5,12 +5,14 @@ pub mod diff;
 pub mod eval;
 pub mod expr;
 pub mod expr_matrix;
+pub mod ids;
 pub mod latex;
 pub mod matrix;
 pub mod modular;
 pub mod normal;
 pub mod number;
 pub mod poly;
+pub mod residues;
 pub mod zero;
 
 pub use budget::{Budget, DEFAULT_DERIVATION_BUDGET};

@@ -1,6 +1,6 @@
 //! The normal form: expressions as rational functions of atoms.
 //!
-//! [`Store::normal`] turns an expression into a [`RationalFunction`]
+//! [`Store::normal`](crate::sym::Store::normal) turns an expression into a [`RationalFunction`]
 //! `N / (f_1^k_1 ... f_m^k_m)`:
 //!
 //! - trigonometric functions of integer combinations of symbols are expanded,
@@ -25,9 +25,10 @@
 //!   normal form, so equal kernels are recognised; zero tests involving kernels
 //!   fall back to the randomized numeric test ([`super::zero`]).
 
-mod of_expression;
-
-pub use of_expression::EXPANDED_TERMS;
+/// The most terms (numerator and denominator factors together) a normal
+/// form may have to be computed written out
+/// ([`Store::compact_expression`](crate::sym::Store::compact_expression)).
+pub const EXPANDED_TERMS: usize = 64;
 
 use super::number::Rational;
 use super::poly::{AtomId, Atoms, Poly};

@@ -1,5 +1,8 @@
-//! Expressions by precedence climbing on a syn parse stream.
+//! Values and expressions: a value is a bracketed list of items or an
+//! expression, and a call's arguments are values, so the two are one
+//! recursive grammar.
 //!
+//! Expressions are parsed by precedence climbing on a syn parse stream.
 //! From loosest to tightest: `+ -` and `* /` (left-associative), unary `-`,
 //! `^` (right-associative, its right operand may start with `-`), then field
 //! selection `base.field`. So `-x^2` is `-(x^2)`, `2^-3^2` is `2^(-(3^2))`
@@ -7,17 +10,19 @@
 //!
 //! Every node's depth is tracked so that expressions deeper than
 //! [`MAX_EXPRESSION_DEPTH`] are rejected here, before later stages walk them
-//! recursively.
+//! recursively. The items of a list and the arguments of a call are parsed
+//! each on its own ([`parse_comma_separated`]), so one mistake does not
+//! hide the others.
 
 use proc_macro2::{Delimiter, Ident, Literal, Punct, Span, TokenTree};
 use syn::ext::IdentExt;
 use syn::parse::{End, Lookahead1, Parse, ParseStream, Parser};
-use syn::{Error, Result, Token, parenthesized, token};
+use syn::{Error, Result, Token, bracketed, parenthesized, token};
 
-use super::ast::{BinaryOperator, Expr};
+use super::ast::{BinaryOperator, Expr, Item, List, Value};
 use super::literal::decimal_number;
 use super::scope::Scope;
-use super::value::{parse_comma_separated, parse_value};
+use super::separated::parse_comma_separated;
 
 /// The largest depth (longest root-to-leaf path) of a parsed expression, so
 /// that later stages can walk expressions recursively without overflowing
@@ -269,4 +274,75 @@ fn parse_call(input: ParseStream, scope: Scope, function: Ident) -> Result<Parse
         span: parentheses.span.join(),
     };
     Parsed::node(expr, depth.unwrap_or(0))
+}
+
+/// A list or an expression filling the whole input.
+impl Parse for Value {
+    fn parse(input: ParseStream) -> Result<Self> {
+        parse_value(input, Scope::outermost(None), "a value").map(|(value, _)| value)
+    }
+}
+
+/// `[item, ...]` filling the whole input.
+impl Parse for List {
+    fn parse(input: ParseStream) -> Result<Self> {
+        parse_list(input, Scope::outermost(None))
+    }
+}
+
+/// `name = value` or `value`, filling the whole input.
+impl Parse for Item {
+    fn parse(input: ParseStream) -> Result<Self> {
+        parse_item(input, Scope::outermost(None))
+    }
+}
+
+/// A list or an expression, with the depth it adds to a call it is an
+/// argument of (a list counts as one level). `expected` says what is
+/// missing when there is nothing, such as "a value after `m =`".
+pub(super) fn parse_value(
+    input: ParseStream,
+    scope: Scope,
+    expected: &str,
+) -> Result<(Value, usize)> {
+    if input.is_empty() || input.peek(Token![,]) {
+        return Err(scope.expected(input, expected));
+    }
+    if !input.peek(token::Bracket) {
+        let parsed = parse_expression(input, scope)?;
+        return Ok((Value::Expr(parsed.expr), parsed.depth));
+    }
+    let list = parse_list(input, scope)?;
+    if !(input.is_empty() || input.peek(Token![,])) {
+        let what = "`,` after the list (a list `[...]` is a whole value)";
+        return Err(scope.expected(input, what));
+    }
+    Ok((Value::List(list), 1))
+}
+
+/// `[item, ...]`, each item parsed on its own.
+fn parse_list(input: ParseStream, scope: Scope) -> Result<List> {
+    let scope = scope.deeper(input)?;
+    let content;
+    let brackets = bracketed!(content in input);
+    let scope = scope.inside(Delimiter::Bracket, true);
+    let empty = "empty list item: expected a value before this `,`";
+    let items = parse_comma_separated(&content, empty, |item| parse_item(item, scope))?;
+    Ok(List {
+        items: items.into_iter().collect(),
+        span: brackets.span.join(),
+    })
+}
+
+/// `name = value` (when an identifier is followed by `=`) or `value`.
+fn parse_item(input: ParseStream, scope: Scope) -> Result<Item> {
+    if input.peek(Ident::peek_any) && input.peek2(Token![=]) {
+        let name = input.call(Ident::parse_any)?;
+        input.parse::<Token![=]>()?;
+        let expected = format!("a value after `{name} =`");
+        let (value, _) = parse_value(input, scope, &expected)?;
+        return Ok(Item::Named { name, value });
+    }
+    let (value, _) = parse_value(input, scope, "a value")?;
+    Ok(Item::Plain(value))
 }

@@ -42,7 +42,7 @@ mod expr;
 mod literal;
 mod model;
 mod scope;
-mod value;
+mod separated;
 
 #[cfg(test)]
 mod tests;

@@ -8,8 +8,9 @@ use syn::parse::{Parse, ParseStream};
 use syn::{Error, LitStr, Result, Token, Visibility, braced, bracketed, token};
 
 use super::ast::{Attribute, ModelSyntax, Section};
+use super::expr::parse_value;
 use super::scope::{Errors, Scope};
-use super::value::{parse_comma_separated, parse_value};
+use super::separated::parse_comma_separated;
 
 mod keyword {
     syn::custom_keyword!(doc);

@@ -1,5 +1,5 @@
 //! An operating point `(q, qdot)` from the coordinates and velocities
-//! given (INTERFACE.md section 5, `--at`).
+//! given (docs/INTERFACE.md section 5, `--at`).
 //!
 //! - Coordinates: those given are fixed, the others 0 when that meets
 //!   `f(q) = 0` already (the upright bicycle given its pitch, where `df/dq`

@@ -6,7 +6,8 @@
 
 use super::{AnalysisError, DistributionBasis, STRUCTURED_GROWTH_NODES};
 use crate::model::Model;
-use crate::sym::modular::{self, ModularError, Point, Values};
+use crate::sym::modular::{self, ModularError, Point};
+use crate::sym::residues::Values;
 use crate::sym::{ExprId, ExprMatrix};
 
 /// Frobenius at random points: `A [X_i, X_j]` evaluated modulo a prime at

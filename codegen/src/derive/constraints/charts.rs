@@ -45,7 +45,6 @@ mod search;
 use super::DistributionBasis;
 use super::basis::{basis_with_dependent, speed_names};
 use super::body_frame::BodyFrame;
-use crate::derive::momentum::group_coordinates;
 use crate::ir::IrError;
 use crate::model::Model;
 use crate::sym::{ExprMatrix, MatrixError, RationalFunction};
@@ -210,7 +209,7 @@ impl Frame {
         };
         Ok(match (body_frame, &model.symmetry) {
             (Some(frame), Some(symmetry)) => {
-                let group = group_coordinates(&symmetry.factors);
+                let group = symmetry.group_coordinates();
                 Frame {
                     rows: frame.constraints,
                     varying: all.into_iter().filter(|i| !group.contains(i)).collect(),
@@ -340,7 +339,7 @@ pub fn report_lines(model: &Model, basis: &DistributionBasis, charts: &Charts) -
         .symmetry
         .as_ref()
         .filter(|_| basis.body_frame)
-        .map(|symmetry| group_coordinates(&symmetry.factors))
+        .map(|symmetry| symmetry.group_coordinates())
         .unwrap_or_default();
     let varying = |i: usize| !group.contains(&i);
     let dependent = std::iter::once(&basis.dependent)

@@ -1,126 +1,135 @@
 //! The symmetry group: its factors, and the invariance of the Lagrangian and
 //! the constraints.
 
-use super::*;
+use super::context::Context;
+use crate::model::invariance::{Invariants, first_broken};
+use crate::model::{GroupFactor, Symmetry, Variable};
+use crate::syntax::{self, BinaryOperator, Expr, Value};
+use proc_macro2::Ident;
 
-impl Checker {
-    // ----- symmetry ------------------------------------------------------
-
-    /// The Lagrangian and the constraints are invariant under the declared group.
-    pub(super) fn rule_invariant(&mut self, symmetry: &Symmetry, model: &Invariants) {
-        match first_broken(&mut self.store, symmetry, model) {
-            Ok(None) => {}
-            Ok(Some(broken)) => self.diagnostics.error(
-                symmetry.span,
-                format!(
-                    "{} not invariant under the declared symmetry group: the momentum \
-                     equation needs the Lagrangian and the constraints to be invariant",
-                    broken.describe()
-                ),
+/// The Lagrangian and the constraints are invariant under the declared group.
+pub(super) fn check_invariant(cx: &mut Context, symmetry: &Symmetry, model: &Invariants) {
+    match first_broken(&mut cx.store, symmetry, model) {
+        Ok(None) => {}
+        Ok(Some(broken)) => cx.diagnostics.error(
+            symmetry.span,
+            format!(
+                "{} not invariant under the declared symmetry group: the momentum \
+                 equation needs the Lagrangian and the constraints to be invariant",
+                broken.describe()
             ),
-            Err(error) => self.diagnostics.error(symmetry.span, error.to_string()),
-        }
+        ),
+        Err(error) => cx.diagnostics.error(symmetry.span, error.to_string()),
     }
+}
 
-    /// A symmetry is a product of `se2(x, y, theta)`, `translation(q)` and
-    /// `rotation(q)` of distinct coordinates.
-    pub(super) fn symmetry(
-        &mut self,
-        section: Option<&&Section>,
-        coordinates: &[Variable],
-    ) -> Option<Symmetry> {
-        let section = section?;
-        let expr = self.expression(section)?;
-        let mut calls = Vec::new();
-        product_factors(expr, &mut calls);
-        let mut factors = Vec::new();
-        let mut used: Vec<usize> = Vec::new();
-        for factor in calls {
-            let Expr::Call {
-                function,
-                arguments,
-                ..
-            } = factor
-            else {
-                self.diagnostics.error(
-                    factor.first_span(),
-                    "a symmetry is a product of se2(x, y, theta), translation(q) and rotation(q)",
-                );
-                return None;
-            };
-            let indices = self.group_coordinates(function, arguments, coordinates, &mut used)?;
-            factors.push(match (function.to_string().as_str(), indices.as_slice()) {
-                ("se2", &[x, y, theta]) => GroupFactor::Se2 { x, y, theta },
-                ("translation", &[q]) => GroupFactor::Translation(q),
-                ("rotation", &[q]) => GroupFactor::Rotation(q),
-                _ => return None,
-            });
-        }
-        Some(Symmetry {
-            factors,
-            span: expr.first_span(),
-        })
-    }
-
-    /// The coordinates a group factor acts on: known group, right arity,
-    /// declared and not used by another factor.
-    pub(super) fn group_coordinates(
-        &mut self,
-        function: &proc_macro2::Ident,
-        arguments: &[Value],
-        coordinates: &[Variable],
-        used: &mut Vec<usize>,
-    ) -> Option<Vec<usize>> {
-        let arity = match function.to_string().as_str() {
-            "se2" => 3,
-            "translation" | "rotation" => 1,
-            other => {
-                self.diagnostics.error(function.span(), format!("unknown symmetry group `{other}`: the groups are se2(x, y, theta), translation(q) and rotation(q)"));
-                return None;
-            }
+/// A symmetry is a product of `se2(x, y, theta)`, `translation(q)` and
+/// `rotation(q)` of distinct coordinates.
+pub(super) fn symmetry(
+    cx: &mut Context,
+    section: Option<&syntax::Section>,
+    coordinates: &[Variable],
+) -> Option<Symmetry> {
+    let section = section?;
+    let expr = cx.expression(section)?;
+    let mut calls = Vec::new();
+    product_factors(expr, &mut calls);
+    let mut factors = Vec::new();
+    let mut used: Vec<usize> = Vec::new();
+    for factor in calls {
+        let Expr::Call {
+            function,
+            arguments,
+            ..
+        } = factor
+        else {
+            cx.diagnostics.error(
+                factor.first_span(),
+                "a symmetry is a product of se2(x, y, theta), translation(q) and rotation(q)",
+            );
+            return None;
         };
-        if arguments.len() != arity {
-            self.diagnostics.error(
+        let indices = group_coordinates(cx, function, arguments, coordinates, &mut used)?;
+        factors.push(match (function.to_string().as_str(), indices.as_slice()) {
+            ("se2", &[x, y, theta]) => GroupFactor::Se2 { x, y, theta },
+            ("translation", &[q]) => GroupFactor::Translation(q),
+            ("rotation", &[q]) => GroupFactor::Rotation(q),
+            _ => return None,
+        });
+    }
+    Some(Symmetry {
+        factors,
+        span: expr.first_span(),
+    })
+}
+
+/// The coordinates a group factor acts on: known group, right arity,
+/// declared and not used by another factor.
+fn group_coordinates(
+    cx: &mut Context,
+    function: &Ident,
+    arguments: &[Value],
+    coordinates: &[Variable],
+    used: &mut Vec<usize>,
+) -> Option<Vec<usize>> {
+    let arity = match function.to_string().as_str() {
+        "se2" => 3,
+        "translation" | "rotation" => 1,
+        other => {
+            cx.diagnostics.error(
                 function.span(),
                 format!(
-                    "`{function}` acts on {arity} coordinate(s), found {}",
-                    arguments.len()
+                    "unknown symmetry group `{other}`: the groups are se2(x, y, theta), \
+                     translation(q) and rotation(q)"
                 ),
             );
             return None;
         }
-        let mut indices = Vec::with_capacity(arity);
-        for argument in arguments {
-            let found = match argument {
-                Value::Expr(Expr::Name(ident)) => {
-                    coordinates.iter().position(|c| *ident == c.declared.name)
-                }
-                _ => None,
-            };
-            match found {
-                Some(index) if !used.contains(&index) => {
-                    used.push(index);
-                    indices.push(index);
-                }
-                Some(_) => {
-                    self.diagnostics.error(
-                        argument.span(),
-                        "a coordinate appears twice in the symmetry group",
-                    );
-                    return None;
-                }
-                None => {
-                    self.diagnostics.error(argument.span(), "a symmetry acts on coordinates: this is not one of the model's coordinates");
-                    return None;
-                }
+    };
+    if arguments.len() != arity {
+        cx.diagnostics.error(
+            function.span(),
+            format!(
+                "`{function}` acts on {arity} coordinate(s), found {}",
+                arguments.len()
+            ),
+        );
+        return None;
+    }
+    let mut indices = Vec::with_capacity(arity);
+    for argument in arguments {
+        let found = match argument {
+            Value::Expr(Expr::Name(ident)) => {
+                coordinates.iter().position(|c| *ident == c.declared.name)
+            }
+            _ => None,
+        };
+        match found {
+            Some(index) if !used.contains(&index) => {
+                used.push(index);
+                indices.push(index);
+            }
+            Some(_) => {
+                cx.diagnostics.error(
+                    argument.span(),
+                    "a coordinate appears twice in the symmetry group",
+                );
+                return None;
+            }
+            None => {
+                cx.diagnostics.error(
+                    argument.span(),
+                    "a symmetry acts on coordinates: this is not one of the model's coordinates",
+                );
+                return None;
             }
         }
-        Some(indices)
     }
+    Some(indices)
 }
 
 /// The factors of a product.
-pub(super) fn product_factors<'a>(expr: &'a Expr, factors: &mut Vec<&'a Expr>) {
+fn product_factors<'a>(expr: &'a Expr, factors: &mut Vec<&'a Expr>) {
     match expr {
         Expr::Binary {
             operator: BinaryOperator::Multiply,

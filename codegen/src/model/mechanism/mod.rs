@@ -1,13 +1,13 @@
 //! Mechanisms: a model declared by frames, points, bodies and contacts.
 //!
 //! The sections `frames`, `points`, `bodies`, `gravity`, `no_slip` and
-//! `holonomic` (INTERFACE.md section 4) are turned into exact symbolic
+//! `holonomic` (docs/INTERFACE.md section 4) are turned into exact symbolic
 //! objects that join the energy-level ones: the bodies' kinetic and
 //! potential energies ([`bodies`]) add to the declared `T` and `V`; each
 //! `no_slip` direction gives the constraint row `d . v_P = 0`, and each
 //! holonomic constraint `f(q) = 0` its velocity form `(df/dq) qdot = 0`.
 //! Orientations come from the rotation chain and velocities from exact
-//! differentiation ([`space`]), so everything downstream (constraint
+//! differentiation (the module `space`), so everything downstream (constraint
 //! analysis, the formulations, the documents) works unchanged.
 
 pub mod bodies;

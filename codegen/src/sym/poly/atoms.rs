@@ -4,7 +4,7 @@
 
 use super::Poly;
 use crate::sym::budget::Budget;
-use crate::sym::expr::{ExprId, SymbolId};
+use crate::sym::ids::{ExprId, SymbolId};
 use rustc_hash::FxHashMap as HashMap;
 
 /// Handle of an atom in an [`Atoms`] table.

@@ -4,7 +4,10 @@
 //! of its radicand's value, so `r^2 = u` holds at the point (the only
 //! relation the normal form uses of `r`).
 
-use super::{ModularError, PRIME, Values, add, inverse, multiply, power, rank, square_root};
+use super::Values;
+use crate::sym::modular::{
+    ModularError, PRIME, add, inverse, multiply, points, power, rank, square_root,
+};
 use crate::sym::poly::{AtomId, Poly};
 use crate::sym::{Matrix, RationalFunction, Store};
 use rustc_hash::FxHashMap as HashMap;
@@ -94,7 +97,7 @@ impl AtomValues {
 
 impl Store {
     /// For each `i`, whether the first `i + 1` rows of `matrix` have full
-    /// rank at one of two random points ([`super::points`], skipping points
+    /// rank at one of two random points ([`points`], skipping points
     /// where an entry is undefined). A rank at a point is a lower bound of
     /// the generic rank: `true` is proved, `false` only probable.
     pub fn prefixes_of_full_rank_at_points(
@@ -105,7 +108,7 @@ impl Store {
         let mut full = vec![false; matrix.rows()];
         let mut defined_points = 0;
         let mut last_undefined = None;
-        for point in super::points() {
+        for point in points() {
             let values =
                 match self.evaluate_normal_modular(matrix.entries(), &mut Values::at(point)) {
                     Ok(values) => values,
@@ -132,7 +135,8 @@ impl Store {
 
 #[cfg(test)]
 mod tests {
-    use crate::sym::modular::{Values, at_defined_points};
+    use crate::sym::modular::at_defined_points;
+    use crate::sym::residues::Values;
     use crate::sym::{Function, Matrix, Rational, RationalFunction, Store, SymbolKind};
 
     /// `(store, r, cos y)` with `r = sqrt(1 + sin(x)^2)`.

@@ -2,17 +2,13 @@
 //! trigonometric functions of integer combinations of symbols expanded into
 //! products of `sin q_i`, `cos q_i`; and a normal form back to an expression.
 
-use super::RationalFunction;
-use crate::sym::expr::{ExprId, Function, Node, Store, SymError, SymbolId};
+use super::{ExprId, Function, Node, Store, SymError, SymbolId};
+use crate::sym::normal::RationalFunction;
 use crate::sym::number::Rational;
 use crate::sym::poly::{Atom, AtomId, Atoms, Poly};
 
 /// The largest multiple angle expanded; larger ones stay opaque atoms.
 const MAX_MULTIPLE_ANGLE: i64 = 64;
-
-/// The most terms (numerator and denominator factors together) a normal
-/// form may have to be computed written out ([`Store::compact_expression`]).
-pub const EXPANDED_TERMS: usize = 64;
 
 impl Store {
     /// The normal form of an expression (memoized).
@@ -101,8 +97,8 @@ impl Store {
         let root = self.pow(canonical_base, fraction)?;
         let root_form = match self.node(root) {
             Node::Number(value) => RationalFunction::constant(value.clone()),
-            _ if is_square_root && base_form.denominator.is_empty() => {
-                let radicand = base_form.numerator.clone();
+            _ if is_square_root && base_form.denominator().is_empty() => {
+                let radicand = base_form.numerator().clone();
                 RationalFunction::from_poly(Poly::atom(self.atoms.square_root(root, radicand)))
             }
             _ => RationalFunction::from_poly(Poly::atom(self.atoms.kernel(root))),
@@ -175,11 +171,11 @@ impl Store {
 
     /// `argument = sum n_i q_i` with integers `|n_i| <= 64` and no constant term.
     fn integer_combination(&self, argument: &RationalFunction) -> Option<Vec<(SymbolId, i64)>> {
-        if !argument.denominator.is_empty() {
+        if !argument.denominator().is_empty() {
             return None;
         }
         argument
-            .numerator
+            .numerator()
             .terms()
             .iter()
             .map(|(monomial, coefficient)| {
@@ -199,9 +195,9 @@ impl Store {
 
     /// Rebuilds an expression from a normal form.
     pub fn expression_of(&mut self, form: &RationalFunction) -> ExprId {
-        let numerator = self.expression_of_poly(&form.numerator);
+        let numerator = self.expression_of_poly(form.numerator());
         let mut factors = vec![numerator];
-        for (factor, multiplicity) in &form.denominator {
+        for (factor, multiplicity) in form.denominator() {
             let base = self.expression_of_poly(factor);
             factors.push(self.pow_of_expression(base, Rational::integer(-(*multiplicity as i64))));
         }
@@ -209,7 +205,7 @@ impl Store {
     }
 
     /// The expression to compute a normal form by: the form written out
-    /// when it has at most [`EXPANDED_TERMS`] terms, else `derived_as`, the
+    /// when it has at most [`EXPANDED_TERMS`](crate::sym::normal::EXPANDED_TERMS) terms, else `derived_as`, the
     /// expression it was derived from (a mechanism's rotation chain, whose
     /// expanded products are far larger than the chain).
     pub fn compact_expression(&mut self, form: &RationalFunction, derived_as: ExprId) -> ExprId {
@@ -260,7 +256,7 @@ impl Store {
     /// True when every atom of the numerator is a symbol, or the sine or
     /// cosine of a symbol: then a non-zero numerator proves a non-zero function.
     pub fn in_exact_class(&self, form: &RationalFunction) -> bool {
-        form.numerator
+        form.numerator()
             .atoms()
             .iter()
             .all(|&a| match self.atoms.get(a) {
