@@ -110,7 +110,9 @@ impl CsvRecorder<io::BufWriter<std::fs::File>> {
     }
 }
 
-/// `value` as [`CsvRecorder`] writes it (see [`write_number`]).
+/// `value` as [`CsvRecorder`] writes it: the shortest decimal that reads
+/// back to it, positional for magnitudes from `1e-5` to below `1e16` (and
+/// zero), scientific otherwise.
 pub fn shortest_decimal(value: f64) -> String {
     let mut text = String::new();
     write_number(&mut text, value).expect("writing to a String does not fail");

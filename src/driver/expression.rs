@@ -1,6 +1,6 @@
 //! Expressions in the model language's syntax, evaluated on `f64`: its
 //! operators `+ - * / ^`, its functions `sin cos tan sqrt exp ln`, `abs`,
-//! and `pi`, of the names a [`Scope`] binds: the time `t`, the parameters
+//! and `pi`, of the names a `Scope` binds: the time `t`, the parameters
 //! (at their values), and where the state is known the coordinates `q`,
 //! their velocities `dot(q)` and the inputs. The command line's `--input`
 //! laws, `--stop-when` conditions, `--initial` values and `--at`

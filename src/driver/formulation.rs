@@ -5,7 +5,7 @@
 //! [`Formulation`] is the object-safe view; [`Typed`] gives it to a
 //! fixed-size structured runtime system (the snakeboard under its energy
 //! controller); [`AtDimension`] turns it back into a fixed-size runtime
-//! system of dimension `D`, chosen at run time by [`with_dimension!`].
+//! system of dimension `D`, chosen at run time by `with_dimension!`.
 
 use crate::runtime::arrays::leading;
 use crate::runtime::projection::ProjectionError;
@@ -319,7 +319,7 @@ impl<const D: usize> Observed<D> for AtDimension<'_, D> {
     }
 }
 
-/// The largest state dimension [`with_dimension!`] handles.
+/// The largest state dimension `with_dimension!` handles.
 pub const MAX_DIMENSION: usize = 32;
 
 /// Evaluates `$body` with the const `$d: usize` equal to the run-time

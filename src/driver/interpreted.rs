@@ -281,7 +281,7 @@ impl Formulation for InterpretedReduced {
     }
 
     /// With configuration constraints, `(q, qdot = velocities(q, alpha))`
-    /// kept on them ([`onto_surface`]) and `alpha = momenta(q, qdot)` of
+    /// kept on them (`onto_surface`) and `alpha = momenta(q, qdot)` of
     /// the result, both in the active chart; without, the state cannot
     /// leave the constraints.
     fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
@@ -403,7 +403,7 @@ impl Formulation for InterpretedDalembert {
 
     /// The configuration onto `f(q) = 0`, with configuration constraints,
     /// and the velocity onto `ker A(q)` in the metric `g(q)`
-    /// ([`onto_surface`]).
+    /// (`onto_surface`).
     fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
         let (q, qdot) = x.split_at_mut(self.model.sizes().n);
         onto_surface(&self.model, q, qdot)
@@ -640,7 +640,7 @@ impl Formulation for InterpretedMomentum {
     }
 
     /// With configuration constraints, `q` and the reconstructed `qdot`
-    /// kept on them ([`onto_surface`]) and `(rdot, p)` of the result;
+    /// kept on them (`onto_surface`) and `(rdot, p)` of the result;
     /// without, the state cannot leave the constraints.
     fn project(&self, x: &mut [f64]) -> Result<(), ProjectionError> {
         if !keeps_configuration(&self.model) {

@@ -111,7 +111,7 @@ pub struct Figure4 {
     pub kt: f64,
 }
 
-/// Which columns [`write_plots`] draws, their units, and the image size.
+/// Which columns [`crate::plot::write_plots`] draws, their units, and the image size.
 ///
 /// A plot whose field is `None` is not written; a named column missing from
 /// the table is an error.

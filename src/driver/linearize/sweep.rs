@@ -86,7 +86,7 @@ pub fn parse(text: &str) -> Result<Sweep, String> {
 impl Sweep {
     /// `START + i STEP` for `i = 0, 1, ...` up to STOP, STOP included when
     /// it is on the grid (to round-off: within 1e-9 steps). When START and
-    /// STEP are decimals of at most [`MAX_DECIMALS`] places, each point is
+    /// STEP are decimals of at most `MAX_DECIMALS` places, each point is
     /// the double nearest its decimal value (`0:10:0.01` has `6.02`, not
     /// `0.01 * 602 = 6.0200000000000005`).
     ///
