@@ -1,6 +1,6 @@
 //! Unit tests of lowering, counting, printing, interpretation and emission.
 
-use super::{RustProgram, IrError, Op, OperationCount, Program, lower};
+use super::{IrError, Op, OperationCount, Program, RustProgram, lower};
 use crate::sym::{ExprId, Function, Rational, Store, SymbolId, SymbolKind};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
