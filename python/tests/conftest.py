@@ -1,5 +1,6 @@
 """Shared fixtures: the repository's root, and the command line run from it."""
 
+import os
 import pathlib
 import subprocess
 
@@ -16,12 +17,15 @@ def root() -> pathlib.Path:
 
 @pytest.fixture(scope="session")
 def command_line():
-    """Runs the `chaplygin` command line (built by cargo if need be) and
-    returns its standard output."""
+    """Runs the `chaplygin` command line and returns its standard output:
+    the binary `CHAPLYGIN_CLI` names (`python/test.sh` builds it), else
+    `cargo run`, which builds it if need be."""
+    binary = os.environ.get("CHAPLYGIN_CLI")
+    command = [binary] if binary else ["cargo", "run", "--quiet", "--bin", "chaplygin", "--"]
 
     def run(*arguments: str) -> str:
         completed = subprocess.run(
-            ["cargo", "run", "--quiet", "--bin", "chaplygin", "--", *arguments],
+            [*command, *arguments],
             cwd=ROOT,
             capture_output=True,
             text=True,
