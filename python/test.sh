@@ -11,7 +11,10 @@ if [ ! -x "$venv/bin/python" ]; then
     python3 -m venv "$venv"
 fi
 "$venv/bin/python" -m pip install --quiet numpy scipy sympy pytest matplotlib pandas
+# The command line the tests compare against, copied before maturin's build
+# (whose compiler flags differ) leaves the workspace's artifacts stale.
+cargo build --quiet --bin chaplygin
+cp target/debug/chaplygin "$venv/bin/chaplygin-cli"
 CARGO_TARGET_DIR="$PWD/target" MATURIN_PEP517_ARGS="--profile dev" \
     "$venv/bin/python" -m pip install --quiet --force-reinstall --no-deps ./python
-cargo build --quiet --bin chaplygin
-CHAPLYGIN_CLI="$PWD/target/debug/chaplygin" "$venv/bin/python" -m pytest -q python/tests
+CHAPLYGIN_CLI="$PWD/$venv/bin/chaplygin-cli" "$venv/bin/python" -m pytest -q python/tests
