@@ -9,29 +9,26 @@ use pyo3::types::PyDict;
 use std::error::Error;
 
 /// `{name: value}` with values numbers or expressions (strings), as
-/// `NAME=EXPRESSION` assignments; `None` is none.
+/// `NAME=EXPRESSION` assignments (a number as the decimal that reads back
+/// to it exactly); `None` is none.
 pub fn assignments(values: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String)>> {
-    let Some(values) = values else {
-        return Ok(Vec::new());
-    };
-    values
-        .iter()
-        .map(|(name, value)| {
-            let name: String = name.extract()?;
-            let text = match value.extract::<String>() {
-                Ok(text) => text,
-                Err(_) => number_text(
-                    &name,
-                    value.extract::<f64>().map_err(|_| not_a_value(&name))?,
-                )?,
-            };
-            Ok((name, text))
-        })
-        .collect()
+    entries(values, |name, value| match value.extract::<String>() {
+        Ok(text) => Ok(text),
+        Err(_) => finite(name, value).map(|number| format!("{number}")),
+    })
 }
 
 /// `{name: number}` as `NAME=VALUE` assignments; `None` is none.
 pub fn numbers(values: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, f64)>> {
+    entries(values, finite)
+}
+
+/// Each `(name, read(name, value))` of the dictionary `values`; `None` is
+/// none.
+fn entries<T>(
+    values: Option<&Bound<'_, PyDict>>,
+    read: impl Fn(&str, &Bound<'_, PyAny>) -> PyResult<T>,
+) -> PyResult<Vec<(String, T)>> {
     let Some(values) = values else {
         return Ok(Vec::new());
     };
@@ -39,31 +36,25 @@ pub fn numbers(values: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, f64)
         .iter()
         .map(|(name, value)| {
             let name: String = name.extract()?;
-            let number: f64 = value.extract().map_err(|_| not_a_value(&name))?;
-            if !number.is_finite() {
-                return Err(PyValueError::new_err(format!(
-                    "{name}: {number} is not finite"
-                )));
-            }
-            Ok((name, number))
+            let read = read(&name, &value)?;
+            Ok((name, read))
         })
         .collect()
 }
 
-/// A finite number as an expression that reads back to it exactly.
-fn number_text(name: &str, number: f64) -> PyResult<String> {
-    if !number.is_finite() {
-        return Err(PyValueError::new_err(format!(
+/// The value given for `name` as a finite number.
+fn finite(name: &str, value: &Bound<'_, PyAny>) -> PyResult<f64> {
+    let number: f64 = value.extract().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "{name}: expected a number or an expression (a string)"
+        ))
+    })?;
+    match number.is_finite() {
+        true => Ok(number),
+        false => Err(PyValueError::new_err(format!(
             "{name}: {number} is not finite"
-        )));
+        ))),
     }
-    Ok(format!("{number}"))
-}
-
-fn not_a_value(name: &str) -> PyErr {
-    PyTypeError::new_err(format!(
-        "{name}: expected a number or an expression (a string)"
-    ))
 }
 
 /// An exception class of `chaplygin._errors`.
