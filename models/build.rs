@@ -23,6 +23,7 @@ fn generate() -> Result<(), Box<dyn std::error::Error>> {
         .model_file("snakeboard_bodies.model")
         .model_file("caster_robot.model")
         .model_file("bicycle.model")
+        .model_file("three_link_snake.model")
         .write_to_out_dir()?;
     println!("cargo:rerun-if-changed=src/snake.rs");
     let out_dir = std::path::PathBuf::from(std::env::var("OUT_DIR")?);

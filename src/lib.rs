@@ -123,6 +123,8 @@ pub use chaplygin_runtime as runtime;
 #[cfg(feature = "driver")]
 pub mod driver;
 pub mod energy_control;
+#[cfg(feature = "design")]
+pub mod gait_design;
 #[cfg(feature = "cli")]
 pub mod plot;
 

@@ -24,13 +24,16 @@
 //! And for `chaplygin linearize --sweep`, [`write_eigenvalue_plot`] writes
 //! `eigenvalues.png`: the real and imaginary parts of the eigenvalues
 //! against the swept variable; for `chaplygin gait`, [`write_path_plot`]
-//! the planar path alone.
+//! the planar path alone and, for a principally kinematic model,
+//! [`write_curvature_plot`] `curvature.png`: its constraint curvature
+//! functions over the shape plane with the loop drawn on them.
 //!
 //! Non-finite samples (a diverged run) break the curves instead of being
 //! drawn. Text uses DejaVu Sans (Bitstream Vera license, shipped in
 //! `assets/fonts` with its license), embedded in the binary and registered
 //! with plotters' `ab_glyph` renderer, so no system font library is needed.
 
+mod curvature;
 mod eigenvalues;
 mod error;
 mod figure4;
@@ -39,6 +42,7 @@ mod series;
 mod spec;
 mod style;
 
+pub use curvature::{CurvatureField, write_curvature_plot};
 pub use eigenvalues::{EigenvalueSweep, write_eigenvalue_plot};
 pub use error::PlotError;
 pub use spec::{Figure4, PlanarPath, PlotSpec, Table, Track};

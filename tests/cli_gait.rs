@@ -1,7 +1,9 @@
 //! `chaplygin gait`: the net displacement per cycle of a prescribed shape
 //! loop against the snakeboard's hand-derived momentum equation and
-//! reconstruction (MATH.md section 4.1), integrated here independently;
-//! the cycle's CSV and path plot; the models a gait cannot move.
+//! reconstruction (MATH.md section 4.1) and the three-link snake's
+//! hand-derived connection (MATH.md section 4.3), integrated here
+//! independently; the cycle's CSV, the path plot and the snake's
+//! curvature plot; the models a gait cannot move.
 
 mod support;
 
@@ -27,9 +29,18 @@ fn hand_derived_cycle(steps: usize) -> [f64; 3] {
         let omega = v1 * phi.tan() / r;
         [s[2].cos() * v1, s[2].sin() * v1, omega, pdot]
     };
+    let s = rk4_from_zero(rate, steps);
+    [s[0], s[1], s[2]]
+}
+
+/// Classical RK4 of `rate` from 0 over `t` in `[0, 2 pi]`, `steps` steps.
+fn rk4_from_zero<const N: usize>(
+    rate: impl Fn(f64, [f64; N]) -> [f64; N],
+    steps: usize,
+) -> [f64; N] {
     let h = 2.0 * PI / steps as f64;
-    let mut s = [0.0; 4];
-    let add = |a: [f64; 4], b: [f64; 4], h: f64| core::array::from_fn(|i| a[i] + h * b[i]);
+    let mut s = [0.0; N];
+    let add = |a: [f64; N], b: [f64; N], h: f64| core::array::from_fn(|i| a[i] + h * b[i]);
     for k in 0..steps {
         let t = k as f64 * h;
         let k1 = rate(t, s);
@@ -38,7 +49,38 @@ fn hand_derived_cycle(steps: usize) -> [f64; 3] {
         let k4 = rate(t + h, add(s, k3, h));
         s = core::array::from_fn(|i| s[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
     }
-    [s[0], s[1], s[2]]
+    s
+}
+
+/// The three-link snake's loop `a1 = 0.8 + 0.35 cos t`, `a2 = -0.3 +
+/// 0.35 sin t` by its hand-derived connection (l = 1): with `s_i = sin a_i`,
+/// `c_i = cos a_i`, `d = (l/2) (s1 (1 + c2) - s2 (1 + c1))`,
+/// `v1 = -(l/2)^2 ((1 + c2) a1dot + (1 + c1) a2dot) / d`, `v2 = 0`,
+/// `omega = -(l/2) (s2 a1dot + s1 a2dot) / d`; RK4 over one period.
+fn hand_derived_snake_cycle(steps: usize) -> [f64; 3] {
+    let h_l = 0.5;
+    let rate = |t: f64, s: [f64; 3]| {
+        let (a1, a2) = (0.8 + 0.35 * t.cos(), -0.3 + 0.35 * t.sin());
+        let (a1dot, a2dot) = (-0.35 * t.sin(), 0.35 * t.cos());
+        let ((s1, c1), (s2, c2)) = (a1.sin_cos(), a2.sin_cos());
+        let d = h_l * (s1 * (1.0 + c2) - s2 * (1.0 + c1));
+        let v1 = -h_l * h_l * ((1.0 + c2) * a1dot + (1.0 + c1) * a2dot) / d;
+        let omega = -h_l * (s2 * a1dot + s1 * a2dot) / d;
+        [s[2].cos() * v1, s[2].sin() * v1, omega]
+    };
+    rk4_from_zero(rate, steps)
+}
+
+/// Runs `chaplygin` with `arguments`, which must succeed; its standard
+/// output.
+fn succeeded(arguments: &[&str]) -> String {
+    let output = chaplygin(arguments);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8_lossy(&output.stdout).into_owned()
 }
 
 /// The numbers of the line `net displacement per cycle: x = X, y = Y, theta = TH`.
@@ -58,7 +100,7 @@ fn displacement(stdout: &str) -> [f64; 3] {
 fn the_snakeboards_cycle_moves_it_as_the_hand_derived_equations_do() {
     let out = std::env::temp_dir().join(format!("chaplygin-gait-{}", std::process::id()));
     let period = format!("{}", 2.0 * PI);
-    let output = chaplygin(&[
+    let stdout = succeeded(&[
         "gait",
         "snakeboard",
         "--shape",
@@ -74,12 +116,6 @@ fn the_snakeboards_cycle_moves_it_as_the_hand_derived_equations_do() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
     let moved = displacement(&stdout);
     let expected = hand_derived_cycle(20_000);
     assert!(
@@ -98,6 +134,47 @@ fn the_snakeboards_cycle_moves_it_as_the_hand_derived_equations_do() {
     let last = rows.last().unwrap();
     assert!((last[0] - 4.0 * PI).abs() < 1e-12 && (last[5] - 0.5).abs() < 1e-12);
     assert!(std::fs::metadata(out.join("gait_path.png")).unwrap().len() > 10_000);
+    assert!(
+        !out.join("curvature.png").exists(),
+        "the snakeboard carries momentum"
+    );
+}
+
+#[test]
+fn the_snakes_cycle_moves_it_as_its_hand_derived_connection_does() {
+    let out = std::env::temp_dir().join(format!("chaplygin-gait-snake-{}", std::process::id()));
+    let period = format!("{}", 2.0 * PI);
+    let stdout = succeeded(&[
+        "gait",
+        "three-link-snake",
+        "--shape",
+        "a1,a2",
+        "--cycle",
+        "a1=0.8+0.35*cos(t)",
+        "--cycle",
+        "a2=-0.3+0.35*sin(t)",
+        "--period",
+        &period,
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let moved = displacement(&stdout);
+    let expected = hand_derived_snake_cycle(20_000);
+    assert!(expected[0] > 0.3, "the loop moves the snake: {expected:?}");
+    for (ours, theirs) in moved.iter().zip(&expected) {
+        assert!((ours - theirs).abs() < 1e-8, "{moved:?} vs {expected:?}");
+    }
+    let plot = std::fs::read(out.join("curvature.png")).expect("curvature.png");
+    assert_eq!(&plot[1..4], b"PNG");
+    let (width, height) = (&plot[16..20], &plot[20..24]);
+    assert_eq!(
+        (width, height),
+        (&1800u32.to_be_bytes()[..], &680u32.to_be_bytes()[..])
+    );
+    assert!(
+        stdout.contains("wrote") && stdout.contains("curvature.png"),
+        "{stdout}"
+    );
 }
 
 #[test]

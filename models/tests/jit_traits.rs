@@ -28,6 +28,7 @@ use chaplygin_models::{
     bicycle::Bicycle, caster_robot::CasterRobot, differential_drive::DifferentialDrive,
     rolling_disk::RollingDisk, rolling_disk_3d::RollingDisk3d, sleigh::Sleigh,
     sleigh_bodies::SleighBodies, snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
+    three_link_snake::ThreeLinkSnake,
 };
 use common::random::Random;
 
@@ -334,6 +335,13 @@ jit_as_rustc!(
     snakeboard_bodies,
     snakeboard_bodies::SnakeboardBodies,
     [5, 2, 2, 0, 2, 1],
+    momentum: true,
+    scale: 1.0
+);
+jit_as_rustc!(
+    three_link_snake,
+    three_link_snake::ThreeLinkSnake,
+    [5, 3, 2, 0, 2, 0],
     momentum: true,
     scale: 1.0
 );

@@ -17,6 +17,8 @@
 //! (`h B = 0`, as for the snakeboard): a prescribed shape then determines
 //! the motion. [`Locomotion::inputs_push_momentum`] says where they do not.
 
+use crate::system::MomentumEquations;
+
 /// A model with an SE(2) symmetry, seen through its momentum equation and
 /// reconstruction at sizes known at run time.
 pub trait Locomotion {
@@ -35,6 +37,65 @@ pub trait Locomotion {
     fn reconstructed_velocity(&self, q: &[f64], rdot: &[f64], p: &[f64]) -> Vec<f64>;
     /// Whether the inputs enter the momentum equation at `q` (`h B != 0`).
     fn inputs_push_momentum(&self, q: &[f64]) -> bool;
+}
+
+/// A generated model's [`MomentumEquations`] as [`Locomotion`], its `(x, y,
+/// theta)` at the indices `group` (those of its `se2` symmetry factor).
+pub struct FromEquations<'m, M, const N: usize, const R: usize, const K: usize, const P: usize> {
+    model: &'m M,
+    group: [usize; 3],
+}
+
+impl<'m, M, const N: usize, const R: usize, const K: usize, const P: usize>
+    FromEquations<'m, M, N, R, K, P>
+where
+    M: MomentumEquations<N, R, K, P>,
+{
+    /// `model` with its `(x, y, theta)` at `group`.
+    pub fn new(model: &'m M, group: [usize; 3]) -> Self {
+        FromEquations { model, group }
+    }
+}
+
+impl<M, const N: usize, const R: usize, const K: usize, const P: usize> Locomotion
+    for FromEquations<'_, M, N, R, K, P>
+where
+    M: MomentumEquations<N, R, K, P>,
+{
+    fn coordinate_count(&self) -> usize {
+        N
+    }
+    fn group(&self) -> [usize; 3] {
+        self.group
+    }
+    fn shape_indices(&self) -> Vec<usize> {
+        self.model.shape_indices().to_vec()
+    }
+    fn momentum_count(&self) -> usize {
+        K
+    }
+    fn momentum_rhs(&self, r: &[f64], rdot: &[f64], p: &[f64]) -> Vec<f64> {
+        let (r, rdot, p) = (sized(r), sized(rdot), sized(p));
+        self.model.momentum_rhs(&r, &rdot, &p).to_vec()
+    }
+    fn reconstructed_velocity(&self, q: &[f64], rdot: &[f64], p: &[f64]) -> Vec<f64> {
+        let (q, rdot, p) = (sized(q), sized(rdot), sized(p));
+        self.model.reconstructed_velocity(&q, &rdot, &p).to_vec()
+    }
+    fn inputs_push_momentum(&self, q: &[f64]) -> bool {
+        let coupling = self.model.momentum_input_matrix(&sized(q));
+        coupling.iter().flatten().any(|&entry| entry != 0.0)
+    }
+}
+
+/// `values` as an array of `S`, the missing entries 0 (the loop's sizes
+/// are the model's).
+fn sized<const S: usize>(values: &[f64]) -> [f64; S] {
+    let mut array = [0.0; S];
+    for (slot, value) in array.iter_mut().zip(values) {
+        *slot = *value;
+    }
+    array
 }
 
 /// One cycle's net displacement `(x, y, theta)` in the body frame at its

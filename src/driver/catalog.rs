@@ -30,7 +30,7 @@ pub struct BuiltIn {
 }
 
 /// The built-in models.
-pub const BUILT_IN: [BuiltIn; 9] = [
+pub const BUILT_IN: [BuiltIn; 10] = [
     BuiltIn {
         name: "snakeboard",
         about: "snakeboard of Duindam & Stramigioli (2004), paper's momentum basis",
@@ -86,6 +86,13 @@ pub const BUILT_IN: [BuiltIn; 9] = [
         source: include_str!("../../models/caster_robot.model"),
         q: &[0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.0],
         motion: Motion::Momenta(&[0.5, 0.2]),
+    },
+    BuiltIn {
+        name: "three-link-snake",
+        about: "three-link kinematic snake in joint angles (Hatton & Choset 2011)",
+        source: include_str!("../../models/three_link_snake.model"),
+        q: &[0.0, 0.0, 0.0, 0.5, -0.5],
+        motion: Motion::Momenta(&[0.2, 0.1]),
     },
     BuiltIn {
         name: "bicycle",

@@ -10,6 +10,7 @@ use super::engine::Loaded;
 use super::expression::{Expression, Scope};
 use super::interpreted::evaluated;
 use super::simulate::{borrowed, with_parameters};
+use crate::gait_design::{self, Design, Kinematic, Optimum};
 use crate::runtime::gait::{self, Cycle, GaitState, Locomotion, ShapeLoop};
 use crate::runtime::linearize::GroupFactor;
 use crate::runtime::record::Table;
@@ -87,11 +88,38 @@ pub struct GaitRun {
     pub table: Table,
     /// Each cycle, in order.
     pub cycles: Vec<Cycle>,
+    /// For a principally kinematic model, its connection's curvature on
+    /// the plane of the first two shape coordinates, around the loop.
+    pub curvature: Option<CurvatureGrid>,
 }
 
+/// The curvature `F = -dA + [A, A]` of a principally kinematic model's
+/// connection (its `connection_curvature`) on the plane of two shape
+/// coordinates, sampled on a square grid: the height functions whose
+/// integral over the area a loop encloses is about its displacement
+/// (exactly, for the rotation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurvatureGrid {
+    /// The plane's two shape coordinates.
+    pub axes: [String; 2],
+    /// The grid's values of the first.
+    pub first: Vec<f64>,
+    /// The grid's values of the second.
+    pub second: Vec<f64>,
+    /// `x`, `y` and `theta` of `F` at `(first[i], second[j])`, at
+    /// `i * second.len() + j`; NaN where the connection is singular.
+    pub components: [Vec<f64>; 3],
+    /// The loop in the plane, one point per recorded step.
+    pub path: Vec<(f64, f64)>,
+}
+
+/// Grid points per side of [`CurvatureGrid`].
+pub const CURVATURE_GRID: usize = 121;
+
 /// A model with an SE(2) symmetry, read from its text, as the runtime's
-/// [`Locomotion`].
-struct FromText<'m> {
+/// [`Locomotion`] and, for a principally kinematic model, as
+/// [`Kinematic`].
+pub struct FromText<'m> {
     model: &'m InterpretedModel,
     group: [usize; 3],
     shape: Vec<usize>,
@@ -129,8 +157,27 @@ impl Locomotion for FromText<'_> {
     }
 }
 
+impl Kinematic for FromText<'_> {
+    fn curvature(&self, r: &[f64]) -> Vec<[f64; 3]> {
+        let values = evaluated(self.model.call("connection_curvature", &[r]));
+        let planes = self.shape.len() * (self.shape.len() - 1) / 2;
+        let offset = se2_offset(self.model.symmetry());
+        (0..planes)
+            .map(|plane| std::array::from_fn(|c| values[(offset + c) * planes + plane]))
+            .collect()
+    }
+
+    fn divisor(&self, r: &[f64]) -> (f64, Vec<f64>) {
+        let values = evaluated(self.model.call("connection_divisor", &[r]));
+        (values[0], values[1..].to_vec())
+    }
+}
+
 /// `model`'s locomotion: its SE(2) factor, its shape and momenta.
-fn locomotion<'m>(model: &'m InterpretedModel, label: &str) -> Result<FromText<'m>, GaitError> {
+///
+/// # Errors
+/// A model without an SE(2) symmetry, momentum equation or shape.
+pub fn locomotion<'m>(model: &'m InterpretedModel, label: &str) -> Result<FromText<'m>, GaitError> {
     let lacks = |reason: &str| GaitError::Model {
         model: label.to_string(),
         reason: reason.to_string(),
@@ -278,10 +325,70 @@ pub fn gait(loaded: Loaded, request: &GaitRequest) -> Result<GaitRun, Box<dyn Er
             );
         },
     );
+    let table = Table { columns, rows };
+    let curvature = curvature_grid(&body, &table);
     Ok(GaitRun {
-        table: Table { columns, rows },
+        table,
         cycles,
+        curvature,
     })
+}
+
+/// The curvature of `body` on the plane of its first two shape
+/// coordinates, on a square grid around the loop the `table` records
+/// (twice its extent, and at least 1 across); `None` for a model that
+/// carries momentum or has fewer than two shape coordinates.
+fn curvature_grid(body: &FromText<'_>, table: &Table) -> Option<CurvatureGrid> {
+    let model = body.model;
+    model.arguments("connection_curvature")?;
+    let [a, b] = [*body.shape.first()?, *body.shape.get(1)?];
+    let offset = se2_offset(model.symmetry());
+    let column = |i: usize| -> Vec<f64> { table.rows.iter().map(|row| row[1 + i]).collect() };
+    let path: Vec<(f64, f64)> = column(a).into_iter().zip(column(b)).collect();
+    let span = |values: &mut dyn Iterator<Item = f64>| {
+        let (low, high) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(v), h.max(v))
+        });
+        ((low + high) / 2.0, (high - low).max(0.5))
+    };
+    let (centre_a, extent_a) = span(&mut path.iter().map(|p| p.0));
+    let (centre_b, extent_b) = span(&mut path.iter().map(|p| p.1));
+    let half = extent_a.max(extent_b);
+    let axis = |centre: f64| -> Vec<f64> {
+        (0..CURVATURE_GRID)
+            .map(|k| centre - half + 2.0 * half * k as f64 / (CURVATURE_GRID - 1) as f64)
+            .collect()
+    };
+    let (first, second) = (axis(centre_a), axis(centre_b));
+    let planes = body.shape.len() * (body.shape.len() - 1) / 2;
+    let mut components: [Vec<f64>; 3] = Default::default();
+    let mut r = vec![0.0; body.shape.len()];
+    for &u in &first {
+        for &v in &second {
+            (r[0], r[1]) = (u, v);
+            let f = evaluated(model.call("connection_curvature", &[&r]));
+            for (k, values) in components.iter_mut().enumerate() {
+                let value = f.get((offset + k) * planes).copied().unwrap_or(f64::NAN);
+                values.push(value);
+            }
+        }
+    }
+    let names = &model.names().coordinates;
+    Some(CurvatureGrid {
+        axes: [names[a].clone(), names[b].clone()],
+        first,
+        second,
+        components,
+        path,
+    })
+}
+
+/// Where the `se2` factor's `(v1, v2, omega)` start in the body velocity.
+fn se2_offset(symmetry: &[GroupFactor]) -> usize {
+    symmetry
+        .iter()
+        .take_while(|factor| !matches!(factor, GroupFactor::Se2 { .. }))
+        .count()
 }
 
 /// An error where the inputs enter the momentum equation at eight shapes
@@ -306,4 +413,82 @@ fn refuse_pushed_momentum(
             reason: "the inputs enter the momentum equation (h B is not zero): a prescribed shape does not determine the motion".into(),
         }),
     }
+}
+
+/// An optimal gait's request: the design and the parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OptimalGaitRequest {
+    /// What to optimize.
+    pub design: Design,
+    /// Parameters `NAME=VALUE`.
+    pub params: Vec<(String, f64)>,
+}
+
+/// The optimal loop, its laws as `--cycle` takes them, and its run.
+pub struct OptimalGait {
+    /// The loop found and its evaluation.
+    pub optimum: Optimum,
+    /// The shape coordinates, in the model's order.
+    pub shape: Vec<String>,
+    /// `NAME=EXPR` for each shape coordinate.
+    pub laws: Vec<String>,
+    /// The optimal loop run as a prescribed gait.
+    pub run: GaitRun,
+}
+
+/// The loop of `request.design` that moves the principally kinematic
+/// `loaded` model furthest (docs/INTERFACE.md section 9,
+/// `crate::gait_design`), and its run from its printed laws.
+///
+/// # Errors
+/// A model that carries momentum or has no connection curvature (no
+/// SE(2) symmetry, fewer than two shape coordinates), a bad request, no
+/// loop off the singular set, or the run's errors.
+pub fn optimal_gait(
+    loaded: Loaded,
+    request: &OptimalGaitRequest,
+) -> Result<OptimalGait, Box<dyn Error>> {
+    let Loaded { model, label, .. } = loaded;
+    let mut model = model;
+    with_parameters(&mut model, &request.params)?;
+    let body = locomotion(&model, &label)?;
+    if model.arguments("connection_curvature").is_none() {
+        return Err(GaitError::Model {
+            model: label,
+            reason: "--optimize designs loops of a principally kinematic model (its constraints fix the body velocity from the shape's, xi = -A(r) rdot): this model carries momentum".into(),
+        }
+        .into());
+    }
+    let optimum = gait_design::optimize(&body, &request.design)?;
+    let names = &model.names().coordinates;
+    let shape: Vec<String> = body.shape.iter().map(|&i| names[i].clone()).collect();
+    let laws = optimum.shape_loop.laws(&shape);
+    let cycle = laws
+        .iter()
+        .map(|law| {
+            let (name, text) = law.split_once('=').unwrap_or((law, ""));
+            (name.to_string(), text.to_string())
+        })
+        .collect();
+    let gait_request = GaitRequest {
+        cycle,
+        period: request.design.period,
+        cycles: 1,
+        steps: request.design.steps,
+        params: request.params.clone(),
+        initial: Vec::new(),
+    };
+    let loaded = Loaded {
+        model: model.clone(),
+        label,
+        built_in: None,
+        fallback: None,
+    };
+    let run = gait(loaded, &gait_request)?;
+    Ok(OptimalGait {
+        optimum,
+        shape,
+        laws,
+        run,
+    })
 }

@@ -45,6 +45,10 @@
 //! on their own (`A_xi` rows dependent where `A_r`'s are not), the model is
 //! not of the principal kind the momentum equation is stated for.
 
+mod algebra;
+mod curvature;
+
+use super::constraints::charts::{ChartsError, group_singular_points};
 use super::constraints::default_point;
 use super::port_hamiltonian::{column_of_symbols, fresh_symbol};
 use crate::model::{GroupFactor, Model};
@@ -52,6 +56,8 @@ use crate::sym::{
     Atoms, ExprId, Function, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError,
     SymbolId, SymbolKind,
 };
+use algebra::{bracket, se2_blocks};
+pub use curvature::{ConnectionQuotient, Curvature, CurvatureError};
 use std::collections::HashMap;
 
 /// The momentum equation's coefficients for one momentum `p_i`.
@@ -82,12 +88,23 @@ pub struct Momentum {
     pub locked_inertia: Matrix,
     /// `A_nh(r)`, dg x nr.
     pub connection: Matrix,
+    /// `A_nh` as `N / d` by Cramer's rule, finite wherever it is defined.
+    pub connection_quotient: ConnectionQuotient,
+    /// For a principally kinematic model (no momenta), the curvature of
+    /// `A_nh` on each plane of shape coordinates.
+    pub curvature: Option<Curvature>,
+    /// For a principally kinematic model, configurations (all n
+    /// coordinates, the group at its identity) found where the connection
+    /// is singular.
+    pub singular_shapes: Vec<Vec<f64>>,
     /// `p(q, qdot) = h M(q) qdot`, mp entries.
     pub momentum: Vec<RationalFunction>,
     /// `pdot(r, rdot, p)`, mp entries.
     pub rhs: Vec<RationalFunction>,
     /// `xi(r, rdot, p) = -A_nh rdot + e^T I^-1 p`, dg entries.
     pub body_velocity: Vec<RationalFunction>,
+    /// `e^T I^-1 p`, dg entries: `xi` without its horizontal part.
+    pub vertical_velocity: Vec<RationalFunction>,
     /// `H^i, K^i, D^i` for each momentum.
     pub coefficients: Vec<Coefficients>,
     /// `h(q) B(q)`, mp x p: the inputs' contribution `pdot += h B u` (the
@@ -113,6 +130,12 @@ pub enum MomentumError {
         "the constraints restrict the shape velocities: the momentum equation needs D + T(orbit) = TQ"
     )]
     ShapeConstrained,
+    /// The connection's quotient or curvature failed its proof: a bug.
+    #[error("momentum equation: {0}")]
+    Curvature(#[from] CurvatureError),
+    /// The search for the connection's singular set failed.
+    #[error("the connection's singular set: {0}")]
+    Charts(#[from] ChartsError),
     /// `pdot` is not the quadratic form of its coefficients: a bug.
     #[error("momentum equation {0} is not quadratic in the shape velocities and momenta")]
     NotQuadratic(usize),
@@ -133,11 +156,25 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
     let rdot = column_of_symbols(model, &shape_velocities)?;
     let p = column_of_symbols(model, &momenta)?;
     let atoms = model.store.atoms().clone();
-    let connection = connection(&body, &basis, &atoms)?;
+    let (connection, connection_quotient) = connection(&body, &basis, &atoms)?;
+    let shape_symbols: Vec<SymbolId> = shape.iter().map(|&i| model.coordinates[i].symbol).collect();
+    let (curvature, singular_shapes) = match momenta.is_empty() {
+        true => (
+            Some(curvature::curvature(
+                &mut model.store,
+                &connection_quotient,
+                &connection,
+                &shape_symbols,
+                &factors,
+            )?),
+            group_singular_points(model)?,
+        ),
+        false => (None, Vec::new()),
+    };
     let locked_inertia = basis
         .mul(&body.inertia, &atoms)?
         .mul(&basis.transpose(), &atoms)?;
-    let xi = reconstruction(&basis, &locked_inertia, &connection, &rdot, &p, &atoms)?;
+    let (vertical, xi) = reconstruction(&basis, &locked_inertia, &connection, &rdot, &p, &atoms)?;
     let rhs = momentum_rhs(model, &body, &basis, &xi, &rdot, &shape, &factors)?;
     let coefficients = rhs
         .iter()
@@ -153,14 +190,19 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         body_inertia: body.inertia,
         locked_inertia,
         connection,
+        connection_quotient,
+        curvature,
+        singular_shapes,
         momentum,
         rhs,
         body_velocity: xi.entries().to_vec(),
+        vertical_velocity: vertical.entries().to_vec(),
         coefficients,
         input_coupling,
     })
 }
 
+/// `e^T I^-1 p`, the part of the body velocity the momenta carry, and
 /// `xi = -A_nh rdot + e^T I^-1 p` (Koon & Marsden 1.1).
 fn reconstruction(
     basis: &Matrix,
@@ -169,29 +211,11 @@ fn reconstruction(
     rdot: &Matrix,
     p: &Matrix,
     atoms: &Atoms,
-) -> Result<Matrix, MatrixError> {
+) -> Result<(Matrix, Matrix), MatrixError> {
     let omega = locked_inertia.solve(p, atoms)?;
-    basis
-        .transpose()
-        .mul(&omega, atoms)?
-        .sub(&connection.mul(rdot, atoms)?, atoms)
-}
-
-/// For each `se2` factor: where its `(v1, v2, omega)` start in `xi`, and the
-/// coordinate index of its `theta`.
-fn se2_blocks(factors: &[GroupFactor]) -> Vec<(usize, usize)> {
-    let mut offset = 0;
-    let mut blocks = Vec::new();
-    for factor in factors {
-        match *factor {
-            GroupFactor::Se2 { theta, .. } => {
-                blocks.push((offset, theta));
-                offset += 3;
-            }
-            GroupFactor::Translation(_) | GroupFactor::Rotation(_) => offset += 1,
-        }
-    }
-    blocks
+    let vertical = basis.transpose().mul(&omega, atoms)?;
+    let xi = vertical.sub(&connection.mul(rdot, atoms)?, atoms)?;
+    Ok((vertical, xi))
 }
 
 /// The model at the group identity, split into group and shape blocks.
@@ -362,7 +386,11 @@ fn cleared(vector: &[RationalFunction], atoms: &Atoms) -> Vec<RationalFunction> 
 /// `A_nh`: the horizontal velocity `-A_nh rdot` satisfies the independent
 /// rows of the body constraints and carries no momentum; fails when the
 /// remaining constraint rows then fail (shape velocities constrained).
-fn connection(body: &BodyForm, basis: &Matrix, atoms: &Atoms) -> Result<Matrix, MomentumError> {
+fn connection(
+    body: &BodyForm,
+    basis: &Matrix,
+    atoms: &Atoms,
+) -> Result<(Matrix, ConnectionQuotient), MomentumError> {
     let independent = independent_rows(&body.constraints_group, atoms);
     let group_rows: Vec<usize> = (0..basis.columns()).collect();
     let shape_columns: Vec<usize> = (0..body.coupling.columns()).collect();
@@ -387,7 +415,8 @@ fn connection(body: &BodyForm, basis: &Matrix, atoms: &Atoms) -> Result<Matrix, 
     if !residual.is_zero() {
         return Err(MomentumError::ShapeConstrained);
     }
-    Ok(connection)
+    let quotient = curvature::connection_quotient(&system, &rhs, &connection, atoms)?;
+    Ok((connection, quotient))
 }
 
 /// Indices of a maximal set of independent rows, chosen greedily in order.
@@ -447,24 +476,6 @@ fn momentum_rhs(
         rhs.push(mu.transpose().mul(&direction, &atoms)?.get(0, 0).clone());
     }
     Ok(rhs)
-}
-
-/// The bracket of the product algebra: zero on abelian factors, and on each
-/// se(2) factor `[(a1,b1,w1),(a2,b2,w2)] = (w2 b1 - w1 b2, w1 a2 - w2 a1, 0)`.
-fn bracket(
-    first: &[RationalFunction],
-    second: &[RationalFunction],
-    factors: &[GroupFactor],
-    atoms: &Atoms,
-) -> Vec<RationalFunction> {
-    let mut result = vec![RationalFunction::zero(); first.len()];
-    for (o, _) in se2_blocks(factors) {
-        let (a1, b1, w1) = (&first[o], &first[o + 1], &first[o + 2]);
-        let (a2, b2, w2) = (&second[o], &second[o + 1], &second[o + 2]);
-        result[o] = w2.mul(b1, atoms).sub(&w1.mul(b2, atoms), atoms);
-        result[o + 1] = w1.mul(a2, atoms).sub(&w2.mul(a1, atoms), atoms);
-    }
-    result
 }
 
 /// `H^i, K^i, D^i` by exact second derivatives, proven to reproduce `pdot_i`.

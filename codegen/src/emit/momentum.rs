@@ -27,7 +27,7 @@ use super::port_hamiltonian::{
 };
 use super::report::Section;
 use super::{Argument, Function, coordinates, f64_type, velocities};
-use crate::derive::momentum::Momentum;
+use crate::derive::momentum::{Curvature, Momentum};
 use crate::diagnostic::Diagnostics;
 use crate::ir::OperationCount;
 use crate::model::Model;
@@ -54,19 +54,11 @@ pub(super) fn functions(
             Diagnostics::internal(model.name.span(), "`acceleration` was not emitted")
         })?;
     let shape = shape_acceleration(model, momentum, &reconstruction, acceleration);
-    let functions = vec![
+    let mut functions = vec![
         momentum_of_state(model, momentum)?,
         momentum_rhs(model, momentum)?,
         momentum_input_matrix(model, momentum)?,
-        shape_matrix(
-            model,
-            momentum,
-            "nonholonomic_connection",
-            "The nonholonomic connection `A_nh(r)`: the horizontal body velocity is \
-             `-A_nh(r) rdot` (Koon & Marsden 1.1); the geometric phase of a shape loop is \
-             built from it.",
-            &momentum.connection,
-        )?,
+        connection(model, momentum)?,
         shape_matrix(
             model,
             momentum,
@@ -78,6 +70,10 @@ pub(super) fn functions(
         shape,
         basis_divisors(model, momentum)?,
     ];
+    if let Some(curvature) = &momentum.curvature {
+        functions.push(connection_curvature(model, momentum, curvature)?);
+        functions.push(connection_divisor(model, momentum, curvature)?);
+    }
     Ok((functions, section))
 }
 
@@ -171,6 +167,7 @@ fn report_section(model: &mut Model, momentum: &Momentum) -> Section {
         matrix_lines(model, &mut section, &format!("K{i}"), &tensors.mixed);
         matrix_lines(model, &mut section, &format!("D{i}"), &tensors.momentum);
     }
+    connection_lines(model, &mut section, momentum);
     if momentum.input_coupling.is_zero() {
         section.line("inputs enter the momentum equation: no (h B = 0)");
     } else {
@@ -178,6 +175,53 @@ fn report_section(model: &mut Model, momentum: &Momentum) -> Section {
         matrix_lines(model, &mut section, "h B", &momentum.input_coupling);
     }
     section
+}
+
+/// The connection's divisor, where it vanishes, and the curvature's
+/// planes.
+fn connection_lines(model: &mut Model, section: &mut Section, momentum: &Momentum) {
+    let denominator = model
+        .store
+        .expression_of(&momentum.connection_quotient.denominator);
+    let shown = model.store.display(denominator).to_string();
+    section.line(format!(
+        "connection A_nh = N / d by Cramer's rule, singular where d = 0: d = {shown}"
+    ));
+    let Some(curvature) = &momentum.curvature else {
+        return;
+    };
+    let names: Vec<&str> = momentum
+        .shape
+        .iter()
+        .map(|&i| model.coordinates[i].declared.name.as_str())
+        .collect();
+    let points: Vec<String> = (momentum.singular_shapes.iter().take(3))
+        .map(|q| {
+            let values: Vec<String> = (momentum.shape.iter().zip(&names))
+                .map(|(&i, name)| format!("{name} = {:.4}", q[i]))
+                .collect();
+            values.join(", ")
+        })
+        .collect();
+    section.line(match points.is_empty() {
+        true => format!(
+            "  singular shapes found ({} random lines, parameters at their defaults): none",
+            crate::derive::constraints::charts::LINES
+        ),
+        false => format!(
+            "  singular shapes found ({} random lines, parameters at their defaults): {}, e.g. {}",
+            crate::derive::constraints::charts::LINES,
+            momentum.singular_shapes.len(),
+            points.join("; ")
+        ),
+    });
+    let planes: Vec<String> = (curvature.planes.iter())
+        .map(|&(i, j)| format!("({}, {})", names[i], names[j]))
+        .collect();
+    section.line(format!(
+        "principally kinematic: curvature F = -dA + [A, A] on the planes {} (connection_curvature)",
+        planes.join(", ")
+    ));
 }
 
 /// One line per row of `matrix`: `  name row i: [..]`.
@@ -260,12 +304,135 @@ fn body_velocity(model: &mut Model, momentum: &Momentum) -> Result<Function, Dia
         name: "body_velocity",
         doc: "The reconstruction `xi = g^-1 gdot = -A_nh(r) rdot + e(r)^T I(r)^-1 p` \
               (Koon & Marsden 1.1), in the body frame: `(v1, v2, omega)` for `se2`, \
-              the velocity for an abelian factor, factor by factor."
+              the velocity for an abelian factor, factor by factor; `A_nh` as `N / d` \
+              by Cramer's rule."
             .to_string(),
         arguments: reduced_arguments(model, momentum),
         returns: vector_type(momentum.basis.columns()),
     };
-    vector_item(model, signature, &momentum.body_velocity)
+    let quotient = &momentum.connection_quotient;
+    let nr = momentum.shape.len();
+    let denominator = model.store.expression_of(&quotient.denominator);
+    let mut outputs = Vec::with_capacity(quotient.numerators.rows());
+    for (i, vertical) in momentum.vertical_velocity.iter().enumerate() {
+        let terms: Vec<ExprId> = (0..nr)
+            .map(|j| {
+                let entry = model.store.expression_of(quotient.numerators.get(i, j));
+                let rate = model.store.symbol(momentum.shape_velocities[j]);
+                model.store.mul2(entry, rate)
+            })
+            .collect();
+        let horizontal = model.store.add(&terms);
+        let horizontal = quotient_of(model, horizontal, denominator)?;
+        let vertical = model.store.expression_of(vertical);
+        outputs.push(model.store.sub(vertical, horizontal));
+    }
+    item(model, signature, &outputs, vector_literal)
+}
+
+/// `numerator / denominator` as an expression, not brought to normal form.
+fn quotient_of(
+    model: &mut Model,
+    numerator: ExprId,
+    denominator: ExprId,
+) -> Result<ExprId, Diagnostics> {
+    model
+        .store
+        .div(numerator, denominator)
+        .map_err(|error| Diagnostics::internal(model.name.span(), error.to_string()))
+}
+
+/// `nonholonomic_connection(r)`: `A_nh = N / d`, entry by entry.
+fn connection(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let quotient = &momentum.connection_quotient;
+    let denominator = model.store.expression_of(&quotient.denominator);
+    let outputs = quotient_entries(model, &quotient.numerators, denominator)?;
+    let doc = "The nonholonomic connection `A_nh(r)`: the horizontal body velocity is \
+               `-A_nh(r) rdot` (Koon & Marsden 1.1); the geometric phase of a shape loop is \
+               built from it. Computed as `N(r) / d(r)` by Cramer's rule, finite wherever \
+               the connection is defined.";
+    let size = (quotient.numerators.rows(), quotient.numerators.columns());
+    let name = "nonholonomic_connection";
+    shape_rows_item(model, momentum, (name, doc.to_string()), &outputs, size)
+}
+
+/// `connection_curvature(r)`: `F = P / d^2`, one column per plane of shape
+/// coordinates.
+fn connection_curvature(
+    model: &mut Model,
+    momentum: &Momentum,
+    curvature: &Curvature,
+) -> Result<Function, Diagnostics> {
+    let denominator = model
+        .store
+        .expression_of(&momentum.connection_quotient.denominator);
+    let square = model.store.mul2(denominator, denominator);
+    let outputs = quotient_entries(model, &curvature.numerators, square)?;
+    let names: Vec<String> = momentum
+        .shape
+        .iter()
+        .map(|&i| model.coordinates[i].declared.name.clone())
+        .collect();
+    let planes: Vec<String> = curvature
+        .planes
+        .iter()
+        .map(|&(i, j)| format!("({}, {})", names[i], names[j]))
+        .collect();
+    let doc = format!(
+        "The curvature of the local connection of a principally kinematic model, \
+         `F_ij = -(dA_j/dr_i - dA_i/dr_j) + [A_i, A_j]` (`A_i` the i-th column of \
+         `A_nh`; Hatton & Choset 2011): a loop of signed area `a` around `r` in the \
+         plane `(r_i, r_j)` moves the body by about `F_ij(r) a`, and turns it by \
+         exactly the integral of the rotation entry over the enclosed area. Rows as \
+         `body_velocity`, columns the planes {}.",
+        planes.join(", ")
+    );
+    let size = (curvature.numerators.rows(), curvature.numerators.columns());
+    shape_rows_item(
+        model,
+        momentum,
+        ("connection_curvature", doc),
+        &outputs,
+        size,
+    )
+}
+
+/// `connection_divisor(r)`: `d` and its gradient `dd/dr`.
+fn connection_divisor(
+    model: &mut Model,
+    momentum: &Momentum,
+    curvature: &Curvature,
+) -> Result<Function, Diagnostics> {
+    let divisor = std::iter::once(&momentum.connection_quotient.denominator);
+    let outputs: Vec<ExprId> = (divisor.chain(&curvature.divisor_gradient))
+        .map(|entry| model.store.expression_of(entry))
+        .collect();
+    let signature = Signature {
+        name: "connection_divisor",
+        doc: "The divisor `d(r)` of the connection `A_nh = N / d` (Cramer's rule: \
+              `d = det S`), then its gradient `dd/dr`: the connection is singular where \
+              `d = 0`."
+            .to_string(),
+        arguments: vec![shape_argument(model, momentum)],
+        returns: vector_type(outputs.len()),
+    };
+    item(model, signature, &outputs, vector_literal)
+}
+
+/// Each entry of `numerators` over `denominator`, row-major.
+fn quotient_entries(
+    model: &mut Model,
+    numerators: &Matrix,
+    denominator: ExprId,
+) -> Result<Vec<ExprId>, Diagnostics> {
+    numerators
+        .entries()
+        .iter()
+        .map(|entry| {
+            let numerator = model.store.expression_of(entry);
+            quotient_of(model, numerator, denominator)
+        })
+        .collect()
 }
 
 /// `shape_acceleration(r, rdot, p, u)`: `acceleration` at
@@ -365,13 +532,31 @@ fn shape_matrix(
     doc: &str,
     matrix: &Matrix,
 ) -> Result<Function, Diagnostics> {
+    let outputs: Vec<ExprId> = (matrix.entries().iter())
+        .map(|entry| model.store.expression_of(entry))
+        .collect();
+    let size = (matrix.rows(), matrix.columns());
+    shape_rows_item(model, momentum, (name, doc.to_string()), &outputs, size)
+}
+
+/// An item of the shape `r` returning the `rows x columns` matrix of
+/// `outputs`, row-major.
+fn shape_rows_item(
+    model: &mut Model,
+    momentum: &Momentum,
+    (name, doc): (&'static str, String),
+    outputs: &[ExprId],
+    (rows, columns): (usize, usize),
+) -> Result<Function, Diagnostics> {
     let signature = Signature {
         name,
-        doc: doc.to_string(),
+        doc,
         arguments: vec![shape_argument(model, momentum)],
-        returns: matrix_type(matrix.rows(), matrix.columns()),
+        returns: matrix_type(rows, columns),
     };
-    matrix_item(model, signature, matrix)
+    item(model, signature, outputs, |values| {
+        rows_literal(values, rows, columns)
+    })
 }
 
 /// An item returning `matrix`.

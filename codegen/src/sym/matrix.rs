@@ -293,6 +293,60 @@ impl Matrix {
         Ok(determinant)
     }
 
+    /// The adjugate and the determinant by cofactor expansion, without a
+    /// division: `self adj = det I`, and for polynomial entries both are
+    /// polynomials. The quotient `adj rhs / det` is the solve with no
+    /// divisor cleared by a conjugate (the normal form keeps denominators
+    /// free of sines, which adds factors that vanish where the matrix is
+    /// regular), so it stays finite wherever `self` is regular. Cost grows
+    /// as `size!`; meant for the small blocks of a group's dimension.
+    pub fn adjugate(&self, atoms: &Atoms) -> Result<(Matrix, RationalFunction), MatrixError> {
+        if self.rows != self.columns {
+            return Err(self.shape_error(self));
+        }
+        let size = self.rows;
+        let all: Vec<usize> = (0..size).collect();
+        let mut adjugate = Matrix::zeros(size, size);
+        for i in 0..size {
+            for j in 0..size {
+                let rows: Vec<usize> = all.iter().copied().filter(|&k| k != i).collect();
+                let columns: Vec<usize> = all.iter().copied().filter(|&k| k != j).collect();
+                let minor = self.submatrix(&rows, &columns).expanded_determinant(atoms);
+                let cofactor = if (i + j) % 2 == 0 { minor } else { minor.neg() };
+                adjugate.set(j, i, cofactor);
+            }
+        }
+        let determinant = (0..size).fold(RationalFunction::zero(), |sum, j| {
+            sum.add(&self.get(0, j).mul(adjugate.get(j, 0), atoms), atoms)
+        });
+        let determinant = if size == 0 {
+            RationalFunction::one()
+        } else {
+            determinant
+        };
+        Ok((adjugate, determinant))
+    }
+
+    /// The determinant by Laplace expansion along the first row.
+    fn expanded_determinant(&self, atoms: &Atoms) -> RationalFunction {
+        if self.rows == 0 {
+            return RationalFunction::one();
+        }
+        let rest: Vec<usize> = (1..self.rows).collect();
+        (0..self.columns).fold(RationalFunction::zero(), |sum, j| {
+            if self.get(0, j).is_zero() {
+                return sum;
+            }
+            let columns: Vec<usize> = (0..self.columns).filter(|&k| k != j).collect();
+            let minor = self.submatrix(&rest, &columns).expanded_determinant(atoms);
+            let term = self.get(0, j).mul(&minor, atoms);
+            match j % 2 {
+                0 => sum.add(&term, atoms),
+                _ => sum.sub(&term, atoms),
+            }
+        })
+    }
+
     /// `X` with `self X = rhs`, block by block.
     pub fn solve(&self, rhs: &Matrix, atoms: &Atoms) -> Result<Matrix, MatrixError> {
         if self.rows != self.columns || rhs.rows != self.rows {

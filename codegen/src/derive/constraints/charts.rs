@@ -115,6 +115,30 @@ pub enum ChartsError {
     Program(#[from] IrError),
 }
 
+/// Shapes where the body-frame constraint rows do not determine the group
+/// velocities (the minor of the group's columns vanishes): where a
+/// principally kinematic model's connection is singular. Found as the
+/// charts' singular sets are (random lines through the shape coordinates,
+/// the group at its identity, the parameters at their defaults); each
+/// point gives all n coordinates; at most [`KEPT_POINTS`].
+pub fn group_singular_points(model: &mut Model) -> Result<Vec<Vec<f64>>, ChartsError> {
+    let Some(symmetry) = &model.symmetry else {
+        return Ok(Vec::new());
+    };
+    let group = symmetry.group_coordinates();
+    let frame = Frame::of(model, true)?;
+    if !frame.body || model.c() != group.len() {
+        return Ok(Vec::new());
+    }
+    let rows = FrameRows::new(model, &frame.rows, frame.varying.clone())?;
+    let mut points: Vec<Vec<f64>> = search::singular_points(&rows, &group)
+        .into_iter()
+        .map(|at| at.q)
+        .collect();
+    points.truncate(KEPT_POINTS);
+    Ok(points)
+}
+
 /// The other charts of D beside `primary` and the singular sets of all;
 /// none for a declared momentum basis or without constraints.
 pub fn alternative_charts(
