@@ -7,7 +7,8 @@ constraint analysis, the Lagrange-d'Alembert equations, the reduced
 port-Hamiltonian form, the momentum equation with a symmetry) and its
 functions compiled to native code at run time. ``Model.simulate`` returns a
 ``Trajectory`` of NumPy columns, ``Model.linearize`` a ``Linearization``
-with eigenvalues and intervals of stability, ``Model.rhs`` a right-hand side
+with eigenvalues and intervals of stability, ``Model.gait`` what a shape
+loop does and ``Model.optimal_gait`` the loop that does most, ``Model.rhs`` a right-hand side
 for ``scipy.integrate.solve_ivp``, and ``Model.sympy`` the derived matrices
 as SymPy expressions.
 
@@ -20,6 +21,7 @@ as SymPy expressions.
 
 from __future__ import annotations
 
+import math
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy
@@ -34,6 +36,7 @@ __all__ = [
     "Linearization",
     "Model",
     "ModelError",
+    "OptimalGait",
     "Rhs",
     "SimulationError",
     "Trajectory",
@@ -160,6 +163,29 @@ class Gait:
         return f"Gait({len(self.displacements)} cycles, first {self.displacements[0]})"
 
 
+class OptimalGait:
+    """The shape loop that moves a principally kinematic model furthest
+    (``Model.optimal_gait``): ``laws`` (``{name: expression of t}``, as
+    ``Model.gait`` takes them), ``coefficients`` (one row per shape
+    coordinate: the constant, then the cosine and sine coefficient of each
+    harmonic), ``efficiency`` (the displacement per unit of the loop's
+    length, or per cycle), ``length``, ``displacement`` (``(x, y, theta)``
+    over one cycle), ``starts`` (each refined start's efficiency) and
+    ``gait``, the loop's run."""
+
+    def __init__(self, found: Dict[str, Any], gait: Gait) -> None:
+        self.laws: Dict[str, str] = dict(found["laws"])
+        self.coefficients: numpy.ndarray = found["coefficients"]
+        self.efficiency: float = found["efficiency"]
+        self.length: float = found["length"]
+        self.displacement: numpy.ndarray = found["displacement"]
+        self.starts: List[float] = list(found["starts"])
+        self.gait = gait
+
+    def __repr__(self) -> str:
+        return f"OptimalGait(efficiency {self.efficiency}, displacement {self.displacement})"
+
+
 class Model:
     """A model read from its text, derived exactly, its functions compiled.
 
@@ -275,6 +301,38 @@ class Model:
             dict(cycle), float(period), int(cycles), int(steps), _dict(params), _dict(initial)
         )
         return Gait(run["displacements"], Trajectory(run["columns"], run["data"], None))
+
+    def optimal_gait(
+        self,
+        direction: str = "forward",
+        harmonics: int = 1,
+        cost: str = "length",
+        period: float = 2.0 * math.pi,
+        starts: int = 8,
+        margin: float = 0.25,
+        steps: int = 400,
+        params: Optional[Mapping[str, float]] = None,
+    ) -> OptimalGait:
+        """The loop of ``harmonics`` Fourier harmonics per shape coordinate
+        that moves a principally kinematic model furthest ``direction``
+        (``"forward"``, ``"lateral"`` or ``"rotate"``) per unit of its length
+        in the shape coordinates (``cost="length"``) or per cycle
+        (``cost="none"``), as ``chaplygin gait --optimize``: exact gradients,
+        L-BFGS from the best ``starts`` of a survey of random loops, loops
+        keeping the connection's divisor above ``margin`` of its largest
+        magnitude."""
+        found = self._native.optimal_gait(
+            str(direction),
+            int(harmonics),
+            str(cost),
+            float(period),
+            int(starts),
+            float(margin),
+            int(steps),
+            _dict(params),
+        )
+        run = Gait(found["displacements"], Trajectory(found["columns"], found["data"], None))
+        return OptimalGait(found, run)
 
     def rhs(
         self,

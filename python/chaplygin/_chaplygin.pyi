@@ -47,6 +47,17 @@ class Model:
         params: Optional[Dict[str, float]],
         initial: Optional[Dict[str, float]],
     ) -> Dict[str, Any]: ...
+    def optimal_gait(
+        self,
+        direction: str,
+        harmonics: int,
+        cost: str,
+        period: float,
+        starts: int,
+        margin: float,
+        steps: int,
+        params: Optional[Dict[str, float]],
+    ) -> Dict[str, Any]: ...
     def rhs(
         self,
         formulation: str,

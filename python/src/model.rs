@@ -8,7 +8,8 @@ use crate::rhs::Rhs;
 use chaplygin::driver::catalog::Source;
 use chaplygin::driver::document::{self, Format};
 use chaplygin::driver::engine::{self, EngineChoice, Loaded};
-use chaplygin::driver::gait::{self, GaitRequest};
+use chaplygin::driver::gait::{self, GaitRequest, OptimalGaitRequest};
+use chaplygin::gait_design::{Cost, Design, Direction};
 use chaplygin::driver::simulate::{
     self, Controller, FormulationChoice, Integrator, Request, with_parameters,
 };
@@ -101,6 +102,29 @@ fn integrator_named(name: &str) -> PyResult<Integrator> {
                 names.join(", ")
             ))
         })
+}
+
+/// The direction called `name`.
+fn direction_named(name: &str) -> PyResult<Direction> {
+    match name {
+        "forward" => Ok(Direction::Forward),
+        "lateral" => Ok(Direction::Lateral),
+        "rotate" => Ok(Direction::Rotate),
+        _ => Err(PyValueError::new_err(format!(
+            "unknown direction `{name}` (directions: forward, lateral, rotate)"
+        ))),
+    }
+}
+
+/// The cost called `name`.
+fn cost_named(name: &str) -> PyResult<Cost> {
+    match name {
+        "length" => Ok(Cost::Length),
+        "none" => Ok(Cost::None),
+        _ => Err(PyValueError::new_err(format!(
+            "unknown cost `{name}` (costs: length, none)"
+        ))),
+    }
 }
 
 /// The controller called `name`.
@@ -325,6 +349,66 @@ impl Model {
         let displacements = run
             .cycles
             .iter()
+            .flat_map(|cycle| cycle.displacement)
+            .collect();
+        result.set_item("displacements", matrix(py, displacements, 3)?)?;
+        Ok(result)
+    }
+
+    /// The loop that moves a principally kinematic model furthest
+    /// (`chaplygin gait --optimize`): its laws, coefficients, efficiency,
+    /// length, displacement, each start's efficiency and its run.
+    #[pyo3(signature = (direction, harmonics, cost, period, starts, margin, steps, params))]
+    #[allow(clippy::too_many_arguments)]
+    fn optimal_gait<'py>(
+        &self,
+        py: Python<'py>,
+        direction: &str,
+        harmonics: usize,
+        cost: &str,
+        period: f64,
+        starts: usize,
+        margin: f64,
+        steps: usize,
+        params: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let design = Design {
+            direction: direction_named(direction)?,
+            cost: cost_named(cost)?,
+            harmonics,
+            period,
+            starts,
+            margin,
+            steps,
+            ..Design::default()
+        };
+        let request = OptimalGaitRequest {
+            design,
+            params: numbers(params)?,
+        };
+        let found =
+            gait::optimal_gait(self.fresh(), &request).map_err(|error| to_python(py, error))?;
+        let optimum = &found.optimum;
+        let result = PyDict::new(py);
+        let laws: Vec<(String, String)> = (found.laws.iter())
+            .map(|law| {
+                let (name, text) = law.split_once('=').unwrap_or((law, ""));
+                (name.to_string(), text.to_string())
+            })
+            .collect();
+        result.set_item("laws", laws)?;
+        let per = optimum.shape_loop.per_coordinate();
+        let coefficients = optimum.shape_loop.coefficients.clone();
+        result.set_item("coefficients", matrix(py, coefficients, per)?)?;
+        result.set_item("efficiency", optimum.efficiency())?;
+        result.set_item("length", optimum.evaluation.length)?;
+        let displacement = optimum.evaluation.displacement.to_vec();
+        result.set_item("displacement", PyArray1::from_vec(py, displacement))?;
+        result.set_item("starts", optimum.starts.clone())?;
+        let (columns, data) = table(py, &found.run.table)?;
+        result.set_item("columns", columns)?;
+        result.set_item("data", data)?;
+        let displacements = (found.run.cycles.iter())
             .flat_map(|cycle| cycle.displacement)
             .collect();
         result.set_item("displacements", matrix(py, displacements, 3)?)?;

@@ -169,3 +169,24 @@ def test_a_gait_from_python_equals_the_command_lines(command_line):
     assert len(gait.trajectory) == 4001
     with pytest.raises(ValueError, match="no law for phi"):
         board.gait({"psi": "sin(t)"}, period=period)
+
+
+def test_an_optimal_gait_from_python_equals_the_command_lines(command_line):
+    snake = chaplygin.builtin("three-link-snake")
+    found = snake.optimal_gait("rotate", starts=2)
+    text = command_line(
+        "gait", "three-link-snake", "--shape", "a1,a2", "--optimize", "rotate",
+        "--starts", "2", "--out", "target/python-optimal-gait",
+    )
+    line = next(l for l in text.splitlines() if l.startswith("optimal loop: "))
+    printed = dict(law.split("=", 1) for law in line.split(": ", 1)[1].split("; "))
+    assert found.laws == printed
+    efficiency = next(l for l in text.splitlines() if l.startswith("efficiency: "))
+    assert float(efficiency.split()[1]) == found.efficiency
+    assert found.coefficients.shape == (2, 3)
+    # The printed laws run as a prescribed gait turn the snake as the optimum.
+    again = snake.gait(found.laws, period=2 * math.pi, steps=400)
+    assert numpy.array_equal(again.displacements[0], found.displacement)
+    assert found.displacement[2] > 0.5
+    with pytest.raises(ValueError, match="carries momentum"):
+        chaplygin.builtin("snakeboard").optimal_gait()
