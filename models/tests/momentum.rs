@@ -1,7 +1,8 @@
 //! The momentum-equation items (MATH.md section 4): the snakeboard against the
 //! hand derivation of MATH.md 4.1, and for every built-in model with a
 //! symmetry, the momentum of trajectories of `acceleration` against
-//! `momentum_rhs`.
+//! `momentum_rhs`; the Jacobians of `momentum_rhs` and `body_velocity`
+//! against central differences.
 
 mod common;
 
@@ -529,3 +530,69 @@ fn sleigh_reduced_energy_is_conserved() {
         close(energy(p), energy(&p0), 1e-10, "energy");
     }
 }
+
+/// `momentum_rhs_jacobian` and `body_velocity_jacobian` of `$model` equal
+/// central differences of `momentum_rhs` and `body_velocity` to 1e-7 of
+/// each Jacobian's largest entry, at random arguments.
+macro_rules! jacobians_match_differences {
+    ($test:ident, $model:ty, $nr:literal, $mp:literal) => {
+        #[test]
+        fn $test() {
+            let model = <$model>::default();
+            let mut random = Random::new(47);
+            for _ in 0..50 {
+                let mut point = random.vector(2 * $nr + $mp, -1.0, 1.0);
+                let split = |x: &[f64]| -> ([f64; $nr], [f64; $nr], [f64; $mp]) {
+                    (
+                        std::array::from_fn(|i| x[i]),
+                        std::array::from_fn(|i| x[$nr + i]),
+                        std::array::from_fn(|i| x[2 * $nr + i]),
+                    )
+                };
+                let (r, rdot, p) = split(&point);
+                let exact = [
+                    model.momentum_rhs_jacobian(&r, &rdot, &p).concat(),
+                    model.body_velocity_jacobian(&r, &rdot, &p).concat(),
+                ];
+                let columns = 2 * $nr + $mp;
+                for (which, jacobian) in exact.iter().enumerate() {
+                    let scale = jacobian.iter().fold(1e-3_f64, |m, v| m.max(v.abs()));
+                    for j in 0..columns {
+                        let value = |x: &[f64]| -> Vec<f64> {
+                            let (r, rdot, p) = split(x);
+                            match which {
+                                0 => model.momentum_rhs(&r, &rdot, &p).to_vec(),
+                                _ => model.body_velocity(&r, &rdot, &p).to_vec(),
+                            }
+                        };
+                        let h = 1e-6;
+                        point[j] += h;
+                        let plus = value(&point);
+                        point[j] -= 2.0 * h;
+                        let minus = value(&point);
+                        point[j] += h;
+                        for (i, (a, b)) in plus.iter().zip(&minus).enumerate() {
+                            let difference = (a - b) / (2.0 * h);
+                            let entry = jacobian[i * columns + j];
+                            assert!(
+                                (entry - difference).abs() <= 1e-7 * scale,
+                                "{} [{i}][{j}]: {entry} vs {difference}",
+                                ["momentum_rhs_jacobian", "body_velocity_jacobian"][which]
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    };
+}
+
+jacobians_match_differences!(snakeboard_jacobians_match_differences, Snakeboard, 2, 1);
+jacobians_match_differences!(sleigh_jacobians_match_differences, Sleigh, 0, 2);
+jacobians_match_differences!(rolling_disk_jacobians_match_differences, RollingDisk, 1, 1);
+jacobians_match_differences!(
+    three_link_snake_jacobians_match_differences,
+    chaplygin_models::three_link_snake::ThreeLinkSnake,
+    2,
+    0
+);

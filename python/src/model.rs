@@ -9,10 +9,10 @@ use chaplygin::driver::catalog::Source;
 use chaplygin::driver::document::{self, Format};
 use chaplygin::driver::engine::{self, EngineChoice, Loaded};
 use chaplygin::driver::gait::{self, GaitRequest, OptimalGaitRequest};
-use chaplygin::gait_design::{Cost, Design, Direction};
 use chaplygin::driver::simulate::{
     self, Controller, FormulationChoice, Integrator, Request, with_parameters,
 };
+use chaplygin::gait_design::{Cost, Design, Direction};
 use chaplygin::runtime::record::{Recorder, Table};
 use chaplygin::runtime::simulate::SimulationError;
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1};

@@ -47,6 +47,7 @@
 
 mod algebra;
 mod curvature;
+mod sensitivity;
 
 use super::constraints::charts::{ChartsError, group_singular_points};
 use super::constraints::default_point;
@@ -58,6 +59,7 @@ use crate::sym::{
 };
 use algebra::{bracket, se2_blocks};
 pub use curvature::{ConnectionQuotient, Curvature, CurvatureError};
+pub use sensitivity::Sensitivity;
 use std::collections::HashMap;
 
 /// The momentum equation's coefficients for one momentum `p_i`.
@@ -103,6 +105,8 @@ pub struct Momentum {
     pub rhs: Vec<RationalFunction>,
     /// `xi(r, rdot, p) = -A_nh rdot + e^T I^-1 p`, dg entries.
     pub body_velocity: Vec<RationalFunction>,
+    /// The Jacobians of `rhs` and of `body_velocity` in `(r, rdot, p)`.
+    pub sensitivity: Sensitivity,
     /// `e^T I^-1 p`, dg entries: `xi` without its horizontal part.
     pub vertical_velocity: Vec<RationalFunction>,
     /// `H^i, K^i, D^i` for each momentum.
@@ -182,6 +186,15 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         .map(|(i, pdot)| coefficients(model, i, pdot, &shape_velocities, &momenta))
         .collect::<Result<Vec<_>, _>>()?;
     let (momentum, input_coupling) = configuration_terms(model, &basis, &factors, &group)?;
+    let pieces = sensitivity::Pieces {
+        arguments: [shape_symbols, shape_velocities.clone(), momenta.clone()].concat(),
+        shape: shape.len(),
+        rhs: &rhs,
+        numerators: &connection_quotient.numerators,
+        denominator: &connection_quotient.denominator,
+        vertical: vertical.entries(),
+    };
+    let sensitivity = sensitivity::sensitivity(&mut model.store, &pieces)?;
     Ok(Momentum {
         shape,
         shape_velocities,
@@ -197,6 +210,7 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         rhs,
         body_velocity: xi.entries().to_vec(),
         vertical_velocity: vertical.entries().to_vec(),
+        sensitivity,
         coefficients,
         input_coupling,
     })

@@ -12,6 +12,11 @@
 //! shape_acceleration(r, rdot, p, u)
 //!                                the shape rows of `acceleration` at the group
 //!                                identity with qdot = (xi, rdot)    (1.3)
+//! momentum_rhs_jacobian(r, rdot, p), body_velocity_jacobian(r, rdot, p)
+//!                                their Jacobians in (r, rdot, p)
+//! connection_curvature(r), connection_divisor(r)
+//!                                principally kinematic only (mp = 0): F = -dA + [A, A]
+//!                                on each shape plane, d = det S and dd/dr (4.2, 4.3)
 //! ```
 //!
 //! `shape_acceleration` calls `body_velocity` and `acceleration` (by
@@ -68,6 +73,8 @@ pub(super) fn functions(
         )?,
         reconstruction,
         shape,
+        momentum_rhs_jacobian(model, momentum)?,
+        body_velocity_jacobian(model, momentum)?,
         basis_divisors(model, momentum)?,
     ];
     if let Some(curvature) = &momentum.curvature {
@@ -433,6 +440,55 @@ fn quotient_entries(
             quotient_of(model, numerator, denominator)
         })
         .collect()
+}
+
+/// `momentum_rhs_jacobian(r, rdot, p)`: `d pdot / d(r, rdot, p)`.
+fn momentum_rhs_jacobian(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let jacobian = &momentum.sensitivity.momentum;
+    let (rows, columns) = (jacobian.rows(), jacobian.columns());
+    let outputs: Vec<ExprId> = (jacobian.entries().iter())
+        .map(|entry| model.store.expression_of(entry))
+        .collect();
+    let signature = Signature {
+        name: "momentum_rhs_jacobian",
+        doc: "The Jacobian of `momentum_rhs` in its arguments: columns `r`, then \
+              `rdot`, then `p` (exact derivatives; a gait's forward sensitivities)."
+            .to_string(),
+        arguments: reduced_arguments(model, momentum),
+        returns: matrix_type(rows, columns),
+    };
+    item(model, signature, &outputs, |values| {
+        rows_literal(values, rows, columns)
+    })
+}
+
+/// `body_velocity_jacobian(r, rdot, p)`: `d xi / d(r, rdot, p) = P / d^2 + V`.
+fn body_velocity_jacobian(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let sensitivity = &momentum.sensitivity;
+    let (rows, columns) = (sensitivity.quotient.rows(), sensitivity.quotient.columns());
+    let denominator = model
+        .store
+        .expression_of(&momentum.connection_quotient.denominator);
+    let square = model.store.mul2(denominator, denominator);
+    let quotients = quotient_entries(model, &sensitivity.quotient, square)?;
+    let outputs: Vec<ExprId> = (quotients.into_iter().zip(sensitivity.vertical.entries()))
+        .map(|(quotient, vertical)| {
+            let vertical = model.store.expression_of(vertical);
+            model.store.add(&[quotient, vertical])
+        })
+        .collect();
+    let signature = Signature {
+        name: "body_velocity_jacobian",
+        doc: "The Jacobian of `body_velocity` in its arguments: columns `r`, then \
+              `rdot`, then `p` (exact derivatives of `-(N rdot) / d + e^T I^-1 p`; a \
+              gait's forward sensitivities)."
+            .to_string(),
+        arguments: reduced_arguments(model, momentum),
+        returns: matrix_type(rows, columns),
+    };
+    item(model, signature, &outputs, |values| {
+        rows_literal(values, rows, columns)
+    })
 }
 
 /// `shape_acceleration(r, rdot, p, u)`: `acceleration` at
