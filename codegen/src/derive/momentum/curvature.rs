@@ -74,14 +74,25 @@ pub enum CurvatureError {
     Unproved(&'static str),
 }
 
+/// The largest group dimension whose system is solved by Cramer's rule
+/// (cofactor expansion costs `dg!`); beyond it the quotient is the normal
+/// form over 1.
+pub const CRAMER_LIMIT: usize = 7;
+
 /// The connection `solution` of `system solution = rhs` as a quotient,
-/// proved equal to `solution`.
+/// proved equal to `solution`; beyond [`CRAMER_LIMIT`], `solution / 1`.
 pub fn connection_quotient(
     system: &Matrix,
     rhs: &Matrix,
     solution: &Matrix,
     atoms: &Atoms,
 ) -> Result<ConnectionQuotient, CurvatureError> {
+    if system.rows() > CRAMER_LIMIT {
+        return Ok(ConnectionQuotient {
+            numerators: solution.clone(),
+            denominator: RationalFunction::one(),
+        });
+    }
     let (adjugate, denominator) = system.adjugate(atoms)?;
     let numerators = adjugate.mul(rhs, atoms)?;
     let scaled = scaled(solution, &denominator, atoms);

@@ -308,3 +308,32 @@ fn the_racers_momentum_basis_has_no_removable_factor() {
         assert!(entry.sub(expected, &atoms).is_zero());
     }
 }
+
+/// A group of more dimensions than `CRAMER_LIMIT` (eight translations of
+/// free particles beside a shape) keeps the normal form's connection, over
+/// 1, instead of expanding 8! cofactors.
+#[test]
+fn a_large_group_keeps_the_normal_form_connection() {
+    let coordinates: Vec<String> = (1..=8).map(|i| format!("x{i}")).collect();
+    let energy: Vec<String> = coordinates.iter().map(|x| format!("dot({x})^2")).collect();
+    let factors: Vec<String> = coordinates
+        .iter()
+        .map(|x| format!("translation({x})"))
+        .collect();
+    let source = format!(
+        "pub struct Particles {{\n    coordinates: [{}, s],\n    parameters: [m = 1.0],\n    \
+         kinetic_energy: m/2*({} + dot(s)^2),\n    potential_energy: 0,\n    \
+         constraints: [],\n    symmetry: {},\n}}\n",
+        coordinates.join(", "),
+        energy.join(" + "),
+        factors.join(" * ")
+    );
+    let (_, momentum) = derived(&source);
+    assert_eq!(momentum.basis.columns(), 8);
+    assert!(super::curvature::CRAMER_LIMIT < 8);
+    assert_eq!(
+        momentum.connection_quotient.denominator,
+        RationalFunction::one()
+    );
+    assert_eq!(momentum.connection_quotient.numerators, momentum.connection);
+}
