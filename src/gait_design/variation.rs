@@ -53,7 +53,8 @@ pub struct Scoring {
     pub cost: Cost,
     /// RK4 steps per period (even).
     pub steps: usize,
-    /// `margin d_ref`: where the barrier starts.
+    /// `margin d_ref`: the least `|d(r)|` a loop may reach (clearance
+    /// `s = 1`); the barrier acts up to twice it.
     pub clearance: f64,
     /// The barrier's weight.
     pub barrier_weight: f64,
