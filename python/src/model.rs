@@ -390,13 +390,7 @@ impl Model {
             gait::optimal_gait(self.fresh(), &request).map_err(|error| to_python(py, error))?;
         let optimum = &found.optimum;
         let result = PyDict::new(py);
-        let laws: Vec<(String, String)> = (found.laws.iter())
-            .map(|law| {
-                let (name, text) = law.split_once('=').unwrap_or((law, ""));
-                (name.to_string(), text.to_string())
-            })
-            .collect();
-        result.set_item("laws", laws)?;
+        result.set_item("laws", found.laws.clone())?;
         let per = optimum.shape_loop.per_coordinate();
         let coefficients = optimum.shape_loop.coefficients.clone();
         result.set_item("coefficients", matrix(py, coefficients, per)?)?;

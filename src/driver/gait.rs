@@ -430,8 +430,8 @@ pub struct OptimalGait {
     pub optimum: Optimum,
     /// The shape coordinates, in the model's order.
     pub shape: Vec<String>,
-    /// `NAME=EXPR` for each shape coordinate.
-    pub laws: Vec<String>,
+    /// Each shape coordinate's name and law (`--cycle NAME=EXPR`).
+    pub laws: Vec<(String, String)>,
     /// The optimal loop run as a prescribed gait.
     pub run: GaitRun,
 }
@@ -448,8 +448,9 @@ pub fn optimal_gait(
     loaded: Loaded,
     request: &OptimalGaitRequest,
 ) -> Result<OptimalGait, Box<dyn Error>> {
-    let Loaded { model, label, .. } = loaded;
-    let mut model = model;
+    let Loaded {
+        mut model, label, ..
+    } = loaded;
     with_parameters(&mut model, &request.params)?;
     let body = locomotion(&model, &label)?;
     if model.arguments("connection_curvature").is_none() {
@@ -463,15 +464,8 @@ pub fn optimal_gait(
     let names = &model.names().coordinates;
     let shape: Vec<String> = body.shape.iter().map(|&i| names[i].clone()).collect();
     let laws = optimum.shape_loop.laws(&shape);
-    let cycle = laws
-        .iter()
-        .map(|law| {
-            let (name, text) = law.split_once('=').unwrap_or((law, ""));
-            (name.to_string(), text.to_string())
-        })
-        .collect();
     let gait_request = GaitRequest {
-        cycle,
+        cycle: laws.clone(),
         period: request.design.period,
         cycles: 1,
         steps: request.design.steps,

@@ -57,23 +57,23 @@ impl FourierLoop {
             .unzip()
     }
 
-    /// Each coordinate's law as a model-language expression of `t`
-    /// (`NAME=EXPR`, what `--cycle` takes), every coefficient at full
+    /// Each coordinate's name and law, a model-language expression of `t`
+    /// (what `--cycle NAME=EXPR` takes), every coefficient at full
     /// precision.
-    pub fn laws(&self, names: &[String]) -> Vec<String> {
+    pub fn laws(&self, names: &[String]) -> Vec<(String, String)> {
         let w = 2.0 * std::f64::consts::PI / self.period;
         names
             .iter()
             .zip(self.coefficients.chunks(self.per_coordinate()))
             .map(|(name, c)| {
-                let mut law = format!("{name}={:?}", c[0]);
+                let mut law = format!("{:?}", c[0]);
                 for k in 1..=self.harmonics {
                     let frequency = k as f64 * w;
                     let (a, b) = (c[2 * k - 1], c[2 * k]);
                     law.push_str(&format!("{:+?}*cos({frequency:?}*t)", a));
                     law.push_str(&format!("{:+?}*sin({frequency:?}*t)", b));
                 }
-                law
+                (name.clone(), law)
             })
             .collect()
     }
@@ -107,8 +107,8 @@ mod tests {
         }
         let laws = shape_loop.laws(&["a".into(), "b".into()]);
         assert_eq!(
-            laws[1],
-            "b=-1.0+0.0*cos(2.0*t)+2.0*sin(2.0*t)+0.0*cos(4.0*t)+0.0*sin(4.0*t)"
+            laws[1].1,
+            "-1.0+0.0*cos(2.0*t)+2.0*sin(2.0*t)+0.0*cos(4.0*t)+0.0*sin(4.0*t)"
         );
     }
 }

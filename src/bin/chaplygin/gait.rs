@@ -162,10 +162,13 @@ fn summary(found: &OptimalGait) -> String {
         Cost::None => "per cycle",
     };
     let starts: Vec<String> = optimum.starts.iter().map(|e| format!("{e:.6}")).collect();
+    let laws: Vec<String> = (found.laws.iter())
+        .map(|(name, law)| format!("{name}={law}"))
+        .collect();
     format!(
         "{}optimal loop: {}\nefficiency: {} {per} (loop length {})\nstarts: {}\n",
         displacements(&found.run),
-        found.laws.join("; "),
+        laws.join("; "),
         shortest_decimal(optimum.efficiency()),
         shortest_decimal(optimum.evaluation.length),
         starts.join(", ")
