@@ -26,7 +26,9 @@
 //! against the swept variable; for `chaplygin gait`, [`write_path_plot`]
 //! the planar path alone and, for a principally kinematic model,
 //! [`write_curvature_plot`] `curvature.png`: its constraint curvature
-//! functions over the shape plane with the loop drawn on them.
+//! functions over the shape plane with the loop drawn on them; and
+//! [`write_gait_comparison`] gaits side by side, their loops in the shape
+//! plane and the paths they drive.
 //!
 //! Non-finite samples (a diverged run) break the curves instead of being
 //! drawn. Text uses DejaVu Sans (Bitstream Vera license, shipped in
@@ -37,6 +39,7 @@ mod curvature;
 mod eigenvalues;
 mod error;
 mod figure4;
+mod gaits;
 mod path;
 mod series;
 mod spec;
@@ -45,6 +48,7 @@ mod style;
 pub use curvature::{CurvatureField, write_curvature_plot};
 pub use eigenvalues::{EigenvalueSweep, write_eigenvalue_plot};
 pub use error::PlotError;
+pub use gaits::{GaitCurve, write_gait_comparison};
 pub use spec::{Figure4, PlanarPath, PlotSpec, Table, Track};
 
 use plotters::style::FontStyle;

@@ -5,7 +5,10 @@
 //! their PNG signature and size, and the structured errors of bad input.
 #![cfg(feature = "cli")]
 
-use chaplygin::plot::{Figure4, PlanarPath, PlotError, PlotSpec, Table, Track, write_plots};
+use chaplygin::plot::{
+    Figure4, GaitCurve, PlanarPath, PlotError, PlotSpec, Table, Track, write_gait_comparison,
+    write_plots,
+};
 use std::f64::consts::FRAC_PI_2;
 use std::path::{Path, PathBuf};
 
@@ -361,6 +364,51 @@ fn zero_initial_energy_and_non_finite_samples_still_plot() {
     assert_eq!(written.len(), 3);
     for file in written {
         assert_eq!(png_size(&file), (1024, 768));
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// Two gaits side by side: an 1800 x 800 PNG with each gait's colour (the
+/// first red, the second blue) in both panels; no gait, or a gait without
+/// points, is an error and writes nothing.
+#[test]
+fn gaits_are_compared_in_their_colours() {
+    let dir = scratch("gaits");
+    std::fs::create_dir_all(&dir).unwrap();
+    let circle = |radius: f64| -> Vec<(f64, f64)> {
+        (0..=200)
+            .map(|k| {
+                let t = std::f64::consts::TAU * k as f64 / 200.0;
+                (radius * t.cos(), radius * t.sin())
+            })
+            .collect()
+    };
+    let gait = |label: &str, radius: f64| GaitCurve {
+        label: label.to_string(),
+        shape: circle(radius),
+        path: circle(2.0 * radius)
+            .iter()
+            .map(|&(x, y)| (x + 2.0 * radius, y))
+            .collect(),
+    };
+    let file = dir.join("gaits.png");
+    let curves = [gait("small", 0.5), gait("large", 1.0)];
+    write_gait_comparison("Two gaits", &curves, ["a", "b"], &file).unwrap();
+    assert_eq!(png_size(&file), (1800, 800));
+    let (red, blue) = (
+        pixels_of(&file, [214, 39, 40]),
+        pixels_of(&file, [31, 119, 180]),
+    );
+    assert!(red > 1000 && blue > 1000, "red {red}, blue {blue}");
+    let empty = GaitCurve {
+        path: Vec::new(),
+        ..gait("empty", 1.0)
+    };
+    let other = dir.join("none.png");
+    for curves in [&[][..], &[empty][..]] {
+        let error = write_gait_comparison("", curves, ["a", "b"], &other).unwrap_err();
+        assert!(matches!(error, PlotError::EmptyTable), "{error:?}");
+        assert!(!other.exists());
     }
     std::fs::remove_dir_all(dir).unwrap();
 }

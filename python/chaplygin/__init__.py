@@ -164,7 +164,7 @@ class Gait:
 
 
 class OptimalGait:
-    """The shape loop that moves a principally kinematic model furthest
+    """The shape loop that moves a model furthest from rest
     (``Model.optimal_gait``): ``laws`` (``{name: expression of t}``, as
     ``Model.gait`` takes them), ``coefficients`` (one row per shape
     coordinate: the constant, then the cosine and sine coefficient of each
@@ -310,17 +310,18 @@ class Model:
         period: float = 2.0 * math.pi,
         starts: int = 8,
         margin: float = 0.25,
+        limit: float = math.pi,
         steps: int = 400,
         params: Optional[Mapping[str, float]] = None,
     ) -> OptimalGait:
         """The loop of ``harmonics`` Fourier harmonics per shape coordinate
-        that moves a principally kinematic model furthest ``direction``
+        that moves the model furthest ``direction`` from rest
         (``"forward"``, ``"lateral"`` or ``"rotate"``) per unit of its length
         in the shape coordinates (``cost="length"``) or per cycle
         (``cost="none"``), as ``chaplygin gait --optimize``: exact gradients,
         L-BFGS from the best ``starts`` of a survey of random loops, loops
         keeping the connection's divisor above ``margin`` of its largest
-        magnitude."""
+        magnitude and every shape coordinate within ``[-limit, limit]``."""
         found = self._native.optimal_gait(
             str(direction),
             int(harmonics),
@@ -328,6 +329,7 @@ class Model:
             float(period),
             int(starts),
             float(margin),
+            float(limit),
             int(steps),
             _dict(params),
         )

@@ -55,6 +55,7 @@ class Model:
         period: float,
         starts: int,
         margin: float,
+        limit: float,
         steps: int,
         params: Optional[Dict[str, float]],
     ) -> Dict[str, Any]: ...

@@ -355,10 +355,10 @@ impl Model {
         Ok(result)
     }
 
-    /// The loop that moves a principally kinematic model furthest
-    /// (`chaplygin gait --optimize`): its laws, coefficients, efficiency,
-    /// length, displacement, each start's efficiency and its run.
-    #[pyo3(signature = (direction, harmonics, cost, period, starts, margin, steps, params))]
+    /// The loop that moves a model furthest from rest (`chaplygin gait
+    /// --optimize`): its laws, coefficients, efficiency, length,
+    /// displacement, each start's efficiency and its run.
+    #[pyo3(signature = (direction, harmonics, cost, period, starts, margin, limit, steps, params))]
     #[allow(clippy::too_many_arguments)]
     fn optimal_gait<'py>(
         &self,
@@ -369,6 +369,7 @@ impl Model {
         period: f64,
         starts: usize,
         margin: f64,
+        limit: f64,
         steps: usize,
         params: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
@@ -379,6 +380,7 @@ impl Model {
             period,
             starts,
             margin,
+            limit,
             steps,
             ..Design::default()
         };

@@ -138,26 +138,29 @@ pub fn run(
     record: &mut dyn FnMut(f64, &GaitState),
 ) -> Vec<Cycle> {
     let shape = model.shape_indices();
+    let n = model.coordinate_count();
     let h = shape_loop.period / steps.max(1) as f64;
-    let mut state = GaitState {
-        q: q0.to_vec(),
-        p: p0.to_vec(),
+    let mut state = [q0, p0].concat();
+    with_shape(&mut state[..n], &shape, &(shape_loop.shape)(0.0).0);
+    let split = |state: &[f64]| GaitState {
+        q: state[..n].to_vec(),
+        p: state[n..].to_vec(),
     };
-    with_shape(&mut state.q, &shape, &(shape_loop.shape)(0.0).0);
-    record(0.0, &state);
+    record(0.0, &split(&state));
+    let rate = |t: f64, state: &[f64]| rate(model, shape_loop, t, state);
     let mut done = Vec::with_capacity(cycles);
     for cycle in 0..cycles {
-        let start = group_of(model, &state.q);
+        let start = group_of(model, &state);
         for k in 0..steps.max(1) {
             let t = (cycle * steps.max(1) + k) as f64 * h;
-            state = rk4_step(model, shape_loop, &state, t, h);
+            state = rk4_step(&rate, t, &state, h);
             let time = t + h;
-            with_shape(&mut state.q, &shape, &(shape_loop.shape)(time).0);
-            record(time, &state);
+            with_shape(&mut state[..n], &shape, &(shape_loop.shape)(time).0);
+            record(time, &split(&state));
         }
         done.push(Cycle {
-            displacement: relative(&start, &group_of(model, &state.q)),
-            momentum: state.p.clone(),
+            displacement: relative(&start, &group_of(model, &state)),
+            momentum: state[n..].to_vec(),
         });
     }
     done
@@ -182,47 +185,30 @@ pub fn relative(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
     [cos * dx + sin * dy, -sin * dx + cos * dy, b[2] - a[2]]
 }
 
-/// `(qdot, pdot)` at `t`, the shape at `r(t)`.
-fn rate(
-    model: &dyn Locomotion,
-    shape_loop: &ShapeLoop<'_>,
-    t: f64,
-    state: &GaitState,
-) -> GaitState {
+/// `(qdot, pdot)` at `t` of the state `(q, p)`, the shape at `r(t)`.
+fn rate(model: &dyn Locomotion, shape_loop: &ShapeLoop<'_>, t: f64, state: &[f64]) -> Vec<f64> {
     let (r, rdot) = (shape_loop.shape)(t);
-    let mut q = state.q.clone();
+    let n = model.coordinate_count();
+    let (mut q, p) = (state[..n].to_vec(), &state[n..]);
     with_shape(&mut q, &model.shape_indices(), &r);
-    GaitState {
-        q: model.reconstructed_velocity(&q, &rdot, &state.p),
-        p: model.momentum_rhs(&r, &rdot, &state.p),
-    }
+    let qdot = model.reconstructed_velocity(&q, &rdot, p);
+    [qdot, model.momentum_rhs(&r, &rdot, p)].concat()
 }
 
-/// `state + h rate`.
-fn moved(state: &GaitState, rate: &GaitState, h: f64) -> GaitState {
-    let add = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| a + h * b).collect();
-    GaitState {
-        q: add(&state.q, &rate.q),
-        p: add(&state.p, &rate.p),
-    }
-}
-
-/// One classical RK4 step from `t`.
-fn rk4_step(
-    model: &dyn Locomotion,
-    shape_loop: &ShapeLoop<'_>,
-    state: &GaitState,
-    t: f64,
-    h: f64,
-) -> GaitState {
-    let k1 = rate(model, shape_loop, t, state);
-    let k2 = rate(model, shape_loop, t + h / 2.0, &moved(state, &k1, h / 2.0));
-    let k3 = rate(model, shape_loop, t + h / 2.0, &moved(state, &k2, h / 2.0));
-    let k4 = rate(model, shape_loop, t + h, &moved(state, &k3, h));
-    let slopes = [(&k1, 1.0), (&k2, 2.0), (&k3, 2.0), (&k4, 1.0)];
-    slopes.iter().fold(state.clone(), |sum, (k, weight)| {
-        moved(&sum, k, h * weight / 6.0)
-    })
+/// One classical RK4 step of `xdot = rate(t, x)` from `x` at `t`: the
+/// integrator of every gait, so that a gait's forward sensitivities, the
+/// same step applied to the variational equations, are the exact
+/// derivatives of its discrete displacement.
+pub fn rk4_step(rate: &dyn Fn(f64, &[f64]) -> Vec<f64>, t: f64, x: &[f64], h: f64) -> Vec<f64> {
+    let moved =
+        |k: &[f64], by: f64| -> Vec<f64> { x.iter().zip(k).map(|(x, k)| x + by * k).collect() };
+    let k1 = rate(t, x);
+    let k2 = rate(t + h / 2.0, &moved(&k1, h / 2.0));
+    let k3 = rate(t + h / 2.0, &moved(&k2, h / 2.0));
+    let k4 = rate(t + h, &moved(&k3, h));
+    (0..x.len())
+        .map(|i| x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
+        .collect()
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@ use super::engine::Loaded;
 use super::expression::{Expression, Scope};
 use super::interpreted::evaluated;
 use super::simulate::{borrowed, with_parameters};
-use crate::gait_design::{self, Design, Kinematic, Optimum};
+use crate::gait_design::{self, Design, GaitModel, Jacobians, Optimum};
 use crate::runtime::gait::{self, Cycle, GaitState, Locomotion, ShapeLoop};
 use crate::runtime::linearize::GroupFactor;
 use crate::runtime::record::Table;
@@ -117,8 +117,8 @@ pub struct CurvatureGrid {
 pub const CURVATURE_GRID: usize = 121;
 
 /// A model with an SE(2) symmetry, read from its text, as the runtime's
-/// [`Locomotion`] and, for a principally kinematic model, as
-/// [`Kinematic`].
+/// [`Locomotion`] and as a [`GaitModel`] (its Jacobians, divisor and, for
+/// a principally kinematic model, curvature).
 pub struct FromText<'m> {
     model: &'m InterpretedModel,
     group: [usize; 3],
@@ -157,19 +157,36 @@ impl Locomotion for FromText<'_> {
     }
 }
 
-impl Kinematic for FromText<'_> {
-    fn curvature(&self, r: &[f64]) -> Vec<[f64; 3]> {
-        let values = evaluated(self.model.call("connection_curvature", &[r]));
-        let planes = self.shape.len() * (self.shape.len() - 1) / 2;
-        let offset = se2_offset(self.model.symmetry());
-        (0..planes)
-            .map(|plane| std::array::from_fn(|c| values[(offset + c) * planes + plane]))
-            .collect()
-    }
-
+impl GaitModel for FromText<'_> {
     fn divisor(&self, r: &[f64]) -> (f64, Vec<f64>) {
         let values = evaluated(self.model.call("connection_divisor", &[r]));
         (values[0], values[1..].to_vec())
+    }
+
+    fn jacobians(&self, r: &[f64], rdot: &[f64], p: &[f64]) -> Jacobians {
+        let columns = 2 * r.len() + p.len();
+        let rows = |name: &str| -> Vec<Vec<f64>> {
+            let values = evaluated(self.model.call(name, &[r, rdot, p]));
+            values.chunks_exact(columns).map(<[f64]>::to_vec).collect()
+        };
+        let body = rows("body_velocity_jacobian");
+        let offset = se2_offset(self.model.symmetry());
+        Jacobians {
+            body_velocity: std::array::from_fn(|c| body[offset + c].clone()),
+            momentum: rows("momentum_rhs_jacobian"),
+        }
+    }
+
+    fn curvature(&self, r: &[f64]) -> Option<Vec<[f64; 3]>> {
+        self.model.arguments("connection_curvature")?;
+        let values = evaluated(self.model.call("connection_curvature", &[r]));
+        let planes = self.shape.len() * (self.shape.len() - 1) / 2;
+        let offset = se2_offset(self.model.symmetry());
+        Some(
+            (0..planes)
+                .map(|plane| std::array::from_fn(|c| values[(offset + c) * planes + plane]))
+                .collect(),
+        )
     }
 }
 
@@ -436,14 +453,15 @@ pub struct OptimalGait {
     pub run: GaitRun,
 }
 
-/// The loop of `request.design` that moves the principally kinematic
-/// `loaded` model furthest (docs/INTERFACE.md section 9,
-/// `crate::gait_design`), and its run from its printed laws.
+/// The loop of `request.design` that moves the `loaded` model furthest
+/// from rest (docs/INTERFACE.md section 9, `crate::gait_design`), and its
+/// run from its printed laws.
 ///
 /// # Errors
-/// A model that carries momentum or has no connection curvature (no
-/// SE(2) symmetry, fewer than two shape coordinates), a bad request, no
-/// loop off the singular set, or the run's errors.
+/// A model without an SE(2) symmetry, momentum equation or two shape
+/// coordinates, whose inputs push its momentum (at eight shapes spread
+/// over the survey's box), a bad request, no loop off the singular set,
+/// or the run's errors.
 pub fn optimal_gait(
     loaded: Loaded,
     request: &OptimalGaitRequest,
@@ -453,13 +471,17 @@ pub fn optimal_gait(
     } = loaded;
     with_parameters(&mut model, &request.params)?;
     let body = locomotion(&model, &label)?;
-    if model.arguments("connection_curvature").is_none() {
-        return Err(GaitError::Model {
-            model: label,
-            reason: "--optimize designs loops of a principally kinematic model (its constraints fix the body velocity from the shape's, xi = -A(r) rdot): this model carries momentum".into(),
-        }
-        .into());
-    }
+    let extent = request.design.extent;
+    let spread = |t: f64| -> (Vec<f64>, Vec<f64>) {
+        (0..body.shape.len())
+            .map(|i| {
+                let phase = t + i as f64;
+                (extent * phase.sin(), extent * phase.cos())
+            })
+            .unzip()
+    };
+    let q0 = vec![0.0; model.sizes().n];
+    refuse_pushed_momentum(&body, &spread, (&q0, 2.0 * std::f64::consts::PI), &label)?;
     let optimum = gait_design::optimize(&body, &request.design)?;
     let names = &model.names().coordinates;
     let shape: Vec<String> = body.shape.iter().map(|&i| names[i].clone()).collect();

@@ -1,15 +1,15 @@
 //! The search for an optimal loop: a survey of random loops off the
-//! singular set ([`SURVEY`] of them, each centre uniform in `[-extent,
+//! singular set and inside the limits ([`SURVEY`] of them, each centre uniform in `[-extent,
 //! extent]`, each first-harmonic amplitude in `[-3/4 extent, 3/4 extent]`,
 //! the higher harmonics 0), the best `starts` of them (least cost) refined
 //! by argmin's L-BFGS (memory 7) with a backtracking line search on the
-//! Armijo condition, which shortens a step into the singular set (infinite
-//! cost) like any step that does not descend; the best refined loop is
+//! Armijo condition, which shortens a step into the singular set or past
+//! a limit (infinite cost) like any step that does not descend; the best refined loop is
 //! kept.
 
 use super::fourier::FourierLoop;
-use super::variation::{Evaluation, Scoring, clearance, evaluate};
-use super::{Cost, Direction, Kinematic};
+use super::score::{Evaluation, Scoring, clearance};
+use super::{Cost, Direction, GaitModel, evaluate};
 use argmin::core::{CostFunction, Error, Executor, Gradient, State};
 use argmin::solver::linesearch::BacktrackingLineSearch;
 use argmin::solver::linesearch::condition::ArmijoCondition;
@@ -37,12 +37,32 @@ pub struct Design {
     pub steps: usize,
     /// Loops keep `|d(r)|` above this fraction of its largest magnitude
     /// over `[-pi, pi]` in the first two shape coordinates, and the barrier
-    /// acts below twice that.
+    /// acts below twice that; the barrier of the limits acts within this
+    /// fraction of the limit.
     pub margin: f64,
+    /// Every shape coordinate keeps `|r_i|` below it.
+    pub limit: f64,
     /// L-BFGS iterations per start, at most.
     pub iterations: u64,
     /// The seed of the starts.
     pub seed: u64,
+}
+
+impl Design {
+    /// How `model`'s loops are scored under this design (the barrier's
+    /// clearance from the largest `|d|` on the grid of the first two shape
+    /// coordinates).
+    pub fn scoring(&self, model: &dyn GaitModel) -> Scoring {
+        Scoring {
+            direction: self.direction,
+            cost: self.cost,
+            steps: self.steps,
+            clearance: self.margin * largest_divisor(model, model.shape_indices().len()),
+            limit: self.limit,
+            limit_band: self.margin * self.limit,
+            barrier_weight: BARRIER_WEIGHT,
+        }
+    }
 }
 
 impl Default for Design {
@@ -56,6 +76,7 @@ impl Default for Design {
             extent: 2.0,
             steps: 400,
             margin: 0.25,
+            limit: PI,
             iterations: 300,
             seed: 0x5eed_9a17,
         }
@@ -69,10 +90,14 @@ pub enum DesignError {
     #[error("{0}")]
     Request(String),
     /// No random loop off the singular set.
-    #[error("no random loop stays off the connection's singular set (margin {margin})")]
+    #[error(
+        "no random loop stays off the connection's singular set and inside the limits (margin {margin}, limit {limit})"
+    )]
     NoStart {
         /// The margin asked for.
         margin: f64,
+        /// The limit asked for.
+        limit: f64,
     },
     /// The optimizer failed.
     #[error("the optimizer: {0}")]
@@ -102,28 +127,22 @@ impl Optimum {
 /// The loop of `design` that maximizes its efficiency on `model`.
 ///
 /// # Errors
-/// A request without shape plane, harmonics, starts or a positive period
-/// and margin; no random loop off the singular set; the optimizer's
-/// failure.
-pub fn optimize(model: &dyn Kinematic, design: &Design) -> Result<Optimum, DesignError> {
+/// A request without shape plane, harmonics, starts or a positive period,
+/// margin and limit; no random loop off the singular set and inside the
+/// limits; the optimizer's failure.
+pub fn optimize(model: &dyn GaitModel, design: &Design) -> Result<Optimum, DesignError> {
     let nr = model.shape_indices().len();
     if nr < 2 || design.harmonics == 0 || design.starts == 0 {
         return Err(DesignError::Request(format!(
             "a loop needs two shape coordinates (the model has {nr}), a harmonic and a start"
         )));
     }
-    if !(design.period > 0.0 && design.margin > 0.0 && design.steps >= 2) {
+    if !(design.period > 0.0 && design.margin > 0.0 && design.limit > 0.0 && design.steps >= 2) {
         return Err(DesignError::Request(
-            "the period and the margin must be positive, the steps at least 2".into(),
+            "the period, the margin and the limit must be positive, the steps at least 2".into(),
         ));
     }
-    let scoring = Scoring {
-        direction: design.direction,
-        cost: design.cost,
-        steps: design.steps,
-        clearance: design.margin * largest_divisor(model, nr),
-        barrier_weight: BARRIER_WEIGHT,
-    };
+    let scoring = design.scoring(model);
     let mut best: Option<(FourierLoop, Evaluation)> = None;
     let mut starts = Vec::with_capacity(design.starts);
     for start in survey(model, design, &scoring)? {
@@ -137,6 +156,7 @@ pub fn optimize(model: &dyn Kinematic, design: &Design) -> Result<Optimum, Desig
     }
     let (shape_loop, evaluation) = best.ok_or(DesignError::NoStart {
         margin: design.margin,
+        limit: design.limit,
     })?;
     Ok(Optimum {
         shape_loop,
@@ -157,7 +177,7 @@ const TRIES: usize = 20 * SURVEY;
 
 /// `|d|`'s largest value on a grid over `[-pi, pi]` in each of the first
 /// two shape coordinates (the others 0), 33 points per side.
-fn largest_divisor(model: &dyn Kinematic, nr: usize) -> f64 {
+fn largest_divisor(model: &dyn GaitModel, nr: usize) -> f64 {
     let side = 33;
     let at = |k: usize| -PI + 2.0 * PI * k as f64 / (side - 1) as f64;
     let mut largest: f64 = 0.0;
@@ -177,7 +197,7 @@ fn largest_divisor(model: &dyn Kinematic, nr: usize) -> f64 {
 /// The `design.starts` best of [`SURVEY`] random loops off the singular
 /// set, scored with a quarter of the steps.
 fn survey(
-    model: &dyn Kinematic,
+    model: &dyn GaitModel,
     design: &Design,
     scoring: &Scoring,
 ) -> Result<Vec<FourierLoop>, DesignError> {
@@ -216,6 +236,7 @@ fn survey(
     if found.is_empty() {
         return Err(DesignError::NoStart {
             margin: design.margin,
+            limit: design.limit,
         });
     }
     found.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -228,7 +249,7 @@ fn survey(
 
 /// L-BFGS from `start`: the loop it ends at and its evaluation.
 fn descend(
-    model: &dyn Kinematic,
+    model: &dyn GaitModel,
     start: FourierLoop,
     scoring: &Scoring,
     iterations: u64,
@@ -271,7 +292,7 @@ fn descend(
 /// The optimizer's view: cost and gradient of the coefficients, the last
 /// evaluation kept for the gradient that follows its cost.
 struct Problem<'m> {
-    model: &'m dyn Kinematic,
+    model: &'m dyn GaitModel,
     template: FourierLoop,
     scoring: Scoring,
     last: RefCell<Option<(Vec<f64>, Evaluation)>>,

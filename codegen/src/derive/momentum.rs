@@ -54,8 +54,8 @@ use super::constraints::default_point;
 use super::port_hamiltonian::{column_of_symbols, fresh_symbol};
 use crate::model::{GroupFactor, Model};
 use crate::sym::{
-    Atoms, ExprId, Function, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError,
-    SymbolId, SymbolKind,
+    Atoms, ExprId, Function, Matrix, MatrixError, Poly, Rational, RationalFunction, Store,
+    SymError, SymbolId, SymbolKind,
 };
 use algebra::{bracket, se2_blocks};
 pub use curvature::{ConnectionQuotient, Curvature, CurvatureError};
@@ -160,8 +160,9 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
     let rdot = column_of_symbols(model, &shape_velocities)?;
     let p = column_of_symbols(model, &momenta)?;
     let atoms = model.store.atoms().clone();
-    let (connection, connection_quotient) = connection(&body, &basis, &atoms)?;
     let shape_symbols: Vec<SymbolId> = shape.iter().map(|&i| model.coordinates[i].symbol).collect();
+    let (connection, connection_quotient) =
+        connection(&mut model.store, &body, &basis, &shape_symbols)?;
     let (curvature, singular_shapes) = match momenta.is_empty() {
         true => (
             Some(curvature::curvature(
@@ -190,8 +191,7 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         arguments: [shape_symbols, shape_velocities.clone(), momenta.clone()].concat(),
         shape: shape.len(),
         rhs: &rhs,
-        numerators: &connection_quotient.numerators,
-        denominator: &connection_quotient.denominator,
+        quotient: &connection_quotient,
         vertical: vertical.entries(),
     };
     let sensitivity = sensitivity::sensitivity(&mut model.store, &pieces)?;
@@ -400,11 +400,14 @@ fn cleared(vector: &[RationalFunction], atoms: &Atoms) -> Vec<RationalFunction> 
 /// `A_nh`: the horizontal velocity `-A_nh rdot` satisfies the independent
 /// rows of the body constraints and carries no momentum; fails when the
 /// remaining constraint rows then fail (shape velocities constrained).
+/// With it, its quotient by Cramer's rule in the `shape` symbols.
 fn connection(
+    store: &mut Store,
     body: &BodyForm,
     basis: &Matrix,
-    atoms: &Atoms,
+    shape: &[SymbolId],
 ) -> Result<(Matrix, ConnectionQuotient), MomentumError> {
+    let atoms = &store.atoms().clone();
     let independent = independent_rows(&body.constraints_group, atoms);
     let group_rows: Vec<usize> = (0..basis.columns()).collect();
     let shape_columns: Vec<usize> = (0..body.coupling.columns()).collect();
@@ -429,7 +432,7 @@ fn connection(
     if !residual.is_zero() {
         return Err(MomentumError::ShapeConstrained);
     }
-    let quotient = curvature::connection_quotient(&system, &rhs, &connection, atoms)?;
+    let quotient = curvature::connection_quotient(store, (&system, &rhs), &connection, shape)?;
     Ok((connection, quotient))
 }
 

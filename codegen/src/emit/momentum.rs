@@ -14,9 +14,9 @@
 //!                                identity with qdot = (xi, rdot)    (1.3)
 //! momentum_rhs_jacobian(r, rdot, p), body_velocity_jacobian(r, rdot, p)
 //!                                their Jacobians in (r, rdot, p)
-//! connection_curvature(r), connection_divisor(r)
-//!                                principally kinematic only (mp = 0): F = -dA + [A, A]
-//!                                on each shape plane, d = det S and dd/dr (4.2, 4.3)
+//! connection_divisor(r)          d = det S and dd/dr: A_nh = N / d is singular where d = 0 (4.2)
+//! connection_curvature(r)        principally kinematic only (mp = 0): F = -dA + [A, A]
+//!                                on each shape plane (4.3)
 //! ```
 //!
 //! `shape_acceleration` calls `body_velocity` and `acceleration` (by
@@ -76,10 +76,10 @@ pub(super) fn functions(
         momentum_rhs_jacobian(model, momentum)?,
         body_velocity_jacobian(model, momentum)?,
         basis_divisors(model, momentum)?,
+        connection_divisor(model, momentum)?,
     ];
     if let Some(curvature) = &momentum.curvature {
         functions.push(connection_curvature(model, momentum, curvature)?);
-        functions.push(connection_divisor(model, momentum, curvature)?);
     }
     Ok((functions, section))
 }
@@ -405,13 +405,10 @@ fn connection_curvature(
 }
 
 /// `connection_divisor(r)`: `d` and its gradient `dd/dr`.
-fn connection_divisor(
-    model: &mut Model,
-    momentum: &Momentum,
-    curvature: &Curvature,
-) -> Result<Function, Diagnostics> {
-    let divisor = std::iter::once(&momentum.connection_quotient.denominator);
-    let outputs: Vec<ExprId> = (divisor.chain(&curvature.divisor_gradient))
+fn connection_divisor(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+    let quotient = &momentum.connection_quotient;
+    let divisor = std::iter::once(&quotient.denominator);
+    let outputs: Vec<ExprId> = (divisor.chain(&quotient.divisor_gradient))
         .map(|entry| model.store.expression_of(entry))
         .collect();
     let signature = Signature {

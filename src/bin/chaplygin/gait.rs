@@ -40,8 +40,8 @@ pub struct GaitArgs {
     /// The period T of the laws (2 pi by default with `--optimize`).
     #[arg(long, required_unless_present = "optimize")]
     period: Option<f64>,
-    /// Find the loop that moves a principally kinematic model furthest in
-    /// this direction, instead of running `--cycle`.
+    /// Find the loop that moves the model furthest in this direction from
+    /// rest, instead of running `--cycle`.
     #[arg(long, value_enum, conflicts_with = "cycle")]
     optimize: Option<Direction>,
     /// The Fourier harmonics of each shape coordinate's law (`--optimize`).
@@ -58,6 +58,10 @@ pub struct GaitArgs {
     /// of its largest magnitude (`--optimize`).
     #[arg(long, default_value_t = 0.25)]
     margin: f64,
+    /// Loops keep every shape coordinate within `[-limit, limit]`
+    /// (`--optimize`; pi by default).
+    #[arg(long, default_value_t = PI)]
+    limit: f64,
     /// The cycles run.
     #[arg(long, default_value_t = 1)]
     cycles: usize,
@@ -117,6 +121,7 @@ fn optimize(args: &GaitArgs, direction: Direction) -> Result<(), Box<dyn Error>>
         starts: args.starts,
         steps: args.steps.unwrap_or(Design::default().steps),
         margin: args.margin,
+        limit: args.limit,
         ..Design::default()
     };
     let request = OptimalGaitRequest {

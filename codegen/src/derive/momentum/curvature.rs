@@ -47,6 +47,9 @@ pub struct ConnectionQuotient {
     pub numerators: Matrix,
     /// `d = det S`.
     pub denominator: RationalFunction,
+    /// `dd/dr`: where `d` vanishes the connection is singular, and a loop
+    /// kept off that set measures its distance by `d`.
+    pub divisor_gradient: Vec<RationalFunction>,
 }
 
 /// The curvature of a principally kinematic model's connection,
@@ -58,9 +61,6 @@ pub struct Curvature {
     pub planes: Vec<(usize, usize)>,
     /// The numerators, dg x planes.
     pub numerators: Matrix,
-    /// `dd/dr`, the gradient of the connection's divisor (where `d`
-    /// vanishes the connection is singular).
-    pub divisor_gradient: Vec<RationalFunction>,
 }
 
 /// Why the quotient or the curvature failed its proof: a bug.
@@ -80,28 +80,35 @@ pub enum CurvatureError {
 pub const CRAMER_LIMIT: usize = 7;
 
 /// The connection `solution` of `system solution = rhs` as a quotient,
-/// proved equal to `solution`; beyond [`CRAMER_LIMIT`], `solution / 1`.
+/// proved equal to `solution`, with its divisor's gradient in the shape
+/// `coordinates`; beyond [`CRAMER_LIMIT`], `solution / 1`.
 pub fn connection_quotient(
-    system: &Matrix,
-    rhs: &Matrix,
+    store: &mut Store,
+    (system, rhs): (&Matrix, &Matrix),
     solution: &Matrix,
-    atoms: &Atoms,
+    coordinates: &[SymbolId],
 ) -> Result<ConnectionQuotient, CurvatureError> {
-    if system.rows() > CRAMER_LIMIT {
-        return Ok(ConnectionQuotient {
-            numerators: solution.clone(),
-            denominator: RationalFunction::one(),
-        });
-    }
-    let (adjugate, denominator) = system.adjugate(atoms)?;
-    let numerators = adjugate.mul(rhs, atoms)?;
-    let scaled = scaled(solution, &denominator, atoms);
-    if !numerators.sub(&scaled, atoms)?.is_zero() {
-        return Err(CurvatureError::Unproved("connection"));
-    }
+    let atoms = store.atoms().clone();
+    let (numerators, denominator) = match system.rows() > CRAMER_LIMIT {
+        true => (solution.clone(), RationalFunction::one()),
+        false => {
+            let (adjugate, denominator) = system.adjugate(&atoms)?;
+            let numerators = adjugate.mul(rhs, &atoms)?;
+            let scaled = scaled(solution, &denominator, &atoms);
+            if !numerators.sub(&scaled, &atoms)?.is_zero() {
+                return Err(CurvatureError::Unproved("connection"));
+            }
+            (numerators, denominator)
+        }
+    };
+    let divisor_gradient = store
+        .jacobian(std::slice::from_ref(&denominator), coordinates)?
+        .entries()
+        .to_vec();
     Ok(ConnectionQuotient {
         numerators,
         denominator,
+        divisor_gradient,
     })
 }
 
@@ -135,15 +142,7 @@ pub fn curvature(
     {
         return Err(CurvatureError::Unproved("curvature"));
     }
-    let divisor_gradient = store
-        .jacobian(std::slice::from_ref(&quotient.denominator), coordinates)?
-        .entries()
-        .to_vec();
-    Ok(Curvature {
-        planes,
-        numerators,
-        divisor_gradient,
-    })
+    Ok(Curvature { planes, numerators })
 }
 
 /// `-(d C_j/d r_i - d C_i/d r_j) + [C_i, C_j]` for the columns `C` of

@@ -14,6 +14,7 @@
 //! dxi/dp_m    = dv/dp_m
 //! ```
 
+use super::ConnectionQuotient;
 use crate::sym::{Matrix, MatrixError, RationalFunction, Store, SymbolId};
 
 /// The Jacobians, columns `(r, rdot, p)`.
@@ -35,10 +36,8 @@ pub struct Pieces<'a> {
     pub shape: usize,
     /// `pdot`.
     pub rhs: &'a [RationalFunction],
-    /// `N`, dg x nr.
-    pub numerators: &'a Matrix,
-    /// `d`.
-    pub denominator: &'a RationalFunction,
+    /// `N / d`, with `dd/dr`.
+    pub quotient: &'a ConnectionQuotient,
     /// `v`, dg entries.
     pub vertical: &'a [RationalFunction],
 }
@@ -55,22 +54,25 @@ pub fn sensitivity(store: &mut Store, pieces: &Pieces<'_>) -> Result<Sensitivity
         .map(|&s| RationalFunction::from_poly(crate::sym::Poly::atom(store.symbol_atom(s))))
         .collect();
     let rate_column = Matrix::new(nr, 1, rates)?;
-    let horizontal = pieces.numerators.mul(&rate_column, &atoms)?;
-    let d = pieces.denominator;
-    let divisor_gradient = store.jacobian(std::slice::from_ref(d), &arguments[..nr])?;
+    let numerators = &pieces.quotient.numerators;
+    let horizontal = numerators.mul(&rate_column, &atoms)?;
+    let (d, divisor_gradient) = (
+        &pieces.quotient.denominator,
+        &pieces.quotient.divisor_gradient,
+    );
     let horizontal_gradient = store.jacobian(horizontal.entries(), &arguments[..nr])?;
-    let dg = pieces.numerators.rows();
+    let dg = numerators.rows();
     let mut quotient = Matrix::zeros(dg, arguments.len());
     for i in 0..dg {
         let h = horizontal.get(i, 0);
-        for j in 0..nr {
+        for (j, divisor_slope) in divisor_gradient.iter().enumerate() {
             let by_shape = horizontal_gradient
                 .get(i, j)
                 .mul(d, &atoms)
                 .neg()
-                .add(&h.mul(divisor_gradient.get(0, j), &atoms), &atoms);
+                .add(&h.mul(divisor_slope, &atoms), &atoms);
             quotient.set(i, j, by_shape);
-            quotient.set(i, nr + j, pieces.numerators.get(i, j).mul(d, &atoms).neg());
+            quotient.set(i, nr + j, numerators.get(i, j).mul(d, &atoms).neg());
         }
     }
     Ok(Sensitivity {
