@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The Python package's tests: a virtual environment in target/python-venv,
-# the package built into it from this tree (unoptimized, sharing the
-# workspace's build of the engine), then pytest, the command line it
+# the package built into it from this tree (unoptimized, in the
+# workspace's target directory), then pytest, the command line it
 # compares against built beside it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,9 +11,12 @@ if [ ! -x "$venv/bin/python" ]; then
     python3 -m venv "$venv"
 fi
 "$venv/bin/python" -m pip install --quiet numpy scipy sympy pytest matplotlib pandas
-# The command line the tests compare against, copied before maturin's build
-# (whose compiler flags differ) leaves the workspace's artifacts stale.
-cargo build --quiet --bin chaplygin
+# The command line the tests compare against: the binary the workspace's
+# own tests run, built with their features (after `cargo test --workspace`,
+# as in CI, nothing is rebuilt; `cargo build --bin` would resolve other
+# features and rebuild the engine), copied before maturin's build (whose
+# features differ again) leaves the workspace's artifacts stale.
+cargo test --workspace --no-run --quiet
 cp target/debug/chaplygin "$venv/bin/chaplygin-cli"
 CARGO_TARGET_DIR="$PWD/target" MATURIN_PEP517_ARGS="--profile dev" \
     "$venv/bin/python" -m pip install --quiet --force-reinstall --no-deps ./python
