@@ -110,6 +110,18 @@ fn allowed<M: Dynamics<N, C, P>, const N: usize, const C: usize, const P: usize>
     std::array::from_fn(|k| v[k] - (0..C).map(|r| a[r][k] * weights[r]).sum::<f64>())
 }
 
+/// The 2-norm condition number of `A g^-1 A^T`, the matrix the multipliers solve with.
+fn schur_condition<M: Dynamics<N, C, P>, const N: usize, const C: usize, const P: usize>(
+    model: &M,
+    q: &[f64; N],
+) -> f64 {
+    let g = nalgebra::DMatrix::from_fn(N, N, |i, j| model.metric(q)[i][j]);
+    let a = nalgebra::DMatrix::from_fn(C, N, |i, j| model.constraints(q)[i][j]);
+    let inverse = g.try_inverse().expect("a positive definite mass matrix");
+    let singular_values = (&a * inverse * a.transpose()).singular_values();
+    singular_values.max() / singular_values.min()
+}
+
 /// `A qddot + Adot qdot`, with `Adot qdot = d/dt (A(q + t qdot)) qdot` by central differences.
 fn second_order_residual<M: Dynamics<N, C, P>, const N: usize, const C: usize, const P: usize>(
     model: &M,
@@ -310,12 +322,15 @@ proptest! {
         let qdot = allowed(&board, &q, &v);
         let (qddot, lambda) = board.acceleration(&q, &qdot, &u);
         let (doubled_qddot, doubled_lambda) = DoubledFront::default().acceleration(&q, &qdot, &u);
-        let scale = 1.0 + norm(&qddot) + norm(&lambda);
+        // both solves are backward stable: they differ by rounding amplified by
+        // the condition of the saddle-point system, which grows without bound
+        // near the singular set (phi = pi/2, both wheels across the board)
+        let tolerance = 100.0 * f64::EPSILON * schur_condition(&board, &q) * (1.0 + norm(&qddot) + norm(&lambda));
         for i in 0..5 {
-            prop_assert!((qddot[i] - doubled_qddot[i]).abs() <= 1e-12 * scale);
+            prop_assert!((qddot[i] - doubled_qddot[i]).abs() <= tolerance);
         }
-        prop_assert!((lambda[0] - 2.0 * doubled_lambda[0]).abs() <= 1e-12 * scale, "{lambda:?} {doubled_lambda:?}");
-        prop_assert!((lambda[1] - doubled_lambda[1]).abs() <= 1e-12 * scale, "{lambda:?} {doubled_lambda:?}");
+        prop_assert!((lambda[0] - 2.0 * doubled_lambda[0]).abs() <= tolerance, "{lambda:?} {doubled_lambda:?}");
+        prop_assert!((lambda[1] - doubled_lambda[1]).abs() <= tolerance, "{lambda:?} {doubled_lambda:?}");
     }
 }
 
