@@ -38,7 +38,7 @@
 //! [`EXACT_BASIS_PRODUCTS`] for the basis, [`EXACT_ANALYSIS_PRODUCTS`] for
 //! Frobenius and the growth vector. Beyond them the basis is kept
 //! structured (the elimination written out as expressions,
-//! [`crate::sym::ExprMatrix`]) and the analysis is decided by evaluation
+//! [`crate::sym::Matrix`] of expressions) and the analysis is decided by evaluation
 //! modulo a prime at random points ([`crate::sym::modular`]): a bracket
 //! with `A [X_i, X_j] != 0` there proves D not integrable, and each rank at
 //! the point is a proved lower bound of the generic rank; "integrable" and
@@ -64,7 +64,7 @@ pub use basis::{ChartFit, DistributionBasis, default_point, distribution_basis};
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::model::Model;
 use crate::sym::modular::ModularError;
-use crate::sym::{ExprId, Matrix, MatrixError, RationalFunction};
+use crate::sym::{Matrix, MatrixError, RationalFunction};
 
 /// The term products the exact basis of D may take.
 pub const EXACT_BASIS_PRODUCTS: u64 = 1_000_000;
@@ -396,9 +396,7 @@ fn exact_rows(model: &mut Model) -> Result<Vec<bool>, AnalysisError> {
             match exact {
                 Some(decided) => Ok(decided?),
                 None => {
-                    let expressions: Vec<ExprId> = (0..model.n())
-                        .map(|j| model.constraint_expressions.get(row, j))
-                        .collect();
+                    let expressions = model.constraint_expressions.row_entries(row);
                     is_exact_row_at_points(model, &expressions)
                 }
             }

@@ -52,7 +52,7 @@
 use crate::ir;
 use crate::model::Model;
 use crate::sym::{
-    ExprId, ExprMatrix, Matrix, MatrixError, Poly, RationalFunction, Store, SymbolId, SymbolKind,
+    ExprId, Matrix, MatrixError, Poly, RationalFunction, Store, SymbolId, SymbolKind,
 };
 
 /// How `acceleration` computes `(qddot, lambda)`.
@@ -95,7 +95,7 @@ pub enum Drift {
     /// Normal forms.
     Exact(Matrix),
     /// Expressions, `-sum_jk d A_ij/dq_k qdot_j qdot_k`.
-    Structured(ExprMatrix),
+    Structured(Matrix<ExprId>),
 }
 
 impl Drift {
@@ -108,9 +108,9 @@ impl Drift {
     }
 
     /// The entries as expressions.
-    pub fn expressions(&self, store: &mut Store) -> ExprMatrix {
+    pub fn expressions(&self, store: &mut Store) -> Matrix<ExprId> {
         match self {
-            Drift::Exact(drift) => ExprMatrix::of(drift, store),
+            Drift::Exact(drift) => drift.to_expression_matrix(store),
             Drift::Structured(drift) => drift.clone(),
         }
     }
@@ -129,7 +129,7 @@ pub struct Force {
     /// The normal forms, n x 1, when within budget.
     pub exact: Option<Matrix>,
     /// The expressions emitted, n x 1.
-    pub expressions: ExprMatrix,
+    pub expressions: Matrix<ExprId>,
 }
 
 /// The term products the exact `B u - C - dV/dq` may take.
@@ -349,17 +349,17 @@ impl SaddlePointSystem {
 /// rows scaled: the upper triangle is computed and mirrored.
 fn symmetric_product(
     store: &mut Store,
-    u: &ExprMatrix,
-    v: &ExprMatrix,
-) -> Result<ExprMatrix, MatrixError> {
+    u: &Matrix<ExprId>,
+    v: &Matrix<ExprId>,
+) -> Result<Matrix<ExprId>, MatrixError> {
     let size = u.columns();
-    let mut product = ExprMatrix::zeros(store, size, size);
+    let mut product = store.zero_matrix(size, size);
     for i in 0..size {
         for j in i..size {
-            let row = ExprMatrix::column(u.column_entries(i)).transpose();
-            let entry = row.mul(&ExprMatrix::column(v.column_entries(j)), store)?;
-            product.set(i, j, entry.get(0, 0));
-            product.set(j, i, entry.get(0, 0));
+            let row = Matrix::column(u.column_entries(i)).transpose();
+            let entry = row.mul(&Matrix::column(v.column_entries(j)), store)?;
+            product.set(i, j, *entry.get(0, 0));
+            product.set(j, i, *entry.get(0, 0));
         }
     }
     Ok(product)
@@ -387,8 +387,8 @@ impl Force {
         let structured = structured_force(model, inputs)?;
         let expressions = match &exact {
             Some(exact) => {
-                let written = ExprMatrix::of(exact, &mut model.store);
-                let weight = |m: &ExprMatrix| ir::estimated_weight(&model.store, m.entries());
+                let written = exact.to_expression_matrix(&mut model.store);
+                let weight = |m: &Matrix<ExprId>| ir::estimated_weight(&model.store, m.entries());
                 if weight(&written) <= weight(&structured) {
                     written
                 } else {
@@ -422,13 +422,13 @@ fn exact_force(model: &mut Model, inputs: &[SymbolId]) -> Result<Matrix, Derivat
 /// `sum_k d(dT/dqdot)/dq_k qdot_k` and the gradients taken on the DAG of its
 /// expression; for each declared body, Kane's form of the same terms
 /// ([`crate::model::BodyMotion::velocity_terms`]).
-fn structured_force(model: &mut Model, inputs: &[SymbolId]) -> Result<ExprMatrix, MatrixError> {
+fn structured_force(model: &mut Model, inputs: &[SymbolId]) -> Result<Matrix<ExprId>, MatrixError> {
     let coordinates = model.coordinate_symbols();
     let energies = &model.energy_expressions;
     let (kinetic, potential) = (energies.declared_kinetic, energies.potential);
     let store = &mut model.store;
-    let b = ExprMatrix::of(&model.input_matrix, store);
-    let u = ExprMatrix::column(inputs.iter().map(|&s| store.symbol(s)).collect());
+    let b = model.input_matrix.to_expression_matrix(store);
+    let u = Matrix::column(inputs.iter().map(|&s| store.symbol(s)).collect());
     let applied = b.mul(&u, store)?;
     let momenta: Vec<ExprId> = model
         .velocities
@@ -456,11 +456,11 @@ fn structured_force(model: &mut Model, inputs: &[SymbolId]) -> Result<ExprMatrix
             lost.push(store.derivative(potential, q));
             let lost = store.add(&lost);
             let kinetic_rate = store.derivative(kinetic, q);
-            let gained = store.add2(applied.get(i, 0), kinetic_rate);
+            let gained = store.add2(*applied.get(i, 0), kinetic_rate);
             store.sub(gained, lost)
         })
         .collect();
-    Ok(ExprMatrix::column(entries))
+    Ok(Matrix::column(entries))
 }
 
 /// `d f/dq` as an n x 1 column.
@@ -473,7 +473,7 @@ fn gradient(model: &mut Model, f: &RationalFunction) -> Result<Matrix, Derivatio
 }
 
 /// `-Adot qdot = -sum_k d(A qdot)/dq_k qdot_k` as expressions.
-fn structured_drift(model: &mut Model) -> ExprMatrix {
+fn structured_drift(model: &mut Model) -> Matrix<ExprId> {
     let coordinates = model.coordinate_symbols();
     let a = model.constraint_expressions.clone();
     let store = &mut model.store;
@@ -481,7 +481,7 @@ fn structured_drift(model: &mut Model) -> ExprMatrix {
     let entries = (0..a.rows())
         .map(|i| {
             let terms: Vec<ExprId> = (0..a.columns())
-                .map(|j| store.mul2(a.get(i, j), velocities[j]))
+                .map(|j| store.mul2(*a.get(i, j), velocities[j]))
                 .collect();
             let residual = store.add(&terms);
             let rates: Vec<ExprId> = coordinates
@@ -496,7 +496,7 @@ fn structured_drift(model: &mut Model) -> ExprMatrix {
             store.neg(rate)
         })
         .collect();
-    ExprMatrix::column(entries)
+    Matrix::column(entries)
 }
 
 /// `sum_k d column/dq_k qdot_k`: the rate of change of `column(q)` along `qdot`.

@@ -34,17 +34,17 @@
 //! attempted first, on a nested budget of [`EXACT_REDUCED_PRODUCTS`] term
 //! products; when it does not fit, the form is derived structured (the
 //! module `structured`): from the basis `X` of D as the elimination of the
-//! constraints writes it, without expanding anything ([`Forms`]), which
+//! constraints writes it, without expanding anything ([`ReducedExpressions`]), which
 //! grows with the number of operations instead of the number of expanded
 //! terms (for a chain of N wheeled links, polynomially in N instead of
-//! exponentially). With the exact form, each item has two forms, the
-//! expanded entries and the products of the matrices' entries (the module
-//! `forms`); [`items`] keeps the one estimated cheaper. Without the exact
+//! exponentially). With the exact form, each item can be written two ways,
+//! as the expanded entries or as the products of the matrices' entries (the
+//! module `expressions`); [`items`] keeps the one estimated cheaper. Without the exact
 //! form, `Jbar` is skew by construction and the facts on `gbar` are decided
 //! at random points modulo a prime ([`crate::sym::modular`]: "not constant"
 //! and "not diagonal" proved, "constant" and "diagonal" probable).
 
-mod forms;
+mod expressions;
 pub mod items;
 mod structured;
 
@@ -53,7 +53,7 @@ use crate::model::Model;
 use crate::sym::modular::{self, ModularError};
 use crate::sym::residues::Values;
 use crate::sym::{
-    Atoms, ExprId, ExprMatrix, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError,
+    Atoms, ExprId, Matrix, MatrixError, Poly, Rational, RationalFunction, Store, SymError,
     SymbolId, SymbolKind,
 };
 
@@ -93,7 +93,7 @@ pub enum Form {
     Exact(Exact),
     /// Structured (the module `structured`), for the tool's basis when the exact form
     /// does not fit.
-    Structured(Forms),
+    Structured(ReducedExpressions),
 }
 
 /// The reduced form in exact normal form.
@@ -129,19 +129,19 @@ pub struct Exact {
 
 /// The reduced form as expressions, unexpanded: what emission lowers.
 #[derive(Clone, Debug)]
-pub struct Forms {
+pub struct ReducedExpressions {
     /// `g^-1 h^T`, n x k.
-    pub velocity_map: ExprMatrix,
+    pub velocity_map: Matrix<ExprId>,
     /// `P g`, k x n.
-    pub momentum_map: ExprMatrix,
+    pub momentum_map: Matrix<ExprId>,
     /// `gbar_inv`, k x k.
-    pub metric_inverse: ExprMatrix,
+    pub metric_inverse: Matrix<ExprId>,
     /// `gbar`, k x k.
-    pub metric: ExprMatrix,
+    pub metric: Matrix<ExprId>,
     /// `Jbar`, s x s.
-    pub structure: ExprMatrix,
+    pub structure: Matrix<ExprId>,
     /// `Bbar`, s x p.
-    pub input_matrix: ExprMatrix,
+    pub input_matrix: Matrix<ExprId>,
     /// `Hbar`.
     pub hamiltonian: ExprId,
     /// `dHbar/dx`, s entries.
@@ -192,12 +192,12 @@ impl PortHamiltonian {
         }
     }
 
-    /// The forms as expressions: the products of the exact matrices'
-    /// entries, or the structured derivation's.
-    pub fn forms(&self, model: &mut Model) -> Result<Forms, MatrixError> {
+    /// The reduced form as expressions: the products of the exact
+    /// matrices' entries, or the structured derivation's.
+    pub fn expressions(&self, model: &mut Model) -> Result<ReducedExpressions, MatrixError> {
         match &self.form {
-            Form::Exact(exact) => exact.forms(model, &self.momenta, &self.inputs),
-            Form::Structured(forms) => Ok(forms.clone()),
+            Form::Exact(exact) => exact.expressions(model, &self.momenta, &self.inputs),
+            Form::Structured(expressions) => Ok(expressions.clone()),
         }
     }
 }
@@ -253,8 +253,8 @@ pub fn derive(
             is_diagonal(&exact.metric),
             Method::NormalForm,
         ),
-        Form::Structured(forms) => {
-            let (constant, diagonal) = facts_at_points(model, &forms.metric_inverse)?;
+        Form::Structured(expressions) => {
+            let (constant, diagonal) = facts_at_points(model, &expressions.metric_inverse)?;
             (constant, diagonal, Method::Modular)
         }
     };
@@ -285,9 +285,16 @@ fn derive_exact(
         None => Maps::of(model, h)?,
     };
     let gyroscopic = gyroscopic(model, h, &maps, &alpha)?;
-    let structure = structure_matrix(&maps.projection, &gyroscopic);
+    let structure = maps.projection.skew_structure(
+        &gyroscopic,
+        RationalFunction::zero(),
+        RationalFunction::neg,
+    );
     prove_skew(&structure, model.store.atoms())?;
-    let input_matrix = reduced_input_matrix(model, &maps.projection)?;
+    let input_matrix = maps
+        .projection
+        .mul(&model.input_matrix, model.store.atoms())?
+        .below_zero_rows(model.n(), RationalFunction::zero());
     let flow = Flow::of(model, &maps, &structure, &input_matrix, momenta, inputs)?;
     Ok(Exact {
         basis: h.clone(),
@@ -310,7 +317,7 @@ fn derive_exact(
 /// points: a non-zero derivative or off-diagonal entry there proves "no".
 fn facts_at_points(
     model: &mut Model,
-    metric_inverse: &ExprMatrix,
+    metric_inverse: &Matrix<ExprId>,
 ) -> Result<(bool, bool), ModularError> {
     let mut rates = Vec::new();
     for q in model.coordinate_symbols() {
@@ -499,7 +506,7 @@ fn gyroscopic(
             .transpose()
             .mul(&exterior, &atoms)?
             .mul(velocity_map, &atoms)?;
-        inner = inner.add(&scaled(&term, alpha.get(c, 0), &atoms), &atoms)?;
+        inner = inner.add(&term.scale(alpha.get(c, 0), &atoms), &atoms)?;
     }
     let atoms = model.store.atoms();
     if inner.is_zero() {
@@ -508,30 +515,25 @@ fn gyroscopic(
     maps.metric.mul(&inner, atoms)?.mul(&maps.metric, atoms)
 }
 
-fn scaled(matrix: &Matrix, factor: &RationalFunction, atoms: &Atoms) -> Matrix {
-    let mut result = Matrix::zeros(matrix.rows(), matrix.columns());
-    for i in 0..matrix.rows() {
-        for j in 0..matrix.columns() {
-            result.set(i, j, matrix.get(i, j).mul(factor, atoms));
-        }
-    }
-    result
+/// `Hbar = 1/2 alpha^T gbar_inv alpha + V` as an expression.
+fn reduced_energy(
+    store: &mut Store,
+    alpha: &Matrix<ExprId>,
+    metric_inverse: &Matrix<ExprId>,
+    potential: ExprId,
+) -> Result<ExprId, MatrixError> {
+    let twice_kinetic = *alpha
+        .transpose()
+        .mul(&metric_inverse.mul(alpha, store)?, store)?
+        .get(0, 0);
+    let half = store.number(Rational::HALF);
+    let kinetic = store.mul2(half, twice_kinetic);
+    Ok(store.add2(kinetic, potential))
 }
 
-/// `Jbar = [[0, P^T], [-P, Gamma]]`.
-fn structure_matrix(projection: &Matrix, gyroscopic: &Matrix) -> Matrix {
-    let (k, n) = (projection.rows(), projection.columns());
-    let mut structure = Matrix::zeros(n + k, n + k);
-    for a in 0..k {
-        for j in 0..n {
-            structure.set(j, n + a, projection.get(a, j).clone());
-            structure.set(n + a, j, projection.get(a, j).neg());
-        }
-        for b in 0..k {
-            structure.set(n + a, n + b, gyroscopic.get(a, b).clone());
-        }
-    }
-    structure
+/// The symbols as a column of expressions.
+fn symbols_column(store: &mut Store, symbols: &[SymbolId]) -> Matrix<ExprId> {
+    Matrix::column(symbols.iter().map(|&s| store.symbol(s)).collect())
 }
 
 /// Fails unless `Jbar + Jbar^T` is exactly zero.
@@ -545,19 +547,6 @@ fn prove_skew(structure: &Matrix, atoms: &Atoms) -> Result<(), PortHamiltonianEr
         }),
         None => Ok(()),
     }
-}
-
-/// `Bbar = [0; P B]`, s x p.
-fn reduced_input_matrix(model: &Model, projection: &Matrix) -> Result<Matrix, MatrixError> {
-    let (n, k, p) = (model.n(), projection.rows(), model.p());
-    let reduced = projection.mul(&model.input_matrix, model.store.atoms())?;
-    let mut bbar = Matrix::zeros(n + k, p);
-    for a in 0..k {
-        for j in 0..p {
-            bbar.set(n + a, j, reduced.get(a, j).clone());
-        }
-    }
-    Ok(bbar)
 }
 
 /// `v^T M v` for a column `v`.

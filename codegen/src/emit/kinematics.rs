@@ -4,7 +4,7 @@
 use super::{Function, coordinates, f64_type, function_body, matrix_literal, velocities};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
-use crate::sym::ExprMatrix;
+use crate::sym::Matrix;
 use quote::quote;
 
 /// The four functions, in the order they are documented.
@@ -89,7 +89,7 @@ fn constraint_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
 fn constraint_residual(model: &mut Model) -> Result<Function, Diagnostics> {
     let (n, c) = (model.n(), model.c());
     let a = model.constraint_expressions.clone();
-    let velocity_column = ExprMatrix::column(
+    let velocity_column = Matrix::column(
         model
             .velocities
             .clone()

@@ -90,24 +90,23 @@ fn sources(model: &Model) -> Vec<(String, Vec<ExprId>)> {
     let mechanism = &model.mechanism;
     let mut sources = Vec::new();
     for (i, point) in mechanism.points.iter().enumerate() {
-        let row = (0..3).map(|j| mechanism.expressions.positions.get(i, j));
-        sources.push((format!("point `{}`", point.name), row.collect()));
+        let row = mechanism.expressions.positions.row_entries(i);
+        sources.push((format!("point `{}`", point.name), row));
     }
     for (i, constraint) in mechanism.holonomic.iter().enumerate() {
-        let residual = mechanism.expressions.holonomic_residual.get(i, 0);
+        let residual = *mechanism.expressions.holonomic_residual.get(i, 0);
         sources.push((
             format!("holonomic constraint `{}`", constraint.name),
             vec![residual],
         ));
     }
-    let n = model.n();
     for (i, constraint) in model.constraints.iter().enumerate() {
-        let row = (0..n).map(|j| model.constraint_expressions.get(i, j));
-        sources.push((format!("constraint `{}`", constraint.name), row.collect()));
+        let row = model.constraint_expressions.row_entries(i);
+        sources.push((format!("constraint `{}`", constraint.name), row));
     }
     for (i, frame) in mechanism.frames.iter().enumerate() {
-        let rotation = (0..9).map(|j| mechanism.expressions.orientations.get(i, j));
-        sources.push((format!("frame `{}`", frame.name), rotation.collect()));
+        let rotation = mechanism.expressions.orientations.row_entries(i);
+        sources.push((format!("frame `{}`", frame.name), rotation));
     }
     let energies = &model.energy_expressions;
     sources.push(("the kinetic energy".to_string(), vec![energies.kinetic]));

@@ -24,7 +24,7 @@ use super::{GroupFactor, Symmetry, Variable};
 use crate::sym::modular::{self, ModularError};
 use crate::sym::residues::Values;
 use crate::sym::{
-    ExprId, ExprMatrix, Function, Matrix, RationalFunction, Store, SymError, SymbolId, SymbolKind,
+    ExprId, Function, Matrix, RationalFunction, Store, SymError, SymbolId, SymbolKind,
 };
 use std::collections::HashMap;
 
@@ -60,7 +60,7 @@ pub(super) struct Invariants<'a> {
     pub(super) potential_energy: (&'a RationalFunction, ExprId),
     pub(super) constraint_matrix: &'a Matrix,
     /// `A` as the expressions its rows were derived as.
-    pub(super) constraint_expressions: &'a ExprMatrix,
+    pub(super) constraint_expressions: &'a Matrix<ExprId>,
 }
 
 /// The first part of the model the group does not preserve, if any.
@@ -209,7 +209,7 @@ fn transformed(
 /// The transformed constraint rows stay in the row space of `A(q)`.
 fn constraints_preserved(
     store: &mut Store,
-    (a, expressions): (&Matrix, &ExprMatrix),
+    (a, expressions): (&Matrix, &Matrix<ExprId>),
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<bool, SymError> {
@@ -231,7 +231,7 @@ fn constraints_preserved(
 /// The rank of `A(q)` stacked on the transformed rows at two random points.
 fn constraints_preserved_at_points(
     store: &mut Store,
-    a: &ExprMatrix,
+    a: &Matrix<ExprId>,
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<Result<bool, ModularError>, SymError> {
@@ -250,7 +250,7 @@ fn constraints_preserved_at_points(
 /// `sum_j A_ij(g q) (g_* qdot)_j` as an expression.
 fn moved_residual(
     store: &mut Store,
-    a: &ExprMatrix,
+    a: &Matrix<ExprId>,
     i: usize,
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
@@ -260,7 +260,7 @@ fn moved_residual(
         .enumerate()
         .map(|(j, &velocity)| {
             let velocity = store.symbol(velocity);
-            store.mul2(a.get(i, j), velocity)
+            store.mul2(*a.get(i, j), velocity)
         })
         .collect();
     let residual = store.add(&terms);
@@ -302,7 +302,7 @@ fn exactly_constraints_preserved(
 mod tests {
     use super::{constraints_preserved_at_points, group_action, preserved_at_points};
     use crate::model::check;
-    use crate::sym::{ExprMatrix, Matrix, Poly, RationalFunction};
+    use crate::sym::{Matrix, Poly, RationalFunction};
     use crate::syntax::parse_str;
 
     const SLEIGH: &str = include_str!("../../../models/sleigh.model");
@@ -337,7 +337,7 @@ mod tests {
         )
         .expect("1 x 3");
         for (rows, invariant) in [(&model.constraint_matrix, true), (&forward, false)] {
-            let rows = ExprMatrix::of(rows, store);
+            let rows = rows.to_expression_matrix(store);
             let decided = constraints_preserved_at_points(store, &rows, &velocities, &action)
                 .expect("substitutes")
                 .expect("in the class");

@@ -25,7 +25,7 @@ pub use mechanism::bodies::BodyMotion;
 pub use mechanism::{Mechanism, MechanismExpressions};
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
-use crate::sym::{ExprId, ExprMatrix, Matrix, Rational, RationalFunction, Store, SymbolId};
+use crate::sym::{ExprId, Matrix, Rational, RationalFunction, Store, SymbolId};
 use proc_macro2::{Ident, Span, TokenStream};
 
 /// A name the user declared, with where they declared it.
@@ -112,7 +112,7 @@ pub struct EnergyExpressions {
     /// `g(q) = d^2 T / d qdot^2`, n x n: for a mechanism's large entries
     /// the declared part's second derivatives plus the bodies' Kane form
     /// ([`BodyMotion::mass_matrix`]).
-    pub mass_matrix: ExprMatrix,
+    pub mass_matrix: Matrix<ExprId>,
     /// The part of `T` declared as an energy (`T` less the bodies'), its
     /// normal form written out.
     pub declared_kinetic: ExprId,
@@ -159,7 +159,7 @@ pub struct Model {
     /// `A(q)` as the expressions emitted code computes it: the normal
     /// forms written out, or for a large derived entry the expression it
     /// was derived as (equal to the normal form).
-    pub constraint_expressions: ExprMatrix,
+    pub constraint_expressions: Matrix<ExprId>,
     /// The input names.
     pub inputs: Vec<Declared>,
     /// `B(q)`, n x p.

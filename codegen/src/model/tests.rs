@@ -247,7 +247,7 @@ fn the_sleighs_documented_momentum_basis_is_accepted() {
 
 /// The values of `exact` and `computed` at one random point, entry by
 /// entry, to 1e-12 relative.
-fn assert_same_values(model: &mut Model, exact: &Matrix, computed: &crate::sym::ExprMatrix) {
+fn assert_same_values(model: &mut Model, exact: &Matrix, computed: &Matrix<crate::sym::ExprId>) {
     let mut random = crate::sym::zero::SplitMix::new(7);
     let values: std::collections::HashMap<_, f64> = model
         .store
@@ -258,7 +258,7 @@ fn assert_same_values(model: &mut Model, exact: &Matrix, computed: &crate::sym::
     for i in 0..exact.rows() {
         for j in 0..exact.columns() {
             let expected = model.store.evaluate_normal(exact.get(i, j), &value_of);
-            let found = model.store.evaluate(computed.get(i, j), &value_of);
+            let found = model.store.evaluate(*computed.get(i, j), &value_of);
             assert!(
                 (expected - found).abs() <= 1e-12 * (1.0 + expected.abs()),
                 "[{i}][{j}]: {expected} vs {found}"

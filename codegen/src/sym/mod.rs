@@ -4,7 +4,6 @@ pub mod budget;
 pub mod diff;
 pub mod eval;
 pub mod expr;
-pub mod expr_matrix;
 pub mod ids;
 pub mod latex;
 pub mod matrix;
@@ -17,7 +16,6 @@ pub mod zero;
 
 pub use budget::{Budget, DEFAULT_DERIVATION_BUDGET};
 pub use expr::{ExprId, Function, Node, Store, SymError, Symbol, SymbolId, SymbolKind};
-pub use expr_matrix::ExprMatrix;
 pub use matrix::{Matrix, MatrixError};
 pub use normal::RationalFunction;
 pub use number::Rational;

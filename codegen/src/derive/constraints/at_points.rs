@@ -8,7 +8,7 @@ use super::{AnalysisError, DistributionBasis, STRUCTURED_GROWTH_NODES};
 use crate::model::Model;
 use crate::sym::modular::{self, ModularError, Point};
 use crate::sym::residues::Values;
-use crate::sym::{ExprId, ExprMatrix};
+use crate::sym::{ExprId, Matrix};
 
 /// Frobenius at random points: `A [X_i, X_j]` evaluated modulo a prime at
 /// two points; a non-zero value proves D not integrable.
@@ -21,7 +21,7 @@ pub(super) fn is_involutive_at_points(
     let mut products = Vec::new();
     for (i, x) in fields.iter().enumerate() {
         for y in &fields[i + 1..] {
-            let bracket = ExprMatrix::column(expression_bracket(model, x, y));
+            let bracket = Matrix::column(expression_bracket(model, x, y));
             products.extend_from_slice(rows.mul(&bracket, &mut model.store)?.entries());
         }
     }
@@ -157,7 +157,7 @@ fn expression_bracket(model: &mut Model, x: &[ExprId], y: &[ExprId]) -> Vec<Expr
     model.store.lie_bracket_of_expressions(x, y, &coordinates)
 }
 
-fn expression_columns(matrix: &ExprMatrix) -> Vec<Vec<ExprId>> {
+fn expression_columns(matrix: &Matrix<ExprId>) -> Vec<Vec<ExprId>> {
     (0..matrix.columns())
         .map(|j| matrix.column_entries(j))
         .collect()

@@ -10,7 +10,7 @@
 use super::body_frame::BodyFrame;
 use super::{EXACT_BASIS_PRODUCTS, Field};
 use crate::model::{GroupFactor, Model};
-use crate::sym::{ExprMatrix, Matrix, MatrixError, RationalFunction, Store, SymbolId};
+use crate::sym::{ExprId, Matrix, MatrixError, RationalFunction, Store, SymbolId};
 use chaplygin_runtime::monitor::partial_pivots;
 use chaplygin_runtime::nalgebra::DMatrix;
 
@@ -19,7 +19,7 @@ use chaplygin_runtime::nalgebra::DMatrix;
 pub struct DistributionBasis {
     /// `X`, n x k, as expressions: column j is the vector field `X_j`, the
     /// dependent speeds written as the elimination computes them.
-    pub field_expressions: ExprMatrix,
+    pub field_expressions: Matrix<ExprId>,
     /// `X` in exact normal form, when it fits [`EXACT_BASIS_PRODUCTS`].
     pub fields: Option<Matrix>,
     /// The coordinates whose speeds are dependent (pivot columns), in row order.
@@ -159,14 +159,14 @@ fn basis_on(
     let solved = model.store.solve_in_order(&a_r, &a_s)?;
     let minus_one = model.store.integer(-1);
     let a_n = solved.scale(minus_one, &mut model.store);
-    let mut field_expressions = ExprMatrix::zeros(&mut model.store, n, independent.len());
+    let mut field_expressions = model.store.zero_matrix(n, independent.len());
     let one = model.store.integer(1);
     for (k, &j) in independent.iter().enumerate() {
         field_expressions.set(j, k, one);
     }
     for (row, &j) in dependent.iter().enumerate() {
         for k in 0..independent.len() {
-            field_expressions.set(j, k, a_n.get(row, k));
+            field_expressions.set(j, k, *a_n.get(row, k));
         }
     }
     if let Some(frame) = &frame {
@@ -204,11 +204,15 @@ fn basis_on(
 }
 
 /// The columns `indices` of `a`, in that order.
-fn expression_columns_at(a: &ExprMatrix, indices: &[usize], store: &mut Store) -> ExprMatrix {
-    let mut columns = ExprMatrix::zeros(store, a.rows(), indices.len());
+fn expression_columns_at(
+    a: &Matrix<ExprId>,
+    indices: &[usize],
+    store: &mut Store,
+) -> Matrix<ExprId> {
+    let mut columns = store.zero_matrix(a.rows(), indices.len());
     for i in 0..a.rows() {
         for (k, &j) in indices.iter().enumerate() {
-            columns.set(i, k, a.get(i, j));
+            columns.set(i, k, *a.get(i, j));
         }
     }
     columns

@@ -19,16 +19,16 @@
 //! rotation `L`, regular at every heading.
 
 use crate::model::{GroupFactor, Model};
-use crate::sym::{ExprMatrix, Function, Matrix, MatrixError, Store};
+use crate::sym::{ExprId, Function, Matrix, MatrixError, Store};
 use std::collections::HashMap;
 
 /// The body rows and the map from body to coordinate velocities, as
 /// expressions.
 pub(super) struct BodyFrame {
     /// `A(e, r)`, c x n: the constraint rows at the group identity.
-    pub(super) constraints: ExprMatrix,
+    pub(super) constraints: Matrix<ExprId>,
     /// `L(q)`, n x n: `qdot = L (xi, rdot)`.
-    pub(super) to_coordinates: ExprMatrix,
+    pub(super) to_coordinates: Matrix<ExprId>,
 }
 
 impl BodyFrame {
@@ -49,13 +49,13 @@ impl BodyFrame {
             .map(|i| (model.coordinates[i].symbol, zero))
             .collect();
         let a = model.constraint_expressions.clone();
-        let mut constraints = ExprMatrix::zeros(store, a.rows(), a.columns());
+        let mut constraints = store.zero_matrix(a.rows(), a.columns());
         for i in 0..a.rows() {
             for j in 0..a.columns() {
-                constraints.set(i, j, store.substitute(a.get(i, j), &identity)?);
+                constraints.set(i, j, store.substitute(*a.get(i, j), &identity)?);
             }
         }
-        let mut to_coordinates = ExprMatrix::identity(store, model.coordinates.len());
+        let mut to_coordinates = store.identity_matrix(model.coordinates.len());
         for factor in &symmetry.factors {
             if let GroupFactor::Se2 { x, y, theta } = *factor {
                 let heading = store.symbol(model.coordinates[theta].symbol);
@@ -86,6 +86,6 @@ impl BodyFrame {
 }
 
 /// `matrix` in normal form.
-fn exact(matrix: &ExprMatrix, store: &mut Store) -> Result<Matrix, MatrixError> {
+fn exact(matrix: &Matrix<ExprId>, store: &mut Store) -> Result<Matrix, MatrixError> {
     Matrix::from_expressions(store, matrix.rows(), matrix.columns(), matrix.entries())
 }

@@ -47,7 +47,7 @@ use super::basis::{basis_with_dependent, speed_names};
 use super::body_frame::BodyFrame;
 use crate::ir::IrError;
 use crate::model::Model;
-use crate::sym::{ExprMatrix, MatrixError, RationalFunction};
+use crate::sym::{ExprId, Matrix, MatrixError, RationalFunction};
 use chaplygin_runtime::monitor::{gram_ratio, partial_pivots, signed_pivot_ratio};
 use chaplygin_runtime::nalgebra::DMatrix;
 use search::{FrameRows, RowsAt};
@@ -219,7 +219,7 @@ fn cover_points(charts: &mut Vec<Vec<usize>>, points: &[RowsAt]) {
 
 /// The rows a basis is eliminated on and the coordinates they depend on.
 struct Frame {
-    rows: ExprMatrix,
+    rows: Matrix<ExprId>,
     varying: Vec<usize>,
     body: bool,
 }

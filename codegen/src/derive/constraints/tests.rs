@@ -236,7 +236,9 @@ fn a_long_chain_is_analysed_at_points() {
         analysis.classification,
         Classification::CompletelyNonholonomic
     );
-    let rows = crate::sym::ExprMatrix::of(&chain.constraint_matrix, &mut chain.store);
+    let rows = chain
+        .constraint_matrix
+        .to_expression_matrix(&mut chain.store);
     let product = rows
         .mul(&analysis.basis.field_expressions, &mut chain.store)
         .expect("fits");
@@ -296,7 +298,7 @@ fn moores_test_at_points_agrees_with_the_exact_test() {
     assert_eq!(exact, [false, true]);
     for (row, expected) in exact.iter().enumerate() {
         let entries: Vec<_> = (0..model.n())
-            .map(|j| model.constraint_expressions.get(row, j))
+            .map(|j| *model.constraint_expressions.get(row, j))
             .collect();
         let at_points =
             super::at_points::is_exact_row_at_points(&mut model, &entries).expect("in the class");

@@ -347,7 +347,7 @@ fn the_bicycle_emits_its_structured_force() {
     let (mut model, mut derivation) = derived(BICYCLE);
     assert!(derivation.saddle_point.force.exact.is_none());
     let exact = super::exact_force(&mut model, &derivation.inputs).expect("fits");
-    let written = crate::sym::ExprMatrix::of(&exact, &mut model.store);
+    let written = exact.to_expression_matrix(&mut model.store);
     let force = &derivation.saddle_point.force;
     let weight = |entries: &[ExprId]| ir::estimated_weight(&model.store, entries);
     let (emitted, written) = (

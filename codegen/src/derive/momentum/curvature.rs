@@ -38,7 +38,7 @@
 
 use super::algebra::bracket;
 use crate::model::GroupFactor;
-use crate::sym::{Atoms, Matrix, MatrixError, RationalFunction, Store, SymbolId};
+use crate::sym::{Matrix, MatrixError, RationalFunction, Store, SymbolId};
 
 /// `A = numerators / denominator`, by Cramer's rule.
 #[derive(Clone, Debug)]
@@ -94,7 +94,7 @@ pub fn connection_quotient(
         false => {
             let (adjugate, denominator) = system.adjugate(&atoms)?;
             let numerators = adjugate.mul(rhs, &atoms)?;
-            let scaled = scaled(solution, &denominator, &atoms);
+            let scaled = solution.scale(&denominator, &atoms);
             if !numerators.sub(&scaled, &atoms)?.is_zero() {
                 return Err(CurvatureError::Unproved("connection"));
             }
@@ -137,7 +137,7 @@ pub fn curvature(
     let atoms = store.atoms().clone();
     let square = quotient.denominator.mul(&quotient.denominator, &atoms);
     if !numerators
-        .sub(&scaled(&exact, &square, &atoms), &atoms)?
+        .sub(&exact.scale(&square, &atoms), &atoms)?
         .is_zero()
     {
         return Err(CurvatureError::Unproved("curvature"));
@@ -171,24 +171,14 @@ fn form_on_planes(
             let gradient =
                 store.jacobian(std::slice::from_ref(d), &[coordinates[i], coordinates[j]])?;
             let column = |c: &[RationalFunction]| Matrix::new(dg, 1, c.to_vec());
-            entries = scaled(&entries, d, &atoms)
-                .add(&scaled(&column(&cj)?, gradient.get(0, 0), &atoms), &atoms)?
-                .sub(&scaled(&column(&ci)?, gradient.get(0, 1), &atoms), &atoms)?;
+            entries = entries
+                .scale(d, &atoms)
+                .add(&column(&cj)?.scale(gradient.get(0, 0), &atoms), &atoms)?
+                .sub(&column(&ci)?.scale(gradient.get(0, 1), &atoms), &atoms)?;
         }
         for (k, value) in bracket(&ci, &cj, factors, &atoms).into_iter().enumerate() {
             result.set(k, plane, entries.get(k, 0).add(&value, &atoms));
         }
     }
     Ok(result)
-}
-
-/// Every entry of `matrix` times `factor`.
-fn scaled(matrix: &Matrix, factor: &RationalFunction, atoms: &Atoms) -> Matrix {
-    let mut result = matrix.clone();
-    for i in 0..matrix.rows() {
-        for j in 0..matrix.columns() {
-            result.set(i, j, matrix.get(i, j).mul(factor, atoms));
-        }
-    }
-    result
 }

@@ -1,5 +1,5 @@
 //! What each of the reduced form's ten items computes (MATH.md section 3),
-//! in the form the derivation chooses for it.
+//! written as the derivation chooses.
 //!
 //! ```text
 //! momenta            alpha = P g qdot             hamiltonian           Hbar
@@ -10,10 +10,10 @@
 //! output_jacobian    dy/dx
 //! ```
 //!
-//! Every item has its structured form: the sum of products of the
-//! factors' entries ([`Forms`]; for the gradient and the Jacobians, the
-//! structured form differentiated as an expression). When the exact form
-//! was derived it also has the expanded normal form. Of the two, the one
+//! Every item has its structured writing: the sum of products of the
+//! factors' entries ([`ReducedExpressions`]; for the gradient and the
+//! Jacobians, that writing differentiated as an expression). When the exact
+//! form was derived it also has the expanded normal form. Of the two, the one
 //! whose weighted cost [`ir::estimated_weight`] estimates lower on the
 //! expression DAG is kept, the structured one on ties: expanded normal
 //! forms are often longer, and lose accuracy to cancellation. Nothing is
@@ -21,10 +21,10 @@
 //! snakeboard's `reduced_rhs` is the structured form, the sleigh's the
 //! expanded one.
 
-use super::{Exact, Forms, PortHamiltonian, PortHamiltonianError};
+use super::{Exact, PortHamiltonian, PortHamiltonianError, ReducedExpressions};
 use crate::ir;
 use crate::model::Model;
-use crate::sym::{ExprId, ExprMatrix, Matrix, Poly, RationalFunction, Store, SymbolId};
+use crate::sym::{ExprId, Matrix, Poly, RationalFunction, Store, SymbolId};
 
 /// The ten items, in the order they are emitted and documented.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -111,16 +111,16 @@ pub fn items(model: &mut Model, reduced: &PortHamiltonian) -> Result<Items, Port
     Ok(Items(chosen))
 }
 
-/// The forms of every item, in [`Item::ALL`]'s order.
+/// The two writings of every item, in [`Item::ALL`]'s order.
 pub fn candidates(
     model: &mut Model,
     reduced: &PortHamiltonian,
 ) -> Result<Vec<Candidates>, PortHamiltonianError> {
-    let forms = reduced.forms(model)?;
+    let expressions = reduced.expressions(model)?;
     Item::ALL
         .iter()
         .map(|&item| {
-            let structured = structured(model, reduced, &forms, item)?;
+            let structured = structured(model, reduced, &expressions, item)?;
             let expanded = match reduced.exact() {
                 Some(exact) => Some(expanded(model, reduced, exact, item)?),
                 None => None,
@@ -137,26 +137,26 @@ pub fn candidates(
 fn structured(
     model: &mut Model,
     reduced: &PortHamiltonian,
-    forms: &Forms,
+    expressions: &ReducedExpressions,
     item: Item,
 ) -> Result<Vec<ExprId>, PortHamiltonianError> {
     Ok(match item {
         Item::Momenta => {
             let qdot = symbol_expressions(&mut model.store, &model.velocities);
-            product(&mut model.store, &forms.momentum_map, qdot)?
+            product(&mut model.store, &expressions.momentum_map, qdot)?
         }
         Item::Velocities => {
             let alpha = symbol_expressions(&mut model.store, &reduced.momenta);
-            product(&mut model.store, &forms.velocity_map, alpha)?
+            product(&mut model.store, &expressions.velocity_map, alpha)?
         }
-        Item::Hamiltonian => vec![forms.hamiltonian],
-        Item::HamiltonianGradient => forms.gradient.clone(),
-        Item::StructureMatrix => forms.structure.entries().to_vec(),
-        Item::InputMatrix => forms.input_matrix.entries().to_vec(),
-        Item::ReducedRhs => forms.rhs.clone(),
-        Item::ReducedRhsJacobian => state_jacobian(model, reduced, &forms.rhs),
-        Item::Output => forms.output.clone(),
-        Item::OutputJacobian => state_jacobian(model, reduced, &forms.output),
+        Item::Hamiltonian => vec![expressions.hamiltonian],
+        Item::HamiltonianGradient => expressions.gradient.clone(),
+        Item::StructureMatrix => expressions.structure.entries().to_vec(),
+        Item::InputMatrix => expressions.input_matrix.entries().to_vec(),
+        Item::ReducedRhs => expressions.rhs.clone(),
+        Item::ReducedRhsJacobian => state_jacobian(model, reduced, &expressions.rhs),
+        Item::Output => expressions.output.clone(),
+        Item::OutputJacobian => state_jacobian(model, reduced, &expressions.output),
     })
 }
 
@@ -214,10 +214,10 @@ fn symbol_forms(store: &mut Store, symbols: &[SymbolId]) -> Vec<RationalFunction
 /// `matrix * column` of a form, as expressions.
 fn product(
     store: &mut Store,
-    matrix: &ExprMatrix,
+    matrix: &Matrix<ExprId>,
     column: Vec<ExprId>,
 ) -> Result<Vec<ExprId>, PortHamiltonianError> {
-    let product = matrix.mul(&ExprMatrix::column(column), store)?;
+    let product = matrix.mul(&Matrix::column(column), store)?;
     Ok(product.entries().to_vec())
 }
 

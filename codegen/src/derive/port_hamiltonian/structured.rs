@@ -30,37 +30,37 @@
 //! y        = B^T X alpha
 //! ```
 //!
-//! Every matrix is an [`ExprMatrix`] over the entries of `X` as the
+//! Every matrix is a [`Matrix`] of expressions over the entries of `X` as the
 //! elimination computes them ([`crate::derive::constraints::DistributionBasis`]),
 //! and `gbar` is the elimination of `gbar_inv` (symmetric positive definite,
 //! so its diagonal pivots never vanish), so sizes grow with the number of
 //! operations rather than with expanded terms.
 
-use super::Forms;
+use super::{ReducedExpressions, reduced_energy, symbols_column};
 use crate::model::Model;
-use crate::sym::{ExprId, ExprMatrix, MatrixError, Rational, Store, SymbolId};
+use crate::sym::{ExprId, Matrix, MatrixError, Store, SymbolId};
 
 /// The reduced form's matrices and flow for the basis `fields` of D.
 pub(super) fn derive(
     model: &mut Model,
-    fields: &ExprMatrix,
+    fields: &Matrix<ExprId>,
     momenta: &[SymbolId],
     inputs: &[SymbolId],
-) -> Result<Forms, MatrixError> {
+) -> Result<ReducedExpressions, MatrixError> {
     let n = model.n();
     let coordinates = model.coordinate_symbols();
     let store = &mut model.store;
     let g = model.energy_expressions.mass_matrix.clone();
-    let b = ExprMatrix::of(&model.input_matrix, store);
+    let b = model.input_matrix.to_expression_matrix(store);
     let potential = model.energy_expressions.potential;
     let maps = Maps::of(store, fields, &g)?;
     let alpha = symbols_column(store, momenta);
     let u = symbols_column(store, inputs);
-    let metric_rates: Vec<ExprMatrix> = coordinates
+    let metric_rates: Vec<Matrix<ExprId>> = coordinates
         .iter()
         .map(|&q| maps.metric_inverse.derivative(q, store))
         .collect();
-    let hamiltonian = hamiltonian(store, &alpha, &maps.metric_inverse, potential)?;
+    let hamiltonian = reduced_energy(store, &alpha, &maps.metric_inverse, potential)?;
     let mut gradient: Vec<ExprId> = coordinates
         .iter()
         .map(|&q| store.derivative(hamiltonian, q))
@@ -68,9 +68,10 @@ pub(super) fn derive(
     gradient.extend(maps.metric_inverse.mul(&alpha, store)?.entries());
     let core = gyroscopic_core(store, &maps, &metric_rates, &alpha, &coordinates)?;
     let structure = structure_matrix(store, &maps, &core)?;
-    let input_matrix = reduced_input_matrix(store, &maps, &b, n)?;
+    let zero = store.integer(0);
+    let input_matrix = maps.projection.mul(&b, store)?.below_zero_rows(n, zero);
     let (rhs, output) = flow(store, &maps, &core, &gradient[..n], &alpha, &u, &b)?;
-    Ok(Forms {
+    Ok(ReducedExpressions {
         velocity_map: maps.velocities,
         momentum_map: maps.momentum_map,
         metric_inverse: maps.metric_inverse,
@@ -87,25 +88,29 @@ pub(super) fn derive(
 /// The maps between velocities and momenta for `h = X^T g`.
 struct Maps {
     /// `X`, n x k: `qdot = X alpha`.
-    velocities: ExprMatrix,
+    velocities: Matrix<ExprId>,
     /// `h = X^T g`, k x n.
-    basis: ExprMatrix,
+    basis: Matrix<ExprId>,
     /// `gbar_inv = X^T g X`, symmetric as written.
-    metric_inverse: ExprMatrix,
+    metric_inverse: Matrix<ExprId>,
     /// `gbar`, by elimination, symmetric as written.
-    metric: ExprMatrix,
+    metric: Matrix<ExprId>,
     /// `P = gbar X^T`.
-    projection: ExprMatrix,
+    projection: Matrix<ExprId>,
     /// `P g = gbar h`.
-    momentum_map: ExprMatrix,
+    momentum_map: Matrix<ExprId>,
 }
 
 impl Maps {
-    fn of(store: &mut Store, fields: &ExprMatrix, g: &ExprMatrix) -> Result<Maps, MatrixError> {
+    fn of(
+        store: &mut Store,
+        fields: &Matrix<ExprId>,
+        g: &Matrix<ExprId>,
+    ) -> Result<Maps, MatrixError> {
         let x_transposed = fields.transpose();
         let basis = x_transposed.mul(g, store)?;
         let metric_inverse = symmetric(&basis.mul(fields, store)?);
-        let identity = ExprMatrix::identity(store, fields.columns());
+        let identity = store.identity_matrix(fields.columns());
         let metric = symmetric(&store.solve_in_order(&metric_inverse, &identity)?);
         let projection = metric.mul(&x_transposed, store)?;
         let momentum_map = metric.mul(&basis, store)?;
@@ -120,40 +125,22 @@ impl Maps {
     }
 }
 
-/// `Bbar = [0; P B]`, s x p.
-fn reduced_input_matrix(
-    store: &mut Store,
-    maps: &Maps,
-    b: &ExprMatrix,
-    n: usize,
-) -> Result<ExprMatrix, MatrixError> {
-    let reduced = maps.projection.mul(b, store)?;
-    let k = reduced.rows();
-    let mut input_matrix = ExprMatrix::zeros(store, n + k, b.columns());
-    for a in 0..k {
-        for j in 0..b.columns() {
-            input_matrix.set(n + a, j, reduced.get(a, j));
-        }
-    }
-    Ok(input_matrix)
-}
-
 /// `xdot = (X alpha, gbar (-X^T dHbar/dq + S alpha + X^T B u))` and
 /// `y = B^T X alpha`.
 fn flow(
     store: &mut Store,
     maps: &Maps,
-    core: &ExprMatrix,
+    core: &Matrix<ExprId>,
     force_gradient: &[ExprId],
-    alpha: &ExprMatrix,
-    u: &ExprMatrix,
-    b: &ExprMatrix,
+    alpha: &Matrix<ExprId>,
+    u: &Matrix<ExprId>,
+    b: &Matrix<ExprId>,
 ) -> Result<(Vec<ExprId>, Vec<ExprId>), MatrixError> {
     let x_transposed = maps.velocities.transpose();
     let velocities = maps.velocities.mul(alpha, store)?;
     let minus_one = store.integer(-1);
     let potential_force = x_transposed
-        .mul(&ExprMatrix::column(force_gradient.to_vec()), store)?
+        .mul(&Matrix::column(force_gradient.to_vec()), store)?
         .scale(minus_one, store);
     let applied = x_transposed.mul(&b.mul(u, store)?, store)?;
     let gyroscopic_force = core.mul(alpha, store)?;
@@ -172,13 +159,13 @@ fn flow(
 fn gyroscopic_core(
     store: &mut Store,
     maps: &Maps,
-    metric_rates: &[ExprMatrix],
-    alpha: &ExprMatrix,
+    metric_rates: &[Matrix<ExprId>],
+    alpha: &Matrix<ExprId>,
     coordinates: &[SymbolId],
-) -> Result<ExprMatrix, MatrixError> {
+) -> Result<Matrix<ExprId>, MatrixError> {
     let (x, h) = (&maps.velocities, &maps.basis);
     let k = x.columns();
-    let mut core = ExprMatrix::zeros(store, k, k);
+    let mut core = store.zero_matrix(k, k);
     for a in 0..k {
         for b in a + 1..k {
             let bracket = store.lie_bracket_of_expressions(
@@ -186,14 +173,14 @@ fn gyroscopic_core(
                 &x.column_entries(b),
                 coordinates,
             );
-            let along_bracket = h.mul(&ExprMatrix::column(bracket), store)?;
+            let along_bracket = h.mul(&Matrix::column(bracket), store)?;
             let mut terms = Vec::with_capacity(k);
             for c in 0..k {
                 let ab = directional(store, x, a, metric_rates, c, b);
                 let ba = directional(store, x, b, metric_rates, c, a);
                 let form = store.sub(ab, ba);
-                let form = store.sub(form, along_bracket.get(c, 0));
-                terms.push(store.mul2(alpha.get(c, 0), form));
+                let form = store.sub(form, *along_bracket.get(c, 0));
+                terms.push(store.mul2(*alpha.get(c, 0), form));
             }
             let entry = store.add(&terms);
             let opposite = store.neg(entry);
@@ -207,15 +194,15 @@ fn gyroscopic_core(
 /// `X_a(gbar_inv_cb) = sum_j X_ja d gbar_inv_cb / dq_j`.
 fn directional(
     store: &mut Store,
-    x: &ExprMatrix,
+    x: &Matrix<ExprId>,
     a: usize,
-    metric_rates: &[ExprMatrix],
+    metric_rates: &[Matrix<ExprId>],
     c: usize,
     b: usize,
 ) -> ExprId {
     let mut terms = Vec::new();
     for (j, rate) in metric_rates.iter().enumerate() {
-        let (along, derivative) = (x.get(j, a), rate.get(c, b));
+        let (along, derivative) = (*x.get(j, a), *rate.get(c, b));
         if !store.is_zero_constant(along) && !store.is_zero_constant(derivative) {
             terms.push(store.mul2(along, derivative));
         }
@@ -223,28 +210,12 @@ fn directional(
     store.add(&terms)
 }
 
-/// `1/2 alpha^T gbar_inv alpha + V`.
-fn hamiltonian(
-    store: &mut Store,
-    alpha: &ExprMatrix,
-    metric_inverse: &ExprMatrix,
-    potential: ExprId,
-) -> Result<ExprId, MatrixError> {
-    let twice_kinetic = alpha
-        .transpose()
-        .mul(&metric_inverse.mul(alpha, store)?, store)?
-        .get(0, 0);
-    let half = store.number(Rational::HALF);
-    let kinetic = store.mul2(half, twice_kinetic);
-    Ok(store.add2(kinetic, potential))
-}
-
 /// The matrix with its upper triangle mirrored below the diagonal.
-fn symmetric(matrix: &ExprMatrix) -> ExprMatrix {
+fn symmetric(matrix: &Matrix<ExprId>) -> Matrix<ExprId> {
     let mut mirrored = matrix.clone();
     for a in 0..matrix.rows() {
         for b in a + 1..matrix.columns() {
-            mirrored.set(b, a, matrix.get(a, b));
+            mirrored.set(b, a, *matrix.get(a, b));
         }
     }
     mirrored
@@ -252,11 +223,11 @@ fn symmetric(matrix: &ExprMatrix) -> ExprMatrix {
 
 /// The matrix with its upper triangle negated below the diagonal and zeros
 /// on it (the matrix is skew as a function; this makes it so as written).
-fn skew_part(store: &mut Store, matrix: &ExprMatrix) -> ExprMatrix {
-    let mut skew = ExprMatrix::zeros(store, matrix.rows(), matrix.columns());
+fn skew_part(store: &mut Store, matrix: &Matrix<ExprId>) -> Matrix<ExprId> {
+    let mut skew = store.zero_matrix(matrix.rows(), matrix.columns());
     for a in 0..matrix.rows() {
         for b in a + 1..matrix.columns() {
-            let entry = matrix.get(a, b);
+            let entry = *matrix.get(a, b);
             skew.set(a, b, entry);
             skew.set(b, a, store.neg(entry));
         }
@@ -269,26 +240,12 @@ fn skew_part(store: &mut Store, matrix: &ExprMatrix) -> ExprMatrix {
 fn structure_matrix(
     store: &mut Store,
     maps: &Maps,
-    core: &ExprMatrix,
-) -> Result<ExprMatrix, MatrixError> {
+    core: &Matrix<ExprId>,
+) -> Result<Matrix<ExprId>, MatrixError> {
     let sandwiched = maps.metric.mul(core, store)?.mul(&maps.metric, store)?;
     let gyroscopic = skew_part(store, &sandwiched);
-    let projection = &maps.projection;
-    let (k, n) = (projection.rows(), projection.columns());
-    let mut structure = ExprMatrix::zeros(store, n + k, n + k);
-    for a in 0..k {
-        for j in 0..n {
-            let entry = projection.get(a, j);
-            structure.set(j, n + a, entry);
-            structure.set(n + a, j, store.neg(entry));
-        }
-        for b in 0..k {
-            structure.set(n + a, n + b, gyroscopic.get(a, b));
-        }
-    }
-    Ok(structure)
-}
-
-fn symbols_column(store: &mut Store, symbols: &[SymbolId]) -> ExprMatrix {
-    ExprMatrix::column(symbols.iter().map(|&s| store.symbol(s)).collect())
+    let zero = store.integer(0);
+    Ok(maps
+        .projection
+        .skew_structure(&gyroscopic, zero, |&entry| store.neg(entry)))
 }

@@ -54,7 +54,7 @@ fn the_structured_form_equals_the_exact_form() {
         let (mut model, reduced) = derived(&source);
         assert!(reduced.exact().is_some(), "the exact form fits");
         let basis = distribution_basis(&mut model).expect("regular at the defaults");
-        let forms = super::structured::derive(
+        let structured = super::structured::derive(
             &mut model,
             &basis.field_expressions,
             &reduced.momenta,
@@ -65,42 +65,46 @@ fn the_structured_form_equals_the_exact_form() {
         let pairs: [(&str, &[ExprId], &[RationalFunction]); 9] = [
             (
                 "X",
-                forms.velocity_map.entries(),
+                structured.velocity_map.entries(),
                 exact.velocity_map.entries(),
             ),
             (
                 "P g",
-                forms.momentum_map.entries(),
+                structured.momentum_map.entries(),
                 exact.momentum_map.entries(),
             ),
             (
                 "gbar_inv",
-                forms.metric_inverse.entries(),
+                structured.metric_inverse.entries(),
                 exact.metric_inverse.entries(),
             ),
-            ("gbar", forms.metric.entries(), exact.metric.entries()),
-            ("Jbar", forms.structure.entries(), exact.structure.entries()),
+            ("gbar", structured.metric.entries(), exact.metric.entries()),
+            (
+                "Jbar",
+                structured.structure.entries(),
+                exact.structure.entries(),
+            ),
             (
                 "Bbar",
-                forms.input_matrix.entries(),
+                structured.input_matrix.entries(),
                 exact.input_matrix.entries(),
             ),
-            ("dHbar/dx", &forms.gradient, &exact.gradient),
-            ("xdot", &forms.rhs, &exact.rhs),
-            ("y", &forms.output, &exact.output),
+            ("dHbar/dx", &structured.gradient, &exact.gradient),
+            ("xdot", &structured.rhs, &exact.rhs),
+            ("y", &structured.output, &exact.output),
         ];
         for (name, structured, expanded) in pairs {
             assert!(equal(&mut model, structured, expanded), "{name}");
         }
         assert!(equal(
             &mut model,
-            &[forms.hamiltonian],
+            &[structured.hamiltonian],
             std::slice::from_ref(&exact.hamiltonian)
         ));
-        let perturbed = model.store.add2(forms.rhs[0], forms.rhs[1]);
+        let perturbed = model.store.add2(structured.rhs[0], structured.rhs[1]);
         assert!(!equal(&mut model, &[perturbed], &exact.rhs[..1]));
         let structured_facts =
-            super::facts_at_points(&mut model, &forms.metric_inverse).expect("evaluates");
+            super::facts_at_points(&mut model, &structured.metric_inverse).expect("evaluates");
         assert_eq!(
             structured_facts,
             (reduced.metric_constant, reduced.metric_diagonal)

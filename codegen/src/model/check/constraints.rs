@@ -9,7 +9,7 @@ use super::rows::check_independent_rows;
 use super::section::{Section, Sections};
 use super::velocities::{check_velocity_degree, velocity_free};
 use crate::model::Declared;
-use crate::sym::{ExprId, ExprMatrix, Matrix, RationalFunction, SymbolId, SymbolKind};
+use crate::sym::{ExprId, Matrix, RationalFunction, SymbolId, SymbolKind};
 use crate::syntax::{self, Expr};
 
 /// `(names, A, A as expressions)`: the declared rows (or a
@@ -20,7 +20,7 @@ pub(super) fn constraints(
     sections: &Sections,
     n: usize,
     mechanism: &MechanismParts,
-) -> Option<(Vec<Declared>, Matrix, ExprMatrix)> {
+) -> Option<(Vec<Declared>, Matrix, Matrix<ExprId>)> {
     let (mut names, declared) = declared_constraints(cx, sections, n)?;
     let mut entries = declared.entries().to_vec();
     let mut expressions: Vec<ExprId> = entries
@@ -36,7 +36,7 @@ pub(super) fn constraints(
         names.push(declared.clone());
     }
     let a = Matrix::new(names.len(), n, entries).ok()?;
-    let a_expressions = ExprMatrix::new(names.len(), n, expressions).ok()?;
+    let a_expressions = Matrix::new(names.len(), n, expressions).ok()?;
     check_independent_rows(cx, &a, &names, "constraint").then_some((names, a, a_expressions))
 }
 

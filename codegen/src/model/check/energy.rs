@@ -9,7 +9,7 @@ use super::section::{Section, Sections};
 use super::velocities::{check_velocity_degree, velocity_free};
 use crate::model::{BodyMotion, EnergyExpressions, Mechanism, Parameter, Variable};
 use crate::sym::zero::SplitMix;
-use crate::sym::{ExprId, ExprMatrix, Matrix, Poly, Rational, RationalFunction, SymbolId};
+use crate::sym::{ExprId, Matrix, Poly, Rational, RationalFunction, SymbolId};
 use crate::syntax;
 use proc_macro2::Span;
 
@@ -77,7 +77,7 @@ pub(super) fn energy_expressions(
     let kinetic_derived_as = cx.store.add2(declared_kinetic, bodies_kinetic);
     let potential_derived_as = cx.store.add2(declared_potential, bodies_potential);
     let mass_matrix = if mechanism.motions.is_empty() {
-        ExprMatrix::of(g, &mut cx.store)
+        g.to_expression_matrix(&mut cx.store)
     } else {
         metric_derived_as(cx, g, declared_kinetic, &mechanism.motions, velocities)?
     };
@@ -98,7 +98,7 @@ fn metric_derived_as(
     declared_kinetic: ExprId,
     bodies: &[BodyMotion],
     velocities: &[SymbolId],
-) -> Option<ExprMatrix> {
+) -> Option<Matrix<ExprId>> {
     let rates: Vec<ExprId> = velocities
         .iter()
         .map(|&v| cx.store.derivative(declared_kinetic, v))
@@ -121,7 +121,7 @@ fn metric_derived_as(
             .store
             .compact_expression(g.get(index / n, index % n), *entry);
     }
-    ExprMatrix::new(n, n, entries).ok()
+    Matrix::new(n, n, entries).ok()
 }
 
 /// The declared part of an energy, `total - bodies`, written out.

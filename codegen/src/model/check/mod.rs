@@ -29,7 +29,7 @@ use super::{
     Declared, EnergyExpressions, Model, MomentumBasis, Options, Parameter, Symmetry, Variable,
 };
 use crate::diagnostic::Diagnostics;
-use crate::sym::{Budget, ExprMatrix, Matrix, RationalFunction, SymbolId};
+use crate::sym::{Budget, ExprId, Matrix, RationalFunction, SymbolId};
 use crate::syntax::ModelSyntax;
 use context::Context;
 use mechanisms::MechanismParts;
@@ -65,7 +65,7 @@ struct Checked {
     mechanism: Option<MechanismParts>,
     energy: Option<(RationalFunction, Matrix)>,
     potential_energy: Option<RationalFunction>,
-    constraints: Option<(Vec<Declared>, Matrix, ExprMatrix)>,
+    constraints: Option<(Vec<Declared>, Matrix, Matrix<ExprId>)>,
     inputs: Option<(Vec<Declared>, Matrix)>,
     momentum_basis: Option<MomentumBasis>,
     symmetry: Option<Symmetry>,

@@ -19,7 +19,7 @@ pub(super) mod vector;
 mod tests;
 
 use super::Declared;
-use crate::sym::{ExprMatrix, Matrix, RationalFunction};
+use crate::sym::{ExprId, Matrix, RationalFunction};
 
 /// What a model's mechanism sections declare, in normal form.
 #[derive(Clone, Debug)]
@@ -54,11 +54,11 @@ pub struct Mechanism {
 #[derive(Clone, Debug)]
 pub struct MechanismExpressions {
     /// `nf x 9`, as [`Mechanism::orientations`].
-    pub orientations: ExprMatrix,
+    pub orientations: Matrix<ExprId>,
     /// `np x 3`, as [`Mechanism::positions`].
-    pub positions: ExprMatrix,
+    pub positions: Matrix<ExprId>,
     /// `h x 1`, as [`Mechanism::holonomic_residual`].
-    pub holonomic_residual: ExprMatrix,
+    pub holonomic_residual: Matrix<ExprId>,
 }
 
 impl Mechanism {
@@ -75,9 +75,9 @@ impl Mechanism {
             holonomic: Vec::new(),
             holonomic_residual: Matrix::zeros(0, 1),
             expressions: MechanismExpressions {
-                orientations: ExprMatrix::empty(9),
-                positions: ExprMatrix::empty(3),
-                holonomic_residual: ExprMatrix::empty(1),
+                orientations: Matrix::empty(9),
+                positions: Matrix::empty(3),
+                holonomic_residual: Matrix::empty(1),
             },
         }
     }

@@ -19,7 +19,7 @@ use crate::model::mechanism::evaluate::Reference;
 use crate::model::mechanism::space::{GROUND, ORIGIN, Space};
 use crate::model::mechanism::{Mechanism, MechanismExpressions};
 use crate::model::{Declared, Parameter, Variable};
-use crate::sym::{ExprId, ExprMatrix, Matrix, SymbolId};
+use crate::sym::{ExprId, Matrix, SymbolId};
 use proc_macro2::Span;
 
 /// A mechanism and the constraint rows it contributes (contacts, then the
@@ -133,7 +133,11 @@ pub(super) fn mechanism(
 
 /// Rows of `width` entries: their normal forms, and the expressions to
 /// compute them by ([`crate::sym::Store::compact_expression`]).
-fn normal_rows(cx: &mut Context, entries: &[ExprId], width: usize) -> Option<(Matrix, ExprMatrix)> {
+fn normal_rows(
+    cx: &mut Context,
+    entries: &[ExprId],
+    width: usize,
+) -> Option<(Matrix, Matrix<ExprId>)> {
     let mut forms = Vec::with_capacity(entries.len());
     let mut expressions = Vec::with_capacity(entries.len());
     for &id in entries {
@@ -144,6 +148,6 @@ fn normal_rows(cx: &mut Context, entries: &[ExprId], width: usize) -> Option<(Ma
     let rows = entries.len() / width;
     Some((
         Matrix::new(rows, width, forms).ok()?,
-        ExprMatrix::new(rows, width, expressions).ok()?,
+        Matrix::new(rows, width, expressions).ok()?,
     ))
 }
