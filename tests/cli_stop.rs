@@ -155,15 +155,42 @@ fn a_condition_true_at_the_start_stops_before_any_step() {
     assert_eq!(run.rows.len(), 1);
 }
 
+/// At equality an inclusive comparison holds and a strict one does not:
+/// the sleigh starts at `x = 0`, so `x >= 0` stops it before any step and
+/// `x > 0` lets it run (it moves forward and stops after its first step).
+#[test]
+fn an_inclusive_condition_holds_at_equality() {
+    let run = simulate("inclusive", &["sleigh", "--stop-when", "x >= 0"]);
+    assert_eq!(run.stopped(), (0.0, "x >= 0"));
+    assert_eq!(run.rows.len(), 1);
+    let run = simulate(
+        "strict",
+        &[
+            "sleigh",
+            "--initial",
+            "dot(x)=1",
+            "--initial",
+            "dot(theta)=0",
+            "--stop-when",
+            "x > 0",
+        ],
+    );
+    let (t, _) = run.stopped();
+    assert!(t > 0.0 && run.rows.len() > 1, "{}", run.summary);
+}
+
 /// A condition that is not one comparison of known names is refused in
 /// one line naming it (the sleigh has no inputs to name).
 #[test]
 fn conditions_that_are_not_one_comparison_of_known_names_are_refused() {
     for (condition, says) in [
-        ("theta", "--stop-when theta: no comparison `<` or `>`"),
+        (
+            "theta",
+            "--stop-when theta: no comparison `<`, `<=`, `>` or `>=`",
+        ),
         (
             "0 < theta < 1",
-            "--stop-when 0 < theta < 1: 2 comparisons; a condition is one `<` or `>`",
+            "--stop-when 0 < theta < 1: 2 comparisons; a condition is one",
         ),
         (
             "abs(psi) > 1",

@@ -1,8 +1,9 @@
 //! `--stop-when COND` (docs/INTERFACE.md section 3): a run ends cleanly where
-//! COND first holds. COND is one comparison `EXPR < EXPR` or `EXPR > EXPR`
-//! of `t`, the coordinates, their velocities `dot(q)`, the inputs and the
-//! parameters ([`super::inputs`]: `'abs(phi) > 1'`). It holds where its
-//! larger side minus its smaller side is positive: the event function whose
+//! COND first holds. COND is one comparison `EXPR < EXPR`, `EXPR <= EXPR`,
+//! `EXPR > EXPR` or `EXPR >= EXPR` of `t`, the coordinates, their velocities
+//! `dot(q)`, the inputs and the parameters ([`super::inputs`]:
+//! `'abs(phi) > 1'`). It holds where its larger side minus its smaller side
+//! is positive, or zero for `<=` and `>=`: the event function whose
 //! crossing the simulation loop locates within its step
 //! (`crate::runtime::simulate::stop`), read at a state through the
 //! formulation's configuration, velocity and inputs.
@@ -15,14 +16,14 @@ use std::cell::RefCell;
 /// Why a `--stop-when` condition cannot be used.
 #[derive(Debug, thiserror::Error)]
 pub enum StopError {
-    /// Neither `<` nor `>`.
-    #[error("--stop-when {text}: no comparison `<` or `>`")]
+    /// None of `<`, `<=`, `>`, `>=`.
+    #[error("--stop-when {text}: no comparison `<`, `<=`, `>` or `>=`")]
     NoComparison {
         /// The condition as given.
         text: String,
     },
-    /// More than one `<` or `>`.
-    #[error("--stop-when {text}: {count} comparisons; a condition is one `<` or `>`")]
+    /// More than one comparison.
+    #[error("--stop-when {text}: {count} comparisons; a condition is one")]
     Comparisons {
         /// The condition as given.
         text: String,
@@ -39,18 +40,20 @@ pub enum StopError {
     },
 }
 
-/// A `--stop-when` condition: `larger > smaller`.
+/// A `--stop-when` condition: `larger > smaller`, or `larger >= smaller`
+/// when `inclusive`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Comparison {
     text: String,
     larger: Expression,
     smaller: Expression,
+    inclusive: bool,
     coordinates: usize,
 }
 
 impl Comparison {
-    /// `text` split at its one `<` or `>`, each side resolved against
-    /// `scope`.
+    /// `text` split at its one `<`, `<=`, `>` or `>=`, each side resolved
+    /// against `scope`.
     ///
     /// # Errors
     /// No comparison, several, or a side that is not an expression of the
@@ -75,7 +78,9 @@ impl Comparison {
                 reason: error.to_string(),
             })
         };
-        let (left, right) = (side(&text[..i])?, side(&text[i + 1..])?);
+        let inclusive = text[i + 1..].starts_with('=');
+        let right_start = if inclusive { i + 2 } else { i + 1 };
+        let (left, right) = (side(&text[..i])?, side(&text[right_start..])?);
         let (larger, smaller) = if text[i..].starts_with('>') {
             (left, right)
         } else {
@@ -85,6 +90,7 @@ impl Comparison {
             text: text.into(),
             larger,
             smaller,
+            inclusive,
             coordinates: scope.coordinates.len(),
         })
     }
@@ -94,9 +100,15 @@ impl Comparison {
         &self.text
     }
 
-    /// The event function at `point`: positive where the condition holds.
+    /// The event function at `point`: positive where the condition holds
+    /// (an inclusive comparison's equality is the smallest positive value).
     fn value(&self, point: &Point<'_>) -> f64 {
-        self.larger.at(point) - self.smaller.at(point)
+        let difference = self.larger.at(point) - self.smaller.at(point);
+        if self.inclusive && difference == 0.0 {
+            f64::MIN_POSITIVE
+        } else {
+            difference
+        }
     }
 }
 
@@ -149,14 +161,39 @@ mod tests {
         assert_eq!(value("abs(phi) > 1", &point), 0.5);
         assert_eq!(value("abs(phi) < 1", &point), -0.5);
         assert_eq!(value("k*t + dot(phi) < u1 - x", &point), 7.0 - 3.0 - 5.0);
+        assert_eq!(value("abs(phi) >= 1", &point), 0.5);
+        assert_eq!(value("abs(phi) <= 1", &point), -0.5);
+        assert_eq!(value("x<=2", &point), -1.0);
+    }
+
+    /// At equality a strict comparison does not hold and an inclusive one
+    /// does.
+    #[test]
+    fn an_inclusive_comparison_holds_at_equality() {
+        let point = Point {
+            t: 0.0,
+            q: &[1.0, 0.5],
+            qdot: &[0.0, 0.0],
+            u: &[0.0],
+        };
+        assert_eq!(value("x > 1", &point), 0.0);
+        assert_eq!(value("x < 1", &point), 0.0);
+        assert!(value("x >= 1", &point) > 0.0);
+        assert!(value("x <= 1", &point) > 0.0);
+        assert!(value("2*phi >= x", &point) > 0.0);
     }
 
     #[test]
     fn one_comparison_of_known_names() {
         let error = |text: &str| Comparison::parse(text, &SCOPE).unwrap_err();
         assert!(matches!(error("phi"), StopError::NoComparison { .. }));
+        assert!(matches!(error("phi == 1"), StopError::NoComparison { .. }));
         assert!(matches!(
             error("0 < phi < 1"),
+            StopError::Comparisons { count: 2, .. }
+        ));
+        assert!(matches!(
+            error("0 <= phi <= 1"),
             StopError::Comparisons { count: 2, .. }
         ));
         assert_eq!(
