@@ -12,7 +12,7 @@
 //! value printed in the panel's title), where its integral is decided;
 //! where the connection is not defined the cell is grey.
 
-use super::style::{Drawn, label_style, png, tick_labels, title_style};
+use super::style::{Axis, Drawn, draw_axes, label_style, png, tick_labels, title_style};
 use super::{PlotError, register_font};
 use plotters::prelude::*;
 use std::path::Path;
@@ -91,17 +91,15 @@ fn panel(
         .y_label_area_size(60)
         .build_cartesian_2d(x_range.clone(), y_range.clone())
         .drawn(file)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(field.axes[0].as_str())
-        .x_label_formatter(&x_labels)
-        .y_desc(field.axes[1].as_str())
-        .y_label_formatter(&y_labels)
-        .axis_desc_style(label_style())
-        .label_style(label_style())
-        .draw()
-        .drawn(file)?;
+    let x = Axis {
+        name: &field.axes[0],
+        labels: &x_labels,
+    };
+    let y = Axis {
+        name: &field.axes[1],
+        labels: &y_labels,
+    };
+    draw_axes(&mut chart, x, y, false).drawn(file)?;
     let (dx, dy) = (first[1] - first[0], second[1] - second[0]);
     let cells = first.iter().enumerate().flat_map(|(i, &u)| {
         second.iter().enumerate().map(move |(j, &v)| {

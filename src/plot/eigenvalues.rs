@@ -9,7 +9,9 @@
 //! marked and labelled. The zero line of the real parts is drawn: stability
 //! is every real part below it.
 
-use super::style::{Drawn, label_style, padded_range, png, tick_labels, title_style};
+use super::style::{
+    Axis, Drawn, draw_axes, label_style, padded_range, png, tick_labels, title_style,
+};
 use super::{PlotError, register_font};
 use plotters::prelude::*;
 use std::ops::Range;
@@ -146,16 +148,15 @@ fn panel(
         .y_label_area_size(100)
         .build_cartesian_2d(x_range.clone(), y_range.clone())
         .drawn(file)?;
-    chart
-        .configure_mesh()
-        .x_desc(sweep.variable.as_str())
-        .x_label_formatter(&x_labels)
-        .y_desc(part.name())
-        .y_label_formatter(&y_labels)
-        .axis_desc_style(label_style())
-        .label_style(label_style())
-        .draw()
-        .drawn(file)?;
+    let x = Axis {
+        name: &sweep.variable,
+        labels: &x_labels,
+    };
+    let y = Axis {
+        name: part.name(),
+        labels: &y_labels,
+    };
+    draw_axes(&mut chart, x, y, true).drawn(file)?;
     let band = GREEN.mix(0.12).filled();
     for &(from, to) in &sweep.stable {
         let corners = [(from, y_range.start), (to, y_range.end)];

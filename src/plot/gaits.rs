@@ -3,7 +3,9 @@
 //! (right, equal axis scales), one colour per gait, each path's start on
 //! the origin.
 
-use super::style::{Drawn, draw_legend, label_style, padded_range, png, tick_labels, title_style};
+use super::style::{
+    Axis, Drawn, draw_axes, draw_legend, padded_range, png, tick_labels, title_style,
+};
 use super::{PlotError, register_font};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -89,16 +91,15 @@ fn panel(
         .y_label_area_size(80)
         .build_cartesian_2d(x_range, y_range)
         .drawn(file)?;
-    chart
-        .configure_mesh()
-        .x_desc(x_name)
-        .y_desc(y_name)
-        .x_label_formatter(&x_labels)
-        .y_label_formatter(&y_labels)
-        .axis_desc_style(label_style())
-        .label_style(label_style())
-        .draw()
-        .drawn(file)?;
+    let x = Axis {
+        name: x_name,
+        labels: &x_labels,
+    };
+    let y = Axis {
+        name: y_name,
+        labels: &y_labels,
+    };
+    draw_axes(&mut chart, x, y, true).drawn(file)?;
     for (index, (curve, colour)) in curves.iter().zip(COLOURS.iter().cycle()).enumerate() {
         let style = colour.stroke_width(3);
         let series = chart

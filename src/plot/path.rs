@@ -5,8 +5,8 @@
 //! points) as thinner curves of their own colours.
 
 use super::style::{
-    DrawResult, Drawn, centred, draw_ends, draw_legend, emptiest_corner, finite_runs, label_style,
-    padded_range, png, tick_labels, title_style,
+    Axis, DrawResult, Drawn, centred, draw_axes, draw_ends, draw_legend, emptiest_corner,
+    finite_runs, padded_range, png, tick_labels, title_style,
 };
 use super::{PlanarPath, PlotError, PlotSpec};
 use plotters::coord::Shift;
@@ -78,16 +78,16 @@ pub(super) fn draw(
         let mut chart = chart_builder(&area)
             .build_cartesian_2d(x_range, y_range)
             .drawn(file)?;
-        chart
-            .configure_mesh()
-            .x_desc(spec.label(&planar.x))
-            .y_desc(spec.label(&planar.y))
-            .x_label_formatter(&x_labels)
-            .y_label_formatter(&y_labels)
-            .axis_desc_style(label_style())
-            .label_style(label_style())
-            .draw()
-            .drawn(file)?;
+        let (x_name, y_name) = (spec.label(&planar.x), spec.label(&planar.y));
+        let x = Axis {
+            name: &x_name,
+            labels: &x_labels,
+        };
+        let y = Axis {
+            name: &y_name,
+            labels: &y_labels,
+        };
+        draw_axes(&mut chart, x, y, true).drawn(file)?;
         let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
         draw_tracks(&mut chart, &tracks).drawn(file)?;
         let path_style = BLUE.stroke_width(2);

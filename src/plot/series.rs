@@ -7,7 +7,7 @@
 //! values below [`RESIDUAL_FLOOR`] raised to it.
 
 use super::style::{
-    Drawn, finite_bounds, finite_runs, label_style, padded_range, png, tick_labels, title_style,
+    Axis, Drawn, draw_axes, finite_bounds, finite_runs, padded_range, png, tick_labels, title_style,
 };
 use super::{PlotError, PlotSpec, RESIDUAL_FLOOR};
 use plotters::prelude::*;
@@ -176,16 +176,16 @@ fn draw_against_time(
             .y_label_area_size(100)
             .build_cartesian_2d(time_range, y_range)
             .drawn(file)?;
-        chart
-            .configure_mesh()
-            .x_desc(spec.label(&spec.time))
-            .x_label_formatter(&time_labels)
-            .y_desc(panel.y_desc)
-            .y_label_formatter(panel.y_format)
-            .axis_desc_style(label_style())
-            .label_style(label_style())
-            .draw()
-            .drawn(file)?;
+        let time_name = spec.label(&spec.time);
+        let x = Axis {
+            name: &time_name,
+            labels: &time_labels,
+        };
+        let y = Axis {
+            name: &panel.y_desc,
+            labels: panel.y_format,
+        };
+        draw_axes(&mut chart, x, y, true).drawn(file)?;
         let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
         chart
             .draw_series(

@@ -4,6 +4,7 @@
 
 use super::PlotError;
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::ops::Range;
 use std::path::Path;
@@ -63,6 +64,35 @@ impl<T, E: std::error::Error + Send + Sync> Drawn<T> for Result<T, DrawingAreaEr
 /// The result of drawing on a chart, before [`Drawn::drawn`].
 pub(super) type DrawResult =
     Result<(), DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>>;
+
+/// A chart's axis: its description and its tick labels.
+pub(super) struct Axis<'a> {
+    /// What the axis shows.
+    pub name: &'a str,
+    /// The text of a tick.
+    pub labels: &'a dyn Fn(&f64) -> String,
+}
+
+/// Draws the axes of a chart of `f64` against `f64` (descriptions, tick
+/// labels, the text styles), with its grid when `grid`.
+pub(super) fn draw_axes(
+    chart: &mut ChartContext<'_, BitMapBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    x: Axis<'_>,
+    y: Axis<'_>,
+    grid: bool,
+) -> DrawResult {
+    let mut mesh = chart.configure_mesh();
+    if !grid {
+        mesh.disable_mesh();
+    }
+    mesh.x_desc(x.name)
+        .x_label_formatter(x.labels)
+        .y_desc(y.name)
+        .y_label_formatter(y.labels)
+        .axis_desc_style(label_style())
+        .label_style(label_style())
+        .draw()
+}
 
 /// Marks a curve's first and last finite points: the start as a wide green
 /// disc, the end as a narrower red one on top, so that both show where
