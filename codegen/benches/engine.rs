@@ -8,13 +8,13 @@
 
 use chaplygin_codegen::ir;
 use chaplygin_codegen::sym::{
-    ExprId, Function, Matrix, RationalFunction, Store, SymbolId, SymbolKind,
+    Context, ExprId, Function, Matrix, RationalFunction, SymbolId, SymbolKind,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
 struct Snakeboard {
-    store: Store,
+    cx: Context,
     coordinates: Vec<SymbolId>,
     velocities: Vec<SymbolId>,
     parameters: Vec<SymbolId>,
@@ -23,57 +23,57 @@ struct Snakeboard {
 }
 
 fn declare() -> Snakeboard {
-    let mut store = Store::new();
+    let mut cx = Context::new();
     let coordinates: Vec<SymbolId> = ["x", "y", "theta", "psi", "phi"]
         .iter()
-        .map(|n| store.declare(n, SymbolKind::Coordinate))
+        .map(|n| cx.declare(n, SymbolKind::Coordinate))
         .collect();
-    let velocities: Vec<SymbolId> = coordinates.iter().map(|&q| store.velocity_of(q)).collect();
+    let velocities: Vec<SymbolId> = coordinates.iter().map(|&q| cx.velocity_of(q)).collect();
     let parameters: Vec<SymbolId> = ["m", "r", "jt", "jw"]
         .iter()
-        .map(|n| store.declare(n, SymbolKind::Parameter))
+        .map(|n| cx.declare(n, SymbolKind::Parameter))
         .collect();
-    let [m, r, jt, jw] = [0, 1, 2, 3].map(|i| store.symbol(parameters[i]));
-    let [xd, yd, thd, psid, phid] = [0, 1, 2, 3, 4].map(|i| store.symbol(velocities[i]));
-    let [_, _, theta, _, phi] = [0, 1, 2, 3, 4].map(|i| store.symbol(coordinates[i]));
-    let half = store.number(chaplygin_codegen::sym::Rational::new(1, 2).expect("1/2"));
-    let square = |s: &mut Store, e: ExprId| s.mul2(e, e);
-    let r2 = square(&mut store, r);
-    let mr2 = store.mul2(m, r2);
-    let j = store.add2(jt, mr2);
+    let [m, r, jt, jw] = [0, 1, 2, 3].map(|i| cx.symbol(parameters[i]));
+    let [xd, yd, thd, psid, phid] = [0, 1, 2, 3, 4].map(|i| cx.symbol(velocities[i]));
+    let [_, _, theta, _, phi] = [0, 1, 2, 3, 4].map(|i| cx.symbol(coordinates[i]));
+    let half = cx.number(chaplygin_codegen::sym::Rational::new(1, 2).expect("1/2"));
+    let square = |s: &mut Context, e: ExprId| s.mul2(e, e);
+    let r2 = square(&mut cx, r);
+    let mr2 = cx.mul2(m, r2);
+    let j = cx.add2(jt, mr2);
     let (xd2, yd2, thd2, psid2, phid2) = (
-        square(&mut store, xd),
-        square(&mut store, yd),
-        square(&mut store, thd),
-        square(&mut store, psid),
-        square(&mut store, phid),
+        square(&mut cx, xd),
+        square(&mut cx, yd),
+        square(&mut cx, thd),
+        square(&mut cx, psid),
+        square(&mut cx, phid),
     );
-    let planar = store.add2(xd2, yd2);
+    let planar = cx.add2(xd2, yd2);
     let terms = [
-        store.mul(&[half, m, planar]),
-        store.mul(&[half, j, thd2]),
-        store.mul(&[jt, thd, psid]),
-        store.mul(&[half, jt, psid2]),
-        store.mul(&[half, jw, phid2]),
+        cx.mul(&[half, m, planar]),
+        cx.mul(&[half, j, thd2]),
+        cx.mul(&[jt, thd, psid]),
+        cx.mul(&[half, jt, psid2]),
+        cx.mul(&[half, jw, phid2]),
     ];
-    let kinetic_energy = store.add(&terms);
+    let kinetic_energy = cx.add(&terms);
     let constraints = [1i64, -1]
         .map(|sign| {
-            let sign_e = store.integer(sign);
-            let signed_phi = store.mul2(sign_e, phi);
-            let angle = store.add2(theta, signed_phi);
-            let s = store.apply(Function::Sin, angle).expect("sin");
-            let c = store.apply(Function::Cos, angle).expect("cos");
-            let cos_phi = store.apply(Function::Cos, phi).expect("cos");
-            let minus_s = store.neg(s);
-            let along = store.mul2(minus_s, xd);
-            let across = store.mul2(c, yd);
-            let turn = store.mul(&[sign_e, r, cos_phi, thd]);
-            store.add(&[along, across, turn])
+            let sign_e = cx.integer(sign);
+            let signed_phi = cx.mul2(sign_e, phi);
+            let angle = cx.add2(theta, signed_phi);
+            let s = cx.apply(Function::Sin, angle).expect("sin");
+            let c = cx.apply(Function::Cos, angle).expect("cos");
+            let cos_phi = cx.apply(Function::Cos, phi).expect("cos");
+            let minus_s = cx.neg(s);
+            let along = cx.mul2(minus_s, xd);
+            let across = cx.mul2(c, yd);
+            let turn = cx.mul(&[sign_e, r, cos_phi, thd]);
+            cx.add(&[along, across, turn])
         })
         .to_vec();
     Snakeboard {
-        store,
+        cx,
         coordinates,
         velocities,
         parameters,
@@ -85,18 +85,18 @@ fn declare() -> Snakeboard {
 /// The mass matrix `d^2 T / d qdot_i d qdot_j`, exactly.
 fn mass_matrix(board: &mut Snakeboard) -> Matrix {
     let energy = board
-        .store
+        .cx
         .normal(board.kinetic_energy)
         .expect("T is well defined");
     let n = board.velocities.len();
     let mut entries = Vec::with_capacity(n * n);
     for &vi in &board.velocities {
         let first = board
-            .store
+            .cx
             .derivative_of_normal(&energy, vi)
             .expect("dT/dqdot");
         for &vj in &board.velocities {
-            entries.push(board.store.derivative_of_normal(&first, vj).expect("d2T"));
+            entries.push(board.cx.derivative_of_normal(&first, vj).expect("d2T"));
         }
     }
     Matrix::new(n, n, entries).expect("n x n")
@@ -106,11 +106,11 @@ fn mass_matrix(board: &mut Snakeboard) -> Matrix {
 fn constraint_matrix(board: &mut Snakeboard) -> Matrix {
     let mut entries: Vec<RationalFunction> = Vec::new();
     for &row in &board.constraints.clone() {
-        let form = board.store.normal(row).expect("constraint is well defined");
+        let form = board.cx.normal(row).expect("constraint is well defined");
         for &v in &board.velocities {
             entries.push(
                 board
-                    .store
+                    .cx
                     .derivative_of_normal(&form, v)
                     .expect("coefficient"),
             );
@@ -127,7 +127,7 @@ struct Derived {
 fn derive(board: &mut Snakeboard) -> Derived {
     let g = mass_matrix(board);
     let a = constraint_matrix(board);
-    let atoms = board.store.atoms().clone();
+    let atoms = board.cx.atoms().clone();
     let inverse = g.inverse(&atoms).expect("g is invertible");
     let gram = a
         .mul(&inverse, &atoms)
@@ -139,15 +139,15 @@ fn derive(board: &mut Snakeboard) -> Derived {
 fn report_operation_counts() {
     let mut board = declare();
     let derived = derive(&mut board);
-    let mut outputs = derived.inverse.to_expressions(&mut board.store);
-    outputs.extend(derived.gram.to_expressions(&mut board.store));
+    let mut outputs = derived.inverse.to_expressions(&mut board.cx);
+    outputs.extend(derived.gram.to_expressions(&mut board.cx));
     let inputs: Vec<SymbolId> = board
         .coordinates
         .iter()
         .chain(&board.parameters)
         .copied()
         .collect();
-    let program = ir::lower(&board.store, &inputs, &outputs).expect("all symbols bound");
+    let program = ir::lower(&board.cx, &inputs, &outputs).expect("all symbols bound");
     let counts = program.operation_count();
     println!(
         "snakeboard g^-1 and A g^-1 A^T: {} operations before CSE, {} after",
@@ -160,7 +160,7 @@ fn bench_engine(c: &mut Criterion) {
     c.bench_function("snakeboard/normal_form_of_kinetic_energy", |b| {
         b.iter_batched(
             declare,
-            |mut board| black_box(board.store.normal(board.kinetic_energy).expect("normal")),
+            |mut board| black_box(board.cx.normal(board.kinetic_energy).expect("normal")),
             criterion::BatchSize::SmallInput,
         )
     });

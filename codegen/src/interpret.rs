@@ -39,7 +39,7 @@ use crate::diagnostic::Diagnostics;
 use crate::emit::{self, Lowered};
 use crate::ir::IrError;
 use crate::model::{GroupFactor, Model};
-use crate::{analysed_model, over_budget};
+use crate::{Analysed, analysed_model, over_budget};
 use chaplygin_runtime::simulate::GuardedValue;
 use chaplygin_runtime::system::Guard;
 use std::rc::Rc;
@@ -193,11 +193,15 @@ impl InterpretedModel {
     /// Parses, checks, analyses and emits the model text (the text
     /// [`crate::generate`] takes), keeping the functions' programs.
     pub fn from_source(source: &str) -> Result<InterpretedModel, Diagnostics> {
-        let (mut model, constraints) = analysed_model(source)?;
+        let Analysed {
+            mut model,
+            mut cx,
+            constraints,
+        } = analysed_model(source)?;
         model.emits_rust = false;
-        let emitted = crate::derive::derivation(&mut model, &constraints)
-            .and_then(|derivation| emit::emit(&mut model, &constraints, &derivation));
-        over_budget(&model)?;
+        let emitted = crate::derive::derivation(&model, &mut cx, &constraints)
+            .and_then(|derivation| emit::emit(&model, &mut cx, &constraints, &derivation));
+        over_budget(&model, &cx)?;
         let emitted = emitted?;
         let mut indices = 0..;
         let functions = interpreted(emitted.functions, &mut indices);

@@ -49,25 +49,38 @@ pub fn try_expand(tokens: TokenStream) -> Result<TokenStream, diagnostic::Diagno
     compile(&syntax::parse(tokens)?)
 }
 
+/// A model parsed, checked and analysed: the model, the context holding its
+/// expressions, and its constraint analysis.
+pub(crate) struct Analysed {
+    pub(crate) model: model::Model,
+    pub(crate) cx: sym::Context,
+    pub(crate) constraints: derive::constraints::ConstraintAnalysis,
+}
+
 /// A model text parsed, checked and analysed within the default derivation
-/// budget, as both doors do before emitting. The model's store keeps
+/// budget, as both doors do before emitting. The model's context keeps
 /// charging that budget: callers deriving more check [`over_budget`].
-pub(crate) fn analysed_model(
-    source: &str,
-) -> Result<(model::Model, derive::constraints::ConstraintAnalysis), diagnostic::Diagnostics> {
+pub(crate) fn analysed_model(source: &str) -> Result<Analysed, diagnostic::Diagnostics> {
     let syntax = syntax::parse_str(source)?;
     let budget = sym::Budget::default();
-    let outcome = model::check_within(&syntax, budget.clone()).and_then(|mut model| {
-        let constraints = derive::constraints::analyse(&mut model)?;
-        Ok((model, constraints))
+    let outcome = model::check_within(&syntax, budget.clone()).and_then(|(model, mut cx)| {
+        let constraints = derive::constraints::analyse(&model, &mut cx)?;
+        Ok(Analysed {
+            model,
+            cx,
+            constraints,
+        })
     });
     within_budget(&syntax, &budget, outcome)
 }
 
 /// The budget diagnostic, on the model's name, when the derivations on
-/// `model` after [`analysed_model`] spent its budget.
-pub(crate) fn over_budget(model: &model::Model) -> Result<(), diagnostic::Diagnostics> {
-    let budget = model.store.budget();
+/// `model` in `cx` after [`analysed_model`] spent its budget.
+pub(crate) fn over_budget(
+    model: &model::Model,
+    cx: &sym::Context,
+) -> Result<(), diagnostic::Diagnostics> {
+    let budget = cx.budget();
     if !budget.is_exhausted() {
         return Ok(());
     }
@@ -91,10 +104,10 @@ fn compile_within(
     syntax: &syntax::ModelSyntax,
     budget: sym::Budget,
 ) -> Result<TokenStream, diagnostic::Diagnostics> {
-    let outcome = model::check_within(syntax, budget.clone()).and_then(|mut model| {
-        let constraints = derive::constraints::analyse(&mut model)?;
-        let derivation = derive::derivation(&mut model, &constraints)?;
-        emit::model_items(&mut model, &constraints, &derivation)
+    let outcome = model::check_within(syntax, budget.clone()).and_then(|(model, mut cx)| {
+        let constraints = derive::constraints::analyse(&model, &mut cx)?;
+        let derivation = derive::derivation(&model, &mut cx, &constraints)?;
+        emit::model_items(&model, &mut cx, &constraints, &derivation)
     });
     within_budget(syntax, &budget, outcome)
 }

@@ -7,7 +7,7 @@
 #![no_main]
 
 use chaplygin_codegen::sym::{
-    Atom, AtomId, Budget, ExprId, Function, Node, Poly, Rational, RationalFunction, Store,
+    Atom, AtomId, Budget, Context, ExprId, Function, Node, Poly, Rational, RationalFunction, Store,
     SymbolId, SymbolKind,
 };
 use libfuzzer_sys::fuzz_target;
@@ -22,25 +22,25 @@ const BUDGET: u64 = 200_000;
 const STACK_LIMIT: usize = 32;
 
 fuzz_target!(|data: &[u8]| {
-    let mut store = Store::with_budget(Budget::new(BUDGET));
+    let mut cx = Context::with_budget(Budget::new(BUDGET));
     let symbols = [
-        store.declare("x", SymbolKind::Coordinate),
-        store.declare("y", SymbolKind::Coordinate),
-        store.declare("m", SymbolKind::Parameter),
+        cx.declare("x", SymbolKind::Coordinate),
+        cx.declare("y", SymbolKind::Coordinate),
+        cx.declare("m", SymbolKind::Parameter),
     ];
-    let Some(root) = build(&mut store, &symbols, data) else {
+    let Some(root) = build(&mut cx, &symbols, data) else {
         return;
     };
-    let Ok(form) = store.normal(root) else {
+    let Ok(form) = cx.normal(root) else {
         return;
     };
     let value_of = |symbol: SymbolId| POINT[symbols.iter().position(|&s| s == symbol).unwrap_or(0)];
-    let tree = store.evaluate(root, &value_of);
-    let normal = store.evaluate_normal(&form, &value_of);
-    if !tree.is_finite() || !normal.is_finite() || !exact_class(&store, &form) {
+    let tree = cx.evaluate(root, &value_of);
+    let normal = cx.evaluate_normal(&form, &value_of);
+    if !tree.is_finite() || !normal.is_finite() || !exact_class(&cx, &form) {
         return;
     }
-    let atom_value = |atom: AtomId| atom_value(&store, &symbols, atom);
+    let atom_value = |atom: AtomId| atom_value(&cx, &symbols, atom);
     // Evaluating a polynomial in floating point gives a relative error of at
     // most about (terms + degree) * f64::EPSILON times its condition number
     // `sum |terms| / |value|`; the error of a quotient is the sum of those of
@@ -57,37 +57,35 @@ fuzz_target!(|data: &[u8]| {
             .iter()
             .map(|(factor, k)| f64::from(*k) * condition(factor, &atom_value))
             .sum::<f64>();
-    let tolerance = 1e-9
-        * ((1.0 + condition) * normal.abs()).max(largest_intermediate(&store, root, &value_of));
+    let tolerance =
+        1e-9 * ((1.0 + condition) * normal.abs()).max(largest_intermediate(&cx, root, &value_of));
     assert!(
         (tree - normal).abs() <= tolerance,
         "tree {tree} != normal form {normal} (tolerance {tolerance}) for {}",
-        store.display(root)
+        cx.display(root)
     );
 });
 
 /// True when every atom is a symbol or the sine or cosine of a symbol: then
 /// each atom's value is one correctly rounded library call away from exact.
-fn exact_class(store: &Store, form: &RationalFunction) -> bool {
-    form.atoms()
-        .iter()
-        .all(|&atom| match store.atoms().get(atom) {
-            Atom::Symbol(_) => true,
-            Atom::Sin(argument) | Atom::Cos(argument) => {
-                matches!(store.node(*argument), Node::Symbol(_))
-            }
-            Atom::Kernel(_) => false,
-        })
+fn exact_class(cx: &Context, form: &RationalFunction) -> bool {
+    form.atoms().iter().all(|&atom| match cx.atoms().get(atom) {
+        Atom::Symbol(_) => true,
+        Atom::Sin(argument) | Atom::Cos(argument) => {
+            matches!(cx.node(*argument), Node::Symbol(_))
+        }
+        Atom::Kernel(_) => false,
+    })
 }
 
 /// The value of an atom of the exact class at [`POINT`].
-fn atom_value(store: &Store, symbols: &[SymbolId; 3], atom: AtomId) -> f64 {
+fn atom_value(cx: &Context, symbols: &[SymbolId; 3], atom: AtomId) -> f64 {
     let at = |symbol: &SymbolId| POINT[symbols.iter().position(|s| s == symbol).unwrap_or(0)];
-    let of_argument = |argument: &ExprId| match store.node(*argument) {
+    let of_argument = |argument: &ExprId| match cx.node(*argument) {
         Node::Symbol(symbol) => at(symbol),
         _ => f64::NAN,
     };
-    match store.atoms().get(atom) {
+    match cx.atoms().get(atom) {
         Atom::Symbol(symbol) => at(symbol),
         Atom::Sin(argument) => of_argument(argument).sin(),
         Atom::Cos(argument) => of_argument(argument).cos(),

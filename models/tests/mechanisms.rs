@@ -7,29 +7,29 @@
 
 use chaplygin::runtime::system::Holonomic;
 use chaplygin_codegen::model::{Model, check};
-use chaplygin_codegen::sym::{Matrix, RationalFunction};
+use chaplygin_codegen::sym::{Context, Matrix, RationalFunction};
 use chaplygin_codegen::syntax::parse_str;
 use chaplygin_models::rolling_disk_3d::RollingDisk3d;
 use chaplygin_models::{
     caster_robot, rolling_disk_3d, sleigh, sleigh_bodies, snakeboard, snakeboard_bodies,
 };
 
-fn checked(source: &str) -> Model {
+fn checked(source: &str) -> (Model, Context) {
     let syntax = parse_str(source).expect("parses");
     check(&syntax).unwrap_or_else(|e| panic!("{}", e.render("test.model")))
 }
 
-fn normal(model: &mut Model, text: &str) -> RationalFunction {
+fn normal(model: &Model, cx: &mut Context, text: &str) -> RationalFunction {
     model
-        .normal_of_text(text)
+        .normal_of_text(cx, text)
         .unwrap_or_else(|e| panic!("{}", e.render("hand form")))
 }
 
 /// `T` and `V` of `model` equal the hand forms, exactly.
-fn assert_energies(model: &mut Model, kinetic: &str, potential: &str) {
-    let atoms = model.store.atoms().clone();
-    let t = normal(model, kinetic);
-    let v = normal(model, potential);
+fn assert_energies(model: &Model, cx: &mut Context, kinetic: &str, potential: &str) {
+    let atoms = cx.atoms().clone();
+    let t = normal(model, cx, kinetic);
+    let v = normal(model, cx, potential);
     assert!(model.kinetic_energy.sub(&t, &atoms).is_zero(), "T differs");
     assert!(
         model.potential_energy.sub(&v, &atoms).is_zero(),
@@ -38,18 +38,13 @@ fn assert_energies(model: &mut Model, kinetic: &str, potential: &str) {
 }
 
 /// The rows of `A` (linear forms in the velocities) of hand-written constraints.
-fn hand_rows(model: &mut Model, rows: &[&str]) -> Matrix {
+fn hand_rows(model: &Model, cx: &mut Context, rows: &[&str]) -> Matrix {
     let velocities = model.velocities.clone();
     let mut entries = Vec::new();
     for row in rows {
-        let form = normal(model, row);
+        let form = normal(model, cx, row);
         for &v in &velocities {
-            entries.push(
-                model
-                    .store
-                    .derivative_of_normal(&form, v)
-                    .expect("derivative"),
-            );
+            entries.push(cx.derivative_of_normal(&form, v).expect("derivative"));
         }
     }
     Matrix::new(rows.len(), velocities.len(), entries).expect("shape")
@@ -57,10 +52,10 @@ fn hand_rows(model: &mut Model, rows: &[&str]) -> Matrix {
 
 /// The derived rows and the hand rows span the same space: each has full
 /// rank and stacking them adds none.
-fn assert_row_space(model: &mut Model, rows: &[&str]) {
-    let hand = hand_rows(model, rows);
+fn assert_row_space(model: &Model, cx: &mut Context, rows: &[&str]) {
+    let hand = hand_rows(model, cx, rows);
     let derived = model.constraint_matrix.clone();
-    let atoms = model.store.atoms().clone();
+    let atoms = cx.atoms().clone();
     let mut stacked = derived.entries().to_vec();
     stacked.extend_from_slice(hand.entries());
     let stacked = Matrix::new(derived.rows() + hand.rows(), derived.columns(), stacked).unwrap();
@@ -89,9 +84,9 @@ const DISK_ROWS: [&str; 2] = [
 
 #[test]
 fn the_leaning_disk_derives_its_hand_energies_and_rolling_rows() {
-    let mut model = checked(rolling_disk_3d::MODEL_TEXT);
-    assert_energies(&mut model, DISK_KINETIC, DISK_POTENTIAL);
-    assert_row_space(&mut model, &DISK_ROWS);
+    let (model, mut cx) = checked(rolling_disk_3d::MODEL_TEXT);
+    assert_energies(&model, &mut cx, DISK_KINETIC, DISK_POTENTIAL);
+    assert_row_space(&model, &mut cx, &DISK_ROWS);
     assert_eq!(RollingDisk3d::CONSTRAINTS, ["rolling_1", "rolling_2"]);
 }
 
@@ -105,10 +100,10 @@ fn a_contact_point_through_a_norm_derives_the_same_rows() {
              contact = center + r*unit(cross(disk.y, cross(disk.y, ground.z))),",
     );
     assert_ne!(source, rolling_disk_3d::MODEL_TEXT);
-    let mut by_norm = checked(&source);
-    assert_energies(&mut by_norm, DISK_KINETIC, DISK_POTENTIAL);
-    assert_row_space(&mut by_norm, &DISK_ROWS);
-    let by_hand = checked(rolling_disk_3d::MODEL_TEXT);
+    let (by_norm, mut cx) = checked(&source);
+    assert_energies(&by_norm, &mut cx, DISK_KINETIC, DISK_POTENTIAL);
+    assert_row_space(&by_norm, &mut cx, &DISK_ROWS);
+    let (by_hand, _) = checked(rolling_disk_3d::MODEL_TEXT);
     assert_eq!(
         by_norm.constraint_matrix.rows(),
         by_hand.constraint_matrix.rows()
@@ -117,15 +112,16 @@ fn a_contact_point_through_a_norm_derives_the_same_rows() {
 
 #[test]
 fn the_sleigh_of_bodies_is_the_sleigh_of_energies() {
-    let mut model = checked(sleigh_bodies::MODEL_TEXT);
+    let (model, mut cx) = checked(sleigh_bodies::MODEL_TEXT);
     assert_energies(
-        &mut model,
+        &model,
+        &mut cx,
         "m/2*((dot(x) - a*sin(theta)*dot(theta))^2 + (dot(y) + a*cos(theta)*dot(theta))^2) \
          + inertia/2*dot(theta)^2",
         "0",
     );
-    assert_row_space(&mut model, &["-sin(theta)*dot(x) + cos(theta)*dot(y)"]);
-    let energy_form = checked(sleigh::MODEL_TEXT);
+    assert_row_space(&model, &mut cx, &["-sin(theta)*dot(x) + cos(theta)*dot(y)"]);
+    let (energy_form, _) = checked(sleigh::MODEL_TEXT);
     assert_eq!(
         energy_form.constraint_matrix.rows(),
         model.constraint_matrix.rows()
@@ -134,21 +130,23 @@ fn the_sleigh_of_bodies_is_the_sleigh_of_energies() {
 
 #[test]
 fn the_snakeboard_of_bodies_is_the_snakeboard_of_energies() {
-    let mut model = checked(snakeboard_bodies::MODEL_TEXT);
+    let (model, mut cx) = checked(snakeboard_bodies::MODEL_TEXT);
     assert_energies(
-        &mut model,
+        &model,
+        &mut cx,
         "m/2*(dot(x)^2 + dot(y)^2) + (jt + m*r^2)/2*dot(theta)^2 + jt*dot(theta)*dot(psi) \
          + jt/2*dot(psi)^2 + jw/2*dot(phi)^2",
         "0",
     );
     assert_row_space(
-        &mut model,
+        &model,
+        &mut cx,
         &[
             "-sin(theta + phi)*dot(x) + cos(theta + phi)*dot(y) + r*cos(phi)*dot(theta)",
             "-sin(theta - phi)*dot(x) + cos(theta - phi)*dot(y) - r*cos(phi)*dot(theta)",
         ],
     );
-    let energy_form = checked(snakeboard::MODEL_TEXT);
+    let (energy_form, _) = checked(snakeboard::MODEL_TEXT);
     assert_eq!(
         energy_form.constraint_matrix.rows(),
         model.constraint_matrix.rows()
@@ -165,15 +163,17 @@ fn the_snakeboard_of_bodies_is_the_snakeboard_of_energies() {
 /// as the rows below.
 #[test]
 fn the_caster_robot_derives_its_hand_energies_and_rolling_rows() {
-    let mut model = checked(caster_robot::MODEL_TEXT);
+    let (model, mut cx) = checked(caster_robot::MODEL_TEXT);
     assert_energies(
-        &mut model,
+        &model,
+        &mut cx,
         "m/2*(dot(x)^2 + dot(y)^2) + i_c/2*dot(theta)^2 + iw/2*(dot(phi_l)^2 + dot(phi_r)^2) \
          + i_s/2*(dot(theta) + dot(beta))^2 + ic/2*dot(phi_c)^2",
         "0",
     );
     assert_row_space(
-        &mut model,
+        &model,
+        &mut cx,
         &[
             "cos(theta)*dot(x) + sin(theta)*dot(y) - b*dot(theta) - r*dot(phi_l)",
             "-sin(theta)*dot(x) + cos(theta)*dot(y)",

@@ -19,7 +19,7 @@ use super::catalog::Source;
 use chaplygin_codegen::diagnostic::Diagnostics;
 use chaplygin_codegen::document::{self, derive_document};
 use chaplygin_codegen::model::{Declared, Model, check};
-use chaplygin_codegen::sym::RationalFunction;
+use chaplygin_codegen::sym::{Context, RationalFunction};
 use chaplygin_codegen::syntax::parse_str;
 use serde_json::{Map, Value, json};
 use std::error::Error;
@@ -86,11 +86,11 @@ pub fn document(source: &Source, format: Format) -> Result<String, Box<dyn Error
     };
     let text = derive_document(source.text(), format.into()).map_err(rejected)?;
     let syntax = parse_str(source.text()).map_err(rejected)?;
-    let mut checked = check(&syntax).map_err(rejected)?;
-    if !checked.mechanism.is_declared() {
+    let (model, mut cx) = check(&syntax).map_err(rejected)?;
+    if !model.mechanism.is_declared() {
         return Ok(text);
     }
-    let mechanism = MechanismSection::of(&mut checked);
+    let mechanism = MechanismSection::of(&model, &mut cx);
     Ok(match format {
         Format::Text => before(&text, "\n\nConstraint analysis", &mechanism.text(), "\n\n"),
         Format::Latex => before(
@@ -137,17 +137,18 @@ struct MechanismSection {
 }
 
 impl MechanismSection {
-    /// The section of a checked model declared as a mechanism.
-    fn of(model: &mut Model) -> Self {
-        let mechanism = model.mechanism.clone();
-        let (n, rows) = (model.n(), model.constraint_matrix.clone());
+    /// The section of a checked model declared as a mechanism, its
+    /// expressions in `cx`.
+    fn of(model: &Model, cx: &mut Context) -> Self {
+        let mechanism = &model.mechanism;
+        let (n, rows) = (model.n(), &model.constraint_matrix);
         let first_contact = model.c() - mechanism.contacts.len() - mechanism.holonomic.len();
         let names = |declared: &[Declared]| declared.iter().map(|d| d.name.clone()).collect();
         let mut printed = |form: &RationalFunction| {
-            let expression = model.store.expression_of(form);
+            let expression = cx.expression_of(form);
             Printed {
-                text: model.store.display(expression).to_string(),
-                latex: model.store.latex(expression),
+                text: cx.display(expression).to_string(),
+                latex: cx.latex(expression),
             }
         };
         let contacts = (mechanism.contacts.iter().enumerate())

@@ -34,7 +34,7 @@
 //! **Large models.** The exact basis grows fast with the size of a chain
 //! (for N wheeled links, entries of `2 * 3^(N-2)` terms), and the brackets
 //! of the growth vector faster still. Each exact step is attempted on a
-//! nested derivation budget ([`crate::sym::Store::attempt`]):
+//! nested derivation budget ([`crate::sym::Context::attempt`]):
 //! [`EXACT_BASIS_PRODUCTS`] for the basis, [`EXACT_ANALYSIS_PRODUCTS`] for
 //! Frobenius and the growth vector. Beyond them the basis is kept
 //! structured (the elimination written out as expressions,
@@ -58,6 +58,7 @@ mod basis;
 mod body_frame;
 pub mod charts;
 
+use crate::sym::Context;
 use at_points::{growth_vector_at_point, is_exact_row_at_points, is_involutive_at_points};
 pub use basis::{ChartFit, DistributionBasis, default_point, distribution_basis};
 
@@ -178,20 +179,20 @@ pub enum AnalysisError {
 
 /// Analyses the constraints; with `#[deny_holonomic]`, integrable
 /// constraints are an error spanned on the first constraint's name.
-pub fn analyse(model: &mut Model) -> Result<ConstraintAnalysis, Diagnostics> {
+pub fn analyse(model: &Model, cx: &mut Context) -> Result<ConstraintAnalysis, Diagnostics> {
     let analysis =
-        derive_analysis(model).map_err(|e| Diagnostics::internal(model.name.span(), e))?;
+        derive_analysis(model, cx).map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     deny_holonomic(model, &analysis)?;
     Ok(analysis)
 }
 
-fn derive_analysis(model: &mut Model) -> Result<ConstraintAnalysis, AnalysisError> {
-    let basis = distribution_basis(model)?;
-    let charts = charts::alternative_charts(model, &basis)?;
-    let (integrable, integrability_method) = integrability(model, &basis)?;
-    let (growth, growth_complete, growth_method) = growth(model, &basis)?;
+fn derive_analysis(model: &Model, cx: &mut Context) -> Result<ConstraintAnalysis, AnalysisError> {
+    let basis = distribution_basis(model, cx)?;
+    let charts = charts::alternative_charts(model, cx, &basis)?;
+    let (integrable, integrability_method) = integrability(model, cx, &basis)?;
+    let (growth, growth_complete, growth_method) = growth(model, cx, &basis)?;
     let classification = classify(model, integrable, &growth, growth_complete);
-    let exact_rows = exact_rows(model)?;
+    let exact_rows = exact_rows(model, cx)?;
     Ok(ConstraintAnalysis {
         basis,
         charts,
@@ -208,37 +209,39 @@ fn derive_analysis(model: &mut Model) -> Result<ConstraintAnalysis, AnalysisErro
 /// Frobenius, exactly when the exact basis and the brackets fit their
 /// budgets, else at random points.
 fn integrability(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     basis: &DistributionBasis,
 ) -> Result<(bool, Method), AnalysisError> {
     if let Some(fields) = &basis.fields {
         let fields = columns_of(fields);
-        let exact = model.attempt(EXACT_ANALYSIS_PRODUCTS, |model| {
-            is_involutive(model, &fields)
+        let exact = cx.attempt(EXACT_ANALYSIS_PRODUCTS, |cx| {
+            is_involutive(model, cx, &fields)
         });
         if let Some(integrable) = exact {
             return Ok((integrable?, Method::NormalForm));
         }
     }
-    Ok((is_involutive_at_points(model, basis)?, Method::Modular))
+    Ok((is_involutive_at_points(model, cx, basis)?, Method::Modular))
 }
 
 /// The growth vector, exactly when it fits its budget, else at a random
 /// point; `(growth, complete, method)`.
 fn growth(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     basis: &DistributionBasis,
 ) -> Result<(Vec<usize>, bool, Method), AnalysisError> {
     if let Some(fields) = &basis.fields {
         let fields = columns_of(fields);
-        let exact = model.attempt(EXACT_ANALYSIS_PRODUCTS, |model| {
-            growth_vector(model, &fields)
+        let exact = cx.attempt(EXACT_ANALYSIS_PRODUCTS, |cx| {
+            growth_vector(model, cx, &fields)
         });
         if let Some(growth) = exact {
             return Ok((growth?, true, Method::NormalForm));
         }
     }
-    let (growth, complete) = growth_vector_at_point(model, basis)?;
+    let (growth, complete) = growth_vector_at_point(model, cx, basis)?;
     Ok((growth, complete, Method::Modular))
 }
 
@@ -271,11 +274,11 @@ fn classify(model: &Model, integrable: bool, growth: &[usize], complete: bool) -
 }
 
 /// Frobenius: `A [X_i, X_j] = 0` exactly for every pair of basis fields.
-fn is_involutive(model: &mut Model, fields: &[Field]) -> Result<bool, MatrixError> {
+fn is_involutive(model: &Model, cx: &mut Context, fields: &[Field]) -> Result<bool, MatrixError> {
     for (i, x) in fields.iter().enumerate() {
         for y in &fields[i + 1..] {
-            let bracket = bracket(model, x, y)?;
-            let atoms = model.store.atoms().clone();
+            let bracket = bracket(model, cx, x, y)?;
+            let atoms = cx.atoms().clone();
             let column = Matrix::new(bracket.len(), 1, bracket)?;
             if !model.constraint_matrix.mul(&column, &atoms)?.is_zero() {
                 return Ok(false);
@@ -286,13 +289,17 @@ fn is_involutive(model: &mut Model, fields: &[Field]) -> Result<bool, MatrixErro
 }
 
 /// The ranks of `D^1, D^2, ...` until they stop growing (or reach n).
-fn growth_vector(model: &mut Model, basis: &[Field]) -> Result<Vec<usize>, MatrixError> {
+fn growth_vector(
+    model: &Model,
+    cx: &mut Context,
+    basis: &[Field],
+) -> Result<Vec<usize>, MatrixError> {
     let mut span = Vec::new();
-    let mut newest = independent_additions(model, &mut span, basis.to_vec())?;
+    let mut newest = independent_additions(model, cx, &mut span, basis.to_vec())?;
     let mut growth = vec![span.len()];
     while span.len() < reachable_bound(model) && !newest.is_empty() {
-        let brackets = brackets_with(model, basis, &newest)?;
-        newest = independent_additions(model, &mut span, brackets)?;
+        let brackets = brackets_with(model, cx, basis, &newest)?;
+        newest = independent_additions(model, cx, &mut span, brackets)?;
         if newest.is_empty() {
             break;
         }
@@ -310,14 +317,15 @@ pub(super) fn reachable_bound(model: &Model) -> usize {
 
 /// Every `[X, Y]` with X a basis field and Y one of `newest`.
 fn brackets_with(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     basis: &[Field],
     newest: &[Field],
 ) -> Result<Vec<Field>, MatrixError> {
     let mut brackets = Vec::with_capacity(basis.len() * newest.len());
     for x in basis {
         for y in newest {
-            brackets.push(bracket(model, x, y)?);
+            brackets.push(bracket(model, cx, x, y)?);
         }
     }
     Ok(brackets)
@@ -326,13 +334,14 @@ fn brackets_with(
 /// Moves into `span` each candidate that raises its exact rank; returns those.
 fn independent_additions(
     model: &Model,
+    cx: &Context,
     span: &mut Vec<Field>,
     candidates: Vec<Field>,
 ) -> Result<Vec<Field>, MatrixError> {
     let mut added = Vec::new();
     for candidate in candidates {
         span.push(candidate);
-        if rank_of_fields(model, span)? == span.len() {
+        if rank_of_fields(model, cx, span)? == span.len() {
             added.push(span[span.len() - 1].clone());
         } else {
             span.pop();
@@ -342,7 +351,7 @@ fn independent_additions(
 }
 
 /// The exact generic rank of the fields (as columns of an n x m matrix).
-fn rank_of_fields(model: &Model, fields: &[Field]) -> Result<usize, MatrixError> {
+fn rank_of_fields(model: &Model, cx: &Context, fields: &[Field]) -> Result<usize, MatrixError> {
     let n = model.n();
     let mut matrix = Matrix::zeros(n, fields.len());
     for (j, field) in fields.iter().enumerate() {
@@ -350,16 +359,17 @@ fn rank_of_fields(model: &Model, fields: &[Field]) -> Result<usize, MatrixError>
             matrix.set(i, j, entry.clone());
         }
     }
-    Ok(matrix.rank(model.store.atoms()))
+    Ok(matrix.rank(cx.atoms()))
 }
 
 fn bracket(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     x: &[RationalFunction],
     y: &[RationalFunction],
 ) -> Result<Field, MatrixError> {
     let coordinates = model.coordinate_symbols();
-    model.store.lie_bracket(x, y, &coordinates)
+    cx.lie_bracket(x, y, &coordinates)
 }
 
 fn columns_of(matrix: &Matrix) -> Vec<Field> {
@@ -376,7 +386,7 @@ fn columns_of(matrix: &Matrix) -> Vec<Field> {
 /// exactly within [`EXACT_ANALYSIS_PRODUCTS`] when the row's normal forms
 /// are written out ([`RationalFunction::is_written_out`]), else at random points on
 /// the expressions the row was derived as.
-fn exact_rows(model: &mut Model) -> Result<Vec<bool>, AnalysisError> {
+fn exact_rows(model: &Model, cx: &mut Context) -> Result<Vec<bool>, AnalysisError> {
     (0..model.constraint_matrix.rows())
         .map(|row| {
             let entries: Field = (0..model.n())
@@ -385,10 +395,10 @@ fn exact_rows(model: &mut Model) -> Result<Vec<bool>, AnalysisError> {
             let written_out = entries.iter().all(RationalFunction::is_written_out);
             let exact = written_out
                 .then(|| {
-                    model.attempt(EXACT_ANALYSIS_PRODUCTS, |model| {
+                    cx.attempt(EXACT_ANALYSIS_PRODUCTS, |cx| {
                         let coordinates = model.coordinate_symbols();
-                        let jacobian = model.store.jacobian(&entries, &coordinates)?;
-                        let asymmetry = jacobian.sub(&jacobian.transpose(), model.store.atoms())?;
+                        let jacobian = cx.jacobian(&entries, &coordinates)?;
+                        let asymmetry = jacobian.sub(&jacobian.transpose(), cx.atoms())?;
                         Ok::<bool, MatrixError>(asymmetry.is_zero())
                     })
                 })
@@ -397,7 +407,7 @@ fn exact_rows(model: &mut Model) -> Result<Vec<bool>, AnalysisError> {
                 Some(decided) => Ok(decided?),
                 None => {
                     let expressions = model.constraint_expressions.row_entries(row);
-                    is_exact_row_at_points(model, &expressions)
+                    is_exact_row_at_points(model, cx, &expressions)
                 }
             }
         })

@@ -51,9 +51,8 @@
 
 use crate::ir;
 use crate::model::Model;
-use crate::sym::{
-    ExprId, Matrix, MatrixError, Poly, RationalFunction, Store, SymbolId, SymbolKind,
-};
+use crate::sym::Context;
+use crate::sym::{ExprId, Matrix, MatrixError, Poly, RationalFunction, SymbolId, SymbolKind};
 
 /// How `acceleration` computes `(qddot, lambda)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -108,9 +107,9 @@ impl Drift {
     }
 
     /// The entries as expressions.
-    pub fn expressions(&self, store: &mut Store) -> Matrix<ExprId> {
+    pub fn expressions(&self, cx: &mut Context) -> Matrix<ExprId> {
         match self {
-            Drift::Exact(drift) => drift.to_expression_matrix(store),
+            Drift::Exact(drift) => drift.to_expression_matrix(cx),
             Drift::Structured(drift) => drift.clone(),
         }
     }
@@ -172,29 +171,28 @@ pub enum DerivationError {
 pub const CLOSED_FORM_LIMIT: usize = 4;
 
 /// The term products the closed form may take (a nested budget,
-/// [`crate::sym::Store::attempt`]); beyond them only the run-time system is
+/// [`crate::sym::Context::attempt`]); beyond them only the run-time system is
 /// derived.
 pub const CLOSED_FORM_PRODUCTS: u64 = 1_000_000;
 
 /// Derives both solutions (the closed form within [`CLOSED_FORM_LIMIT`] and
 /// [`CLOSED_FORM_PRODUCTS`]) and chooses the cheaper.
-pub fn derive(model: &mut Model) -> Result<LagrangeDalembert, DerivationError> {
-    let inputs = declare_inputs(model);
-    let terms = Terms::of(model, &inputs)?;
-    let saddle_point = terms.saddle_point(model);
-    let numeric_solution = saddle_point.solution_by_blocks(model)?;
-    let numeric_weight = ir::estimated_weight(&model.store, &numeric_solution);
+pub fn derive(model: &Model, cx: &mut Context) -> Result<LagrangeDalembert, DerivationError> {
+    let inputs = declare_inputs(model, cx);
+    let terms = Terms::of(model, cx, &inputs)?;
+    let saddle_point = terms.saddle_point(model, cx);
+    let numeric_solution = saddle_point.solution_by_blocks(model, cx)?;
+    let numeric_weight = ir::estimated_weight(cx, &numeric_solution);
     let closed_form = if closed_form_is_tractable(model) {
-        model
-            .attempt(CLOSED_FORM_PRODUCTS, |model| terms.closed_form(model))
+        cx.attempt(CLOSED_FORM_PRODUCTS, |cx| terms.closed_form(model, cx))
             .transpose()?
             .flatten()
     } else {
         None
     };
     let symbolic_weight = closed_form.as_ref().map(|closed_form| {
-        let outputs = closed_form.outputs(model);
-        ir::estimated_weight(&model.store, &outputs)
+        let outputs = closed_form.outputs(cx);
+        ir::estimated_weight(cx, &outputs)
     });
     let strategy = match symbolic_weight {
         Some(weight) if weight <= numeric_weight => Strategy::Symbolic,
@@ -223,11 +221,11 @@ fn closed_form_is_tractable(model: &Model) -> bool {
 }
 
 /// `u`: one auxiliary symbol per input, named as declared.
-fn declare_inputs(model: &mut Model) -> Vec<SymbolId> {
+fn declare_inputs(model: &Model, cx: &mut Context) -> Vec<SymbolId> {
     model
         .inputs
         .iter()
-        .map(|input| model.store.declare(&input.name, SymbolKind::Auxiliary))
+        .map(|input| cx.declare(&input.name, SymbolKind::Auxiliary))
         .collect()
 }
 
@@ -240,18 +238,16 @@ struct Terms {
 }
 
 impl Terms {
-    fn of(model: &mut Model, inputs: &[SymbolId]) -> Result<Terms, DerivationError> {
-        let atoms = model.store.atoms().clone();
-        let velocity = symbol_column(model, &model.velocities.clone())?;
-        let force = Force::of(model, inputs)?;
-        let exact_drift = |model: &mut Model| {
+    fn of(model: &Model, cx: &mut Context, inputs: &[SymbolId]) -> Result<Terms, DerivationError> {
+        let atoms = cx.atoms().clone();
+        let velocity = symbol_column(cx, &model.velocities)?;
+        let force = Force::of(model, cx, inputs)?;
+        let exact_drift = |cx: &mut Context| {
             let residual = model.constraint_matrix.mul(&velocity, &atoms)?;
-            directional_derivative(model, &residual, &velocity)
+            directional_derivative(model, cx, &residual, &velocity)
         };
         let constraint_drift = match model.constraint_matrix.is_written_out() {
-            true => model
-                .attempt(EXACT_DRIFT_PRODUCTS, exact_drift)
-                .transpose()?,
+            true => cx.attempt(EXACT_DRIFT_PRODUCTS, exact_drift).transpose()?,
             false => None,
         };
         Ok(Terms {
@@ -261,12 +257,12 @@ impl Terms {
     }
 
     /// `lambda = (A g^-1 A^T)^-1 (-A g^-1 f - Adot qdot)`, `qddot = g^-1 (f + A^T lambda)`.
-    fn closed_form(&self, model: &Model) -> Result<Option<ClosedForm>, MatrixError> {
+    fn closed_form(&self, model: &Model, cx: &Context) -> Result<Option<ClosedForm>, MatrixError> {
         let (Some(constraint_drift), Some(force)) = (&self.constraint_drift, &self.force.exact)
         else {
             return Ok(None);
         };
-        let atoms = model.store.atoms();
+        let atoms = cx.atoms();
         let (g, a) = (&model.mass_matrix, &model.constraint_matrix);
         let a_transpose = a.transpose();
         let g_inverse_a_transpose = g.solve(&a_transpose, atoms)?;
@@ -285,10 +281,10 @@ impl Terms {
         }))
     }
 
-    fn saddle_point(&self, model: &mut Model) -> SaddlePointSystem {
+    fn saddle_point(&self, model: &Model, cx: &mut Context) -> SaddlePointSystem {
         let drift = match &self.constraint_drift {
             Some(drift) => Drift::Exact(drift.neg()),
-            None => Drift::Structured(structured_drift(model)),
+            None => Drift::Structured(structured_drift(model, cx)),
         };
         SaddlePointSystem {
             mass_matrix: model.mass_matrix.clone(),
@@ -301,9 +297,9 @@ impl Terms {
 
 impl ClosedForm {
     /// `qddot` then `lambda`, as expressions.
-    pub fn outputs(&self, model: &mut Model) -> Vec<ExprId> {
-        let mut outputs = self.accelerations.to_expressions(&mut model.store);
-        outputs.extend(self.multipliers.to_expressions(&mut model.store));
+    pub fn outputs(&self, cx: &mut Context) -> Vec<ExprId> {
+        let mut outputs = self.accelerations.to_expressions(cx);
+        outputs.extend(self.multipliers.to_expressions(cx));
         outputs
     }
 }
@@ -311,36 +307,39 @@ impl ClosedForm {
 impl SaddlePointSystem {
     /// `qddot` then `lambda` by blocks (see the module documentation), as
     /// expressions over the system's pieces.
-    pub fn solution_by_blocks(&self, model: &mut Model) -> Result<Vec<ExprId>, MatrixError> {
-        let a = model.constraint_expressions.clone();
-        let store = &mut model.store;
+    pub fn solution_by_blocks(
+        &self,
+        model: &Model,
+        cx: &mut Context,
+    ) -> Result<Vec<ExprId>, MatrixError> {
+        let a = &model.constraint_expressions;
         let g = model.energy_expressions.mass_matrix.clone();
         let force = self.force.expressions.clone();
-        let drift = self.drift.expressions(store);
-        let (lower, pivots) = store.ldl(&g)?;
-        let w = store.forward_substitution(&lower, &a.transpose());
-        let z = store.forward_substitution(&lower, &force);
-        let w_scaled = store.divide_rows(&w, &pivots)?;
-        let schur = symmetric_product(store, &w, &w_scaled)?;
-        let reduced_drift = drift.sub(&w_scaled.transpose().mul(&z, store)?, store)?;
-        let (schur_lower, schur_pivots) = store.ldl(&schur)?;
-        let y = store.forward_substitution(&schur_lower, &reduced_drift);
-        let y = store.divide_rows(&y, &schur_pivots)?;
-        let multipliers = store.back_substitution(&schur_lower, &y);
-        let moved = z.add(&w.mul(&multipliers, store)?, store)?;
-        let moved = store.divide_rows(&moved, &pivots)?;
-        let accelerations = store.back_substitution(&lower, &moved);
+        let drift = self.drift.expressions(cx);
+        let (lower, pivots) = cx.ldl(&g)?;
+        let w = cx.forward_substitution(&lower, &a.transpose());
+        let z = cx.forward_substitution(&lower, &force);
+        let w_scaled = cx.divide_rows(&w, &pivots)?;
+        let schur = symmetric_product(cx, &w, &w_scaled)?;
+        let reduced_drift = drift.sub(&w_scaled.transpose().mul(&z, cx)?, cx)?;
+        let (schur_lower, schur_pivots) = cx.ldl(&schur)?;
+        let y = cx.forward_substitution(&schur_lower, &reduced_drift);
+        let y = cx.divide_rows(&y, &schur_pivots)?;
+        let multipliers = cx.back_substitution(&schur_lower, &y);
+        let moved = z.add(&w.mul(&multipliers, cx)?, cx)?;
+        let moved = cx.divide_rows(&moved, &pivots)?;
+        let accelerations = cx.back_substitution(&lower, &moved);
         let mut outputs = accelerations.entries().to_vec();
         outputs.extend(multipliers.entries());
         Ok(outputs)
     }
 
     /// `g` and `A` row-major, then `force`, then `drift`, as expressions.
-    pub fn outputs(&self, model: &mut Model) -> Vec<ExprId> {
-        let mut outputs = self.mass_matrix.to_expressions(&mut model.store);
+    pub fn outputs(&self, model: &Model, cx: &mut Context) -> Vec<ExprId> {
+        let mut outputs = self.mass_matrix.to_expressions(cx);
         outputs.extend(model.constraint_expressions.entries());
         outputs.extend(self.force.expressions.entries());
-        outputs.extend(self.drift.expressions(&mut model.store).entries());
+        outputs.extend(self.drift.expressions(cx).entries());
         outputs
     }
 }
@@ -348,16 +347,16 @@ impl SaddlePointSystem {
 /// `u^T v` for two n x c matrices, symmetric because `v` is `u` with its
 /// rows scaled: the upper triangle is computed and mirrored.
 fn symmetric_product(
-    store: &mut Store,
+    cx: &mut Context,
     u: &Matrix<ExprId>,
     v: &Matrix<ExprId>,
 ) -> Result<Matrix<ExprId>, MatrixError> {
     let size = u.columns();
-    let mut product = store.zero_matrix(size, size);
+    let mut product = cx.zero_matrix(size, size);
     for i in 0..size {
         for j in i..size {
             let row = Matrix::column(u.column_entries(i)).transpose();
-            let entry = row.mul(&Matrix::column(v.column_entries(j)), store)?;
+            let entry = row.mul(&Matrix::column(v.column_entries(j)), cx)?;
             product.set(i, j, *entry.get(0, 0));
             product.set(j, i, *entry.get(0, 0));
         }
@@ -366,10 +365,10 @@ fn symmetric_product(
 }
 
 /// The column of the given symbols.
-fn symbol_column(model: &mut Model, symbols: &[SymbolId]) -> Result<Matrix, MatrixError> {
+fn symbol_column(cx: &mut Context, symbols: &[SymbolId]) -> Result<Matrix, MatrixError> {
     let entries: Vec<RationalFunction> = symbols
         .iter()
-        .map(|&s| RationalFunction::from_poly(Poly::atom(model.store.symbol_atom(s))))
+        .map(|&s| RationalFunction::from_poly(Poly::atom(cx.symbol_atom(s))))
         .collect();
     Matrix::new(entries.len(), 1, entries)
 }
@@ -377,18 +376,18 @@ fn symbol_column(model: &mut Model, symbols: &[SymbolId]) -> Result<Matrix, Matr
 impl Force {
     /// The exact force within [`EXACT_FORCE_PRODUCTS`] when `g` is written
     /// out, and the cheaper of its written-out and structured expressions.
-    fn of(model: &mut Model, inputs: &[SymbolId]) -> Result<Force, DerivationError> {
+    fn of(model: &Model, cx: &mut Context, inputs: &[SymbolId]) -> Result<Force, DerivationError> {
         let exact = match model.mass_matrix.is_written_out() {
-            true => model
-                .attempt(EXACT_FORCE_PRODUCTS, |model| exact_force(model, inputs))
+            true => cx
+                .attempt(EXACT_FORCE_PRODUCTS, |cx| exact_force(model, cx, inputs))
                 .transpose()?,
             false => None,
         };
-        let structured = structured_force(model, inputs)?;
+        let structured = structured_force(model, cx, inputs)?;
         let expressions = match &exact {
             Some(exact) => {
-                let written = exact.to_expression_matrix(&mut model.store);
-                let weight = |m: &Matrix<ExprId>| ir::estimated_weight(&model.store, m.entries());
+                let written = exact.to_expression_matrix(cx);
+                let weight = |m: &Matrix<ExprId>| ir::estimated_weight(cx, m.entries());
                 if weight(&written) <= weight(&structured) {
                     written
                 } else {
@@ -402,16 +401,21 @@ impl Force {
 }
 
 /// `B u - C - dV/dq` in normal form, with `C = d(g qdot)/dq qdot - dT/dq`.
-fn exact_force(model: &mut Model, inputs: &[SymbolId]) -> Result<Matrix, DerivationError> {
-    let atoms = model.store.atoms().clone();
-    let velocity = symbol_column(model, &model.velocities.clone())?;
-    let input = symbol_column(model, inputs)?;
+fn exact_force(
+    model: &Model,
+    cx: &mut Context,
+    inputs: &[SymbolId],
+) -> Result<Matrix, DerivationError> {
+    let atoms = cx.atoms().clone();
+    let velocity = symbol_column(cx, &model.velocities)?;
+    let input = symbol_column(cx, inputs)?;
     let applied = model.input_matrix.mul(&input, &atoms)?;
     let momentum = model.mass_matrix.mul(&velocity, &atoms)?;
-    let transport = directional_derivative(model, &momentum, &velocity)?;
-    let kinetic = model.kinetic_energy.clone();
-    let potential = model.potential_energy.clone();
-    let energy_gradient = gradient(model, &kinetic)?.sub(&gradient(model, &potential)?, &atoms)?;
+    let transport = directional_derivative(model, cx, &momentum, &velocity)?;
+    let kinetic = &model.kinetic_energy;
+    let potential = &model.potential_energy;
+    let energy_gradient =
+        gradient(model, cx, kinetic)?.sub(&gradient(model, cx, potential)?, &atoms)?;
     Ok(applied
         .sub(&transport, &atoms)?
         .add(&energy_gradient, &atoms)?)
@@ -422,28 +426,31 @@ fn exact_force(model: &mut Model, inputs: &[SymbolId]) -> Result<Matrix, Derivat
 /// `sum_k d(dT/dqdot)/dq_k qdot_k` and the gradients taken on the DAG of its
 /// expression; for each declared body, Kane's form of the same terms
 /// ([`crate::model::BodyMotion::velocity_terms`]).
-fn structured_force(model: &mut Model, inputs: &[SymbolId]) -> Result<Matrix<ExprId>, MatrixError> {
+fn structured_force(
+    model: &Model,
+    cx: &mut Context,
+    inputs: &[SymbolId],
+) -> Result<Matrix<ExprId>, MatrixError> {
     let coordinates = model.coordinate_symbols();
     let energies = &model.energy_expressions;
     let (kinetic, potential) = (energies.declared_kinetic, energies.potential);
-    let store = &mut model.store;
-    let b = model.input_matrix.to_expression_matrix(store);
-    let u = Matrix::column(inputs.iter().map(|&s| store.symbol(s)).collect());
-    let applied = b.mul(&u, store)?;
+    let b = model.input_matrix.to_expression_matrix(cx);
+    let u = Matrix::column(inputs.iter().map(|&s| cx.symbol(s)).collect());
+    let applied = b.mul(&u, cx)?;
     let momenta: Vec<ExprId> = model
         .velocities
         .iter()
-        .map(|&v| store.derivative(kinetic, v))
+        .map(|&v| cx.derivative(kinetic, v))
         .collect();
     let mut lost: Vec<Vec<ExprId>> = vec![Vec::new(); coordinates.len()];
     for (&q, &v) in coordinates.iter().zip(&model.velocities) {
-        let velocity = store.symbol(v);
-        for (i, rate) in store.derivatives(&momenta, q).into_iter().enumerate() {
-            lost[i].push(store.mul2(rate, velocity));
+        let velocity = cx.symbol(v);
+        for (i, rate) in cx.derivatives(&momenta, q).into_iter().enumerate() {
+            lost[i].push(cx.mul2(rate, velocity));
         }
     }
     for body in &energies.bodies {
-        let terms = body.velocity_terms(store, &coordinates, &model.velocities)?;
+        let terms = body.velocity_terms(cx, &coordinates, &model.velocities)?;
         for (lost, term) in lost.iter_mut().zip(terms) {
             lost.push(term);
         }
@@ -453,47 +460,48 @@ fn structured_force(model: &mut Model, inputs: &[SymbolId]) -> Result<Matrix<Exp
         .zip(lost)
         .enumerate()
         .map(|(i, (&q, mut lost))| {
-            lost.push(store.derivative(potential, q));
-            let lost = store.add(&lost);
-            let kinetic_rate = store.derivative(kinetic, q);
-            let gained = store.add2(*applied.get(i, 0), kinetic_rate);
-            store.sub(gained, lost)
+            lost.push(cx.derivative(potential, q));
+            let lost = cx.add(&lost);
+            let kinetic_rate = cx.derivative(kinetic, q);
+            let gained = cx.add2(*applied.get(i, 0), kinetic_rate);
+            cx.sub(gained, lost)
         })
         .collect();
     Ok(Matrix::column(entries))
 }
 
 /// `d f/dq` as an n x 1 column.
-fn gradient(model: &mut Model, f: &RationalFunction) -> Result<Matrix, DerivationError> {
+fn gradient(
+    model: &Model,
+    cx: &mut Context,
+    f: &RationalFunction,
+) -> Result<Matrix, DerivationError> {
     let coordinates = model.coordinate_symbols();
-    let row = model
-        .store
-        .jacobian(std::slice::from_ref(f), &coordinates)?;
+    let row = cx.jacobian(std::slice::from_ref(f), &coordinates)?;
     Ok(row.transpose())
 }
 
 /// `-Adot qdot = -sum_k d(A qdot)/dq_k qdot_k` as expressions.
-fn structured_drift(model: &mut Model) -> Matrix<ExprId> {
+fn structured_drift(model: &Model, cx: &mut Context) -> Matrix<ExprId> {
     let coordinates = model.coordinate_symbols();
-    let a = model.constraint_expressions.clone();
-    let store = &mut model.store;
-    let velocities: Vec<ExprId> = model.velocities.iter().map(|&v| store.symbol(v)).collect();
+    let a = &model.constraint_expressions;
+    let velocities: Vec<ExprId> = model.velocities.iter().map(|&v| cx.symbol(v)).collect();
     let entries = (0..a.rows())
         .map(|i| {
             let terms: Vec<ExprId> = (0..a.columns())
-                .map(|j| store.mul2(*a.get(i, j), velocities[j]))
+                .map(|j| cx.mul2(*a.get(i, j), velocities[j]))
                 .collect();
-            let residual = store.add(&terms);
+            let residual = cx.add(&terms);
             let rates: Vec<ExprId> = coordinates
                 .iter()
                 .zip(&velocities)
                 .map(|(&q, &velocity)| {
-                    let rate = store.derivative(residual, q);
-                    store.mul2(rate, velocity)
+                    let rate = cx.derivative(residual, q);
+                    cx.mul2(rate, velocity)
                 })
                 .collect();
-            let rate = store.add(&rates);
-            store.neg(rate)
+            let rate = cx.add(&rates);
+            cx.neg(rate)
         })
         .collect();
     Matrix::column(entries)
@@ -501,13 +509,14 @@ fn structured_drift(model: &mut Model) -> Matrix<ExprId> {
 
 /// `sum_k d column/dq_k qdot_k`: the rate of change of `column(q)` along `qdot`.
 fn directional_derivative(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     column: &Matrix,
     velocity: &Matrix,
 ) -> Result<Matrix, DerivationError> {
     let coordinates = model.coordinate_symbols();
-    let jacobian = model.store.jacobian(column.entries(), &coordinates)?;
-    Ok(jacobian.mul(velocity, &model.store.atoms().clone())?)
+    let jacobian = cx.jacobian(column.entries(), &coordinates)?;
+    Ok(jacobian.mul(velocity, &cx.atoms().clone())?)
 }
 
 #[cfg(test)]

@@ -14,6 +14,7 @@ pub mod port_hamiltonian;
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::model::Model;
+use crate::sym::Context;
 use constraints::ConstraintAnalysis;
 use lagrange_dalembert::LagrangeDalembert;
 use momentum::{Momentum, MomentumError};
@@ -63,20 +64,22 @@ pub const MOMENTUM_WITH_HOLONOMIC: &str = "not derived: the holonomic constraint
 
 /// Derives every formulation of `model` on the basis of D of `constraints`.
 pub fn derivation(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     constraints: &ConstraintAnalysis,
 ) -> Result<Derivation, Diagnostics> {
     let internal = |model: &Model, error: &dyn std::fmt::Display| {
         Diagnostics::internal(model.name.span(), error)
     };
-    let lagrange_dalembert = lagrange_dalembert::derive(model).map_err(|e| internal(model, &e))?;
+    let lagrange_dalembert =
+        lagrange_dalembert::derive(model, cx).map_err(|e| internal(model, &e))?;
     let reduced =
-        port_hamiltonian::derive(model, &constraints.basis).map_err(|e| internal(model, &e))?;
+        port_hamiltonian::derive(model, cx, &constraints.basis).map_err(|e| internal(model, &e))?;
     let reduced_items =
-        port_hamiltonian::items::items(model, &reduced).map_err(|e| internal(model, &e))?;
+        port_hamiltonian::items::items(model, cx, &reduced).map_err(|e| internal(model, &e))?;
     let momentum = match model.symmetry {
         Some(_) if !holonomic_rows_restrict_the_shape(model) => {
-            Some(momentum::derive(model).map_err(|error| refused(model, error))?)
+            Some(momentum::derive(model, cx).map_err(|error| refused(model, error))?)
         }
         _ => None,
     };
@@ -85,8 +88,8 @@ pub fn derivation(
         .alternatives
         .iter()
         .map(|basis| {
-            let reduced = port_hamiltonian::derive(model, basis)?;
-            let items = port_hamiltonian::items::items(model, &reduced)?;
+            let reduced = port_hamiltonian::derive(model, cx, basis)?;
+            let items = port_hamiltonian::items::items(model, cx, &reduced)?;
             Ok(Chart {
                 dependent: basis.dependent.clone(),
                 fit: basis.fit(),

@@ -53,9 +53,10 @@ use super::constraints::charts::{ChartsError, group_singular_points};
 use super::constraints::default_point;
 use super::port_hamiltonian::{column_of_symbols, fresh_symbol};
 use crate::model::{GroupFactor, Model};
+use crate::sym::Context;
 use crate::sym::{
-    Atoms, ExprId, Function, Matrix, MatrixError, Poly, Rational, RationalFunction, Store,
-    SymError, SymbolId, SymbolKind,
+    Atoms, ExprId, Function, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError,
+    SymbolId, SymbolKind,
 };
 use algebra::{bracket, se2_blocks};
 pub use curvature::{ConnectionQuotient, Curvature, CurvatureError};
@@ -146,33 +147,32 @@ pub enum MomentumError {
 }
 
 /// Derives the momentum equation and the reconstruction of `model`.
-pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
+pub fn derive(model: &Model, cx: &mut Context) -> Result<Momentum, MomentumError> {
     let symmetry = model.symmetry.as_ref().ok_or(MomentumError::NoSymmetry)?;
     let (factors, group) = (symmetry.factors.clone(), symmetry.group_coordinates());
     let shape: Vec<usize> = (0..model.n()).filter(|i| !group.contains(i)).collect();
-    let body = BodyForm::of(model, &group, &shape)?;
-    let basis = body_basis(&body.constraints_group, model.store.atoms())?;
-    let basis = unit_at_defaults(model, &basis)?;
+    let body = BodyForm::of(model, cx, &group, &shape)?;
+    let basis = body_basis(&body.constraints_group, cx.atoms())?;
+    let basis = unit_at_defaults(model, cx, &basis)?;
     let shape_velocities: Vec<SymbolId> = shape.iter().map(|&i| model.velocities[i]).collect();
     let momenta: Vec<SymbolId> = (1..=basis.rows())
-        .map(|i| fresh_symbol(model, &format!("p{i}"), SymbolKind::Momentum))
+        .map(|i| fresh_symbol(cx, &format!("p{i}"), SymbolKind::Momentum))
         .collect();
-    let rdot = column_of_symbols(model, &shape_velocities)?;
-    let p = column_of_symbols(model, &momenta)?;
-    let atoms = model.store.atoms().clone();
+    let rdot = column_of_symbols(cx, &shape_velocities)?;
+    let p = column_of_symbols(cx, &momenta)?;
+    let atoms = cx.atoms().clone();
     let shape_symbols: Vec<SymbolId> = shape.iter().map(|&i| model.coordinates[i].symbol).collect();
-    let (connection, connection_quotient) =
-        connection(&mut model.store, &body, &basis, &shape_symbols)?;
+    let (connection, connection_quotient) = connection(cx, &body, &basis, &shape_symbols)?;
     let (curvature, singular_shapes) = match momenta.is_empty() {
         true => (
             Some(curvature::curvature(
-                &mut model.store,
+                cx,
                 &connection_quotient,
                 &connection,
                 &shape_symbols,
                 &factors,
             )?),
-            group_singular_points(model)?,
+            group_singular_points(model, cx)?,
         ),
         false => (None, Vec::new()),
     };
@@ -180,13 +180,13 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         .mul(&body.inertia, &atoms)?
         .mul(&basis.transpose(), &atoms)?;
     let (vertical, xi) = reconstruction(&basis, &locked_inertia, &connection, &rdot, &p, &atoms)?;
-    let rhs = momentum_rhs(model, &body, &basis, &xi, &rdot, &shape, &factors)?;
+    let rhs = momentum_rhs(cx, &body, &basis, &xi, &rdot, &shape_symbols, &factors)?;
     let coefficients = rhs
         .iter()
         .enumerate()
-        .map(|(i, pdot)| coefficients(model, i, pdot, &shape_velocities, &momenta))
+        .map(|(i, pdot)| coefficients(cx, i, pdot, &shape_velocities, &momenta))
         .collect::<Result<Vec<_>, _>>()?;
-    let (momentum, input_coupling) = configuration_terms(model, &basis, &factors, &group)?;
+    let (momentum, input_coupling) = configuration_terms(model, cx, &basis, &factors, &group)?;
     let pieces = sensitivity::Pieces {
         arguments: [shape_symbols, shape_velocities.clone(), momenta.clone()].concat(),
         shape: shape.len(),
@@ -194,7 +194,7 @@ pub fn derive(model: &mut Model) -> Result<Momentum, MomentumError> {
         quotient: &connection_quotient,
         vertical: vertical.entries(),
     };
-    let sensitivity = sensitivity::sensitivity(&mut model.store, &pieces)?;
+    let sensitivity = sensitivity::sensitivity(cx, &pieces)?;
     Ok(Momentum {
         shape,
         shape_velocities,
@@ -245,13 +245,18 @@ struct BodyForm {
 }
 
 impl BodyForm {
-    fn of(model: &mut Model, group: &[usize], shape: &[usize]) -> Result<BodyForm, SymError> {
+    fn of(
+        model: &Model,
+        cx: &mut Context,
+        group: &[usize],
+        shape: &[usize],
+    ) -> Result<BodyForm, SymError> {
         let identity: HashMap<SymbolId, ExprId> = group
             .iter()
-            .map(|&i| (model.coordinates[i].symbol, model.store.integer(0)))
+            .map(|&i| (model.coordinates[i].symbol, cx.integer(0)))
             .collect();
-        let mass = at(model, &model.mass_matrix.clone(), &identity)?;
-        let constraints = at(model, &model.constraint_matrix.clone(), &identity)?;
+        let mass = at(cx, &model.mass_matrix, &identity)?;
+        let constraints = at(cx, &model.constraint_matrix, &identity)?;
 
         let rows: Vec<usize> = (0..constraints.rows()).collect();
         Ok(BodyForm {
@@ -265,16 +270,16 @@ impl BodyForm {
 
 /// `matrix` with the symbols replaced, in normal form.
 fn at(
-    model: &mut Model,
+    cx: &mut Context,
     matrix: &Matrix,
     replacements: &HashMap<SymbolId, ExprId>,
 ) -> Result<Matrix, SymError> {
     let mut result = Matrix::zeros(matrix.rows(), matrix.columns());
     for i in 0..matrix.rows() {
         for j in 0..matrix.columns() {
-            let expression = model.store.expression_of(matrix.get(i, j));
-            let replaced = model.store.substitute(expression, replacements)?;
-            result.set(i, j, model.store.normal(replaced)?);
+            let expression = cx.expression_of(matrix.get(i, j));
+            let replaced = cx.substitute(expression, replacements)?;
+            result.set(i, j, cx.normal(replaced)?);
         }
     }
     Ok(result)
@@ -299,17 +304,17 @@ fn body_basis(constraints_group: &Matrix, atoms: &Atoms) -> Result<Matrix, Matri
 /// only): its entry of largest magnitude at the default configuration
 /// (coordinates 0, parameters at their defaults), evaluated there exactly.
 /// That entry is then 1 at q = 0 for every parameter value.
-fn unit_at_defaults(model: &mut Model, basis: &Matrix) -> Result<Matrix, SymError> {
+fn unit_at_defaults(model: &Model, cx: &mut Context, basis: &Matrix) -> Result<Matrix, SymError> {
     let defaults = default_point(model);
     let at_zero: HashMap<SymbolId, ExprId> = model
         .coordinate_symbols()
         .into_iter()
-        .map(|q| (q, model.store.integer(0)))
+        .map(|q| (q, cx.integer(0)))
         .collect();
     let mut scaled = basis.clone();
     for i in 0..basis.rows() {
         let values: Vec<f64> = (0..basis.columns())
-            .map(|j| model.store.evaluate_normal(basis.get(i, j), &defaults))
+            .map(|j| cx.evaluate_normal(basis.get(i, j), &defaults))
             .collect();
         let Some(largest) = (0..values.len())
             .filter(|&j| values[j].is_finite())
@@ -317,10 +322,10 @@ fn unit_at_defaults(model: &mut Model, basis: &Matrix) -> Result<Matrix, SymErro
         else {
             continue;
         };
-        let entry = model.store.expression_of(basis.get(i, largest));
-        let constant = model.store.substitute(entry, &at_zero)?;
-        let constant = model.store.normal(constant)?;
-        let atoms = model.store.atoms().clone();
+        let entry = cx.expression_of(basis.get(i, largest));
+        let constant = cx.substitute(entry, &at_zero)?;
+        let constant = cx.normal(constant)?;
+        let atoms = cx.atoms().clone();
         for j in 0..basis.columns() {
             if let Some(value) = basis.get(i, j).div(&constant, &atoms) {
                 scaled.set(i, j, value);
@@ -402,12 +407,12 @@ fn cleared(vector: &[RationalFunction], atoms: &Atoms) -> Vec<RationalFunction> 
 /// remaining constraint rows then fail (shape velocities constrained).
 /// With it, its quotient by Cramer's rule in the `shape` symbols.
 fn connection(
-    store: &mut Store,
+    cx: &mut Context,
     body: &BodyForm,
     basis: &Matrix,
     shape: &[SymbolId],
 ) -> Result<(Matrix, ConnectionQuotient), MomentumError> {
-    let atoms = &store.atoms().clone();
+    let atoms = &cx.atoms().clone();
     let independent = independent_rows(&body.constraints_group, atoms);
     let group_rows: Vec<usize> = (0..basis.columns()).collect();
     let shape_columns: Vec<usize> = (0..body.coupling.columns()).collect();
@@ -432,7 +437,7 @@ fn connection(
     if !residual.is_zero() {
         return Err(MomentumError::ShapeConstrained);
     }
-    let quotient = curvature::connection_quotient(store, (&system, &rhs), &connection, shape)?;
+    let quotient = curvature::connection_quotient(cx, (&system, &rhs), &connection, shape)?;
     Ok((connection, quotient))
 }
 
@@ -465,16 +470,15 @@ fn stack(top: &Matrix, bottom: &Matrix) -> Matrix {
 
 /// `pdot_i = < II xi + M_gr rdot, [xi, e_i] + (de_i/dr) rdot >`.
 fn momentum_rhs(
-    model: &mut Model,
+    cx: &mut Context,
     body: &BodyForm,
     basis: &Matrix,
     xi: &Matrix,
     rdot: &Matrix,
-    shape: &[usize],
+    shape_symbols: &[SymbolId],
     factors: &[GroupFactor],
 ) -> Result<Vec<RationalFunction>, MatrixError> {
-    let shape_symbols: Vec<SymbolId> = shape.iter().map(|&i| model.coordinates[i].symbol).collect();
-    let atoms = model.store.atoms().clone();
+    let atoms = cx.atoms().clone();
     let mu = body
         .inertia
         .mul(xi, &atoms)?
@@ -484,10 +488,7 @@ fn momentum_rhs(
         let e: Vec<RationalFunction> = (0..basis.columns())
             .map(|j| basis.get(i, j).clone())
             .collect();
-        let rate = model
-            .store
-            .jacobian(&e, &shape_symbols)?
-            .mul(rdot, &atoms)?;
+        let rate = cx.jacobian(&e, shape_symbols)?.mul(rdot, &atoms)?;
         let direction = Matrix::new(e.len(), 1, bracket(xi.entries(), &e, factors, &atoms))?
             .add(&rate, &atoms)?;
         rhs.push(mu.transpose().mul(&direction, &atoms)?.get(0, 0).clone());
@@ -497,21 +498,21 @@ fn momentum_rhs(
 
 /// `H^i, K^i, D^i` by exact second derivatives, proven to reproduce `pdot_i`.
 fn coefficients(
-    model: &mut Model,
+    cx: &mut Context,
     index: usize,
     pdot: &RationalFunction,
     rdot: &[SymbolId],
     momenta: &[SymbolId],
 ) -> Result<Coefficients, MomentumError> {
     let half = Rational::HALF;
-    let by_rdot = model.store.jacobian(std::slice::from_ref(pdot), rdot)?;
-    let by_p = model.store.jacobian(std::slice::from_ref(pdot), momenta)?;
-    let shape = halved(model.store.jacobian(by_rdot.entries(), rdot)?, &half);
-    let mixed = model.store.jacobian(by_rdot.entries(), momenta)?;
-    let momentum = halved(model.store.jacobian(by_p.entries(), momenta)?, &half);
-    let atoms = model.store.atoms().clone();
-    let rdot_column = column_of_symbols(model, rdot)?;
-    let p_column = column_of_symbols(model, momenta)?;
+    let by_rdot = cx.jacobian(std::slice::from_ref(pdot), rdot)?;
+    let by_p = cx.jacobian(std::slice::from_ref(pdot), momenta)?;
+    let shape = halved(cx.jacobian(by_rdot.entries(), rdot)?, &half);
+    let mixed = cx.jacobian(by_rdot.entries(), momenta)?;
+    let momentum = halved(cx.jacobian(by_p.entries(), momenta)?, &half);
+    let atoms = cx.atoms().clone();
+    let rdot_column = column_of_symbols(cx, rdot)?;
+    let p_column = column_of_symbols(cx, momenta)?;
     let form = quadratic(&rdot_column, &shape, &rdot_column, &atoms)?
         .add(&quadratic(&rdot_column, &mixed, &p_column, &atoms)?, &atoms)
         .add(&quadratic(&p_column, &momentum, &p_column, &atoms)?, &atoms);
@@ -555,14 +556,15 @@ fn quadratic(
 
 /// `p(q, qdot) = h M qdot` and the inputs' term `h B`.
 fn configuration_terms(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     basis: &Matrix,
     factors: &[GroupFactor],
     group: &[usize],
 ) -> Result<(Vec<RationalFunction>, Matrix), MomentumError> {
-    let h = spatial_basis(model, basis, factors, group)?;
-    let qdot = column_of_symbols(model, &model.velocities.clone())?;
-    let atoms = model.store.atoms().clone();
+    let h = spatial_basis(model, cx, basis, factors, group)?;
+    let qdot = column_of_symbols(cx, &model.velocities)?;
+    let atoms = cx.atoms().clone();
     let momentum = h.mul(&model.mass_matrix, &atoms)?.mul(&qdot, &atoms)?;
     let input_coupling = h.mul(&model.input_matrix, &atoms)?;
     Ok((momentum.entries().to_vec(), input_coupling))
@@ -572,7 +574,8 @@ fn configuration_terms(
 /// factor's `(v1, v2)` part rotated by `R(theta)`, and 0 on the shape, so
 /// that `p = h M(q) qdot`.
 fn spatial_basis(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     basis: &Matrix,
     factors: &[GroupFactor],
     group: &[usize],
@@ -584,11 +587,11 @@ fn spatial_basis(
         }
     }
     for (o, theta) in se2_blocks(factors) {
-        let theta = model.store.symbol(model.coordinates[theta].symbol);
-        let cos = model.store.apply(Function::Cos, theta)?;
-        let sin = model.store.apply(Function::Sin, theta)?;
-        let (cos, sin) = (model.store.normal(cos)?, model.store.normal(sin)?);
-        let atoms = model.store.atoms().clone();
+        let theta = cx.symbol(model.coordinates[theta].symbol);
+        let cos = cx.apply(Function::Cos, theta)?;
+        let sin = cx.apply(Function::Sin, theta)?;
+        let (cos, sin) = (cx.normal(cos)?, cx.normal(sin)?);
+        let atoms = cx.atoms().clone();
         for i in 0..basis.rows() {
             let (a, b) = (basis.get(i, o), basis.get(i, o + 1));
             let x = cos.mul(a, &atoms).sub(&sin.mul(b, &atoms), &atoms);

@@ -50,11 +50,12 @@ mod structured;
 
 use super::constraints::{DistributionBasis, Method};
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::modular::{self, ModularError};
 use crate::sym::residues::Values;
 use crate::sym::{
-    Atoms, ExprId, Matrix, MatrixError, Poly, Rational, RationalFunction, Store, SymError,
-    SymbolId, SymbolKind,
+    Atoms, ExprId, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError, SymbolId,
+    SymbolKind,
 };
 
 /// The term products the exact reduced form with the tool's basis may
@@ -194,9 +195,13 @@ impl PortHamiltonian {
 
     /// The reduced form as expressions: the products of the exact
     /// matrices' entries, or the structured derivation's.
-    pub fn expressions(&self, model: &mut Model) -> Result<ReducedExpressions, MatrixError> {
+    pub fn expressions(
+        &self,
+        model: &Model,
+        cx: &mut Context,
+    ) -> Result<ReducedExpressions, MatrixError> {
         match &self.form {
-            Form::Exact(exact) => exact.expressions(model, &self.momenta, &self.inputs),
+            Form::Exact(exact) => exact.expressions(model, cx, &self.momenta, &self.inputs),
             Form::Structured(expressions) => Ok(expressions.clone()),
         }
     }
@@ -206,34 +211,33 @@ impl PortHamiltonian {
 /// declared basis exactly; with the tool's basis exactly when that fits
 /// [`EXACT_REDUCED_PRODUCTS`], structured otherwise.
 pub fn derive(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     basis: &DistributionBasis,
 ) -> Result<PortHamiltonian, PortHamiltonianError> {
     let momentum_names = momentum_names(model);
     let momenta: Vec<SymbolId> = momentum_names
         .iter()
-        .map(|name| fresh_symbol(model, name, SymbolKind::Momentum))
+        .map(|name| fresh_symbol(cx, name, SymbolKind::Momentum))
         .collect();
     let inputs: Vec<SymbolId> = model
         .inputs
-        .clone()
         .iter()
-        .map(|input| fresh_symbol(model, &input.name, SymbolKind::Auxiliary))
+        .map(|input| fresh_symbol(cx, &input.name, SymbolKind::Auxiliary))
         .collect();
     let exact = match (model.momentum_basis.clone(), &basis.fields) {
         (Some(declared), _) => Some(derive_exact(
             model,
+            cx,
             &declared.rows,
             None,
             &momenta,
             &inputs,
         )?),
-        (None, Some(fields)) => model
-            .attempt(EXACT_REDUCED_PRODUCTS, |model| {
-                let h = fields
-                    .transpose()
-                    .mul(&model.mass_matrix, model.store.atoms())?;
-                derive_exact(model, &h, Some(fields), &momenta, &inputs)
+        (None, Some(fields)) => cx
+            .attempt(EXACT_REDUCED_PRODUCTS, |cx| {
+                let h = fields.transpose().mul(&model.mass_matrix, cx.atoms())?;
+                derive_exact(model, cx, &h, Some(fields), &momenta, &inputs)
             })
             .transpose()?,
         (None, None) => None,
@@ -242,6 +246,7 @@ pub fn derive(
         Some(exact) => Form::Exact(exact),
         None => Form::Structured(structured::derive(
             model,
+            cx,
             &basis.field_expressions,
             &momenta,
             &inputs,
@@ -249,12 +254,12 @@ pub fn derive(
     };
     let (metric_constant, metric_diagonal, facts_method) = match &form {
         Form::Exact(exact) => (
-            is_constant(model, &exact.metric)?,
+            is_constant(model, cx, &exact.metric)?,
             is_diagonal(&exact.metric),
             Method::NormalForm,
         ),
         Form::Structured(expressions) => {
-            let (constant, diagonal) = facts_at_points(model, &expressions.metric_inverse)?;
+            let (constant, diagonal) = facts_at_points(model, cx, &expressions.metric_inverse)?;
             (constant, diagonal, Method::Modular)
         }
     };
@@ -273,29 +278,30 @@ pub fn derive(
 /// The exact form for the momentum basis `h`: with `fields`, the tool's
 /// basis `h = X^T g` of the basis `X` of D.
 fn derive_exact(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     h: &Matrix,
     fields: Option<&Matrix>,
     momenta: &[SymbolId],
     inputs: &[SymbolId],
 ) -> Result<Exact, PortHamiltonianError> {
-    let alpha = column_of_symbols(model, momenta)?;
+    let alpha = column_of_symbols(cx, momenta)?;
     let maps = match fields {
-        Some(fields) => Maps::of_own_basis(model, fields, h)?,
-        None => Maps::of(model, h)?,
+        Some(fields) => Maps::of_own_basis(cx, fields, h)?,
+        None => Maps::of(model, cx, h)?,
     };
-    let gyroscopic = gyroscopic(model, h, &maps, &alpha)?;
+    let gyroscopic = gyroscopic(model, cx, h, &maps, &alpha)?;
     let structure = maps.projection.skew_structure(
         &gyroscopic,
         RationalFunction::zero(),
         RationalFunction::neg,
     );
-    prove_skew(&structure, model.store.atoms())?;
+    prove_skew(&structure, cx.atoms())?;
     let input_matrix = maps
         .projection
-        .mul(&model.input_matrix, model.store.atoms())?
+        .mul(&model.input_matrix, cx.atoms())?
         .below_zero_rows(model.n(), RationalFunction::zero());
-    let flow = Flow::of(model, &maps, &structure, &input_matrix, momenta, inputs)?;
+    let flow = Flow::of(model, cx, &maps, &structure, &input_matrix, momenta, inputs)?;
     Ok(Exact {
         basis: h.clone(),
         metric_inverse: maps.metric_inverse,
@@ -316,12 +322,13 @@ fn derive_exact(
 /// Whether `gbar` is constant and diagonal, from `gbar_inv` at random
 /// points: a non-zero derivative or off-diagonal entry there proves "no".
 fn facts_at_points(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     metric_inverse: &Matrix<ExprId>,
 ) -> Result<(bool, bool), ModularError> {
     let mut rates = Vec::new();
     for q in model.coordinate_symbols() {
-        rates.extend(model.store.derivatives(metric_inverse.entries(), q));
+        rates.extend(cx.derivatives(metric_inverse.entries(), q));
     }
     let k = metric_inverse.rows();
     let off_diagonal: Vec<ExprId> = (0..k * k)
@@ -330,11 +337,8 @@ fn facts_at_points(
         .collect();
     let facts = modular::at_defined_points(modular::SEEDS.len(), |point| {
         let mut values = Values::at(point);
-        let constant = values.of(&model.store, &rates)?.iter().all(|&v| v == 0);
-        let diagonal = values
-            .of(&model.store, &off_diagonal)?
-            .iter()
-            .all(|&v| v == 0);
+        let constant = values.of(cx, &rates)?.iter().all(|&v| v == 0);
+        let diagonal = values.of(cx, &off_diagonal)?.iter().all(|&v| v == 0);
         Ok((constant, diagonal))
     })?;
     Ok(facts
@@ -355,8 +359,8 @@ struct Maps {
 
 impl Maps {
     /// `g^-1 h^T`, `gbar_inv = h g^-1 h^T`, `gbar`, `P = gbar h g^-1` and `P g`.
-    fn of(model: &Model, h: &Matrix) -> Result<Maps, MatrixError> {
-        let atoms = model.store.atoms();
+    fn of(model: &Model, cx: &Context, h: &Matrix) -> Result<Maps, MatrixError> {
+        let atoms = cx.atoms();
         let g_inverse = model.mass_matrix.inverse(atoms)?;
         let velocity_map = g_inverse.mul(&h.transpose(), atoms)?;
         let metric_inverse = h.mul(&velocity_map, atoms)?;
@@ -380,8 +384,8 @@ impl Maps {
     /// `X^T g X` is inverted, where `Maps::of` inverts the `n x n` `g` (for a
     /// dense trigonometric `g`, e.g. a chain of links, the difference
     /// between seconds and hours).
-    fn of_own_basis(model: &Model, fields: &Matrix, h: &Matrix) -> Result<Maps, MatrixError> {
-        let atoms = model.store.atoms();
+    fn of_own_basis(cx: &Context, fields: &Matrix, h: &Matrix) -> Result<Maps, MatrixError> {
+        let atoms = cx.atoms();
         let velocity_map = fields.clone();
         let metric_inverse = h.mul(fields, atoms)?;
         let metric = metric_inverse.inverse(atoms)?;
@@ -408,26 +412,26 @@ struct Flow {
 impl Flow {
     /// `Hbar`, `dHbar/dx`, `Jbar dHbar/dx + Bbar u` and `Bbar^T dHbar/dx`.
     fn of(
-        model: &mut Model,
+        model: &Model,
+        cx: &mut Context,
         maps: &Maps,
         structure: &Matrix,
         input_matrix: &Matrix,
         momenta: &[SymbolId],
         inputs: &[SymbolId],
     ) -> Result<Flow, PortHamiltonianError> {
-        let alpha = column_of_symbols(model, momenta)?;
-        let u = column_of_symbols(model, inputs)?;
-        let atoms = model.store.atoms().clone();
+        let alpha = column_of_symbols(cx, momenta)?;
+        let u = column_of_symbols(cx, inputs)?;
+        let atoms = cx.atoms().clone();
         let hamiltonian = quadratic_form(&alpha, &maps.metric_inverse, &atoms)?
             .scale(&Rational::HALF)
             .add(&model.potential_energy, &atoms);
         let mut state = model.coordinate_symbols();
         state.extend(momenta);
-        let gradient = model
-            .store
+        let gradient = cx
             .jacobian(std::slice::from_ref(&hamiltonian), &state)?
             .transpose();
-        let atoms = model.store.atoms().clone();
+        let atoms = cx.atoms().clone();
         let rhs = structure
             .mul(&gradient, &atoms)?
             .add(&input_matrix.mul(&u, &atoms)?, &atoms)?;
@@ -453,11 +457,11 @@ pub fn momentum_names(model: &Model) -> Vec<String> {
 /// The symbol called `name` if it is new or already of this kind, else a
 /// primed variant (`name'`, `name''`, ...) that is: an input or momentum
 /// never captures a parameter or coordinate of the same name.
-pub(super) fn fresh_symbol(model: &mut Model, name: &str, kind: SymbolKind) -> SymbolId {
+pub(super) fn fresh_symbol(cx: &mut Context, name: &str, kind: SymbolKind) -> SymbolId {
     let mut candidate = name.to_string();
     loop {
-        let symbol = model.store.declare(&candidate, kind);
-        if model.store.symbol_info(symbol).kind == kind {
+        let symbol = cx.declare(&candidate, kind);
+        if cx.symbol_info(symbol).kind == kind {
             return symbol;
         }
         candidate.push('\'');
@@ -466,12 +470,12 @@ pub(super) fn fresh_symbol(model: &mut Model, name: &str, kind: SymbolKind) -> S
 
 /// The column of the symbols as polynomials.
 pub(super) fn column_of_symbols(
-    model: &mut Model,
+    cx: &mut Context,
     symbols: &[SymbolId],
 ) -> Result<Matrix, MatrixError> {
     let entries = symbols
         .iter()
-        .map(|&s| RationalFunction::from_poly(Poly::atom(model.store.symbol_atom(s))))
+        .map(|&s| RationalFunction::from_poly(Poly::atom(cx.symbol_atom(s))))
         .collect();
     Matrix::new(symbols.len(), 1, entries)
 }
@@ -484,7 +488,8 @@ pub(super) fn column_of_symbols(
 /// one sandwich by `gbar` last, so the large common denominator of `gbar`
 /// enters once instead of through every `n x n` product.
 fn gyroscopic(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     h: &Matrix,
     maps: &Maps,
     alpha: &Matrix,
@@ -496,8 +501,8 @@ fn gyroscopic(
     for c in 0..k {
         let row: Vec<RationalFunction> = (0..h.columns()).map(|l| h.get(c, l).clone()).collect();
         // jacobian (l, j) = d h^c_l / d q_j, so W^c = jacobian^T - jacobian
-        let jacobian = model.store.jacobian(&row, &coordinates)?;
-        let atoms = model.store.atoms().clone();
+        let jacobian = cx.jacobian(&row, &coordinates)?;
+        let atoms = cx.atoms().clone();
         let exterior = jacobian.transpose().sub(&jacobian, &atoms)?;
         if exterior.is_zero() {
             continue;
@@ -508,7 +513,7 @@ fn gyroscopic(
             .mul(velocity_map, &atoms)?;
         inner = inner.add(&term.scale(alpha.get(c, 0), &atoms), &atoms)?;
     }
-    let atoms = model.store.atoms();
+    let atoms = cx.atoms();
     if inner.is_zero() {
         return Ok(inner);
     }
@@ -517,23 +522,23 @@ fn gyroscopic(
 
 /// `Hbar = 1/2 alpha^T gbar_inv alpha + V` as an expression.
 fn reduced_energy(
-    store: &mut Store,
+    cx: &mut Context,
     alpha: &Matrix<ExprId>,
     metric_inverse: &Matrix<ExprId>,
     potential: ExprId,
 ) -> Result<ExprId, MatrixError> {
     let twice_kinetic = *alpha
         .transpose()
-        .mul(&metric_inverse.mul(alpha, store)?, store)?
+        .mul(&metric_inverse.mul(alpha, cx)?, cx)?
         .get(0, 0);
-    let half = store.number(Rational::HALF);
-    let kinetic = store.mul2(half, twice_kinetic);
-    Ok(store.add2(kinetic, potential))
+    let half = cx.number(Rational::HALF);
+    let kinetic = cx.mul2(half, twice_kinetic);
+    Ok(cx.add2(kinetic, potential))
 }
 
 /// The symbols as a column of expressions.
-fn symbols_column(store: &mut Store, symbols: &[SymbolId]) -> Matrix<ExprId> {
-    Matrix::column(symbols.iter().map(|&s| store.symbol(s)).collect())
+fn symbols_column(cx: &mut Context, symbols: &[SymbolId]) -> Matrix<ExprId> {
+    Matrix::column(symbols.iter().map(|&s| cx.symbol(s)).collect())
 }
 
 /// Fails unless `Jbar + Jbar^T` is exactly zero.
@@ -556,9 +561,9 @@ fn quadratic_form(v: &Matrix, m: &Matrix, atoms: &Atoms) -> Result<RationalFunct
 }
 
 /// True when no entry depends on a coordinate (exact derivatives).
-fn is_constant(model: &mut Model, matrix: &Matrix) -> Result<bool, MatrixError> {
+fn is_constant(model: &Model, cx: &mut Context, matrix: &Matrix) -> Result<bool, MatrixError> {
     let coordinates = model.coordinate_symbols();
-    let derivatives = model.store.jacobian(matrix.entries(), &coordinates)?;
+    let derivatives = cx.jacobian(matrix.entries(), &coordinates)?;
     Ok(derivatives.is_zero())
 }
 

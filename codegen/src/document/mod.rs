@@ -43,6 +43,7 @@
 mod render;
 mod sections;
 
+use crate::sym::Context;
 use sections::{
     constraints_section, dalembert_section, momentum_section, names_section, reduced_section,
     sizes_section,
@@ -55,7 +56,7 @@ use crate::emit;
 use crate::model::Model;
 use crate::sym::latex::latex_rate;
 use crate::sym::{ExprId, Matrix, SymbolId};
-use crate::{analysed_model, over_budget};
+use crate::{Analysed, analysed_model, over_budget};
 use serde_json::{Value, json};
 
 /// The output format of [`derive_document`].
@@ -158,30 +159,35 @@ enum Item {
 
 impl Document {
     fn derive(source: &str) -> Result<Document, Diagnostics> {
-        let (mut model, constraints) = analysed_model(source)?;
-        let document = Self::derive_analysed(&mut model, &constraints);
-        over_budget(&model)?;
+        let Analysed {
+            model,
+            mut cx,
+            constraints,
+        } = analysed_model(source)?;
+        let document = Self::derive_analysed(&model, &mut cx, &constraints);
+        over_budget(&model, &cx)?;
         document
     }
 
     fn derive_analysed(
-        model: &mut Model,
+        model: &Model,
+        cx: &mut Context,
         constraints: &ConstraintAnalysis,
     ) -> Result<Document, Diagnostics> {
-        let derivation = crate::derive::derivation(model, constraints)?;
-        let emitted = emit::emit(model, constraints, &derivation)?;
+        let derivation = crate::derive::derivation(model, cx, constraints)?;
+        let emitted = emit::emit(model, cx, constraints, &derivation)?;
         let rhs = derivation.reduced_items.outputs(items::Item::ReducedRhs);
         let (dalembert, reduced) = (&derivation.lagrange_dalembert, &derivation.reduced);
         let momentum = &derivation.momentum;
         let mut sections = vec![
             names_section(model, reduced),
             sizes_section(model),
-            constraints_section(model, constraints),
-            dalembert_section(model, dalembert),
-            reduced_section(model, reduced, rhs),
+            constraints_section(model, cx, constraints),
+            dalembert_section(model, cx, dalembert),
+            reduced_section(model, cx, reduced, rhs),
         ];
         if let Some(momentum) = momentum {
-            sections.push(momentum_section(model, momentum, &dalembert.inputs));
+            sections.push(momentum_section(model, cx, momentum, &dalembert.inputs));
         }
         sections.push(Section {
             key: "report",
@@ -200,17 +206,17 @@ impl Document {
 
 // ----- items -------------------------------------------------------------------
 
-fn printed(model: &Model, id: ExprId) -> Printed {
+fn printed(cx: &Context, id: ExprId) -> Printed {
     Printed {
-        text: model.store.display(id).to_string(),
-        latex: model.store.latex(id),
+        text: cx.display(id).to_string(),
+        latex: cx.latex(id),
     }
 }
 
 /// A symbol's name in both notations (`dot(x)`, `\dot{x}`; `alpha1`, `\alpha_{1}`).
-fn symbol_name(model: &mut Model, symbol: SymbolId) -> Printed {
-    let id = model.store.symbol(symbol);
-    printed(model, id)
+fn symbol_name(cx: &mut Context, symbol: SymbolId) -> Printed {
+    let id = cx.symbol(symbol);
+    printed(cx, id)
 }
 
 /// A label that is not an expression: `text` as is, `latex` in math mode.
@@ -253,37 +259,37 @@ fn word_fact(key: &str, label: &'static str, word: &str) -> Item {
     fact(key, label, json!(word), word.to_string())
 }
 
-fn matrix_item(model: &mut Model, key: &str, symbol: Printed, matrix: &Matrix) -> Item {
-    let entries = matrix.to_expressions(&mut model.store);
+fn matrix_item(cx: &mut Context, key: &str, symbol: Printed, matrix: &Matrix) -> Item {
+    let entries = matrix.to_expressions(cx);
     Item::Matrix {
         key: key.to_string(),
         matrix: Table {
             symbol,
             rows: matrix.rows(),
             columns: matrix.columns(),
-            entries: entries.iter().map(|&e| printed(model, e)).collect(),
+            entries: entries.iter().map(|&e| printed(cx, e)).collect(),
         },
     }
 }
 
-fn expression_item(model: &mut Model, key: &str, symbol: Printed, id: ExprId) -> Item {
+fn expression_item(cx: &mut Context, key: &str, symbol: Printed, id: ExprId) -> Item {
     Item::Expression {
         key: key.to_string(),
         symbol,
-        value: printed(model, id),
+        value: printed(cx, id),
     }
 }
 
 /// `dot(symbol) = value` for each pair.
-fn rates(model: &Model, symbols: &[SymbolId], values: &[ExprId]) -> Vec<Equation> {
+fn rates(cx: &Context, symbols: &[SymbolId], values: &[ExprId]) -> Vec<Equation> {
     symbols
         .iter()
         .zip(values)
         .map(|(&symbol, &value)| {
-            let name = &model.store.symbol_info(symbol).name;
+            let name = &cx.symbol_info(symbol).name;
             Equation {
                 lhs: label(&format!("dot({name})"), &latex_rate(name)),
-                rhs: printed(model, value),
+                rhs: printed(cx, value),
             }
         })
         .collect()

@@ -11,6 +11,7 @@ use crate::derive::lagrange_dalembert::{self, LagrangeDalembert};
 use crate::derive::momentum::Momentum;
 use crate::derive::port_hamiltonian::{Exact, PortHamiltonian};
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::{ExprId, SymbolId};
 use serde_json::{Value, json};
 
@@ -72,7 +73,11 @@ pub(super) fn sizes_section(model: &Model) -> Section {
     }
 }
 
-pub(super) fn constraints_section(model: &mut Model, analysis: &ConstraintAnalysis) -> Section {
+pub(super) fn constraints_section(
+    model: &Model,
+    cx: &mut Context,
+    analysis: &ConstraintAnalysis,
+) -> Section {
     let basis = &analysis.basis;
     let (dependent, independent) = (
         basis.speed_names(model, &basis.dependent),
@@ -98,7 +103,7 @@ pub(super) fn constraints_section(model: &mut Model, analysis: &ConstraintAnalys
         items: vec![
             names_fact("dependent_speeds", "dependent speeds", dependent),
             names_fact("independent_speeds", "independent speeds", independent),
-            basis_item(model, analysis),
+            basis_item(cx, analysis),
             flag_fact(
                 "integrable",
                 "integrable (A [X_i, X_j] = 0 for all i, j)",
@@ -154,8 +159,12 @@ pub(super) fn constraints_section(model: &mut Model, analysis: &ConstraintAnalys
     }
 }
 
-pub(super) fn dalembert_section(model: &mut Model, derivation: &LagrangeDalembert) -> Section {
-    let potential = model.store.expression_of(&model.potential_energy.clone());
+pub(super) fn dalembert_section(
+    model: &Model,
+    cx: &mut Context,
+    derivation: &LagrangeDalembert,
+) -> Section {
+    let potential = cx.expression_of(&model.potential_energy);
     let system = &derivation.saddle_point;
     let equations = vec![
         Equation {
@@ -182,27 +191,17 @@ pub(super) fn dalembert_section(model: &mut Model, derivation: &LagrangeDalember
                 key: "equations".into(),
                 lines: equations,
             },
+            matrix_item(cx, "mass_matrix", label("g", "g"), &model.mass_matrix),
+            expression_item(cx, "potential", label("V", "V"), potential),
             matrix_item(
-                model,
-                "mass_matrix",
-                label("g", "g"),
-                &model.mass_matrix.clone(),
-            ),
-            expression_item(model, "potential", label("V", "V"), potential),
-            matrix_item(
-                model,
+                cx,
                 "constraint_matrix",
                 label("A", "A"),
-                &model.constraint_matrix.clone(),
+                &model.constraint_matrix,
             ),
-            matrix_item(
-                model,
-                "input_matrix",
-                label("B", "B"),
-                &model.input_matrix.clone(),
-            ),
-            force_item(model, &system.force),
-            drift_item(model, &system.drift),
+            matrix_item(cx, "input_matrix", label("B", "B"), &model.input_matrix),
+            force_item(cx, &system.force),
+            drift_item(cx, &system.drift),
             word_fact("solve", "acceleration computed by", solve),
         ],
     }
@@ -210,11 +209,11 @@ pub(super) fn dalembert_section(model: &mut Model, derivation: &LagrangeDalember
 
 /// `B u - C - dV/dq` as a matrix when exact; a statement of how it is
 /// computed when not.
-fn force_item(model: &mut Model, force: &lagrange_dalembert::Force) -> Item {
+fn force_item(cx: &mut Context, force: &lagrange_dalembert::Force) -> Item {
     let text = "B u - C - dV/dq";
     match &force.exact {
         Some(exact) => matrix_item(
-            model,
+            cx,
             "force",
             label(text, "B u - C - \\frac{\\partial V}{\\partial q}"),
             exact,
@@ -229,10 +228,10 @@ fn force_item(model: &mut Model, force: &lagrange_dalembert::Force) -> Item {
 }
 
 /// `-Adot qdot` as a matrix when exact; a statement of how it is computed when not.
-fn drift_item(model: &mut Model, drift: &lagrange_dalembert::Drift) -> Item {
+fn drift_item(cx: &mut Context, drift: &lagrange_dalembert::Drift) -> Item {
     match drift {
         lagrange_dalembert::Drift::Exact(drift) => matrix_item(
-            model,
+            cx,
             "drift",
             label("-Adot qdot", "-\\dot{A} \\dot{q}"),
             drift,
@@ -247,10 +246,10 @@ fn drift_item(model: &mut Model, drift: &lagrange_dalembert::Drift) -> Item {
 }
 
 /// X as a matrix when exact; a statement of how it is computed when not.
-fn basis_item(model: &mut Model, analysis: &ConstraintAnalysis) -> Item {
+fn basis_item(cx: &mut Context, analysis: &ConstraintAnalysis) -> Item {
     match &analysis.basis.fields {
         Some(fields) => matrix_item(
-            model,
+            cx,
             "basis",
             label("X = [X1 ... Xk], a basis of D", "X"),
             fields,
@@ -265,7 +264,8 @@ fn basis_item(model: &mut Model, analysis: &ConstraintAnalysis) -> Item {
 }
 
 pub(super) fn reduced_section(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     reduced: &PortHamiltonian,
     rhs: &[ExprId],
 ) -> Section {
@@ -278,7 +278,7 @@ pub(super) fn reduced_section(
         names_fact("momenta", "momenta", reduced.momentum_names.clone()),
     ];
     match reduced.exact() {
-        Some(exact) => items.extend(exact_items(model, reduced, exact, rhs)),
+        Some(exact) => items.extend(exact_items(model, cx, reduced, exact, rhs)),
         None => items.extend(structured_items(reduced)),
     }
     Section {
@@ -290,13 +290,14 @@ pub(super) fn reduced_section(
 
 /// The exact matrices, the energy and the reduced equations.
 fn exact_items(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     reduced: &PortHamiltonian,
     exact: &Exact,
     rhs: &[ExprId],
 ) -> Vec<Item> {
-    let hamiltonian = model.store.expression_of(&exact.hamiltonian);
-    let equations = rates(model, &reduced.state(model), rhs);
+    let hamiltonian = cx.expression_of(&exact.hamiltonian);
+    let equations = rates(cx, &reduced.state(model), rhs);
     let matrices = [
         ("momentum_basis", label("h", "h"), &exact.basis),
         ("metric", label("gbar", "\\bar{g}"), &exact.metric),
@@ -314,12 +315,12 @@ fn exact_items(
     ];
     let mut items: Vec<Item> = matrices
         .into_iter()
-        .map(|(key, symbol, matrix)| matrix_item(model, key, symbol, matrix))
+        .map(|(key, symbol, matrix)| matrix_item(cx, key, symbol, matrix))
         .collect();
     items.extend([
         flag_fact("metric_constant", "gbar constant", reduced.metric_constant),
         flag_fact("metric_diagonal", "gbar diagonal", reduced.metric_diagonal),
-        expression_item(model, "hamiltonian", label("Hbar", "\\bar{H}"), hamiltonian),
+        expression_item(cx, "hamiltonian", label("Hbar", "\\bar{H}"), hamiltonian),
         Item::Equations {
             key: "equations".into(),
             lines: equations,
@@ -350,7 +351,8 @@ fn structured_items(reduced: &PortHamiltonian) -> Vec<Item> {
 }
 
 pub(super) fn momentum_section(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     momentum: &Momentum,
     inputs: &[SymbolId],
 ) -> Section {
@@ -362,21 +364,21 @@ pub(super) fn momentum_section(
     let names: Vec<Printed> = momentum
         .momenta
         .iter()
-        .map(|&p| symbol_name(model, p))
+        .map(|&p| symbol_name(cx, p))
         .collect();
     let momenta: Vec<String> = names.iter().map(|name| name.text.clone()).collect();
     let mut items = vec![
         names_fact("shape", "shape coordinates r", shape),
         names_fact("momenta", "momenta p", momenta),
-        matrix_item(model, "basis", label("e", "e"), &momentum.basis),
+        matrix_item(cx, "basis", label("e", "e"), &momentum.basis),
         matrix_item(
-            model,
+            cx,
             "connection",
             label("A_nh", "A_{\\mathrm{nh}}"),
             &momentum.connection,
         ),
         matrix_item(
-            model,
+            cx,
             "locked_inertia",
             label("I", "I"),
             &momentum.locked_inertia,
@@ -393,7 +395,7 @@ pub(super) fn momentum_section(
                 &format!("{tensor}^{{{}}}", name.latex),
             );
             items.push(matrix_item(
-                model,
+                cx,
                 &format!("{tensor}_{}", name.text),
                 symbol,
                 matrix,
@@ -401,15 +403,15 @@ pub(super) fn momentum_section(
         }
     }
     items.push(matrix_item(
-        model,
+        cx,
         "input_coupling",
         label("h B", "h B"),
         &momentum.input_coupling,
     ));
-    let forced = forced_momentum_rhs(model, momentum, inputs);
+    let forced = forced_momentum_rhs(cx, momentum, inputs);
     items.push(Item::Equations {
         key: "equations".into(),
-        lines: rates(model, &momentum.momenta, &forced),
+        lines: rates(cx, &momentum.momenta, &forced),
     });
     Section {
         key: "momentum",
@@ -419,17 +421,17 @@ pub(super) fn momentum_section(
 }
 
 /// `pdot_i = rhs_i + sum_j (h B)_ij u_j`.
-fn forced_momentum_rhs(model: &mut Model, momentum: &Momentum, inputs: &[SymbolId]) -> Vec<ExprId> {
+fn forced_momentum_rhs(cx: &mut Context, momentum: &Momentum, inputs: &[SymbolId]) -> Vec<ExprId> {
     let coupling = &momentum.input_coupling;
     (0..momentum.rhs.len())
         .map(|i| {
-            let mut terms = vec![model.store.expression_of(&momentum.rhs[i])];
+            let mut terms = vec![cx.expression_of(&momentum.rhs[i])];
             for (j, &input) in inputs.iter().enumerate() {
-                let entry = model.store.expression_of(coupling.get(i, j));
-                let u = model.store.symbol(input);
-                terms.push(model.store.mul2(entry, u));
+                let entry = cx.expression_of(coupling.get(i, j));
+                let u = cx.symbol(input);
+                terms.push(cx.mul2(entry, u));
             }
-            model.store.add(&terms)
+            cx.add(&terms)
         })
         .collect()
 }

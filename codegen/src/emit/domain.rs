@@ -7,6 +7,7 @@ use super::{Function, coordinates, f64_type, function_body};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
 use crate::model::domain::Guarded;
+use crate::sym::Context;
 use chaplygin_runtime::system::Guard;
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -32,11 +33,16 @@ pub(super) fn constant(guards: &[Guarded]) -> TokenStream {
 }
 
 /// `domain(q)`: the guarded expressions' values.
-pub(super) fn function(model: &mut Model, guards: &[Guarded]) -> Result<Function, Diagnostics> {
+pub(super) fn function(
+    model: &Model,
+    cx: &mut Context,
+    guards: &[Guarded],
+) -> Result<Function, Diagnostics> {
     let (n, m) = (model.n(), guards.len());
     let outputs: Vec<_> = guards.iter().map(|guarded| guarded.expression).collect();
     let body = function_body(
         model,
+        cx,
         &[coordinates(model)],
         &outputs,
         |values| quote!([#(#values),*]),

@@ -4,23 +4,24 @@
 use super::{Function, coordinates, f64_type, function_body, matrix_literal, velocities};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::Matrix;
 use quote::quote;
 
 /// The four functions, in the order they are documented.
-pub(super) fn functions(model: &mut Model) -> Result<Vec<Function>, Diagnostics> {
+pub(super) fn functions(model: &Model, cx: &mut Context) -> Result<Vec<Function>, Diagnostics> {
     Ok(vec![
-        mass_matrix(model)?,
-        energy(model)?,
-        constraint_matrix(model)?,
-        constraint_residual(model)?,
+        mass_matrix(model, cx)?,
+        energy(model, cx)?,
+        constraint_matrix(model, cx)?,
+        constraint_residual(model, cx)?,
     ])
 }
 
-fn mass_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
+fn mass_matrix(model: &Model, cx: &mut Context) -> Result<Function, Diagnostics> {
     let n = model.n();
     let outputs = model.energy_expressions.mass_matrix.entries().to_vec();
-    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+    let body = function_body(model, cx, &[coordinates(model)], &outputs, |values| {
         matrix_literal(values, n)
     })?;
     let f64 = f64_type();
@@ -40,12 +41,18 @@ fn mass_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
     })
 }
 
-fn energy(model: &mut Model) -> Result<Function, Diagnostics> {
+fn energy(model: &Model, cx: &mut Context) -> Result<Function, Diagnostics> {
     let n = model.n();
     let energies = &model.energy_expressions;
-    let outputs = vec![model.store.add2(energies.kinetic, energies.potential)];
+    let outputs = vec![cx.add2(energies.kinetic, energies.potential)];
     let arguments = [coordinates(model), velocities(model)];
-    let body = function_body(model, &arguments, &outputs, |values| quote!(#(#values)*))?;
+    let body = function_body(
+        model,
+        cx,
+        &arguments,
+        &outputs,
+        |values| quote!(#(#values)*),
+    )?;
     let f64 = f64_type();
     let (q, qdot) = (body.argument("q"), body.argument("qdot"));
     let (statements, operations, lowered) = (body.statements, body.operations, body.lowered);
@@ -63,10 +70,10 @@ fn energy(model: &mut Model) -> Result<Function, Diagnostics> {
     })
 }
 
-fn constraint_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
+fn constraint_matrix(model: &Model, cx: &mut Context) -> Result<Function, Diagnostics> {
     let (n, c) = (model.n(), model.c());
     let outputs = model.constraint_expressions.entries().to_vec();
-    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+    let body = function_body(model, cx, &[coordinates(model)], &outputs, |values| {
         matrix_literal(values, n)
     })?;
     let f64 = f64_type();
@@ -86,24 +93,23 @@ fn constraint_matrix(model: &mut Model) -> Result<Function, Diagnostics> {
     })
 }
 
-fn constraint_residual(model: &mut Model) -> Result<Function, Diagnostics> {
+fn constraint_residual(model: &Model, cx: &mut Context) -> Result<Function, Diagnostics> {
     let (n, c) = (model.n(), model.c());
-    let a = model.constraint_expressions.clone();
-    let velocity_column = Matrix::column(
-        model
-            .velocities
-            .clone()
-            .into_iter()
-            .map(|v| model.store.symbol(v))
-            .collect(),
-    );
+    let a = &model.constraint_expressions;
+    let velocity_column = Matrix::column(model.velocities.iter().map(|&v| cx.symbol(v)).collect());
     let outputs = a
-        .mul(&velocity_column, &mut model.store)
+        .mul(&velocity_column, cx)
         .map_err(|e| Diagnostics::internal(model.name.span(), e))?
         .entries()
         .to_vec();
     let arguments = [coordinates(model), velocities(model)];
-    let body = function_body(model, &arguments, &outputs, |values| quote!([#(#values),*]))?;
+    let body = function_body(
+        model,
+        cx,
+        &arguments,
+        &outputs,
+        |values| quote!([#(#values),*]),
+    )?;
     let f64 = f64_type();
     let (q, qdot) = (body.argument("q"), body.argument("qdot"));
     let (statements, operations, lowered) = (body.statements, body.operations, body.lowered);

@@ -9,16 +9,18 @@ use super::{Argument, Function, coordinates, f64_type, function_body, velocities
 use crate::derive::lagrange_dalembert::{LagrangeDalembert, Strategy};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::ExprId;
 use proc_macro2::TokenStream;
 use quote::quote;
 
 /// `acceleration(&self, q, qdot, u)`, with the derivation's chosen strategy.
 pub(super) fn acceleration(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     derivation: &LagrangeDalembert,
 ) -> Result<(Function, Section), Diagnostics> {
-    let item = acceleration_with(model, derivation, derivation.strategy)?;
+    let item = acceleration_with(model, cx, derivation, derivation.strategy)?;
     Ok((item, report_section(derivation)))
 }
 
@@ -44,12 +46,13 @@ fn report_section(derivation: &LagrangeDalembert) -> Section {
 
 /// `acceleration` with the given strategy.
 pub(crate) fn acceleration_with(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     derivation: &LagrangeDalembert,
     strategy: Strategy,
 ) -> Result<Function, Diagnostics> {
     let (n, c, p) = (model.n(), model.c(), model.p());
-    let outputs = solution_expressions(model, derivation, strategy)?;
+    let outputs = solution_expressions(model, cx, derivation, strategy)?;
     let arguments = [
         coordinates(model),
         velocities(model),
@@ -58,7 +61,9 @@ pub(crate) fn acceleration_with(
             symbols: derivation.inputs.clone(),
         },
     ];
-    let body = function_body(model, &arguments, &outputs, |values| solution(values, n))?;
+    let body = function_body(model, cx, &arguments, &outputs, |values| {
+        solution(values, n)
+    })?;
     let f64 = f64_type();
     let (q, qdot, u) = (
         body.argument("q"),
@@ -100,7 +105,8 @@ pub(crate) fn acceleration_with(
 
 /// The exact expressions of `(qddot, lambda)` that `strategy` computes.
 pub(super) fn solution_expressions(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     derivation: &LagrangeDalembert,
     strategy: Strategy,
 ) -> Result<Vec<ExprId>, Diagnostics> {
@@ -111,7 +117,7 @@ pub(super) fn solution_expressions(
             .ok_or_else(|| {
                 Diagnostics::internal(model.name.span(), "the closed form was not derived")
             })?
-            .outputs(model),
+            .outputs(cx),
         Strategy::Numeric => derivation.numeric_solution.clone(),
     })
 }
@@ -133,11 +139,11 @@ mod tests {
     /// solver: the numeric one's solve is written out.
     #[test]
     fn both_strategies_emit_a_method() {
-        let mut model =
+        let (model, mut cx) =
             check(&parse_str(crate::fixtures::SNAKEBOARD).expect("parses")).expect("checks");
-        let derivation = derive(&mut model).expect("derives");
+        let derivation = derive(&model, &mut cx).expect("derives");
         for strategy in [Strategy::Symbolic, Strategy::Numeric] {
-            let tokens = acceleration_with(&mut model, &derivation, strategy)
+            let tokens = acceleration_with(&model, &mut cx, &derivation, strategy)
                 .expect("emits")
                 .item;
             let method: syn::ImplItemFn = syn::parse2(tokens.clone()).expect("a method");

@@ -9,7 +9,7 @@
 //! The Jacobians are derivatives of the very expressions `acceleration`
 //! is emitted from (the closed form or the solve by blocks, whichever the
 //! derivation chose; MATH.md section 2), taken exactly by the engine
-//! ([`crate::sym::Store::derivatives`]), so they agree with `acceleration`
+//! ([`crate::sym::Context::derivatives`]), so they agree with `acceleration`
 //! to round-off wherever it is defined. Linearizing the Lagrange-d'Alembert
 //! flow `d(q, qdot)/dt = (qdot, qddot(q, qdot, u))` needs nothing else
 //! (MATH.md section 6).
@@ -19,6 +19,7 @@ use super::{Argument, Function, coordinates, f64_type, function_body, velocities
 use crate::derive::lagrange_dalembert::LagrangeDalembert;
 use crate::diagnostic::Diagnostics;
 use crate::model::{GroupFactor, Model};
+use crate::sym::Context;
 use crate::sym::{ExprId, SymbolId, SymbolKind};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -26,22 +27,23 @@ use quote::quote;
 /// `acceleration_jacobian(&self, q, qdot, u)`, from the expressions of
 /// `qddot` the derivation chose to emit `acceleration` from.
 pub(super) fn acceleration_jacobian(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     derivation: &LagrangeDalembert,
 ) -> Result<Function, Diagnostics> {
     let (n, p) = (model.n(), model.p());
-    let mut accelerations = solution_expressions(model, derivation, derivation.strategy)?;
+    let mut accelerations = solution_expressions(model, cx, derivation, derivation.strategy)?;
     accelerations.truncate(n);
-    let inputs = input_symbols(model);
+    let inputs = input_symbols(model, cx);
     let coordinates_argument = coordinates(model);
     let velocities_argument = velocities(model);
-    let mut outputs = derivatives_by(model, &accelerations, &coordinates_argument.symbols);
+    let mut outputs = derivatives_by(cx, &accelerations, &coordinates_argument.symbols);
     outputs.extend(derivatives_by(
-        model,
+        cx,
         &accelerations,
         &velocities_argument.symbols,
     ));
-    outputs.extend(derivatives_by(model, &accelerations, &inputs));
+    outputs.extend(derivatives_by(cx, &accelerations, &inputs));
     let arguments = [
         coordinates_argument,
         velocities_argument,
@@ -50,7 +52,7 @@ pub(super) fn acceleration_jacobian(
             symbols: inputs,
         },
     ];
-    let body = function_body(model, &arguments, &outputs, |values| {
+    let body = function_body(model, cx, &arguments, &outputs, |values| {
         let (by_q, rest) = values.split_at(n * n);
         let (by_qdot, by_u) = rest.split_at(n * n);
         let (by_q, by_qdot, by_u) = (
@@ -100,19 +102,19 @@ fn rows_literal(values: &[TokenStream], rows: usize, columns: usize) -> TokenStr
 
 /// The input symbols `u`, named as the model's inputs (the symbols
 /// `acceleration` was derived with: declaring a name again returns its symbol).
-fn input_symbols(model: &mut Model) -> Vec<SymbolId> {
+fn input_symbols(model: &Model, cx: &mut Context) -> Vec<SymbolId> {
     let names: Vec<String> = model.inputs.iter().map(|i| i.name.clone()).collect();
     names
         .iter()
-        .map(|name| model.store.declare(name, SymbolKind::Auxiliary))
+        .map(|name| cx.declare(name, SymbolKind::Auxiliary))
         .collect()
 }
 
 /// Row-major `d functions_i / d variables_j`.
-fn derivatives_by(model: &mut Model, functions: &[ExprId], variables: &[SymbolId]) -> Vec<ExprId> {
+fn derivatives_by(cx: &mut Context, functions: &[ExprId], variables: &[SymbolId]) -> Vec<ExprId> {
     let by_variable: Vec<Vec<ExprId>> = variables
         .iter()
-        .map(|&v| model.store.derivatives(functions, v))
+        .map(|&v| cx.derivatives(functions, v))
         .collect();
     (0..functions.len())
         .flat_map(|i| by_variable.iter().map(move |column| column[i]))

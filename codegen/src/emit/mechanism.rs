@@ -7,6 +7,7 @@
 use super::{Function, coordinates, f64_type, function_body, matrix_literal};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::ExprId;
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -46,20 +47,20 @@ fn names_constant(name: &str, doc: &str, names: Vec<&str>) -> TokenStream {
 }
 
 /// The four functions.
-pub(super) fn functions(model: &mut Model) -> Result<Vec<Function>, Diagnostics> {
-    let jacobian = holonomic_jacobian_matrix(model)?;
+pub(super) fn functions(model: &Model, cx: &mut Context) -> Result<Vec<Function>, Diagnostics> {
+    let jacobian = holonomic_jacobian_matrix(model, cx)?;
     Ok(vec![
-        orientations(model)?,
-        positions(model)?,
-        holonomic_residual(model)?,
-        holonomic_jacobian(model, &jacobian)?,
+        orientations(model, cx)?,
+        positions(model, cx)?,
+        holonomic_residual(model, cx)?,
+        holonomic_jacobian(model, cx, &jacobian)?,
     ])
 }
 
-fn orientations(model: &mut Model) -> Result<Function, Diagnostics> {
+fn orientations(model: &Model, cx: &mut Context) -> Result<Function, Diagnostics> {
     let (n, frames) = (model.n(), model.mechanism.frames.len());
     let outputs = model.mechanism.expressions.orientations.entries().to_vec();
-    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+    let body = function_body(model, cx, &[coordinates(model)], &outputs, |values| {
         let matrices = values.chunks(9).map(|entries| matrix_literal(entries, 3));
         quote!([#(#matrices),*])
     })?;
@@ -81,10 +82,10 @@ fn orientations(model: &mut Model) -> Result<Function, Diagnostics> {
     })
 }
 
-fn positions(model: &mut Model) -> Result<Function, Diagnostics> {
+fn positions(model: &Model, cx: &mut Context) -> Result<Function, Diagnostics> {
     let (n, points) = (model.n(), model.mechanism.points.len());
     let outputs = model.mechanism.expressions.positions.entries().to_vec();
-    let body = function_body(model, &[coordinates(model)], &outputs, |values| {
+    let body = function_body(model, cx, &[coordinates(model)], &outputs, |values| {
         matrix_literal(values, 3)
     })?;
     let f64 = f64_type();
@@ -104,7 +105,7 @@ fn positions(model: &mut Model) -> Result<Function, Diagnostics> {
     })
 }
 
-fn holonomic_residual(model: &mut Model) -> Result<Function, Diagnostics> {
+fn holonomic_residual(model: &Model, cx: &mut Context) -> Result<Function, Diagnostics> {
     let (n, h) = (model.n(), model.mechanism.holonomic.len());
     let outputs = model
         .mechanism
@@ -114,6 +115,7 @@ fn holonomic_residual(model: &mut Model) -> Result<Function, Diagnostics> {
         .to_vec();
     let body = function_body(
         model,
+        cx,
         &[coordinates(model)],
         &outputs,
         |values| quote!([#(#values),*]),
@@ -137,27 +139,30 @@ fn holonomic_residual(model: &mut Model) -> Result<Function, Diagnostics> {
 
 /// `df/dq`, `h x n`, by exact differentiation: each entry's normal form
 /// written out, or when large the derivative of the expression the residual
-/// is computed by ([`crate::sym::Store::compact_expression`]).
-fn holonomic_jacobian_matrix(model: &mut Model) -> Result<Vec<ExprId>, Diagnostics> {
+/// is computed by ([`crate::sym::Context::compact_expression`]).
+fn holonomic_jacobian_matrix(model: &Model, cx: &mut Context) -> Result<Vec<ExprId>, Diagnostics> {
     let residual = model.mechanism.holonomic_residual.clone();
     let computed = model.mechanism.expressions.holonomic_residual.clone();
     let mut entries = Vec::new();
     for (f, &computed) in residual.entries().iter().zip(computed.entries()) {
         for coordinate in model.coordinate_symbols() {
-            let partial = model
-                .store
+            let partial = cx
                 .derivative_of_normal(f, coordinate)
                 .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
-            let derived_as = model.store.derivative(computed, coordinate);
-            entries.push(model.store.compact_expression(&partial, derived_as));
+            let derived_as = cx.derivative(computed, coordinate);
+            entries.push(cx.compact_expression(&partial, derived_as));
         }
     }
     Ok(entries)
 }
 
-fn holonomic_jacobian(model: &mut Model, outputs: &[ExprId]) -> Result<Function, Diagnostics> {
+fn holonomic_jacobian(
+    model: &Model,
+    cx: &mut Context,
+    outputs: &[ExprId],
+) -> Result<Function, Diagnostics> {
     let (n, h) = (model.n(), model.mechanism.holonomic.len());
-    let body = function_body(model, &[coordinates(model)], outputs, |values| {
+    let body = function_body(model, cx, &[coordinates(model)], outputs, |values| {
         matrix_literal(values, n)
     })?;
     let f64 = f64_type();

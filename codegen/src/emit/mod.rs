@@ -43,6 +43,7 @@ use crate::derive::constraints::{ChartFit, ConstraintAnalysis};
 use crate::diagnostic::Diagnostics;
 use crate::ir::{self, Op, OperationCount};
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::{ExprId, SymbolId};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -92,34 +93,36 @@ pub(crate) struct EmittedModel {
 
 /// The Rust items of a checked, analysed and derived model.
 pub fn model_items(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     constraints: &ConstraintAnalysis,
     derivation: &Derivation,
 ) -> Result<TokenStream, Diagnostics> {
-    emit(model, constraints, derivation).map(|emitted| emitted.items)
+    emit(model, cx, constraints, derivation).map(|emitted| emitted.items)
 }
 
 /// [`model_items`], keeping the functions and the report.
 pub(crate) fn emit(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     constraints: &ConstraintAnalysis,
     derivation: &Derivation,
 ) -> Result<EmittedModel, Diagnostics> {
     let definition = parameter_struct(model);
     let constants = constants(model);
     let mechanism_constants = mechanism::constants(model);
-    let guards = crate::model::domain::guards(model)
+    let guards = crate::model::domain::guards(model, cx)
         .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
-    let mut functions = kinematics::functions(model)?;
-    functions.extend(mechanism::functions(model)?);
-    functions.push(domain::function(model, &guards)?);
+    let mut functions = kinematics::functions(model, cx)?;
+    functions.extend(mechanism::functions(model, cx)?);
+    functions.push(domain::function(model, cx, &guards)?);
     let (acceleration, solve_report) =
-        lagrange_dalembert::acceleration(model, &derivation.lagrange_dalembert)?;
+        lagrange_dalembert::acceleration(model, cx, &derivation.lagrange_dalembert)?;
     let acceleration_jacobian =
-        linearization::acceleration_jacobian(model, &derivation.lagrange_dalembert)?;
+        linearization::acceleration_jacobian(model, cx, &derivation.lagrange_dalembert)?;
     functions.extend([acceleration, acceleration_jacobian]);
     let (reduced, mut reduced_report) =
-        port_hamiltonian::functions(model, &derivation.reduced, &derivation.reduced_items)?;
+        port_hamiltonian::functions(model, cx, &derivation.reduced, &derivation.reduced_items)?;
     functions.extend(reduced);
     let primary = match derivation.reduced.declared_basis {
         true => ChartFit::Declared,
@@ -135,6 +138,7 @@ pub(crate) fn emit(
         .map(|(i, chart)| {
             port_hamiltonian::chart_functions(
                 model,
+                cx,
                 i + 1,
                 &chart.dependent,
                 &chart.reduced,
@@ -149,18 +153,18 @@ pub(crate) fn emit(
     let mut basis_divisors = Vec::new();
     let mut divisors_constant = TokenStream::new();
     if let Some(momentum) = &derivation.momentum {
-        basis_divisors = momentum::divisors(model, momentum)
+        basis_divisors = momentum::divisors(model, cx, momentum)
             .into_iter()
             .map(|(description, _)| description)
             .collect();
-        divisors_constant = momentum::divisors_constant(model, momentum);
-        let (reduction, reduction_report) = momentum::functions(model, momentum, &functions)?;
+        divisors_constant = momentum::divisors_constant(model, cx, momentum);
+        let (reduction, reduction_report) = momentum::functions(model, cx, momentum, &functions)?;
         functions.extend(reduction);
         sections.push(reduction_report);
     } else if model.symmetry.is_some() {
         sections.push(momentum::omitted());
     }
-    let report = report_text(model, constraints, sections, &functions);
+    let report = report_text(model, cx, constraints, sections, &functions);
     let report_item = report_constant(&report);
     let items = functions
         .iter()
@@ -214,13 +218,14 @@ fn charts_line(model: &Model, charts: &[ChartFit]) -> Option<String> {
 }
 
 fn report_text(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     constraints: &ConstraintAnalysis,
     derivations: Vec<report::Section>,
     functions: &[Function],
 ) -> String {
     let mut report = report::Report::new(model.name.to_string());
-    report.push(report::constraints(model, constraints));
+    report.push(report::constraints(model, cx, constraints));
     for section in derivations {
         report.push(section);
     }
@@ -380,6 +385,7 @@ impl Body {
 /// inputs, and assembles the returned value with `result`.
 pub(crate) fn function_body(
     model: &Model,
+    cx: &Context,
     arguments: &[Argument],
     outputs: &[ExprId],
     result: impl Fn(&[TokenStream]) -> TokenStream,
@@ -401,7 +407,7 @@ pub(crate) fn function_body(
         sources.push(quote!(self.#field));
         owners.push(None);
     }
-    let program = ir::lower(&model.store, &symbols, outputs)
+    let program = ir::lower(cx, &symbols, outputs)
         .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     let emitted = if model.emits_rust {
         program

@@ -36,6 +36,7 @@ use crate::derive::momentum::{Curvature, Momentum};
 use crate::diagnostic::Diagnostics;
 use crate::ir::OperationCount;
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::{ExprId, Matrix, RationalFunction};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -46,12 +47,13 @@ const TITLE: &str =
 /// The seven functions and the report's section; `emitted` are the items
 /// emitted before (`acceleration` among them).
 pub(super) fn functions(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     momentum: &Momentum,
     emitted: &[Function],
 ) -> Result<(Vec<Function>, Section), Diagnostics> {
-    let section = report_section(model, momentum);
-    let reconstruction = body_velocity(model, momentum)?;
+    let section = report_section(model, cx, momentum);
+    let reconstruction = body_velocity(model, cx, momentum)?;
     let acceleration = emitted
         .iter()
         .find(|f| f.name == "acceleration")
@@ -60,12 +62,13 @@ pub(super) fn functions(
         })?;
     let shape = shape_acceleration(model, momentum, &reconstruction, acceleration);
     let mut functions = vec![
-        momentum_of_state(model, momentum)?,
-        momentum_rhs(model, momentum)?,
-        momentum_input_matrix(model, momentum)?,
-        connection(model, momentum)?,
+        momentum_of_state(model, cx, momentum)?,
+        momentum_rhs(model, cx, momentum)?,
+        momentum_input_matrix(model, cx, momentum)?,
+        connection(model, cx, momentum)?,
         shape_matrix(
             model,
+            cx,
             momentum,
             "locked_inertia",
             "The locked inertia `I(r) = e II e^T` on S: `p = I(r) Omega`.",
@@ -73,13 +76,13 @@ pub(super) fn functions(
         )?,
         reconstruction,
         shape,
-        momentum_rhs_jacobian(model, momentum)?,
-        body_velocity_jacobian(model, momentum)?,
-        basis_divisors(model, momentum)?,
-        connection_divisor(model, momentum)?,
+        momentum_rhs_jacobian(model, cx, momentum)?,
+        body_velocity_jacobian(model, cx, momentum)?,
+        basis_divisors(model, cx, momentum)?,
+        connection_divisor(model, cx, momentum)?,
     ];
     if let Some(curvature) = &momentum.curvature {
-        functions.push(connection_curvature(model, momentum, curvature)?);
+        functions.push(connection_curvature(model, cx, momentum, curvature)?);
     }
     Ok((functions, section))
 }
@@ -89,20 +92,23 @@ pub(super) fn functions(
 /// described: where one is zero the basis degenerates at every
 /// configuration (the roller racer's, normalized by its value `d1 - d2` at
 /// the defaults, at `d1 = d2`).
-pub(super) fn divisors(model: &mut Model, momentum: &Momentum) -> Vec<(String, ExprId)> {
+pub(super) fn divisors(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> Vec<(String, ExprId)> {
     let parameters = model.parameter_symbols();
     let mut divisors: Vec<(String, ExprId)> = Vec::new();
     for entry in momentum.basis.entries() {
         for (factor, _) in entry.denominator() {
             let divisor = RationalFunction::from_poly(factor.clone());
-            let expression = model.store.expression_of(&divisor);
-            let constant = model
-                .store
+            let expression = cx.expression_of(&divisor);
+            let constant = cx
                 .free_symbols(expression)
                 .iter()
                 .all(|symbol| parameters.contains(symbol));
             if constant && !divisors.iter().any(|(_, e)| *e == expression) {
-                let text = model.store.display(expression).to_string();
+                let text = cx.display(expression).to_string();
                 let description =
                     format!("a division in the momentum basis e(r): {text} must not vanish");
                 divisors.push((description, expression));
@@ -113,8 +119,12 @@ pub(super) fn divisors(model: &mut Model, momentum: &Momentum) -> Vec<(String, E
 }
 
 /// `basis_divisors()`: the values of [`divisors`].
-fn basis_divisors(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
-    let outputs: Vec<ExprId> = divisors(model, momentum)
+fn basis_divisors(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> Result<Function, Diagnostics> {
+    let outputs: Vec<ExprId> = divisors(model, cx, momentum)
         .into_iter()
         .map(|(_, expression)| expression)
         .collect();
@@ -127,12 +137,16 @@ fn basis_divisors(model: &mut Model, momentum: &Momentum) -> Result<Function, Di
         arguments: Vec::new(),
         returns: vector_type(outputs.len()),
     };
-    item(model, signature, &outputs, vector_literal)
+    item(model, cx, signature, &outputs, vector_literal)
 }
 
 /// `BASIS_DIVISORS`: the description of each of [`divisors`].
-pub(super) fn divisors_constant(model: &mut Model, momentum: &Momentum) -> TokenStream {
-    let descriptions: Vec<String> = divisors(model, momentum)
+pub(super) fn divisors_constant(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> TokenStream {
+    let descriptions: Vec<String> = divisors(model, cx, momentum)
         .into_iter()
         .map(|(description, _)| description)
         .collect();
@@ -152,7 +166,7 @@ pub(super) fn omitted() -> Section {
     section
 }
 
-fn report_section(model: &mut Model, momentum: &Momentum) -> Section {
+fn report_section(model: &Model, cx: &mut Context, momentum: &Momentum) -> Section {
     let mut section = Section::new(TITLE);
     let shape: Vec<&str> = momentum
         .shape
@@ -167,30 +181,28 @@ fn report_section(model: &mut Model, momentum: &Momentum) -> Section {
         "shape r = ({}); momenta {momenta}",
         shape.join(", ")
     ));
-    matrix_lines(model, &mut section, "e", &momentum.basis);
+    matrix_lines(cx, &mut section, "e", &momentum.basis);
     for (i, tensors) in momentum.coefficients.iter().enumerate() {
         let i = i + 1;
-        matrix_lines(model, &mut section, &format!("H{i}"), &tensors.shape);
-        matrix_lines(model, &mut section, &format!("K{i}"), &tensors.mixed);
-        matrix_lines(model, &mut section, &format!("D{i}"), &tensors.momentum);
+        matrix_lines(cx, &mut section, &format!("H{i}"), &tensors.shape);
+        matrix_lines(cx, &mut section, &format!("K{i}"), &tensors.mixed);
+        matrix_lines(cx, &mut section, &format!("D{i}"), &tensors.momentum);
     }
-    connection_lines(model, &mut section, momentum);
+    connection_lines(model, cx, &mut section, momentum);
     if momentum.input_coupling.is_zero() {
         section.line("inputs enter the momentum equation: no (h B = 0)");
     } else {
         section.line("inputs enter the momentum equation: yes, pdot += (h B) u");
-        matrix_lines(model, &mut section, "h B", &momentum.input_coupling);
+        matrix_lines(cx, &mut section, "h B", &momentum.input_coupling);
     }
     section
 }
 
 /// The connection's divisor, where it vanishes, and the curvature's
 /// planes.
-fn connection_lines(model: &mut Model, section: &mut Section, momentum: &Momentum) {
-    let denominator = model
-        .store
-        .expression_of(&momentum.connection_quotient.denominator);
-    let shown = model.store.display(denominator).to_string();
+fn connection_lines(model: &Model, cx: &mut Context, section: &mut Section, momentum: &Momentum) {
+    let denominator = cx.expression_of(&momentum.connection_quotient.denominator);
+    let shown = cx.display(denominator).to_string();
     section.line(format!(
         "connection A_nh = N / d by Cramer's rule, singular where d = 0: d = {shown}"
     ));
@@ -232,13 +244,10 @@ fn connection_lines(model: &mut Model, section: &mut Section, momentum: &Momentu
 }
 
 /// One line per row of `matrix`: `  name row i: [..]`.
-fn matrix_lines(model: &mut Model, section: &mut Section, name: &str, matrix: &Matrix) {
-    let entries = matrix.to_expressions(&mut model.store);
+fn matrix_lines(cx: &mut Context, section: &mut Section, name: &str, matrix: &Matrix) {
+    let entries = matrix.to_expressions(cx);
     for (i, row) in entries.chunks(matrix.columns().max(1)).enumerate() {
-        let shown: Vec<String> = row
-            .iter()
-            .map(|&e| model.store.display(e).to_string())
-            .collect();
+        let shown: Vec<String> = row.iter().map(|&e| cx.display(e).to_string()).collect();
         section.line(format!("  {name} row {}: [{}]", i + 1, shown.join(", ")));
     }
 }
@@ -270,18 +279,23 @@ fn reduced_arguments(model: &Model, momentum: &Momentum) -> Vec<Argument> {
 
 /// An item returning the vector `entries`.
 fn vector_item(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     signature: Signature,
     entries: &[RationalFunction],
 ) -> Result<Function, Diagnostics> {
     let outputs: Vec<_> = entries
         .iter()
-        .map(|entry| model.store.expression_of(entry))
+        .map(|entry| cx.expression_of(entry))
         .collect();
-    item(model, signature, &outputs, vector_literal)
+    item(model, cx, signature, &outputs, vector_literal)
 }
 
-fn momentum_of_state(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+fn momentum_of_state(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> Result<Function, Diagnostics> {
     let signature = Signature {
         name: "momentum",
         doc: "The nonholonomic momentum `p_i = <dL/dqdot, h_i(q)>`, `h_i = (R(theta) e_i(r), 0)` \
@@ -290,10 +304,14 @@ fn momentum_of_state(model: &mut Model, momentum: &Momentum) -> Result<Function,
         arguments: vec![coordinates(model), velocities(model)],
         returns: vector_type(momentum.momenta.len()),
     };
-    vector_item(model, signature, &momentum.momentum)
+    vector_item(model, cx, signature, &momentum.momentum)
 }
 
-fn momentum_rhs(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+fn momentum_rhs(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> Result<Function, Diagnostics> {
     let signature = Signature {
         name: "momentum_rhs",
         doc: "The momentum equation `pdot = rdot^T H rdot + rdot^T K p + p^T D p` \
@@ -303,10 +321,14 @@ fn momentum_rhs(model: &mut Model, momentum: &Momentum) -> Result<Function, Diag
         arguments: reduced_arguments(model, momentum),
         returns: vector_type(momentum.momenta.len()),
     };
-    vector_item(model, signature, &momentum.rhs)
+    vector_item(model, cx, signature, &momentum.rhs)
 }
 
-fn body_velocity(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+fn body_velocity(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> Result<Function, Diagnostics> {
     let signature = Signature {
         name: "body_velocity",
         doc: "The reconstruction `xi = g^-1 gdot = -A_nh(r) rdot + e(r)^T I(r)^-1 p` \
@@ -319,62 +341,64 @@ fn body_velocity(model: &mut Model, momentum: &Momentum) -> Result<Function, Dia
     };
     let quotient = &momentum.connection_quotient;
     let nr = momentum.shape.len();
-    let denominator = model.store.expression_of(&quotient.denominator);
+    let denominator = cx.expression_of(&quotient.denominator);
     let mut outputs = Vec::with_capacity(quotient.numerators.rows());
     for (i, vertical) in momentum.vertical_velocity.iter().enumerate() {
         let terms: Vec<ExprId> = (0..nr)
             .map(|j| {
-                let entry = model.store.expression_of(quotient.numerators.get(i, j));
-                let rate = model.store.symbol(momentum.shape_velocities[j]);
-                model.store.mul2(entry, rate)
+                let entry = cx.expression_of(quotient.numerators.get(i, j));
+                let rate = cx.symbol(momentum.shape_velocities[j]);
+                cx.mul2(entry, rate)
             })
             .collect();
-        let horizontal = model.store.add(&terms);
-        let horizontal = quotient_of(model, horizontal, denominator)?;
-        let vertical = model.store.expression_of(vertical);
-        outputs.push(model.store.sub(vertical, horizontal));
+        let horizontal = cx.add(&terms);
+        let horizontal = quotient_of(model, cx, horizontal, denominator)?;
+        let vertical = cx.expression_of(vertical);
+        outputs.push(cx.sub(vertical, horizontal));
     }
-    item(model, signature, &outputs, vector_literal)
+    item(model, cx, signature, &outputs, vector_literal)
 }
 
 /// `numerator / denominator` as an expression, not brought to normal form.
 fn quotient_of(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     numerator: ExprId,
     denominator: ExprId,
 ) -> Result<ExprId, Diagnostics> {
-    model
-        .store
-        .div(numerator, denominator)
+    cx.div(numerator, denominator)
         .map_err(|error| Diagnostics::internal(model.name.span(), error.to_string()))
 }
 
 /// `nonholonomic_connection(r)`: `A_nh = N / d`, entry by entry.
-fn connection(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+fn connection(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> Result<Function, Diagnostics> {
     let quotient = &momentum.connection_quotient;
-    let denominator = model.store.expression_of(&quotient.denominator);
-    let outputs = quotient_entries(model, &quotient.numerators, denominator)?;
+    let denominator = cx.expression_of(&quotient.denominator);
+    let outputs = quotient_entries(model, cx, &quotient.numerators, denominator)?;
     let doc = "The nonholonomic connection `A_nh(r)`: the horizontal body velocity is \
                `-A_nh(r) rdot` (Koon & Marsden 1.1); the geometric phase of a shape loop is \
                built from it. Computed as `N(r) / d(r)` by Cramer's rule, finite wherever \
                the connection is defined.";
     let size = (quotient.numerators.rows(), quotient.numerators.columns());
     let name = "nonholonomic_connection";
-    shape_rows_item(model, momentum, (name, doc.to_string()), &outputs, size)
+    shape_rows_item(model, cx, momentum, (name, doc.to_string()), &outputs, size)
 }
 
 /// `connection_curvature(r)`: `F = P / d^2`, one column per plane of shape
 /// coordinates.
 fn connection_curvature(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     momentum: &Momentum,
     curvature: &Curvature,
 ) -> Result<Function, Diagnostics> {
-    let denominator = model
-        .store
-        .expression_of(&momentum.connection_quotient.denominator);
-    let square = model.store.mul2(denominator, denominator);
-    let outputs = quotient_entries(model, &curvature.numerators, square)?;
+    let denominator = cx.expression_of(&momentum.connection_quotient.denominator);
+    let square = cx.mul2(denominator, denominator);
+    let outputs = quotient_entries(model, cx, &curvature.numerators, square)?;
     let names: Vec<String> = momentum
         .shape
         .iter()
@@ -397,6 +421,7 @@ fn connection_curvature(
     let size = (curvature.numerators.rows(), curvature.numerators.columns());
     shape_rows_item(
         model,
+        cx,
         momentum,
         ("connection_curvature", doc),
         &outputs,
@@ -405,11 +430,15 @@ fn connection_curvature(
 }
 
 /// `connection_divisor(r)`: `d` and its gradient `dd/dr`.
-fn connection_divisor(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+fn connection_divisor(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> Result<Function, Diagnostics> {
     let quotient = &momentum.connection_quotient;
     let divisor = std::iter::once(&quotient.denominator);
     let outputs: Vec<ExprId> = (divisor.chain(&quotient.divisor_gradient))
-        .map(|entry| model.store.expression_of(entry))
+        .map(|entry| cx.expression_of(entry))
         .collect();
     let signature = Signature {
         name: "connection_divisor",
@@ -420,12 +449,13 @@ fn connection_divisor(model: &mut Model, momentum: &Momentum) -> Result<Function
         arguments: vec![shape_argument(model, momentum)],
         returns: vector_type(outputs.len()),
     };
-    item(model, signature, &outputs, vector_literal)
+    item(model, cx, signature, &outputs, vector_literal)
 }
 
 /// Each entry of `numerators` over `denominator`, row-major.
 fn quotient_entries(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     numerators: &Matrix,
     denominator: ExprId,
 ) -> Result<Vec<ExprId>, Diagnostics> {
@@ -433,18 +463,22 @@ fn quotient_entries(
         .entries()
         .iter()
         .map(|entry| {
-            let numerator = model.store.expression_of(entry);
-            quotient_of(model, numerator, denominator)
+            let numerator = cx.expression_of(entry);
+            quotient_of(model, cx, numerator, denominator)
         })
         .collect()
 }
 
 /// `momentum_rhs_jacobian(r, rdot, p)`: `d pdot / d(r, rdot, p)`.
-fn momentum_rhs_jacobian(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+fn momentum_rhs_jacobian(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> Result<Function, Diagnostics> {
     let jacobian = &momentum.sensitivity.momentum;
     let (rows, columns) = (jacobian.rows(), jacobian.columns());
     let outputs: Vec<ExprId> = (jacobian.entries().iter())
-        .map(|entry| model.store.expression_of(entry))
+        .map(|entry| cx.expression_of(entry))
         .collect();
     let signature = Signature {
         name: "momentum_rhs_jacobian",
@@ -454,24 +488,26 @@ fn momentum_rhs_jacobian(model: &mut Model, momentum: &Momentum) -> Result<Funct
         arguments: reduced_arguments(model, momentum),
         returns: matrix_type(rows, columns),
     };
-    item(model, signature, &outputs, |values| {
+    item(model, cx, signature, &outputs, |values| {
         rows_literal(values, rows, columns)
     })
 }
 
 /// `body_velocity_jacobian(r, rdot, p)`: `d xi / d(r, rdot, p) = P / d^2 + V`.
-fn body_velocity_jacobian(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+fn body_velocity_jacobian(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> Result<Function, Diagnostics> {
     let sensitivity = &momentum.sensitivity;
     let (rows, columns) = (sensitivity.quotient.rows(), sensitivity.quotient.columns());
-    let denominator = model
-        .store
-        .expression_of(&momentum.connection_quotient.denominator);
-    let square = model.store.mul2(denominator, denominator);
-    let quotients = quotient_entries(model, &sensitivity.quotient, square)?;
+    let denominator = cx.expression_of(&momentum.connection_quotient.denominator);
+    let square = cx.mul2(denominator, denominator);
+    let quotients = quotient_entries(model, cx, &sensitivity.quotient, square)?;
     let outputs: Vec<ExprId> = (quotients.into_iter().zip(sensitivity.vertical.entries()))
         .map(|(quotient, vertical)| {
-            let vertical = model.store.expression_of(vertical);
-            model.store.add(&[quotient, vertical])
+            let vertical = cx.expression_of(vertical);
+            cx.add(&[quotient, vertical])
         })
         .collect();
     let signature = Signature {
@@ -483,7 +519,7 @@ fn body_velocity_jacobian(model: &mut Model, momentum: &Momentum) -> Result<Func
         arguments: reduced_arguments(model, momentum),
         returns: matrix_type(rows, columns),
     };
-    item(model, signature, &outputs, |values| {
+    item(model, cx, signature, &outputs, |values| {
         rows_literal(values, rows, columns)
     })
 }
@@ -562,7 +598,11 @@ fn shape_acceleration(
     }
 }
 
-fn momentum_input_matrix(model: &mut Model, momentum: &Momentum) -> Result<Function, Diagnostics> {
+fn momentum_input_matrix(
+    model: &Model,
+    cx: &mut Context,
+    momentum: &Momentum,
+) -> Result<Function, Diagnostics> {
     let signature = Signature {
         name: "momentum_input_matrix",
         doc: "`h(q) B(q)`, mp x p: the inputs' term of the momentum equation, \
@@ -574,28 +614,30 @@ fn momentum_input_matrix(model: &mut Model, momentum: &Momentum) -> Result<Funct
             momentum.input_coupling.columns(),
         ),
     };
-    matrix_item(model, signature, &momentum.input_coupling)
+    matrix_item(model, cx, signature, &momentum.input_coupling)
 }
 
 /// An item of the shape `r` returning `matrix`.
 fn shape_matrix(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     momentum: &Momentum,
     name: &'static str,
     doc: &str,
     matrix: &Matrix,
 ) -> Result<Function, Diagnostics> {
     let outputs: Vec<ExprId> = (matrix.entries().iter())
-        .map(|entry| model.store.expression_of(entry))
+        .map(|entry| cx.expression_of(entry))
         .collect();
     let size = (matrix.rows(), matrix.columns());
-    shape_rows_item(model, momentum, (name, doc.to_string()), &outputs, size)
+    shape_rows_item(model, cx, momentum, (name, doc.to_string()), &outputs, size)
 }
 
 /// An item of the shape `r` returning the `rows x columns` matrix of
 /// `outputs`, row-major.
 fn shape_rows_item(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     momentum: &Momentum,
     (name, doc): (&'static str, String),
     outputs: &[ExprId],
@@ -607,14 +649,15 @@ fn shape_rows_item(
         arguments: vec![shape_argument(model, momentum)],
         returns: matrix_type(rows, columns),
     };
-    item(model, signature, outputs, |values| {
+    item(model, cx, signature, outputs, |values| {
         rows_literal(values, rows, columns)
     })
 }
 
 /// An item returning `matrix`.
 fn matrix_item(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     signature: Signature,
     matrix: &Matrix,
 ) -> Result<Function, Diagnostics> {
@@ -622,9 +665,9 @@ fn matrix_item(
     let outputs: Vec<_> = matrix
         .entries()
         .iter()
-        .map(|entry| model.store.expression_of(entry))
+        .map(|entry| cx.expression_of(entry))
         .collect();
-    item(model, signature, &outputs, |values| {
+    item(model, cx, signature, &outputs, |values| {
         rows_literal(values, rows, columns)
     })
 }

@@ -25,6 +25,7 @@ use crate::derive::port_hamiltonian::PortHamiltonian;
 use crate::derive::port_hamiltonian::items::{Item, Items};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::ExprId;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
@@ -32,14 +33,15 @@ use quote::quote;
 /// The ten functions, in the order they are documented, and the report's
 /// section on the reduced form.
 pub(super) fn functions(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     reduced: &PortHamiltonian,
     items: &Items,
 ) -> Result<(Vec<Function>, Section), Diagnostics> {
-    let section = report_section(model, reduced);
+    let section = report_section(cx, reduced);
     let functions = SPECS
         .iter()
-        .map(|spec| emit_item(model, reduced, items, spec))
+        .map(|spec| emit_item(model, cx, reduced, items, spec))
         .collect::<Result<Vec<_>, _>>()?;
     Ok((functions, section))
 }
@@ -49,7 +51,8 @@ pub(super) fn functions(
 /// call, each named `{item}_chart{chart}` (`output` and `output_jacobian`
 /// only in chart 0).
 pub(super) fn chart_functions(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     chart: usize,
     dependent: &[usize],
     reduced: &PortHamiltonian,
@@ -74,15 +77,20 @@ pub(super) fn chart_functions(
             };
             let name = Ident::new(&format!("{}_chart{chart}", spec.name), Span::call_site());
             let size = |size: Size| size.of(model, reduced);
-            named_item(model, signature, name, items.outputs(spec.item), |values| {
-                assembled(shape, values, size)
-            })
+            named_item(
+                model,
+                cx,
+                signature,
+                name,
+                items.outputs(spec.item),
+                |values| assembled(shape, values, size),
+            )
         })
         .collect()
 }
 
 /// What the report says of the reduced form (MATH.md section 3).
-fn report_section(model: &mut Model, reduced: &PortHamiltonian) -> Section {
+fn report_section(cx: &mut Context, reduced: &PortHamiltonian) -> Section {
     let mut section = Section::new("Reduced port-Hamiltonian form (Duindam & Stramigioli)");
     let origin = if reduced.declared_basis {
         "declared"
@@ -101,13 +109,10 @@ fn report_section(model: &mut Model, reduced: &PortHamiltonian) -> Section {
     ));
     match reduced.exact() {
         Some(exact) => {
-            let gbar = exact.metric.to_expressions(&mut model.store);
+            let gbar = exact.metric.to_expressions(cx);
             let k = reduced.momenta.len();
             for (i, row) in gbar.chunks(k.max(1)).enumerate() {
-                let entries: Vec<String> = row
-                    .iter()
-                    .map(|&e| model.store.display(e).to_string())
-                    .collect();
+                let entries: Vec<String> = row.iter().map(|&e| cx.display(e).to_string()).collect();
                 section.line(format!("  gbar row {}: [{}]", i + 1, entries.join(", ")));
             }
             section.line(format!(
@@ -141,23 +146,25 @@ pub(super) struct Signature {
 /// The function computing `outputs`, assembled into its return value by `assemble`.
 pub(super) fn item(
     model: &Model,
+    cx: &Context,
     signature: Signature,
     outputs: &[ExprId],
     assemble: impl Fn(&[TokenStream]) -> TokenStream,
 ) -> Result<Function, Diagnostics> {
     let name = Ident::new(signature.name, Span::call_site());
-    named_item(model, signature, name, outputs, assemble)
+    named_item(model, cx, signature, name, outputs, assemble)
 }
 
 /// [`item`] emitted under the name `name`.
 fn named_item(
     model: &Model,
+    cx: &Context,
     signature: Signature,
     name: Ident,
     outputs: &[ExprId],
     assemble: impl Fn(&[TokenStream]) -> TokenStream,
 ) -> Result<Function, Diagnostics> {
-    let body = function_body(model, &signature.arguments, outputs, assemble)?;
+    let body = function_body(model, cx, &signature.arguments, outputs, assemble)?;
     let f64 = f64_type();
     let parameters = signature.arguments.iter().map(|argument| {
         let name = body.argument(argument.name);
@@ -444,13 +451,14 @@ impl Arguments {
 /// The item of one row of [`SPECS`].
 fn emit_item(
     model: &Model,
+    cx: &Context,
     reduced: &PortHamiltonian,
     items: &Items,
     spec: &Spec,
 ) -> Result<Function, Diagnostics> {
     let (signature, shape) = signature(model, reduced, spec);
     let size = |size: Size| size.of(model, reduced);
-    item(model, signature, items.outputs(spec.item), |values| {
+    item(model, cx, signature, items.outputs(spec.item), |values| {
         assembled(shape, values, size)
     })
 }
@@ -491,12 +499,12 @@ mod tests {
 
     #[test]
     fn every_item_has_the_interface_signature() {
-        let mut model =
+        let (model, mut cx) =
             check(&parse_str(crate::fixtures::SNAKEBOARD).expect("parses")).expect("checks");
-        let basis = distribution_basis(&mut model).expect("regular");
-        let reduced = derive(&mut model, &basis).expect("derives");
-        let chosen = items(&mut model, &reduced).expect("derives");
-        let items: Vec<String> = functions(&mut model, &reduced, &chosen)
+        let basis = distribution_basis(&model, &mut cx).expect("regular");
+        let reduced = derive(&model, &mut cx, &basis).expect("derives");
+        let chosen = items(&model, &mut cx, &reduced).expect("derives");
+        let items: Vec<String> = functions(&model, &mut cx, &reduced, &chosen)
             .expect("emits")
             .0
             .iter()

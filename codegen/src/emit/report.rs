@@ -17,6 +17,7 @@
 use super::Function;
 use crate::derive::constraints::{ConstraintAnalysis, Method, charts};
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::RationalFunction;
 
 /// A plain-text report: a title, then titled sections of lines.
@@ -82,7 +83,11 @@ impl Section {
 }
 
 /// Sizes, speeds, the basis of D, integrability, growth and Moore's test.
-pub(super) fn constraints(model: &mut Model, analysis: &ConstraintAnalysis) -> Section {
+pub(super) fn constraints(
+    model: &Model,
+    cx: &mut Context,
+    analysis: &ConstraintAnalysis,
+) -> Section {
     let mut section = Section::new("Constraints (Frobenius, Chow, Moore)");
     let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
     section.line(format!("sizes: n = {n}, c = {c}, k = {k}, p = {p}"));
@@ -101,7 +106,7 @@ pub(super) fn constraints(model: &mut Model, analysis: &ConstraintAnalysis) -> S
             for j in 0..fields.columns() {
                 let entries: Vec<RationalFunction> =
                     (0..n).map(|i| fields.get(i, j).clone()).collect();
-                section.line(format!("  X{} = [{}]", j + 1, displayed(model, &entries)));
+                section.line(format!("  X{} = [{}]", j + 1, displayed(cx, &entries)));
             }
         }
         None => {
@@ -187,12 +192,12 @@ fn speeds(names: Vec<String>) -> String {
     }
 }
 
-fn displayed(model: &mut Model, entries: &[RationalFunction]) -> String {
+fn displayed(cx: &mut Context, entries: &[RationalFunction]) -> String {
     let texts: Vec<String> = entries
         .iter()
         .map(|entry| {
-            let id = model.store.expression_of(entry);
-            model.store.display(id).to_string()
+            let id = cx.expression_of(entry);
+            cx.display(id).to_string()
         })
         .collect();
     texts.join(", ")
@@ -249,10 +254,10 @@ mod tests {
             kinetic_energy: dot(x)^2/2 + dot(y)^2/2 + dot(z)^2/2,
             constraints: [level = (1 + x^2)*(y*dot(x) + x*dot(y) + dot(z))],
         }";
-        let mut model = check(&parse_str(source).expect("parses")).expect("checks");
-        let analysis = analyse(&mut model).expect("analyses");
+        let (model, mut cx) = check(&parse_str(source).expect("parses")).expect("checks");
+        let analysis = analyse(&model, &mut cx).expect("analyses");
         let mut report = Report::new("M");
-        report.push(constraints(&mut model, &analysis));
+        report.push(constraints(&model, &mut cx, &analysis));
         let text = report.render();
         for line in [
             "  sizes: n = 3, c = 1, k = 2, p = 0\n",

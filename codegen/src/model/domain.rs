@@ -21,6 +21,7 @@
 //! crossed (`chaplygin_runtime::system::Domain`).
 
 use super::Model;
+use crate::sym::Context;
 use crate::sym::{ExprId, Function, Node, SymError};
 use chaplygin_runtime::system::Guard;
 
@@ -40,17 +41,17 @@ const SHORT: usize = 72;
 
 /// The guards of `model`'s expressions, in the order of the module
 /// documentation, each once.
-pub fn guards(model: &mut Model) -> Result<Vec<Guarded>, SymError> {
+pub fn guards(model: &Model, cx: &mut Context) -> Result<Vec<Guarded>, SymError> {
     let mut guards: Vec<Guarded> = Vec::new();
     for (source, roots) in sources(model) {
-        for id in model.store.reachable(&roots) {
-            let Some((operation, base, guard)) = guarded(model, id)? else {
+        for id in cx.reachable(&roots) {
+            let Some((operation, base, guard)) = guarded(cx, id)? else {
                 continue;
             };
             if guards.iter().any(|g| g.expression == base) {
                 continue;
             }
-            let description = describe(model, operation, &source, base, guard);
+            let description = describe(cx, operation, &source, base, guard);
             guards.push(Guarded {
                 description,
                 expression: base,
@@ -64,21 +65,19 @@ pub fn guards(model: &mut Model) -> Result<Vec<Guarded>, SymError> {
 /// The operation at `id`, if it has a guard: its name, the guarded
 /// expression and what must hold.
 fn guarded(
-    model: &mut Model,
+    cx: &mut Context,
     id: ExprId,
 ) -> Result<Option<(&'static str, ExprId, Guard)>, SymError> {
-    Ok(match model.store.node(id).clone() {
-        Node::Pow(base, exponent) if model.store.as_number(base).is_none() => {
-            match exponent.to_small() {
-                Some((n, 1)) if n < 0 => Some(("a division", base, Guard::NonZero)),
-                Some((_, 1)) => None,
-                Some((1, 2)) | Some((-1, 2)) => Some(("a square root", base, Guard::Positive)),
-                _ => Some(("a fractional power", base, Guard::Positive)),
-            }
-        }
+    Ok(match cx.node(id).clone() {
+        Node::Pow(base, exponent) if cx.as_number(base).is_none() => match exponent.to_small() {
+            Some((n, 1)) if n < 0 => Some(("a division", base, Guard::NonZero)),
+            Some((_, 1)) => None,
+            Some((1, 2)) | Some((-1, 2)) => Some(("a square root", base, Guard::Positive)),
+            _ => Some(("a fractional power", base, Guard::Positive)),
+        },
         Node::Call(Function::Ln, argument) => Some(("a logarithm", argument, Guard::Positive)),
         Node::Call(Function::Tan, argument) => {
-            let cosine = model.store.apply(Function::Cos, argument)?;
+            let cosine = cx.apply(Function::Cos, argument)?;
             Some(("a tangent", cosine, Guard::NonZero))
         }
         _ => None,
@@ -119,8 +118,8 @@ fn sources(model: &Model) -> Vec<(String, Vec<ExprId>)> {
 }
 
 /// `a square root in point `front_contact`: sqrt(...) needs ... > 0`.
-fn describe(model: &Model, operation: &str, source: &str, base: ExprId, guard: Guard) -> String {
-    let mut text = model.store.display(base).to_string();
+fn describe(cx: &Context, operation: &str, source: &str, base: ExprId, guard: Guard) -> String {
+    let mut text = cx.display(base).to_string();
     if text.len() > SHORT {
         let cut = (0..=SHORT)
             .rev()
@@ -161,8 +160,8 @@ mod tests {
 
     #[test]
     fn each_square_root_logarithm_division_and_tangent_is_guarded() {
-        let mut model = check(&parse_str(GUARDED).expect("parses")).expect("checks");
-        let guards = guards(&mut model).expect("guards");
+        let (model, mut cx) = check(&parse_str(GUARDED).expect("parses")).expect("checks");
+        let guards = guards(&model, &mut cx).expect("guards");
         let found = |needle: &str, guard: Guard| {
             guards
                 .iter()

@@ -21,11 +21,10 @@
 //! above `1 - 1e-15`.
 
 use super::{GroupFactor, Symmetry, Variable};
+use crate::sym::Context;
 use crate::sym::modular::{self, ModularError};
 use crate::sym::residues::Values;
-use crate::sym::{
-    ExprId, Function, Matrix, RationalFunction, Store, SymError, SymbolId, SymbolKind,
-};
+use crate::sym::{ExprId, Function, Matrix, RationalFunction, SymError, SymbolId, SymbolKind};
 use std::collections::HashMap;
 
 /// The term products each exact invariance check may take.
@@ -65,19 +64,19 @@ pub(super) struct Invariants<'a> {
 
 /// The first part of the model the group does not preserve, if any.
 pub(super) fn first_broken(
-    store: &mut Store,
+    cx: &mut Context,
     symmetry: &Symmetry,
     model: &Invariants,
 ) -> Result<Option<Broken>, SymError> {
-    let action = group_action(store, symmetry, model.coordinates, model.velocities)?;
-    if !preserved(store, model.kinetic_energy, &action)? {
+    let action = group_action(cx, symmetry, model.coordinates, model.velocities)?;
+    if !preserved(cx, model.kinetic_energy, &action)? {
         return Ok(Some(Broken::KineticEnergy));
     }
-    if !preserved(store, model.potential_energy, &action)? {
+    if !preserved(cx, model.potential_energy, &action)? {
         return Ok(Some(Broken::PotentialEnergy));
     }
     let rows = (model.constraint_matrix, model.constraint_expressions);
-    if !constraints_preserved(store, rows, model.velocities, &action)? {
+    if !constraints_preserved(cx, rows, model.velocities, &action)? {
         return Ok(Some(Broken::Constraints));
     }
     Ok(None)
@@ -85,51 +84,51 @@ pub(super) fn first_broken(
 
 /// The substitution `q -> g q`, `qdot -> g_* qdot` for a generic group element.
 fn group_action(
-    store: &mut Store,
+    cx: &mut Context,
     symmetry: &Symmetry,
     coordinates: &[Variable],
     velocities: &[SymbolId],
 ) -> Result<HashMap<SymbolId, ExprId>, SymError> {
     let mut action = HashMap::new();
     for (index, factor) in symmetry.factors.iter().enumerate() {
-        let parameter = |store: &mut Store, role: &str| {
-            let symbol = store.declare(&format!("group {role} {index}"), SymbolKind::Auxiliary);
-            store.symbol(symbol)
+        let parameter = |cx: &mut Context, role: &str| {
+            let symbol = cx.declare(&format!("group {role} {index}"), SymbolKind::Auxiliary);
+            cx.symbol(symbol)
         };
         match *factor {
             GroupFactor::Se2 { x, y, theta } => {
                 let (angle, shift_x, shift_y) = (
-                    parameter(store, "angle"),
-                    parameter(store, "shift x"),
-                    parameter(store, "shift y"),
+                    parameter(cx, "angle"),
+                    parameter(cx, "shift x"),
+                    parameter(cx, "shift y"),
                 );
                 let (cos, sin) = (
-                    store.apply(Function::Cos, angle)?,
-                    store.apply(Function::Sin, angle)?,
+                    cx.apply(Function::Cos, angle)?,
+                    cx.apply(Function::Sin, angle)?,
                 );
-                let rotate = |store: &mut Store, u: ExprId, v: ExprId| {
-                    let (uc, vs) = (store.mul2(u, cos), store.mul2(v, sin));
-                    let (us, vc) = (store.mul2(u, sin), store.mul2(v, cos));
-                    (store.sub(uc, vs), store.add2(us, vc))
+                let rotate = |cx: &mut Context, u: ExprId, v: ExprId| {
+                    let (uc, vs) = (cx.mul2(u, cos), cx.mul2(v, sin));
+                    let (us, vc) = (cx.mul2(u, sin), cx.mul2(v, cos));
+                    (cx.sub(uc, vs), cx.add2(us, vc))
                 };
                 let (qx, qy, qt) = (
-                    store.symbol(coordinates[x].symbol),
-                    store.symbol(coordinates[y].symbol),
-                    store.symbol(coordinates[theta].symbol),
+                    cx.symbol(coordinates[x].symbol),
+                    cx.symbol(coordinates[y].symbol),
+                    cx.symbol(coordinates[theta].symbol),
                 );
-                let (rx, ry) = rotate(store, qx, qy);
-                action.insert(coordinates[x].symbol, store.add2(rx, shift_x));
-                action.insert(coordinates[y].symbol, store.add2(ry, shift_y));
-                action.insert(coordinates[theta].symbol, store.add2(qt, angle));
-                let (vx, vy) = (store.symbol(velocities[x]), store.symbol(velocities[y]));
-                let (wx, wy) = rotate(store, vx, vy);
+                let (rx, ry) = rotate(cx, qx, qy);
+                action.insert(coordinates[x].symbol, cx.add2(rx, shift_x));
+                action.insert(coordinates[y].symbol, cx.add2(ry, shift_y));
+                action.insert(coordinates[theta].symbol, cx.add2(qt, angle));
+                let (vx, vy) = (cx.symbol(velocities[x]), cx.symbol(velocities[y]));
+                let (wx, wy) = rotate(cx, vx, vy);
                 action.insert(velocities[x], wx);
                 action.insert(velocities[y], wy);
             }
             GroupFactor::Translation(q) | GroupFactor::Rotation(q) => {
-                let shift = parameter(store, "shift");
-                let coordinate = store.symbol(coordinates[q].symbol);
-                action.insert(coordinates[q].symbol, store.add2(coordinate, shift));
+                let shift = parameter(cx, "shift");
+                let coordinate = cx.symbol(coordinates[q].symbol);
+                action.insert(coordinates[q].symbol, cx.add2(coordinate, shift));
             }
         }
     }
@@ -139,76 +138,76 @@ fn group_action(
 /// `f(g q, g_* qdot) = f(q, qdot)`, of the normal form `form` computed by
 /// `expression`.
 fn preserved(
-    store: &mut Store,
+    cx: &mut Context,
     (form, expression): (&RationalFunction, ExprId),
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<bool, SymError> {
-    let exact = |store: &mut Store| exactly_preserved(store, form, action);
+    let exact = |cx: &mut Context| exactly_preserved(cx, form, action);
     if form.is_written_out()
-        && let Some(decided) = store.attempt(EXACT_INVARIANCE_PRODUCTS, exact)
+        && let Some(decided) = cx.attempt(EXACT_INVARIANCE_PRODUCTS, exact)
     {
         return decided;
     }
-    match preserved_at_points(store, expression, action)? {
+    match preserved_at_points(cx, expression, action)? {
         Ok(preserved) => Ok(preserved),
-        Err(_) => exact(store),
+        Err(_) => exact(cx),
     }
 }
 
 /// `f(g q, g_* qdot) - f(q, qdot)` at two random points.
 fn preserved_at_points(
-    store: &mut Store,
+    cx: &mut Context,
     expression: ExprId,
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<Result<bool, ModularError>, SymError> {
-    let moved = store.substitute(expression, action)?;
-    let difference = store.sub(moved, expression);
-    Ok(all_zero_at_points(store, &[], &[difference], |values| {
+    let moved = cx.substitute(expression, action)?;
+    let difference = cx.sub(moved, expression);
+    Ok(all_zero_at_points(cx, &[], &[difference], |values| {
         values[0] == 0
     }))
 }
 
 /// `f(g q, g_* qdot) = f(q, qdot)` by the normal form of the difference.
 fn exactly_preserved(
-    store: &mut Store,
+    cx: &mut Context,
     form: &RationalFunction,
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<bool, SymError> {
-    let moved = transformed(store, form, action)?;
-    Ok(moved.sub(form, store.atoms()).is_zero())
+    let moved = transformed(cx, form, action)?;
+    Ok(moved.sub(form, cx.atoms()).is_zero())
 }
 
 /// `holds` at two random points where the normal forms `forms` and the
 /// expressions `expressions` are defined (their values, in that order);
 /// false at the first point where it fails.
 fn all_zero_at_points(
-    store: &mut Store,
+    cx: &mut Context,
     forms: &[RationalFunction],
     expressions: &[ExprId],
     holds: impl Fn(&[u64]) -> bool,
 ) -> Result<bool, ModularError> {
     let verdicts = modular::at_defined_points(modular::SEEDS.len(), |point| {
         let mut values = Values::at(point);
-        let mut evaluated = store.evaluate_normal_modular(forms, &mut values)?;
-        evaluated.extend(values.of(store, expressions)?);
+        let mut evaluated = cx.evaluate_normal_modular(forms, &mut values)?;
+        evaluated.extend(values.of(cx, expressions)?);
         Ok(holds(&evaluated))
     })?;
     Ok(verdicts.into_iter().all(|holds| holds))
 }
 
 fn transformed(
-    store: &mut Store,
+    cx: &mut Context,
     form: &RationalFunction,
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<RationalFunction, SymError> {
-    let expression = store.expression_of(form);
-    let moved = store.substitute(expression, action)?;
-    store.normal(moved)
+    let expression = cx.expression_of(form);
+    let moved = cx.substitute(expression, action)?;
+    cx.normal(moved)
 }
 
 /// The transformed constraint rows stay in the row space of `A(q)`.
 fn constraints_preserved(
-    store: &mut Store,
+    cx: &mut Context,
     (a, expressions): (&Matrix, &Matrix<ExprId>),
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
@@ -216,21 +215,21 @@ fn constraints_preserved(
     if a.rows() == 0 {
         return Ok(true);
     }
-    let exact = |store: &mut Store| exactly_constraints_preserved(store, a, velocities, action);
+    let exact = |cx: &mut Context| exactly_constraints_preserved(cx, a, velocities, action);
     if a.is_written_out()
-        && let Some(decided) = store.attempt(EXACT_INVARIANCE_PRODUCTS, exact)
+        && let Some(decided) = cx.attempt(EXACT_INVARIANCE_PRODUCTS, exact)
     {
         return decided;
     }
-    match constraints_preserved_at_points(store, expressions, velocities, action)? {
+    match constraints_preserved_at_points(cx, expressions, velocities, action)? {
         Ok(preserved) => Ok(preserved),
-        Err(_) => exact(store),
+        Err(_) => exact(cx),
     }
 }
 
 /// The rank of `A(q)` stacked on the transformed rows at two random points.
 fn constraints_preserved_at_points(
-    store: &mut Store,
+    cx: &mut Context,
     a: &Matrix<ExprId>,
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
@@ -238,18 +237,18 @@ fn constraints_preserved_at_points(
     let (c, n) = (a.rows(), a.columns());
     let mut stacked = a.entries().to_vec();
     for i in 0..c {
-        let residual = moved_residual(store, a, i, velocities, action)?;
+        let residual = moved_residual(cx, a, i, velocities, action)?;
         for &velocity in velocities {
-            stacked.push(store.derivative(residual, velocity));
+            stacked.push(cx.derivative(residual, velocity));
         }
     }
     let in_row_space = |values: &[u64]| modular::rank(values.to_vec(), 2 * c, n) == c;
-    Ok(all_zero_at_points(store, &[], &stacked, in_row_space))
+    Ok(all_zero_at_points(cx, &[], &stacked, in_row_space))
 }
 
 /// `sum_j A_ij(g q) (g_* qdot)_j` as an expression.
 fn moved_residual(
-    store: &mut Store,
+    cx: &mut Context,
     a: &Matrix<ExprId>,
     i: usize,
     velocities: &[SymbolId],
@@ -259,41 +258,41 @@ fn moved_residual(
         .iter()
         .enumerate()
         .map(|(j, &velocity)| {
-            let velocity = store.symbol(velocity);
-            store.mul2(*a.get(i, j), velocity)
+            let velocity = cx.symbol(velocity);
+            cx.mul2(*a.get(i, j), velocity)
         })
         .collect();
-    let residual = store.add(&terms);
-    store.substitute(residual, action)
+    let residual = cx.add(&terms);
+    cx.substitute(residual, action)
 }
 
 /// The exact rank of `A(q)` stacked on the transformed rows is `c`.
 fn exactly_constraints_preserved(
-    store: &mut Store,
+    cx: &mut Context,
     a: &Matrix,
     velocities: &[SymbolId],
     action: &HashMap<SymbolId, ExprId>,
 ) -> Result<bool, SymError> {
     let (c, n) = (a.rows(), a.columns());
-    let atoms = store.atoms().clone();
+    let atoms = cx.atoms().clone();
     let mut stacked = a.entries().to_vec();
     for i in 0..c {
         // the residual row i, moved: sum_j A_ij(g q) (g_* qdot)_j
         let mut residual = RationalFunction::zero();
         for (j, &velocity) in velocities.iter().enumerate() {
-            let atom = store.symbol_atom(velocity);
+            let atom = cx.symbol_atom(velocity);
             let term = a.get(i, j).mul(
                 &RationalFunction::from_poly(crate::sym::Poly::atom(atom)),
                 &atoms,
             );
             residual = residual.add(&term, &atoms);
         }
-        let moved = transformed(store, &residual, action)?;
+        let moved = transformed(cx, &residual, action)?;
         for &velocity in velocities {
-            stacked.push(store.derivative_of_normal(&moved, velocity)?);
+            stacked.push(cx.derivative_of_normal(&moved, velocity)?);
         }
     }
-    let atoms = store.atoms().clone();
+    let atoms = cx.atoms().clone();
     let rank = Matrix::new(2 * c, n, stacked).map_or(0, |m| m.rank(&atoms));
     Ok(rank == c)
 }
@@ -311,17 +310,16 @@ mod tests {
     /// invariant under its se2, a potential `x` and a row `dot(x) = 0` are not.
     #[test]
     fn invariance_is_decided_at_points_as_by_normal_forms() {
-        let mut model = check(&parse_str(SLEIGH).expect("parses")).expect("checks");
+        let (model, mut cx) = check(&parse_str(SLEIGH).expect("parses")).expect("checks");
         let symmetry = model.symmetry.clone().expect("se2");
         let velocities = model.velocities.clone();
-        let store = &mut model.store;
         let action =
-            group_action(store, &symmetry, &model.coordinates, &velocities).expect("an action");
+            group_action(&mut cx, &symmetry, &model.coordinates, &velocities).expect("an action");
         let x =
-            RationalFunction::from_poly(Poly::atom(store.symbol_atom(model.coordinates[0].symbol)));
+            RationalFunction::from_poly(Poly::atom(cx.symbol_atom(model.coordinates[0].symbol)));
         for (form, invariant) in [(&model.kinetic_energy, true), (&x, false)] {
-            let expression = store.expression_of(form);
-            let decided = preserved_at_points(store, expression, &action)
+            let expression = cx.expression_of(form);
+            let decided = preserved_at_points(&mut cx, expression, &action)
                 .expect("substitutes")
                 .expect("in the class");
             assert_eq!(decided, invariant, "{form:?}");
@@ -337,8 +335,8 @@ mod tests {
         )
         .expect("1 x 3");
         for (rows, invariant) in [(&model.constraint_matrix, true), (&forward, false)] {
-            let rows = rows.to_expression_matrix(store);
-            let decided = constraints_preserved_at_points(store, &rows, &velocities, &action)
+            let rows = rows.to_expression_matrix(&mut cx);
+            let decided = constraints_preserved_at_points(&mut cx, &rows, &velocities, &action)
                 .expect("substitutes")
                 .expect("in the class");
             assert_eq!(decided, invariant, "{rows:?}");

@@ -7,7 +7,7 @@
 //! an operator are lowered even when one fails, so all errors are reported.
 
 use crate::diagnostic::Diagnostics;
-use crate::sym::{ExprId, Node, Rational, Store, SymError, SymbolId};
+use crate::sym::{Context, ExprId, Node, Rational, SymError, SymbolId};
 use crate::syntax::{BinaryOperator, Expr, Value};
 use proc_macro2::Span;
 use std::collections::HashMap;
@@ -41,7 +41,7 @@ pub(super) const FUNCTIONS: [&str; 6] = ["sin", "cos", "tan", "sqrt", "exp", "ln
 
 /// Lowers expressions, collecting diagnostics.
 pub(super) struct Lowerer<'a> {
-    pub(super) store: &'a mut Store,
+    pub(super) cx: &'a mut Context,
     pub(super) scope: &'a Scope,
     pub(super) diagnostics: &'a mut Diagnostics,
 }
@@ -66,7 +66,7 @@ impl Lowerer<'_> {
             }
             Expr::Negate { operand, .. } => {
                 let operand = self.lower(operand)?;
-                Some(self.store.neg(operand))
+                Some(self.cx.neg(operand))
             }
             Expr::Binary {
                 operator,
@@ -79,7 +79,7 @@ impl Lowerer<'_> {
 
     fn number(&mut self, literal: &str, span: Span) -> Option<ExprId> {
         match Rational::from_decimal(literal) {
-            Some(value) => Some(self.store.number(value)),
+            Some(value) => Some(self.cx.number(value)),
             None => {
                 self.diagnostics.error(
                     span,
@@ -93,7 +93,7 @@ impl Lowerer<'_> {
     fn name(&mut self, name: &str, span: Span) -> Option<ExprId> {
         match self.scope.get(name) {
             Some(Binding::Coordinate(symbol) | Binding::Parameter(symbol)) => {
-                Some(self.store.symbol(symbol))
+                Some(self.cx.symbol(symbol))
             }
             Some(Binding::Definition(expression)) => Some(expression),
             None => {
@@ -135,7 +135,7 @@ impl Lowerer<'_> {
             return None;
         };
         let argument = self.scalar_argument(argument)?;
-        let applied = self.store.apply_named(&name, argument);
+        let applied = self.cx.apply_named(&name, argument);
         self.report(applied, function.span())
     }
 
@@ -169,8 +169,8 @@ impl Lowerer<'_> {
         let name = argument.to_string();
         match self.scope.get(&name) {
             Some(Binding::Coordinate(coordinate)) => {
-                let velocity = self.store.velocity_of(coordinate);
-                Some(self.store.symbol(velocity))
+                let velocity = self.cx.velocity_of(coordinate);
+                Some(self.cx.symbol(velocity))
             }
             Some(_) => {
                 self.diagnostics.error(
@@ -197,22 +197,22 @@ impl Lowerer<'_> {
         let right_value = self.lower(right);
         let (a, b) = (left_value?, right_value?);
         match operator {
-            BinaryOperator::Add => Some(self.store.add2(a, b)),
-            BinaryOperator::Subtract => Some(self.store.sub(a, b)),
-            BinaryOperator::Multiply => Some(self.store.mul2(a, b)),
+            BinaryOperator::Add => Some(self.cx.add2(a, b)),
+            BinaryOperator::Subtract => Some(self.cx.sub(a, b)),
+            BinaryOperator::Multiply => Some(self.cx.mul2(a, b)),
             BinaryOperator::Divide => {
-                let quotient = self.store.div(a, b);
+                let quotient = self.cx.div(a, b);
                 self.report(quotient, span)
             }
             BinaryOperator::Power => {
-                let Node::Number(exponent) = self.store.node(b).clone() else {
+                let Node::Number(exponent) = self.cx.node(b).clone() else {
                     self.diagnostics.error(
                         right.first_span(),
                         "an exponent must be a constant number (an integer or a fraction like 1/2)",
                     );
                     return None;
                 };
-                let power = self.store.pow(a, exponent);
+                let power = self.cx.pow(a, exponent);
                 self.report(power, span)
             }
         }

@@ -11,6 +11,12 @@
 //! [`mechanism`] stage, and joined to the declared ones. Every rule of the
 //! model language is one function in [`check`]; all violations are reported
 //! at once.
+//!
+//! The model is plain data: ids of expressions and normal forms. The
+//! expressions themselves, the atoms the normal forms are written over and
+//! the engine's caches live in the [`Context`] that [`check`] returns
+//! beside it; every later stage reads the model by `&` and extends the
+//! context through one `&mut`.
 
 mod check;
 pub mod domain;
@@ -25,7 +31,7 @@ pub use mechanism::bodies::BodyMotion;
 pub use mechanism::{Mechanism, MechanismExpressions};
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
-use crate::sym::{ExprId, Matrix, Rational, RationalFunction, Store, SymbolId};
+use crate::sym::{Context, ExprId, Matrix, Rational, RationalFunction, SymbolId};
 use proc_macro2::{Ident, Span, TokenStream};
 
 /// A name the user declared, with where they declared it.
@@ -42,7 +48,7 @@ pub struct Declared {
 pub struct Variable {
     /// The declaration.
     pub declared: Declared,
-    /// Its symbol in the model's store.
+    /// Its symbol in the model's context.
     pub symbol: SymbolId,
 }
 
@@ -100,7 +106,7 @@ pub struct MomentumBasis {
 }
 
 /// The energies and the metric as expressions
-/// ([`crate::sym::Store::compact_expression`]): the normal forms written out,
+/// ([`Context::compact_expression`]): the normal forms written out,
 /// or for a mechanism's large entries the expressions they were derived as
 /// from the bodies' velocities (equal to the normal forms).
 #[derive(Clone, Debug)]
@@ -131,8 +137,6 @@ pub struct Model {
     pub visibility: TokenStream,
     /// Attribute options.
     pub options: Options,
-    /// The expression store holding every expression of the model.
-    pub store: Store,
     /// Whether emission writes each item's Rust statements (the macro and
     /// the build script) or only lowers its program (the interpreter, which
     /// runs the programs: writing the benchmark bicycle's 105 MB of Rust
@@ -204,19 +208,15 @@ impl Model {
         self.parameters.iter().map(|p| p.variable.symbol).collect()
     }
 
-    /// Runs `work` on a derivation budget of `limit` term products nested in
-    /// the model's ([`crate::sym::Store::attempt`]): its result, or `None`
-    /// when the nested budget ran out.
-    pub fn attempt<T>(&mut self, limit: u64, work: impl FnOnce(&mut Model) -> T) -> Option<T> {
-        let trial = self.store.enter_attempt(limit);
-        let result = work(self);
-        self.store.leave_attempt(trial).then_some(result)
-    }
-
     /// The normal form of a scalar expression written in the model language
     /// over this model's coordinates, parameters and velocities `dot(q)`,
-    /// e.g. a hand-derived energy to compare with the derived one.
-    pub fn normal_of_text(&mut self, text: &str) -> Result<RationalFunction, Diagnostics> {
+    /// e.g. a hand-derived energy to compare with the derived one, in the
+    /// model's context `cx`.
+    pub fn normal_of_text(
+        &self,
+        cx: &mut Context,
+        text: &str,
+    ) -> Result<RationalFunction, Diagnostics> {
         let syntax = crate::syntax::parse_str(&format!("struct Expression {{ value: {text} }}"))?;
         let Some(expr) = syntax.sections.first().and_then(|s| s.value.as_expr()) else {
             return Err(Diagnostic::new(syntax.name.span(), "expected one expression").into());
@@ -232,7 +232,7 @@ impl Model {
         }
         let mut diagnostics = Diagnostics::default();
         let lowered = lower::Lowerer {
-            store: &mut self.store,
+            cx,
             scope: &scope,
             diagnostics: &mut diagnostics,
         }
@@ -240,8 +240,7 @@ impl Model {
         let Some(id) = lowered else {
             return Err(diagnostics);
         };
-        self.store
-            .normal(id)
+        cx.normal(id)
             .map_err(|error| Diagnostic::new(expr.first_span(), error.to_string()).into())
     }
 

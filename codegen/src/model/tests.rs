@@ -2,10 +2,11 @@
 
 use super::{Model, check};
 use crate::fixtures::SNAKEBOARD;
+use crate::sym::Context;
 use crate::sym::{Function, Matrix};
 use crate::syntax::parse_str;
 
-fn checked(source: &str) -> Model {
+fn checked(source: &str) -> (Model, Context) {
     let syntax = parse_str(source).expect("parses");
     check(&syntax).unwrap_or_else(|e| panic!("{}", e.render("test.model")))
 }
@@ -18,26 +19,21 @@ fn errors(source: &str) -> String {
         .render("m.model")
 }
 
-/// The paper's basis of D (MATH.md 3.1) as a 5 x 3 matrix in the model's store:
+/// The paper's basis of D (MATH.md 3.1) as a 5 x 3 matrix in the model's context:
 /// `r cos(theta) d_x + r sin(theta) d_y + tan(phi) d_theta`, `d_psi`, `d_phi`.
-fn papers_distribution(model: &mut Model) -> Matrix {
-    let store = &mut model.store;
-    let symbol = |store: &mut crate::sym::Store, name: &str| {
-        let id = store.find_symbol(name).expect("declared");
-        store.symbol(id)
+fn papers_distribution(cx: &mut Context) -> Matrix {
+    let symbol = |cx: &mut Context, name: &str| {
+        let id = cx.find_symbol(name).expect("declared");
+        cx.symbol(id)
     };
-    let (r, theta, phi) = (
-        symbol(store, "r"),
-        symbol(store, "theta"),
-        symbol(store, "phi"),
-    );
-    let cos_theta = store.apply(Function::Cos, theta).expect("cos");
-    let sin_theta = store.apply(Function::Sin, theta).expect("sin");
-    let tan_phi = store.apply(Function::Tan, phi).expect("tan");
-    let (zero, one) = (store.integer(0), store.integer(1));
+    let (r, theta, phi) = (symbol(cx, "r"), symbol(cx, "theta"), symbol(cx, "phi"));
+    let cos_theta = cx.apply(Function::Cos, theta).expect("cos");
+    let sin_theta = cx.apply(Function::Sin, theta).expect("sin");
+    let tan_phi = cx.apply(Function::Tan, phi).expect("tan");
+    let (zero, one) = (cx.integer(0), cx.integer(1));
     let rolling = [
-        store.mul2(r, cos_theta),
-        store.mul2(r, sin_theta),
+        cx.mul2(r, cos_theta),
+        cx.mul2(r, sin_theta),
         tan_phi,
         zero,
         zero,
@@ -48,12 +44,12 @@ fn papers_distribution(model: &mut Model) -> Matrix {
         let phi = if i == 4 { one } else { zero };
         entries.extend([component, psi, phi]);
     }
-    Matrix::from_expressions(store, 5, 3, &entries).expect("5 x 3")
+    Matrix::from_expressions(cx, 5, 3, &entries).expect("5 x 3")
 }
 
 #[test]
 fn snakeboard_metric_is_the_hand_derived_g() {
-    let model = checked(SNAKEBOARD);
+    let (model, cx) = checked(SNAKEBOARD);
     assert_eq!((model.n(), model.c(), model.k(), model.p()), (5, 2, 3, 2));
     assert!(model.mass_matrix.is_symmetric());
     // MATH.md 3.1: g = [[m,0,0,0,0],[0,m,0,0,0],[0,0,J,Jt,0],[0,0,Jt,Jt,0],[0,0,0,0,Jw]],
@@ -67,9 +63,9 @@ fn snakeboard_metric_is_the_hand_derived_g() {
         [0.0, 0.0, jt, jt, 0.0],
         [0.0, 0.0, 0.0, 0.0, jw],
     ];
-    let mut store = model.store.clone();
+    let mut cx = cx.clone();
     let names: Vec<String> = ["m", "r", "jt", "jw"].map(String::from).to_vec();
-    let lookup = store.clone();
+    let lookup = cx.clone();
     let value_of = |s| {
         let name = &lookup.symbol_info(s).name;
         names
@@ -77,7 +73,7 @@ fn snakeboard_metric_is_the_hand_derived_g() {
             .position(|n| n == name)
             .map_or(0.3, |i| [m, r, jt, jw][i])
     };
-    let numbers = model.mass_matrix.evaluate(&mut store, &value_of);
+    let numbers = model.mass_matrix.evaluate(&mut cx, &value_of);
     for (i, row) in expected.iter().enumerate() {
         for (k, value) in row.iter().enumerate() {
             assert!((numbers[i * 5 + k] - value).abs() < 1e-15, "g[{i}][{k}]");
@@ -87,9 +83,9 @@ fn snakeboard_metric_is_the_hand_derived_g() {
 
 #[test]
 fn snakeboard_constraints_annihilate_the_papers_distribution_exactly() {
-    let mut model = checked(SNAKEBOARD);
-    let fields = papers_distribution(&mut model);
-    let atoms = model.store.atoms().clone();
+    let (model, mut cx) = checked(SNAKEBOARD);
+    let fields = papers_distribution(&mut cx);
+    let atoms = cx.atoms().clone();
     let product = model
         .constraint_matrix
         .mul(&fields, &atoms)
@@ -103,7 +99,7 @@ fn a_declared_distribution_yields_constraints_with_the_same_kernel() {
         .replace("constraints: [", "distribution: [ rolling = [r*cos(theta), r*sin(theta), tan(phi), 0, 0], torso = [0, 0, 0, 1, 0], wheels = [0, 0, 0, 0, 1] ], ignored: [")
         .replace("ignored: [", "")
         .replace("front = -sin(theta + phi)*dot(x) + cos(theta + phi)*dot(y) + r*cos(phi)*dot(theta),\n        back  = -sin(theta - phi)*dot(x) + cos(theta - phi)*dot(y) - r*cos(phi)*dot(theta),\n    ],\n", "");
-    let mut model = checked(&text);
+    let (model, mut cx) = checked(&text);
     assert_eq!(
         model
             .constraints
@@ -112,8 +108,8 @@ fn a_declared_distribution_yields_constraints_with_the_same_kernel() {
             .collect::<Vec<_>>(),
         ["c1", "c2"]
     );
-    let fields = papers_distribution(&mut model);
-    let atoms = model.store.atoms().clone();
+    let fields = papers_distribution(&mut cx);
+    let atoms = cx.atoms().clone();
     assert!(
         model
             .constraint_matrix
@@ -126,7 +122,7 @@ fn a_declared_distribution_yields_constraints_with_the_same_kernel() {
 
 #[test]
 fn snakeboard_momentum_basis_is_accepted_and_a_wrong_one_rejected() {
-    let model = checked(SNAKEBOARD);
+    let (model, _) = checked(SNAKEBOARD);
     let basis = model.momentum_basis.as_ref().expect("declared");
     assert_eq!(basis.rows.rows(), 3);
     let broken = SNAKEBOARD.replace("torso  = [0, 0, 1, 1, 0]", "torso  = [0, 0, 1, 0, 0]");
@@ -239,7 +235,7 @@ fn the_sleighs_documented_momentum_basis_is_accepted() {
         "momentum_basis: [forward = [cos(theta), sin(theta), 0], \
          turning = [-m*a*sin(theta), m*a*cos(theta), inertia + m*a^2]], symmetry:",
     );
-    let model = checked(&source);
+    let (model, _) = checked(&source);
     assert_eq!(model.momentum_basis.expect("declared").names.len(), 2);
     let wrong = source.replace("inertia + m*a^2]]", "inertia]]");
     assert!(errors(&wrong).contains("momentum-basis row `turning` is not in g(D)"));
@@ -247,18 +243,17 @@ fn the_sleighs_documented_momentum_basis_is_accepted() {
 
 /// The values of `exact` and `computed` at one random point, entry by
 /// entry, to 1e-12 relative.
-fn assert_same_values(model: &mut Model, exact: &Matrix, computed: &Matrix<crate::sym::ExprId>) {
+fn assert_same_values(cx: &mut Context, exact: &Matrix, computed: &Matrix<crate::sym::ExprId>) {
     let mut random = crate::sym::zero::SplitMix::new(7);
-    let values: std::collections::HashMap<_, f64> = model
-        .store
+    let values: std::collections::HashMap<_, f64> = cx
         .symbols()
         .map(|(id, _)| (id, random.uniform(-1.0, 1.0)))
         .collect();
     let value_of = |s| values[&s];
     for i in 0..exact.rows() {
         for j in 0..exact.columns() {
-            let expected = model.store.evaluate_normal(exact.get(i, j), &value_of);
-            let found = model.store.evaluate(*computed.get(i, j), &value_of);
+            let expected = cx.evaluate_normal(exact.get(i, j), &value_of);
+            let found = cx.evaluate(*computed.get(i, j), &value_of);
             assert!(
                 (expected - found).abs() <= 1e-12 * (1.0 + expected.abs()),
                 "[{i}][{j}]: {expected} vs {found}"
@@ -273,15 +268,15 @@ fn assert_same_values(model: &mut Model, exact: &Matrix, computed: &Matrix<crate
 /// normal forms written out.
 #[test]
 fn the_bicycles_rows_keep_their_derivation_and_its_values() {
-    let mut model = checked(include_str!("../../../models/bicycle.model"));
+    let (model, mut cx) = checked(include_str!("../../../models/bicycle.model"));
     let (exact, computed) = (
         model.constraint_matrix.clone(),
         model.constraint_expressions.clone(),
     );
-    assert_same_values(&mut model, &exact, &computed);
-    let expanded = model.constraint_matrix.to_expressions(&mut model.store);
-    let written_out = crate::ir::estimated_weight(&model.store, &expanded);
-    let kept = crate::ir::estimated_weight(&model.store, model.constraint_expressions.entries());
+    assert_same_values(&mut cx, &exact, &computed);
+    let expanded = model.constraint_matrix.to_expressions(&mut cx);
+    let written_out = crate::ir::estimated_weight(&cx, &expanded);
+    let kept = crate::ir::estimated_weight(&cx, model.constraint_expressions.entries());
     assert!(kept * 2 < written_out, "{kept} vs {written_out}");
 }
 /// Kane's form of the bodies' metric, `sum m J_v^T J_v + J_w^T I J_w`,
@@ -295,29 +290,25 @@ fn the_bodies_kane_metric_is_the_hessian_of_their_energy() {
         include_str!("../../../models/caster_robot.model"),
         include_str!("../../../models/sleigh_bodies.model"),
     ] {
-        let mut model = checked(source);
+        let (model, mut cx) = checked(source);
         let velocities = model.velocities.clone();
         let n = velocities.len();
         let kinetic = model.mechanism.kinetic_energy.clone();
-        let rates = model
-            .store
+        let rates = cx
             .jacobian(std::slice::from_ref(&kinetic), &velocities)
             .expect("fits");
-        let hessian = model
-            .store
-            .jacobian(rates.entries(), &velocities)
-            .expect("fits");
-        let mut kane = vec![model.store.integer(0); n * n];
+        let hessian = cx.jacobian(rates.entries(), &velocities).expect("fits");
+        let mut kane = vec![cx.integer(0); n * n];
         for body in model.energy_expressions.bodies.clone() {
-            let entries = body.mass_matrix(&mut model.store, &velocities);
+            let entries = body.mass_matrix(&mut cx, &velocities);
             for (sum, entry) in kane.iter_mut().zip(entries) {
-                *sum = model.store.add2(*sum, entry);
+                *sum = cx.add2(*sum, entry);
             }
         }
         for (index, &entry) in kane.iter().enumerate() {
-            let form = model.store.normal(entry).expect("fits");
+            let form = cx.normal(entry).expect("fits");
             let exact = hessian.get(index / n, index % n);
-            let difference = form.sub(exact, model.store.atoms());
+            let difference = form.sub(exact, cx.atoms());
             assert!(difference.is_zero(), "{}: g[{index}]", model.name);
         }
     }
@@ -327,10 +318,10 @@ fn the_bodies_kane_metric_is_the_hessian_of_their_energy() {
 /// entries in Kane's form) takes the values of its exact normal forms.
 #[test]
 fn the_bicycles_metric_as_computed_takes_its_exact_values() {
-    let mut model = checked(include_str!("../../../models/bicycle.model"));
+    let (model, mut cx) = checked(include_str!("../../../models/bicycle.model"));
     let (exact, computed) = (
         model.mass_matrix.clone(),
         model.energy_expressions.mass_matrix.clone(),
     );
-    assert_same_values(&mut model, &exact, &computed);
+    assert_same_values(&mut cx, &exact, &computed);
 }

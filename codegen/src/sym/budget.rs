@@ -13,12 +13,12 @@
 //!
 //! The budget is shared by a [`super::Store`] and every copy of its atom
 //! table. Once it is spent, products return zero without being computed (so
-//! the rest of the derivation finishes quickly), [`super::Store::normal`]
+//! the rest of the derivation finishes quickly), [`super::Context::normal`]
 //! reports [`super::SymError::BudgetExceeded`], and the compiler reports that
 //! one error instead of whatever the truncated computation concluded.
 //!
 //! A derivation that has a cheaper alternative tries the expensive one on a
-//! [`Budget::nested`] budget ([`super::Store::attempt`]): its products count
+//! [`Budget::nested`] budget ([`super::Context::attempt`]): its products count
 //! against both, and when the nested limit is reached the attempt is
 //! abandoned while the outer budget goes on.
 

@@ -1,12 +1,13 @@
 //! Differentiation and substitution.
 //!
-//! On expressions ([`Store::derivative`]) by the usual rules, memoized over
+//! On expressions ([`Context::derivative`]) by the usual rules, memoized over
 //! the DAG so a shared sub-expression is differentiated once; on normal forms
-//! ([`Store::derivative_of_normal`]) term by term, with
+//! ([`Context::derivative_of_normal`]) term by term, with
 //! `d sin u = cos u du`, `d cos u = -sin u du`, `d u^(p/q) = (p/q) u^(p/q) du / u`,
 //! `d exp u = exp u du`, `d ln u = du / u`, and the quotient rule on the
 //! factored denominator `d(N/F) = (dN - N sum_i k_i df_i / f_i) / F`.
 
+use super::context::Context;
 use super::expr::{ExprId, Function, Node, Store, SymError, SymbolId};
 use super::normal::RationalFunction;
 use super::number::Rational;
@@ -14,7 +15,7 @@ use super::poly::{Atom, AtomId, Monomial, Poly};
 use rustc_hash::FxHashMap;
 use std::collections::HashMap;
 
-impl Store {
+impl Context {
     /// `d root / d symbol` as an expression.
     pub fn derivative(&mut self, root: ExprId, symbol: SymbolId) -> ExprId {
         self.derivatives(&[root], symbol)[0]
@@ -90,34 +91,6 @@ impl Store {
             Function::Exp => self.apply_to_expression(Function::Exp, argument),
             Function::Ln => self.pow_of_expression(argument, Rational::integer(-1)),
         }
-    }
-
-    /// Replaces symbols by expressions. Fails when the result divides by an
-    /// exact zero or leaves a function's domain at a constant (`ln(0)`).
-    pub fn substitute(
-        &mut self,
-        root: ExprId,
-        replacements: &HashMap<SymbolId, ExprId>,
-    ) -> Result<ExprId, SymError> {
-        let mut rebuilt: FxHashMap<ExprId, ExprId> = FxHashMap::default();
-        for id in self.reachable(&[root]) {
-            let new = match self.node(id).clone() {
-                Node::Symbol(s) => replacements.get(&s).copied().unwrap_or(id),
-                Node::Number(_) => id,
-                Node::Add(terms) => {
-                    let terms: Vec<ExprId> = terms.iter().map(|t| rebuilt[t]).collect();
-                    self.add(&terms)
-                }
-                Node::Mul(factors) => {
-                    let factors: Vec<ExprId> = factors.iter().map(|f| rebuilt[f]).collect();
-                    self.mul(&factors)
-                }
-                Node::Pow(base, exponent) => self.pow(rebuilt[&base], exponent)?,
-                Node::Call(function, argument) => self.apply(function, rebuilt[&argument])?,
-            };
-            rebuilt.insert(id, new);
-        }
-        Ok(rebuilt[&root])
     }
 
     /// `d form / d symbol`, in normal form.
@@ -250,6 +223,36 @@ impl Store {
             }
             _ => Ok(RationalFunction::zero()),
         }
+    }
+}
+
+impl Store {
+    /// Replaces symbols by expressions. Fails when the result divides by an
+    /// exact zero or leaves a function's domain at a constant (`ln(0)`).
+    pub fn substitute(
+        &mut self,
+        root: ExprId,
+        replacements: &HashMap<SymbolId, ExprId>,
+    ) -> Result<ExprId, SymError> {
+        let mut rebuilt: FxHashMap<ExprId, ExprId> = FxHashMap::default();
+        for id in self.reachable(&[root]) {
+            let new = match self.node(id).clone() {
+                Node::Symbol(s) => replacements.get(&s).copied().unwrap_or(id),
+                Node::Number(_) => id,
+                Node::Add(terms) => {
+                    let terms: Vec<ExprId> = terms.iter().map(|t| rebuilt[t]).collect();
+                    self.add(&terms)
+                }
+                Node::Mul(factors) => {
+                    let factors: Vec<ExprId> = factors.iter().map(|f| rebuilt[f]).collect();
+                    self.mul(&factors)
+                }
+                Node::Pow(base, exponent) => self.pow(rebuilt[&base], exponent)?,
+                Node::Call(function, argument) => self.apply(function, rebuilt[&argument])?,
+            };
+            rebuilt.insert(id, new);
+        }
+        Ok(rebuilt[&root])
     }
 }
 

@@ -5,6 +5,7 @@
 //! reference: the IR interpreter, the emitted Rust and the randomized zero test
 //! are all checked against it.
 
+use super::context::Context;
 use super::expr::{ExprId, Node, Store, SymbolId};
 
 impl Store {
@@ -42,7 +43,7 @@ impl Store {
     }
 }
 
-impl Store {
+impl Context {
     /// The value of a normal form, each atom evaluated through its expression.
     pub fn evaluate_normal(
         &mut self,

@@ -6,12 +6,12 @@
 //! parents (the store is a topologically sorted DAG). Constructors apply only
 //! cheap, always-valid rewrites (flattening, constant folding, collecting
 //! `c*x + d*x` and `x^a * x^b`, sorting operands); the canonical form used for
-//! exact zero tests lives in [`super::normal`], and the store computes and
-//! memoizes each expression's normal form (`expr/normal_form.rs`).
+//! exact zero tests lives in [`super::normal`], and the store's
+//! [`Context`](super::context::Context) computes and memoizes each
+//! expression's normal form.
 
 mod arithmetic;
 mod display;
-mod normal_form;
 #[cfg(test)]
 mod tests;
 
@@ -155,12 +155,6 @@ pub enum SymError {
 /// decimal digits); larger powers are rejected rather than computed.
 pub const MAX_CONSTANT_BITS: u64 = 1 << 16;
 
-/// A nested budget being charged instead of the store's own.
-pub(crate) struct Attempt {
-    trial: super::Budget,
-    outer: super::Budget,
-}
-
 /// The expression arena with its symbol table.
 #[derive(Default, Clone)]
 pub struct Store {
@@ -169,10 +163,6 @@ pub struct Store {
     symbols: Vec<Symbol>,
     symbol_index: HashMap<String, SymbolId>,
     velocities: HashMap<SymbolId, SymbolId>,
-    pub(crate) atoms: super::poly::Atoms,
-    pub(crate) normal_forms: HashMap<ExprId, super::normal::RationalFunction>,
-    /// `d node / d symbol` of the nodes differentiated so far, per symbol.
-    pub(crate) derivative_memo: HashMap<SymbolId, HashMap<ExprId, ExprId>>,
 }
 
 impl fmt::Debug for Store {
@@ -188,45 +178,6 @@ impl Store {
     /// An empty store.
     pub fn new() -> Store {
         Store::default()
-    }
-
-    /// An empty store whose normal forms are charged to `budget`.
-    pub fn with_budget(budget: super::Budget) -> Store {
-        Store {
-            atoms: super::poly::Atoms::with_budget(budget),
-            ..Store::default()
-        }
-    }
-
-    /// The derivation budget of this store.
-    pub fn budget(&self) -> &super::Budget {
-        self.atoms.budget()
-    }
-
-    /// Runs `work` on a budget of `limit` term products nested in this
-    /// store's ([`super::Budget::nested`]): its result, or `None` when the
-    /// nested budget ran out (the result is then truncated and dropped).
-    /// The limit is cut to what this store's budget has left, so an attempt
-    /// never spends it.
-    pub fn attempt<T>(&mut self, limit: u64, work: impl FnOnce(&mut Store) -> T) -> Option<T> {
-        let trial = self.enter_attempt(limit);
-        let result = work(self);
-        self.leave_attempt(trial).then_some(result)
-    }
-
-    /// Starts charging a nested budget of `limit` (see [`Store::attempt`]).
-    pub(crate) fn enter_attempt(&mut self, limit: u64) -> Attempt {
-        let budget = self.budget();
-        let left = budget.limit().saturating_sub(budget.used());
-        let trial = budget.nested(limit.min(left.saturating_sub(1)));
-        let outer = self.atoms.replace_budget(trial.clone());
-        Attempt { trial, outer }
-    }
-
-    /// Ends an attempt: true when it stayed within its nested budget.
-    pub(crate) fn leave_attempt(&mut self, attempt: Attempt) -> bool {
-        self.atoms.replace_budget(attempt.outer);
-        !attempt.trial.is_exhausted()
     }
 
     /// The node behind an id.

@@ -1,6 +1,7 @@
 //! The symbolic engine.
 
 pub mod budget;
+pub mod context;
 pub mod diff;
 pub mod eval;
 pub mod expr;
@@ -15,6 +16,7 @@ pub mod residues;
 pub mod zero;
 
 pub use budget::{Budget, DEFAULT_DERIVATION_BUDGET};
+pub use context::Context;
 pub use expr::{ExprId, Function, Node, Store, SymError, Symbol, SymbolId, SymbolKind};
 pub use matrix::{Matrix, MatrixError};
 pub use normal::RationalFunction;

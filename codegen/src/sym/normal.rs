@@ -1,6 +1,6 @@
 //! The normal form: expressions as rational functions of atoms.
 //!
-//! [`Store::normal`](crate::sym::Store::normal) turns an expression into a [`RationalFunction`]
+//! [`Context::normal`](crate::sym::Context::normal) turns an expression into a [`RationalFunction`]
 //! `N / (f_1^k_1 ... f_m^k_m)`:
 //!
 //! - trigonometric functions of integer combinations of symbols are expanded,
@@ -27,7 +27,7 @@
 
 /// The most terms (numerator and denominator factors together) a normal
 /// form may have to be computed written out
-/// ([`Store::compact_expression`](crate::sym::Store::compact_expression)).
+/// ([`Context::compact_expression`](crate::sym::Context::compact_expression)).
 pub const EXPANDED_TERMS: usize = 64;
 
 use super::number::Rational;
@@ -119,7 +119,7 @@ impl RationalFunction {
     }
 
     /// True when the form is written out as an expression
-    /// ([`super::Store::compact_expression`]: at most [`EXPANDED_TERMS`]
+    /// ([`super::Context::compact_expression`]: at most [`EXPANDED_TERMS`]
     /// terms). Exact derivations on larger forms (a rolling wheel's contact
     /// rows, a mechanism's energy) are not attempted: they exceed their
     /// budgets after spending them.

@@ -1,7 +1,9 @@
 //! Property tests on random expression trees: the normal form keeps the
 //! value, and both derivatives agree with central finite differences.
 
-use super::{Budget, Decision, ExprId, Function, Rational, Store, SymError, SymbolId, SymbolKind};
+use super::{
+    Budget, Context, Decision, ExprId, Function, Rational, SymError, SymbolId, SymbolKind,
+};
 use proptest::prelude::*;
 
 /// A recipe for a random expression over `x`, `y` (coordinates) and `m` (parameter).
@@ -52,7 +54,7 @@ fn recipe() -> impl Strategy<Value = Recipe> {
 }
 
 struct Built {
-    store: Store,
+    store: Context,
     symbols: [SymbolId; 3],
     root: ExprId,
 }
@@ -62,7 +64,7 @@ fn build(recipe: &Recipe) -> Built {
 }
 
 fn build_within(recipe: &Recipe, budget: Budget) -> Built {
-    let mut store = Store::with_budget(budget);
+    let mut store = Context::with_budget(budget);
     let symbols = [
         store.declare("x", SymbolKind::Coordinate),
         store.declare("y", SymbolKind::Coordinate),
@@ -76,14 +78,14 @@ fn build_within(recipe: &Recipe, budget: Budget) -> Built {
     }
 }
 
-fn plus_one_square(store: &mut Store, e: ExprId) -> ExprId {
+fn plus_one_square(store: &mut Context, e: ExprId) -> ExprId {
     let square = store.mul2(e, e);
     let one = store.integer(1);
     store.add2(square, one)
 }
 
-fn construct(store: &mut Store, symbols: &[SymbolId; 3], recipe: &Recipe) -> ExprId {
-    let go = |store: &mut Store, r: &Recipe| construct(store, symbols, r);
+fn construct(store: &mut Context, symbols: &[SymbolId; 3], recipe: &Recipe) -> ExprId {
+    let go = |store: &mut Context, r: &Recipe| construct(store, symbols, r);
     match recipe {
         Recipe::Symbol(i) => store.symbol(symbols[*i]),
         Recipe::Constant(n, d) => store.number(Rational::new(*n, *d).unwrap_or(Rational::ONE)),

@@ -1,20 +1,20 @@
 //! Exact identities decided by the normal form, cross-checked numerically.
 
 use super::{
-    Decision, ExprId, Function, Matrix, NumericZeroTest, RationalFunction, Store, SymbolId,
+    Context, Decision, ExprId, Function, Matrix, NumericZeroTest, RationalFunction, SymbolId,
     SymbolKind,
 };
 use std::collections::HashMap;
 
 /// A store with the given coordinates and parameters declared.
 struct Fixture {
-    store: Store,
+    store: Context,
     symbols: HashMap<&'static str, SymbolId>,
 }
 
 impl Fixture {
     fn new(coordinates: &[&'static str], parameters: &[&'static str]) -> Fixture {
-        let mut store = Store::new();
+        let mut store = Context::new();
         let mut symbols = HashMap::new();
         for &name in coordinates {
             symbols.insert(name, store.declare(name, SymbolKind::Coordinate));

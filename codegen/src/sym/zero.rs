@@ -1,6 +1,6 @@
 //! Zero tests: exact on the normal form's class, randomized numeric outside it.
 //!
-//! [`Store::zero_test`] decides `e = 0` by the normal form: a zero numerator
+//! [`Context::zero_test`] decides `e = 0` by the normal form: a zero numerator
 //! proves zero; a non-zero numerator whose atoms are symbols and `sin`/`cos`
 //! of symbols proves non-zero (those atoms are algebraically independent but
 //! for `sin^2 + cos^2 = 1`, which the normal form has already used). Outside
@@ -9,6 +9,7 @@
 //! evaluation at several pseudo-random points, compared with the size of the
 //! terms, which is also the independent cross-check used in tests.
 
+use super::context::Context;
 use super::expr::{ExprId, Node, Store, SymError};
 
 /// How a zero test was decided.
@@ -76,7 +77,7 @@ impl SplitMix {
     }
 }
 
-impl Store {
+impl Context {
     /// Decides whether an expression is zero (see the module doc).
     pub fn zero_test(&mut self, id: ExprId) -> Result<ZeroTest, SymError> {
         let form = self.normal(id)?;
@@ -98,12 +99,14 @@ impl Store {
         })
     }
 
-    /// True when `a - b` is zero (see [`Store::zero_test`]).
+    /// True when `a - b` is zero (see [`Context::zero_test`]).
     pub fn equal(&mut self, a: ExprId, b: ExprId) -> Result<bool, SymError> {
         let difference = self.sub(a, b);
         Ok(self.zero_test(difference)?.is_zero)
     }
+}
 
+impl Store {
     /// Evaluates at random points (symbols uniform in `[0.3, 1.7]`, where the
     /// model's functions are defined); points where the expression is not
     /// finite are skipped. Zero when every finite sample is below the

@@ -6,6 +6,7 @@
 
 use super::{AnalysisError, DistributionBasis, STRUCTURED_GROWTH_NODES};
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::modular::{self, ModularError, Point};
 use crate::sym::residues::Values;
 use crate::sym::{ExprId, Matrix};
@@ -13,21 +14,21 @@ use crate::sym::{ExprId, Matrix};
 /// Frobenius at random points: `A [X_i, X_j]` evaluated modulo a prime at
 /// two points; a non-zero value proves D not integrable.
 pub(super) fn is_involutive_at_points(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     basis: &DistributionBasis,
 ) -> Result<bool, AnalysisError> {
     let fields = expression_columns(&basis.field_expressions);
-    let rows = model.constraint_expressions.clone();
+    let rows = &model.constraint_expressions;
     let mut products = Vec::new();
     for (i, x) in fields.iter().enumerate() {
         for y in &fields[i + 1..] {
-            let bracket = Matrix::column(expression_bracket(model, x, y));
-            products.extend_from_slice(rows.mul(&bracket, &mut model.store)?.entries());
+            let bracket = Matrix::column(expression_bracket(model, cx, x, y));
+            products.extend_from_slice(rows.mul(&bracket, cx)?.entries());
         }
     }
-    let store = &model.store;
     let values = modular::at_defined_points(modular::SEEDS.len(), |point| {
-        Values::at(point).of(store, &products)
+        Values::at(point).of(cx, &products)
     })?;
     Ok(values.iter().flatten().all(|&v| v == 0))
 }
@@ -35,21 +36,21 @@ pub(super) fn is_involutive_at_points(
 /// Moore's test of one row at random points: `d a_i / d q_j - d a_j / d q_i`
 /// non-zero at a point proves the row not exact.
 pub(super) fn is_exact_row_at_points(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     entries: &[ExprId],
 ) -> Result<bool, AnalysisError> {
     let coordinates = model.coordinate_symbols();
     let mut asymmetries = Vec::new();
     for (i, &a_i) in entries.iter().enumerate() {
         for (j, &a_j) in entries.iter().enumerate().skip(i + 1) {
-            let forward = model.store.derivative(a_i, coordinates[j]);
-            let backward = model.store.derivative(a_j, coordinates[i]);
-            asymmetries.push(model.store.sub(forward, backward));
+            let forward = cx.derivative(a_i, coordinates[j]);
+            let backward = cx.derivative(a_j, coordinates[i]);
+            asymmetries.push(cx.sub(forward, backward));
         }
     }
-    let store = &model.store;
     let values = modular::at_defined_points(modular::SEEDS.len(), |point| {
-        Values::at(point).of(store, &asymmetries)
+        Values::at(point).of(cx, &asymmetries)
     })?;
     Ok(values.iter().flatten().all(|&v| v == 0))
 }
@@ -59,13 +60,14 @@ pub(super) fn is_exact_row_at_points(
 /// `(growth, complete)`, incomplete when the brackets of the next level
 /// would exceed [`STRUCTURED_GROWTH_NODES`] new nodes.
 pub(super) fn growth_vector_at_point(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     basis: &DistributionBasis,
 ) -> Result<(Vec<usize>, bool), AnalysisError> {
-    let start = model.store.len();
+    let start = cx.len();
     let mut undefined = None;
     for point in modular::points() {
-        match growth_at(model, basis, point, start) {
+        match growth_at(model, cx, basis, point, start) {
             Err(AnalysisError::Undecided(outside @ ModularError::Undefined { .. })) => {
                 undefined = Some(outside);
             }
@@ -80,26 +82,27 @@ pub(super) fn growth_vector_at_point(
 }
 
 fn growth_at(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     basis: &DistributionBasis,
     point: Point,
     start: usize,
 ) -> Result<(Vec<usize>, bool), AnalysisError> {
     let fields = expression_columns(&basis.field_expressions);
     let mut span = SpanAtPoint::new(model.n(), point);
-    let mut newest = span.additions(model, fields.clone())?;
+    let mut newest = span.additions(cx, fields.clone())?;
     let mut growth = vec![span.rank()];
     while span.rank() < super::reachable_bound(model) && !newest.is_empty() {
         let mut brackets = Vec::with_capacity(fields.len() * newest.len());
         for x in &fields {
             for y in &newest {
-                if model.store.len() - start > STRUCTURED_GROWTH_NODES {
+                if cx.len() - start > STRUCTURED_GROWTH_NODES {
                     return Ok((growth, false));
                 }
-                brackets.push(expression_bracket(model, x, y));
+                brackets.push(expression_bracket(model, cx, x, y));
             }
         }
-        newest = span.additions(model, brackets)?;
+        newest = span.additions(cx, brackets)?;
         if newest.is_empty() {
             break;
         }
@@ -133,12 +136,12 @@ impl SpanAtPoint {
     /// Keeps each candidate whose value at `point` raises the rank; returns those.
     fn additions(
         &mut self,
-        model: &Model,
+        cx: &Context,
         candidates: Vec<Vec<ExprId>>,
     ) -> Result<Vec<Vec<ExprId>>, ModularError> {
         let mut added = Vec::new();
         for candidate in candidates {
-            let values = self.at_point.of(&model.store, &candidate)?;
+            let values = self.at_point.of(cx, &candidate)?;
             let before = self.values.len();
             self.values.extend_from_slice(&values);
             let fields = self.rank();
@@ -152,9 +155,9 @@ impl SpanAtPoint {
     }
 }
 
-fn expression_bracket(model: &mut Model, x: &[ExprId], y: &[ExprId]) -> Vec<ExprId> {
+fn expression_bracket(model: &Model, cx: &mut Context, x: &[ExprId], y: &[ExprId]) -> Vec<ExprId> {
     let coordinates = model.coordinate_symbols();
-    model.store.lie_bracket_of_expressions(x, y, &coordinates)
+    cx.lie_bracket_of_expressions(x, y, &coordinates)
 }
 
 fn expression_columns(matrix: &Matrix<ExprId>) -> Vec<Vec<ExprId>> {

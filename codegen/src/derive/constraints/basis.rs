@@ -10,7 +10,7 @@
 use super::body_frame::BodyFrame;
 use super::{EXACT_BASIS_PRODUCTS, Field};
 use crate::model::{GroupFactor, Model};
-use crate::sym::{ExprId, Matrix, MatrixError, RationalFunction, Store, SymbolId};
+use crate::sym::{Context, ExprId, Matrix, MatrixError, RationalFunction, SymbolId};
 use chaplygin_runtime::monitor::partial_pivots;
 use chaplygin_runtime::nalgebra::DMatrix;
 
@@ -110,39 +110,45 @@ impl ChartFit {
 /// Chooses the dependent speeds at the defaults and solves for a basis of
 /// D: as expressions always, in normal form within [`EXACT_BASIS_PRODUCTS`]
 /// when the rows are written out ([`crate::sym::Matrix::is_written_out`]).
-pub fn distribution_basis(model: &mut Model) -> Result<DistributionBasis, MatrixError> {
-    let dependent = pivot_columns(model);
+pub fn distribution_basis(
+    model: &Model,
+    cx: &mut Context,
+) -> Result<DistributionBasis, MatrixError> {
+    let dependent = pivot_columns(model, cx);
     let frame = match model.momentum_basis {
-        None => BodyFrame::of(model)?,
+        None => BodyFrame::of(model, cx)?,
         Some(_) => None,
     };
-    basis_on(model, dependent, frame)
+    basis_on(model, cx, dependent, frame)
 }
 
 /// The basis of D with the speeds `dependent` solved for, on the
 /// coordinates' rows `A(q)` (another chart of D, [`super::charts`]).
 pub(super) fn basis_with_dependent(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     dependent: Vec<usize>,
 ) -> Result<DistributionBasis, MatrixError> {
-    basis_on(model, dependent, None)
+    basis_on(model, cx, dependent, None)
 }
 
 /// The basis of D with the body speeds `dependent` solved for, on the
 /// body rows (another chart of a basis chosen in the body frame,
 /// [`super::charts`]).
 pub(super) fn basis_in_body_frame(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     dependent: Vec<usize>,
 ) -> Result<DistributionBasis, MatrixError> {
-    let frame = BodyFrame::of(model)?;
-    basis_on(model, dependent, frame)
+    let frame = BodyFrame::of(model, cx)?;
+    basis_on(model, cx, dependent, frame)
 }
 
 /// The basis of D with the speeds `dependent` solved for: on the body rows
 /// when `frame` is given, on `A(q)` otherwise.
 fn basis_on(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     dependent: Vec<usize>,
     frame: Option<BodyFrame>,
 ) -> Result<DistributionBasis, MatrixError> {
@@ -153,14 +159,14 @@ fn basis_on(
         None => model.constraint_expressions.clone(),
     };
     let (a_r, a_s) = (
-        expression_columns_at(&a, &dependent, &mut model.store),
-        expression_columns_at(&a, &independent, &mut model.store),
+        expression_columns_at(&a, &dependent, cx),
+        expression_columns_at(&a, &independent, cx),
     );
-    let solved = model.store.solve_in_order(&a_r, &a_s)?;
-    let minus_one = model.store.integer(-1);
-    let a_n = solved.scale(minus_one, &mut model.store);
-    let mut field_expressions = model.store.zero_matrix(n, independent.len());
-    let one = model.store.integer(1);
+    let solved = cx.solve_in_order(&a_r, &a_s)?;
+    let minus_one = cx.integer(-1);
+    let a_n = solved.scale(minus_one, cx);
+    let mut field_expressions = cx.zero_matrix(n, independent.len());
+    let one = cx.integer(1);
     for (k, &j) in independent.iter().enumerate() {
         field_expressions.set(j, k, one);
     }
@@ -170,28 +176,23 @@ fn basis_on(
         }
     }
     if let Some(frame) = &frame {
-        field_expressions = frame
-            .to_coordinates
-            .mul(&field_expressions, &mut model.store)?;
+        field_expressions = frame.to_coordinates.mul(&field_expressions, cx)?;
     }
     let exact_a = &model.constraint_matrix;
-    let exact = |store: &mut Store| match &frame {
+    let exact = |cx: &mut Context| match &frame {
         Some(frame) => {
             let body = exact_fields(
-                &frame.exact_constraints(store)?,
+                &frame.exact_constraints(cx)?,
                 &dependent,
                 &independent,
-                store.atoms(),
+                cx.atoms(),
             )?;
-            frame.exact_to_coordinates(store)?.mul(&body, store.atoms())
+            frame.exact_to_coordinates(cx)?.mul(&body, cx.atoms())
         }
-        None => exact_fields(exact_a, &dependent, &independent, store.atoms()),
+        None => exact_fields(exact_a, &dependent, &independent, cx.atoms()),
     };
     let fields = match exact_a.is_written_out() {
-        true => model
-            .store
-            .attempt(EXACT_BASIS_PRODUCTS, exact)
-            .transpose()?,
+        true => cx.attempt(EXACT_BASIS_PRODUCTS, exact).transpose()?,
         false => None,
     };
     Ok(DistributionBasis {
@@ -207,9 +208,9 @@ fn basis_on(
 fn expression_columns_at(
     a: &Matrix<ExprId>,
     indices: &[usize],
-    store: &mut Store,
+    cx: &mut Context,
 ) -> Matrix<ExprId> {
-    let mut columns = store.zero_matrix(a.rows(), indices.len());
+    let mut columns = cx.zero_matrix(a.rows(), indices.len());
     for i in 0..a.rows() {
         for (k, &j) in indices.iter().enumerate() {
             columns.set(i, k, *a.get(i, j));
@@ -252,19 +253,17 @@ fn exact_fields(
 
 /// The dependent speeds: pivots at the defaults when A has full rank there,
 /// generic pivots otherwise.
-fn pivot_columns(model: &mut Model) -> Vec<usize> {
-    pivots_at_defaults(model).unwrap_or_else(|| generic_pivots(model))
+fn pivot_columns(model: &Model, cx: &mut Context) -> Vec<usize> {
+    pivots_at_defaults(model, cx).unwrap_or_else(|| generic_pivots(model, cx))
 }
 
 /// Gaussian elimination with partial pivoting on A at the defaults
 /// (`chaplygin_runtime::monitor::partial_pivots`): the pivot column of each
 /// row is the one of largest magnitude there. `None` when a pivot vanishes
 /// (A is singular at the defaults).
-fn pivots_at_defaults(model: &mut Model) -> Option<Vec<usize>> {
+fn pivots_at_defaults(model: &Model, cx: &mut Context) -> Option<Vec<usize>> {
     let defaults = default_point(model);
-    let values = model
-        .constraint_matrix
-        .evaluate(&mut model.store, &|s| defaults(s));
+    let values = model.constraint_matrix.evaluate(cx, &|s| defaults(s));
     let rows = DMatrix::from_row_slice(model.c(), model.n(), &values);
     let mut pivots = vec![0; model.c()];
     partial_pivots(&rows, &mut pivots).then_some(pivots)
@@ -272,9 +271,9 @@ fn pivots_at_defaults(model: &mut Model) -> Option<Vec<usize>> {
 
 /// Exact elimination on A: the pivot of each row is its first column with a
 /// non-zero entry (A has full generic rank, checked by `model::check`).
-fn generic_pivots(model: &Model) -> Vec<usize> {
+fn generic_pivots(model: &Model, cx: &Context) -> Vec<usize> {
     let (n, c) = (model.n(), model.c());
-    let atoms = model.store.atoms();
+    let atoms = cx.atoms();
     let mut rows: Vec<Field> = (0..c)
         .map(|i| {
             (0..n)

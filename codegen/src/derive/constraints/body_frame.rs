@@ -19,7 +19,7 @@
 //! rotation `L`, regular at every heading.
 
 use crate::model::{GroupFactor, Model};
-use crate::sym::{ExprId, Function, Matrix, MatrixError, Store};
+use crate::sym::{Context, ExprId, Function, Matrix, MatrixError};
 use std::collections::HashMap;
 
 /// The body rows and the map from body to coordinate velocities, as
@@ -33,12 +33,11 @@ pub(super) struct BodyFrame {
 
 impl BodyFrame {
     /// The body frame of `model`'s declared symmetry; `None` without one.
-    pub(super) fn of(model: &mut Model) -> Result<Option<BodyFrame>, MatrixError> {
+    pub(super) fn of(model: &Model, cx: &mut Context) -> Result<Option<BodyFrame>, MatrixError> {
         let Some(symmetry) = model.symmetry.clone() else {
             return Ok(None);
         };
-        let store = &mut model.store;
-        let zero = store.integer(0);
+        let zero = cx.integer(0);
         let identity: HashMap<_, _> = symmetry
             .factors
             .iter()
@@ -48,20 +47,20 @@ impl BodyFrame {
             })
             .map(|i| (model.coordinates[i].symbol, zero))
             .collect();
-        let a = model.constraint_expressions.clone();
-        let mut constraints = store.zero_matrix(a.rows(), a.columns());
+        let a = &model.constraint_expressions;
+        let mut constraints = cx.zero_matrix(a.rows(), a.columns());
         for i in 0..a.rows() {
             for j in 0..a.columns() {
-                constraints.set(i, j, store.substitute(*a.get(i, j), &identity)?);
+                constraints.set(i, j, cx.substitute(*a.get(i, j), &identity)?);
             }
         }
-        let mut to_coordinates = store.identity_matrix(model.coordinates.len());
+        let mut to_coordinates = cx.identity_matrix(model.coordinates.len());
         for factor in &symmetry.factors {
             if let GroupFactor::Se2 { x, y, theta } = *factor {
-                let heading = store.symbol(model.coordinates[theta].symbol);
-                let cos = store.apply(Function::Cos, heading)?;
-                let sin = store.apply(Function::Sin, heading)?;
-                let minus_sin = store.neg(sin);
+                let heading = cx.symbol(model.coordinates[theta].symbol);
+                let cos = cx.apply(Function::Cos, heading)?;
+                let sin = cx.apply(Function::Sin, heading)?;
+                let minus_sin = cx.neg(sin);
                 to_coordinates.set(x, x, cos);
                 to_coordinates.set(x, y, minus_sin);
                 to_coordinates.set(y, x, sin);
@@ -75,17 +74,17 @@ impl BodyFrame {
     }
 
     /// `A(e, r)` in normal form.
-    pub(super) fn exact_constraints(&self, store: &mut Store) -> Result<Matrix, MatrixError> {
-        exact(&self.constraints, store)
+    pub(super) fn exact_constraints(&self, cx: &mut Context) -> Result<Matrix, MatrixError> {
+        exact(&self.constraints, cx)
     }
 
     /// `L(q)` in normal form.
-    pub(super) fn exact_to_coordinates(&self, store: &mut Store) -> Result<Matrix, MatrixError> {
-        exact(&self.to_coordinates, store)
+    pub(super) fn exact_to_coordinates(&self, cx: &mut Context) -> Result<Matrix, MatrixError> {
+        exact(&self.to_coordinates, cx)
     }
 }
 
 /// `matrix` in normal form.
-fn exact(matrix: &Matrix<ExprId>, store: &mut Store) -> Result<Matrix, MatrixError> {
-    Matrix::from_expressions(store, matrix.rows(), matrix.columns(), matrix.entries())
+fn exact(matrix: &Matrix<ExprId>, cx: &mut Context) -> Result<Matrix, MatrixError> {
+    Matrix::from_expressions(cx, matrix.rows(), matrix.columns(), matrix.entries())
 }

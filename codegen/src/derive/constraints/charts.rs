@@ -47,6 +47,7 @@ use super::basis::{basis_with_dependent, speed_names};
 use super::body_frame::BodyFrame;
 use crate::ir::IrError;
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::{ExprId, Matrix, MatrixError, RationalFunction};
 use chaplygin_runtime::monitor::{gram_ratio, partial_pivots, signed_pivot_ratio};
 use chaplygin_runtime::nalgebra::DMatrix;
@@ -121,16 +122,19 @@ pub enum ChartsError {
 /// charts' singular sets are (random lines through the shape coordinates,
 /// the group at its identity, the parameters at their defaults); each
 /// point gives all n coordinates; at most [`KEPT_POINTS`].
-pub fn group_singular_points(model: &mut Model) -> Result<Vec<Vec<f64>>, ChartsError> {
+pub fn group_singular_points(
+    model: &Model,
+    cx: &mut Context,
+) -> Result<Vec<Vec<f64>>, ChartsError> {
     let Some(symmetry) = &model.symmetry else {
         return Ok(Vec::new());
     };
     let group = symmetry.group_coordinates();
-    let frame = Frame::of(model, true)?;
+    let frame = Frame::of(model, cx, true)?;
     if !frame.body || model.c() != group.len() {
         return Ok(Vec::new());
     }
-    let rows = FrameRows::new(model, &frame.rows, frame.varying.clone())?;
+    let rows = FrameRows::new(model, cx, &frame.rows, frame.varying.clone())?;
     let mut points: Vec<Vec<f64>> = search::singular_points(&rows, &group)
         .into_iter()
         .map(|at| at.q)
@@ -142,7 +146,8 @@ pub fn group_singular_points(model: &mut Model) -> Result<Vec<Vec<f64>>, ChartsE
 /// The other charts of D beside `primary` and the singular sets of all;
 /// none for a declared momentum basis or without constraints.
 pub fn alternative_charts(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     primary: &DistributionBasis,
 ) -> Result<Charts, ChartsError> {
     let none = Charts {
@@ -152,8 +157,8 @@ pub fn alternative_charts(
     if model.momentum_basis.is_some() || model.c() == 0 || model.k() == 0 {
         return Ok(none);
     }
-    let frame = Frame::of(model, primary.body_frame)?;
-    let rows = FrameRows::new(model, &frame.rows, frame.varying.clone())?;
+    let frame = Frame::of(model, cx, primary.body_frame)?;
+    let rows = FrameRows::new(model, cx, &frame.rows, frame.varying.clone())?;
     let mut charts = vec![primary.dependent.clone()];
     let mut found: Vec<Vec<RowsAt>> = Vec::new();
     while found.len() < charts.len() {
@@ -164,14 +169,14 @@ pub fn alternative_charts(
     let singular_sets = found
         .iter()
         .enumerate()
-        .map(|(i, points)| singular_set(model, &frame, &charts, i, points))
+        .map(|(i, points)| singular_set(model, cx, &frame, &charts, i, points))
         .collect();
     let alternatives = charts
         .into_iter()
         .skip(1)
         .map(|dependent| match primary.body_frame {
-            true => super::basis::basis_in_body_frame(model, dependent),
-            false => basis_with_dependent(model, dependent),
+            true => super::basis::basis_in_body_frame(model, cx, dependent),
+            false => basis_with_dependent(model, cx, dependent),
         })
         .collect::<Result<_, _>>()?;
     Ok(Charts {
@@ -225,10 +230,10 @@ struct Frame {
 }
 
 impl Frame {
-    fn of(model: &mut Model, body: bool) -> Result<Frame, MatrixError> {
+    fn of(model: &Model, cx: &mut Context, body: bool) -> Result<Frame, MatrixError> {
         let all: Vec<usize> = (0..model.n()).collect();
         let body_frame = match body {
-            true => BodyFrame::of(model)?,
+            true => BodyFrame::of(model, cx)?,
             false => None,
         };
         Ok(match (body_frame, &model.symmetry) {
@@ -259,7 +264,8 @@ fn pivoted(rows: &DMatrix<f64>) -> Option<Vec<usize>> {
 
 /// Chart `chart`'s singular set from the points found on it.
 fn singular_set(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     frame: &Frame,
     charts: &[Vec<usize>],
     chart: usize,
@@ -300,7 +306,7 @@ fn singular_set(
             .collect()
     };
     SingularSet {
-        determinant: determinant_text(model, frame, &charts[chart]),
+        determinant: determinant_text(model, cx, frame, &charts[chart]),
         points: kept(regular),
         dependent_rows: kept(dependent),
         cover,
@@ -312,14 +318,19 @@ const SHORT: usize = 80;
 
 /// The numerator of `det A_r` on the frame's rows, written out, when the
 /// rows are and it is short.
-fn determinant_text(model: &mut Model, frame: &Frame, dependent: &[usize]) -> Option<String> {
+fn determinant_text(
+    model: &Model,
+    cx: &mut Context,
+    frame: &Frame,
+    dependent: &[usize],
+) -> Option<String> {
     let c = model.c();
     let rows: Vec<usize> = (0..c).collect();
     let minor = match frame.body {
-        true => BodyFrame::of(model)
+        true => BodyFrame::of(model, cx)
             .ok()
             .flatten()?
-            .exact_constraints(&mut model.store)
+            .exact_constraints(cx)
             .ok()?,
         false => model.constraint_matrix.clone(),
     };
@@ -327,14 +338,14 @@ fn determinant_text(model: &mut Model, frame: &Frame, dependent: &[usize]) -> Op
         return None;
     }
     let minor = minor.submatrix(&rows, dependent);
-    let determinant = model
-        .attempt(super::EXACT_ANALYSIS_PRODUCTS, |model| {
-            minor.determinant(model.store.atoms())
+    let determinant = cx
+        .attempt(super::EXACT_ANALYSIS_PRODUCTS, |cx| {
+            minor.determinant(cx.atoms())
         })?
         .ok()?;
     let numerator = RationalFunction::from_poly(determinant.numerator().clone());
-    let expression = model.store.expression_of(&numerator);
-    let text = model.store.display(expression).to_string();
+    let expression = cx.expression_of(&numerator);
+    let text = cx.display(expression).to_string();
     (text.len() <= SHORT).then_some(text)
 }
 
@@ -414,8 +425,8 @@ mod tests {
     #[test]
     fn the_sleighs_singular_headings_are_found_and_covered() {
         let source = include_str!("../../../../tests/models/sleigh_no_symmetry.model");
-        let (_, analysis) = analysed_model(source).expect("analyses");
-        let charts = &analysis.charts;
+        let analysed = analysed_model(source).expect("analyses");
+        let charts = &analysed.constraints.charts;
         assert_eq!(charts.alternatives.len(), 1);
         assert_eq!(charts.alternatives[0].dependent, [0]);
         let [by_y, by_x] = &charts.singular_sets[..] else {

@@ -1,15 +1,22 @@
 //! The constraint analysis against hand derivations.
 
-use super::{Classification, analyse, distribution_basis};
+use super::{Classification, ConstraintAnalysis, analyse, distribution_basis};
+use crate::diagnostic::Diagnostics;
 use crate::model::{Model, check};
+use crate::sym::Context;
 use crate::syntax::parse_str;
 
-fn model(source: &str) -> Model {
+fn model(source: &str) -> (Model, Context) {
     check(&parse_str(source).expect("parses")).expect("checks")
 }
 
+/// The constraint analysis of a checked model.
+fn analysed((model, mut cx): (Model, Context)) -> Result<ConstraintAnalysis, Diagnostics> {
+    analyse(&model, &mut cx)
+}
+
 /// A model with unit kinetic energy on `coordinates` and these constraints.
-fn constrained(coordinates: &str, constraints: &str) -> Model {
+fn constrained(coordinates: &str, constraints: &str) -> (Model, Context) {
     let names: Vec<&str> = coordinates.split(',').map(str::trim).collect();
     let energy: Vec<String> = names.iter().map(|q| format!("dot({q})^2/2")).collect();
     model(&format!(
@@ -36,25 +43,21 @@ pub struct Sleigh {
 
 #[test]
 fn the_basis_spans_the_kernel_of_the_constraints() {
-    let mut snakeboard = model(crate::fixtures::SNAKEBOARD);
-    let basis = distribution_basis(&mut snakeboard).expect("regular at the defaults");
+    let (snakeboard, mut cx) = model(crate::fixtures::SNAKEBOARD);
+    let basis = distribution_basis(&snakeboard, &mut cx).expect("regular at the defaults");
     let fields = basis.fields.as_ref().expect("exact within the budget");
     assert_eq!(fields.columns(), 3);
-    let atoms = snakeboard.store.atoms().clone();
+    let atoms = cx.atoms().clone();
     let product = snakeboard
         .constraint_matrix
         .mul(fields, &atoms)
         .expect("fits");
     assert!(product.is_zero(), "A X must vanish exactly");
     assert_eq!(fields.rank(&atoms), 3);
-    let structured = crate::sym::Matrix::from_expressions(
-        &mut snakeboard.store,
-        5,
-        3,
-        basis.field_expressions.entries(),
-    )
-    .expect("normal forms");
-    let atoms = snakeboard.store.atoms().clone();
+    let structured =
+        crate::sym::Matrix::from_expressions(&mut cx, 5, 3, basis.field_expressions.entries())
+            .expect("normal forms");
+    let atoms = cx.atoms().clone();
     let difference = structured.sub(fields, &atoms).expect("same shape");
     assert!(
         difference.is_zero(),
@@ -71,7 +74,7 @@ fn the_basis_spans_the_kernel_of_the_constraints() {
 /// the blade row is not integrable).
 #[test]
 fn the_sleigh_grows_2_3() {
-    let analysis = analyse(&mut model(SLEIGH)).expect("analyses");
+    let analysis = analysed(model(SLEIGH)).expect("analyses");
     assert_eq!(analysis.growth, [2, 3]);
     assert!(!analysis.integrable);
     assert_eq!(
@@ -87,7 +90,7 @@ fn the_sleigh_grows_2_3() {
 /// `sec^2(phi) r (sin d_x - cos d_y)`, new again (5).
 #[test]
 fn the_snakeboard_grows_3_4_5() {
-    let analysis = analyse(&mut model(crate::fixtures::SNAKEBOARD)).expect("analyses");
+    let analysis = analysed(model(crate::fixtures::SNAKEBOARD)).expect("analyses");
     assert_eq!(analysis.growth, [3, 4, 5]);
     assert!(!analysis.integrable);
     assert_eq!(
@@ -101,7 +104,7 @@ fn the_snakeboard_grows_3_4_5() {
 /// `[X1, X2] = d_z`, so (2, 3).
 #[test]
 fn the_heisenberg_constraint_grows_2_3() {
-    let analysis = analyse(&mut constrained("x, y, z", "h = dot(z) - x*dot(y)")).expect("analyses");
+    let analysis = analysed(constrained("x, y, z", "h = dot(z) - x*dot(y)")).expect("analyses");
     assert_eq!(analysis.growth, [2, 3]);
     assert!(!analysis.integrable);
 }
@@ -111,11 +114,11 @@ fn the_heisenberg_constraint_grows_2_3() {
 /// `d a_x / d y = 1 + x^2`, `d a_y / d x = 1 + 3 x^2`.
 #[test]
 fn an_integrating_factor_is_holonomic_though_moores_test_fails() {
-    let mut m = constrained(
+    let (m, mut cx) = constrained(
         "x, y, z",
         "level = (1 + x^2)*(y*dot(x) + x*dot(y) + dot(z))",
     );
-    let analysis = analyse(&mut m).expect("analyses");
+    let analysis = analyse(&m, &mut cx).expect("analyses");
     assert!(analysis.integrable);
     assert_eq!(analysis.classification, Classification::Holonomic);
     assert_eq!(analysis.growth, [2]);
@@ -125,8 +128,8 @@ fn an_integrating_factor_is_holonomic_though_moores_test_fails() {
 /// Without the factor the same row is exact: Moore's test agrees with Frobenius.
 #[test]
 fn an_exact_row_passes_moores_test() {
-    let mut m = constrained("x, y, z", "level = y*dot(x) + x*dot(y) + dot(z)");
-    let analysis = analyse(&mut m).expect("analyses");
+    let (m, mut cx) = constrained("x, y, z", "level = y*dot(x) + x*dot(y) + dot(z)");
+    let analysis = analyse(&m, &mut cx).expect("analyses");
     assert!(analysis.integrable);
     assert_eq!(analysis.exact_rows, [true]);
 }
@@ -135,8 +138,8 @@ fn an_exact_row_passes_moores_test() {
 /// integrable, whatever the factor (`(1 + x^2)(xdot - r phidot)`).
 #[test]
 fn one_degree_of_freedom_is_integrable() {
-    let mut m = constrained("x, phi", "roll = (1 + x^2)*(dot(x) - r*dot(phi))");
-    let analysis = analyse(&mut m).expect("analyses");
+    let (m, mut cx) = constrained("x, phi", "roll = (1 + x^2)*(dot(x) - r*dot(phi))");
+    let analysis = analyse(&m, &mut cx).expect("analyses");
     assert!(analysis.integrable);
     assert_eq!(analysis.growth, [1]);
     assert_eq!(analysis.classification, Classification::Holonomic);
@@ -151,7 +154,7 @@ fn deny_holonomic_rejects_integrable_constraints_on_the_first_name() {
             kinetic_energy: dot(x)^2/2 + dot(y)^2/2 + dot(z)^2/2,
             constraints: [level = (1 + x^2)*(y*dot(x) + x*dot(y) + dot(z))],
         }";
-    let diagnostics = analyse(&mut model(source)).expect_err("integrable is denied");
+    let diagnostics = analysed(model(source)).expect_err("integrable is denied");
     let messages: Vec<&str> = diagnostics.iter().map(|d| d.message.as_str()).collect();
     assert_eq!(messages.len(), 1);
     assert!(messages[0].contains("integrable"), "{}", messages[0]);
@@ -161,14 +164,14 @@ fn deny_holonomic_rejects_integrable_constraints_on_the_first_name() {
 #[test]
 fn deny_holonomic_accepts_nonholonomic_constraints() {
     let source = format!("#[deny_holonomic]\n{SLEIGH}");
-    assert!(analyse(&mut model(&source)).is_ok());
+    assert!(analysed(model(&source)).is_ok());
 }
 
 #[test]
 fn no_constraints_is_unconstrained() {
-    let mut m =
+    let (m, mut cx) =
         model("pub struct Free { coordinates: [x, y], kinetic_energy: dot(x)^2/2 + dot(y)^2/2 }");
-    let analysis = analyse(&mut m).expect("analyses");
+    let analysis = analyse(&m, &mut cx).expect("analyses");
     assert_eq!(analysis.growth, [2]);
     assert!(analysis.integrable);
     assert_eq!(analysis.classification, Classification::Unconstrained);
@@ -180,8 +183,8 @@ fn no_constraints_is_unconstrained() {
 /// first column), and the analysis goes through: holonomic, not exact.
 #[test]
 fn a_row_vanishing_at_the_defaults_gets_generic_pivots() {
-    let mut m = constrained("x, y, z", "level = (1 + x^2)*(y*dot(x) + x*dot(y))");
-    let analysis = analyse(&mut m).expect("analyses");
+    let (m, mut cx) = constrained("x, y, z", "level = (1 + x^2)*(y*dot(x) + x*dot(y))");
+    let analysis = analyse(&m, &mut cx).expect("analyses");
     assert_eq!(analysis.basis.dependent, [0]);
     assert!(analysis.integrable);
     assert_eq!(analysis.classification, Classification::Holonomic);
@@ -204,13 +207,13 @@ fn the_analysis_at_points_agrees_with_the_exact_analysis() {
         constrained("x, y, z", "level = (1 + x^2)*(y*dot(x) + x*dot(y))"),
         constrained("x, phi", "roll = (1 + x^2)*(dot(x) - r*dot(phi))"),
     ];
-    for mut m in models {
-        let exact = analyse(&mut m).expect("analyses");
+    for (m, mut cx) in models {
+        let exact = analyse(&m, &mut cx).expect("analyses");
         assert_eq!(exact.growth_method, super::Method::NormalForm);
-        let basis = distribution_basis(&mut m).expect("regular");
-        let integrable = super::is_involutive_at_points(&mut m, &basis).expect("in the class");
+        let basis = distribution_basis(&m, &mut cx).expect("regular");
+        let integrable = super::is_involutive_at_points(&m, &mut cx, &basis).expect("in the class");
         let (growth, complete) =
-            super::growth_vector_at_point(&mut m, &basis).expect("in the class");
+            super::growth_vector_at_point(&m, &mut cx, &basis).expect("in the class");
         assert_eq!(integrable, exact.integrable, "{}", m.name);
         assert_eq!(growth, exact.growth, "{}", m.name);
         assert!(complete);
@@ -223,8 +226,8 @@ fn the_analysis_at_points_agrees_with_the_exact_analysis() {
 /// completely nonholonomic; the structured basis annihilates A at a point.
 #[test]
 fn a_long_chain_is_analysed_at_points() {
-    let mut chain = model(&crate::fixtures::chain_of_links(6));
-    let analysis = analyse(&mut chain).expect("analyses");
+    let (chain, mut cx) = model(&crate::fixtures::chain_of_links(6));
+    let analysis = analyse(&chain, &mut cx).expect("analyses");
     assert_eq!(analysis.growth_method, super::Method::Modular);
     assert!(!analysis.integrable);
     // k = 2 fields, one bracket outside D (not integrable), growing strictly
@@ -236,14 +239,11 @@ fn a_long_chain_is_analysed_at_points() {
         analysis.classification,
         Classification::CompletelyNonholonomic
     );
-    let rows = chain
-        .constraint_matrix
-        .to_expression_matrix(&mut chain.store);
+    let rows = chain.constraint_matrix.to_expression_matrix(&mut cx);
     let product = rows
-        .mul(&analysis.basis.field_expressions, &mut chain.store)
+        .mul(&analysis.basis.field_expressions, &mut cx)
         .expect("fits");
-    let values = chain
-        .store
+    let values = cx
         .evaluate_modular(product.entries(), &crate::sym::modular::Point::new(5))
         .expect("in the class");
     assert!(values.iter().all(|&v| v == 0), "A X = 0 at the point");
@@ -258,11 +258,11 @@ fn the_body_frame_basis_has_no_group_coordinate_in_a_denominator() {
     let sleigh = include_str!("../../../../models/sleigh.model");
     let racer = include_str!("../../../../tests/models/roller_racer.model");
     for (source, rank) in [(sleigh, 2), (racer, 2)] {
-        let mut m = model(source);
-        let basis = distribution_basis(&mut m).expect("regular");
+        let (m, mut cx) = model(source);
+        let basis = distribution_basis(&m, &mut cx).expect("regular");
         assert!(basis.body_frame);
         let fields = basis.fields.clone().expect("exact within the budget");
-        let atoms = m.store.atoms().clone();
+        let atoms = cx.atoms().clone();
         let product = m.constraint_matrix.mul(&fields, &atoms).expect("fits");
         assert!(product.is_zero(), "A X must vanish exactly");
         assert_eq!(fields.rank(&atoms), rank);
@@ -278,9 +278,9 @@ fn the_body_frame_basis_has_no_group_coordinate_in_a_denominator() {
                 .reciprocal_of_denominator()
                 .inverse(&atoms)
                 .expect("non-zero");
-            let denominator = m.store.expression_of(&denominator);
+            let denominator = cx.expression_of(&denominator);
             for &q in &group {
-                assert!(!m.store.depends_on(denominator, q));
+                assert!(!cx.depends_on(denominator, q));
             }
         }
     }
@@ -290,18 +290,18 @@ fn the_body_frame_basis_has_no_group_coordinate_in_a_denominator() {
 /// blade row is not exact, `d(x^2 + y^2) = 2 x dot(x) + 2 y dot(y)` is.
 #[test]
 fn moores_test_at_points_agrees_with_the_exact_test() {
-    let mut model = constrained(
+    let (model, mut cx) = constrained(
         "x, y, theta",
         "blade = -sin(theta)*dot(x) + cos(theta)*dot(y), circle = 2*x*dot(x) + 2*y*dot(y)",
     );
-    let exact = super::exact_rows(&mut model).expect("decided");
+    let exact = super::exact_rows(&model, &mut cx).expect("decided");
     assert_eq!(exact, [false, true]);
     for (row, expected) in exact.iter().enumerate() {
         let entries: Vec<_> = (0..model.n())
             .map(|j| *model.constraint_expressions.get(row, j))
             .collect();
-        let at_points =
-            super::at_points::is_exact_row_at_points(&mut model, &entries).expect("in the class");
+        let at_points = super::at_points::is_exact_row_at_points(&model, &mut cx, &entries)
+            .expect("in the class");
         assert_eq!(at_points, *expected, "row {row}");
     }
 }
@@ -312,8 +312,8 @@ fn moores_test_at_points_agrees_with_the_exact_test() {
 /// and the growth is complete there though it never reaches n.
 #[test]
 fn the_bicycles_growth_stops_at_its_holonomic_constraint() {
-    let mut bicycle = model(include_str!("../../../../models/bicycle.model"));
-    let analysis = analyse(&mut bicycle).expect("analysed");
+    let (bicycle, mut cx) = model(include_str!("../../../../models/bicycle.model"));
+    let analysis = analyse(&bicycle, &mut cx).expect("analysed");
     assert_eq!(analysis.growth.first(), Some(&3));
     assert_eq!(analysis.growth.last(), Some(&7));
     assert!(analysis.growth_complete);

@@ -1,6 +1,7 @@
 use super::{LagrangeDalembert, Strategy, derive};
 use crate::ir;
 use crate::model::{Model, check};
+use crate::sym::Context;
 use crate::sym::zero::SplitMix;
 use crate::sym::{ExprId, SymbolId};
 use crate::syntax::parse_str;
@@ -41,17 +42,17 @@ inputs: [steer = alpha],
 }
 "#;
 
-fn derived(source: &str) -> (Model, LagrangeDalembert) {
-    let mut model = check(&parse_str(source).expect("parses")).expect("checks");
-    let derivation = derive(&mut model).expect("derives");
-    (model, derivation)
+fn derived(source: &str) -> (Model, Context, LagrangeDalembert) {
+    let (model, mut cx) = check(&parse_str(source).expect("parses")).expect("checks");
+    let derivation = derive(&model, &mut cx).expect("derives");
+    (model, cx, derivation)
 }
 
 #[test]
 fn the_closed_form_solves_the_equations_exactly() {
     for source in [crate::fixtures::SNAKEBOARD, SLEIGH] {
-        let (model, derivation) = derived(source);
-        let atoms = model.store.atoms();
+        let (_, cx, derivation) = derived(source);
+        let atoms = cx.atoms();
         let system = &derivation.saddle_point;
         let solution = derivation.closed_form.as_ref().expect("derived");
         let a = &system.constraint_matrix;
@@ -110,7 +111,8 @@ fn random_point(model: &Model, inputs: &[SymbolId], seed: u64) -> HashMap<Symbol
 /// runtime's Gaussian elimination with partial pivoting, an independent
 /// solve of the same system.
 fn pivoted_solution<const M: usize>(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     derivation: &LagrangeDalembert,
     values: &HashMap<SymbolId, f64>,
 ) -> Vec<f64> {
@@ -118,23 +120,21 @@ fn pivoted_solution<const M: usize>(
     assert_eq!(n + c, M);
     let value_of = |s: SymbolId| values[&s];
     let system = &derivation.saddle_point;
-    let g = system.mass_matrix.evaluate(&mut model.store, &value_of);
-    let a = system
-        .constraint_matrix
-        .evaluate(&mut model.store, &value_of);
+    let g = system.mass_matrix.evaluate(cx, &value_of);
+    let a = system.constraint_matrix.evaluate(cx, &value_of);
     let force: Vec<f64> = system
         .force
         .expressions
         .entries()
         .iter()
-        .map(|&e| model.store.evaluate(e, &value_of))
+        .map(|&e| cx.evaluate(e, &value_of))
         .collect();
     let drift: Vec<f64> = system
         .drift
-        .expressions(&mut model.store)
+        .expressions(cx)
         .entries()
         .iter()
-        .map(|&e| model.store.evaluate(e, &value_of))
+        .map(|&e| cx.evaluate(e, &value_of))
         .collect();
     let mut matrix = [[0.0; M]; M];
     for i in 0..n {
@@ -164,24 +164,16 @@ fn pivoted_solution<const M: usize>(
 /// The closed form (when derived) and the solution by blocks against the
 /// pivoted solve, at random points.
 fn assert_strategies_agree<const M: usize>(source: &str) {
-    let (mut model, derivation) = derived(source);
+    let (model, mut cx, derivation) = derived(source);
     for seed in 0..20 {
         let values = random_point(&model, &derivation.inputs, seed);
         let value_of = |s: SymbolId| values[&s];
-        let pivoted = pivoted_solution::<M>(&mut model, &derivation, &values);
-        let by_blocks = model
-            .store
-            .evaluate_many(&derivation.numeric_solution, &value_of);
+        let pivoted = pivoted_solution::<M>(&model, &mut cx, &derivation, &values);
+        let by_blocks = cx.evaluate_many(&derivation.numeric_solution, &value_of);
         let mut solutions = vec![("by blocks", by_blocks)];
         if let Some(closed_form) = &derivation.closed_form {
-            let mut symbolic = closed_form
-                .accelerations
-                .evaluate(&mut model.store, &value_of);
-            symbolic.extend(
-                closed_form
-                    .multipliers
-                    .evaluate(&mut model.store, &value_of),
-            );
+            let mut symbolic = closed_form.accelerations.evaluate(&mut cx, &value_of);
+            symbolic.extend(closed_form.multipliers.evaluate(&mut cx, &value_of));
             solutions.push(("closed form", symbolic));
         }
         for (name, solution) in solutions {
@@ -202,12 +194,12 @@ fn both_solutions_agree_on_the_snakeboard_and_the_sleigh() {
 }
 
 /// The weighted cost of `outputs` once lowered ([`ir::Program::weighted_cost`]).
-fn lowered_weight(model: &Model, d: &LagrangeDalembert, outputs: &[ExprId]) -> u64 {
+fn lowered_weight(model: &Model, cx: &Context, d: &LagrangeDalembert, outputs: &[ExprId]) -> u64 {
     let mut arguments = model.coordinate_symbols();
     arguments.extend(&model.velocities);
     arguments.extend(&d.inputs);
     arguments.extend(model.parameter_symbols());
-    ir::lower(&model.store, &arguments, outputs)
+    ir::lower(cx, &arguments, outputs)
         .expect("every symbol is an argument")
         .weighted_cost()
 }
@@ -223,11 +215,11 @@ fn the_estimate_chooses_the_strategy_that_lowers_cheaper() {
         ("sleigh", SLEIGH),
         ("towed", TOWED),
     ] {
-        let (mut model, d) = derived(source);
+        let (model, mut cx, d) = derived(source);
         let closed_form = d.closed_form.as_ref().expect("within the limits");
-        let closed_form = closed_form.outputs(&mut model);
-        let symbolic = lowered_weight(&model, &d, &closed_form);
-        let numeric = lowered_weight(&model, &d, &d.numeric_solution);
+        let closed_form = closed_form.outputs(&mut cx);
+        let symbolic = lowered_weight(&model, &cx, &d, &closed_form);
+        let numeric = lowered_weight(&model, &cx, &d, &d.numeric_solution);
         println!(
             "{name}: lowered weights closed form {symbolic}, by blocks {numeric}; \
              estimated {:?} -> {:?}",
@@ -247,7 +239,7 @@ fn the_estimate_chooses_the_strategy_that_lowers_cheaper() {
 /// the limit, so no closed form is attempted (it would not finish).
 #[test]
 fn a_large_dense_metric_goes_numeric_without_a_closed_form() {
-    let (model, d) = derived(CHAIN);
+    let (model, _, d) = derived(CHAIN);
     assert_eq!(
         model.mass_matrix.diagonal_blocks(),
         [vec![0, 1, 2, 3, 4, 5]]
@@ -262,20 +254,20 @@ fn a_large_dense_metric_goes_numeric_without_a_closed_form() {
 #[test]
 fn the_structured_drift_is_the_exact_drift() {
     for source in [crate::fixtures::SNAKEBOARD, SLEIGH, CHAIN] {
-        let (mut model, derivation) = derived(source);
+        let (model, mut cx, derivation) = derived(source);
         let exact = derivation
             .saddle_point
             .drift
             .exact()
             .expect("small models' drift is exact")
             .clone();
-        let structured = super::structured_drift(&mut model);
+        let structured = super::structured_drift(&model, &mut cx);
         for seed in 1..=5 {
             let values = random_point(&model, &derivation.inputs, seed);
             let value_of = |s: SymbolId| values[&s];
-            let exact_values = exact.evaluate(&mut model.store, &value_of);
+            let exact_values = exact.evaluate(&mut cx, &value_of);
             for (i, &entry) in structured.entries().iter().enumerate() {
-                let value = model.store.evaluate(entry, &value_of);
+                let value = cx.evaluate(entry, &value_of);
                 assert!(
                     (value - exact_values[i]).abs() <= 1e-12 * (1.0 + exact_values[i].abs()),
                     "row {i}: {value} vs {}",
@@ -298,23 +290,25 @@ fn the_structured_force_is_the_exact_force() {
         ROLLING_DISK_3D,
         SNAKEBOARD_BODIES,
     ] {
-        let (mut model, derivation) = derived(source);
+        let (model, mut cx, derivation) = derived(source);
         let force = &derivation.saddle_point.force;
         let exact = force.exact.clone().expect("small models' force is exact");
-        let structured = super::structured_force(&mut model, &derivation.inputs).expect("fits");
+        let structured =
+            super::structured_force(&model, &mut cx, &derivation.inputs).expect("fits");
         for (i, &entry) in structured.entries().iter().enumerate() {
-            let form = model.store.normal(entry).expect("within budget");
-            let difference = form.sub(exact.get(i, 0), model.store.atoms());
+            let form = cx.normal(entry).expect("within budget");
+            let difference = form.sub(exact.get(i, 0), cx.atoms());
             assert!(difference.is_zero(), "{}: entry {i}", model.name);
         }
-        assert_force_values(&mut model, &derivation, 5, 1e-12);
+        assert_force_values(&model, &mut cx, &derivation, 5, 1e-12);
     }
 }
 
 /// The force emitted takes the exact force's values at `points` random
 /// states, to `tolerance` relative.
 fn assert_force_values(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     derivation: &LagrangeDalembert,
     points: u64,
     tolerance: f64,
@@ -324,9 +318,9 @@ fn assert_force_values(
     for seed in 1..=points {
         let values = random_point(model, &derivation.inputs, seed);
         let value_of = |s: SymbolId| values[&s];
-        let exact_values = exact.evaluate(&mut model.store, &value_of);
+        let exact_values = exact.evaluate(cx, &value_of);
         for (i, &entry) in force.expressions.entries().iter().enumerate() {
-            let value = model.store.evaluate(entry, &value_of);
+            let value = cx.evaluate(entry, &value_of);
             assert!(
                 (value - exact_values[i]).abs() <= tolerance * (1.0 + exact_values[i].abs()),
                 "{}, entry {i}: {value} vs {}",
@@ -344,12 +338,12 @@ fn assert_force_values(
 /// random states.
 #[test]
 fn the_bicycle_emits_its_structured_force() {
-    let (mut model, mut derivation) = derived(BICYCLE);
+    let (model, mut cx, mut derivation) = derived(BICYCLE);
     assert!(derivation.saddle_point.force.exact.is_none());
-    let exact = super::exact_force(&mut model, &derivation.inputs).expect("fits");
-    let written = exact.to_expression_matrix(&mut model.store);
+    let exact = super::exact_force(&model, &mut cx, &derivation.inputs).expect("fits");
+    let written = exact.to_expression_matrix(&mut cx);
     let force = &derivation.saddle_point.force;
-    let weight = |entries: &[ExprId]| ir::estimated_weight(&model.store, entries);
+    let weight = |entries: &[ExprId]| ir::estimated_weight(&cx, entries);
     let (emitted, written) = (
         weight(force.expressions.entries()),
         weight(written.entries()),
@@ -357,5 +351,5 @@ fn the_bicycle_emits_its_structured_force() {
     println!("bicycle force: emitted {emitted}, written out {written}");
     assert!(emitted * 10 < written, "{emitted} vs {written}");
     derivation.saddle_point.force.exact = Some(exact);
-    assert_force_values(&mut model, &derivation, 3, 1e-10);
+    assert_force_values(&model, &mut cx, &derivation, 3, 1e-10);
 }

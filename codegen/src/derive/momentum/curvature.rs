@@ -38,7 +38,7 @@
 
 use super::algebra::bracket;
 use crate::model::GroupFactor;
-use crate::sym::{Matrix, MatrixError, RationalFunction, Store, SymbolId};
+use crate::sym::{Context, Matrix, MatrixError, RationalFunction, SymbolId};
 
 /// `A = numerators / denominator`, by Cramer's rule.
 #[derive(Clone, Debug)]
@@ -83,12 +83,12 @@ pub const CRAMER_LIMIT: usize = 7;
 /// proved equal to `solution`, with its divisor's gradient in the shape
 /// `coordinates`; beyond [`CRAMER_LIMIT`], `solution / 1`.
 pub fn connection_quotient(
-    store: &mut Store,
+    cx: &mut Context,
     (system, rhs): (&Matrix, &Matrix),
     solution: &Matrix,
     coordinates: &[SymbolId],
 ) -> Result<ConnectionQuotient, CurvatureError> {
-    let atoms = store.atoms().clone();
+    let atoms = cx.atoms().clone();
     let (numerators, denominator) = match system.rows() > CRAMER_LIMIT {
         true => (solution.clone(), RationalFunction::one()),
         false => {
@@ -101,7 +101,7 @@ pub fn connection_quotient(
             (numerators, denominator)
         }
     };
-    let divisor_gradient = store
+    let divisor_gradient = cx
         .jacobian(std::slice::from_ref(&denominator), coordinates)?
         .entries()
         .to_vec();
@@ -115,7 +115,7 @@ pub fn connection_quotient(
 /// The curvature on every plane of the shape `coordinates` (the symbols
 /// of `r`), proved against the normal-form `connection`.
 pub fn curvature(
-    store: &mut Store,
+    cx: &mut Context,
     quotient: &ConnectionQuotient,
     connection: &Matrix,
     coordinates: &[SymbolId],
@@ -126,15 +126,15 @@ pub fn curvature(
         .flat_map(|i| (i + 1..nr).map(move |j| (i, j)))
         .collect();
     let numerators = form_on_planes(
-        store,
+        cx,
         &quotient.numerators,
         Some(&quotient.denominator),
         coordinates,
         factors,
         &planes,
     )?;
-    let exact = form_on_planes(store, connection, None, coordinates, factors, &planes)?;
-    let atoms = store.atoms().clone();
+    let exact = form_on_planes(cx, connection, None, coordinates, factors, &planes)?;
+    let atoms = cx.atoms().clone();
     let square = quotient.denominator.mul(&quotient.denominator, &atoms);
     if !numerators
         .sub(&exact.scale(&square, &atoms), &atoms)?
@@ -149,7 +149,7 @@ pub fn curvature(
 /// `columns` on each plane; with a `denominator` `d`, the numerator of the
 /// curvature of `C / d` over `d^2`, dg x planes.
 fn form_on_planes(
-    store: &mut Store,
+    cx: &mut Context,
     columns: &Matrix,
     denominator: Option<&RationalFunction>,
     coordinates: &[SymbolId],
@@ -163,13 +163,13 @@ fn form_on_planes(
     let mut result = Matrix::zeros(dg, planes.len());
     for (plane, &(i, j)) in planes.iter().enumerate() {
         let (ci, cj) = (column(i), column(j));
-        let dj_di = store.jacobian(&cj, &[coordinates[i]])?;
-        let di_dj = store.jacobian(&ci, &[coordinates[j]])?;
-        let atoms = store.atoms().clone();
+        let dj_di = cx.jacobian(&cj, &[coordinates[i]])?;
+        let di_dj = cx.jacobian(&ci, &[coordinates[j]])?;
+        let atoms = cx.atoms().clone();
         let mut entries = dj_di.sub(&di_dj, &atoms)?.neg();
         if let Some(d) = denominator {
             let gradient =
-                store.jacobian(std::slice::from_ref(d), &[coordinates[i], coordinates[j]])?;
+                cx.jacobian(std::slice::from_ref(d), &[coordinates[i], coordinates[j]])?;
             let column = |c: &[RationalFunction]| Matrix::new(dg, 1, c.to_vec());
             entries = entries
                 .scale(d, &atoms)

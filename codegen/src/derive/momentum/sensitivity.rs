@@ -15,7 +15,7 @@
 //! ```
 
 use super::ConnectionQuotient;
-use crate::sym::{Matrix, MatrixError, RationalFunction, Store, SymbolId};
+use crate::sym::{Context, Matrix, MatrixError, RationalFunction, SymbolId};
 
 /// The Jacobians, columns `(r, rdot, p)`.
 #[derive(Clone, Debug)]
@@ -43,15 +43,15 @@ pub struct Pieces<'a> {
 }
 
 /// The Jacobians of `pieces`.
-pub fn sensitivity(store: &mut Store, pieces: &Pieces<'_>) -> Result<Sensitivity, MatrixError> {
+pub fn sensitivity(cx: &mut Context, pieces: &Pieces<'_>) -> Result<Sensitivity, MatrixError> {
     let arguments = &pieces.arguments;
     let nr = pieces.shape;
-    let momentum = store.jacobian(pieces.rhs, arguments)?;
-    let vertical = store.jacobian(pieces.vertical, arguments)?;
-    let atoms = store.atoms().clone();
+    let momentum = cx.jacobian(pieces.rhs, arguments)?;
+    let vertical = cx.jacobian(pieces.vertical, arguments)?;
+    let atoms = cx.atoms().clone();
     let rates: Vec<RationalFunction> = arguments[nr..2 * nr]
         .iter()
-        .map(|&s| RationalFunction::from_poly(crate::sym::Poly::atom(store.symbol_atom(s))))
+        .map(|&s| RationalFunction::from_poly(crate::sym::Poly::atom(cx.symbol_atom(s))))
         .collect();
     let rate_column = Matrix::new(nr, 1, rates)?;
     let numerators = &pieces.quotient.numerators;
@@ -60,7 +60,7 @@ pub fn sensitivity(store: &mut Store, pieces: &Pieces<'_>) -> Result<Sensitivity
         &pieces.quotient.denominator,
         &pieces.quotient.divisor_gradient,
     );
-    let horizontal_gradient = store.jacobian(horizontal.entries(), &arguments[..nr])?;
+    let horizontal_gradient = cx.jacobian(horizontal.entries(), &arguments[..nr])?;
     let dg = numerators.rows();
     let mut quotient = Matrix::zeros(dg, arguments.len());
     for i in 0..dg {

@@ -6,6 +6,7 @@
 
 use super::{Exact, ReducedExpressions, reduced_energy, symbols_column};
 use crate::model::Model;
+use crate::sym::Context;
 use crate::sym::{Matrix, MatrixError, SymbolId};
 
 impl Exact {
@@ -15,7 +16,8 @@ impl Exact {
     /// gradient's expressions.
     pub fn expressions(
         &self,
-        model: &mut Model,
+        model: &Model,
+        cx: &mut Context,
         momenta: &[SymbolId],
         inputs: &[SymbolId],
     ) -> Result<ReducedExpressions, MatrixError> {
@@ -24,32 +26,27 @@ impl Exact {
             state.extend(momenta);
             state
         };
-        let store = &mut model.store;
-        let alpha = symbols_column(store, momenta);
-        let u = symbols_column(store, inputs);
-        let metric_inverse = self.metric_inverse.to_expression_matrix(store);
-        let potential = store.expression_of(&model.potential_energy);
-        let hamiltonian = reduced_energy(store, &alpha, &metric_inverse, potential)?;
+        let alpha = symbols_column(cx, momenta);
+        let u = symbols_column(cx, inputs);
+        let metric_inverse = self.metric_inverse.to_expression_matrix(cx);
+        let potential = cx.expression_of(&model.potential_energy);
+        let hamiltonian = reduced_energy(cx, &alpha, &metric_inverse, potential)?;
         let gradient = state
             .iter()
-            .map(|&x| store.derivative(hamiltonian, x))
+            .map(|&x| cx.derivative(hamiltonian, x))
             .collect();
-        let exact_gradient = Matrix::column(
-            self.gradient
-                .iter()
-                .map(|g| store.expression_of(g))
-                .collect(),
-        );
-        let structure = self.structure.to_expression_matrix(store);
-        let input_matrix = self.input_matrix.to_expression_matrix(store);
+        let exact_gradient =
+            Matrix::column(self.gradient.iter().map(|g| cx.expression_of(g)).collect());
+        let structure = self.structure.to_expression_matrix(cx);
+        let input_matrix = self.input_matrix.to_expression_matrix(cx);
         let rhs = structure
-            .mul(&exact_gradient, store)?
-            .add(&input_matrix.mul(&u, store)?, store)?;
-        let output = input_matrix.transpose().mul(&exact_gradient, store)?;
+            .mul(&exact_gradient, cx)?
+            .add(&input_matrix.mul(&u, cx)?, cx)?;
+        let output = input_matrix.transpose().mul(&exact_gradient, cx)?;
         Ok(ReducedExpressions {
-            velocity_map: self.velocity_map.to_expression_matrix(store),
-            momentum_map: self.momentum_map.to_expression_matrix(store),
-            metric: self.metric.to_expression_matrix(store),
+            velocity_map: self.velocity_map.to_expression_matrix(cx),
+            momentum_map: self.momentum_map.to_expression_matrix(cx),
+            metric: self.metric.to_expression_matrix(cx),
             metric_inverse,
             structure,
             input_matrix,

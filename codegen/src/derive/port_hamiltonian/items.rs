@@ -24,7 +24,7 @@
 use super::{Exact, PortHamiltonian, PortHamiltonianError, ReducedExpressions};
 use crate::ir;
 use crate::model::Model;
-use crate::sym::{ExprId, Matrix, Poly, RationalFunction, Store, SymbolId};
+use crate::sym::{Context, ExprId, Matrix, Poly, RationalFunction, SymbolId};
 
 /// The ten items, in the order they are emitted and documented.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -78,11 +78,11 @@ pub struct Candidates {
 
 impl Candidates {
     /// The form with the lower estimated weighted cost, the structured one on ties.
-    pub fn chosen(self, store: &Store) -> Vec<ExprId> {
+    pub fn chosen(self, cx: &Context) -> Vec<ExprId> {
         match self.expanded {
             Some(expanded)
-                if ir::estimated_weight(store, &expanded)
-                    < ir::estimated_weight(store, &self.structured) =>
+                if ir::estimated_weight(cx, &expanded)
+                    < ir::estimated_weight(cx, &self.structured) =>
             {
                 expanded
             }
@@ -103,26 +103,31 @@ impl Items {
 }
 
 /// The ten items of `reduced`, each in its cheaper form.
-pub fn items(model: &mut Model, reduced: &PortHamiltonian) -> Result<Items, PortHamiltonianError> {
-    let chosen = candidates(model, reduced)?
+pub fn items(
+    model: &Model,
+    cx: &mut Context,
+    reduced: &PortHamiltonian,
+) -> Result<Items, PortHamiltonianError> {
+    let chosen = candidates(model, cx, reduced)?
         .into_iter()
-        .map(|candidates| candidates.chosen(&model.store))
+        .map(|candidates| candidates.chosen(cx))
         .collect();
     Ok(Items(chosen))
 }
 
 /// The two writings of every item, in [`Item::ALL`]'s order.
 pub fn candidates(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     reduced: &PortHamiltonian,
 ) -> Result<Vec<Candidates>, PortHamiltonianError> {
-    let expressions = reduced.expressions(model)?;
+    let expressions = reduced.expressions(model, cx)?;
     Item::ALL
         .iter()
         .map(|&item| {
-            let structured = structured(model, reduced, &expressions, item)?;
+            let structured = structured(model, cx, reduced, &expressions, item)?;
             let expanded = match reduced.exact() {
-                Some(exact) => Some(expanded(model, reduced, exact, item)?),
+                Some(exact) => Some(expanded(model, cx, reduced, exact, item)?),
                 None => None,
             };
             Ok(Candidates {
@@ -135,114 +140,115 @@ pub fn candidates(
 
 /// `item` in the structured form.
 fn structured(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     reduced: &PortHamiltonian,
     expressions: &ReducedExpressions,
     item: Item,
 ) -> Result<Vec<ExprId>, PortHamiltonianError> {
     Ok(match item {
         Item::Momenta => {
-            let qdot = symbol_expressions(&mut model.store, &model.velocities);
-            product(&mut model.store, &expressions.momentum_map, qdot)?
+            let qdot = symbol_expressions(cx, &model.velocities);
+            product(cx, &expressions.momentum_map, qdot)?
         }
         Item::Velocities => {
-            let alpha = symbol_expressions(&mut model.store, &reduced.momenta);
-            product(&mut model.store, &expressions.velocity_map, alpha)?
+            let alpha = symbol_expressions(cx, &reduced.momenta);
+            product(cx, &expressions.velocity_map, alpha)?
         }
         Item::Hamiltonian => vec![expressions.hamiltonian],
         Item::HamiltonianGradient => expressions.gradient.clone(),
         Item::StructureMatrix => expressions.structure.entries().to_vec(),
         Item::InputMatrix => expressions.input_matrix.entries().to_vec(),
         Item::ReducedRhs => expressions.rhs.clone(),
-        Item::ReducedRhsJacobian => state_jacobian(model, reduced, &expressions.rhs),
+        Item::ReducedRhsJacobian => state_jacobian(model, cx, reduced, &expressions.rhs),
         Item::Output => expressions.output.clone(),
-        Item::OutputJacobian => state_jacobian(model, reduced, &expressions.output),
+        Item::OutputJacobian => state_jacobian(model, cx, reduced, &expressions.output),
     })
 }
 
 /// `item` from the expanded normal forms of `exact`.
 fn expanded(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     reduced: &PortHamiltonian,
     exact: &Exact,
     item: Item,
 ) -> Result<Vec<ExprId>, PortHamiltonianError> {
     Ok(match item {
         Item::Momenta => {
-            let qdot = symbol_forms(&mut model.store, &model.velocities);
-            expanded_product(model, &exact.momentum_map, qdot)?
+            let qdot = symbol_forms(cx, &model.velocities);
+            expanded_product(cx, &exact.momentum_map, qdot)?
         }
         Item::Velocities => {
-            let alpha = symbol_forms(&mut model.store, &reduced.momenta);
-            expanded_product(model, &exact.velocity_map, alpha)?
+            let alpha = symbol_forms(cx, &reduced.momenta);
+            expanded_product(cx, &exact.velocity_map, alpha)?
         }
-        Item::Hamiltonian => {
-            expressions_of(&mut model.store, std::slice::from_ref(&exact.hamiltonian))
-        }
-        Item::HamiltonianGradient => expressions_of(&mut model.store, &exact.gradient),
-        Item::StructureMatrix => expressions_of(&mut model.store, exact.structure.entries()),
-        Item::InputMatrix => expressions_of(&mut model.store, exact.input_matrix.entries()),
-        Item::ReducedRhs => expressions_of(&mut model.store, &exact.rhs),
+        Item::Hamiltonian => expressions_of(cx, std::slice::from_ref(&exact.hamiltonian)),
+        Item::HamiltonianGradient => expressions_of(cx, &exact.gradient),
+        Item::StructureMatrix => expressions_of(cx, exact.structure.entries()),
+        Item::InputMatrix => expressions_of(cx, exact.input_matrix.entries()),
+        Item::ReducedRhs => expressions_of(cx, &exact.rhs),
         Item::ReducedRhsJacobian => {
             let state = reduced.state(model);
-            let jacobian = model.store.jacobian(&exact.rhs, &state)?;
-            expressions_of(&mut model.store, jacobian.entries())
+            let jacobian = cx.jacobian(&exact.rhs, &state)?;
+            expressions_of(cx, jacobian.entries())
         }
-        Item::Output => expressions_of(&mut model.store, &exact.output),
+        Item::Output => expressions_of(cx, &exact.output),
         Item::OutputJacobian => {
-            let output = expressions_of(&mut model.store, &exact.output);
-            state_jacobian(model, reduced, &output)
+            let output = expressions_of(cx, &exact.output);
+            state_jacobian(model, cx, reduced, &output)
         }
     })
 }
 
-fn expressions_of(store: &mut Store, forms: &[RationalFunction]) -> Vec<ExprId> {
-    forms.iter().map(|form| store.expression_of(form)).collect()
+fn expressions_of(cx: &mut Context, forms: &[RationalFunction]) -> Vec<ExprId> {
+    forms.iter().map(|form| cx.expression_of(form)).collect()
 }
 
-fn symbol_expressions(store: &mut Store, symbols: &[SymbolId]) -> Vec<ExprId> {
-    symbols.iter().map(|&s| store.symbol(s)).collect()
+fn symbol_expressions(cx: &mut Context, symbols: &[SymbolId]) -> Vec<ExprId> {
+    symbols.iter().map(|&s| cx.symbol(s)).collect()
 }
 
-fn symbol_forms(store: &mut Store, symbols: &[SymbolId]) -> Vec<RationalFunction> {
+fn symbol_forms(cx: &mut Context, symbols: &[SymbolId]) -> Vec<RationalFunction> {
     symbols
         .iter()
-        .map(|&s| RationalFunction::from_poly(Poly::atom(store.symbol_atom(s))))
+        .map(|&s| RationalFunction::from_poly(Poly::atom(cx.symbol_atom(s))))
         .collect()
 }
 
 /// `matrix * column` of a form, as expressions.
 fn product(
-    store: &mut Store,
+    cx: &mut Context,
     matrix: &Matrix<ExprId>,
     column: Vec<ExprId>,
 ) -> Result<Vec<ExprId>, PortHamiltonianError> {
-    let product = matrix.mul(&Matrix::column(column), store)?;
+    let product = matrix.mul(&Matrix::column(column), cx)?;
     Ok(product.entries().to_vec())
 }
 
 /// `matrix * column` expanded to normal forms, as expressions.
 fn expanded_product(
-    model: &mut Model,
+    cx: &mut Context,
     matrix: &Matrix,
     column: Vec<RationalFunction>,
 ) -> Result<Vec<ExprId>, PortHamiltonianError> {
     let column = Matrix::new(column.len(), 1, column)?;
-    let atoms = model.store.atoms().clone();
+    let atoms = cx.atoms().clone();
     let product = matrix.mul(&column, &atoms)?;
-    Ok(expressions_of(&mut model.store, product.entries()))
+    Ok(expressions_of(cx, product.entries()))
 }
 
 /// The derivatives of `functions` by every state variable, row by row.
 fn state_jacobian(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     reduced: &PortHamiltonian,
     functions: &[ExprId],
 ) -> Vec<ExprId> {
     let state = reduced.state(model);
     let by_variable: Vec<Vec<ExprId>> = state
         .iter()
-        .map(|&x| model.store.derivatives(functions, x))
+        .map(|&x| cx.derivatives(functions, x))
         .collect();
     (0..functions.len())
         .flat_map(|i| by_variable.iter().map(move |column| column[i]))
@@ -255,15 +261,15 @@ mod tests {
     use crate::derive::constraints::distribution_basis;
     use crate::derive::port_hamiltonian::derive;
     use crate::ir;
-    use crate::model::{Model, check};
-    use crate::sym::{ExprId, SymbolId};
+    use crate::model::check;
+    use crate::sym::{Context, ExprId, SymbolId};
     use crate::syntax::parse_str;
 
     const SLEIGH: &str = include_str!("../../../../models/sleigh.model");
 
     /// The weighted cost of `outputs` once lowered, every symbol an input.
-    fn lowered_weight(model: &Model, inputs: &[SymbolId], outputs: &[ExprId]) -> u64 {
-        ir::lower(&model.store, inputs, outputs)
+    fn lowered_weight(cx: &Context, inputs: &[SymbolId], outputs: &[ExprId]) -> u64 {
+        ir::lower(cx, inputs, outputs)
             .expect("lowers")
             .weighted_cost()
     }
@@ -277,19 +283,19 @@ mod tests {
             ("snakeboard", crate::fixtures::SNAKEBOARD, false),
             ("sleigh", SLEIGH, true),
         ] {
-            let mut model = check(&parse_str(source).expect("parses")).expect("checks");
-            let basis = distribution_basis(&mut model).expect("regular at the defaults");
-            let reduced = derive(&mut model, &basis).expect("derives");
+            let (model, mut cx) = check(&parse_str(source).expect("parses")).expect("checks");
+            let basis = distribution_basis(&model, &mut cx).expect("regular at the defaults");
+            let reduced = derive(&model, &mut cx, &basis).expect("derives");
             let mut inputs = reduced.state(&model);
             inputs.extend(&model.velocities);
             inputs.extend(&reduced.inputs);
             inputs.extend(model.parameter_symbols());
-            let candidates = candidates(&mut model, &reduced).expect("derives");
+            let candidates = candidates(&model, &mut cx, &reduced).expect("derives");
             for (item, candidates) in Item::ALL.iter().zip(candidates) {
                 let expanded = candidates.expanded.clone().expect("exact form derived");
                 let weights = [&candidates.structured, &expanded]
-                    .map(|outputs| lowered_weight(&model, &inputs, outputs));
-                let chosen = candidates.chosen(&model.store);
+                    .map(|outputs| lowered_weight(&cx, &inputs, outputs));
+                let chosen = candidates.chosen(&cx);
                 let kept_expanded = chosen == expanded;
                 println!("{name} {item:?}: lowered {weights:?}, expanded kept: {kept_expanded}");
                 if *item == Item::ReducedRhs {

@@ -38,39 +38,39 @@
 
 use super::{ReducedExpressions, reduced_energy, symbols_column};
 use crate::model::Model;
-use crate::sym::{ExprId, Matrix, MatrixError, Store, SymbolId};
+use crate::sym::{Context, ExprId, Matrix, MatrixError, SymbolId};
 
 /// The reduced form's matrices and flow for the basis `fields` of D.
 pub(super) fn derive(
-    model: &mut Model,
+    model: &Model,
+    cx: &mut Context,
     fields: &Matrix<ExprId>,
     momenta: &[SymbolId],
     inputs: &[SymbolId],
 ) -> Result<ReducedExpressions, MatrixError> {
     let n = model.n();
     let coordinates = model.coordinate_symbols();
-    let store = &mut model.store;
     let g = model.energy_expressions.mass_matrix.clone();
-    let b = model.input_matrix.to_expression_matrix(store);
+    let b = model.input_matrix.to_expression_matrix(cx);
     let potential = model.energy_expressions.potential;
-    let maps = Maps::of(store, fields, &g)?;
-    let alpha = symbols_column(store, momenta);
-    let u = symbols_column(store, inputs);
+    let maps = Maps::of(cx, fields, &g)?;
+    let alpha = symbols_column(cx, momenta);
+    let u = symbols_column(cx, inputs);
     let metric_rates: Vec<Matrix<ExprId>> = coordinates
         .iter()
-        .map(|&q| maps.metric_inverse.derivative(q, store))
+        .map(|&q| maps.metric_inverse.derivative(q, cx))
         .collect();
-    let hamiltonian = reduced_energy(store, &alpha, &maps.metric_inverse, potential)?;
+    let hamiltonian = reduced_energy(cx, &alpha, &maps.metric_inverse, potential)?;
     let mut gradient: Vec<ExprId> = coordinates
         .iter()
-        .map(|&q| store.derivative(hamiltonian, q))
+        .map(|&q| cx.derivative(hamiltonian, q))
         .collect();
-    gradient.extend(maps.metric_inverse.mul(&alpha, store)?.entries());
-    let core = gyroscopic_core(store, &maps, &metric_rates, &alpha, &coordinates)?;
-    let structure = structure_matrix(store, &maps, &core)?;
-    let zero = store.integer(0);
-    let input_matrix = maps.projection.mul(&b, store)?.below_zero_rows(n, zero);
-    let (rhs, output) = flow(store, &maps, &core, &gradient[..n], &alpha, &u, &b)?;
+    gradient.extend(maps.metric_inverse.mul(&alpha, cx)?.entries());
+    let core = gyroscopic_core(cx, &maps, &metric_rates, &alpha, &coordinates)?;
+    let structure = structure_matrix(cx, &maps, &core)?;
+    let zero = cx.integer(0);
+    let input_matrix = maps.projection.mul(&b, cx)?.below_zero_rows(n, zero);
+    let (rhs, output) = flow(cx, &maps, &core, &gradient[..n], &alpha, &u, &b)?;
     Ok(ReducedExpressions {
         velocity_map: maps.velocities,
         momentum_map: maps.momentum_map,
@@ -103,17 +103,17 @@ struct Maps {
 
 impl Maps {
     fn of(
-        store: &mut Store,
+        cx: &mut Context,
         fields: &Matrix<ExprId>,
         g: &Matrix<ExprId>,
     ) -> Result<Maps, MatrixError> {
         let x_transposed = fields.transpose();
-        let basis = x_transposed.mul(g, store)?;
-        let metric_inverse = symmetric(&basis.mul(fields, store)?);
-        let identity = store.identity_matrix(fields.columns());
-        let metric = symmetric(&store.solve_in_order(&metric_inverse, &identity)?);
-        let projection = metric.mul(&x_transposed, store)?;
-        let momentum_map = metric.mul(&basis, store)?;
+        let basis = x_transposed.mul(g, cx)?;
+        let metric_inverse = symmetric(&basis.mul(fields, cx)?);
+        let identity = cx.identity_matrix(fields.columns());
+        let metric = symmetric(&cx.solve_in_order(&metric_inverse, &identity)?);
+        let projection = metric.mul(&x_transposed, cx)?;
+        let momentum_map = metric.mul(&basis, cx)?;
         Ok(Maps {
             velocities: fields.clone(),
             basis,
@@ -128,7 +128,7 @@ impl Maps {
 /// `xdot = (X alpha, gbar (-X^T dHbar/dq + S alpha + X^T B u))` and
 /// `y = B^T X alpha`.
 fn flow(
-    store: &mut Store,
+    cx: &mut Context,
     maps: &Maps,
     core: &Matrix<ExprId>,
     force_gradient: &[ExprId],
@@ -137,27 +137,27 @@ fn flow(
     b: &Matrix<ExprId>,
 ) -> Result<(Vec<ExprId>, Vec<ExprId>), MatrixError> {
     let x_transposed = maps.velocities.transpose();
-    let velocities = maps.velocities.mul(alpha, store)?;
-    let minus_one = store.integer(-1);
+    let velocities = maps.velocities.mul(alpha, cx)?;
+    let minus_one = cx.integer(-1);
     let potential_force = x_transposed
-        .mul(&Matrix::column(force_gradient.to_vec()), store)?
-        .scale(minus_one, store);
-    let applied = x_transposed.mul(&b.mul(u, store)?, store)?;
-    let gyroscopic_force = core.mul(alpha, store)?;
+        .mul(&Matrix::column(force_gradient.to_vec()), cx)?
+        .scale(minus_one, cx);
+    let applied = x_transposed.mul(&b.mul(u, cx)?, cx)?;
+    let gyroscopic_force = core.mul(alpha, cx)?;
     let bracket = potential_force
-        .add(&gyroscopic_force, store)?
-        .add(&applied, store)?;
-    let momentum_rates = maps.metric.mul(&bracket, store)?;
+        .add(&gyroscopic_force, cx)?
+        .add(&applied, cx)?;
+    let momentum_rates = maps.metric.mul(&bracket, cx)?;
     let mut rhs = velocities.entries().to_vec();
     rhs.extend(momentum_rates.entries());
-    let output = b.transpose().mul(&velocities, store)?.entries().to_vec();
+    let output = b.transpose().mul(&velocities, cx)?.entries().to_vec();
     Ok((rhs, output))
 }
 
 /// `S_ab = sum_c alpha_c (X_a(gbar_inv_cb) - X_b(gbar_inv_ca) - (h [X_a, X_b])_c)`
 /// for `a < b`, mirrored with the opposite sign.
 fn gyroscopic_core(
-    store: &mut Store,
+    cx: &mut Context,
     maps: &Maps,
     metric_rates: &[Matrix<ExprId>],
     alpha: &Matrix<ExprId>,
@@ -165,25 +165,25 @@ fn gyroscopic_core(
 ) -> Result<Matrix<ExprId>, MatrixError> {
     let (x, h) = (&maps.velocities, &maps.basis);
     let k = x.columns();
-    let mut core = store.zero_matrix(k, k);
+    let mut core = cx.zero_matrix(k, k);
     for a in 0..k {
         for b in a + 1..k {
-            let bracket = store.lie_bracket_of_expressions(
+            let bracket = cx.lie_bracket_of_expressions(
                 &x.column_entries(a),
                 &x.column_entries(b),
                 coordinates,
             );
-            let along_bracket = h.mul(&Matrix::column(bracket), store)?;
+            let along_bracket = h.mul(&Matrix::column(bracket), cx)?;
             let mut terms = Vec::with_capacity(k);
             for c in 0..k {
-                let ab = directional(store, x, a, metric_rates, c, b);
-                let ba = directional(store, x, b, metric_rates, c, a);
-                let form = store.sub(ab, ba);
-                let form = store.sub(form, *along_bracket.get(c, 0));
-                terms.push(store.mul2(*alpha.get(c, 0), form));
+                let ab = directional(cx, x, a, metric_rates, c, b);
+                let ba = directional(cx, x, b, metric_rates, c, a);
+                let form = cx.sub(ab, ba);
+                let form = cx.sub(form, *along_bracket.get(c, 0));
+                terms.push(cx.mul2(*alpha.get(c, 0), form));
             }
-            let entry = store.add(&terms);
-            let opposite = store.neg(entry);
+            let entry = cx.add(&terms);
+            let opposite = cx.neg(entry);
             core.set(a, b, entry);
             core.set(b, a, opposite);
         }
@@ -193,7 +193,7 @@ fn gyroscopic_core(
 
 /// `X_a(gbar_inv_cb) = sum_j X_ja d gbar_inv_cb / dq_j`.
 fn directional(
-    store: &mut Store,
+    cx: &mut Context,
     x: &Matrix<ExprId>,
     a: usize,
     metric_rates: &[Matrix<ExprId>],
@@ -203,11 +203,11 @@ fn directional(
     let mut terms = Vec::new();
     for (j, rate) in metric_rates.iter().enumerate() {
         let (along, derivative) = (*x.get(j, a), *rate.get(c, b));
-        if !store.is_zero_constant(along) && !store.is_zero_constant(derivative) {
-            terms.push(store.mul2(along, derivative));
+        if !cx.is_zero_constant(along) && !cx.is_zero_constant(derivative) {
+            terms.push(cx.mul2(along, derivative));
         }
     }
-    store.add(&terms)
+    cx.add(&terms)
 }
 
 /// The matrix with its upper triangle mirrored below the diagonal.
@@ -223,13 +223,13 @@ fn symmetric(matrix: &Matrix<ExprId>) -> Matrix<ExprId> {
 
 /// The matrix with its upper triangle negated below the diagonal and zeros
 /// on it (the matrix is skew as a function; this makes it so as written).
-fn skew_part(store: &mut Store, matrix: &Matrix<ExprId>) -> Matrix<ExprId> {
-    let mut skew = store.zero_matrix(matrix.rows(), matrix.columns());
+fn skew_part(cx: &mut Context, matrix: &Matrix<ExprId>) -> Matrix<ExprId> {
+    let mut skew = cx.zero_matrix(matrix.rows(), matrix.columns());
     for a in 0..matrix.rows() {
         for b in a + 1..matrix.columns() {
             let entry = *matrix.get(a, b);
             skew.set(a, b, entry);
-            skew.set(b, a, store.neg(entry));
+            skew.set(b, a, cx.neg(entry));
         }
     }
     skew
@@ -238,14 +238,14 @@ fn skew_part(store: &mut Store, matrix: &Matrix<ExprId>) -> Matrix<ExprId> {
 /// `Jbar = [[0, P^T], [-P, Gamma]]` with `Gamma = gbar S gbar`, each lower
 /// entry the negation of its upper one.
 fn structure_matrix(
-    store: &mut Store,
+    cx: &mut Context,
     maps: &Maps,
     core: &Matrix<ExprId>,
 ) -> Result<Matrix<ExprId>, MatrixError> {
-    let sandwiched = maps.metric.mul(core, store)?.mul(&maps.metric, store)?;
-    let gyroscopic = skew_part(store, &sandwiched);
-    let zero = store.integer(0);
+    let sandwiched = maps.metric.mul(core, cx)?.mul(&maps.metric, cx)?;
+    let gyroscopic = skew_part(cx, &sandwiched);
+    let zero = cx.integer(0);
     Ok(maps
         .projection
-        .skew_structure(&gyroscopic, zero, |&entry| store.neg(entry)))
+        .skew_structure(&gyroscopic, zero, |&entry| cx.neg(entry)))
 }

@@ -3,6 +3,7 @@
 use super::{Exact, PortHamiltonian, PortHamiltonianError, derive, prove_skew};
 use crate::derive::constraints::distribution_basis;
 use crate::model::{Model, check};
+use crate::sym::Context;
 use crate::sym::{ExprId, Matrix, Poly, RationalFunction};
 use crate::syntax::parse_str;
 
@@ -24,11 +25,11 @@ fn sources() -> [String; 3] {
     ]
 }
 
-fn derived(source: &str) -> (Model, PortHamiltonian) {
-    let mut model = check(&parse_str(source).expect("parses")).expect("checks");
-    let basis = distribution_basis(&mut model).expect("regular at the defaults");
-    let reduced = derive(&mut model, &basis).expect("derives");
-    (model, reduced)
+fn derived(source: &str) -> (Model, Context, PortHamiltonian) {
+    let (model, mut cx) = check(&parse_str(source).expect("parses")).expect("checks");
+    let basis = distribution_basis(&model, &mut cx).expect("regular at the defaults");
+    let reduced = derive(&model, &mut cx, &basis).expect("derives");
+    (model, cx, reduced)
 }
 
 fn exact(reduced: &PortHamiltonian) -> &Exact {
@@ -36,10 +37,10 @@ fn exact(reduced: &PortHamiltonian) -> &Exact {
 }
 
 /// True when the expressions equal the normal forms as rational functions.
-fn equal(model: &mut Model, expressions: &[ExprId], forms: &[RationalFunction]) -> bool {
+fn equal(cx: &mut Context, expressions: &[ExprId], forms: &[RationalFunction]) -> bool {
     expressions.iter().zip(forms).all(|(&e, form)| {
-        let structured = model.store.normal(e).expect("normal form");
-        let atoms = model.store.atoms().clone();
+        let structured = cx.normal(e).expect("normal form");
+        let atoms = cx.atoms().clone();
         structured.sub(form, &atoms).is_zero()
     })
 }
@@ -51,11 +52,12 @@ fn equal(model: &mut Model, expressions: &[ExprId], forms: &[RationalFunction]) 
 #[test]
 fn the_structured_form_equals_the_exact_form() {
     for source in [snakeboard_without_basis(), SLEIGH.to_string()] {
-        let (mut model, reduced) = derived(&source);
+        let (model, mut cx, reduced) = derived(&source);
         assert!(reduced.exact().is_some(), "the exact form fits");
-        let basis = distribution_basis(&mut model).expect("regular at the defaults");
+        let basis = distribution_basis(&model, &mut cx).expect("regular at the defaults");
         let structured = super::structured::derive(
-            &mut model,
+            &model,
+            &mut cx,
             &basis.field_expressions,
             &reduced.momenta,
             &reduced.inputs,
@@ -94,17 +96,17 @@ fn the_structured_form_equals_the_exact_form() {
             ("y", &structured.output, &exact.output),
         ];
         for (name, structured, expanded) in pairs {
-            assert!(equal(&mut model, structured, expanded), "{name}");
+            assert!(equal(&mut cx, structured, expanded), "{name}");
         }
         assert!(equal(
-            &mut model,
+            &mut cx,
             &[structured.hamiltonian],
             std::slice::from_ref(&exact.hamiltonian)
         ));
-        let perturbed = model.store.add2(structured.rhs[0], structured.rhs[1]);
-        assert!(!equal(&mut model, &[perturbed], &exact.rhs[..1]));
+        let perturbed = cx.add2(structured.rhs[0], structured.rhs[1]);
+        assert!(!equal(&mut cx, &[perturbed], &exact.rhs[..1]));
         let structured_facts =
-            super::facts_at_points(&mut model, &structured.metric_inverse).expect("evaluates");
+            super::facts_at_points(&model, &mut cx, &structured.metric_inverse).expect("evaluates");
         assert_eq!(
             structured_facts,
             (reduced.metric_constant, reduced.metric_diagonal)
@@ -112,7 +114,7 @@ fn the_structured_form_equals_the_exact_form() {
     }
 }
 
-fn parameter(model: &mut Model, name: &str) -> RationalFunction {
+fn parameter(model: &Model, cx: &mut Context, name: &str) -> RationalFunction {
     let symbol = model
         .parameters
         .iter()
@@ -120,15 +122,15 @@ fn parameter(model: &mut Model, name: &str) -> RationalFunction {
         .expect("declared")
         .variable
         .symbol;
-    RationalFunction::from_poly(Poly::atom(model.store.symbol_atom(symbol)))
+    RationalFunction::from_poly(Poly::atom(cx.symbol_atom(symbol)))
 }
 
 #[test]
 fn the_snakeboard_metric_is_exactly_diag_m_jt_jw() {
-    let (mut model, reduced) = derived(crate::fixtures::SNAKEBOARD);
+    let (model, mut cx, reduced) = derived(crate::fixtures::SNAKEBOARD);
     let mut expected = Matrix::zeros(3, 3);
     for (i, name) in ["m", "jt", "jw"].into_iter().enumerate() {
-        expected.set(i, i, parameter(&mut model, name));
+        expected.set(i, i, parameter(&model, &mut cx, name));
     }
     assert_eq!(exact(&reduced).metric, expected);
     assert!(reduced.metric_constant && reduced.metric_diagonal);
@@ -138,18 +140,18 @@ fn the_snakeboard_metric_is_exactly_diag_m_jt_jw() {
 
 #[test]
 fn the_snakeboard_has_no_gyroscopic_terms() {
-    let (_, reduced) = derived(crate::fixtures::SNAKEBOARD);
+    let (_, _, reduced) = derived(crate::fixtures::SNAKEBOARD);
     assert!(exact(&reduced).gyroscopic.is_zero());
 }
 
 #[test]
 fn the_projection_is_a_left_inverse_of_the_basis() {
     for source in sources() {
-        let (model, reduced) = derived(&source);
+        let (_, cx, reduced) = derived(&source);
         let exact = exact(&reduced);
         let product = exact
             .projection
-            .mul(&exact.basis.transpose(), model.store.atoms())
+            .mul(&exact.basis.transpose(), cx.atoms())
             .expect("fits");
         assert_eq!(product, Matrix::identity(reduced.momenta.len()));
     }
@@ -158,8 +160,8 @@ fn the_projection_is_a_left_inverse_of_the_basis() {
 #[test]
 fn the_structure_matrix_is_exactly_skew() {
     for source in sources() {
-        let (model, reduced) = derived(&source);
-        let atoms = model.store.atoms();
+        let (_, cx, reduced) = derived(&source);
+        let atoms = cx.atoms();
         let structure = &exact(&reduced).structure;
         assert!(structure.is_skew(atoms));
         let sum = structure.add(&structure.transpose(), atoms).expect("fits");
@@ -199,14 +201,14 @@ fn a_matrix_that_is_not_skew_is_reported() {
 /// `(inertia + m a^2) omegadot = -m a v omega`, the sleigh's equations.
 #[test]
 fn the_sleigh_gets_the_tools_basis_in_the_body_frame() {
-    let (mut model, reduced) = derived(SLEIGH);
+    let (model, mut cx, reduced) = derived(SLEIGH);
     assert!(!reduced.declared_basis);
     assert_eq!(reduced.momentum_names, ["alpha1", "alpha2"]);
     let exact = exact(&reduced).clone();
     let mut text = |entries: &[&str]| -> Vec<RationalFunction> {
         entries
             .iter()
-            .map(|e| model.normal_of_text(e).expect("parses"))
+            .map(|e| model.normal_of_text(&mut cx, e).expect("parses"))
             .collect()
     };
     let basis = text(&[
@@ -219,9 +221,9 @@ fn the_sleigh_gets_the_tools_basis_in_the_body_frame() {
     ]);
     let metric = text(&["1/m", "0", "0", "1/(inertia + m*a^2)"]);
     let coupling = text(&["a/(inertia + m*a^2)"]);
-    let alpha2 = model.store.symbol(reduced.momenta[1]);
-    let alpha2 = model.store.normal(alpha2).expect("normal");
-    let atoms = model.store.atoms().clone();
+    let alpha2 = cx.symbol(reduced.momenta[1]);
+    let alpha2 = cx.normal(alpha2).expect("normal");
+    let atoms = cx.atoms().clone();
     let gamma_12 = coupling[0].mul(&alpha2, &atoms);
     let gyroscopic = [
         RationalFunction::zero(),
@@ -243,16 +245,16 @@ fn the_sleigh_gets_the_tools_basis_in_the_body_frame() {
 
 #[test]
 fn the_snakeboard_without_a_basis_gets_the_tools() {
-    let (mut model, reduced) = derived(&snakeboard_without_basis());
+    let (_, mut cx, reduced) = derived(&snakeboard_without_basis());
     assert!(!reduced.declared_basis);
     assert_eq!(reduced.momentum_names, ["alpha1", "alpha2", "alpha3"]);
     let exact = exact(&reduced);
     for (name, matrix) in [("gbar", &exact.metric), ("Gamma", &exact.gyroscopic)] {
         for (i, entry) in matrix.entries().iter().enumerate() {
-            let expression = model.store.expression_of(entry);
+            let expression = cx.expression_of(entry);
             println!(
                 "snakeboard (own basis) {name}[{i}] = {}",
-                model.store.display(expression)
+                cx.display(expression)
             );
         }
     }
@@ -263,8 +265,8 @@ fn the_snakeboard_without_a_basis_gets_the_tools() {
 #[test]
 fn momenta_of_inputs_never_capture_a_parameter() {
     let source = crate::fixtures::SNAKEBOARD.replace("u_torso = psi", "m = psi");
-    let (model, reduced) = derived(&source);
-    let input = model.store.symbol_info(reduced.inputs[0]);
+    let (_, cx, reduced) = derived(&source);
+    let input = cx.symbol_info(reduced.inputs[0]);
     assert_eq!(input.name, "m'");
     assert_eq!(input.kind, crate::sym::SymbolKind::Auxiliary);
 }

@@ -25,7 +25,7 @@ pub(super) fn constraints(
     let mut entries = declared.entries().to_vec();
     let mut expressions: Vec<ExprId> = entries
         .iter()
-        .map(|entry| cx.store.expression_of(entry))
+        .map(|entry| cx.sym.expression_of(entry))
         .collect();
     for (declared, (coefficients, derived_as)) in mechanism.names.iter().zip(&mechanism.rows) {
         if !check_unique_in_section(cx, &names, &declared.name, declared.span) {
@@ -41,7 +41,7 @@ pub(super) fn constraints(
 }
 
 /// The entries of a derived row as expressions
-/// ([`crate::sym::Store::compact_expression`]): each normal form written
+/// ([`crate::sym::Context::compact_expression`]): each normal form written
 /// out, or the derivative of the expression the row was derived as in that
 /// velocity.
 fn entry_expressions(
@@ -54,8 +54,8 @@ fn entry_expressions(
         .iter()
         .zip(velocities)
         .map(|(entry, velocity)| {
-            let derivative = cx.store.derivative(derived_as, velocity);
-            cx.store.compact_expression(entry, derivative)
+            let derivative = cx.sym.derivative(derived_as, velocity);
+            cx.sym.compact_expression(entry, derivative)
         })
         .collect()
 }
@@ -68,7 +68,7 @@ fn velocity_coefficients(
     let velocities: Vec<SymbolId> = velocity_symbols(cx);
     velocities
         .into_iter()
-        .map(|v| cx.store.derivative_of_normal(form, v).ok())
+        .map(|v| cx.sym.derivative_of_normal(form, v).ok())
         .collect()
 }
 
@@ -126,7 +126,7 @@ fn constraint_row(cx: &mut Context, expr: &Expr) -> Option<Vec<RationalFunction>
 
 /// The velocities of the store's symbols, in coordinate order.
 fn velocity_symbols(cx: &Context) -> Vec<SymbolId> {
-    cx.store
+    cx.sym
         .symbols()
         .filter(|(_, s)| matches!(s.kind, SymbolKind::Velocity(_)))
         .map(|(id, _)| id)
@@ -159,7 +159,7 @@ fn annihilator_of_distribution(
     if !check_independent_rows(cx, &fields, &names, "distribution vector") {
         return None;
     }
-    let annihilator = fields.null_space(cx.store.atoms()).ok()?;
+    let annihilator = fields.null_space(cx.sym.atoms()).ok()?;
     let constraint_names = (1..=annihilator.rows())
         .map(|i| Declared {
             name: format!("c{i}"),

@@ -1,10 +1,10 @@
-//! What the rules share as the walk goes on: the model's expression store,
+//! What the rules share as the walk goes on: the model's symbolic context,
 //! the names earlier sections declared and bound, and the diagnostics
 //! recorded so far; and the shapes every section value is read in.
 
 use crate::diagnostic::Diagnostics;
 use crate::model::lower::{Lowerer, Scope};
-use crate::sym::{Budget, ExprId, RationalFunction, Store};
+use crate::sym::{self, Budget, ExprId, RationalFunction};
 use crate::syntax::{self, Expr, List};
 use proc_macro2::Span;
 use std::collections::HashMap;
@@ -12,8 +12,8 @@ use std::collections::HashMap;
 /// The state every rule reads and extends.
 #[derive(Default)]
 pub(super) struct Context {
-    /// The store holding every expression of the model.
-    pub(super) store: Store,
+    /// The symbolic context holding every expression of the model.
+    pub(super) sym: sym::Context,
     /// The names an expression may use, bound by earlier sections.
     pub(super) scope: Scope,
     /// The errors found so far, in the order they were found.
@@ -26,28 +26,28 @@ impl Context {
     /// A context whose normal forms are charged to `budget`.
     pub(super) fn within(budget: Budget) -> Context {
         Context {
-            store: Store::with_budget(budget),
+            sym: sym::Context::with_budget(budget),
             ..Context::default()
         }
     }
 
-    /// A lowerer into the store, seeing the names bound so far.
+    /// A lowerer into the symbolic context, seeing the names bound so far.
     pub(super) fn lowerer(&mut self) -> Lowerer<'_> {
         Lowerer {
-            store: &mut self.store,
+            cx: &mut self.sym,
             scope: &self.scope,
             diagnostics: &mut self.diagnostics,
         }
     }
 
-    /// The expression in the store, or `None` after reporting why not.
+    /// The expression in the context's store, or `None` after reporting why not.
     pub(super) fn lower(&mut self, expr: &Expr) -> Option<ExprId> {
         self.lowerer().lower(expr)
     }
 
     /// The normal form of `id`, or `None` after reporting the failure at `span`.
     pub(super) fn normal(&mut self, id: ExprId, span: Span) -> Option<RationalFunction> {
-        match self.store.normal(id) {
+        match self.sym.normal(id) {
             Ok(form) => Some(form),
             Err(error) => {
                 self.diagnostics.error(span, error.to_string());

@@ -27,7 +27,7 @@ pub(super) fn metric(
 ) -> Option<(RationalFunction, Matrix)> {
     let velocities: Vec<SymbolId> = coordinates
         .iter()
-        .map(|c| cx.store.velocity_of(c.symbol))
+        .map(|c| cx.sym.velocity_of(c.symbol))
         .collect();
     let declared = if let Some(section) = sections.get(Section::KineticEnergy) {
         Some((section, metric_of_kinetic_energy(cx, section, &velocities)?))
@@ -39,7 +39,7 @@ pub(super) fn metric(
         None
     };
     let bodies = hessian(cx, &mechanism.kinetic_energy, &velocities)?;
-    let atoms = cx.store.atoms().clone();
+    let atoms = cx.sym.atoms().clone();
     let (section, energy, g) = match declared {
         Some((section, (t, g))) => (
             section,
@@ -60,7 +60,7 @@ pub(super) fn metric(
 }
 
 /// `T`, `V` and `g` as expressions: each normal form written out, or
-/// when it is large ([`crate::sym::Store::compact_expression`]) the
+/// when it is large ([`crate::sym::Context::compact_expression`]) the
 /// declared part written out plus the bodies' part as it was derived:
 /// their energies, and for `g` their Kane form
 /// ([`crate::model::BodyMotion::mass_matrix`]).
@@ -74,16 +74,16 @@ pub(super) fn energy_expressions(
     let (bodies_kinetic, bodies_potential) = mechanism.energies_derived_as;
     let declared_kinetic = declared_part(cx, kinetic, &mechanism.mechanism.kinetic_energy);
     let declared_potential = declared_part(cx, potential, &mechanism.mechanism.potential_energy);
-    let kinetic_derived_as = cx.store.add2(declared_kinetic, bodies_kinetic);
-    let potential_derived_as = cx.store.add2(declared_potential, bodies_potential);
+    let kinetic_derived_as = cx.sym.add2(declared_kinetic, bodies_kinetic);
+    let potential_derived_as = cx.sym.add2(declared_potential, bodies_potential);
     let mass_matrix = if mechanism.motions.is_empty() {
-        g.to_expression_matrix(&mut cx.store)
+        g.to_expression_matrix(&mut cx.sym)
     } else {
         metric_derived_as(cx, g, declared_kinetic, &mechanism.motions, velocities)?
     };
     Some(EnergyExpressions {
-        kinetic: cx.store.compact_expression(kinetic, kinetic_derived_as),
-        potential: cx.store.compact_expression(potential, potential_derived_as),
+        kinetic: cx.sym.compact_expression(kinetic, kinetic_derived_as),
+        potential: cx.sym.compact_expression(potential, potential_derived_as),
         mass_matrix,
         declared_kinetic,
         bodies: mechanism.motions.clone(),
@@ -101,24 +101,24 @@ fn metric_derived_as(
 ) -> Option<Matrix<ExprId>> {
     let rates: Vec<ExprId> = velocities
         .iter()
-        .map(|&v| cx.store.derivative(declared_kinetic, v))
+        .map(|&v| cx.sym.derivative(declared_kinetic, v))
         .collect();
     let n = velocities.len();
-    let mut entries = vec![cx.store.integer(0); n * n];
+    let mut entries = vec![cx.sym.integer(0); n * n];
     for (j, &vj) in velocities.iter().enumerate() {
-        for (i, declared) in cx.store.derivatives(&rates, vj).into_iter().enumerate() {
+        for (i, declared) in cx.sym.derivatives(&rates, vj).into_iter().enumerate() {
             entries[i * n + j] = declared;
         }
     }
     for body in bodies {
-        let body_entries = body.mass_matrix(&mut cx.store, velocities);
+        let body_entries = body.mass_matrix(&mut cx.sym, velocities);
         for (entry, body_entry) in entries.iter_mut().zip(body_entries) {
-            *entry = cx.store.add2(*entry, body_entry);
+            *entry = cx.sym.add2(*entry, body_entry);
         }
     }
     for (index, entry) in entries.iter_mut().enumerate() {
         *entry = cx
-            .store
+            .sym
             .compact_expression(g.get(index / n, index % n), *entry);
     }
     Matrix::new(n, n, entries).ok()
@@ -126,8 +126,8 @@ fn metric_derived_as(
 
 /// The declared part of an energy, `total - bodies`, written out.
 fn declared_part(cx: &mut Context, total: &RationalFunction, bodies: &RationalFunction) -> ExprId {
-    let declared = total.sub(bodies, cx.store.atoms());
-    cx.store.expression_of(&declared)
+    let declared = total.sub(bodies, cx.sym.atoms());
+    cx.sym.expression_of(&declared)
 }
 
 /// `(T, g)` of a declared kinetic energy, quadratic in the velocities.
@@ -157,9 +157,9 @@ fn metric_of_kinetic_energy(
 fn hessian(cx: &mut Context, energy: &RationalFunction, velocities: &[SymbolId]) -> Option<Matrix> {
     let mut entries = Vec::with_capacity(velocities.len().pow(2));
     for &vi in velocities {
-        let first = cx.store.derivative_of_normal(energy, vi).ok()?;
+        let first = cx.sym.derivative_of_normal(energy, vi).ok()?;
         for &vj in velocities {
-            entries.push(cx.store.derivative_of_normal(&first, vj).ok()?);
+            entries.push(cx.sym.derivative_of_normal(&first, vj).ok()?);
         }
     }
     Matrix::new(velocities.len(), velocities.len(), entries).ok()
@@ -170,11 +170,11 @@ fn quadratic_form(cx: &mut Context, g: &Matrix, velocities: &[SymbolId]) -> Rati
     let atoms: Vec<RationalFunction> = velocities
         .iter()
         .map(|&v| {
-            let atom = cx.store.symbol_atom(v);
+            let atom = cx.sym.symbol_atom(v);
             RationalFunction::from_poly(Poly::atom(atom))
         })
         .collect();
-    let table = cx.store.atoms().clone();
+    let table = cx.sym.atoms().clone();
     let mut sum = RationalFunction::zero();
     for (i, vi) in atoms.iter().enumerate() {
         for (j, vj) in atoms.iter().enumerate() {
@@ -221,7 +221,7 @@ fn check_symmetric(cx: &mut Context, g: &Matrix, spans: &[Span]) -> bool {
     let n = g.rows();
     for i in 0..n {
         for j in i + 1..n {
-            if g.get(i, j).sub(g.get(j, i), cx.store.atoms()).is_zero() {
+            if g.get(i, j).sub(g.get(j, i), cx.sym.atoms()).is_zero() {
                 continue;
             }
             cx.diagnostics.error(
@@ -268,7 +268,7 @@ fn check_positive_definite(
                 })
                 .unwrap_or(f64::NAN)
         };
-        let values = g.evaluate(&mut cx.store, &value_of);
+        let values = g.evaluate(&mut cx.sym, &value_of);
         if let Some(minor) = failed_cholesky_minor(&values, n) {
             let at: Vec<String> = coordinates
                 .iter()
@@ -305,7 +305,7 @@ pub(super) fn potential(
         }
         None => RationalFunction::zero(),
     };
-    Some(declared.add(&mechanism.potential_energy, cx.store.atoms()))
+    Some(declared.add(&mechanism.potential_energy, cx.sym.atoms()))
 }
 
 /// The size of the first leading block whose Cholesky pivot is not positive

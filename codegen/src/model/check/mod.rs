@@ -2,8 +2,8 @@
 //!
 //! [`check`] walks the sections in dependency order (names, definitions,
 //! mechanism, energies, constraints, inputs, momentum basis, symmetry),
-//! lowering each expression into the model's store. Each rule is a
-//! function `check_*` of a [`Context`](context::Context) (the store, the
+//! lowering each expression into the model's context. Each rule is a
+//! function `check_*` of a [`Context`](context::Context) (the symbolic context, the
 //! names earlier sections declared, the diagnostics so far) and of what
 //! earlier sections produced. A rule that fails records a diagnostic on the
 //! offending token and the walk goes on, so every error of a model is
@@ -29,19 +29,23 @@ use super::{
     Declared, EnergyExpressions, Model, MomentumBasis, Options, Parameter, Symmetry, Variable,
 };
 use crate::diagnostic::Diagnostics;
-use crate::sym::{Budget, ExprId, Matrix, RationalFunction, SymbolId};
+use crate::sym::{self, Budget, ExprId, Matrix, RationalFunction, SymbolId};
 use crate::syntax::ModelSyntax;
 use context::Context;
 use mechanisms::MechanismParts;
 use section::{Section, Sections};
 
-/// Checks a parsed model and builds its symbolic form.
-pub fn check(syntax: &ModelSyntax) -> Result<Model, Diagnostics> {
+/// Checks a parsed model and builds its symbolic form: the model and the
+/// context holding its expressions.
+pub fn check(syntax: &ModelSyntax) -> Result<(Model, sym::Context), Diagnostics> {
     check_within(syntax, Budget::default())
 }
 
 /// [`check`], charging the model's normal forms to `budget`.
-pub fn check_within(syntax: &ModelSyntax, budget: Budget) -> Result<Model, Diagnostics> {
+pub fn check_within(
+    syntax: &ModelSyntax,
+    budget: Budget,
+) -> Result<(Model, sym::Context), Diagnostics> {
     let mut cx = Context::within(budget);
     let sections = sections::given_sections(&mut cx, syntax);
     if !sections.contains(Section::Coordinates) {
@@ -101,7 +105,7 @@ fn checked_sections(cx: &mut Context, syntax: &ModelSyntax, sections: &Sections)
     let symmetry = symmetry::symmetry(cx, sections.get(Section::Symmetry), &coordinates);
     let velocities: Vec<SymbolId> = coordinates
         .iter()
-        .map(|c| cx.store.velocity_of(c.symbol))
+        .map(|c| cx.sym.velocity_of(c.symbol))
         .collect();
     let energy_expressions = match (&energy, &potential_energy, &mechanism) {
         (Some((kinetic, g)), Some(potential), Some(parts)) => {
@@ -159,9 +163,13 @@ fn check_symmetry_invariance(cx: &mut Context, checked: &Checked) {
 }
 
 /// The checked model, from sections that all passed.
-fn model(cx: Context, syntax: &ModelSyntax, checked: Checked) -> Result<Model, Diagnostics> {
+fn model(
+    cx: Context,
+    syntax: &ModelSyntax,
+    checked: Checked,
+) -> Result<(Model, sym::Context), Diagnostics> {
     let Context {
-        store,
+        sym,
         mut diagnostics,
         ..
     } = cx;
@@ -187,12 +195,11 @@ fn model(cx: Context, syntax: &ModelSyntax, checked: Checked) -> Result<Model, D
         );
         return Err(diagnostics);
     };
-    Ok(Model {
+    let model = Model {
         name: syntax.name.clone(),
         docs: syntax.docs.clone(),
         visibility: syntax.visibility.clone(),
         options: checked.options,
-        store,
         emits_rust: true,
         coordinates: checked.coordinates,
         velocities: checked.velocities,
@@ -209,5 +216,6 @@ fn model(cx: Context, syntax: &ModelSyntax, checked: Checked) -> Result<Model, D
         momentum_basis: checked.momentum_basis,
         symmetry: checked.symmetry,
         mechanism: mechanism.mechanism,
-    })
+    };
+    Ok((model, sym))
 }

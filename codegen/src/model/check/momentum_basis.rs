@@ -60,7 +60,7 @@ fn check_spans_momenta(
     a: &Matrix,
     names: &[Declared],
 ) -> bool {
-    let atoms = cx.store.atoms().clone();
+    let atoms = cx.sym.atoms().clone();
     let Ok(product) = g
         .inverse(&atoms)
         .and_then(|inverse| a.mul(&inverse, &atoms))

@@ -73,10 +73,10 @@ pub(super) fn coordinates(cx: &mut Context, section: Option<&syntax::Section>) -
         // The nodes of the symbols are made in declaration order, so that
         // printed products list their factors in that order however the
         // derivations proceed.
-        let symbol = cx.store.declare(&name, SymbolKind::Coordinate);
-        let velocity = cx.store.velocity_of(symbol);
-        cx.store.symbol(symbol);
-        cx.store.symbol(velocity);
+        let symbol = cx.sym.declare(&name, SymbolKind::Coordinate);
+        let velocity = cx.sym.velocity_of(symbol);
+        cx.sym.symbol(symbol);
+        cx.sym.symbol(velocity);
         cx.scope.bind(&name, Binding::Coordinate(symbol));
         coordinates.push(Variable {
             declared: Declared {
@@ -106,8 +106,8 @@ pub(super) fn parameters(cx: &mut Context, section: Option<&syntax::Section>) ->
             continue;
         }
         // Declared even when its default is wrong, so its uses are not reported too.
-        let symbol = cx.store.declare(&declared.name, SymbolKind::Parameter);
-        cx.store.symbol(symbol);
+        let symbol = cx.sym.declare(&declared.name, SymbolKind::Parameter);
+        cx.sym.symbol(symbol);
         cx.scope.bind(&declared.name, Binding::Parameter(symbol));
         let Some(default) = default else { continue };
         parameters.push(Parameter {
@@ -181,8 +181,8 @@ pub(super) fn definitions(cx: &mut Context, section: Option<&syntax::Section>) {
         }
         // A definition that failed is still declared, so its uses are not reported too.
         let id = lowered.unwrap_or_else(|| {
-            let placeholder = cx.store.declare(&declared.name, SymbolKind::Auxiliary);
-            cx.store.symbol(placeholder)
+            let placeholder = cx.sym.declare(&declared.name, SymbolKind::Auxiliary);
+            cx.sym.symbol(placeholder)
         });
         cx.scope.bind(&declared.name, Binding::Definition(id));
     }

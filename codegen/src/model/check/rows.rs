@@ -36,7 +36,7 @@ pub(super) fn check_independent_rows(
 /// by two random points: wrong with probability below `1e-15`).
 fn first_dependent_row(cx: &mut Context, m: &Matrix) -> Option<usize> {
     let proved_full = cx
-        .store
+        .sym
         .prefixes_of_full_rank_at_points(m)
         .unwrap_or_else(|_| vec![false; m.rows()]);
     (0..m.rows()).filter(|&i| !proved_full[i]).find(|&i| {
@@ -46,7 +46,7 @@ fn first_dependent_row(cx: &mut Context, m: &Matrix) -> Option<usize> {
             m.entries()[..(i + 1) * m.columns()].to_vec(),
         );
         let Ok(prefix) = prefix else { return false };
-        cx.store
+        cx.sym
             .attempt(EXACT_RANK_PRODUCTS, |store| prefix.rank(store.atoms()))
             .is_none_or(|rank| rank < i + 1)
     })

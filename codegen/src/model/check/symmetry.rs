@@ -9,7 +9,7 @@ use proc_macro2::Ident;
 
 /// The Lagrangian and the constraints are invariant under the declared group.
 pub(super) fn check_invariant(cx: &mut Context, symmetry: &Symmetry, model: &Invariants) {
-    match first_broken(&mut cx.store, symmetry, model) {
+    match first_broken(&mut cx.sym, symmetry, model) {
         Ok(None) => {}
         Ok(Some(broken)) => cx.diagnostics.error(
             symmetry.span,

@@ -13,10 +13,10 @@ use proc_macro2::Span;
 pub(super) fn velocity_free(cx: &mut Context, expr: &Expr, rule: &str) -> Option<RationalFunction> {
     let id = cx.lower(expr)?;
     let has_velocity = cx
-        .store
+        .sym
         .free_symbols(id)
         .iter()
-        .any(|&s| matches!(cx.store.symbol_info(s).kind, SymbolKind::Velocity(_)));
+        .any(|&s| matches!(cx.sym.symbol_info(s).kind, SymbolKind::Velocity(_)));
     if has_velocity {
         let span = first_velocity_span(expr).unwrap_or_else(|| expr.first_span());
         cx.diagnostics.error(span, rule.to_string());
@@ -52,19 +52,19 @@ fn velocity_degrees(cx: &mut Context, form: &RationalFunction) -> Option<Vec<u32
         .collect();
     let mut velocity_atoms = Vec::new();
     for atom in form.atoms() {
-        match cx.store.atoms().get(atom).clone() {
-            Atom::Symbol(s) if matches!(cx.store.symbol_info(s).kind, SymbolKind::Velocity(_)) => {
+        match cx.sym.atoms().get(atom).clone() {
+            Atom::Symbol(s) if matches!(cx.sym.symbol_info(s).kind, SymbolKind::Velocity(_)) => {
                 if denominator_atoms.contains(&atom) {
                     return None;
                 }
                 velocity_atoms.push(atom);
             }
             _ => {
-                let expression = cx.store.expression_of_atom(atom);
-                let inside = cx.store.free_symbols(expression);
+                let expression = cx.sym.expression_of_atom(atom);
+                let inside = cx.sym.free_symbols(expression);
                 if inside
                     .iter()
-                    .any(|&s| matches!(cx.store.symbol_info(s).kind, SymbolKind::Velocity(_)))
+                    .any(|&s| matches!(cx.sym.symbol_info(s).kind, SymbolKind::Velocity(_)))
                 {
                     return None;
                 }
@@ -89,12 +89,12 @@ fn offending_term(cx: &mut Context, expr: &Expr, degree: u32) -> Option<Span> {
     for term in terms {
         let mut scratch = Diagnostics::default();
         let id = Lowerer {
-            store: &mut cx.store,
+            cx: &mut cx.sym,
             scope: &cx.scope,
             diagnostics: &mut scratch,
         }
         .lower(term)?;
-        let form = cx.store.normal(id).ok()?;
+        let form = cx.sym.normal(id).ok()?;
         if velocity_degrees(cx, &form) != Some(vec![degree]) {
             return Some(term.first_span());
         }

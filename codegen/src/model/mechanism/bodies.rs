@@ -18,7 +18,7 @@
 
 use super::space::{FrameState, half, velocity};
 use super::vector::{self, Vector};
-use crate::sym::{ExprId, Store, SymError, SymbolId};
+use crate::sym::{Context, ExprId, SymError, SymbolId};
 
 /// A rigid body, or a particle (in `ground` with zero inertia).
 #[derive(Clone, Debug)]
@@ -37,13 +37,11 @@ impl Body {
     /// `v_C` and `omega_F`, as [`BodyMotion`].
     pub(in crate::model) fn motion(
         &self,
-        store: &mut Store,
+        cx: &mut Context,
         coordinates: &[SymbolId],
     ) -> Result<BodyMotion, SymError> {
-        let velocity = velocity(store, &self.center, coordinates)?;
-        let angular_velocity = self
-            .frame
-            .to_frame_axes(store, &self.frame.angular_velocity);
+        let velocity = velocity(cx, &self.center, coordinates)?;
+        let angular_velocity = self.frame.to_frame_axes(cx, &self.frame.angular_velocity);
         Ok(BodyMotion {
             mass: self.mass,
             inertia: self.inertia,
@@ -52,23 +50,23 @@ impl Body {
         })
     }
 
-    pub(in crate::model) fn potential_energy(&self, store: &mut Store, gravity: &Vector) -> ExprId {
-        let height = vector::inner(store, gravity, &self.center);
-        let weight = store.mul2(self.mass, height);
-        store.neg(weight)
+    pub(in crate::model) fn potential_energy(&self, cx: &mut Context, gravity: &Vector) -> ExprId {
+        let height = vector::inner(cx, gravity, &self.center);
+        let weight = cx.mul2(self.mass, height);
+        cx.neg(weight)
     }
 
     /// `v_P = v_C + omega x (P - C)` of the material point now at `point`.
     pub(in crate::model) fn material_velocity(
         &self,
-        store: &mut Store,
+        cx: &mut Context,
         point: &Vector,
         coordinates: &[SymbolId],
     ) -> Result<Vector, SymError> {
-        let v = velocity(store, &self.center, coordinates)?;
-        let arm = vector::sub(store, point, &self.center);
-        let turning = vector::cross(store, &self.frame.angular_velocity, &arm);
-        Ok(vector::add(store, &v, &turning))
+        let v = velocity(cx, &self.center, coordinates)?;
+        let arm = vector::sub(cx, point, &self.center);
+        let turning = vector::cross(cx, &self.frame.angular_velocity, &arm);
+        Ok(vector::add(cx, &v, &turning))
     }
 }
 
@@ -103,53 +101,53 @@ pub struct BodyMotion {
 
 impl BodyMotion {
     /// `T = 1/2 m v_C . v_C + 1/2 omega_F . I omega_F`.
-    pub(in crate::model) fn kinetic_energy(&self, store: &mut Store) -> ExprId {
-        let speed_squared = vector::inner(store, &self.velocity, &self.velocity);
-        let translation = store.mul2(self.mass, speed_squared);
-        let spun = self.spun(store, &self.angular_velocity);
-        let rotation = vector::inner(store, &self.angular_velocity, &spun);
-        let twice = store.add2(translation, rotation);
-        let one_half = half(store);
-        store.mul2(one_half, twice)
+    pub(in crate::model) fn kinetic_energy(&self, cx: &mut Context) -> ExprId {
+        let speed_squared = vector::inner(cx, &self.velocity, &self.velocity);
+        let translation = cx.mul2(self.mass, speed_squared);
+        let spun = self.spun(cx, &self.angular_velocity);
+        let rotation = vector::inner(cx, &self.angular_velocity, &spun);
+        let twice = cx.add2(translation, rotation);
+        let one_half = half(cx);
+        cx.mul2(one_half, twice)
     }
 
     /// `I w`.
-    fn spun(&self, store: &mut Store, w: &Vector) -> Vector {
+    fn spun(&self, cx: &mut Context, w: &Vector) -> Vector {
         [0, 1, 2].map(|row| {
             let products: Vec<ExprId> = (0..3)
-                .map(|k| store.mul2(self.inertia[3 * row + k], w[k]))
+                .map(|k| cx.mul2(self.inertia[3 * row + k], w[k]))
                 .collect();
-            store.add(&products)
+            cx.add(&products)
         })
     }
 
     /// `J_v` and `J_w`: column `i` the derivatives in `velocities[i]`.
-    fn partial_velocities(&self, store: &mut Store, velocities: &[SymbolId]) -> Vec<[Vector; 2]> {
+    fn partial_velocities(&self, cx: &mut Context, velocities: &[SymbolId]) -> Vec<[Vector; 2]> {
         velocities
             .iter()
             .map(|&v| {
-                let translation = self.velocity.map(|e| store.derivative(e, v));
-                let rotation = self.angular_velocity.map(|e| store.derivative(e, v));
+                let translation = self.velocity.map(|e| cx.derivative(e, v));
+                let rotation = self.angular_velocity.map(|e| cx.derivative(e, v));
                 [translation, rotation]
             })
             .collect()
     }
 
     /// `g_b`, `n x n` row-major.
-    pub fn mass_matrix(&self, store: &mut Store, velocities: &[SymbolId]) -> Vec<ExprId> {
-        let partials = self.partial_velocities(store, velocities);
+    pub fn mass_matrix(&self, cx: &mut Context, velocities: &[SymbolId]) -> Vec<ExprId> {
+        let partials = self.partial_velocities(cx, velocities);
         let spun: Vec<Vector> = partials
             .iter()
-            .map(|[_, rotation]| self.spun(store, rotation))
+            .map(|[_, rotation]| self.spun(cx, rotation))
             .collect();
         let n = velocities.len();
         let mut entries = Vec::with_capacity(n * n);
         for [translation_i, rotation_i] in &partials {
             for ([translation_j, _], spun_j) in partials.iter().zip(&spun) {
-                let along = vector::inner(store, translation_i, translation_j);
-                let along = store.mul2(self.mass, along);
-                let about = vector::inner(store, rotation_i, spun_j);
-                entries.push(store.add2(along, about));
+                let along = vector::inner(cx, translation_i, translation_j);
+                let along = cx.mul2(self.mass, along);
+                let about = vector::inner(cx, rotation_i, spun_j);
+                entries.push(cx.add2(along, about));
             }
         }
         entries
@@ -159,24 +157,24 @@ impl BodyMotion {
     /// velocity terms of `d/dt dT/dqdot - dT/dq` (see the type's documentation).
     pub fn velocity_terms(
         &self,
-        store: &mut Store,
+        cx: &mut Context,
         coordinates: &[SymbolId],
         velocities: &[SymbolId],
     ) -> Result<Vec<ExprId>, SymError> {
-        let acceleration = velocity(store, &self.velocity, coordinates)?;
-        let acceleration = vector::scale(store, self.mass, &acceleration);
-        let angular_acceleration = velocity(store, &self.angular_velocity, coordinates)?;
-        let spun_rate = self.spun(store, &angular_acceleration);
-        let momentum = self.spun(store, &self.angular_velocity);
-        let gyroscopic = vector::cross(store, &self.angular_velocity, &momentum);
-        let torque = vector::add(store, &spun_rate, &gyroscopic);
+        let acceleration = velocity(cx, &self.velocity, coordinates)?;
+        let acceleration = vector::scale(cx, self.mass, &acceleration);
+        let angular_acceleration = velocity(cx, &self.angular_velocity, coordinates)?;
+        let spun_rate = self.spun(cx, &angular_acceleration);
+        let momentum = self.spun(cx, &self.angular_velocity);
+        let gyroscopic = vector::cross(cx, &self.angular_velocity, &momentum);
+        let torque = vector::add(cx, &spun_rate, &gyroscopic);
         Ok(self
-            .partial_velocities(store, velocities)
+            .partial_velocities(cx, velocities)
             .iter()
             .map(|[translation, rotation]| {
-                let along = vector::inner(store, translation, &acceleration);
-                let about = vector::inner(store, rotation, &torque);
-                store.add2(along, about)
+                let along = vector::inner(cx, translation, &acceleration);
+                let about = vector::inner(cx, rotation, &torque);
+                cx.add2(along, about)
             })
             .collect())
     }

@@ -244,22 +244,22 @@ impl Evaluator<'_> {
                 let a = self.vector(expressions[0]);
                 let b = self.vector(expressions[1]);
                 let (a, b) = (a?, b?);
-                let store = &mut *self.lowerer.store;
+                let cx = &mut *self.lowerer.cx;
                 Some(if name == "cross" {
-                    Quantity::Vector(vector::cross(store, &a, &b))
+                    Quantity::Vector(vector::cross(cx, &a, &b))
                 } else {
-                    Quantity::Scalar(vector::inner(store, &a, &b))
+                    Quantity::Scalar(vector::inner(cx, &a, &b))
                 })
             }
             "unit" | "norm" => {
                 let a = self.vector(expressions[0])?;
-                let store = &mut *self.lowerer.store;
+                let cx = &mut *self.lowerer.cx;
                 let reference = self.reference;
                 let value_at = |symbol| reference.value(symbol);
                 let value = if name == "unit" {
-                    vector::unit(store, &a, &value_at).map(Quantity::Vector)
+                    vector::unit(cx, &a, &value_at).map(Quantity::Vector)
                 } else {
-                    vector::norm(store, &a, &value_at).map(Quantity::Scalar)
+                    vector::norm(cx, &a, &value_at).map(Quantity::Scalar)
                 };
                 value
                     .map_err(|error| {
@@ -271,7 +271,7 @@ impl Evaluator<'_> {
             }
             _ => {
                 let argument = self.scalar(expressions[0])?;
-                let applied = self.lowerer.store.apply_named(&name, argument);
+                let applied = self.lowerer.cx.apply_named(&name, argument);
                 applied
                     .map(Quantity::Scalar)
                     .map_err(|error| {
@@ -286,8 +286,8 @@ impl Evaluator<'_> {
 
     fn negate(&mut self, operand: &Expr, span: Span) -> Option<Quantity> {
         match self.evaluate(operand)? {
-            Quantity::Scalar(s) => Some(Quantity::Scalar(self.lowerer.store.neg(s))),
-            Quantity::Vector(v) => Some(Quantity::Vector(vector::neg(self.lowerer.store, &v))),
+            Quantity::Scalar(s) => Some(Quantity::Scalar(self.lowerer.cx.neg(s))),
+            Quantity::Vector(v) => Some(Quantity::Vector(vector::neg(self.lowerer.cx, &v))),
             Quantity::Point(_) => self.error(
                 span,
                 "a point cannot be negated: `P - Q` of two points is a vector",
@@ -305,30 +305,28 @@ impl Evaluator<'_> {
         let left_value = self.evaluate(left);
         let right_value = self.evaluate(right);
         let (a, b) = (left_value?, right_value?);
-        let store = &mut *self.lowerer.store;
+        let cx = &mut *self.lowerer.cx;
         use BinaryOperator::{Add, Divide, Multiply, Power, Subtract};
         use Quantity::{Point, Scalar, Vector as Free};
         let value = match (operator, a, b) {
-            (Add, Scalar(x), Scalar(y)) => Scalar(store.add2(x, y)),
-            (Subtract, Scalar(x), Scalar(y)) => Scalar(store.sub(x, y)),
-            (Multiply, Scalar(x), Scalar(y)) => Scalar(store.mul2(x, y)),
-            (Add, Free(u), Free(v)) => Free(vector::add(store, &u, &v)),
-            (Subtract, Free(u), Free(v)) => Free(vector::sub(store, &u, &v)),
-            (Add, Point(p), Free(v)) | (Add, Free(v), Point(p)) => {
-                Point(vector::add(store, &p, &v))
-            }
-            (Subtract, Point(p), Free(v)) => Point(vector::sub(store, &p, &v)),
-            (Subtract, Point(p), Point(r)) => Free(vector::sub(store, &p, &r)),
+            (Add, Scalar(x), Scalar(y)) => Scalar(cx.add2(x, y)),
+            (Subtract, Scalar(x), Scalar(y)) => Scalar(cx.sub(x, y)),
+            (Multiply, Scalar(x), Scalar(y)) => Scalar(cx.mul2(x, y)),
+            (Add, Free(u), Free(v)) => Free(vector::add(cx, &u, &v)),
+            (Subtract, Free(u), Free(v)) => Free(vector::sub(cx, &u, &v)),
+            (Add, Point(p), Free(v)) | (Add, Free(v), Point(p)) => Point(vector::add(cx, &p, &v)),
+            (Subtract, Point(p), Free(v)) => Point(vector::sub(cx, &p, &v)),
+            (Subtract, Point(p), Point(r)) => Free(vector::sub(cx, &p, &r)),
             (Multiply, Scalar(s), Free(v)) | (Multiply, Free(v), Scalar(s)) => {
-                Free(vector::scale(store, s, &v))
+                Free(vector::scale(cx, s, &v))
             }
             (Divide | Power, Scalar(x), Scalar(y)) => {
                 return self.scalar_quotient_or_power(operator, x, y, right, span);
             }
             (Divide, Free(v), Scalar(s)) => {
-                let reciprocal = store.integer(1);
-                match store.div(reciprocal, s) {
-                    Ok(r) => Free(vector::scale(store, r, &v)),
+                let reciprocal = cx.integer(1);
+                match cx.div(reciprocal, s) {
+                    Ok(r) => Free(vector::scale(cx, r, &v)),
                     Err(error) => return self.error(span, error.to_string()),
                 }
             }
@@ -357,17 +355,17 @@ impl Evaluator<'_> {
         right: &Expr,
         span: Span,
     ) -> Option<Quantity> {
-        let store = &mut *self.lowerer.store;
+        let cx = &mut *self.lowerer.cx;
         let result = if operator == BinaryOperator::Divide {
-            store.div(a, b)
+            cx.div(a, b)
         } else {
-            let Node::Number(exponent) = store.node(b).clone() else {
+            let Node::Number(exponent) = cx.node(b).clone() else {
                 return self.error(
                     right.first_span(),
                     "an exponent must be a constant number (an integer or a fraction like 1/2)",
                 );
             };
-            store.pow(a, exponent)
+            cx.pow(a, exponent)
         };
         match result {
             Ok(value) => Some(Quantity::Scalar(value)),

@@ -48,7 +48,7 @@ pub struct Mechanism {
 }
 
 /// A mechanism's orientations, positions and holonomic residuals as
-/// expressions ([`crate::sym::Store::compact_expression`]): each normal
+/// expressions ([`crate::sym::Context::compact_expression`]): each normal
 /// form written out, or when large the expression it was derived as along
 /// the rotation chain (equal to it).
 #[derive(Clone, Debug)]

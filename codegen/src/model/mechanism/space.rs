@@ -17,7 +17,7 @@
 //! is at zero.
 
 use super::vector::{self, Vector};
-use crate::sym::{ExprId, Function, Rational, Store, SymError, SymbolId};
+use crate::sym::{Context, ExprId, Function, Rational, SymError, SymbolId};
 
 /// A frame's orientation and angular velocity, both in ground axes.
 #[derive(Clone, Debug)]
@@ -35,10 +35,10 @@ impl FrameState {
     }
 
     /// `R^T a`: a ground-axes vector in this frame's axes.
-    pub(in crate::model) fn to_frame_axes(&self, store: &mut Store, a: &Vector) -> Vector {
+    pub(in crate::model) fn to_frame_axes(&self, cx: &mut Context, a: &Vector) -> Vector {
         [0, 1, 2].map(|axis| {
             let column = self.axis(axis);
-            vector::inner(store, &column, a)
+            vector::inner(cx, &column, a)
         })
     }
 }
@@ -60,16 +60,16 @@ pub(in crate::model) const ORIGIN: &str = "origin";
 
 impl Space {
     /// `ground` and `origin` alone.
-    pub(in crate::model) fn new(store: &mut Store) -> Space {
-        let (zero, one) = (store.integer(0), store.integer(1));
+    pub(in crate::model) fn new(cx: &mut Context) -> Space {
+        let (zero, one) = (cx.integer(0), cx.integer(1));
         let rotation = [one, zero, zero, zero, one, zero, zero, zero, one];
         let ground = FrameState {
             rotation,
-            angular_velocity: vector::zero(store),
+            angular_velocity: vector::zero(cx),
         };
         Space {
             frames: vec![(GROUND.to_string(), ground)],
-            points: vec![(ORIGIN.to_string(), vector::zero(store))],
+            points: vec![(ORIGIN.to_string(), vector::zero(cx))],
             broken: Vec::new(),
         }
     }
@@ -117,38 +117,38 @@ impl Space {
 
 /// The frame turned from `parent` by `angle` about the parent's `axis`.
 pub(in crate::model) fn rotated(
-    store: &mut Store,
+    cx: &mut Context,
     parent: &FrameState,
     axis: usize,
     angle: ExprId,
     coordinates: &[SymbolId],
 ) -> Result<FrameState, SymError> {
-    let elementary = elementary_rotation(store, axis, angle)?;
+    let elementary = elementary_rotation(cx, axis, angle)?;
     let rotation = std::array::from_fn(|entry| {
         let (row, column) = (entry / 3, entry % 3);
         let products: Vec<ExprId> = (0..3)
-            .map(|k| store.mul2(parent.rotation[3 * row + k], elementary[3 * k + column]))
+            .map(|k| cx.mul2(parent.rotation[3 * row + k], elementary[3 * k + column]))
             .collect();
-        store.add(&products)
+        cx.add(&products)
     });
-    let rate = time_derivative(store, angle, coordinates)?;
-    let turn = vector::scale(store, rate, &parent.axis(axis));
+    let rate = time_derivative(cx, angle, coordinates)?;
+    let turn = vector::scale(cx, rate, &parent.axis(axis));
     Ok(FrameState {
         rotation,
-        angular_velocity: vector::add(store, &parent.angular_velocity, &turn),
+        angular_velocity: vector::add(cx, &parent.angular_velocity, &turn),
     })
 }
 
 /// `R_axis(angle)`, row-major.
 fn elementary_rotation(
-    store: &mut Store,
+    cx: &mut Context,
     axis: usize,
     angle: ExprId,
 ) -> Result<[ExprId; 9], SymError> {
-    let (zero, one) = (store.integer(0), store.integer(1));
-    let c = store.apply(Function::Cos, angle)?;
-    let s = store.apply(Function::Sin, angle)?;
-    let minus_s = store.neg(s);
+    let (zero, one) = (cx.integer(0), cx.integer(1));
+    let c = cx.apply(Function::Cos, angle)?;
+    let s = cx.apply(Function::Sin, angle)?;
+    let minus_s = cx.neg(s);
     Ok(match axis {
         0 => [one, zero, zero, zero, c, minus_s, zero, s, c],
         1 => [c, zero, s, zero, one, zero, minus_s, zero, c],
@@ -160,38 +160,38 @@ fn elementary_rotation(
 /// configuration, differentiated on its DAG: the partials share the
 /// expression's own sub-expressions instead of expanding them.
 pub(in crate::model) fn time_derivative(
-    store: &mut Store,
+    cx: &mut Context,
     expression: ExprId,
     coordinates: &[SymbolId],
 ) -> Result<ExprId, SymError> {
-    let zero = store.integer(0);
+    let zero = cx.integer(0);
     let mut terms = Vec::with_capacity(coordinates.len());
     for &coordinate in coordinates {
-        let partial = store.derivative(expression, coordinate);
+        let partial = cx.derivative(expression, coordinate);
         if partial == zero {
             continue;
         }
-        let velocity = store.velocity_of(coordinate);
-        let velocity = store.symbol(velocity);
-        terms.push(store.mul2(partial, velocity));
+        let velocity = cx.velocity_of(coordinate);
+        let velocity = cx.symbol(velocity);
+        terms.push(cx.mul2(partial, velocity));
     }
-    Ok(store.add(&terms))
+    Ok(cx.add(&terms))
 }
 
 /// The velocity `d p / dt` of a position.
 pub(in crate::model) fn velocity(
-    store: &mut Store,
+    cx: &mut Context,
     position: &Vector,
     coordinates: &[SymbolId],
 ) -> Result<Vector, SymError> {
     let mut components = *position;
     for component in &mut components {
-        *component = time_derivative(store, *component, coordinates)?;
+        *component = time_derivative(cx, *component, coordinates)?;
     }
     Ok(components)
 }
 
 /// One half, for the energies.
-pub(in crate::model) fn half(store: &mut Store) -> ExprId {
-    store.number(Rational::HALF)
+pub(in crate::model) fn half(cx: &mut Context) -> ExprId {
+    cx.number(Rational::HALF)
 }

@@ -18,102 +18,102 @@
 //! Any other square stays `sqrt(...)`, a kernel of the normal form that
 //! differentiation and emission carry like every other.
 
-use crate::sym::{Atoms, ExprId, Monomial, Poly, RationalFunction, Store, SymError, SymbolId};
+use crate::sym::{Atoms, Context, ExprId, Monomial, Poly, RationalFunction, SymError, SymbolId};
 
 /// Three components in ground axes.
 pub(in crate::model) type Vector = [ExprId; 3];
 
 /// `a + b`.
-pub(in crate::model) fn add(store: &mut Store, a: &Vector, b: &Vector) -> Vector {
-    [0, 1, 2].map(|i| store.add2(a[i], b[i]))
+pub(in crate::model) fn add(cx: &mut Context, a: &Vector, b: &Vector) -> Vector {
+    [0, 1, 2].map(|i| cx.add2(a[i], b[i]))
 }
 
 /// `a - b`.
-pub(in crate::model) fn sub(store: &mut Store, a: &Vector, b: &Vector) -> Vector {
-    [0, 1, 2].map(|i| store.sub(a[i], b[i]))
+pub(in crate::model) fn sub(cx: &mut Context, a: &Vector, b: &Vector) -> Vector {
+    [0, 1, 2].map(|i| cx.sub(a[i], b[i]))
 }
 
 /// `-a`.
-pub(in crate::model) fn neg(store: &mut Store, a: &Vector) -> Vector {
-    [0, 1, 2].map(|i| store.neg(a[i]))
+pub(in crate::model) fn neg(cx: &mut Context, a: &Vector) -> Vector {
+    [0, 1, 2].map(|i| cx.neg(a[i]))
 }
 
 /// `s a`.
-pub(in crate::model) fn scale(store: &mut Store, s: ExprId, a: &Vector) -> Vector {
-    [0, 1, 2].map(|i| store.mul2(s, a[i]))
+pub(in crate::model) fn scale(cx: &mut Context, s: ExprId, a: &Vector) -> Vector {
+    [0, 1, 2].map(|i| cx.mul2(s, a[i]))
 }
 
 /// `a x b`.
-pub(in crate::model) fn cross(store: &mut Store, a: &Vector, b: &Vector) -> Vector {
+pub(in crate::model) fn cross(cx: &mut Context, a: &Vector, b: &Vector) -> Vector {
     [0, 1, 2].map(|i| {
         let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-        let forward = store.mul2(a[j], b[k]);
-        let backward = store.mul2(a[k], b[j]);
-        store.sub(forward, backward)
+        let forward = cx.mul2(a[j], b[k]);
+        let backward = cx.mul2(a[k], b[j]);
+        cx.sub(forward, backward)
     })
 }
 
 /// `a . b`.
-pub(in crate::model) fn inner(store: &mut Store, a: &Vector, b: &Vector) -> ExprId {
-    let products: Vec<ExprId> = (0..3).map(|i| store.mul2(a[i], b[i])).collect();
-    store.add(&products)
+pub(in crate::model) fn inner(cx: &mut Context, a: &Vector, b: &Vector) -> ExprId {
+    let products: Vec<ExprId> = (0..3).map(|i| cx.mul2(a[i], b[i])).collect();
+    cx.add(&products)
 }
 
 /// The zero vector.
-pub(in crate::model) fn zero(store: &mut Store) -> Vector {
-    let zero = store.integer(0);
+pub(in crate::model) fn zero(cx: &mut Context) -> Vector {
+    let zero = cx.integer(0);
     [zero; 3]
 }
 
 /// `|a|`: exact when `a . a` is a perfect square (see the module's doc).
 pub(in crate::model) fn norm(
-    store: &mut Store,
+    cx: &mut Context,
     a: &Vector,
     reference: &dyn Fn(SymbolId) -> f64,
 ) -> Result<ExprId, SymError> {
-    let square = inner(store, a, a);
-    let form = store.normal(square)?;
-    match exact_root(store, &form) {
+    let square = inner(cx, a, a);
+    let form = cx.normal(square)?;
+    match exact_root(cx, &form) {
         Some(root) => {
-            let root = store.expression_of(&root);
-            if store.evaluate(root, reference) < 0.0 {
-                Ok(store.neg(root))
+            let root = cx.expression_of(&root);
+            if cx.evaluate(root, reference) < 0.0 {
+                Ok(cx.neg(root))
             } else {
                 Ok(root)
             }
         }
         None => {
-            let canonical = store.expression_of(&form);
-            store.sqrt(canonical)
+            let canonical = cx.expression_of(&form);
+            cx.sqrt(canonical)
         }
     }
 }
 
 /// `a / |a|`.
 pub(in crate::model) fn unit(
-    store: &mut Store,
+    cx: &mut Context,
     a: &Vector,
     reference: &dyn Fn(SymbolId) -> f64,
 ) -> Result<Vector, SymError> {
-    let length = norm(store, a, reference)?;
+    let length = norm(cx, a, reference)?;
     let mut components = *a;
     for component in &mut components {
-        *component = store.div(*component, length)?;
+        *component = cx.div(*component, length)?;
     }
     Ok(components)
 }
 
 /// `sqrt(form)` when the form is `s^2 / (f_1^2k_1 ...)`: `s` (see
 /// [`polynomial_root`]) over the halved denominator.
-fn exact_root(store: &Store, form: &RationalFunction) -> Option<RationalFunction> {
-    let root = polynomial_root(form.numerator(), store.atoms())?;
+fn exact_root(cx: &Context, form: &RationalFunction) -> Option<RationalFunction> {
+    let root = polynomial_root(form.numerator(), cx.atoms())?;
     let mut result = RationalFunction::from_poly(root);
     for (factor, multiplicity) in form.denominator() {
         if multiplicity % 2 != 0 {
             return None;
         }
-        let half = RationalFunction::from_poly(factor.pow(multiplicity / 2, store.atoms()));
-        result = result.div(&half, store.atoms())?;
+        let half = RationalFunction::from_poly(factor.pow(multiplicity / 2, cx.atoms()));
+        result = result.div(&half, cx.atoms())?;
     }
     Some(result)
 }

@@ -17,7 +17,8 @@
 //! and numerically at a point.
 
 use super::{Matrix, MatrixError};
-use crate::sym::expr::{ExprId, Store, SymbolId};
+use crate::sym::context::Context;
+use crate::sym::expr::{ExprId, SymbolId};
 use crate::sym::normal::RationalFunction;
 use crate::sym::poly::Atoms;
 
@@ -38,29 +39,26 @@ impl Matrix<RationalFunction> {
 
     /// The normal forms of row-major expressions.
     pub fn from_expressions(
-        store: &mut Store,
+        cx: &mut Context,
         rows: usize,
         columns: usize,
         expressions: &[ExprId],
     ) -> Result<Matrix, MatrixError> {
         let entries = expressions
             .iter()
-            .map(|&e| store.normal(e))
+            .map(|&e| cx.normal(e))
             .collect::<Result<Vec<_>, _>>()?;
         Matrix::new(rows, columns, entries)
     }
 
     /// The entries rebuilt as expressions, row-major.
-    pub fn to_expressions(&self, store: &mut Store) -> Vec<ExprId> {
-        self.entries
-            .iter()
-            .map(|e| store.expression_of(e))
-            .collect()
+    pub fn to_expressions(&self, cx: &mut Context) -> Vec<ExprId> {
+        self.entries.iter().map(|e| cx.expression_of(e)).collect()
     }
 
     /// The entries rebuilt as expressions, as a matrix.
-    pub fn to_expression_matrix(&self, store: &mut Store) -> Matrix<ExprId> {
-        self.map(|e| store.expression_of(e))
+    pub fn to_expression_matrix(&self, cx: &mut Context) -> Matrix<ExprId> {
+        self.map(|e| cx.expression_of(e))
     }
 
     /// `self * other`.
@@ -382,10 +380,10 @@ impl Matrix<RationalFunction> {
     }
 
     /// The entries as numbers, row-major, with symbols valued by `value_of`.
-    pub fn evaluate(&self, store: &mut Store, value_of: &dyn Fn(SymbolId) -> f64) -> Vec<f64> {
+    pub fn evaluate(&self, cx: &mut Context, value_of: &dyn Fn(SymbolId) -> f64) -> Vec<f64> {
         self.entries
             .iter()
-            .map(|e| store.evaluate_normal(e, value_of))
+            .map(|e| cx.evaluate_normal(e, value_of))
             .collect()
     }
 
@@ -393,12 +391,12 @@ impl Matrix<RationalFunction> {
     /// entry counts as zero below `relative_tolerance` times the largest entry.
     pub fn rank_at(
         &self,
-        store: &mut Store,
+        cx: &mut Context,
         value_of: &dyn Fn(SymbolId) -> f64,
         relative_tolerance: f64,
     ) -> usize {
         numeric_rank(
-            self.evaluate(store, value_of),
+            self.evaluate(cx, value_of),
             self.rows,
             self.columns,
             relative_tolerance,
@@ -491,7 +489,7 @@ pub fn numeric_rank(
     rank
 }
 
-impl Store {
+impl Context {
     /// The Jacobian `d f_i / d x_j` of normal forms.
     pub fn jacobian(
         &mut self,

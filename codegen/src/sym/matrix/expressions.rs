@@ -18,6 +18,7 @@
 //! computes it.
 
 use super::{Matrix, MatrixError};
+use crate::sym::context::Context;
 use crate::sym::expr::{ExprId, Store, SymbolId};
 
 impl Matrix<ExprId> {
@@ -71,11 +72,11 @@ impl Matrix<ExprId> {
     }
 
     /// Every entry differentiated by `symbol`.
-    pub fn derivative(&self, symbol: SymbolId, store: &mut Store) -> Matrix<ExprId> {
+    pub fn derivative(&self, symbol: SymbolId, cx: &mut Context) -> Matrix<ExprId> {
         Matrix {
             rows: self.rows,
             columns: self.columns,
-            entries: store.derivatives(&self.entries, symbol),
+            entries: cx.derivatives(&self.entries, symbol),
         }
     }
 }
@@ -94,32 +95,6 @@ impl Store {
             identity.set(i, i, one);
         }
         identity
-    }
-
-    /// The Lie bracket `[X, Y]_i = sum_j X_j dY_i/dq_j - Y_j dX_i/dq_j` of two
-    /// vector fields given as expressions, unexpanded.
-    pub fn lie_bracket_of_expressions(
-        &mut self,
-        x: &[ExprId],
-        y: &[ExprId],
-        coordinates: &[SymbolId],
-    ) -> Vec<ExprId> {
-        let mut terms: Vec<Vec<ExprId>> = vec![Vec::new(); x.len()];
-        for (j, &q) in coordinates.iter().enumerate() {
-            for (along, field, negate) in [(x[j], y, false), (y[j], x, true)] {
-                if self.is_zero_constant(along) {
-                    continue;
-                }
-                let derivatives = self.derivatives(field, q);
-                let factor = if negate { self.neg(along) } else { along };
-                for (i, &d) in derivatives.iter().enumerate() {
-                    if !self.is_zero_constant(d) {
-                        terms[i].push(self.mul2(factor, d));
-                    }
-                }
-            }
-        }
-        terms.iter().map(|t| self.add(t)).collect()
     }
 
     /// True when `id` is the constant 0.
@@ -309,16 +284,44 @@ impl Store {
     }
 }
 
+impl Context {
+    /// The Lie bracket `[X, Y]_i = sum_j X_j dY_i/dq_j - Y_j dX_i/dq_j` of two
+    /// vector fields given as expressions, unexpanded.
+    pub fn lie_bracket_of_expressions(
+        &mut self,
+        x: &[ExprId],
+        y: &[ExprId],
+        coordinates: &[SymbolId],
+    ) -> Vec<ExprId> {
+        let mut terms: Vec<Vec<ExprId>> = vec![Vec::new(); x.len()];
+        for (j, &q) in coordinates.iter().enumerate() {
+            for (along, field, negate) in [(x[j], y, false), (y[j], x, true)] {
+                if self.is_zero_constant(along) {
+                    continue;
+                }
+                let derivatives = self.derivatives(field, q);
+                let factor = if negate { self.neg(along) } else { along };
+                for (i, &d) in derivatives.iter().enumerate() {
+                    if !self.is_zero_constant(d) {
+                        terms[i].push(self.mul2(factor, d));
+                    }
+                }
+            }
+        }
+        terms.iter().map(|t| self.add(t)).collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use crate::sym::{Function, Matrix, Store, SymbolKind};
+    use crate::sym::{Context, Function, Matrix, SymbolKind};
 
     /// A 3 x 3 trigonometric system solved in order, against the exact
     /// solve of the normal forms: equal as rational functions, and not equal
     /// to the solution of a perturbed system.
     #[test]
     fn elimination_in_order_gives_the_exact_solution() {
-        let mut store = Store::new();
+        let mut store = Context::new();
         let [x, y, m] = [
             ("x", SymbolKind::Coordinate),
             ("y", SymbolKind::Coordinate),
@@ -367,7 +370,7 @@ mod tests {
     /// rational functions.
     #[test]
     fn ldl_factors_and_substitutions_invert() {
-        let mut store = Store::new();
+        let mut store = Context::new();
         let x = store.declare("x", SymbolKind::Coordinate);
         let x = store.symbol(x);
         let cos_x = store.apply(Function::Cos, x).expect("applies");
@@ -420,7 +423,7 @@ mod tests {
 
     #[test]
     fn a_vanishing_pivot_is_singular() {
-        let mut store = Store::new();
+        let mut store = Context::new();
         let zero = store.integer(0);
         let one = store.integer(1);
         let a = Matrix::new(2, 2, vec![zero, one, one, zero]).expect("2 x 2");
@@ -430,7 +433,7 @@ mod tests {
 
     #[test]
     fn products_skip_zero_factors_and_transpose_swaps_indices() {
-        let mut store = Store::new();
+        let mut store = Context::new();
         let x = store.declare("x", SymbolKind::Coordinate);
         let x = store.symbol(x);
         let zero = store.integer(0);

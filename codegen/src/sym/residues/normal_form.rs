@@ -9,10 +9,10 @@ use crate::sym::modular::{
     ModularError, PRIME, add, inverse, multiply, points, power, rank, square_root,
 };
 use crate::sym::poly::{AtomId, Poly};
-use crate::sym::{Matrix, RationalFunction, Store};
+use crate::sym::{Context, Matrix, RationalFunction};
 use rustc_hash::FxHashMap as HashMap;
 
-impl Store {
+impl Context {
     /// The values of `forms` modulo [`PRIME`] at the point of `values`
     /// (whose expression values are reused and extended).
     pub fn evaluate_normal_modular(
@@ -48,7 +48,7 @@ struct AtomValues(HashMap<AtomId, u64>);
 impl AtomValues {
     fn of_poly(
         &mut self,
-        store: &mut Store,
+        cx: &mut Context,
         poly: &Poly,
         values: &mut Values,
     ) -> Result<u64, ModularError> {
@@ -60,7 +60,7 @@ impl AtomValues {
                     expr: format!("the coefficient {coefficient}"),
                 })?;
             for &(atom, exponent) in monomial.factors() {
-                let value = self.of_atom(store, atom, values)?;
+                let value = self.of_atom(cx, atom, values)?;
                 term = multiply(term, power(value, i64::from(exponent)).unwrap_or(0), PRIME);
             }
             sum = add(sum, term);
@@ -70,24 +70,24 @@ impl AtomValues {
 
     fn of_atom(
         &mut self,
-        store: &mut Store,
+        cx: &mut Context,
         atom: AtomId,
         values: &mut Values,
     ) -> Result<u64, ModularError> {
         if let Some(&value) = self.0.get(&atom) {
             return Ok(value);
         }
-        let value = match store.atoms().radicand_of(atom).cloned() {
+        let value = match cx.atoms().radicand_of(atom).cloned() {
             Some(radicand) => {
-                let value = self.of_poly(store, &radicand, values)?;
-                let root = store.expression_of_atom(atom);
+                let value = self.of_poly(cx, &radicand, values)?;
+                let root = cx.expression_of_atom(atom);
                 square_root(value).ok_or_else(|| ModularError::Undefined {
-                    expr: store.display(root).to_string(),
+                    expr: cx.display(root).to_string(),
                 })?
             }
             None => {
-                let expression = store.expression_of_atom(atom);
-                values.of(store, &[expression])?[0]
+                let expression = cx.expression_of_atom(atom);
+                values.of(cx, &[expression])?[0]
             }
         };
         self.0.insert(atom, value);
@@ -95,7 +95,7 @@ impl AtomValues {
     }
 }
 
-impl Store {
+impl Context {
     /// For each `i`, whether the first `i + 1` rows of `matrix` have full
     /// rank at one of two random points ([`points`], skipping points
     /// where an entry is undefined). A rank at a point is a lower bound of
@@ -137,21 +137,21 @@ impl Store {
 mod tests {
     use crate::sym::modular::at_defined_points;
     use crate::sym::residues::Values;
-    use crate::sym::{Function, Matrix, Rational, RationalFunction, Store, SymbolKind};
+    use crate::sym::{Context, Function, Matrix, Rational, RationalFunction, SymbolKind};
 
     /// `(store, r, cos y)` with `r = sqrt(1 + sin(x)^2)`.
-    fn store_with_root() -> (Store, crate::sym::ExprId, crate::sym::ExprId) {
-        let mut store = Store::new();
-        let x = store.declare("x", SymbolKind::Coordinate);
-        let y = store.declare("y", SymbolKind::Coordinate);
-        let (x, y) = (store.symbol(x), store.symbol(y));
-        let sine = store.apply(Function::Sin, x).expect("applies");
-        let square = store.pow(sine, Rational::integer(2)).expect("applies");
-        let one = store.integer(1);
-        let radicand = store.add2(one, square);
-        let root = store.sqrt(radicand).expect("applies");
-        let cosine = store.apply(Function::Cos, y).expect("applies");
-        (store, root, cosine)
+    fn store_with_root() -> (Context, crate::sym::ExprId, crate::sym::ExprId) {
+        let mut cx = Context::new();
+        let x = cx.declare("x", SymbolKind::Coordinate);
+        let y = cx.declare("y", SymbolKind::Coordinate);
+        let (x, y) = (cx.symbol(x), cx.symbol(y));
+        let sine = cx.apply(Function::Sin, x).expect("applies");
+        let square = cx.pow(sine, Rational::integer(2)).expect("applies");
+        let one = cx.integer(1);
+        let radicand = cx.add2(one, square);
+        let root = cx.sqrt(radicand).expect("applies");
+        let cosine = cx.apply(Function::Cos, y).expect("applies");
+        (cx, root, cosine)
     }
 
     /// The normal form (a root atom reduced by `r^2 = u`, a cleared
@@ -159,16 +159,16 @@ mod tests {
     /// the atoms' evaluation against the DAG's.
     #[test]
     fn a_normal_form_with_a_root_evaluates_as_its_expression() {
-        let (mut store, root, cosine) = store_with_root();
-        let product = store.mul2(root, cosine);
-        let reciprocal = store.pow(root, Rational::integer(-3)).expect("applies");
-        let expression = store.add2(product, reciprocal);
-        let form = store.normal(expression).expect("in the class");
+        let (mut cx, root, cosine) = store_with_root();
+        let product = cx.mul2(root, cosine);
+        let reciprocal = cx.pow(root, Rational::integer(-3)).expect("applies");
+        let expression = cx.add2(product, reciprocal);
+        let form = cx.normal(expression).expect("in the class");
         let pairs = at_defined_points(4, |point| {
-            let from_form = store
+            let from_form = cx
                 .clone()
                 .evaluate_normal_modular(std::slice::from_ref(&form), &mut Values::at(point))?;
-            let from_expression = store.evaluate_modular(&[expression], &point)?;
+            let from_expression = cx.evaluate_modular(&[expression], &point)?;
             Ok((from_form[0], from_expression[0]))
         })
         .expect("four points where 1 + sin(x)^2 is a square");
@@ -181,15 +181,15 @@ mod tests {
     /// rank, the second depends on it, and the three have rank 2.
     #[test]
     fn prefixes_of_full_rank_are_found_and_dependent_rows_are_not() {
-        let (mut store, root, cosine) = store_with_root();
-        let scaled = store.mul2(cosine, root);
-        let entries: Vec<RationalFunction> = [root, store.integer(1), scaled, cosine]
+        let (mut cx, root, cosine) = store_with_root();
+        let scaled = cx.mul2(cosine, root);
+        let entries: Vec<RationalFunction> = [root, cx.integer(1), scaled, cosine]
             .into_iter()
-            .map(|e| store.normal(e).expect("in the class"))
+            .map(|e| cx.normal(e).expect("in the class"))
             .chain([RationalFunction::one(), RationalFunction::zero()])
             .collect();
         let rows = Matrix::new(3, 2, entries).expect("3 x 2");
-        let full = store
+        let full = cx
             .prefixes_of_full_rank_at_points(&rows)
             .expect("in the class");
         assert_eq!(full, [true, false, false]);

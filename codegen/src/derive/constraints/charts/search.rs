@@ -32,7 +32,7 @@
 use crate::ir::{self, IrError, Program};
 use crate::model::Model;
 use crate::sym::zero::SplitMix;
-use crate::sym::{ExprId, Matrix, SymbolId};
+use crate::sym::{Context, ExprId, Matrix, SymbolId};
 use chaplygin_runtime::monitor::{partial_pivots, signed_pivot_ratio};
 use chaplygin_runtime::nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
@@ -76,7 +76,12 @@ impl FrameRows {
     /// `rows` (`c x n` expressions), with `varying` the coordinates that
     /// move; the configuration constraints are the model's, each solved for
     /// one of `varying`.
-    pub fn new(model: &Model, rows: &Matrix<ExprId>, varying: Vec<usize>) -> Result<Self, IrError> {
+    pub fn new(
+        model: &Model,
+        cx: &Context,
+        rows: &Matrix<ExprId>,
+        varying: Vec<usize>,
+    ) -> Result<Self, IrError> {
         let (n, c) = (model.n(), model.c());
         let h = model.mechanism.holonomic.len();
         let coordinate_rows = &model.constraint_expressions;
@@ -88,7 +93,7 @@ impl FrameRows {
         let mut inputs: Vec<SymbolId> = model.coordinate_symbols();
         inputs.extend(model.parameter_symbols());
         let mut frame = FrameRows {
-            program: ir::lower(&model.store, &inputs, &outputs)?,
+            program: ir::lower(cx, &inputs, &outputs)?,
             n,
             c,
             h,

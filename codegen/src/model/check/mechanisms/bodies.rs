@@ -73,7 +73,7 @@ fn body(cx: &mut Context, value: &Value, space: &Space, reference: &Reference) -
         ("particle", [point, mass]) => {
             let center = center(cx, point, space, reference);
             let mass = configuration_scalar(cx, mass, space, reference, "a mass");
-            let zero = cx.store.integer(0);
+            let zero = cx.sym.integer(0);
             Some(Body {
                 frame: space.frame(GROUND)?.clone(),
                 center: center?,
@@ -160,7 +160,7 @@ fn inertia(
         && function == "diag"
         && arguments.len() == 3
     {
-        let zero = cx.store.integer(0);
+        let zero = cx.sym.integer(0);
         let mut entries = [zero; 9];
         for (i, argument) in arguments.iter().enumerate() {
             entries[4 * i] = configuration_scalar(cx, argument, space, reference, what)?;
@@ -200,8 +200,8 @@ fn inertia(
 /// An inertia matrix equals its transpose.
 fn check_symmetric_inertia(cx: &mut Context, values: &[ExprId; 9], entries: &[&Value]) -> bool {
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
-        let difference = cx.store.sub(values[3 * i + j], values[3 * j + i]);
-        if cx.store.normal(difference).is_ok_and(|d| d.is_zero()) {
+        let difference = cx.sym.sub(values[3 * i + j], values[3 * j + i]);
+        if cx.sym.normal(difference).is_ok_and(|d| d.is_zero()) {
             continue;
         }
         cx.diagnostics.error(
@@ -226,7 +226,7 @@ pub(super) fn gravity(
     space: &Space,
     reference: &Reference,
 ) -> Vector {
-    let zero = vector::zero(&mut cx.store);
+    let zero = vector::zero(&mut cx.sym);
     let Some(expr) = section.and_then(|s| cx.expression(s)) else {
         return zero;
     };
@@ -248,16 +248,16 @@ pub(super) fn body_energies(
     let mut kinetic = Vec::new();
     let mut potential = Vec::new();
     for (_, body) in bodies {
-        let motion = body.motion(&mut cx.store, q).ok()?;
-        kinetic.push(motion.kinetic_energy(&mut cx.store));
-        potential.push(body.potential_energy(&mut cx.store, gravity));
+        let motion = body.motion(&mut cx.sym, q).ok()?;
+        kinetic.push(motion.kinetic_energy(&mut cx.sym));
+        potential.push(body.potential_energy(&mut cx.sym, gravity));
         motions.push(motion);
     }
-    let kinetic = cx.store.add(&kinetic);
-    let potential = cx.store.add(&potential);
+    let kinetic = cx.sym.add(&kinetic);
+    let potential = cx.sym.add(&potential);
     Some(BodyEnergies {
-        kinetic: cx.store.normal(kinetic).ok()?,
-        potential: cx.store.normal(potential).ok()?,
+        kinetic: cx.sym.normal(kinetic).ok()?,
+        potential: cx.sym.normal(potential).ok()?,
         derived_as: (kinetic, potential),
         motions,
     })

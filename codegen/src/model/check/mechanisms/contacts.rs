@@ -80,11 +80,11 @@ fn contact(
     let point = center(cx, point, space, reference);
     let directions = directions(cx, directions_value, space, reference);
     let (body, point, directions) = (body?, point?, directions?);
-    let v = body.material_velocity(&mut cx.store, &point, q).ok()?;
+    let v = body.material_velocity(&mut cx.sym, &point, q).ok()?;
     directions
         .iter()
         .map(|d| {
-            let slip = vector::inner(&mut cx.store, d, &v);
+            let slip = vector::inner(&mut cx.sym, d, &v);
             linear_coefficients(cx, slip, q).ok().map(|row| (row, slip))
         })
         .collect()
@@ -173,7 +173,7 @@ pub(super) fn holonomic(
         if !check_configuration_only(cx, &[f], expr, "a holonomic constraint f(q) = 0") || !unique {
             continue;
         }
-        let Ok(rate) = space::time_derivative(&mut cx.store, f, q) else {
+        let Ok(rate) = space::time_derivative(&mut cx.sym, f, q) else {
             continue;
         };
         let form = match linear_coefficients(cx, rate, q) {

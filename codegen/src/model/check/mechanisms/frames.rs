@@ -183,7 +183,7 @@ fn rotated_frame(
         return None;
     }
     let parent = space.frame(&frame.parent.to_string())?;
-    match space::rotated(&mut cx.store, parent, frame.axis, angle, q) {
+    match space::rotated(&mut cx.sym, parent, frame.axis, angle, q) {
         Ok(state) => Some(state),
         Err(error) => {
             cx.diagnostics

@@ -38,7 +38,7 @@ pub(super) struct MechanismParts {
 impl MechanismParts {
     /// The parts of a model that declares no mechanism.
     fn none(cx: &mut Context) -> MechanismParts {
-        let zero = cx.store.integer(0);
+        let zero = cx.sym.integer(0);
         MechanismParts {
             mechanism: Mechanism::none(),
             names: Vec::new(),
@@ -72,7 +72,7 @@ pub(super) fn mechanism(
             .or_insert((kind, Span::call_site()));
     }
     let errors_before = cx.diagnostics.len();
-    let mut space = Space::new(&mut cx.store);
+    let mut space = Space::new(&mut cx.sym);
     let section = |section| sections.get(section);
     let frames = frames::frames(cx, section(Section::Frames), &mut space, &reference, &q);
     let points = frames::points(cx, section(Section::Points), &mut space, &reference);
@@ -132,7 +132,7 @@ pub(super) fn mechanism(
 }
 
 /// Rows of `width` entries: their normal forms, and the expressions to
-/// compute them by ([`crate::sym::Store::compact_expression`]).
+/// compute them by ([`crate::sym::Context::compact_expression`]).
 fn normal_rows(
     cx: &mut Context,
     entries: &[ExprId],
@@ -141,8 +141,8 @@ fn normal_rows(
     let mut forms = Vec::with_capacity(entries.len());
     let mut expressions = Vec::with_capacity(entries.len());
     for &id in entries {
-        let form = cx.store.normal(id).ok()?;
-        expressions.push(cx.store.compact_expression(&form, id));
+        let form = cx.sym.normal(id).ok()?;
+        expressions.push(cx.sym.compact_expression(&form, id));
         forms.push(form);
     }
     let rows = entries.len() / width;

@@ -22,7 +22,7 @@ pub(super) fn evaluator<'a>(
 ) -> Evaluator<'a> {
     Evaluator {
         lowerer: Lowerer {
-            store: &mut cx.store,
+            cx: &mut cx.sym,
             scope: &cx.scope,
             diagnostics: &mut cx.diagnostics,
         },
@@ -39,10 +39,10 @@ pub(super) fn check_configuration_only(
     what: &str,
 ) -> bool {
     let has_velocity = values.iter().any(|&id| {
-        cx.store
+        cx.sym
             .free_symbols(id)
             .iter()
-            .any(|&s| matches!(cx.store.symbol_info(s).kind, SymbolKind::Velocity(_)))
+            .any(|&s| matches!(cx.sym.symbol_info(s).kind, SymbolKind::Velocity(_)))
     });
     if has_velocity {
         let span = first_velocity_span(expr).unwrap_or_else(|| expr.first_span());
@@ -65,9 +65,9 @@ pub(super) fn linear_coefficients(
 ) -> Result<Vec<RationalFunction>, SymError> {
     q.iter()
         .map(|&coordinate| {
-            let velocity = cx.store.velocity_of(coordinate);
-            let coefficient = cx.store.derivative(form, velocity);
-            cx.store.normal(coefficient)
+            let velocity = cx.sym.velocity_of(coordinate);
+            let coefficient = cx.sym.derivative(form, velocity);
+            cx.sym.normal(coefficient)
         })
         .collect()
 }

@@ -1,8 +1,9 @@
-//! [`Store::normal`]: an expression to its normal form (memoized), with
+//! [`Context::normal`]: an expression to its normal form (memoized), with
 //! trigonometric functions of integer combinations of symbols expanded into
 //! products of `sin q_i`, `cos q_i`; and a normal form back to an expression.
 
-use super::{ExprId, Function, Node, Store, SymError, SymbolId};
+use super::Context;
+use crate::sym::expr::{ExprId, Function, Node, SymError, SymbolId};
 use crate::sym::normal::RationalFunction;
 use crate::sym::number::Rational;
 use crate::sym::poly::{Atom, AtomId, Atoms, Poly};
@@ -10,7 +11,7 @@ use crate::sym::poly::{Atom, AtomId, Atoms, Poly};
 /// The largest multiple angle expanded; larger ones stay opaque atoms.
 const MAX_MULTIPLE_ANGLE: i64 = 64;
 
-impl Store {
+impl Context {
     /// The normal form of an expression (memoized).
     ///
     /// Fails with [`SymError::BudgetExceeded`] once the store's derivation
@@ -49,7 +50,7 @@ impl Store {
     }
 
     fn normal_of_node(&mut self, id: ExprId) -> Result<RationalFunction, SymError> {
-        let form = |store: &Store, child: &ExprId| store.normal_forms[child].clone();
+        let form = |cx: &Context, child: &ExprId| cx.normal_forms[child].clone();
         Ok(match self.node(id).clone() {
             Node::Number(value) => RationalFunction::constant(value),
             Node::Symbol(symbol) => {
@@ -241,11 +242,6 @@ impl Store {
             Atom::Cos(argument) => self.apply_to_expression(Function::Cos, argument),
             Atom::Kernel(expression) => expression,
         }
-    }
-
-    /// The atom table of the normal form.
-    pub fn atoms(&self) -> &Atoms {
-        &self.atoms
     }
 
     /// The atom of a symbol used polynomially.
