@@ -75,8 +75,13 @@ pub struct PortHamiltonian {
     pub inputs: Vec<SymbolId>,
     /// True when `h` was declared, false when the tool chose `(g X)^T`.
     pub declared_basis: bool,
-    /// The derived form: exact, or structured.
-    pub form: Form,
+    /// The reduced form as expressions, what its items are built from:
+    /// the products of the exact matrices' entries, or the structured
+    /// derivation's.
+    pub expressions: ReducedExpressions,
+    /// The exact normal forms: always for a declared basis, for the tool's
+    /// basis when they fit [`EXACT_REDUCED_PRODUCTS`].
+    pub exact: Option<Exact>,
     /// `gbar` does not depend on the coordinates.
     pub metric_constant: bool,
     /// `gbar` is diagonal.
@@ -84,17 +89,6 @@ pub struct PortHamiltonian {
     /// How the two facts were decided: on the exact forms, or at random
     /// points on the structured ones.
     pub facts_method: Method,
-}
-
-/// How the reduced form was derived.
-#[derive(Clone, Debug)]
-pub enum Form {
-    /// In exact normal form: always for a declared basis, for the tool's
-    /// basis when it fits [`EXACT_REDUCED_PRODUCTS`].
-    Exact(Exact),
-    /// Structured (the module `structured`), for the tool's basis when the exact form
-    /// does not fit.
-    Structured(ReducedExpressions),
 }
 
 /// The reduced form in exact normal form.
@@ -184,27 +178,6 @@ impl PortHamiltonian {
         state.extend(&self.momenta);
         state
     }
-
-    /// The exact form, when it was derived.
-    pub fn exact(&self) -> Option<&Exact> {
-        match &self.form {
-            Form::Exact(exact) => Some(exact),
-            Form::Structured(_) => None,
-        }
-    }
-
-    /// The reduced form as expressions: the products of the exact
-    /// matrices' entries, or the structured derivation's.
-    pub fn expressions(
-        &self,
-        model: &Model,
-        cx: &mut Context,
-    ) -> Result<ReducedExpressions, MatrixError> {
-        match &self.form {
-            Form::Exact(exact) => exact.expressions(model, cx, &self.momenta, &self.inputs),
-            Form::Structured(expressions) => Ok(expressions.clone()),
-        }
-    }
 }
 
 /// Derives the reduced port-Hamiltonian form of `model` (Theorem 1): with a
@@ -242,25 +215,18 @@ pub fn derive(
             .transpose()?,
         (None, None) => None,
     };
-    let form = match exact {
-        Some(exact) => Form::Exact(exact),
-        None => Form::Structured(structured::derive(
-            model,
-            cx,
-            &basis.field_expressions,
-            &momenta,
-            &inputs,
-        )?),
-    };
-    let (metric_constant, metric_diagonal, facts_method) = match &form {
-        Form::Exact(exact) => (
-            is_constant(model, cx, &exact.metric)?,
-            is_diagonal(&exact.metric),
-            Method::NormalForm,
-        ),
-        Form::Structured(expressions) => {
+    let (expressions, metric_constant, metric_diagonal, facts_method) = match &exact {
+        Some(exact) => {
+            let constant = is_constant(model, cx, &exact.metric)?;
+            let expressions = exact.expressions(model, cx, &momenta, &inputs)?;
+            let diagonal = is_diagonal(&exact.metric);
+            (expressions, constant, diagonal, Method::NormalForm)
+        }
+        None => {
+            let field_expressions = &basis.field_expressions;
+            let expressions = structured::derive(model, cx, field_expressions, &momenta, &inputs)?;
             let (constant, diagonal) = facts_at_points(model, cx, &expressions.metric_inverse)?;
-            (constant, diagonal, Method::Modular)
+            (expressions, constant, diagonal, Method::Modular)
         }
     };
     Ok(PortHamiltonian {
@@ -268,7 +234,8 @@ pub fn derive(
         momenta,
         inputs,
         declared_basis: model.momentum_basis.is_some(),
-        form,
+        expressions,
+        exact,
         metric_constant,
         metric_diagonal,
         facts_method,

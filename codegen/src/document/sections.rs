@@ -277,7 +277,7 @@ pub(super) fn reduced_section(
         ),
         names_fact("momenta", "momenta", reduced.momentum_names.clone()),
     ];
-    match reduced.exact() {
+    match &reduced.exact {
         Some(exact) => items.extend(exact_items(model, cx, reduced, exact, rhs)),
         None => items.extend(structured_items(reduced)),
     }

@@ -107,7 +107,7 @@ fn report_section(cx: &mut Context, reduced: &PortHamiltonian) -> Section {
         yes_no(reduced.metric_constant),
         yes_no(reduced.metric_diagonal)
     ));
-    match reduced.exact() {
+    match &reduced.exact {
         Some(exact) => {
             let gbar = exact.metric.to_expressions(cx);
             let k = reduced.momenta.len();

@@ -11,9 +11,10 @@
 //! ```
 //!
 //! Every item has its structured writing: the sum of products of the
-//! factors' entries ([`ReducedExpressions`]; for the gradient and the
-//! Jacobians, that writing differentiated as an expression). When the exact
-//! form was derived it also has the expanded normal form. Of the two, the one
+//! factors' entries ([`PortHamiltonian::expressions`], computed with the
+//! reduced form; for the gradient and the Jacobians, that writing
+//! differentiated as an expression). When the exact form was derived it
+//! also has the expanded normal form. Of the two, the one
 //! whose weighted cost [`ir::estimated_weight`] estimates lower on the
 //! expression DAG is kept, the structured one on ties: expanded normal
 //! forms are often longer, and lose accuracy to cancellation. Nothing is
@@ -21,7 +22,7 @@
 //! snakeboard's `reduced_rhs` is the structured form, the sleigh's the
 //! expanded one.
 
-use super::{Exact, PortHamiltonian, PortHamiltonianError, ReducedExpressions};
+use super::{Exact, PortHamiltonian, PortHamiltonianError};
 use crate::ir;
 use crate::model::Model;
 use crate::sym::{Context, ExprId, Matrix, Poly, RationalFunction, SymbolId};
@@ -121,12 +122,11 @@ pub fn candidates(
     cx: &mut Context,
     reduced: &PortHamiltonian,
 ) -> Result<Vec<Candidates>, PortHamiltonianError> {
-    let expressions = reduced.expressions(model, cx)?;
     Item::ALL
         .iter()
         .map(|&item| {
-            let structured = structured(model, cx, reduced, &expressions, item)?;
-            let expanded = match reduced.exact() {
+            let structured = structured(model, cx, reduced, item)?;
+            let expanded = match &reduced.exact {
                 Some(exact) => Some(expanded(model, cx, reduced, exact, item)?),
                 None => None,
             };
@@ -143,9 +143,9 @@ fn structured(
     model: &Model,
     cx: &mut Context,
     reduced: &PortHamiltonian,
-    expressions: &ReducedExpressions,
     item: Item,
 ) -> Result<Vec<ExprId>, PortHamiltonianError> {
+    let expressions = &reduced.expressions;
     Ok(match item {
         Item::Momenta => {
             let qdot = symbol_expressions(cx, &model.velocities);
