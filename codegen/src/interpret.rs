@@ -342,6 +342,23 @@ impl InterpretedModel {
         self.call_among(&self.functions, name, arguments)
     }
 
+    /// [`InterpretedModel::call`] into `outputs`, which must have the
+    /// function's length. The program's inputs are gathered in a buffer of
+    /// the calling thread, kept from call to call: once it has grown to the
+    /// largest program's inputs, a call on the JIT allocates nothing.
+    ///
+    /// # Errors
+    /// As [`InterpretedModel::call`], and [`CallError::Program`] with
+    /// [`IrError::OutputCount`] when `outputs` has the wrong length.
+    pub fn call_into(
+        &self,
+        name: &str,
+        arguments: &[&[f64]],
+        outputs: &mut [f64],
+    ) -> Result<(), CallError> {
+        self.evaluate_into(function_among(&self.functions, name)?, arguments, outputs)
+    }
+
     /// The model's guarded expressions at `q` (the generated `DOMAIN` and
     /// `domain`).
     pub fn domain(&self, q: &[f64]) -> Result<Vec<GuardedValue<'_>>, CallError> {
@@ -397,51 +414,35 @@ impl InterpretedModel {
         name: &str,
         arguments: &[&[f64]],
     ) -> Result<Vec<f64>, CallError> {
-        let function = functions.iter().find(|f| f.name == name).ok_or_else(|| {
-            CallError::UnknownFunction {
-                name: name.to_string(),
-            }
-        })?;
-        let lowered = &function.lowered;
-        let inputs = self.inputs(function.name, &lowered.arguments, arguments)?;
-        let mut outputs = vec![0.0; lowered.program.outputs().len()];
-        self.engine
-            .evaluate(function.index, &lowered.program, &inputs, &mut outputs)
-            .map_err(|source| CallError::Program {
-                function: name.to_string(),
-                source,
-            })?;
+        let function = function_among(functions, name)?;
+        let mut outputs = vec![0.0; function.lowered.program.outputs().len()];
+        self.evaluate_into(function, arguments, &mut outputs)?;
         Ok(outputs)
     }
 
-    /// The program's inputs: the arguments, checked, then the parameters.
-    fn inputs(
+    /// Runs `function` at `arguments` into `outputs`, its inputs gathered
+    /// in the calling thread's [`PROGRAM_INPUTS`].
+    fn evaluate_into(
         &self,
-        function: &str,
-        layout: &[(&'static str, usize)],
+        function: &Interpreted,
         arguments: &[&[f64]],
-    ) -> Result<Vec<f64>, CallError> {
-        if layout.len() != arguments.len() {
-            return Err(CallError::ArgumentCount {
-                function: function.to_string(),
-                expected: layout.len(),
-                found: arguments.len(),
-            });
-        }
-        let mut inputs = Vec::new();
-        for (&(argument, expected), values) in layout.iter().zip(arguments) {
-            if values.len() != expected {
-                return Err(CallError::ArgumentLength {
-                    function: function.to_string(),
-                    argument: argument.to_string(),
-                    expected,
-                    found: values.len(),
-                });
-            }
-            inputs.extend_from_slice(values);
-        }
-        inputs.extend_from_slice(&self.parameters);
-        Ok(inputs)
+        outputs: &mut [f64],
+    ) -> Result<(), CallError> {
+        let lowered = &function.lowered;
+        check_arguments(function.name, &lowered.arguments, arguments)?;
+        PROGRAM_INPUTS.with_borrow_mut(|inputs| {
+            inputs.clear();
+            arguments
+                .iter()
+                .for_each(|values| inputs.extend_from_slice(values));
+            inputs.extend_from_slice(&self.parameters);
+            self.engine
+                .evaluate(function.index, &lowered.program, inputs, outputs)
+                .map_err(|source| CallError::Program {
+                    function: function.name.to_string(),
+                    source,
+                })
+        })
     }
 
     /// The mass matrix `g(q)`, n x n.
@@ -630,6 +631,53 @@ fn interpreted(
             })
         })
         .collect()
+}
+
+thread_local! {
+    /// The inputs of the program being run (its arguments, then the
+    /// parameters), kept from call to call so that a call allocates only
+    /// until the buffer has grown to the largest program's inputs.
+    static PROGRAM_INPUTS: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The function `name` among `functions`.
+fn function_among<'f>(
+    functions: &'f [Interpreted],
+    name: &str,
+) -> Result<&'f Interpreted, CallError> {
+    functions
+        .iter()
+        .find(|f| f.name == name)
+        .ok_or_else(|| CallError::UnknownFunction {
+            name: name.to_string(),
+        })
+}
+
+/// `Err` unless `arguments` has the number and the lengths of `layout`,
+/// the arguments of `function`.
+fn check_arguments(
+    function: &str,
+    layout: &[(&'static str, usize)],
+    arguments: &[&[f64]],
+) -> Result<(), CallError> {
+    if layout.len() != arguments.len() {
+        return Err(CallError::ArgumentCount {
+            function: function.to_string(),
+            expected: layout.len(),
+            found: arguments.len(),
+        });
+    }
+    for (&(argument, expected), values) in layout.iter().zip(arguments) {
+        if values.len() != expected {
+            return Err(CallError::ArgumentLength {
+                function: function.to_string(),
+                argument: argument.to_string(),
+                expected,
+                found: values.len(),
+            });
+        }
+    }
+    Ok(())
 }
 
 fn names(model: &Model) -> Names {

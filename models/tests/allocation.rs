@@ -1,6 +1,7 @@
 //! Generated functions, the runtime's integrator steps, its projection
-//! onto configuration constraints and its linear algebra on fixed sizes
-//! (nalgebra's LU, Cholesky and real Schur form) allocate nothing:
+//! onto configuration constraints, its linear algebra on fixed sizes
+//! (nalgebra's LU, Cholesky and real Schur form) and a model's reduced form
+//! compiled by the JIT from its text allocate nothing:
 //! a counting global allocator sees zero allocations across 10^4 calls of each (counted per thread, so tests
 //! running in parallel do not see each other's allocations). Non-finite input gives
 //! non-finite output, without a panic.
@@ -8,9 +9,11 @@
 mod common;
 
 use chaplygin::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
+use chaplygin::jit::{Fixed, JitModel};
 use chaplygin::runtime::arrays::matrix_from_rows;
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4};
 use chaplygin::runtime::linalg::{eigenvalues, solve, solve_positive_definite};
+use chaplygin::runtime::linearize::Linearization;
 use chaplygin::runtime::projection::Surface;
 use chaplygin::runtime::simulate::Observed;
 use chaplygin::runtime::system::LagrangeDalembert;
@@ -474,4 +477,63 @@ fn keeping_the_configuration_constraints_does_not_allocate() {
         on_lagrange <= 1e-8 && on_reduced <= 1e-8,
         "{on_lagrange} {on_reduced}"
     );
+}
+
+/// The snakeboard read from its text and compiled by the JIT, at fixed
+/// sizes through the runtime's traits (`chaplygin::jit::Fixed`): once the
+/// first calls have grown the input buffer, its reduced form's items, the
+/// matrices of its Lagrange-d'Alembert form and the integrator steps on
+/// its reduced system allocate nothing, as the generated struct's; and they
+/// give the generated struct's values.
+#[test]
+fn the_jit_compiled_reduced_form_does_not_allocate() {
+    let model = JitModel::from_source(chaplygin_models::snakeboard::MODEL_TEXT).expect("derives");
+    let jit = Fixed::<5, 2, 2, 0, 2, 1>::new(&model).expect("the snakeboard's sizes");
+    let reduced = Reduced::constant(&jit, [0.1, -0.2]);
+    let compiled_board = Snakeboard::default();
+    let compiled = Reduced::constant(&compiled_board, [0.1, -0.2]);
+    let x0 = [0.1, -0.2, 0.3, 0.0, 0.3, 1.0, 0.5, 0.025];
+    let u = [0.3, -0.1];
+    let items = |x: &[f64; 8]| {
+        black_box(jit.hamiltonian(black_box(x)));
+        black_box(jit.hamiltonian_gradient(black_box(x)));
+        black_box(jit.structure_matrix(black_box(x)));
+        black_box(jit.input_matrix(black_box(x)));
+        black_box(jit.reduced_rhs(black_box(x), &u));
+        black_box(jit.reduced_rhs_jacobian(black_box(x), &u));
+        black_box(jit.output(black_box(x)));
+        let q: [f64; 5] = core::array::from_fn(|i| x[i]);
+        black_box(Linearization::<5, 2, 2>::mass_matrix(&jit, black_box(&q)));
+        black_box(Linearization::<5, 2, 2>::constraint_matrix(
+            &jit,
+            black_box(&q),
+        ));
+    };
+    items(&x0);
+    let mut x = x0;
+    let counted = allocations(|| {
+        for i in 0..10_000 {
+            let t = i as f64 * 1e-3;
+            items(&x);
+            x = Rk4.step(&reduced, t, black_box(&x), 1e-3).unwrap();
+            x = DiscreteGradient::default()
+                .step(&reduced, t, black_box(&x), 1e-3)
+                .unwrap();
+        }
+    });
+    assert_eq!(counted, 0);
+    let mut y = x0;
+    for i in 0..10_000 {
+        let t = i as f64 * 1e-3;
+        y = Rk4.step(&compiled, t, &y, 1e-3).unwrap();
+        y = DiscreteGradient::default()
+            .step(&compiled, t, &y, 1e-3)
+            .unwrap();
+    }
+    let scale = y.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    let difference = x
+        .iter()
+        .zip(&y)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(difference <= 1e-9 * scale, "JIT {x:?}, compiled {y:?}");
 }

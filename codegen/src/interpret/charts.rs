@@ -3,8 +3,9 @@
 //! charts of coordinate partitioning (`chaplygin_runtime::partition`),
 //! numbered as the generated code numbers them.
 
-use super::{CallError, InterpretedModel};
+use super::{CallError, InterpretedModel, check_arguments, function_among};
 use crate::derive::constraints::ChartFit;
+use crate::ir::IrError;
 use chaplygin_runtime::monitor::{
     declared_basis_fit, hadamard_ratio, in_body_frame, signed_pivot_ratio,
 };
@@ -133,6 +134,44 @@ impl InterpretedModel {
         }
     }
 
+    /// [`InterpretedModel::call_in_chart`] into `outputs`, as
+    /// [`InterpretedModel::call_into`]: in chart 0 and the compiled charts
+    /// a call on the JIT allocates nothing once the input buffer has grown;
+    /// in a run-time chart the item is composed from chart 0's functions
+    /// into a new vector first.
+    ///
+    /// # Errors
+    /// As [`InterpretedModel::call_into`].
+    pub fn call_in_chart_into(
+        &self,
+        chart: usize,
+        name: &str,
+        arguments: &[&[f64]],
+        outputs: &mut [f64],
+    ) -> Result<(), CallError> {
+        match chart.checked_sub(1) {
+            None => self.call_into(name, arguments, outputs),
+            Some(other) if other < self.chart_functions.len() => {
+                let function = function_among(&self.chart_functions[other], name)?;
+                self.evaluate_into(function, arguments, outputs)
+            }
+            Some(_) => {
+                let values = self.call_in_runtime_chart(chart, name, arguments)?;
+                if values.len() != outputs.len() {
+                    return Err(CallError::Program {
+                        function: name.to_string(),
+                        source: IrError::OutputCount {
+                            expected: values.len(),
+                            found: outputs.len(),
+                        },
+                    });
+                }
+                outputs.copy_from_slice(&values);
+                Ok(())
+            }
+        }
+    }
+
     /// The run-time chart `chart`, if it is one.
     fn runtime_chart(&self, chart: usize) -> Option<RuntimeChart<'_, InterpretedModel>> {
         let index = chart.checked_sub(self.charts.len())?;
@@ -151,7 +190,7 @@ impl InterpretedModel {
             name: format!("{name} (in chart {chart})"),
         };
         let layout = self.arguments(name).ok_or_else(unknown)?;
-        self.inputs(name, &layout, arguments)?;
+        check_arguments(name, &layout, arguments)?;
         let runtime = self.runtime_chart(chart).ok_or_else(unknown)?;
         let (s, p) = (self.sizes.s, self.sizes.p);
         let sized = |len: usize, fill: &dyn Fn(&mut [f64])| {

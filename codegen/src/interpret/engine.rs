@@ -26,9 +26,15 @@ pub trait Engine: Send + Sync {
     ) -> Result<(), IrError>;
 }
 
-/// The IR interpreter, [`Program::evaluate`].
+/// The IR interpreter, [`Program::evaluate`], its values kept in a buffer
+/// of the calling thread that grows to the largest program's and is reused.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Interpreter;
+
+thread_local! {
+    /// The interpreter's values of the program being run.
+    static VALUES: std::cell::RefCell<Vec<f64>> = const { std::cell::RefCell::new(Vec::new()) };
+}
 
 impl Engine for Interpreter {
     fn name(&self) -> &'static str {
@@ -42,6 +48,6 @@ impl Engine for Interpreter {
         inputs: &[f64],
         outputs: &mut [f64],
     ) -> Result<(), IrError> {
-        program.evaluate(inputs, &mut Vec::new(), outputs)
+        VALUES.with_borrow_mut(|values| program.evaluate(inputs, values, outputs))
     }
 }

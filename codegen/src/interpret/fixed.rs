@@ -14,10 +14,17 @@
 //! momentum equation of a model without a symmetry): its values are NaN,
 //! which a run reports as a non-finite state.
 //!
-//! Each call goes through the model's slice API, which returns its values
-//! in a new vector: unlike a generated struct's, these items allocate.
-//! Allocation-free evaluation of a model read from its text is
-//! `chaplygin_jit::NativePrograms::evaluate` on its programs.
+//! The reduced form's items in chart 0 and the compiled charts, the
+//! output, the mass and constraint matrices, the energy, the constraint
+//! residual, the holonomic residual and Jacobian and the momentum items
+//! that return one array are evaluated into the array they return
+//! ([`InterpretedModel::call_in_chart_into`], the inputs gathered in a
+//! buffer of the calling thread): after the first calls have grown it,
+//! they allocate nothing on the JIT, as a generated struct's. The
+//! interpreter keeps its values in such a buffer too. What is computed from
+//! several items (`acceleration` with its multipliers, the linearization's
+//! Jacobians, the regularity measures, the run-time charts, a change of
+//! chart) still returns vectors, and allocates.
 
 use super::{CallError, InterpretedModel};
 use chaplygin_runtime::arrays::leading;
@@ -192,10 +199,45 @@ impl<
     const MP: usize,
 > Fixed<'_, N, C, P, H, R, MP>
 {
+    /// The `L` values of the item `name` in `chart`, evaluated into the
+    /// array ([`InterpretedModel::call_in_chart_into`]); NaN where the call
+    /// fails.
+    fn vector_in<const L: usize>(
+        &self,
+        chart: usize,
+        name: &str,
+        arguments: &[&[f64]],
+    ) -> [f64; L] {
+        let mut values = [0.0; L];
+        match self
+            .model
+            .call_in_chart_into(chart, name, arguments, &mut values)
+        {
+            Ok(()) => values,
+            Err(_) => [f64::NAN; L],
+        }
+    }
+
+    /// The `ROWS x COLUMNS` row-major values of the item `name` in
+    /// `chart`, evaluated into the array; NaN where the call fails.
+    fn matrix_in<const ROWS: usize, const COLUMNS: usize>(
+        &self,
+        chart: usize,
+        name: &str,
+        arguments: &[&[f64]],
+    ) -> [[f64; COLUMNS]; ROWS] {
+        let mut values = [[0.0; COLUMNS]; ROWS];
+        let into = values.as_flattened_mut();
+        match self.model.call_in_chart_into(chart, name, arguments, into) {
+            Ok(()) => values,
+            Err(_) => [[f64::NAN; COLUMNS]; ROWS],
+        }
+    }
+
     /// `(q, qdot)` of the state `x = (q, alpha)` in `chart`.
     fn configuration_velocity(&self, chart: usize, x: &[f64]) -> ([f64; N], [f64; N]) {
         let (q, alpha) = x.split_at(N);
-        let qdot = vector(self.model.call_in_chart(chart, "velocities", &[q, alpha]));
+        let qdot = self.vector_in(chart, "velocities", &[q, alpha]);
         (leading(q), qdot)
     }
 
@@ -244,11 +286,11 @@ impl<
     }
 
     fn output(&self, x: &[f64; S]) -> [f64; P] {
-        vector(self.model.output(x))
+        self.vector_in(0, "output", &[x])
     }
 
     fn output_jacobian(&self, x: &[f64; S]) -> [[f64; S]; P] {
-        matrix(self.model.call("output_jacobian", &[x]))
+        self.matrix_in(0, "output_jacobian", &[x])
     }
 
     fn constraint_violation(&self, x: &[f64; S]) -> f64 {
@@ -289,34 +331,27 @@ impl<
     }
 
     fn chart_rhs(&self, chart: usize, x: &[f64; S], u: &[f64; P]) -> [f64; S] {
-        vector(self.model.call_in_chart(chart, "reduced_rhs", &[x, u]))
+        self.vector_in(chart, "reduced_rhs", &[x, u])
     }
 
     fn chart_rhs_jacobian(&self, chart: usize, x: &[f64; S], u: &[f64; P]) -> [[f64; S]; S] {
-        matrix(
-            self.model
-                .call_in_chart(chart, "reduced_rhs_jacobian", &[x, u]),
-        )
+        self.matrix_in(chart, "reduced_rhs_jacobian", &[x, u])
     }
 
     fn chart_hamiltonian(&self, chart: usize, x: &[f64; S]) -> f64 {
-        let value = self.model.call_in_chart(chart, "hamiltonian", &[x]);
-        vector::<1>(value)[0]
+        self.vector_in::<1>(chart, "hamiltonian", &[x])[0]
     }
 
     fn chart_hamiltonian_gradient(&self, chart: usize, x: &[f64; S]) -> [f64; S] {
-        vector(
-            self.model
-                .call_in_chart(chart, "hamiltonian_gradient", &[x]),
-        )
+        self.vector_in(chart, "hamiltonian_gradient", &[x])
     }
 
     fn chart_structure_matrix(&self, chart: usize, x: &[f64; S]) -> [[f64; S]; S] {
-        matrix(self.model.call_in_chart(chart, "structure_matrix", &[x]))
+        self.matrix_in(chart, "structure_matrix", &[x])
     }
 
     fn chart_input_matrix(&self, chart: usize, x: &[f64; S]) -> [[f64; P]; S] {
-        matrix(self.model.call_in_chart(chart, "input_matrix", &[x]))
+        self.matrix_in(chart, "input_matrix", &[x])
     }
 
     fn chart_constraint_violation(&self, chart: usize, x: &[f64; S]) -> f64 {
@@ -345,11 +380,11 @@ impl<
     }
 
     fn energy(&self, q: &[f64; N], qdot: &[f64; N]) -> f64 {
-        scalar(self.model.energy(q, qdot))
+        self.vector_in::<1>(0, "energy", &[q, qdot])[0]
     }
 
     fn constraint_residual(&self, q: &[f64; N], qdot: &[f64; N]) -> [f64; C] {
-        vector(self.model.constraint_residual(q, qdot))
+        self.vector_in(0, "constraint_residual", &[q, qdot])
     }
 
     fn constraint_regularity(&self, q: &[f64; N]) -> f64 {
@@ -374,11 +409,11 @@ impl<
     }
 
     fn mass_matrix(&self, q: &[f64; N]) -> [[f64; N]; N] {
-        matrix(self.model.mass_matrix(q))
+        self.matrix_in(0, "mass_matrix", &[q])
     }
 
     fn constraint_matrix(&self, q: &[f64; N]) -> [[f64; N]; C] {
-        matrix(self.model.constraint_matrix(q))
+        self.matrix_in(0, "constraint_matrix", &[q])
     }
 
     fn acceleration_jacobian(
@@ -412,11 +447,11 @@ impl<
     }
 
     fn holonomic_residual(&self, q: &[f64; N]) -> [f64; H] {
-        vector(self.model.call("holonomic_residual", &[q]))
+        self.vector_in(0, "holonomic_residual", &[q])
     }
 
     fn holonomic_jacobian(&self, q: &[f64; N]) -> [[f64; N]; H] {
-        matrix(self.model.call("holonomic_jacobian", &[q]))
+        self.matrix_in(0, "holonomic_jacobian", &[q])
     }
 }
 
@@ -440,11 +475,11 @@ impl<
 
     fn chart_momenta(&self, chart: usize, q: &[f64; N], qdot: &[f64; N]) -> [f64; K] {
         const { assert!(K + C == N, "the reduced momenta are K = N - C") };
-        vector(self.model.call_in_chart(chart, "momenta", &[q, qdot]))
+        self.vector_in(chart, "momenta", &[q, qdot])
     }
 
     fn chart_velocities(&self, chart: usize, q: &[f64; N], alpha: &[f64; K]) -> [f64; N] {
-        vector(self.model.call_in_chart(chart, "velocities", &[q, alpha]))
+        self.vector_in(chart, "velocities", &[q, alpha])
     }
 }
 
@@ -462,15 +497,15 @@ impl<
     }
 
     fn momentum(&self, q: &[f64; N], qdot: &[f64; N]) -> [f64; MP] {
-        vector(self.model.call("momentum", &[q, qdot]))
+        self.vector_in(0, "momentum", &[q, qdot])
     }
 
     fn momentum_rhs(&self, r: &[f64; R], rdot: &[f64; R], p: &[f64; MP]) -> [f64; MP] {
-        vector(self.model.call("momentum_rhs", &[r, rdot, p]))
+        self.vector_in(0, "momentum_rhs", &[r, rdot, p])
     }
 
     fn momentum_input_matrix(&self, q: &[f64; N]) -> [[f64; P]; MP] {
-        matrix(self.model.call("momentum_input_matrix", &[q]))
+        self.matrix_in(0, "momentum_input_matrix", &[q])
     }
 
     fn shape_acceleration(
