@@ -339,7 +339,7 @@ impl InterpretedModel {
     /// a matrix is returned row-major. `acceleration` returns `qddot` then
     /// `lambda`.
     pub fn call(&self, name: &str, arguments: &[&[f64]]) -> Result<Vec<f64>, CallError> {
-        self.call_among(&self.functions, name, arguments)
+        self.evaluate(function_among(&self.functions, name)?, arguments)
     }
 
     /// [`InterpretedModel::call`] into `outputs`, which must have the
@@ -407,14 +407,12 @@ impl InterpretedModel {
             .collect())
     }
 
-    /// The function `name` among `functions`.
-    fn call_among(
+    /// Runs `function` at `arguments` into a new vector.
+    fn evaluate(
         &self,
-        functions: &[Interpreted],
-        name: &str,
+        function: &Interpreted,
         arguments: &[&[f64]],
     ) -> Result<Vec<f64>, CallError> {
-        let function = function_among(functions, name)?;
         let mut outputs = vec![0.0; function.lowered.program.outputs().len()];
         self.evaluate_into(function, arguments, &mut outputs)?;
         Ok(outputs)

@@ -3,7 +3,7 @@
 //! charts of coordinate partitioning (`chaplygin_runtime::partition`),
 //! numbered as the generated code numbers them.
 
-use super::{CallError, InterpretedModel, check_arguments, function_among};
+use super::{CallError, Interpreted, InterpretedModel, check_arguments, function_among};
 use crate::derive::constraints::ChartFit;
 use crate::ir::IrError;
 use chaplygin_runtime::monitor::{
@@ -125,13 +125,25 @@ impl InterpretedModel {
         name: &str,
         arguments: &[&[f64]],
     ) -> Result<Vec<f64>, CallError> {
-        match chart.checked_sub(1) {
-            None => self.call(name, arguments),
-            Some(other) if other < self.chart_functions.len() => {
-                self.call_among(&self.chart_functions[other], name, arguments)
-            }
-            Some(_) => self.call_in_runtime_chart(chart, name, arguments),
+        match self.compiled_in_chart(chart, name)? {
+            Some(function) => self.evaluate(function, arguments),
+            None => self.call_in_runtime_chart(chart, name, arguments),
         }
+    }
+
+    /// The function `name` of `chart` compiled at build time (chart 0's
+    /// or a derived chart's); `None` in a run-time chart.
+    fn compiled_in_chart(
+        &self,
+        chart: usize,
+        name: &str,
+    ) -> Result<Option<&Interpreted>, CallError> {
+        let functions = match chart.checked_sub(1) {
+            None => &self.functions,
+            Some(other) if other < self.chart_functions.len() => &self.chart_functions[other],
+            Some(_) => return Ok(None),
+        };
+        function_among(functions, name).map(Some)
     }
 
     /// [`InterpretedModel::call_in_chart`] into `outputs`, as
@@ -149,13 +161,9 @@ impl InterpretedModel {
         arguments: &[&[f64]],
         outputs: &mut [f64],
     ) -> Result<(), CallError> {
-        match chart.checked_sub(1) {
-            None => self.call_into(name, arguments, outputs),
-            Some(other) if other < self.chart_functions.len() => {
-                let function = function_among(&self.chart_functions[other], name)?;
-                self.evaluate_into(function, arguments, outputs)
-            }
-            Some(_) => {
+        match self.compiled_in_chart(chart, name)? {
+            Some(function) => self.evaluate_into(function, arguments, outputs),
+            None => {
                 let values = self.call_in_runtime_chart(chart, name, arguments)?;
                 if values.len() != outputs.len() {
                     return Err(CallError::Program {

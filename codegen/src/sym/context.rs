@@ -50,11 +50,6 @@ impl Context {
         }
     }
 
-    /// The expression store.
-    pub fn store(&self) -> &Store {
-        &self.store
-    }
-
     /// The atoms the normal forms are written over.
     pub fn atoms(&self) -> &Atoms {
         &self.atoms
