@@ -32,7 +32,7 @@ chaplygin::model! {
 /// error and the final position.
 fn run<M>(method: M, skate: &Skate) -> (f64, f64, f64)
 where
-    M: for<'a> Advance<Reduced<'a, Skate, Constant<0>, 0>, 5>,
+    M: for<'a> Advance<Reduced<'a, Skate, Constant<0>, 0>, [f64; 5]>,
 {
     let q = [0.0, 0.0, 0.0];
     let alpha = skate.momenta(&q, &[1.0, 0.0, 3.0]);

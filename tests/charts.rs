@@ -33,7 +33,7 @@ const QDOT0: [f64; 3] = [-0.2, 0.0, 3.0];
 const T_END: f64 = 20.0;
 
 /// The reduced form's run with the discrete gradient at step `h`.
-fn reduced_run(h: f64) -> (Summary<5>, Table) {
+fn reduced_run(h: f64) -> (Summary<[f64; 5]>, Table) {
     let sleigh = SleighNoSymmetry::default();
     let alpha = sleigh.momenta(&Q0, &QDOT0);
     let x0 = [Q0[0], Q0[1], Q0[2], alpha[0], alpha[1]];

@@ -22,7 +22,9 @@
 //! along `x`, with the translations along `x` as its symmetry.
 
 use chaplygin::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, Rk4};
+use chaplygin::runtime::linalg::Square;
 use chaplygin::runtime::linearize::{Compiled, OperatingPoint, PointError};
+use chaplygin::runtime::nalgebra::Const;
 use chaplygin::runtime::projection::Surface;
 use chaplygin::runtime::record::Table;
 use chaplygin::runtime::simulate::{Advance, Observed, Simulation, Summary};
@@ -93,8 +95,9 @@ fn assert_drifts_unprojected<S, M, const D: usize>(
     span: (f64, f64),
     model: &M,
 ) where
-    S: Observed<D>,
-    Rk4: Advance<S, D>,
+    S: Observed<[f64; D]>,
+    Rk4: Advance<S, [f64; D]>,
+    Const<D>: Square,
     M: Holonomic<3, 1>,
 {
     let summary = Simulation::new(Rk4)
@@ -121,10 +124,11 @@ fn run<S, I, const D: usize>(
     x0: [f64; D],
     (t_end, h): (f64, f64),
     of: impl Fn(&[f64; D]) -> ([f64; 3], [f64; 3]),
-) -> (Summary<D>, f64, Vec<f64>)
+) -> (Summary<[f64; D]>, f64, Vec<f64>)
 where
-    S: Observed<D>,
-    I: Advance<S, D>,
+    S: Observed<[f64; D]>,
+    I: Advance<S, [f64; D]>,
+    Const<D>: Square,
 {
     let mut table = Table::new();
     let summary = Simulation::new(method)
@@ -150,7 +154,7 @@ where
 /// angular momentum within the integrator's error.
 fn assert_kept<const D: usize>(
     name: &str,
-    (summary, momentum_drift, recorded): (Summary<D>, f64, Vec<f64>),
+    (summary, momentum_drift, recorded): (Summary<[f64; D]>, f64, Vec<f64>),
     energy_bound: f64,
     momentum_bound: f64,
 ) {

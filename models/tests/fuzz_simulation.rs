@@ -41,25 +41,31 @@ fn square<const S: usize>(values: Vec<f64>) -> [[f64; S]; S] {
     core::array::from_fn(|i| core::array::from_fn(|j| values[i * S + j]))
 }
 
-impl<const S: usize> OdeSystem<S> for Reduced<'_, S> {
+impl<const S: usize> OdeSystem<[f64; S]> for Reduced<'_, S> {
     fn rhs(&self, _t: f64, x: &[f64; S]) -> [f64; S] {
         array(self.model.reduced_rhs(x, &self.u).unwrap())
     }
 }
 
-impl<const S: usize> Jacobian<S> for Reduced<'_, S> {
+impl<const S: usize> Jacobian<[f64; S]> for Reduced<'_, S>
+where
+    Const<S>: Square,
+{
     fn jacobian(&self, _t: f64, x: &[f64; S]) -> [[f64; S]; S] {
         square(self.model.reduced_rhs_jacobian(x, &self.u).unwrap())
     }
 }
 
-impl<const S: usize> Energy<S> for Reduced<'_, S> {
+impl<const S: usize> Energy<[f64; S]> for Reduced<'_, S> {
     fn energy(&self, x: &[f64; S]) -> f64 {
         self.model.hamiltonian(x).unwrap()
     }
 }
 
-impl<const S: usize> Structured<S> for Reduced<'_, S> {
+impl<const S: usize> Structured<[f64; S]> for Reduced<'_, S>
+where
+    Const<S>: Square,
+{
     fn structure_matrix(&self, x: &[f64; S]) -> [[f64; S]; S] {
         square(self.model.structure_matrix(x).unwrap())
     }
@@ -73,7 +79,7 @@ impl<const S: usize> Structured<S> for Reduced<'_, S> {
     }
 }
 
-impl<const S: usize> Observed<S> for Reduced<'_, S> {
+impl<const S: usize> Observed<[f64; S]> for Reduced<'_, S> {
     fn state_names(&self) -> Vec<String> {
         let names = self.model.names();
         names
@@ -132,7 +138,8 @@ fn admissible_state(model: &InterpretedModel, q: &[f64], v: &[f64]) -> Option<Ve
 /// Runs `method` for 0.5 s from `x0`; panics on a NaN that is not an error.
 fn run_without_silent_nan<M, const S: usize>(model: &InterpretedModel, x0: &[f64], method: M)
 where
-    M: for<'a> Advance<Reduced<'a, S>, S>,
+    M: for<'a> Advance<Reduced<'a, S>, [f64; S]>,
+    Const<S>: Square,
 {
     let system = Reduced::<S> {
         model,

@@ -69,7 +69,7 @@ fn the_closed_loop_jacobian_matches_central_differences() {
 
 /// The largest relative change of the closed loop's energy over `steps`
 /// steps of `h` from [`AT_REST`], and the group momentum `alpha1` at `t = 10`.
-fn energy_drift<M: FixedStep<ClosedLoop<Snakeboard>, D>>(
+fn energy_drift<M: FixedStep<ClosedLoop<Snakeboard>, [f64; D]>>(
     method: &M,
     h: f64,
     steps: usize,

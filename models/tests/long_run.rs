@@ -48,7 +48,7 @@ impl Recorder for Extremes {
     }
 }
 
-fn long_run<M: for<'a> Advance<ClosedLoop<Snakeboard>, 10>>(name: &str, method: M) {
+fn long_run<M: for<'a> Advance<ClosedLoop<Snakeboard>, [f64; 10]>>(name: &str, method: M) {
     let closed_loop = ClosedLoop::<Snakeboard>::new(
         Snakeboard::default(),
         EnergyController {
@@ -81,7 +81,7 @@ fn long_run<M: for<'a> Advance<ClosedLoop<Snakeboard>, 10>>(name: &str, method: 
 /// round-off and what is left is the integrator's energy error.
 fn lagrange_dalembert_run<M>(name: &str, method: M)
 where
-    M: for<'a> Advance<Dalembert<'a, Snakeboard, Constant<2>, 5, 2, 2>, 10>,
+    M: for<'a> Advance<Dalembert<'a, Snakeboard, Constant<2>, 5, 2, 2>, [f64; 10]>,
 {
     let board = Snakeboard::default();
     let q = [0.0, 0.0, 0.0, 0.0, 0.3];

@@ -73,6 +73,8 @@ where
         + Domain,
     U: Controller<D, P> + Controller<TWO_N, P> + Copy,
     Const<N>: Square,
+    Const<D>: Square,
+    Const<TWO_N>: Square,
 {
     let qdot0 = model.velocities(&q0, alpha0);
     let dalembert = Dalembert::new(model, input);
@@ -218,7 +220,7 @@ fn sleigh_momentum_matches_dalembert() {
 fn momentum_state_names() {
     let board = Snakeboard::default();
     let system = Momentum::constant(&board, [0.0; 2]);
-    let names = Observed::<8>::state_names(&system);
+    let names = Observed::<[f64; 8]>::state_names(&system);
     assert_eq!(
         names,
         [

@@ -21,26 +21,26 @@ impl Walled {
     }
 }
 
-impl OdeSystem<2> for Walled {
+impl OdeSystem<[f64; 2]> for Walled {
     fn rhs(&self, _t: f64, x: &[f64; 2]) -> [f64; 2] {
         let gradient = Self::gradient(x);
         [gradient[1], -gradient[0]]
     }
 }
 
-impl Jacobian<2> for Walled {
+impl Jacobian<[f64; 2]> for Walled {
     fn jacobian(&self, _t: f64, x: &[f64; 2]) -> [[f64; 2]; 2] {
         [[0.0, 1.0 - 0.25 * (x[1] + 0.95).powf(-1.5)], [-1.0, 0.0]]
     }
 }
 
-impl Energy<2> for Walled {
+impl Energy<[f64; 2]> for Walled {
     fn energy(&self, x: &[f64; 2]) -> f64 {
         (x[0] * x[0] + x[1] * x[1]) / 2.0 + (x[1] + 0.95).sqrt()
     }
 }
 
-impl Structured<2> for Walled {
+impl Structured<[f64; 2]> for Walled {
     fn structure_matrix(&self, _x: &[f64; 2]) -> [[f64; 2]; 2] {
         [[0.0, 1.0], [-1.0, 0.0]]
     }

@@ -42,7 +42,7 @@ fn potential(sleigh: &InclinedSleigh, x: &[f64; 5]) -> f64 {
 /// scale at the end.
 fn energy_errors<M>(method: &M, h: f64, steps: usize) -> (f64, f64)
 where
-    M: for<'a> FixedStep<Reduced<'a, InclinedSleigh, Constant<0>, 0>, 5>,
+    M: for<'a> FixedStep<Reduced<'a, InclinedSleigh, Constant<0>, 0>, [f64; 5]>,
 {
     let sleigh = InclinedSleigh::default();
     let system = Reduced::constant(&sleigh, []);

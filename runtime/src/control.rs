@@ -21,7 +21,9 @@
 //!   plant, `y . u`, is what it stores, so `H + Hc` is conserved.
 
 pub use crate::law::{Constant, Controller, Feedback};
+use crate::linalg::Square;
 use crate::system::{Energy, Jacobian, OdeSystem, ReducedPortHamiltonian, Structured};
+use nalgebra::Const;
 
 /// A port-Hamiltonian controller with `NC` states for a plant with reduced
 /// state size `S` and `P` inputs (see the module documentation).
@@ -150,7 +152,7 @@ where
     }
 }
 
-impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> OdeSystem<D>
+impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> OdeSystem<[f64; D]>
     for Interconnection<M, K, S, NC, P>
 where
     M: ReducedPortHamiltonian<S, P>,
@@ -175,11 +177,12 @@ where
     }
 }
 
-impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> Jacobian<D>
+impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> Jacobian<[f64; D]>
     for Interconnection<M, K, S, NC, P>
 where
     M: ReducedPortHamiltonian<S, P>,
     K: PortHamiltonianController<S, NC, P>,
+    Const<D>: Square,
 {
     /// Exact from the plant's Jacobians and the controller's derivatives
     /// (central differences of `Bc` unless the controller gives them).
@@ -244,7 +247,7 @@ where
     }
 }
 
-impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> Energy<D>
+impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> Energy<[f64; D]>
     for Interconnection<M, K, S, NC, P>
 where
     M: ReducedPortHamiltonian<S, P>,
@@ -257,11 +260,12 @@ where
     }
 }
 
-impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> Structured<D>
+impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> Structured<[f64; D]>
     for Interconnection<M, K, S, NC, P>
 where
     M: ReducedPortHamiltonian<S, P>,
     K: PortHamiltonianController<S, NC, P>,
+    Const<D>: Square,
 {
     /// `[[J, -G Bc^T], [Bc G^T, Jc]]`.
     fn structure_matrix(&self, z: &[f64; D]) -> [[f64; D]; D] {

@@ -6,6 +6,8 @@
 //! - [`law`]: plain control laws `u = f(t, x)` (constant, open-loop,
 //!   feedback); [`control`]: port-Hamiltonian controllers (with their own
 //!   state and energy, interconnected power-conservingly);
+//! - [`state`]: the state vectors, of a size fixed at compile time
+//!   (`[f64; D]`) or known at run time (`Vec<f64>`);
 //! - [`integrate`]: integrators over any [`system::OdeSystem`] (RK4,
 //!   Dormand-Prince 5(4), the implicit midpoint rule, Gonzalez's discrete
 //!   gradient);
@@ -39,6 +41,7 @@ pub mod phase;
 pub mod projection;
 pub mod record;
 pub mod simulate;
+pub mod state;
 pub mod system;
 
 pub use integrate::Error;

@@ -51,6 +51,7 @@ pub use outcome::{SimulationError, Summary};
 pub use stop::{CROSSING_TOLERANCE, Never, Stop, StopCondition};
 
 use crate::record::Recorder;
+use crate::state::State;
 use run::Run;
 
 /// A simulation's settings: the integrator, the time span, the step, how
@@ -150,16 +151,16 @@ impl<M, C> Simulation<M, C> {
     ///
     /// # Errors
     /// See [`SimulationError`]; the rows recorded before it stay recorded.
-    pub fn run<S, R, const D: usize>(
+    pub fn run<S, R, X: State>(
         &self,
         system: &S,
-        x0: [f64; D],
+        x0: X,
         recorder: &mut R,
-    ) -> Result<Summary<D>, SimulationError>
+    ) -> Result<Summary<X>, SimulationError>
     where
-        S: Observed<D>,
-        M: Advance<S, D>,
-        C: StopCondition<D>,
+        S: Observed<X>,
+        M: Advance<S, X>,
+        C: StopCondition<X>,
         R: Recorder,
     {
         self.run_with_progress(system, x0, recorder, |_| {})
@@ -170,17 +171,17 @@ impl<M, C> Simulation<M, C> {
     ///
     /// # Errors
     /// As [`Simulation::run`].
-    pub fn run_with_progress<S, R, const D: usize>(
+    pub fn run_with_progress<S, R, X: State>(
         &self,
         system: &S,
-        x0: [f64; D],
+        x0: X,
         recorder: &mut R,
         progress: impl FnMut(f64),
-    ) -> Result<Summary<D>, SimulationError>
+    ) -> Result<Summary<X>, SimulationError>
     where
-        S: Observed<D>,
-        M: Advance<S, D>,
-        C: StopCondition<D>,
+        S: Observed<X>,
+        M: Advance<S, X>,
+        C: StopCondition<X>,
         R: Recorder,
     {
         let steps = self.steps()?;

@@ -1,8 +1,8 @@
 //! The systems integrators run on, and the formulations generated models
 //! implement.
 //!
-//! An integrator sees an [`OdeSystem`] `xdot = f(t, x)` of fixed dimension
-//! `D` (with a [`Jacobian`] when it is implicit, and in [`Structured`] form
+//! An integrator sees an [`OdeSystem`] `xdot = f(t, x)` on a
+//! [`State`] (with a [`Jacobian`] when it is implicit, and in [`Structured`] form
 //! `xdot = J(x) dH/dx + F(t, x)` for discrete-gradient methods). A generated
 //! model implements [`ReducedPortHamiltonian`] (the reduced flow in
 //! `x = (q, alpha)`, MATH.md section 3), [`LagrangeDalembert`] (the
@@ -18,38 +18,43 @@ mod reduced;
 
 pub use crate::law::Constant;
 use crate::law::Controller;
+use crate::linalg::Square;
+use crate::state::State;
 pub use charts::{CHART_SWITCH, GENERATED_CHART, RUNTIME_CHART, next_chart};
+use nalgebra::Const;
 pub use reduced::Reduced;
 
-/// A first-order system `xdot = f(t, x)` in `D` states.
-pub trait OdeSystem<const D: usize> {
+/// A first-order system `xdot = f(t, x)` on states of type `X` (a
+/// [`State`]: `[f64; D]` for a generated model, `Vec<f64>` for a size known
+/// at run time).
+pub trait OdeSystem<X> {
     /// The derivative `f(t, x)`.
-    fn rhs(&self, t: f64, x: &[f64; D]) -> [f64; D];
+    fn rhs(&self, t: f64, x: &X) -> X;
 }
 
 /// An [`OdeSystem`] with its Jacobian `df/dx`.
-pub trait Jacobian<const D: usize>: OdeSystem<D> {
+pub trait Jacobian<X: State>: OdeSystem<X> {
     /// `df/dx (t, x)`: row `i`, column `j` is `d f_i / d x_j`.
-    fn jacobian(&self, t: f64, x: &[f64; D]) -> [[f64; D]; D];
+    fn jacobian(&self, t: f64, x: &X) -> X::Matrix;
 }
 
 /// An [`OdeSystem`] with an energy, conserved when no power enters.
-pub trait Energy<const D: usize>: OdeSystem<D> {
+pub trait Energy<X>: OdeSystem<X> {
     /// The energy at state `x`.
-    fn energy(&self, x: &[f64; D]) -> f64;
+    fn energy(&self, x: &X) -> f64;
 }
 
 /// An [`OdeSystem`] in port-Hamiltonian form
 /// `f(t, x) = J(x) dH/dx + F(t, x)` with `J(x)` skew-symmetric and `H` its
 /// [`Energy`]: `dH/dt = dH/dx . F`, the power the forcing `F` (e.g. `B u`)
 /// brings in. Discrete-gradient methods keep this balance exactly.
-pub trait Structured<const D: usize>: Energy<D> {
+pub trait Structured<X: State>: Energy<X> {
     /// The skew-symmetric structure matrix `J(x)`.
-    fn structure_matrix(&self, x: &[f64; D]) -> [[f64; D]; D];
+    fn structure_matrix(&self, x: &X) -> X::Matrix;
     /// `dH/dx`.
-    fn energy_gradient(&self, x: &[f64; D]) -> [f64; D];
+    fn energy_gradient(&self, x: &X) -> X;
     /// The forcing `F(t, x) = f(t, x) - J(x) dH/dx`.
-    fn forcing(&self, t: f64, x: &[f64; D]) -> [f64; D];
+    fn forcing(&self, t: f64, x: &X) -> X;
 }
 
 /// The reduced port-Hamiltonian form `xdot = J(x) dH/dx + G(x) u`,
@@ -411,7 +416,7 @@ pub(crate) fn split<const N: usize, const D: usize>(x: &[f64; D]) -> ([f64; N], 
     )
 }
 
-impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> OdeSystem<D>
+impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> OdeSystem<[f64; D]>
     for Dalembert<'_, M, F, N, C, P>
 where
     M: LagrangeDalembert<N, C, P>,
@@ -426,11 +431,12 @@ where
     }
 }
 
-impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> Jacobian<D>
+impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> Jacobian<[f64; D]>
     for Dalembert<'_, M, F, N, C, P>
 where
     M: LagrangeDalembert<N, C, P>,
     F: Controller<D, P>,
+    Const<D>: Square,
 {
     /// Central differences of [`OdeSystem::rhs`] ([`LagrangeDalembert`]
     /// carries no Jacobian; generated models' exact one is
@@ -442,7 +448,7 @@ where
     }
 }
 
-impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> Energy<D>
+impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> Energy<[f64; D]>
     for Dalembert<'_, M, F, N, C, P>
 where
     M: LagrangeDalembert<N, C, P>,
@@ -577,7 +583,7 @@ impl<
     const C: usize,
     const P: usize,
     const D: usize,
-> OdeSystem<D> for Momentum<'_, M, F, N, R, K, C, P>
+> OdeSystem<[f64; D]> for Momentum<'_, M, F, N, R, K, C, P>
 where
     M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
     F: Controller<D, P>,
@@ -606,10 +612,11 @@ impl<
     const C: usize,
     const P: usize,
     const D: usize,
-> Jacobian<D> for Momentum<'_, M, F, N, R, K, C, P>
+> Jacobian<[f64; D]> for Momentum<'_, M, F, N, R, K, C, P>
 where
     M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
     F: Controller<D, P>,
+    Const<D>: Square,
 {
     /// Central differences of [`OdeSystem::rhs`], as for [`Dalembert`].
     fn jacobian(&self, t: f64, x: &[f64; D]) -> [[f64; D]; D] {
@@ -626,7 +633,7 @@ impl<
     const C: usize,
     const P: usize,
     const D: usize,
-> Energy<D> for Momentum<'_, M, F, N, R, K, C, P>
+> Energy<[f64; D]> for Momentum<'_, M, F, N, R, K, C, P>
 where
     M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P>,
     F: Controller<D, P>,

@@ -10,25 +10,25 @@ use chaplygin_runtime::system::{Energy, Jacobian, OdeSystem, Structured};
 /// `qdot = p`, `pdot = -sin q`, with the canonical structure `[[0, 1], [-1, 0]]`.
 struct Pendulum;
 
-impl OdeSystem<2> for Pendulum {
+impl OdeSystem<[f64; 2]> for Pendulum {
     fn rhs(&self, _t: f64, x: &[f64; 2]) -> [f64; 2] {
         [x[1], -x[0].sin()]
     }
 }
 
-impl Jacobian<2> for Pendulum {
+impl Jacobian<[f64; 2]> for Pendulum {
     fn jacobian(&self, _t: f64, x: &[f64; 2]) -> [[f64; 2]; 2] {
         [[0.0, 1.0], [-x[0].cos(), 0.0]]
     }
 }
 
-impl Energy<2> for Pendulum {
+impl Energy<[f64; 2]> for Pendulum {
     fn energy(&self, x: &[f64; 2]) -> f64 {
         x[1] * x[1] / 2.0 + 1.0 - x[0].cos()
     }
 }
 
-impl Structured<2> for Pendulum {
+impl Structured<[f64; 2]> for Pendulum {
     fn structure_matrix(&self, _x: &[f64; 2]) -> [[f64; 2]; 2] {
         [[0.0, 1.0], [-1.0, 0.0]]
     }
@@ -43,7 +43,7 @@ impl Structured<2> for Pendulum {
 /// A large swing: 2 rad from rest.
 const X0: [f64; 2] = [2.0, 0.0];
 
-fn worst_energy_error<M: FixedStep<Pendulum, 2>>(method: &M, h: f64, steps: usize) -> f64 {
+fn worst_energy_error<M: FixedStep<Pendulum, [f64; 2]>>(method: &M, h: f64, steps: usize) -> f64 {
     let h0 = Pendulum.energy(&X0);
     let mut worst = 0.0f64;
     integrate_fixed(method, &Pendulum, (0.0, X0), h, steps, |_, x| {

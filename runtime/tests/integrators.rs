@@ -14,19 +14,19 @@ use chaplygin_runtime::system::{Energy, Jacobian, OdeSystem};
 /// `q = q0 cos t + p0 sin t`, `p = p0 cos t - q0 sin t`.
 struct Oscillator;
 
-impl OdeSystem<2> for Oscillator {
+impl OdeSystem<[f64; 2]> for Oscillator {
     fn rhs(&self, _t: f64, x: &[f64; 2]) -> [f64; 2] {
         [x[1], -x[0]]
     }
 }
 
-impl Jacobian<2> for Oscillator {
+impl Jacobian<[f64; 2]> for Oscillator {
     fn jacobian(&self, _t: f64, _x: &[f64; 2]) -> [[f64; 2]; 2] {
         [[0.0, 1.0], [-1.0, 0.0]]
     }
 }
 
-impl Energy<2> for Oscillator {
+impl Energy<[f64; 2]> for Oscillator {
     fn energy(&self, x: &[f64; 2]) -> f64 {
         (x[0] * x[0] + x[1] * x[1]) / 2.0
     }
@@ -51,13 +51,13 @@ fn distance(a: &[f64; 2], b: &[f64; 2]) -> f64 {
 /// `xdot = x^2`, `x(0) = 1`: `x = 1/(1 - t)`, infinite at `t = 1`.
 struct BlowUp;
 
-impl OdeSystem<1> for BlowUp {
+impl OdeSystem<[f64; 1]> for BlowUp {
     fn rhs(&self, _t: f64, x: &[f64; 1]) -> [f64; 1] {
         [x[0] * x[0]]
     }
 }
 
-impl Jacobian<1> for BlowUp {
+impl Jacobian<[f64; 1]> for BlowUp {
     fn jacobian(&self, _t: f64, x: &[f64; 1]) -> [[f64; 1]; 1] {
         [[2.0 * x[0]]]
     }
@@ -67,13 +67,13 @@ impl Jacobian<1> for BlowUp {
 /// has a pole at `h a = 2`, where Newton's matrix `1 - h a/2` is zero.
 struct Growth(f64);
 
-impl OdeSystem<1> for Growth {
+impl OdeSystem<[f64; 1]> for Growth {
     fn rhs(&self, _t: f64, x: &[f64; 1]) -> [f64; 1] {
         [self.0 * x[0]]
     }
 }
 
-impl Jacobian<1> for Growth {
+impl Jacobian<[f64; 1]> for Growth {
     fn jacobian(&self, _t: f64, _x: &[f64; 1]) -> [[f64; 1]; 1] {
         [[self.0]]
     }
@@ -81,7 +81,7 @@ impl Jacobian<1> for Growth {
 
 /// Global errors at `t = 2` for `h = 0.2 / 2^i`, and the slopes of
 /// `log2(error)` between successive halvings.
-fn measured_orders<M: FixedStep<Oscillator, 2>>(method: &M) -> ([f64; 4], [f64; 3]) {
+fn measured_orders<M: FixedStep<Oscillator, [f64; 2]>>(method: &M) -> ([f64; 4], [f64; 3]) {
     let errors: [f64; 4] = core::array::from_fn(|i| {
         let steps = 10 << i;
         let h = 2.0 / steps as f64;
@@ -230,7 +230,7 @@ fn dormand_prince_dense_output_follows_the_solution_between_steps() {
         ..Default::default()
     };
     let (mut worst, mut local, mut covered) = (0.0f64, 0.0f64, 0.0);
-    let observe = |step: &DenseStep<2>| {
+    let observe = |step: &DenseStep<[f64; 2]>| {
         assert_eq!(step.start(), covered, "steps follow each other");
         covered = step.end();
         let first = step.at(step.start());

@@ -20,25 +20,25 @@ struct Thrown;
 
 const G: f64 = 1.0;
 
-impl OdeSystem<2> for Thrown {
+impl OdeSystem<[f64; 2]> for Thrown {
     fn rhs(&self, _t: f64, x: &[f64; 2]) -> [f64; 2] {
         [x[1], -G]
     }
 }
 
-impl Jacobian<2> for Thrown {
+impl Jacobian<[f64; 2]> for Thrown {
     fn jacobian(&self, _t: f64, _x: &[f64; 2]) -> [[f64; 2]; 2] {
         [[0.0, 1.0], [0.0, 0.0]]
     }
 }
 
-impl Energy<2> for Thrown {
+impl Energy<[f64; 2]> for Thrown {
     fn energy(&self, x: &[f64; 2]) -> f64 {
         x[1] * x[1] / 2.0 + G * x[0]
     }
 }
 
-impl Structured<2> for Thrown {
+impl Structured<[f64; 2]> for Thrown {
     fn structure_matrix(&self, _x: &[f64; 2]) -> [[f64; 2]; 2] {
         [[0.0, 1.0], [-1.0, 0.0]]
     }
@@ -52,7 +52,7 @@ impl Structured<2> for Thrown {
     }
 }
 
-impl Observed<2> for Thrown {
+impl Observed<[f64; 2]> for Thrown {
     fn state_names(&self) -> Vec<String> {
         vec!["q".into(), "dot(q)".into()]
     }
@@ -87,10 +87,10 @@ const CROSSING: f64 = 2.0 - std::f64::consts::SQRT_2;
 
 /// The run of `method` from [`X0`] with steps of 0.1, every fourth
 /// recorded, until `condition`; its summary and rows.
-fn thrown<M, C>(method: M, condition: C) -> (Summary<2>, Vec<Vec<f64>>)
+fn thrown<M, C>(method: M, condition: C) -> (Summary<[f64; 2]>, Vec<Vec<f64>>)
 where
-    M: Advance<Thrown, 2>,
-    C: StopCondition<2>,
+    M: Advance<Thrown, [f64; 2]>,
+    C: StopCondition<[f64; 2]>,
 {
     let mut table = Table::new();
     let summary = Simulation::new(method)
@@ -107,7 +107,10 @@ fn above_one() -> Stop<&'static str, impl Fn(f64, &[f64; 2]) -> f64> {
     Stop::new("q > 1", |_t, x: &[f64; 2]| x[0] - 1.0)
 }
 
-fn assert_stopped_at_the_crossing((summary, rows): (Summary<2>, Vec<Vec<f64>>), method: &str) {
+fn assert_stopped_at_the_crossing(
+    (summary, rows): (Summary<[f64; 2]>, Vec<Vec<f64>>),
+    method: &str,
+) {
     assert_eq!(summary.stopped.as_deref(), Some("q > 1"), "{method}");
     assert!(
         (summary.t - CROSSING).abs() < 1e-9,

@@ -4,10 +4,13 @@
 //!
 //! [`Formulation`] is the object-safe view; [`Typed`] gives it to a
 //! fixed-size structured runtime system (the snakeboard under its energy
-//! controller); [`AtDimension`] turns it back into a fixed-size runtime
-//! system of dimension `D`, chosen at run time by `with_dimension!`.
+//! controller); [`RunTimeSized`] turns it back into a runtime system on
+//! states of the size it has at run time, which the runtime's integrators
+//! and simulation loop run as they run a generated model.
 
 use crate::runtime::arrays::leading;
+use crate::runtime::linalg::Square;
+use crate::runtime::nalgebra::{Const, DMatrix};
 use crate::runtime::projection::ProjectionError;
 use crate::runtime::simulate::{GuardedValue, Observed, Regularity};
 use crate::runtime::system::{Energy, Jacobian, OdeSystem, Structured};
@@ -104,7 +107,10 @@ pub struct Typed<T, const D: usize> {
     engine: &'static str,
 }
 
-impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Typed<T, D> {
+impl<T: Observed<[f64; D]> + Jacobian<[f64; D]> + Structured<[f64; D]>, const D: usize> Typed<T, D>
+where
+    Const<D>: Square,
+{
     /// `system`, run by `engine`.
     pub fn structured(system: T, engine: &'static str) -> Self {
         Self { system, engine }
@@ -115,7 +121,11 @@ fn flatten<const D: usize>(matrix: &[[f64; D]; D], into: &mut [f64]) {
     into.copy_from_slice(matrix.as_flattened());
 }
 
-impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Formulation for Typed<T, D> {
+impl<T: Observed<[f64; D]> + Jacobian<[f64; D]> + Structured<[f64; D]>, const D: usize> Formulation
+    for Typed<T, D>
+where
+    Const<D>: Square,
+{
     fn state_names(&self) -> Vec<String> {
         self.system.state_names()
     }
@@ -215,56 +225,65 @@ impl<T: Observed<D> + Jacobian<D> + Structured<D>, const D: usize> Formulation f
     }
 }
 
-/// A [`Formulation`] of dimension `D` as a fixed-size runtime system.
-pub struct AtDimension<'a, const D: usize>(pub &'a dyn Formulation);
+/// A [`Formulation`] as a runtime system on states whose size is known at
+/// run time (`Vec<f64>`, see [`crate::runtime::state`]): what the
+/// simulation loop runs for every model and formulation of the command line.
+pub struct RunTimeSized<'a>(pub &'a dyn Formulation);
 
-impl<const D: usize> OdeSystem<D> for AtDimension<'_, D> {
-    fn rhs(&self, t: f64, x: &[f64; D]) -> [f64; D] {
-        let mut xdot = [0.0; D];
+impl RunTimeSized<'_> {
+    /// A square matrix over `x` written row-major by `write`.
+    fn square(x: &[f64], write: impl FnOnce(&mut [f64])) -> DMatrix<f64> {
+        let n = x.len();
+        let mut rows = vec![0.0; n * n];
+        write(&mut rows);
+        DMatrix::from_row_slice(n, n, &rows)
+    }
+
+    /// `(J, dH/dx, F)` at `(t, x)`.
+    fn structure_at(&self, t: f64, x: &[f64]) -> (DMatrix<f64>, Vec<f64>, Vec<f64>) {
+        let (mut gradient, mut forcing) = (vec![0.0; x.len()], vec![0.0; x.len()]);
+        let j = Self::square(x, |j| {
+            self.0.structure(t, x, j, &mut gradient, &mut forcing);
+        });
+        (j, gradient, forcing)
+    }
+}
+
+impl OdeSystem<Vec<f64>> for RunTimeSized<'_> {
+    fn rhs(&self, t: f64, x: &Vec<f64>) -> Vec<f64> {
+        let mut xdot = vec![0.0; x.len()];
         self.0.rhs(t, x, &mut xdot);
         xdot
     }
 }
 
-impl<const D: usize> Jacobian<D> for AtDimension<'_, D> {
-    fn jacobian(&self, t: f64, x: &[f64; D]) -> [[f64; D]; D] {
-        let mut jacobian = [[0.0; D]; D];
-        self.0.jacobian(t, x, jacobian.as_flattened_mut());
-        jacobian
+impl Jacobian<Vec<f64>> for RunTimeSized<'_> {
+    fn jacobian(&self, t: f64, x: &Vec<f64>) -> DMatrix<f64> {
+        Self::square(x, |rows| self.0.jacobian(t, x, rows))
     }
 }
 
-impl<const D: usize> Energy<D> for AtDimension<'_, D> {
-    fn energy(&self, x: &[f64; D]) -> f64 {
+impl Energy<Vec<f64>> for RunTimeSized<'_> {
+    fn energy(&self, x: &Vec<f64>) -> f64 {
         self.0.energy(x)
     }
 }
 
-impl<const D: usize> AtDimension<'_, D> {
-    /// `(J, dH/dx, F)` at `(t, x)`.
-    fn structure_at(&self, t: f64, x: &[f64; D]) -> ([[f64; D]; D], [f64; D], [f64; D]) {
-        let (mut j, mut gradient, mut forcing) = ([[0.0; D]; D], [0.0; D], [0.0; D]);
-        self.0
-            .structure(t, x, j.as_flattened_mut(), &mut gradient, &mut forcing);
-        (j, gradient, forcing)
-    }
-}
-
-impl<const D: usize> Structured<D> for AtDimension<'_, D> {
-    fn structure_matrix(&self, x: &[f64; D]) -> [[f64; D]; D] {
+impl Structured<Vec<f64>> for RunTimeSized<'_> {
+    fn structure_matrix(&self, x: &Vec<f64>) -> DMatrix<f64> {
         self.structure_at(0.0, x).0
     }
 
-    fn energy_gradient(&self, x: &[f64; D]) -> [f64; D] {
+    fn energy_gradient(&self, x: &Vec<f64>) -> Vec<f64> {
         self.structure_at(0.0, x).1
     }
 
-    fn forcing(&self, t: f64, x: &[f64; D]) -> [f64; D] {
+    fn forcing(&self, t: f64, x: &Vec<f64>) -> Vec<f64> {
         self.structure_at(t, x).2
     }
 }
 
-impl<const D: usize> Observed<D> for AtDimension<'_, D> {
+impl Observed<Vec<f64>> for RunTimeSized<'_> {
     fn state_names(&self) -> Vec<String> {
         self.0.state_names()
     }
@@ -273,36 +292,36 @@ impl<const D: usize> Observed<D> for AtDimension<'_, D> {
         self.0.input_names()
     }
 
-    fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
+    fn inputs(&self, t: f64, x: &Vec<f64>, inputs: &mut [f64]) {
         self.0.inputs(t, x, inputs);
     }
 
-    fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
+    fn configuration_velocity(&self, x: &Vec<f64>, q: &mut [f64], qdot: &mut [f64]) {
         self.0.configuration_velocity(x, q, qdot);
     }
 
-    fn constraint_residual(&self, x: &[f64; D]) -> f64 {
+    fn constraint_residual(&self, x: &Vec<f64>) -> f64 {
         self.0.constraint_residual(x)
     }
 
-    fn regularity(&self, x: &[f64; D]) -> Regularity {
+    fn regularity(&self, x: &Vec<f64>) -> Regularity {
         self.0.regularity(x)
     }
 
-    fn project(&self, mut x: [f64; D]) -> Result<[f64; D], ProjectionError> {
+    fn project(&self, mut x: Vec<f64>) -> Result<Vec<f64>, ProjectionError> {
         self.0.project(&mut x)?;
         Ok(x)
     }
 
-    fn holonomic_residual(&self, x: &[f64; D]) -> Option<f64> {
+    fn holonomic_residual(&self, x: &Vec<f64>) -> Option<f64> {
         self.0.holonomic_residual(x)
     }
 
-    fn domain(&self, x: &[f64; D]) -> Vec<GuardedValue<'_>> {
+    fn domain(&self, x: &Vec<f64>) -> Vec<GuardedValue<'_>> {
         self.0.domain(x)
     }
 
-    fn dependent_rows(&self, x: &[f64; D]) -> Vec<String> {
+    fn dependent_rows(&self, x: &Vec<f64>) -> Vec<String> {
         self.0.dependent_rows(x)
     }
 
@@ -310,35 +329,11 @@ impl<const D: usize> Observed<D> for AtDimension<'_, D> {
         self.0.chart()
     }
 
-    fn change_chart(&self, x: &mut [f64; D]) -> bool {
+    fn change_chart(&self, x: &mut Vec<f64>) -> bool {
         self.0.change_chart(x)
     }
 
-    fn change_to_pivoted_chart(&self, x: &mut [f64; D]) -> bool {
+    fn change_to_pivoted_chart(&self, x: &mut Vec<f64>) -> bool {
         self.0.change_to_pivoted_chart(x)
     }
 }
-
-/// The largest state dimension `with_dimension!` handles.
-pub const MAX_DIMENSION: usize = 32;
-
-/// Evaluates `$body` with the const `$d: usize` equal to the run-time
-/// `$dimension` (1 to [`MAX_DIMENSION`]), or `$otherwise` when it is out of
-/// that range.
-macro_rules! with_dimension {
-    ($dimension:expr, $d:ident => $body:expr, _ => $otherwise:expr) => {
-        with_dimension!(@arms $dimension, $d, $body, $otherwise;
-            1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32)
-    };
-    (@arms $dimension:expr, $d:ident, $body:expr, $otherwise:expr; $($n:literal)*) => {
-        match $dimension {
-            $($n => {
-                const $d: usize = $n;
-                $body
-            })*
-            _ => $otherwise,
-        }
-    };
-}
-
-pub(crate) use with_dimension;

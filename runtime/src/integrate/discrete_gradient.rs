@@ -23,11 +23,10 @@
 //! equation (exact for quadratic `H`); the correction term's derivative is
 //! left out, which slows convergence a little but not the step it finds.
 
-use super::newton::{Settings, identity_minus, solve_root};
+use super::newton::{Settings, solve_root};
 use super::{Error, FixedStep, NonFiniteCause, StepAt, newton_failure};
-use crate::linalg::Square;
+use crate::state::State;
 use crate::system::{Jacobian, Structured};
-use nalgebra::Const;
 
 /// The discrete-gradient method with its Newton iteration's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,70 +47,73 @@ impl Default for DiscreteGradient {
     }
 }
 
-impl<S: Structured<D> + Jacobian<D>, const D: usize> FixedStep<S, D> for DiscreteGradient
-where
-    Const<D>: Square,
-{
-    fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error> {
+impl<S: Structured<X> + Jacobian<X>, X: State> FixedStep<S, X> for DiscreteGradient {
+    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
         let tm = t + h / 2.0;
         let settings = Settings {
             tolerance: self.tolerance,
             max_iterations: self.max_iterations,
         };
-        let at = StepAt { t, h, x };
+        let at = StepAt {
+            t,
+            h,
+            x: x.as_ref(),
+        };
         let energy = at.finite([system.energy(x)], NonFiniteCause::Energy)?[0];
         let start = at.finite(
             explicit_midpoint(system, t, x, h),
             NonFiniteCause::RightHandSide,
         )?;
-        let next = solve_root(start, settings, |next| {
-            let m: [f64; D] = core::array::from_fn(|i| (x[i] + next[i]) / 2.0);
+        let next = solve_root(start, settings, h / 2.0, |next| {
+            let m = x.with_entries(|i| (x[i] + next[i]) / 2.0);
             let gradient = discrete_gradient(system, energy, x, next, &m);
             let (j, forcing) = (system.structure_matrix(&m), system.forcing(tm, &m));
-            let value = core::array::from_fn(|i| {
-                let flow: f64 = (0..D).map(|k| j[i][k] * gradient[k]).sum();
+            let value = x.with_entries(|i| {
+                let flow: f64 = (0..gradient.as_ref().len())
+                    .map(|k| X::entry(&j, i, k) * gradient[k])
+                    .sum();
                 next[i] - x[i] - h * (flow + forcing[i])
             });
-            (value, identity_minus(h / 2.0, &system.jacobian(tm, &m)))
+            (value, system.jacobian(tm, &m))
         })
-        .map_err(|failure| newton_failure(failure, t, h, x))?;
+        .map_err(|failure| newton_failure(failure, t, h, x.as_ref()))?;
         at.finite(next, NonFiniteCause::NewState)
     }
 }
 
 /// The explicit midpoint step, Newton's starting point.
-fn explicit_midpoint<S: Structured<D>, const D: usize>(
-    system: &S,
-    t: f64,
-    x: &[f64; D],
-    h: f64,
-) -> [f64; D] {
+fn explicit_midpoint<S: Structured<X>, X: State>(system: &S, t: f64, x: &X, h: f64) -> X {
     let f = system.rhs(t, x);
-    let half: [f64; D] = core::array::from_fn(|i| x[i] + h / 2.0 * f[i]);
+    let half = x.with_entries(|i| x[i] + h / 2.0 * f[i]);
     let g = system.rhs(t + h / 2.0, &half);
-    core::array::from_fn(|i| x[i] + h * g[i])
+    x.with_entries(|i| x[i] + h * g[i])
 }
 
 /// Gonzalez's midpoint discrete gradient `gradH(x, X)`; `energy = H(x)`.
 /// When `|X - x|` is at round-off level the correction is 0/0 and the
 /// midpoint gradient is returned.
-fn discrete_gradient<S: Structured<D>, const D: usize>(
+fn discrete_gradient<S: Structured<X>, X: State>(
     system: &S,
     energy: f64,
-    x: &[f64; D],
-    next: &[f64; D],
-    m: &[f64; D],
-) -> [f64; D] {
+    x: &X,
+    next: &X,
+    m: &X,
+) -> X {
     let mut gradient = system.energy_gradient(m);
-    let d: [f64; D] = core::array::from_fn(|i| next[i] - x[i]);
-    let squared: f64 = d.iter().map(|v| v * v).sum();
-    let scale = x.iter().fold(1.0_f64, |s, v| s.max(v.abs()));
+    let d = x.with_entries(|i| next[i] - x[i]);
+    let squared: f64 = d.as_ref().iter().map(|v| v * v).sum();
+    let scale = x.as_ref().iter().fold(1.0_f64, |s, v| s.max(v.abs()));
     if squared <= (f64::EPSILON * scale).powi(2) {
         return gradient;
     }
-    let slope: f64 = gradient.iter().zip(&d).map(|(g, v)| g * v).sum();
+    let slope: f64 = gradient
+        .as_ref()
+        .iter()
+        .zip(d.as_ref())
+        .map(|(g, v)| g * v)
+        .sum();
     let correction = (system.energy(next) - energy - slope) / squared;
-    for (g, v) in gradient.iter_mut().zip(&d) {
+    for (g, v) in gradient.as_mut().iter_mut().zip(d.as_ref()) {
         *g += correction * v;
     }
     gradient

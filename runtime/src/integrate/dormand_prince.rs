@@ -15,6 +15,7 @@
 //! other quantities is roughly proportional to the tolerance.
 
 use super::{Error, NonFiniteCause, StepAt, combine, finite_start};
+use crate::state::State;
 use crate::system::OdeSystem;
 
 /// Dormand-Prince 5(4) with its tolerances and limits.
@@ -45,9 +46,9 @@ impl Default for DormandPrince {
 
 /// The end of an adaptive integration.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Solution<const D: usize> {
+pub struct Solution<X> {
     /// The state at the final time.
-    pub x: [f64; D],
+    pub x: X,
     /// Accepted steps.
     pub accepted: usize,
     /// Rejected steps.
@@ -105,9 +106,9 @@ const DENSE: [f64; 7] = [
 
 /// One trial step: the seven stages, the order-5 state and the scaled error
 /// estimate.
-struct Trial<const D: usize> {
-    stages: [[f64; D]; 7],
-    x: [f64; D],
+struct Trial<X> {
+    stages: [X; 7],
+    x: X,
     error: f64,
 }
 
@@ -115,24 +116,20 @@ struct Trial<const D: usize> {
 /// Prince 1986 via Hairer, Nørsett & Wanner, section II.6): a quartic in
 /// `theta = (t - start)/h` through both end states, exact in `f` at both ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DenseStep<const D: usize> {
+pub struct DenseStep<X> {
     start: f64,
     h: f64,
-    coefficients: [[f64; D]; 5],
+    coefficients: [X; 5],
 }
 
-impl<const D: usize> DenseStep<D> {
-    fn new(start: f64, h: f64, x: &[f64; D], trial: &Trial<D>) -> Self {
+impl<X: State> DenseStep<X> {
+    fn new(start: f64, h: f64, x: &X, trial: &Trial<X>) -> Self {
         let k = &trial.stages;
-        let difference: [f64; D] = core::array::from_fn(|i| trial.x[i] - x[i]);
-        let at_start: [f64; D] = core::array::from_fn(|i| h * k[0][i] - difference[i]);
-        let coefficients = [
-            *x,
-            difference,
-            at_start,
-            core::array::from_fn(|i| difference[i] - h * k[6][i] - at_start[i]),
-            core::array::from_fn(|i| h * (0..7).map(|s| DENSE[s] * k[s][i]).sum::<f64>()),
-        ];
+        let difference = x.with_entries(|i| trial.x[i] - x[i]);
+        let at_start = x.with_entries(|i| h * k[0][i] - difference[i]);
+        let fourth = x.with_entries(|i| difference[i] - h * k[6][i] - at_start[i]);
+        let fifth = x.with_entries(|i| h * (0..7).map(|s| DENSE[s] * k[s][i]).sum::<f64>());
+        let coefficients = [x.clone(), difference, at_start, fourth, fifth];
         Self {
             start,
             h,
@@ -151,11 +148,11 @@ impl<const D: usize> DenseStep<D> {
     }
 
     /// The interpolated state at time `t`, meant for `t` within the step.
-    pub fn at(&self, t: f64) -> [f64; D] {
+    pub fn at(&self, t: f64) -> X {
         let theta = (t - self.start) / self.h;
         let rest = 1.0 - theta;
         let [r1, r2, r3, r4, r5] = &self.coefficients;
-        core::array::from_fn(|i| {
+        r1.with_entries(|i| {
             r1[i] + theta * (r2[i] + rest * (r3[i] + theta * (r4[i] + rest * r5[i])))
         })
     }
@@ -171,12 +168,12 @@ impl DormandPrince {
     /// shorter first); [`Error::StepSizeUnderflow`] when the step needed to
     /// meet the tolerance falls below `min_step` (or below round-off of
     /// `t`); [`Error::TooManySteps`].
-    pub fn integrate<S: OdeSystem<D>, const D: usize>(
+    pub fn integrate<S: OdeSystem<X>, X: State>(
         &self,
         system: &S,
-        start: (f64, [f64; D]),
+        start: (f64, X),
         t1: f64,
-    ) -> Result<Solution<D>, Error> {
+    ) -> Result<Solution<X>, Error> {
         self.integrate_with(system, start, t1, |_| {})
     }
 
@@ -185,21 +182,25 @@ impl DormandPrince {
     ///
     /// # Errors
     /// As [`DormandPrince::integrate`].
-    pub fn integrate_with<S: OdeSystem<D>, const D: usize>(
+    pub fn integrate_with<S: OdeSystem<X>, X: State>(
         &self,
         system: &S,
-        (t0, x0): (f64, [f64; D]),
+        (t0, x0): (f64, X),
         t1: f64,
-        mut observe: impl FnMut(&DenseStep<D>),
-    ) -> Result<Solution<D>, Error> {
+        mut observe: impl FnMut(&DenseStep<X>),
+    ) -> Result<Solution<X>, Error> {
         let (mut t, mut x) = (t0, finite_start(t0, x0)?);
-        let start = StepAt { t, h: 0.0, x: &x };
+        let start = StepAt {
+            t,
+            h: 0.0,
+            x: x.as_ref(),
+        };
         let mut f = start.finite(system.rhs(t, &x), NonFiniteCause::RightHandSide)?;
-        let mut h = self.initial_step(&x, &f, t1 - t0);
+        let mut h = self.initial_step(x.as_ref(), f.as_ref(), t1 - t0);
         let (mut accepted, mut rejected, mut just_rejected) = (0, 0, false);
         let mut non_finite_trial = false;
         while (t1 - t) * (t1 - t0).signum() > 0.0 {
-            self.check_step(t, h, &x, accepted + rejected)
+            self.check_step(t, h, x.as_ref(), accepted + rejected)
                 .map_err(|error| match error {
                     // the step shrank to nothing because its stages were not finite
                     Error::StepSizeUnderflow { t, h, state } if non_finite_trial => {
@@ -215,7 +216,10 @@ impl DormandPrince {
             let last = (t + h - t1) * h.signum() >= 0.0;
             let step = if last { t1 - t } else { h };
             let trial = self.trial(system, t, &x, &f, step);
-            non_finite_trial = !trial.stages.iter().flatten().all(|v| v.is_finite());
+            non_finite_trial = !trial
+                .stages
+                .iter()
+                .all(|stage| stage.as_ref().iter().all(|v| v.is_finite()));
             let error = if trial.error.is_nan() {
                 f64::INFINITY
             } else {
@@ -223,11 +227,14 @@ impl DormandPrince {
             };
             if error <= 1.0 {
                 observe(&DenseStep::new(t, step, &x, &trial));
-                let at = StepAt { t, h: step, x: &x };
-                (x, f) = (
-                    at.finite(trial.x, NonFiniteCause::NewState)?,
-                    trial.stages[6],
-                );
+                let at = StepAt {
+                    t,
+                    h: step,
+                    x: x.as_ref(),
+                };
+                let next = at.finite(trial.x, NonFiniteCause::NewState)?;
+                let [.., last_stage] = trial.stages;
+                (x, f) = (next, last_stage);
                 t = if last { t1 } else { t + step };
                 accepted += 1;
             } else {
@@ -246,13 +253,7 @@ impl DormandPrince {
 
     /// Whether another step of size `h` at `t` is allowed (a NaN step, e.g.
     /// from zero tolerances, is an underflow).
-    fn check_step<const D: usize>(
-        &self,
-        t: f64,
-        h: f64,
-        x: &[f64; D],
-        steps: usize,
-    ) -> Result<(), Error> {
+    fn check_step(&self, t: f64, h: f64, x: &[f64], steps: usize) -> Result<(), Error> {
         if steps >= self.max_steps {
             return Err(Error::TooManySteps {
                 t,
@@ -272,7 +273,7 @@ impl DormandPrince {
 
     /// A first step `0.01 |x| / |f|` (RMS norms scaled by the tolerances;
     /// Hairer, Nørsett & Wanner, section II.4), at most the whole span.
-    fn initial_step<const D: usize>(&self, x: &[f64; D], f: &[f64; D], span: f64) -> f64 {
+    fn initial_step(&self, x: &[f64], f: &[f64], span: f64) -> f64 {
         let (dx, df) = (self.scaled_norm(x, x, x), self.scaled_norm(f, x, x));
         let h = if dx < 1e-5 || df < 1e-5 {
             1e-6
@@ -283,23 +284,23 @@ impl DormandPrince {
     }
 
     /// The RMS norm of `v` scaled by `atol + rtol max(|x_i|, |y_i|)`.
-    fn scaled_norm<const D: usize>(&self, v: &[f64; D], x: &[f64; D], y: &[f64; D]) -> f64 {
-        let sum: f64 = (0..D)
+    fn scaled_norm(&self, v: &[f64], x: &[f64], y: &[f64]) -> f64 {
+        let sum: f64 = (0..v.len())
             .map(|i| (v[i] / (self.atol + self.rtol * x[i].abs().max(y[i].abs()))).powi(2))
             .sum();
-        (sum / D.max(1) as f64).sqrt()
+        (sum / v.len().max(1) as f64).sqrt()
     }
 
     /// The six new stages of a step of size `h`, the order-5 state and its
     /// scaled error estimate.
-    fn trial<S: OdeSystem<D>, const D: usize>(
+    fn trial<S: OdeSystem<X>, X: State>(
         &self,
         system: &S,
         t: f64,
-        x: &[f64; D],
-        k1: &[f64; D],
+        x: &X,
+        k1: &X,
         h: f64,
-    ) -> Trial<D> {
+    ) -> Trial<X> {
         let k2 = system.rhs(t + C[0] * h, &combine(x, h, &[(A2[0], k1)]));
         let k3 = system.rhs(t + C[1] * h, &combine(x, h, &[(A3[0], k1), (A3[1], &k2)]));
         let y4 = combine(x, h, &[(A4[0], k1), (A4[1], &k2), (A4[2], &k3)]);
@@ -328,11 +329,10 @@ impl DormandPrince {
         let next = combine(x, h, &stages);
         let k7 = system.rhs(t + C[5] * h, &next);
         let all = [k1, &k2, &k3, &k4, &k5, &k6, &k7];
-        let difference: [f64; D] =
-            core::array::from_fn(|i| h * (0..7).map(|s| E[s] * all[s][i]).sum::<f64>());
+        let difference = x.with_entries(|i| h * (0..7).map(|s| E[s] * all[s][i]).sum::<f64>());
         Trial {
-            error: self.scaled_norm(&difference, x, &next),
-            stages: [*k1, k2, k3, k4, k5, k6, k7],
+            error: self.scaled_norm(difference.as_ref(), x.as_ref(), next.as_ref()),
+            stages: [k1.clone(), k2, k3, k4, k5, k6, k7],
             x: next,
         }
     }

@@ -18,11 +18,10 @@
 //! reduced port-Hamiltonian form with zero input and a constant metric, e.g.
 //! the snakeboard in the paper's momentum basis.)
 
-use super::newton::{Settings, identity_minus, solve_root};
+use super::newton::{Settings, solve_root};
 use super::{Error, FixedStep, NonFiniteCause, StepAt, newton_failure};
-use crate::linalg::Square;
+use crate::state::State;
 use crate::system::Jacobian;
-use nalgebra::Const;
 
 /// The implicit midpoint rule with its Newton iteration's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,27 +44,28 @@ impl Default for Midpoint {
     }
 }
 
-impl<S: Jacobian<D>, const D: usize> FixedStep<S, D> for Midpoint
-where
-    Const<D>: Square,
-{
-    fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error> {
+impl<S: Jacobian<X>, X: State> FixedStep<S, X> for Midpoint {
+    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
         let (tm, half) = (t + h / 2.0, h / 2.0);
-        let at = StepAt { t, h, x };
+        let at = StepAt {
+            t,
+            h,
+            x: x.as_ref(),
+        };
         let euler = at.finite(system.rhs(t, x), NonFiniteCause::RightHandSide)?;
-        let start: [f64; D] = core::array::from_fn(|i| x[i] + half * euler[i]);
+        let start = x.with_entries(|i| x[i] + half * euler[i]);
         let settings = Settings {
             tolerance: self.tolerance,
             max_iterations: self.max_iterations,
         };
-        let midpoint = solve_root(start, settings, |m| {
+        let midpoint = solve_root(start, settings, half, |m| {
             let f = system.rhs(tm, m);
-            let g = core::array::from_fn(|i| m[i] - x[i] - half * f[i]);
-            (g, identity_minus(half, &system.jacobian(tm, m)))
+            let g = m.with_entries(|i| m[i] - x[i] - half * f[i]);
+            (g, system.jacobian(tm, m))
         })
-        .map_err(|failure| newton_failure(failure, t, h, x))?;
+        .map_err(|failure| newton_failure(failure, t, h, x.as_ref()))?;
         at.finite(
-            core::array::from_fn(|i| 2.0 * midpoint[i] - x[i]),
+            x.with_entries(|i| 2.0 * midpoint[i] - x[i]),
             NonFiniteCause::NewState,
         )
     }

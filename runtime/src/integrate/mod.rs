@@ -8,8 +8,9 @@
 //! | Gonzalez discrete gradient, Newton | [`discrete_gradient`] | 2 | `H` of `xdot = J(x) dH/dx` for any `H`, skew `J`; the power balance `H(X) - H(x) = h dH . F` with forcing |
 //!
 //! Fixed-step methods implement [`FixedStep`] and run with
-//! [`integrate_fixed`]. Steps work on fixed-size arrays on the stack and do
-//! not allocate; only a returned [`Error`] allocates (a copy of the state).
+//! [`integrate_fixed`]. Every method is written once over a
+//! [`State`]: on fixed-size arrays a step stays on the stack and does not
+//! allocate; only a returned [`Error`] allocates (a copy of the state).
 
 pub mod discrete_gradient;
 pub mod dormand_prince;
@@ -22,6 +23,7 @@ pub use dormand_prince::{DenseStep, DormandPrince};
 pub use midpoint::Midpoint;
 pub use rk4::Rk4;
 
+use crate::state::State;
 use crate::system::OdeSystem;
 
 /// Why an integration stopped.
@@ -149,14 +151,15 @@ impl std::fmt::Display for NonFiniteCause {
     }
 }
 
-/// A one-step method with a fixed step size, for systems of type `S`.
-pub trait FixedStep<S, const D: usize> {
+/// A one-step method with a fixed step size, for systems of type `S` on
+/// states of type `X`.
+pub trait FixedStep<S, X> {
     /// The state at `t + h` from the state `x` at `t`.
     ///
     /// # Errors
     /// [`Error::NonFinite`] when the new state is not finite; the method's own
     /// failures (e.g. [`Error::NewtonFailure`], [`Error::SingularJacobian`]).
-    fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error>;
+    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error>;
 }
 
 /// Takes `steps` steps of size `h` from `x0` at `t0`, calling
@@ -164,17 +167,17 @@ pub trait FixedStep<S, const D: usize> {
 ///
 /// # Errors
 /// The first error of a step.
-pub fn integrate_fixed<S, M, const D: usize>(
+pub fn integrate_fixed<S, M, X>(
     method: &M,
     system: &S,
-    (t0, x0): (f64, [f64; D]),
+    (t0, x0): (f64, X),
     h: f64,
     steps: usize,
-    mut observe: impl FnMut(f64, &[f64; D]),
-) -> Result<[f64; D], Error>
+    mut observe: impl FnMut(f64, &X),
+) -> Result<X, Error>
 where
-    S: OdeSystem<D>,
-    M: FixedStep<S, D>,
+    S: OdeSystem<X>,
+    M: FixedStep<S, X>,
 {
     let mut x = x0;
     for i in 0..steps {
@@ -187,12 +190,7 @@ where
 
 /// [`Error::NewtonFailure`], [`Error::SingularJacobian`] or
 /// [`Error::NonFinite`] for the step of size `h` from `x` at `t`.
-pub(crate) fn newton_failure<const D: usize>(
-    failure: newton::Failure,
-    t: f64,
-    h: f64,
-    x: &[f64; D],
-) -> Error {
+pub(crate) fn newton_failure(failure: newton::Failure, t: f64, h: f64, x: &[f64]) -> Error {
     let state = x.to_vec();
     match failure {
         newton::Failure::Diverged { iterations, update } => Error::NewtonFailure {
@@ -219,21 +217,21 @@ pub(crate) fn newton_failure<const D: usize>(
 
 /// Where a value is checked: the step of size `h` from the state `x` at `t`.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct StepAt<'a, const D: usize> {
+pub(crate) struct StepAt<'a> {
     pub(crate) t: f64,
     pub(crate) h: f64,
-    pub(crate) x: &'a [f64; D],
+    pub(crate) x: &'a [f64],
 }
 
-impl<const D: usize> StepAt<'_, D> {
+impl StepAt<'_> {
     /// `value` itself when all its entries are finite, else
     /// [`Error::NonFinite`] with `cause`, this step and its start state.
-    pub(crate) fn finite<const E: usize>(
+    pub(crate) fn finite<V: AsRef<[f64]>>(
         &self,
-        value: [f64; E],
+        value: V,
         cause: NonFiniteCause,
-    ) -> Result<[f64; E], Error> {
-        if value.iter().all(|v| v.is_finite()) {
+    ) -> Result<V, Error> {
+        if value.as_ref().iter().all(|v| v.is_finite()) {
             Ok(value)
         } else {
             Err(Error::NonFinite {
@@ -248,27 +246,26 @@ impl<const D: usize> StepAt<'_, D> {
 
 /// The initial state `x0` at `t0` when it is finite, else
 /// [`Error::NonFinite`].
-pub(crate) fn finite_start<const D: usize>(t0: f64, x0: [f64; D]) -> Result<[f64; D], Error> {
-    StepAt {
+pub(crate) fn finite_start<X: AsRef<[f64]>>(t0: f64, x0: X) -> Result<X, Error> {
+    if x0.as_ref().iter().all(|v| v.is_finite()) {
+        return Ok(x0);
+    }
+    Err(Error::NonFinite {
         t: t0,
         h: 0.0,
-        x: &x0,
-    }
-    .finite(x0, NonFiniteCause::InitialState)
+        cause: NonFiniteCause::InitialState,
+        state: x0.as_ref().to_vec(),
+    })
 }
 
 /// `x + h sum_i b_i k_i`.
-pub(crate) fn combine<const D: usize>(
-    x: &[f64; D],
-    h: f64,
-    terms: &[(f64, &[f64; D])],
-) -> [f64; D] {
-    core::array::from_fn(|i| x[i] + h * terms.iter().map(|(b, k)| b * k[i]).sum::<f64>())
+pub(crate) fn combine<X: State>(x: &X, h: f64, terms: &[(f64, &X)]) -> X {
+    x.with_entries(|i| x[i] + h * terms.iter().map(|(b, k)| b * k[i]).sum::<f64>())
 }
 
 /// The largest absolute entry; NaN when an entry is NaN (`f64::max` would
 /// drop it, and a NaN update would pass for a converged one).
-pub(crate) fn max_norm<const D: usize>(x: &[f64; D]) -> f64 {
+pub(crate) fn max_norm(x: &[f64]) -> f64 {
     x.iter().fold(0.0, |m, v| {
         if v.is_nan() || m.is_nan() {
             f64::NAN

@@ -1,10 +1,9 @@
-//! Newton's method on a fixed-size system, shared by the implicit steps:
-//! each iteration solves `J delta = r` by LU with partial pivoting
-//! (nalgebra's, on the stack, for the sizes of [`Square`]).
+//! Newton's method on a [`State`], shared by the implicit steps: each
+//! iteration solves `(I - c A) delta = r` by LU with partial pivoting
+//! ([`State::solve_shifted`], nalgebra's; on the stack for fixed sizes).
 
 use super::max_norm;
-use crate::linalg::Square;
-use nalgebra::{Const, SMatrix, SVector};
+use crate::state::State;
 
 /// When Newton's method stops.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,32 +35,29 @@ pub(crate) enum Failure {
 }
 
 /// The root of `residual(y)` from `y`, where `residual` returns the value
-/// and (an approximation of) its Jacobian.
-pub(crate) fn solve_root<const D: usize>(
-    mut y: [f64; D],
+/// `g(y)` and a matrix `a` whose shift `I - scale a` is (an approximation of)
+/// the Jacobian `dg/dy`.
+pub(crate) fn solve_root<X: State>(
+    mut y: X,
     settings: Settings,
-    residual: impl Fn(&[f64; D]) -> ([f64; D], SMatrix<f64, D, D>),
-) -> Result<[f64; D], Failure>
-where
-    Const<D>: Square,
-{
+    scale: f64,
+    residual: impl Fn(&X) -> (X, X::Matrix),
+) -> Result<X, Failure> {
     let mut update = f64::INFINITY;
     for iteration in 1..=settings.max_iterations {
         let previous = update;
-        let (value, jacobian) = residual(&y);
-        if !(value.iter().all(|v| v.is_finite()) && jacobian.iter().all(|v| v.is_finite())) {
+        let (value, a) = residual(&y);
+        let finite = |values: &[f64]| values.iter().all(|v| v.is_finite());
+        if !(finite(value.as_ref()) && finite(X::entries(&a))) {
             return Err(Failure::NonFinite);
         }
-        let delta: [f64; D] = jacobian
-            .lu()
-            .solve(&SVector::from(value))
-            .ok_or(Failure::SingularJacobian { iteration })?
-            .into();
-        update = max_norm(&delta);
-        for (yi, di) in y.iter_mut().zip(delta) {
+        let delta =
+            X::solve_shifted(scale, &a, &value).ok_or(Failure::SingularJacobian { iteration })?;
+        update = max_norm(delta.as_ref());
+        for (yi, di) in y.as_mut().iter_mut().zip(delta.as_ref()) {
             *yi -= di;
         }
-        let scale = max_norm(&y).max(1.0);
+        let scale = max_norm(y.as_ref()).max(1.0);
         let stagnated = update > 0.5 * previous && update <= STAGNATION * scale;
         if update <= settings.tolerance * scale || stagnated {
             return Ok(y);
@@ -77,9 +73,4 @@ where
         iterations: settings.max_iterations,
         update,
     })
-}
-
-/// `I - scale * a`, `a` row-major.
-pub(crate) fn identity_minus<const D: usize>(scale: f64, a: &[[f64; D]; D]) -> SMatrix<f64, D, D> {
-    SMatrix::from_fn(|i, j| f64::from(u8::from(i == j)) - scale * a[i][j])
 }

@@ -8,17 +8,22 @@
 //! `O(h^4)` per unit time.
 
 use super::{Error, FixedStep, NonFiniteCause, StepAt, combine};
+use crate::state::State;
 use crate::system::OdeSystem;
 
 /// The classical Runge-Kutta method of order 4.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Rk4;
 
-impl<S: OdeSystem<D>, const D: usize> FixedStep<S, D> for Rk4 {
-    fn step(&self, system: &S, t: f64, x: &[f64; D], h: f64) -> Result<[f64; D], Error> {
+impl<S: OdeSystem<X>, X: State> FixedStep<S, X> for Rk4 {
+    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
         let half = h / 2.0;
-        let at = StepAt { t, h, x };
-        let rhs = |t, x: &[f64; D]| at.finite(system.rhs(t, x), NonFiniteCause::RightHandSide);
+        let at = StepAt {
+            t,
+            h,
+            x: x.as_ref(),
+        };
+        let rhs = |t, x: &X| at.finite(system.rhs(t, x), NonFiniteCause::RightHandSide);
         let k1 = rhs(t, x)?;
         let k2 = rhs(t + half, &combine(x, half, &[(1.0, &k1)]))?;
         let k3 = rhs(t + half, &combine(x, half, &[(1.0, &k2)]))?;

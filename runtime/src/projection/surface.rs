@@ -35,6 +35,7 @@
 
 use super::{ProjectionError, Settings, configuration, dalembert_velocity};
 use crate::arrays::matrix_from_rows;
+use crate::linalg::Square;
 use crate::system::{
     Dalembert, Energy, Holonomic, Jacobian, LagrangeDalembert, Momenta, Momentum,
     MomentumEquations, OdeSystem, Reduced, Structured,
@@ -236,7 +237,7 @@ impl<S, const N: usize, const D: usize> Surface<S, N, D> {
     /// As [`configuration`] and [`super::velocity`].
     pub fn project_state(&self, x: [f64; D]) -> Result<[f64; D], ProjectionError>
     where
-        S: Energy<D>,
+        S: Energy<[f64; D]>,
     {
         let Some(kept) = &self.kept else {
             return Ok(x);
@@ -341,25 +342,34 @@ where
     }
 }
 
-impl<S: OdeSystem<D>, const N: usize, const D: usize> OdeSystem<D> for Surface<S, N, D> {
+impl<S: OdeSystem<[f64; D]>, const N: usize, const D: usize> OdeSystem<[f64; D]>
+    for Surface<S, N, D>
+{
     fn rhs(&self, t: f64, x: &[f64; D]) -> [f64; D] {
         self.system.rhs(t, x)
     }
 }
 
-impl<S: Jacobian<D>, const N: usize, const D: usize> Jacobian<D> for Surface<S, N, D> {
+impl<S: Jacobian<[f64; D]>, const N: usize, const D: usize> Jacobian<[f64; D]> for Surface<S, N, D>
+where
+    Const<D>: Square,
+{
     fn jacobian(&self, t: f64, x: &[f64; D]) -> [[f64; D]; D] {
         self.system.jacobian(t, x)
     }
 }
 
-impl<S: Energy<D>, const N: usize, const D: usize> Energy<D> for Surface<S, N, D> {
+impl<S: Energy<[f64; D]>, const N: usize, const D: usize> Energy<[f64; D]> for Surface<S, N, D> {
     fn energy(&self, x: &[f64; D]) -> f64 {
         self.system.energy(x)
     }
 }
 
-impl<S: Structured<D>, const N: usize, const D: usize> Structured<D> for Surface<S, N, D> {
+impl<S: Structured<[f64; D]>, const N: usize, const D: usize> Structured<[f64; D]>
+    for Surface<S, N, D>
+where
+    Const<D>: Square,
+{
     fn structure_matrix(&self, x: &[f64; D]) -> [[f64; D]; D] {
         self.system.structure_matrix(x)
     }

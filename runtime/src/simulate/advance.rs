@@ -2,38 +2,33 @@
 //! step for the fixed-step methods, adaptive steps for Dormand-Prince.
 
 use crate::integrate::{self, DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4};
+use crate::state::State;
 use crate::system::OdeSystem;
 
 /// An integrator as the simulation loop uses it: from `x` at `t` to the
 /// state at `t_next`.
-pub trait Advance<S, const D: usize> {
+pub trait Advance<S, X> {
     /// The state at `t_next`.
     ///
     /// # Errors
     /// The integrator's [`integrate::Error`].
-    fn advance(
-        &self,
-        system: &S,
-        t: f64,
-        x: &[f64; D],
-        t_next: f64,
-    ) -> Result<[f64; D], integrate::Error>;
+    fn advance(&self, system: &S, t: f64, x: &X, t_next: f64) -> Result<X, integrate::Error>;
 }
 
 macro_rules! one_step_advances {
     ($($method:ty),*) => {$(
         /// One step of size `t_next - t`.
-        impl<S, const D: usize> Advance<S, D> for $method
+        impl<S, X: State> Advance<S, X> for $method
         where
-            $method: FixedStep<S, D>,
+            $method: FixedStep<S, X>,
         {
             fn advance(
                 &self,
                 system: &S,
                 t: f64,
-                x: &[f64; D],
+                x: &X,
                 t_next: f64,
-            ) -> Result<[f64; D], integrate::Error> {
+            ) -> Result<X, integrate::Error> {
                 self.step(system, t, x, t_next - t)
             }
         }
@@ -43,14 +38,8 @@ macro_rules! one_step_advances {
 one_step_advances!(Rk4, Midpoint, DiscreteGradient);
 
 /// Adaptive steps to `t_next` within the tolerances.
-impl<S: OdeSystem<D>, const D: usize> Advance<S, D> for DormandPrince {
-    fn advance(
-        &self,
-        system: &S,
-        t: f64,
-        x: &[f64; D],
-        t_next: f64,
-    ) -> Result<[f64; D], integrate::Error> {
-        Ok(self.integrate(system, (t, *x), t_next)?.x)
+impl<S: OdeSystem<X>, X: State> Advance<S, X> for DormandPrince {
+    fn advance(&self, system: &S, t: f64, x: &X, t_next: f64) -> Result<X, integrate::Error> {
+        Ok(self.integrate(system, (t, x.clone()), t_next)?.x)
     }
 }

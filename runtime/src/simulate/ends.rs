@@ -19,6 +19,7 @@
 //!   step's own error stands.
 
 use super::{GuardedValue, Observed, SimulationError};
+use crate::state::State;
 
 /// The fractions `theta` of a failed step at which its explicit predictor
 /// `x + theta h f(t, x)` is searched (0: the state the step starts from).
@@ -33,17 +34,19 @@ pub const NEAR_BOUNDARY: f64 = 1e-2;
 pub const REACHED: f64 = 1e-5;
 
 /// What a run knows of where its model ends.
-pub(crate) struct Ends<'a, S, const D: usize> {
+pub(crate) struct Ends<'a, S, X> {
     system: &'a S,
+    state: core::marker::PhantomData<fn(&X)>,
     /// The guarded expressions at the start.
     start: Vec<GuardedValue<'a>>,
     singular_below: f64,
 }
 
-impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
-    pub(super) fn new(system: &'a S, x0: &[f64; D], singular_below: f64) -> Self {
+impl<'a, S: Observed<X>, X: State> Ends<'a, S, X> {
+    pub(super) fn new(system: &'a S, x0: &X, singular_below: f64) -> Self {
         Self {
             system,
+            state: core::marker::PhantomData,
             start: system.domain(x0),
             singular_below,
         }
@@ -51,7 +54,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
 
     /// [`SimulationError::Undefined`] when a guarded expression fails at
     /// the initial state `x0` (time `t0`).
-    pub(super) fn at_start(&self, t0: f64, x0: &[f64; D]) -> Result<(), SimulationError> {
+    pub(super) fn at_start(&self, t0: f64, x0: &X) -> Result<(), SimulationError> {
         match self.start.iter().find(|guard| guard.fails()) {
             Some(failed) => Err(self.undefined(t0, true, failed.clone(), x0)),
             None => Ok(()),
@@ -61,12 +64,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
     /// After the step from `x` at `t` to `next`: the guarded expression
     /// that fails at `next`, or falls below [`REACHED`] times its value at
     /// the start there, if any.
-    pub(super) fn reached(
-        &self,
-        t: f64,
-        x: &[f64; D],
-        next: &[f64; D],
-    ) -> Result<(), SimulationError> {
+    pub(super) fn reached(&self, t: f64, x: &X, next: &X) -> Result<(), SimulationError> {
         match self
             .failed(x, next)
             .or_else(|| self.smallest_below(next, REACHED))
@@ -79,20 +77,14 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
     /// The cause of the failure `error` of the step of size `h` from `x`
     /// at `t`, where it is known (see the module documentation); `error`
     /// otherwise.
-    pub(super) fn explain(
-        &self,
-        t: f64,
-        x: &[f64; D],
-        h: f64,
-        error: SimulationError,
-    ) -> SimulationError {
+    pub(super) fn explain(&self, t: f64, x: &X, h: f64, error: SimulationError) -> SimulationError {
         let rate = self.system.rhs(t, x);
-        let predicted: Vec<[f64; D]> = match rate.iter().all(|v| v.is_finite()) {
+        let predicted: Vec<X> = match rate.as_ref().iter().all(|v| v.is_finite()) {
             true => PREDICTED
                 .iter()
-                .map(|theta| core::array::from_fn(|i| x[i] + theta * h * rate[i]))
+                .map(|theta| x.with_entries(|i| x[i] + theta * h * rate[i]))
                 .collect(),
-            false => vec![*x],
+            false => vec![x.clone()],
         };
         let undefined = predicted.iter().find_map(|next| {
             self.failed(x, next)
@@ -122,7 +114,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
     /// bisection on the segment from `x` to the step's end (a point within
     /// the step's own error of the path, where the rows are far closer to
     /// dependent than at either end); any other error is returned as it is.
-    fn rows_crossed(&self, x: &[f64; D], mut error: SimulationError) -> SimulationError {
+    fn rows_crossed(&self, x: &X, mut error: SimulationError) -> SimulationError {
         if let SimulationError::Singular {
             rows,
             crossed: true,
@@ -131,8 +123,8 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
         } = &mut error
             && rows.is_empty()
         {
-            let next: [f64; D] = core::array::from_fn(|i| state[i]);
-            let at = |s: f64| -> [f64; D] { core::array::from_fn(|i| x[i] + s * (next[i] - x[i])) };
+            let next = x.with_entries(|i| state[i]);
+            let at = |s: f64| x.with_entries(|i| x[i] + s * (next[i] - x[i]));
             let sign = self.system.regularity(x).value.signum();
             let (mut low, mut high) = (0.0, 1.0);
             for _ in 0..60 {
@@ -148,7 +140,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
     }
 
     /// The first guarded expression that fails at `next` where it held at `x`.
-    fn failed(&self, x: &[f64; D], next: &[f64; D]) -> Option<GuardedValue<'a>> {
+    fn failed(&self, x: &X, next: &X) -> Option<GuardedValue<'a>> {
         let before = self.system.domain(x);
         self.system
             .domain(next)
@@ -160,7 +152,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
 
     /// The guarded expression smallest relative to its value at the start,
     /// at `x`, if below `fraction` of it.
-    fn smallest_below(&self, x: &[f64; D], fraction: f64) -> Option<GuardedValue<'a>> {
+    fn smallest_below(&self, x: &X, fraction: f64) -> Option<GuardedValue<'a>> {
         let relative = |(guard, start): &(GuardedValue<'_>, &GuardedValue<'_>)| {
             (guard.value / start.value).abs()
         };
@@ -173,13 +165,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
             .map(|(guard, _)| guard)
     }
 
-    fn undefined(
-        &self,
-        t: f64,
-        initial: bool,
-        guard: GuardedValue<'_>,
-        x: &[f64; D],
-    ) -> SimulationError {
+    fn undefined(&self, t: f64, initial: bool, guard: GuardedValue<'_>, x: &X) -> SimulationError {
         let at_start = self
             .start
             .iter()
@@ -192,11 +178,11 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
             value: guard.value,
             at_start,
             state_names: self.system.state_names(),
-            state: x.to_vec(),
+            state: x.as_ref().to_vec(),
         }
     }
 
-    fn dependent(&self, t: f64, rows: Vec<String>, x: &[f64; D]) -> SimulationError {
+    fn dependent(&self, t: f64, rows: Vec<String>, x: &X) -> SimulationError {
         let regularity = self.system.regularity(x);
         SimulationError::Singular {
             t,
@@ -206,7 +192,7 @@ impl<'a, S: Observed<D>, const D: usize> Ends<'a, S, D> {
             value: regularity.value,
             threshold: self.singular_below,
             state_names: self.system.state_names(),
-            state: x.to_vec(),
+            state: x.as_ref().to_vec(),
         }
     }
 }

@@ -30,35 +30,35 @@ pub struct Regularity {
 
 /// A system the simulation loop can run and record: its columns, inputs,
 /// energy, constraint residual and regularity at a state.
-pub trait Observed<const D: usize>: Energy<D> {
+pub trait Observed<X>: Energy<X> {
     /// The names of the state's entries, in order.
     fn state_names(&self) -> Vec<String>;
     /// The names of the inputs, in order.
     fn input_names(&self) -> Vec<String>;
     /// The inputs applied at `(t, x)`, written into `inputs` (as many as
     /// [`Observed::input_names`]).
-    fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]);
+    fn inputs(&self, t: f64, x: &X, inputs: &mut [f64]);
     /// The configuration `q` and its velocity `qdot` at `x`, written into
     /// `q` and `qdot` (as long as the model's coordinates): what a law of
     /// the mechanics `u(t, q, qdot)` or a stop condition reads, whatever
     /// the formulation's state.
-    fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]);
+    fn configuration_velocity(&self, x: &X, q: &mut [f64], qdot: &mut [f64]);
     /// The largest `|A(q) qdot|` at `x`.
-    fn constraint_residual(&self, x: &[f64; D]) -> f64;
+    fn constraint_residual(&self, x: &X) -> f64;
     /// The regularity measure at `x`.
-    fn regularity(&self, x: &[f64; D]) -> Regularity;
+    fn regularity(&self, x: &X) -> Regularity;
     /// `x` moved back onto the constraint manifold after a step
     /// ([`crate::projection`]). The formulations whose state cannot leave it
     /// (the reduced form, the momentum equation) keep the default: `x`.
     ///
     /// # Errors
     /// A constraint the projection cannot meet.
-    fn project(&self, x: [f64; D]) -> Result<[f64; D], ProjectionError> {
+    fn project(&self, x: X) -> Result<X, ProjectionError> {
         Ok(x)
     }
     /// The largest `|f(q)|` of the configuration constraints the system
     /// keeps, `None` when it keeps none (no `holonomic_residual` column).
-    fn holonomic_residual(&self, _x: &[f64; D]) -> Option<f64> {
+    fn holonomic_residual(&self, _x: &X) -> Option<f64> {
         None
     }
     /// The active chart of D, `None` for a formulation with one chart (no
@@ -68,27 +68,27 @@ pub trait Observed<const D: usize>: Energy<D> {
     }
     /// The model's guarded expressions at `x` ([`crate::system::Domain`]),
     /// none by default.
-    fn domain(&self, _x: &[f64; D]) -> Vec<GuardedValue<'_>> {
+    fn domain(&self, _x: &X) -> Vec<GuardedValue<'_>> {
         Vec::new()
     }
     /// The names of the constraint rows that are dependent at `x`
     /// ([`crate::monitor::dependent_rows`]); none where they are
     /// independent, and by default.
-    fn dependent_rows(&self, _x: &[f64; D]) -> Vec<String> {
+    fn dependent_rows(&self, _x: &X) -> Vec<String> {
         Vec::new()
     }
     /// Where the active chart fits worse than [`crate::system::CHART_SWITCH`] times the
     /// best chart at `x`, makes the best one active and moves `x` into it
     /// (the same configuration and velocity); whether it did. By default
     /// (one chart) it never does.
-    fn change_chart(&self, _x: &mut [f64; D]) -> bool {
+    fn change_chart(&self, _x: &mut X) -> bool {
         false
     }
     /// Moves `x` into the run-time chart partial pivoting picks at its
     /// configuration ([`crate::partition`]), unless that chart is active
     /// or there is none; whether it did. The simulation loop does so where
     /// a step fails in another chart, and takes the step again.
-    fn change_to_pivoted_chart(&self, _x: &mut [f64; D]) -> bool {
+    fn change_to_pivoted_chart(&self, _x: &mut X) -> bool {
         false
     }
 }
@@ -218,7 +218,7 @@ fn owned(names: &[&str]) -> Vec<String> {
     names.iter().map(|name| name.to_string()).collect()
 }
 
-impl<M, F, const S: usize, const P: usize> Observed<S> for Reduced<'_, M, F, P>
+impl<M, F, const S: usize, const P: usize> Observed<[f64; S]> for Reduced<'_, M, F, P>
 where
     M: ReducedPortHamiltonian<S, P> + ModelNames + Domain,
     F: Controller<S, P>,
@@ -289,7 +289,7 @@ where
     }
 }
 
-impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> Observed<D>
+impl<M, F, const N: usize, const C: usize, const P: usize, const D: usize> Observed<[f64; D]>
     for Dalembert<'_, M, F, N, C, P>
 where
     M: LagrangeDalembert<N, C, P> + ModelNames + Domain,
@@ -351,7 +351,7 @@ impl<
     const C: usize,
     const P: usize,
     const D: usize,
-> Observed<D> for Momentum<'_, M, F, N, R, K, C, P>
+> Observed<[f64; D]> for Momentum<'_, M, F, N, R, K, C, P>
 where
     M: MomentumEquations<N, R, K, P> + LagrangeDalembert<N, C, P> + ModelNames + Domain,
     F: Controller<D, P>,
@@ -431,7 +431,7 @@ where
     }
 }
 
-impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> Observed<D>
+impl<M, K, const S: usize, const NC: usize, const P: usize, const D: usize> Observed<[f64; D]>
     for Interconnection<M, K, S, NC, P>
 where
     M: ReducedPortHamiltonian<S, P> + ModelNames + Domain,
@@ -476,9 +476,9 @@ where
     }
 }
 
-impl<S, const N: usize, const D: usize> Observed<D> for Surface<S, N, D>
+impl<S, const N: usize, const D: usize> Observed<[f64; D]> for Surface<S, N, D>
 where
-    S: Observed<D>,
+    S: Observed<[f64; D]>,
 {
     fn state_names(&self) -> Vec<String> {
         self.system().state_names()

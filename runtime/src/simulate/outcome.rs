@@ -132,13 +132,13 @@ fn named(names: &[String], values: &[f64]) -> String {
 
 /// What a finished run measured.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Summary<const D: usize> {
+pub struct Summary<X> {
     /// Steps taken.
     pub steps: usize,
     /// The final time.
     pub t: f64,
     /// The final state.
-    pub state: [f64; D],
+    pub state: X,
     /// The largest `|E(t) - E(0)|` over the steps, divided by `|E(0)|` when
     /// that is not zero.
     pub energy_drift: f64,

@@ -9,27 +9,28 @@ use super::{
 };
 use crate::integrate;
 use crate::record::Recorder;
+use crate::state::State;
 
 /// A run in progress.
-pub(super) struct Run<'a, M, C, S, R, const D: usize> {
+pub(super) struct Run<'a, M, C, S, R, X> {
     settings: &'a Simulation<M, C>,
     system: &'a S,
     pub(super) recorder: &'a mut R,
     pub(super) t: f64,
-    x: [f64; D],
+    x: X,
     energy0: f64,
-    ends: Ends<'a, S, D>,
+    ends: Ends<'a, S, X>,
     regularity: Regularity,
     row: Vec<f64>,
     inputs: usize,
-    pub(super) summary: Summary<D>,
+    pub(super) summary: Summary<X>,
 }
 
-impl<'a, M, C, S, R, const D: usize> Run<'a, M, C, S, R, D>
+impl<'a, M, C, S, R, X: State> Run<'a, M, C, S, R, X>
 where
-    S: Observed<D>,
-    M: Advance<S, D>,
-    C: StopCondition<D>,
+    S: Observed<X>,
+    M: Advance<S, X>,
+    C: StopCondition<X>,
     R: Recorder,
 {
     /// The run at its first state, recorded; stopped already where the
@@ -37,7 +38,7 @@ where
     pub(super) fn start(
         settings: &'a Simulation<M, C>,
         system: &'a S,
-        x0: [f64; D],
+        x0: X,
         recorder: &'a mut R,
     ) -> Result<Self, SimulationError> {
         let t0 = settings.span.0;
@@ -50,7 +51,6 @@ where
             settings,
             system,
             t: t0,
-            x,
             energy0: system.energy(&x),
             ends,
             regularity,
@@ -59,7 +59,7 @@ where
             summary: Summary {
                 steps: 0,
                 t: t0,
-                state: x,
+                state: x.clone(),
                 energy_drift: 0.0,
                 max_constraint_residual: system.constraint_residual(&x),
                 max_holonomic_residual: system.holonomic_residual(&x).unwrap_or(0.0),
@@ -67,6 +67,7 @@ where
                 chart_switches: 0,
                 stopped: None,
             },
+            x,
             recorder,
         };
         run.recorder
@@ -74,7 +75,7 @@ where
             .map_err(|source| SimulationError::Recording { t: t0, source })?;
         run.check(run.regularity)?;
         run.record()?;
-        if run.holds(t0, &x) {
+        if run.holds(t0, &run.x) {
             run.stop();
         }
         Ok(run)
@@ -125,7 +126,7 @@ where
     /// The state at `t_next` advanced from the current one and projected
     /// onto the constraints ([`Observed::project`]), inside the model's
     /// domain; a failure explained where its cause is known ([`Ends`]).
-    fn step_to(&self, t_next: f64) -> Result<[f64; D], SimulationError> {
+    fn step_to(&self, t_next: f64) -> Result<X, SimulationError> {
         let (t, h) = (self.t, t_next - self.t);
         let x = self
             .settings
@@ -144,7 +145,7 @@ where
     /// pivoting picks where it fails in another chart for a reason not
     /// named ([`Observed::change_to_pivoted_chart`]; the change counts as a
     /// switch).
-    fn step_or_fall_back(&mut self, t_next: f64) -> Result<[f64; D], SimulationError> {
+    fn step_or_fall_back(&mut self, t_next: f64) -> Result<X, SimulationError> {
         match self.step_to(t_next) {
             Err(SimulationError::Integration(_) | SimulationError::Projection { .. })
                 if self.system.change_to_pivoted_chart(&mut self.x) =>
@@ -158,7 +159,7 @@ where
     }
 
     /// Whether the stop condition holds at `(t, x)`.
-    fn holds(&self, t: f64, x: &[f64; D]) -> bool {
+    fn holds(&self, t: f64, x: &X) -> bool {
         self.settings.condition.value(t, x) > 0.0
     }
 
@@ -166,7 +167,7 @@ where
     /// state to `(t_next, x_next)`, where it holds: the step's length
     /// bisected to [`CROSSING_TOLERANCE`], each trial state advanced from
     /// the step's start; the first time found to hold and its state.
-    fn crossing(&self, t_next: f64, x_next: [f64; D]) -> Result<(f64, [f64; D]), SimulationError> {
+    fn crossing(&self, t_next: f64, x_next: X) -> Result<(f64, X), SimulationError> {
         let (mut below, mut above) = (0.0, t_next - self.t);
         let mut found = (t_next, x_next);
         while above - below > CROSSING_TOLERANCE {
@@ -207,7 +208,7 @@ where
             value: regularity.value,
             threshold: self.settings.singular_below,
             state_names: self.system.state_names(),
-            state: self.x.to_vec(),
+            state: self.x.as_ref().to_vec(),
         })
     }
 
@@ -232,7 +233,7 @@ where
         let summary = &mut self.summary;
         summary.steps = steps;
         summary.t = self.t;
-        summary.state = self.x;
+        summary.state.clone_from(&self.x);
         summary.energy_drift = summary.energy_drift.max(drift);
         summary.max_constraint_residual = summary
             .max_constraint_residual
@@ -247,7 +248,7 @@ where
         let (t, x) = (self.t, &self.x);
         self.row.clear();
         self.row.push(t);
-        self.row.extend_from_slice(x);
+        self.row.extend_from_slice(x.as_ref());
         let start = self.row.len();
         self.row.resize(start + self.inputs, 0.0);
         self.system.inputs(t, x, &mut self.row[start..]);
@@ -265,7 +266,7 @@ where
 /// `t`, the state's names, the inputs' names, `energy`,
 /// `constraint_residual`, `holonomic_residual` when the system keeps
 /// configuration constraints, and `chart` when it has several charts.
-fn columns<S: Observed<D>, const D: usize>(system: &S, x: &[f64; D]) -> Vec<String> {
+fn columns<S: Observed<X>, X: State>(system: &S, x: &X) -> Vec<String> {
     let mut columns = vec!["t".to_string()];
     columns.extend(system.state_names());
     columns.extend(system.input_names());

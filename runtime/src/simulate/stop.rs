@@ -15,11 +15,11 @@
 /// after the first time the integrated condition holds.
 pub const CROSSING_TOLERANCE: f64 = 1e-9;
 
-/// A stop condition on a state of size `D`.
-pub trait StopCondition<const D: usize> {
+/// A stop condition on states of type `X`.
+pub trait StopCondition<X> {
     /// The event function `g(t, x)`: the condition holds where `g > 0`
     /// (a NaN never holds).
-    fn value(&self, t: f64, x: &[f64; D]) -> f64;
+    fn value(&self, t: f64, x: &X) -> f64;
     /// What the condition says, reported in
     /// [`Summary::stopped`](super::Summary::stopped).
     fn description(&self) -> &str;
@@ -29,8 +29,8 @@ pub trait StopCondition<const D: usize> {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Never;
 
-impl<const D: usize> StopCondition<D> for Never {
-    fn value(&self, _t: f64, _x: &[f64; D]) -> f64 {
+impl<X> StopCondition<X> for Never {
+    fn value(&self, _t: f64, _x: &X) -> f64 {
         -1.0
     }
 
@@ -40,7 +40,7 @@ impl<const D: usize> StopCondition<D> for Never {
 }
 
 /// A stop condition given by its description and its event function, any
-/// `Fn(f64, &[f64; D]) -> f64`:
+/// `Fn(f64, &X) -> f64`:
 ///
 /// ```text
 /// Stop::new("abs(phi) > 1", |_t, x: &[f64; 11]| x[3].abs() - 1.0)
@@ -66,12 +66,12 @@ impl<S: AsRef<str>, F> core::fmt::Debug for Stop<S, F> {
     }
 }
 
-impl<S, F, const D: usize> StopCondition<D> for Stop<S, F>
+impl<S, F, X> StopCondition<X> for Stop<S, F>
 where
     S: AsRef<str>,
-    F: Fn(f64, &[f64; D]) -> f64,
+    F: Fn(f64, &X) -> f64,
 {
-    fn value(&self, t: f64, x: &[f64; D]) -> f64 {
+    fn value(&self, t: f64, x: &X) -> f64 {
         (self.event)(t, x)
     }
 
@@ -81,8 +81,8 @@ where
 }
 
 /// An optional condition: `None` never holds.
-impl<C: StopCondition<D>, const D: usize> StopCondition<D> for Option<C> {
-    fn value(&self, t: f64, x: &[f64; D]) -> f64 {
+impl<C: StopCondition<X>, X> StopCondition<X> for Option<C> {
+    fn value(&self, t: f64, x: &X) -> f64 {
         self.as_ref()
             .map_or(-1.0, |condition| condition.value(t, x))
     }

@@ -4,7 +4,9 @@
 use super::next_chart;
 use super::{Energy, Jacobian, Momenta, OdeSystem, ReducedPortHamiltonian, Structured};
 use crate::law::{Constant, Controller};
+use crate::linalg::Square;
 use core::cell::Cell;
+use nalgebra::Const;
 
 /// A model in its reduced form closed by a [`Controller`]: an
 /// [`OdeSystem`] in `x = (q, alpha)` with `u = controller(t, x)`, in the
@@ -88,7 +90,7 @@ impl<'a, M, const P: usize> Reduced<'a, M, Constant<P>, P> {
     }
 }
 
-impl<M, F, const S: usize, const P: usize> OdeSystem<S> for Reduced<'_, M, F, P>
+impl<M, F, const S: usize, const P: usize> OdeSystem<[f64; S]> for Reduced<'_, M, F, P>
 where
     M: ReducedPortHamiltonian<S, P>,
     F: Controller<S, P>,
@@ -100,10 +102,11 @@ where
     }
 }
 
-impl<M, F, const S: usize, const P: usize> Jacobian<S> for Reduced<'_, M, F, P>
+impl<M, F, const S: usize, const P: usize> Jacobian<[f64; S]> for Reduced<'_, M, F, P>
 where
     M: ReducedPortHamiltonian<S, P>,
     F: Controller<S, P>,
+    Const<S>: Square,
 {
     /// `df/dx + G(x) du/dx`: the model's exact Jacobian at fixed `u`, and
     /// the feedback's through the input matrix.
@@ -124,7 +127,7 @@ where
     }
 }
 
-impl<M, F, const S: usize, const P: usize> Energy<S> for Reduced<'_, M, F, P>
+impl<M, F, const S: usize, const P: usize> Energy<[f64; S]> for Reduced<'_, M, F, P>
 where
     M: ReducedPortHamiltonian<S, P>,
     F: Controller<S, P>,
@@ -134,10 +137,11 @@ where
     }
 }
 
-impl<M, F, const S: usize, const P: usize> Structured<S> for Reduced<'_, M, F, P>
+impl<M, F, const S: usize, const P: usize> Structured<[f64; S]> for Reduced<'_, M, F, P>
 where
     M: ReducedPortHamiltonian<S, P>,
     F: Controller<S, P>,
+    Const<S>: Square,
 {
     fn structure_matrix(&self, x: &[f64; S]) -> [[f64; S]; S] {
         self.model.chart_structure_matrix(self.chart(), x)

@@ -1,4 +1,4 @@
-//! A run: the simulation loop at the state's dimension with the chosen
+//! A run: the simulation loop on the state's run-time size with the chosen
 //! integrator and stop condition, recording every row, and its
 //! [`Report`].
 
@@ -6,10 +6,8 @@ use super::ScopeNames;
 use super::error::InputError;
 use super::request::{Integrator, Request};
 use super::stop::{Comparison, stop_condition};
-use crate::driver::formulation::{AtDimension, Formulation, MAX_DIMENSION, with_dimension};
+use crate::driver::formulation::{Formulation, RunTimeSized};
 use crate::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, Rk4};
-use crate::runtime::linalg::Square;
-use crate::runtime::nalgebra::Const;
 use crate::runtime::record::{Recorder, Table};
 use crate::runtime::simulate::{Advance, Simulation, StopCondition, Summary};
 use std::error::Error;
@@ -108,11 +106,11 @@ impl Settings {
         })
     }
 
-    /// Runs `formulation` from `x0` into `recorder`.
+    /// Runs `formulation` from `x0` into `recorder`, on states of the size
+    /// `x0` has.
     ///
     /// # Errors
-    /// A state of more than [`MAX_DIMENSION`] entries, or the run's
-    /// failure.
+    /// The run's failure.
     pub(super) fn run(
         &self,
         formulation: &dyn Formulation,
@@ -120,30 +118,13 @@ impl Settings {
         recorder: &mut Both<'_>,
         progress: &mut dyn FnMut(f64),
     ) -> Result<Report, Box<dyn Error>> {
-        with_dimension!(x0.len(), D => self.integrate::<D>(formulation, x0, recorder, progress),
-            _ => Err(InputError::Unsupported(format!(
-                "the state has {} entries; runs from a model's text take up to {MAX_DIMENSION}",
-                x0.len(),
-            )).into()))
-    }
-
-    /// The run in dimension `D`.
-    fn integrate<const D: usize>(
-        &self,
-        formulation: &dyn Formulation,
-        x0: &[f64],
-        recorder: &mut Both<'_>,
-        progress: &mut dyn FnMut(f64),
-    ) -> Result<Report, Box<dyn Error>>
-    where
-        Const<D>: Square,
-    {
-        let system = AtDimension::<D>(formulation);
-        let x0: [f64; D] = core::array::from_fn(|i| x0[i]);
+        let system = RunTimeSized(formulation);
+        let x0 = x0.to_vec();
         let stop = self
             .stop
             .as_ref()
-            .map(|comparison| stop_condition::<D>(formulation, comparison));
+            .map(|comparison| stop_condition(formulation, comparison));
+        let holonomic = formulation.holonomic_residual(&x0).is_some();
         let started = Instant::now();
         let summary = match self.integrator {
             Integrator::Rk4 => self.run_with(Rk4, &system, x0, stop, recorder, progress),
@@ -167,7 +148,6 @@ impl Settings {
                 progress,
             ),
         }?;
-        let holonomic = formulation.holonomic_residual(x0.as_slice()).is_some();
         Ok(Report {
             integrator: self.integrator,
             engine: formulation.engine(),
@@ -183,18 +163,18 @@ impl Settings {
     }
 
     /// One integrator's run until `stop` holds.
-    fn run_with<M, C, const D: usize>(
+    fn run_with<M, C>(
         &self,
         method: M,
-        system: &AtDimension<'_, D>,
-        x0: [f64; D],
+        system: &RunTimeSized<'_>,
+        x0: Vec<f64>,
         stop: C,
         recorder: &mut Both<'_>,
         progress: &mut dyn FnMut(f64),
-    ) -> Result<Summary<D>, Box<dyn Error>>
+    ) -> Result<Summary<Vec<f64>>, Box<dyn Error>>
     where
-        M: for<'a> Advance<AtDimension<'a, D>, D>,
-        C: StopCondition<D>,
+        M: for<'a> Advance<RunTimeSized<'a>, Vec<f64>>,
+        C: StopCondition<Vec<f64>>,
     {
         Ok(Simulation::new(method)
             .span(0.0, self.t_end)

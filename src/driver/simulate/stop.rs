@@ -113,26 +113,24 @@ impl Comparison {
 }
 
 /// The simulation loop's stop condition of `comparison` on the states of
-/// `formulation` (of dimension `D`): its event function at the time, the
-/// configuration and velocity
-/// ([`Formulation::configuration_velocity`]) and the inputs of a state.
-pub fn stop_condition<'a, const D: usize>(
+/// `formulation`: its event function at the time, the configuration and
+/// velocity ([`Formulation::configuration_velocity`]) and the inputs of a
+/// state.
+pub fn stop_condition<'a>(
     formulation: &'a dyn Formulation,
     comparison: &'a Comparison,
-) -> Stop<&'a str, impl Fn(f64, &[f64; D]) -> f64 + 'a> {
-    let inputs = RefCell::new(vec![0.0; formulation.input_names().len()]);
+) -> Stop<&'a str, impl Fn(f64, &Vec<f64>) -> f64 + 'a> {
     let n = comparison.coordinates;
-    Stop::new(comparison.text(), move |t, x: &[f64; D]| {
-        let (mut q, mut qdot) = ([0.0; D], [0.0; D]);
-        formulation.configuration_velocity(x, &mut q[..n], &mut qdot[..n]);
-        let mut u = inputs.borrow_mut();
-        formulation.inputs(t, x, &mut u);
-        comparison.value(&Point {
-            t,
-            q: &q[..n],
-            qdot: &qdot[..n],
-            u: &u,
-        })
+    let buffers = RefCell::new((
+        vec![0.0; n],
+        vec![0.0; n],
+        vec![0.0; formulation.input_names().len()],
+    ));
+    Stop::new(comparison.text(), move |t, x: &Vec<f64>| {
+        let (q, qdot, u) = &mut *buffers.borrow_mut();
+        formulation.configuration_velocity(x, q, qdot);
+        formulation.inputs(t, x, u);
+        comparison.value(&Point { t, q, qdot, u })
     })
 }
 
