@@ -38,21 +38,21 @@ pub trait Formulation {
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]);
     /// The stored energy.
     fn energy(&self, x: &[f64]) -> f64;
-    /// Whether [`Formulation::structure`] is available (by default not).
+    /// Whether [`Formulation::structure_matrix`],
+    /// [`Formulation::energy_gradient`] and [`Formulation::forcing`] are
+    /// available (by default not).
     fn is_structured(&self) -> bool {
         false
     }
-    /// `f = J dH/dx + F`: `J` (row-major), `dH/dx` and `F`; by default
-    /// nothing is written (see [`Formulation::is_structured`]).
-    fn structure(
-        &self,
-        _t: f64,
-        _x: &[f64],
-        _j: &mut [f64],
-        _gradient: &mut [f64],
-        _forcing: &mut [f64],
-    ) {
-    }
+    /// Of `f = J dH/dx + F`, the structure matrix `J` into `j`, row-major;
+    /// by default nothing is written (see [`Formulation::is_structured`]).
+    fn structure_matrix(&self, _x: &[f64], _j: &mut [f64]) {}
+    /// Of `f = J dH/dx + F`, `dH/dx` into `gradient`; by default nothing is
+    /// written.
+    fn energy_gradient(&self, _x: &[f64], _gradient: &mut [f64]) {}
+    /// Of `f = J dH/dx + F`, the forcing `F` into `forcing`; by default
+    /// nothing is written.
+    fn forcing(&self, _t: f64, _x: &[f64], _forcing: &mut [f64]) {}
     /// The inputs applied at `(t, x)`.
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]);
     /// The configuration and its velocity at `x` (see
@@ -159,18 +159,16 @@ where
         true
     }
 
-    fn structure(
-        &self,
-        t: f64,
-        x: &[f64],
-        j: &mut [f64],
-        gradient: &mut [f64],
-        forcing: &mut [f64],
-    ) {
-        let x = leading(x);
-        flatten(&self.system.structure_matrix(&x), j);
-        gradient.copy_from_slice(&self.system.energy_gradient(&x));
-        forcing.copy_from_slice(&self.system.forcing(t, &x));
+    fn structure_matrix(&self, x: &[f64], j: &mut [f64]) {
+        flatten(&self.system.structure_matrix(&leading(x)), j);
+    }
+
+    fn energy_gradient(&self, x: &[f64], gradient: &mut [f64]) {
+        gradient.copy_from_slice(&self.system.energy_gradient(&leading(x)));
+    }
+
+    fn forcing(&self, t: f64, x: &[f64], forcing: &mut [f64]) {
+        forcing.copy_from_slice(&self.system.forcing(t, &leading(x)));
     }
 
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
@@ -234,18 +232,12 @@ impl RunTimeSized<'_> {
     /// A square matrix over `x` written row-major by `write`.
     fn square(x: &[f64], write: impl FnOnce(&mut [f64])) -> DMatrix<f64> {
         let n = x.len();
-        let mut rows = vec![0.0; n * n];
-        write(&mut rows);
-        DMatrix::from_row_slice(n, n, &rows)
-    }
-
-    /// `(J, dH/dx, F)` at `(t, x)`.
-    fn structure_at(&self, t: f64, x: &[f64]) -> (DMatrix<f64>, Vec<f64>, Vec<f64>) {
-        let (mut gradient, mut forcing) = (vec![0.0; x.len()], vec![0.0; x.len()]);
-        let j = Self::square(x, |j| {
-            self.0.structure(t, x, j, &mut gradient, &mut forcing);
-        });
-        (j, gradient, forcing)
+        let mut matrix = DMatrix::zeros(n, n);
+        // nalgebra stores columns one after the other: rows written in
+        // order are the transpose's columns.
+        write(matrix.as_mut_slice());
+        matrix.transpose_mut();
+        matrix
     }
 }
 
@@ -271,15 +263,19 @@ impl Energy<Vec<f64>> for RunTimeSized<'_> {
 
 impl Structured<Vec<f64>> for RunTimeSized<'_> {
     fn structure_matrix(&self, x: &Vec<f64>) -> DMatrix<f64> {
-        self.structure_at(0.0, x).0
+        Self::square(x, |j| self.0.structure_matrix(x, j))
     }
 
     fn energy_gradient(&self, x: &Vec<f64>) -> Vec<f64> {
-        self.structure_at(0.0, x).1
+        let mut gradient = vec![0.0; x.len()];
+        self.0.energy_gradient(x, &mut gradient);
+        gradient
     }
 
     fn forcing(&self, t: f64, x: &Vec<f64>) -> Vec<f64> {
-        self.structure_at(t, x).2
+        let mut forcing = vec![0.0; x.len()];
+        self.0.forcing(t, x, &mut forcing);
+        forcing
     }
 }
 

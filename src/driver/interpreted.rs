@@ -236,16 +236,16 @@ impl Formulation for InterpretedReduced {
         true
     }
 
-    fn structure(
-        &self,
-        t: f64,
-        x: &[f64],
-        j: &mut [f64],
-        gradient: &mut [f64],
-        forcing: &mut [f64],
-    ) {
+    fn structure_matrix(&self, x: &[f64], j: &mut [f64]) {
         j.copy_from_slice(&self.call("structure_matrix", &[x]));
+    }
+
+    fn energy_gradient(&self, x: &[f64], gradient: &mut [f64]) {
         gradient.copy_from_slice(&self.call("hamiltonian_gradient", &[x]));
+    }
+
+    /// `F = G(x) u`.
+    fn forcing(&self, t: f64, x: &[f64], forcing: &mut [f64]) {
         let b = self.call("input_matrix", &[x]);
         let u = inputs_at(self, &self.model, t, x);
         let p = u.len();
