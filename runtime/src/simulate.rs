@@ -20,7 +20,13 @@
 //! falls below the threshold or changes sign within a step (a signed
 //! measure crossing zero between two steps), and with
 //! [`SimulationError::Undefined`] where a guarded expression of the model
-//! fails; a failed step is searched for what it crossed ([`ends`]). The
+//! fails; a failed step is searched for what it crossed ([`ends`]). A
+//! step on which the integrator fails where shorter steps may pass
+//! (Newton's iteration diverging, a stage leaving the model's domain, on a
+//! step too long for a fast motion) is first taken again as two halves,
+//! each checked as a step and split the same way, at most [`HALVINGS`]
+//! deep; the run goes on at its own step, and [`Summary::split_steps`]
+//! counts the splits. The
 //! rows recorded until then stay recorded and the recorder is finished
 //! (flushed) on every exit.
 //!
@@ -48,6 +54,7 @@ pub mod stop;
 pub use advance::Advance;
 pub use observed::{GuardedValue, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, Regularity};
 pub use outcome::{SimulationError, Summary};
+pub use run::HALVINGS;
 pub use stop::{CROSSING_TOLERANCE, Never, Stop, StopCondition};
 
 use crate::record::Recorder;

@@ -111,6 +111,21 @@ impl Error {
         }
     }
 
+    /// Whether the step may pass when taken in shorter steps: Newton's
+    /// iteration diverging or meeting a singular matrix, or a stage, an
+    /// iterate or the new state not finite (leaving the model's domain),
+    /// all of which a step too long for the motion causes (a handlebar
+    /// whipping through a turn within one step). A non-finite initial
+    /// state, and the adaptive method's step size underflow and step count,
+    /// are final.
+    pub fn may_pass_in_shorter_steps(&self) -> bool {
+        match self {
+            Self::NewtonFailure { .. } | Self::SingularJacobian { .. } => true,
+            Self::NonFinite { cause, .. } => *cause != NonFiniteCause::InitialState,
+            Self::StepSizeUnderflow { .. } | Self::TooManySteps { .. } => false,
+        }
+    }
+
     /// The state at [`Error::time`].
     pub fn state(&self) -> &[f64] {
         match self {

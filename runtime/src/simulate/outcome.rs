@@ -152,6 +152,9 @@ pub struct Summary<X> {
     /// How often the run changed the chart of D
     /// ([`super::Observed::change_chart`]).
     pub chart_switches: usize,
+    /// How many times a step failed and was taken again as two halves
+    /// ([`super::HALVINGS`]): 0 where every step passed whole.
+    pub split_steps: usize,
     /// Why the run ended before the end of its span: the description of
     /// the stop condition that came to hold at [`Summary::t`]
     /// ([`super::Simulation::stop_when`]); `None` for a run to the end.

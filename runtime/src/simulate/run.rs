@@ -11,6 +11,21 @@ use crate::integrate;
 use crate::record::Recorder;
 use crate::state::State;
 
+/// How many times a step is halved at most where the integrator fails on
+/// it and shorter steps may pass (see [`super::Summary::split_steps`]):
+/// down to `2^-10` of the step. Each part is checked as a step (projected,
+/// inside the model's domain), so a split never carries a run past the
+/// end of its model; where even the shortest parts fail, the error is the
+/// shortest failed part's, at its own time and state.
+pub const HALVINGS: u32 = 10;
+
+/// A state a step reached, and how many times the step was split in two
+/// to reach it.
+pub(super) struct Stepped<X> {
+    pub(super) x: X,
+    pub(super) splits: usize,
+}
+
 /// A run in progress.
 pub(super) struct Run<'a, M, C, S, R, X> {
     settings: &'a Simulation<M, C>,
@@ -65,6 +80,7 @@ where
                 max_holonomic_residual: system.holonomic_residual(&x).unwrap_or(0.0),
                 min_regularity: regularity.value.abs(),
                 chart_switches: 0,
+                split_steps: 0,
                 stopped: None,
             },
             x,
@@ -99,7 +115,9 @@ where
                 t0 + i as f64 * self.settings.step
             };
             let t = self.t;
-            let mut end = (t_next, self.step_or_fall_back(t_next)?);
+            let advanced = self.step_or_fall_back(t_next)?;
+            self.summary.split_steps += advanced.splits;
+            let mut end = (t_next, advanced.x);
             let stops = self.holds(end.0, &end.1);
             if stops {
                 end = self.crossing(t_next, end.1)?;
@@ -123,29 +141,53 @@ where
         Ok(())
     }
 
-    /// The state at `t_next` advanced from the current one and projected
-    /// onto the constraints ([`Observed::project`]), inside the model's
-    /// domain; a failure explained where its cause is known ([`Ends`]).
-    fn step_to(&self, t_next: f64) -> Result<X, SimulationError> {
-        let (t, h) = (self.t, t_next - self.t);
-        let x = self
-            .settings
-            .method
-            .advance(self.system, t, &self.x, t_next)
-            .map_err(|error| self.ends.explain(t, &self.x, h, error.into()))?;
-        let x = self.system.project(x).map_err(|source| {
+    /// The state at `t_next` advanced from the current one (see
+    /// [`Run::step_from`]).
+    fn step_to(&self, t_next: f64) -> Result<Stepped<X>, SimulationError> {
+        self.step_from(self.t, &self.x, t_next, HALVINGS)
+    }
+
+    /// The state at `t_next` advanced from `x` at `t` and projected onto
+    /// the constraints ([`Observed::project`]), inside the model's domain;
+    /// where the integrator fails and shorter steps may pass
+    /// ([`integrate::Error::may_pass_in_shorter_steps`]), taken as two
+    /// halves, each split the same way, at most `halvings` deep, and each
+    /// checked as a step; a failure explained where its cause is known
+    /// ([`Ends`]).
+    fn step_from(
+        &self,
+        t: f64,
+        x: &X,
+        t_next: f64,
+        halvings: u32,
+    ) -> Result<Stepped<X>, SimulationError> {
+        let h = t_next - t;
+        let advanced = match self.settings.method.advance(self.system, t, x, t_next) {
+            Ok(advanced) => advanced,
+            Err(error) if halvings > 0 && error.may_pass_in_shorter_steps() => {
+                let middle = 0.5 * (t + t_next);
+                let first = self.step_from(t, x, middle, halvings - 1)?;
+                let second = self.step_from(middle, &first.x, t_next, halvings - 1)?;
+                return Ok(Stepped {
+                    x: second.x,
+                    splits: 1 + first.splits + second.splits,
+                });
+            }
+            Err(error) => return Err(self.ends.explain(t, x, h, error.into())),
+        };
+        let next = self.system.project(advanced).map_err(|source| {
             let projection = SimulationError::Projection { t: t_next, source };
-            self.ends.explain(t, &self.x, h, projection)
+            self.ends.explain(t, x, h, projection)
         })?;
-        self.ends.reached(t, &self.x, &x)?;
-        Ok(x)
+        self.ends.reached(t, x, &next)?;
+        Ok(Stepped { x: next, splits: 0 })
     }
 
     /// [`Run::step_to`], taken again in the run-time chart partial
     /// pivoting picks where it fails in another chart for a reason not
     /// named ([`Observed::change_to_pivoted_chart`]; the change counts as a
     /// switch).
-    fn step_or_fall_back(&mut self, t_next: f64) -> Result<X, SimulationError> {
+    fn step_or_fall_back(&mut self, t_next: f64) -> Result<Stepped<X>, SimulationError> {
         match self.step_to(t_next) {
             Err(SimulationError::Integration(_) | SimulationError::Projection { .. })
                 if self.system.change_to_pivoted_chart(&mut self.x) =>
@@ -173,7 +215,7 @@ where
         while above - below > CROSSING_TOLERANCE {
             let length = 0.5 * (below + above);
             let t = self.t + length;
-            let x = self.step_to(t)?;
+            let x = self.step_to(t)?.x;
             if self.holds(t, &x) {
                 (above, found) = (length, (t, x));
             } else {

@@ -42,6 +42,9 @@ pub struct Report {
     pub max_holonomic_residual: Option<f64>,
     /// How many times the run changed chart.
     pub chart_switches: usize,
+    /// How many times a fixed step failed and was taken again as two
+    /// halves (see `chaplygin_runtime::simulate::Advanced`).
+    pub split_steps: usize,
     /// The stop condition that ended the run, as given.
     pub stopped: Option<String>,
     /// The wall time of the run, in seconds.
@@ -65,6 +68,9 @@ impl std::fmt::Display for Report {
             write!(f, "; max holonomic residual {residual:.3e}")?;
         }
         write!(f, "; chart switches {}", self.chart_switches)?;
+        if self.split_steps > 0 {
+            write!(f, "; steps split {}", self.split_steps)?;
+        }
         if let Some(condition) = &self.stopped {
             write!(f, "; stopped at t = {}: {condition}", self.t)?;
         }
@@ -157,6 +163,7 @@ impl Settings {
             max_constraint_residual: summary.max_constraint_residual,
             max_holonomic_residual: holonomic.then_some(summary.max_holonomic_residual),
             chart_switches: summary.chart_switches,
+            split_steps: summary.split_steps,
             stopped: summary.stopped,
             seconds: started.elapsed().as_secs_f64(),
         })
