@@ -282,6 +282,7 @@ impl Model {
                 summary.set_item("max_constraint_residual", report.max_constraint_residual)?;
                 summary.set_item("max_holonomic_residual", report.max_holonomic_residual)?;
                 summary.set_item("chart_switches", report.chart_switches)?;
+                summary.set_item("split_steps", report.split_steps)?;
                 summary.set_item("stopped", report.stopped.clone())?;
                 summary.set_item("seconds", report.seconds)?;
                 run.set_item("summary", summary)?;
