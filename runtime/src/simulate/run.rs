@@ -115,9 +115,9 @@ where
                 t0 + i as f64 * self.settings.step
             };
             let t = self.t;
-            let advanced = self.step_or_fall_back(t_next)?;
-            self.summary.split_steps += advanced.splits;
-            let mut end = (t_next, advanced.x);
+            let stepped = self.step_or_fall_back(t_next)?;
+            self.summary.split_steps += stepped.splits;
+            let mut end = (t_next, stepped.x);
             let stops = self.holds(end.0, &end.1);
             if stops {
                 end = self.crossing(t_next, end.1)?;
