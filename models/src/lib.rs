@@ -34,13 +34,6 @@
 //! for tools that compile model text (`chaplygin_codegen::generate`).
 
 #![warn(missing_docs)]
-// Clippy's lints take over 10 minutes of CPU on the benchmark bicycle's
-// 11 MB of generated Rust, and a minute or two with all of them allowed
-// crate-wide (rustc then skips them; an allow on the generated modules
-// alone does not). The generator's output is linted where `model!` compiles
-// models in the tests, and `snake`, the one hand-written module, where the
-// build script includes it.
-#![allow(clippy::all)]
 
 pub mod snake;
 

@@ -36,12 +36,13 @@ mod mechanism;
 mod momentum;
 mod port_hamiltonian;
 pub mod report;
+mod shared;
 mod traits;
 
 use crate::derive::Derivation;
 use crate::derive::constraints::{ChartFit, ConstraintAnalysis};
 use crate::diagnostic::Diagnostics;
-use crate::ir::{self, Op, OperationCount};
+use crate::ir::{self, OperationCount};
 use crate::model::Model;
 use crate::sym::Context;
 use crate::sym::{ExprId, SymbolId};
@@ -50,6 +51,7 @@ use quote::{format_ident, quote};
 
 /// One argument array of an emitted function (`q`, `qdot`, `x`, `u`): its
 /// elements are these symbols, in order.
+#[derive(Clone)]
 pub(crate) struct Argument {
     pub(crate) name: &'static str,
     pub(crate) symbols: Vec<SymbolId>,
@@ -121,9 +123,28 @@ pub(crate) fn emit(
     let acceleration_jacobian =
         linearization::acceleration_jacobian(model, cx, &derivation.lagrange_dalembert)?;
     functions.extend([acceleration, acceleration_jacobian]);
-    let (reduced, mut reduced_report) =
-        port_hamiltonian::functions(model, cx, &derivation.reduced, &derivation.reduced_items)?;
-    functions.extend(reduced);
+    let forms: Vec<port_hamiltonian::ChartForm> = std::iter::once(port_hamiltonian::ChartForm {
+        chart: 0,
+        dependent: &[],
+        reduced: &derivation.reduced,
+        items: &derivation.reduced_items,
+    })
+    .chain(
+        derivation
+            .charts
+            .iter()
+            .enumerate()
+            .map(|(i, chart)| port_hamiltonian::ChartForm {
+                chart: i + 1,
+                dependent: &chart.dependent,
+                reduced: &chart.reduced,
+                items: &chart.items,
+            }),
+    )
+    .collect();
+    let (reduced, mut reduced_report) = port_hamiltonian::functions(model, cx, &forms)?;
+    functions.extend(reduced.chart0);
+    let chart_functions = reduced.charts;
     let primary = match derivation.reduced.declared_basis {
         true => ChartFit::Declared,
         false => constraints.basis.fit(),
@@ -131,21 +152,6 @@ pub(crate) fn emit(
     let charts: Vec<ChartFit> = std::iter::once(primary)
         .chain(derivation.charts.iter().map(|chart| chart.fit.clone()))
         .collect();
-    let chart_functions = derivation
-        .charts
-        .iter()
-        .enumerate()
-        .map(|(i, chart)| {
-            port_hamiltonian::chart_functions(
-                model,
-                cx,
-                i + 1,
-                &chart.dependent,
-                &chart.reduced,
-                &chart.items,
-            )
-        })
-        .collect::<Result<Vec<_>, _>>()?;
     if let Some(line) = charts_line(model, &charts) {
         reduced_report.line(line);
     }
@@ -164,12 +170,21 @@ pub(crate) fn emit(
     } else if model.symmetry.is_some() {
         sections.push(momentum::omitted());
     }
-    let report = report_text(model, cx, constraints, sections, &functions);
+    let report = report_text(
+        model,
+        cx,
+        constraints,
+        sections,
+        &functions,
+        &reduced.shared,
+    );
     let report_item = report_constant(&report);
-    let items = functions
-        .iter()
-        .chain(chart_functions.iter().flatten())
-        .map(|f| &f.item);
+    let items = reduced.shared.iter().map(|shared| &shared.item).chain(
+        functions
+            .iter()
+            .chain(chart_functions.iter().flatten())
+            .map(|f| &f.item),
+    );
     let name = &model.name;
     let chart_constant = traits::charts_constant(model, &charts);
     let domain_constant = domain::constant(&guards);
@@ -177,6 +192,11 @@ pub(crate) fn emit(
     let linearization = linearization::implementation(model);
     let items = quote! {
         #definition
+        #[allow(
+            clippy::possible_missing_comma,
+            reason = "a `model!` expansion's tokens all carry the macro's span, whose \
+                      lines clippy's layout check misreads in the returned arrays"
+        )]
         impl #name {
             #constants
             #mechanism_constants
@@ -223,13 +243,14 @@ fn report_text(
     constraints: &ConstraintAnalysis,
     derivations: Vec<report::Section>,
     functions: &[Function],
+    shared: &[shared::SharedItem],
 ) -> String {
     let mut report = report::Report::new(model.name.to_string());
     report.push(report::constraints(model, cx, constraints));
     for section in derivations {
         report.push(section);
     }
-    report.push(report::operations(functions));
+    report.push(report::operations(functions, shared));
     report.render()
 }
 
@@ -381,21 +402,20 @@ impl Body {
     }
 }
 
-/// Lowers `outputs` with the arguments and the parameters (`self.name`) as
-/// inputs, and assembles the returned value with `result`.
-pub(crate) fn function_body(
+/// The input slots of a function: the elements of each argument array in
+/// order, then the parameters; the expression each is read from (`q[2]`,
+/// `self.m`), and the argument owning it.
+fn slots(
     model: &Model,
-    cx: &Context,
     arguments: &[Argument],
-    outputs: &[ExprId],
-    result: impl Fn(&[TokenStream]) -> TokenStream,
-) -> Result<Body, Diagnostics> {
+) -> (Vec<SymbolId>, Vec<TokenStream>, Vec<Option<&'static str>>) {
     let mut symbols = Vec::new();
     let mut sources = Vec::new();
     let mut owners = Vec::new();
     for argument in arguments {
         let array = Ident::new(argument.name, Span::call_site());
         for (i, &symbol) in argument.symbols.iter().enumerate() {
+            let i = Literal::usize_unsuffixed(i);
             symbols.push(symbol);
             sources.push(quote!(#array[#i]));
             owners.push(Some(argument.name));
@@ -407,42 +427,75 @@ pub(crate) fn function_body(
         sources.push(quote!(self.#field));
         owners.push(None);
     }
+    (symbols, sources, owners)
+}
+
+/// The program computing `outputs` from the arguments and the parameters,
+/// with its layout.
+pub(crate) fn lowered(
+    model: &Model,
+    cx: &Context,
+    arguments: &[Argument],
+    outputs: &[ExprId],
+) -> Result<Lowered, Diagnostics> {
+    let (symbols, _, _) = slots(model, arguments);
     let program = ir::lower(cx, &symbols, outputs)
         .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
-    let emitted = if model.emits_rust {
-        program
-            .emit(&sources)
-            .map_err(|e| Diagnostics::internal(model.name.span(), e))?
-    } else {
-        ir::RustProgram {
-            statements: TokenStream::new(),
-            outputs: vec![TokenStream::new(); outputs.len()],
-        }
-    };
-    let mut used: Vec<&'static str> = program
-        .instructions()
-        .iter()
-        .filter_map(|i| match i.op {
-            Op::Input(slot) => owners[slot],
-            _ => None,
-        })
-        .collect();
-    used.sort_unstable();
-    used.dedup();
-    let statements = emitted.statements;
-    let value = result(&emitted.outputs);
-    let operations = program.operation_count();
-    let lowered = Lowered {
+    Ok(Lowered {
         program,
         arguments: arguments
             .iter()
             .map(|argument| (argument.name, argument.symbols.len()))
             .collect(),
+    })
+}
+
+/// Lowers `outputs` with the arguments and the parameters (`self.name`) as
+/// inputs, and assembles the returned value with `result`.
+pub(crate) fn function_body(
+    model: &Model,
+    cx: &Context,
+    arguments: &[Argument],
+    outputs: &[ExprId],
+    result: impl Fn(&[TokenStream]) -> TokenStream,
+) -> Result<Body, Diagnostics> {
+    let (_, sources, owners) = slots(model, arguments);
+    let lowered = lowered(model, cx, arguments, outputs)?;
+    let program = &lowered.program;
+    let emitted = match model.emits_rust {
+        true => program
+            .emit(&sources)
+            .map_err(|e| Diagnostics::internal(model.name.span(), e))?,
+        false => ir::RustProgram {
+            statements: TokenStream::new(),
+            outputs: vec![TokenStream::new(); outputs.len()],
+        },
     };
+    let statements = emitted.statements;
+    let value = result(&emitted.outputs);
     Ok(Body {
         statements: quote!(#statements #value),
-        operations,
+        operations: program.operation_count(),
+        used: read_arguments(program, &owners),
         lowered,
-        used,
     })
+}
+
+/// The arguments whose elements `program` reads, given the owner of each
+/// input slot.
+pub(crate) fn read_arguments(
+    program: &ir::Program,
+    owners: &[Option<&'static str>],
+) -> Vec<&'static str> {
+    let mut used: Vec<&'static str> = program
+        .instructions()
+        .iter()
+        .filter_map(|i| match i.op {
+            ir::Op::Input(slot) => owners[slot],
+            _ => None,
+        })
+        .collect();
+    used.sort_unstable();
+    used.dedup();
+    used
 }

@@ -20,7 +20,10 @@
 //! each is lowered once.
 
 use super::report::Section;
-use super::{Argument, Function, coordinates, f64_type, function_body, matrix_literal, velocities};
+use super::shared::{self, Member, Shared, SharedItem};
+use super::{
+    Argument, Function, Lowered, coordinates, f64_type, function_body, matrix_literal, velocities,
+};
 use crate::derive::port_hamiltonian::PortHamiltonian;
 use crate::derive::port_hamiltonian::items::{Item, Items};
 use crate::diagnostic::Diagnostics;
@@ -30,63 +33,153 @@ use crate::sym::ExprId;
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 
-/// The ten functions, in the order they are documented, and the report's
-/// section on the reduced form.
+/// The reduced form in one chart of D: its number (0 for the basis the
+/// other items use), its dependent speeds (none for chart 0), its
+/// derivation and its items.
+pub(super) struct ChartForm<'a> {
+    pub(super) chart: usize,
+    pub(super) dependent: &'a [usize],
+    pub(super) reduced: &'a PortHamiltonian,
+    pub(super) items: &'a Items,
+}
+
+/// The reduced form's functions in every chart: chart 0's ten in the order
+/// they are documented, each other chart's (all but `output` and
+/// `output_jacobian`, named `{item}_chart{i}`), and the bodies they share
+/// ([`super::shared`]).
+pub(super) struct ReducedFunctions {
+    pub(super) chart0: Vec<Function>,
+    pub(super) charts: Vec<Vec<Function>>,
+    pub(super) shared: Vec<SharedItem>,
+}
+
+/// The functions of [`ReducedFunctions`] and the report's section on the
+/// reduced form; `forms[0]` is chart 0.
 pub(super) fn functions(
     model: &Model,
     cx: &mut Context,
-    reduced: &PortHamiltonian,
-    items: &Items,
-) -> Result<(Vec<Function>, Section), Diagnostics> {
-    let section = report_section(cx, reduced);
-    let functions = SPECS
-        .iter()
-        .map(|spec| emit_item(model, cx, reduced, items, spec))
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok((functions, section))
+    forms: &[ChartForm],
+) -> Result<(ReducedFunctions, Section), Diagnostics> {
+    let section = report_section(cx, forms[0].reduced);
+    let mut chart0 = Vec::new();
+    let mut charts: Vec<Vec<Function>> = forms[1..].iter().map(|_| Vec::new()).collect();
+    let mut shared_items = Vec::new();
+    for family in families(cx, forms[0].items) {
+        let specs: Vec<&Spec> = family.iter().map(|&i| &SPECS[i]).collect();
+        let in_every_chart = specs
+            .iter()
+            .all(|spec| !matches!(spec.item, Item::Output | Item::OutputJacobian));
+        let forms = match in_every_chart {
+            true => forms,
+            false => &forms[..1],
+        };
+        let body = (specs.len() > 1 || forms.len() > 1).then(|| shared_body(model, &specs, forms));
+        let shared = body.as_ref().map(|body| body.emit(model, cx)).transpose()?;
+        for form in forms {
+            for (index, spec) in specs.iter().enumerate() {
+                let called = match (&body, &shared) {
+                    (Some(body), Some(shared)) => Some((
+                        body.call(index, form.chart),
+                        shared.programs[form.chart][index].clone(),
+                    )),
+                    _ => None,
+                };
+                let function = emit_item(model, cx, form, spec, called)?;
+                match form.chart {
+                    0 => chart0.push(function),
+                    chart => charts[chart - 1].push(function),
+                }
+            }
+        }
+        shared_items.extend(shared);
+    }
+    let order = |function: &Function| SPECS.iter().position(|spec| spec.name == function.name);
+    chart0.sort_by_key(order);
+    for functions in &mut charts {
+        functions.sort_by_key(order);
+    }
+    Ok((
+        ReducedFunctions {
+            chart0,
+            charts,
+            shared: shared_items,
+        },
+        section,
+    ))
 }
 
-/// The items of the reduced form in the other chart `chart` (1, 2, ...)
-/// with the dependent speeds `dependent`: those the runtime's chart methods
-/// call, each named `{item}_chart{chart}` (`output` and `output_jacobian`
-/// only in chart 0).
-pub(super) fn chart_functions(
-    model: &Model,
-    cx: &mut Context,
-    chart: usize,
-    dependent: &[usize],
-    reduced: &PortHamiltonian,
-    items: &Items,
-) -> Result<Vec<Function>, Diagnostics> {
-    let speeds: Vec<String> = dependent
+/// The items of [`SPECS`] by index, grouped into families that share a
+/// body ([`shared::families`]): those of the state `x` (and inputs `u`)
+/// may share, `momenta` and `velocities` take other arguments and stand
+/// alone.
+fn families(cx: &Context, items: &Items) -> Vec<Vec<usize>> {
+    let of_state =
+        |spec: &Spec| matches!(spec.arguments, Arguments::State | Arguments::StateInputs);
+    let sharing: Vec<usize> = (0..SPECS.len()).filter(|&i| of_state(&SPECS[i])).collect();
+    let outputs: Vec<&[ExprId]> = sharing
         .iter()
-        .map(|&j| format!("dot({})", model.coordinates[j].declared.name))
+        .map(|&i| items.outputs(SPECS[i].item))
         .collect();
-    SPECS
+    let mut families: Vec<Vec<usize>> = shared::families(cx, &outputs)
+        .into_iter()
+        .map(|family| family.into_iter().map(|i| sharing[i]).collect())
+        .collect();
+    families.extend(
+        (0..SPECS.len())
+            .filter(|&i| !of_state(&SPECS[i]))
+            .map(|i| vec![i]),
+    );
+    families
+}
+
+/// The body the items `specs` share in the charts `forms`.
+fn shared_body<'a>(model: &'a Model, specs: &[&Spec], forms: &'a [ChartForm]) -> Shared<'a> {
+    let widest = specs
         .iter()
-        .filter(|spec| !matches!(spec.item, Item::Output | Item::OutputJacobian))
-        .map(|spec| {
-            let (signature, shape) = signature(model, reduced, spec);
-            let signature = Signature {
-                doc: format!(
-                    "In chart {chart} (dependent speeds {}): {}",
-                    speeds.join(", "),
-                    signature.doc
-                ),
-                ..signature
-            };
-            let name = Ident::new(&format!("{}_chart{chart}", spec.name), Span::call_site());
-            let size = |size: Size| size.of(model, reduced);
-            named_item(
-                model,
-                cx,
-                signature,
-                name,
-                items.outputs(spec.item),
-                |values| assembled(shape, values, size),
-            )
-        })
-        .collect()
+        .map(|spec| spec.arguments)
+        .max_by_key(|arguments| arguments.of(model, forms[0].reduced).len())
+        .unwrap_or(Arguments::State);
+    let names: Vec<&str> = specs.iter().map(|spec| spec.name).collect();
+    let charts = match forms.len() {
+        1 => String::new(),
+        _ => " in chart `chart` (0, the basis the other items use, to the last chart of \
+              `CHARTS`)"
+            .to_string(),
+    };
+    Shared {
+        name: Ident::new(&format!("{}_shared", names.join("_")), Span::call_site()),
+        doc: format!(
+            "`{}`{charts}, computed together: the operations they share are written once.",
+            names.join("`, `")
+        ),
+        arguments: forms
+            .iter()
+            .map(|form| widest.of(model, form.reduced))
+            .collect(),
+        members: specs
+            .iter()
+            .map(|spec| {
+                let size = move |size: Size| size.of(model, forms[0].reduced);
+                let shape = spec.shape;
+                Member {
+                    arguments: spec
+                        .arguments
+                        .of(model, forms[0].reduced)
+                        .iter()
+                        .map(|argument| argument.name)
+                        .collect(),
+                    returns: signature(model, forms[0].reduced, spec).0.returns,
+                    outputs: forms
+                        .iter()
+                        .map(|form| form.items.outputs(spec.item))
+                        .collect(),
+                    assemble: Box::new(move |values: &[TokenStream]| {
+                        assembled(shape, values, size)
+                    }),
+                }
+            })
+            .collect(),
+    }
 }
 
 /// What the report says of the reduced form (MATH.md section 3).
@@ -152,10 +245,12 @@ pub(super) fn item(
     assemble: impl Fn(&[TokenStream]) -> TokenStream,
 ) -> Result<Function, Diagnostics> {
     let name = Ident::new(signature.name, Span::call_site());
-    named_item(model, cx, signature, name, outputs, assemble)
+    named_item(model, cx, signature, name, outputs, assemble, None)
 }
 
-/// [`item`] emitted under the name `name`.
+/// [`item`] emitted under the name `name`; with `called`, its body is
+/// that expression (a call of a shared body) and its program the one given
+/// (the shared body's, pruned to the item).
 fn named_item(
     model: &Model,
     cx: &Context,
@@ -163,15 +258,34 @@ fn named_item(
     name: Ident,
     outputs: &[ExprId],
     assemble: impl Fn(&[TokenStream]) -> TokenStream,
+    called: Option<(TokenStream, Lowered)>,
 ) -> Result<Function, Diagnostics> {
-    let body = function_body(model, cx, &signature.arguments, outputs, assemble)?;
+    let (body, statements, read) = match called {
+        None => {
+            let body = function_body(model, cx, &signature.arguments, outputs, assemble)?;
+            let read = |argument: &Argument| body.argument(argument.name);
+            let read: Vec<Ident> = signature.arguments.iter().map(read).collect();
+            (body.lowered, body.statements, read)
+        }
+        Some((call, lowered)) => {
+            let read = signature
+                .arguments
+                .iter()
+                .map(|argument| Ident::new(argument.name, Span::call_site()))
+                .collect();
+            (lowered, call, read)
+        }
+    };
     let f64 = f64_type();
-    let parameters = signature.arguments.iter().map(|argument| {
-        let name = body.argument(argument.name);
-        let length = argument.symbols.len();
-        quote!(#name: &[#f64; #length])
-    });
-    let (doc, returns, statements) = (&signature.doc, &signature.returns, &body.statements);
+    let parameters = signature
+        .arguments
+        .iter()
+        .zip(read)
+        .map(|(argument, name)| {
+            let length = argument.symbols.len();
+            quote!(#name: &[#f64; #length])
+        });
+    let (doc, returns) = (&signature.doc, &signature.returns);
     let item = quote! {
         #[doc = #doc]
         pub fn #name(&self, #(#parameters),*) -> #returns {
@@ -181,8 +295,8 @@ fn named_item(
     Ok(Function {
         name: signature.name,
         item,
-        operations: body.operations,
-        lowered: Some(body.lowered),
+        operations: body.program.operation_count(),
+        lowered: Some(body),
     })
 }
 
@@ -448,19 +562,46 @@ impl Arguments {
     }
 }
 
-/// The item of one row of [`SPECS`].
+/// The item of one row of [`SPECS`] in the chart of `form`, named
+/// `{item}_chart{i}` beyond chart 0; with `called`, its body calls a
+/// shared body, whose program pruned to the item it runs.
 fn emit_item(
     model: &Model,
     cx: &Context,
-    reduced: &PortHamiltonian,
-    items: &Items,
+    form: &ChartForm,
     spec: &Spec,
+    called: Option<(TokenStream, Lowered)>,
 ) -> Result<Function, Diagnostics> {
-    let (signature, shape) = signature(model, reduced, spec);
-    let size = |size: Size| size.of(model, reduced);
-    item(model, cx, signature, items.outputs(spec.item), |values| {
-        assembled(shape, values, size)
-    })
+    let (mut signature, shape) = signature(model, form.reduced, spec);
+    let mut name = Ident::new(spec.name, Span::call_site());
+    if form.chart > 0 {
+        let speeds: Vec<String> = form
+            .dependent
+            .iter()
+            .map(|&j| format!("dot({})", model.coordinates[j].declared.name))
+            .collect();
+        signature.doc = format!(
+            "In chart {} (dependent speeds {}): {}",
+            form.chart,
+            speeds.join(", "),
+            signature.doc
+        );
+        name = Ident::new(
+            &format!("{}_chart{}", spec.name, form.chart),
+            Span::call_site(),
+        );
+    }
+    let size = |size: Size| size.of(model, form.reduced);
+    let outputs = form.items.outputs(spec.item);
+    named_item(
+        model,
+        cx,
+        signature,
+        name,
+        outputs,
+        |values| assembled(shape, values, size),
+        called,
+    )
 }
 
 /// The signature of one row of [`SPECS`], and its shape.
@@ -504,9 +645,16 @@ mod tests {
         let basis = distribution_basis(&model, &mut cx).expect("regular");
         let reduced = derive(&model, &mut cx, &basis).expect("derives");
         let chosen = items(&model, &mut cx, &reduced).expect("derives");
-        let items: Vec<String> = functions(&model, &mut cx, &reduced, &chosen)
+        let form = ChartForm {
+            chart: 0,
+            dependent: &[],
+            reduced: &reduced,
+            items: &chosen,
+        };
+        let items: Vec<String> = functions(&model, &mut cx, &[form])
             .expect("emits")
             .0
+            .chart0
             .iter()
             .map(|function| function.item.to_string().replace(' ', ""))
             .collect();

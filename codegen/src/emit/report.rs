@@ -15,6 +15,7 @@
 //! part of the contract users and tests read (`growth vector (3, 4, 5)`).
 
 use super::Function;
+use super::shared::SharedItem;
 use crate::derive::constraints::{ConstraintAnalysis, Method, charts};
 use crate::model::Model;
 use crate::sym::Context;
@@ -161,14 +162,21 @@ pub(super) fn constraints(
 /// CSE every shared node counts each time it is used (what expanding the
 /// expression would cost); counts from a billion on are written in
 /// scientific notation, and the count saturates at `u64::MAX` (1.84e19).
-pub(super) fn operations(functions: &[Function]) -> Section {
+pub(super) fn operations(functions: &[Function], shared: &[SharedItem]) -> Section {
     let mut section = Section::new("Operation counts (before CSE -> after CSE)");
-    for function in functions {
+    let named = functions
+        .iter()
+        .map(|function| (function.name.to_string(), function.operations))
+        .chain(
+            shared
+                .iter()
+                .map(|body| (format!("{} (shared body)", body.name), body.operations)),
+        );
+    for (name, operations) in named {
         section.line(format!(
-            "{}: {} -> {}",
-            function.name,
-            count(function.operations.before_cse),
-            count(function.operations.after_cse)
+            "{name}: {} -> {}",
+            count(operations.before_cse),
+            count(operations.after_cse)
         ));
     }
     section

@@ -89,6 +89,12 @@ fn node_cost(node: &Node) -> u64 {
     }
 }
 
+/// The cost of `outputs` written out as trees: what a program computing
+/// them reports as [`super::OperationCount::before_cse`].
+pub fn before_cse(store: &Store, outputs: &[ExprId]) -> u64 {
+    tree_cost(store, &store.reachable(outputs), outputs)
+}
+
 /// The cost of `outputs` written out as trees, by memoized arithmetic on the
 /// DAG: a node's tree cost is its own cost plus its children's tree costs.
 /// `order` must be `store.reachable(outputs)`.

@@ -1,25 +1,70 @@
 //! Emission of a [`Program`] as Rust statements.
 //!
-//! Each instruction becomes one `let` with an explicit type, e.g.
-//! `let t3: ::core::primitive::f64 = t1 * t0;`, or
-//! `let (t4, t5) = t3.sin_cos();` for [`Op::SinCos`]. The code is spliced into
-//! user crates, so it names types by absolute path only (a user item called
-//! `f64` or a module called `core` cannot capture it), calls only `f64`
-//! methods, allocates nothing, cannot panic, and compiles warning-free: every
-//! `let` is read (the program has no dead values) and every expression is a
-//! single operation, so no parentheses are ever needed. Constants are `let`s of
-//! float literals (`2.0`, `-0.5`, `0.000000000000000000000000000001`;
-//! non-finite ones as `::core::primitive::f64::INFINITY` and friends).
+//! A value read once is written into the expression that reads it, so one
+//! statement computes a small tree of operations:
+//! `let t3 = (t1 - q[2]) * t0.sin() + 0.5;` rather than one `let` per
+//! operation. A value gets a `let` of its own when it is read more than once
+//! (its common subexpression computed once), when it is one of a `sin_cos`
+//! pair (`let (t4, t5) = t3.sin_cos();`), or when writing it into its
+//! reader would make that expression wider than [`WIDTH`] characters, so
+//! that formatted lines stay short. Constants are float literals where they
+//! are read (`2.0`, `-0.5`, `0.000000000000000000000000000001`, non-finite
+//! ones as `::core::primitive::f64::INFINITY` and friends); an output that
+//! nothing else reads is written into the returned expressions.
 //!
-//! Values are named `t0, t1, ...` with [`Span::mixed_site`]: inside a
-//! procedural macro they cannot clash with the caller's identifiers, and they
-//! resolve among themselves and in the returned output expressions. Code
-//! written out as text (e.g. from a build script) has no hygiene: there, the
-//! input expressions must not mention identifiers of the form `t<n>`.
+//! Every operation keeps its operands: the emitted tree is the program's,
+//! parenthesized where Rust's precedence would regroup it (`a - (b + c)`,
+//! `(a + b).sqrt()`, `-(a * b)`), so the compiled code rounds exactly as the
+//! interpreter does. Types are inferred from the inputs (`q[2]`, `self.m`,
+//! all `f64`); a `let` made of literals alone is typed
+//! `::core::primitive::f64`, and a literal whose method is called is
+//! suffixed (`2f64.sqrt()`). The code is spliced into user crates, so it
+//! names types by absolute path only (a user item called `f64` or a module
+//! called `core` cannot capture it), calls only `f64` methods, allocates
+//! nothing, cannot panic, and compiles warning-free: every `let` is read.
+//!
+//! # Blocks
+//!
+//! rustc's backend spends time more than linear in the length of one
+//! straight-line basic block (LLVM's SLP vectorizer, register allocator and
+//! scheduler): a program longer than [`BLOCK_OPERATIONS`] operations is
+//! cut into blocks of that many by a branch the optimizer cannot see
+//! through and that is never taken
+//! (`if ::core::hint::black_box(false) { ::core::hint::black_box(()); }`).
+//! Values flow across it in registers; it costs a test and a branch.
+//!
+//! # Variants
+//!
+//! [`Program::emit_variants`] writes a program whose outputs fall into
+//! variants (the same items in several charts): the instructions every
+//! variant needs first, once, then those each variant needs besides, for a
+//! `match` to run one of. The instructions are written output by output,
+//! each output's operations that no earlier output needed, operands before
+//! their readers, so that a value is computed near its readers.
+//!
+//! Values are named `t0, t1, ...` in the order of their `let`s, with
+//! [`Span::mixed_site`]: inside a procedural macro they cannot clash with
+//! the caller's identifiers, and they resolve among themselves and in the
+//! returned output expressions. Code written out as text (e.g. from a build
+//! script) has no hygiene: there, the input expressions must not mention
+//! identifiers of the form `t<n>`.
+
+mod expression;
+mod writer;
 
 use super::{Instruction, IrError, Op, Program, Value};
-use proc_macro2::{Ident, Literal, Span, TokenStream};
-use quote::{ToTokens, quote};
+use proc_macro2::TokenStream;
+use writer::Writer;
+
+/// The widest expression, in characters as formatted, into which a value read
+/// once is still written; a wider one gets a `let`.
+pub const WIDTH: usize = 64;
+
+/// The most operations of one basic block of a long program.
+pub const BLOCK_OPERATIONS: u64 = 500;
+
+/// The width a name is counted with when deciding what fits.
+const NAME_WIDTH: usize = 5;
 
 /// A program written out as Rust: its statements and its outputs.
 #[derive(Clone, Debug)]
@@ -30,6 +75,17 @@ pub struct RustProgram {
     pub outputs: Vec<TokenStream>,
 }
 
+/// A program whose outputs fall into variants (the same items in several
+/// charts, say) written out as Rust: what every variant needs, once, then
+/// what each needs besides.
+#[derive(Clone, Debug)]
+pub struct RustVariants {
+    /// The statements of the values every variant reads.
+    pub common: TokenStream,
+    /// Each variant's statements and outputs, valid after `common`.
+    pub variants: Vec<RustProgram>,
+}
+
 impl Program {
     /// Emits the program as Rust statements; `inputs[i]` is an expression of
     /// type `f64` for input slot `i` (e.g. `q[2]`, `self.m`).
@@ -37,91 +93,114 @@ impl Program {
     /// Fails with [`IrError::InputCount`] unless there is one expression per
     /// input slot.
     pub fn emit(&self, inputs: &[TokenStream]) -> Result<RustProgram, IrError> {
-        self.check_inputs(inputs.len())?;
-        let statements = self
-            .instructions
-            .iter()
-            .map(|instruction| statement(instruction, inputs))
-            .collect();
-        let outputs = self
-            .outputs
-            .iter()
-            .map(|&value| name(value).into_token_stream())
-            .collect();
+        let every_output = (0..self.outputs.len()).collect();
+        let emitted = self.emit_variants(inputs, &[every_output])?;
+        let mut statements = emitted.common;
+        let only = emitted.variants.into_iter().next().unwrap_or(RustProgram {
+            statements: TokenStream::new(),
+            outputs: Vec::new(),
+        });
+        statements.extend(only.statements);
         Ok(RustProgram {
             statements,
-            outputs,
+            outputs: only.outputs,
         })
     }
-}
 
-fn name(value: Value) -> Ident {
-    Ident::new(&value.to_string(), Span::mixed_site())
-}
-
-fn statement(instruction: &Instruction, inputs: &[TokenStream]) -> TokenStream {
-    let result = name(instruction.result);
-    let value = expression(&instruction.op, inputs);
-    match instruction.op {
-        Op::SinCos { cosine, .. } => {
-            let cosine = name(cosine);
-            quote!(let (#result, #cosine) = #value;)
+    /// Emits the program for `variants`, each a list of output positions:
+    /// the instructions that every variant needs are written once, in
+    /// `common` (none with one variant); those that only some need are
+    /// written in each of theirs, so a variant computes no value it does
+    /// not read.
+    ///
+    /// Fails with [`IrError::InputCount`] unless there is one expression per
+    /// input slot, and with [`IrError::OutputCount`] when a position is not
+    /// an output.
+    pub fn emit_variants(
+        &self,
+        inputs: &[TokenStream],
+        variants: &[Vec<usize>],
+    ) -> Result<RustVariants, IrError> {
+        self.check_inputs(inputs.len())?;
+        if let Some(&position) = variants
+            .iter()
+            .flatten()
+            .find(|&&i| i >= self.outputs.len())
+        {
+            return Err(IrError::OutputCount {
+                expected: self.outputs.len(),
+                found: position + 1,
+            });
         }
-        _ => quote!(let #result: ::core::primitive::f64 = #value;),
-    }
-}
-
-/// The right-hand side of an instruction's `let`.
-fn expression(op: &Op, inputs: &[TokenStream]) -> TokenStream {
-    let n = |value: &Value| name(*value);
-    match op {
-        Op::Input(slot) => inputs[*slot].clone(),
-        Op::Constant(c) => float_literal(c.value()),
-        Op::Add(a, b) => binary(n(a), quote!(+), n(b)),
-        Op::Sub(a, b) => binary(n(a), quote!(-), n(b)),
-        Op::Mul(a, b) => binary(n(a), quote!(*), n(b)),
-        Op::Div(a, b) => binary(n(a), quote!(/), n(b)),
-        Op::Neg(a) => {
-            let a = n(a);
-            quote!(-#a)
+        let needs: Vec<Vec<bool>> = variants.iter().map(|v| self.needed_by(v)).collect();
+        let shared = variants.len() > 1;
+        let by_all = |value: Value| shared && needs.iter().all(|need| need[value.index()]);
+        let order = self.scheduled(variants);
+        let long = self.operation_count().after_cse > BLOCK_OPERATIONS;
+        let mut writer = Writer::new(self, inputs, long.then_some(BLOCK_OPERATIONS));
+        for instruction in order.iter().filter(|i| by_all(i.result)) {
+            writer.instruction(instruction);
         }
-        Op::Powi(a, exponent) => method(n(a), "powi", Literal::i32_unsuffixed(*exponent)),
-        Op::Powf(a, exponent) => method(n(a), "powf", float_literal(exponent.value())),
-        Op::Sqrt(a) => method(n(a), "sqrt", TokenStream::new()),
-        Op::Sin(a) => method(n(a), "sin", TokenStream::new()),
-        Op::Cos(a) => method(n(a), "cos", TokenStream::new()),
-        Op::Tan(a) => method(n(a), "tan", TokenStream::new()),
-        Op::Exp(a) => method(n(a), "exp", TokenStream::new()),
-        Op::Ln(a) => method(n(a), "ln", TokenStream::new()),
-        Op::SinCos { angle, .. } => method(n(angle), "sin_cos", TokenStream::new()),
+        let common = std::mem::take(&mut writer.statements);
+        let mut emitted = Vec::with_capacity(variants.len());
+        for (variant, need) in variants.iter().zip(&needs) {
+            let mut own = writer.clone();
+            let instructions = order.iter();
+            for instruction in instructions.filter(|i| need[i.result.index()] && !by_all(i.result))
+            {
+                own.instruction(instruction);
+            }
+            let outputs = variant
+                .iter()
+                .map(|&i| own.output(self.outputs[i]))
+                .collect();
+            writer.next_name = own.next_name;
+            emitted.push(RustProgram {
+                statements: own.statements,
+                outputs,
+            });
+        }
+        Ok(RustVariants {
+            common,
+            variants: emitted,
+        })
     }
-}
 
-fn binary(a: Ident, operator: TokenStream, b: Ident) -> TokenStream {
-    quote!(#a #operator #b)
-}
-
-fn method(receiver: Ident, method: &str, argument: impl ToTokens) -> TokenStream {
-    let method = Ident::new(method, Span::call_site());
-    quote!(#receiver.#method(#argument))
-}
-
-/// A float expression of type `f64` that reproduces `x` exactly.
-fn float_literal(x: f64) -> TokenStream {
-    if x.is_nan() {
-        return quote!(::core::primitive::f64::NAN);
-    }
-    if x.is_infinite() {
-        return if x > 0.0 {
-            quote!(::core::primitive::f64::INFINITY)
-        } else {
-            quote!(::core::primitive::f64::NEG_INFINITY)
-        };
-    }
-    let magnitude = Literal::f64_unsuffixed(x.abs());
-    if x.is_sign_negative() {
-        quote!(-#magnitude)
-    } else {
-        quote!(#magnitude)
+    /// The instructions in the order the outputs need them, output by
+    /// output, variant by variant: each output's operations that no earlier
+    /// output needed, operands before their readers.
+    fn scheduled<'a>(&'a self, variants: &[Vec<usize>]) -> Vec<&'a Instruction> {
+        let mut defining = vec![usize::MAX; self.value_count];
+        for (i, instruction) in self.instructions.iter().enumerate() {
+            defining[instruction.result.index()] = i;
+            if let Op::SinCos { cosine, .. } = instruction.op {
+                defining[cosine.index()] = i;
+            }
+        }
+        let mut placed = vec![false; self.instructions.len()];
+        let mut order = Vec::with_capacity(self.instructions.len());
+        let mut stack: Vec<(usize, bool)> = Vec::new();
+        for &position in variants.iter().flatten() {
+            stack.push((defining[self.outputs[position].index()], false));
+            while let Some((i, operands_placed)) = stack.pop() {
+                if placed[i] {
+                    continue;
+                }
+                if operands_placed {
+                    placed[i] = true;
+                    order.push(&self.instructions[i]);
+                    continue;
+                }
+                stack.push((i, true));
+                let operands: Vec<Value> = self.instructions[i].op.operands().collect();
+                for operand in operands.into_iter().rev() {
+                    let j = defining[operand.index()];
+                    if !placed[j] {
+                        stack.push((j, false));
+                    }
+                }
+            }
+        }
+        order
     }
 }

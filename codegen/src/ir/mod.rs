@@ -81,8 +81,8 @@ mod properties;
 #[cfg(test)]
 mod tests;
 
-pub use cost::estimated_weight;
-pub use emit::RustProgram;
+pub use cost::{before_cse, estimated_weight};
+pub use emit::{BLOCK_OPERATIONS, RustProgram, RustVariants, WIDTH};
 pub use lower::lower;
 
 use crate::sym::Rational;
@@ -340,6 +340,120 @@ impl Program {
             before_cse: self.before_cse,
             after_cse: self.instructions.iter().map(|i| i.op.cost()).sum(),
         }
+    }
+}
+
+impl Program {
+    /// The program computing only the outputs at `positions`, in that
+    /// order: the instructions they need, in this program's order, values
+    /// renumbered, input slot `i` read from slot `slots[i]` of its own
+    /// inputs. Each output is computed by the same operations on the same
+    /// operands as here, so to the same bits; `before_cse` is the cost of
+    /// those outputs as trees ([`before_cse`]).
+    ///
+    /// Fails with [`IrError::UnboundSymbol`] when a needed input has no
+    /// slot, and with [`IrError::OutputCount`] when a position is not an
+    /// output.
+    pub fn pruned(
+        &self,
+        positions: &[usize],
+        slots: &[Option<usize>],
+        before_cse: u64,
+    ) -> Result<Program, IrError> {
+        if let Some(&position) = positions.iter().find(|&&i| i >= self.outputs.len()) {
+            return Err(IrError::OutputCount {
+                expected: self.outputs.len(),
+                found: position + 1,
+            });
+        }
+        let needed = self.needed_by(positions);
+        let inputs = slots.iter().flatten().max().map_or(0, |&last| last + 1);
+        let mut input_names = vec![String::new(); inputs];
+        let mut renumbered: Vec<Option<Value>> = vec![None; self.value_count];
+        let mut fresh = 0u32;
+        let mut number = |value: Value, renumbered: &mut Vec<Option<Value>>| {
+            let new = Value(fresh);
+            fresh += 1;
+            renumbered[value.index()] = Some(new);
+            new
+        };
+        let mut instructions = Vec::new();
+        for instruction in &self.instructions {
+            if !needed[instruction.result.index()] {
+                continue;
+            }
+            let at = |value: Value| renumbered[value.index()].unwrap_or(value);
+            let op = match &instruction.op {
+                &Op::Input(slot) => {
+                    let name = &self.input_names[slot];
+                    let Some(new) = slots.get(slot).copied().flatten() else {
+                        return Err(IrError::UnboundSymbol { name: name.clone() });
+                    };
+                    input_names[new] = name.clone();
+                    Op::Input(new)
+                }
+                Op::Constant(c) => Op::Constant(c.clone()),
+                &Op::Add(a, b) => Op::Add(at(a), at(b)),
+                &Op::Sub(a, b) => Op::Sub(at(a), at(b)),
+                &Op::Mul(a, b) => Op::Mul(at(a), at(b)),
+                &Op::Div(a, b) => Op::Div(at(a), at(b)),
+                &Op::Neg(a) => Op::Neg(at(a)),
+                &Op::Powi(a, n) => Op::Powi(at(a), n),
+                &Op::Sqrt(a) => Op::Sqrt(at(a)),
+                Op::Powf(a, e) => Op::Powf(at(*a), e.clone()),
+                &Op::Sin(a) => Op::Sin(at(a)),
+                &Op::Cos(a) => Op::Cos(at(a)),
+                &Op::Tan(a) => Op::Tan(at(a)),
+                &Op::Exp(a) => Op::Exp(at(a)),
+                &Op::Ln(a) => Op::Ln(at(a)),
+                &Op::SinCos { angle, cosine } => {
+                    let angle = at(angle);
+                    let result = number(instruction.result, &mut renumbered);
+                    let cosine = number(cosine, &mut renumbered);
+                    instructions.push(Instruction {
+                        op: Op::SinCos { angle, cosine },
+                        result,
+                    });
+                    continue;
+                }
+            };
+            let result = number(instruction.result, &mut renumbered);
+            instructions.push(Instruction { op, result });
+        }
+        let outputs = positions
+            .iter()
+            .map(|&i| renumbered[self.outputs[i].index()].unwrap_or(self.outputs[i]))
+            .collect();
+        Ok(Program {
+            input_names,
+            instructions,
+            outputs,
+            value_count: fresh as usize,
+            before_cse,
+        })
+    }
+
+    /// Which values the outputs at `positions` read, directly or not.
+    fn needed_by(&self, positions: &[usize]) -> Vec<bool> {
+        let mut needed = vec![false; self.value_count];
+        for &i in positions {
+            needed[self.outputs[i].index()] = true;
+        }
+        for instruction in self.instructions.iter().rev() {
+            let defined = match instruction.op {
+                Op::SinCos { cosine, .. } => {
+                    needed[instruction.result.index()] || needed[cosine.index()]
+                }
+                _ => needed[instruction.result.index()],
+            };
+            if defined {
+                needed[instruction.result.index()] = true;
+                for operand in instruction.op.operands() {
+                    needed[operand.index()] = true;
+                }
+            }
+        }
+        needed
     }
 }
 

@@ -57,6 +57,38 @@ pub(super) fn emit_function(name: &str, program: &Program, inputs: usize) -> Str
     .to_string()
 }
 
+/// The program as `pub fn name(chart: usize, q: &[f64; 3]) -> [f64; m]`,
+/// its outputs split into `variants` of `m` each, `chart` picking one.
+fn emit_variants_function(name: &str, program: &Program, variants: &[Vec<usize>]) -> String {
+    let slots: Vec<TokenStream> = (0..super::properties::SYMBOLS)
+        .map(|i| {
+            let i = Literal::usize_unsuffixed(i);
+            quote!(q[#i])
+        })
+        .collect();
+    let emitted = program.emit_variants(&slots, variants).unwrap();
+    let arms = emitted.variants.iter().enumerate().map(|(i, variant)| {
+        let (statements, outputs) = (&variant.statements, &variant.outputs);
+        let i = Literal::usize_unsuffixed(i);
+        quote!(#i => { #statements [#(#outputs),*] })
+    });
+    let (name, common) = (format_ident!("{name}"), &emitted.common);
+    let (length, inputs) = (variants[0].len(), super::properties::SYMBOLS);
+    quote!(
+        pub fn #name(
+            chart: ::core::primitive::usize,
+            q: &[::core::primitive::f64; #inputs],
+        ) -> [::core::primitive::f64; #length] {
+            #common
+            match chart {
+                #(#arms,)*
+                _ => [::core::primitive::f64::NAN; #length],
+            }
+        }
+    )
+    .to_string()
+}
+
 #[test]
 fn sine_and_cosine_of_one_argument_share_one_sin_cos() {
     let (mut s, symbols, v) = store_with(&["x", "y"]);
@@ -388,7 +420,7 @@ fn wrong_buffer_lengths_are_errors() {
 }
 
 #[test]
-fn emitted_statements_use_absolute_types_and_sin_cos() {
+fn values_read_once_are_written_into_their_reader() {
     let (mut s, symbols, v) = store_with(&["x", "y"]);
     let sine = s.apply(Function::Sin, v[0]).unwrap();
     let cosine = s.apply(Function::Cos, v[0]).unwrap();
@@ -396,22 +428,47 @@ fn emitted_statements_use_absolute_types_and_sin_cos() {
     let first = s.sub(product, cosine);
     let program = lower(&s, &symbols, &[first]).unwrap();
     let emitted = program.emit(&[quote!(q[0]), quote!(self.m)]).unwrap();
-    let text = emitted.statements.to_string();
     assert_eq!(
-        text,
-        "let t0 : :: core :: primitive :: f64 = q [0] ; \
-         let t1 : :: core :: primitive :: f64 = self . m ; \
-         let (t2 , t3) = t0 . sin_cos () ; \
-         let t4 : :: core :: primitive :: f64 = t1 * t2 ; \
-         let t5 : :: core :: primitive :: f64 = t4 - t3 ;"
-    );
-    assert!(text.contains("sin_cos"));
-    assert_eq!(
-        text.matches("f64").count(),
-        text.matches(":: core :: primitive :: f64").count()
+        emitted.statements.to_string(),
+        "let (t0 , t1) = q [0] . sin_cos () ;"
     );
     assert_eq!(emitted.outputs.len(), 1);
-    assert_eq!(emitted.outputs[0].to_string(), "t5");
+    assert_eq!(emitted.outputs[0].to_string(), "self . m * t0 - t1");
+}
+
+#[test]
+fn a_value_read_twice_gets_a_let_and_trees_keep_their_grouping() {
+    let (mut s, symbols, v) = store_with(&["x", "y", "z"]);
+    let sum = s.add2(v[1], v[2]);
+    let difference = s.sub(v[0], sum);
+    let root = s.sqrt(sum).unwrap();
+    let program = lower(&s, &symbols, &[difference, root]).unwrap();
+    let emitted = program
+        .emit(&[quote!(q[0]), quote!(q[1]), quote!(q[2])])
+        .unwrap();
+    assert_eq!(
+        emitted.statements.to_string(),
+        "let t0 = q [1] + q [2] ;",
+        "{program}"
+    );
+    let outputs: Vec<String> = emitted.outputs.iter().map(ToString::to_string).collect();
+    assert_eq!(outputs, ["q [0] - t0", "t0 . sqrt ()"]);
+}
+
+#[test]
+fn a_literal_whose_method_is_called_is_typed_by_its_suffix() {
+    let (mut s, symbols, v) = store_with(&["x", "y"]);
+    let two = s.integer(2);
+    let root = s.sqrt(two).unwrap();
+    let first = s.mul2(root, v[0]);
+    let second = s.mul2(root, v[1]);
+    let program = lower(&s, &symbols, &[first, second]).unwrap();
+    let statements = program
+        .emit(&[quote!(q[0]), quote!(q[1])])
+        .unwrap()
+        .statements
+        .to_string();
+    assert_eq!(statements, "let t0 = 2f64 . sqrt () ;", "{program}");
 }
 
 /// `c*x` for awkward constants `c`, and `x^(-1/3)`, over the input `x`.
@@ -441,12 +498,12 @@ fn constants_become_valid_float_literals() {
     let source = emit_function("f", &constants_program(), 1);
     syn::parse_str::<syn::File>(&source).unwrap();
     let literals = [
-        "= 2.0 ;",
-        "= - 3.0 ;",
-        "= 0.000000000000000000000000000001 ;",
-        "= :: core :: primitive :: f64 :: INFINITY ;",
-        "= :: core :: primitive :: f64 :: NEG_INFINITY ;",
-        "= 0.3333333333333333 ;",
+        "t0 * 2.0 ,",
+        "t0 * - 3.0 ,",
+        "t0 * 0.000000000000000000000000000001 ,",
+        "t0 * :: core :: primitive :: f64 :: INFINITY ,",
+        "t0 * :: core :: primitive :: f64 :: NEG_INFINITY ,",
+        "t0 * 0.3333333333333333 ,",
         "powf (- 0.3333333333333333)",
     ];
     for literal in literals {
@@ -490,6 +547,9 @@ fn an_emitted_function_parses_as_rust() {
 /// `rustc --edition 2024 -D warnings`, in a module without the prelude where
 /// the items `f64` and `core` shadow the standard ones, runs it, and compares
 /// every output bit for bit with the interpreter (one rustc run, well under a second).
+/// 1200 more random expressions make one long program, cut into blocks
+/// ([`super::BLOCK_OPERATIONS`]), emitted whole and as two variants (its
+/// first and second halves of outputs, chosen by `chart`).
 #[test]
 fn emitted_code_compiles_warning_free_and_matches_the_interpreter() {
     use super::properties::{SYMBOLS, build, symbol_store, tree};
@@ -497,6 +557,7 @@ fn emitted_code_compiles_warning_free_and_matches_the_interpreter() {
     let mut runner = proptest::test_runner::TestRunner::deterministic();
     let (mut store, symbols, leaves) = symbol_store();
     let mut programs = Vec::new();
+    let mut every_output = Vec::new();
     for _ in 0..60 {
         let strategy = proptest::collection::vec(tree(), 1..=3);
         let trees = strategy.new_tree(&mut runner).unwrap().current();
@@ -506,6 +567,18 @@ fn emitted_code_compiles_warning_free_and_matches_the_interpreter() {
             .collect();
         programs.push(lower(&store, &symbols, &outputs).unwrap());
     }
+    while every_output.len() < 1200 {
+        let tree = tree().new_tree(&mut runner).unwrap().current();
+        every_output.push(build(&mut store, &leaves, &tree));
+    }
+    let long = lower(&store, &symbols, &every_output).unwrap();
+    assert!(
+        long.operation_count().after_cse > 2 * super::BLOCK_OPERATIONS,
+        "{}",
+        long.operation_count().after_cse
+    );
+    let half = every_output.len() / 2;
+    let variants = [(0..half).collect(), (half..2 * half).collect()];
     let mut functions = emit_function("constants", &constants_program(), 1);
     functions.extend(
         programs
@@ -513,11 +586,15 @@ fn emitted_code_compiles_warning_free_and_matches_the_interpreter() {
             .enumerate()
             .map(|(i, p)| emit_function(&format!("f{i}"), p, SYMBOLS)),
     );
+    functions.push_str(&emit_function("long", &long, SYMBOLS));
+    functions.push_str(&emit_variants_function("charted", &long, &variants));
     let mut calls =
         String::from("for x in generated::constants(&[0.7]) { println!(\"{}\", x.to_bits()); }\n");
     calls += &(0..programs.len())
         .map(|i| format!("for x in generated::f{i}(&Q) {{ println!(\"{{}}\", x.to_bits()); }}\n"))
         .collect::<String>();
+    calls += "for x in generated::long(&Q) { println!(\"{}\", x.to_bits()); }\n";
+    calls += "for chart in 0..2 { for x in generated::charted(chart, &Q) { println!(\"{}\", x.to_bits()); } }\n";
     let source = format!(
         "#![deny(warnings)]\n\
          mod generated {{\n\
@@ -554,6 +631,9 @@ fn emitted_code_compiles_warning_free_and_matches_the_interpreter() {
     for program in &programs {
         interpreted.extend(program.evaluate_vec(&[0.3, -1.1, 0.7]).unwrap());
     }
+    let long_values = long.evaluate_vec(&[0.3, -1.1, 0.7]).unwrap();
+    interpreted.extend(&long_values);
+    interpreted.extend(&long_values);
     let interpreted: Vec<u64> = interpreted.into_iter().map(f64::to_bits).collect();
     assert_eq!(printed, interpreted);
     std::fs::remove_dir_all(&dir).unwrap();
