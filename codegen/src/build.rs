@@ -99,7 +99,8 @@ impl Builder {
 }
 
 /// The Rust source generated for the text of a `.model` file, within the
-/// default derivation budget ([`crate::sym::budget`]).
+/// default derivation budget ([`crate::sym::budget`]): the items
+/// `chaplygin::model!` expands the same text to, formatted.
 pub fn generate(source: &str) -> Result<String, Diagnostics> {
     generate_within(source, Budget::default())
 }
@@ -108,5 +109,31 @@ pub fn generate(source: &str) -> Result<String, Diagnostics> {
 /// how much of it the model used.
 pub fn generate_within(source: &str, budget: Budget) -> Result<String, Diagnostics> {
     let items = crate::compile_within(&crate::syntax::parse_str(source)?, budget)?;
-    Ok(items.to_string())
+    Ok(formatted(items))
+}
+
+/// Items as Rust source text, formatted by `prettyplease` (as
+/// `cargo expand` shows a macro's expansion).
+pub fn formatted(items: proc_macro2::TokenStream) -> String {
+    match syn::parse2::<syn::File>(items.clone()) {
+        Ok(file) => prettyplease::unparse(&file),
+        Err(_) => items.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{formatted, generate};
+    use proc_macro2::TokenStream;
+
+    /// The macro door (`model!`'s tokens) and the build-script door (a
+    /// file's text) compile one model to the same Rust.
+    #[test]
+    fn both_doors_emit_the_same_items() {
+        let source = crate::fixtures::SNAKEBOARD;
+        let tokens: TokenStream = source.parse().expect("the model text lexes");
+        let expanded = formatted(crate::expand(tokens));
+        assert_eq!(expanded, generate(source).expect("generates"));
+        assert!(expanded.contains("pub fn reduced_rhs("), "{expanded}");
+    }
 }

@@ -31,7 +31,7 @@ pub mod syntax;
 #[cfg(test)]
 mod fixtures;
 
-pub use build::{BuildError, Builder, generate, generate_within};
+pub use build::{BuildError, Builder, formatted, generate, generate_within};
 
 use proc_macro2::TokenStream;
 

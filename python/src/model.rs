@@ -459,16 +459,18 @@ impl Model {
         ))
     }
 
-    /// The derivation document as `"text"`, `"latex"` or `"json"`.
+    /// The derivation document as `"text"`, `"latex"` or `"json"`, or
+    /// `"rust"`: the Rust the model compiles to.
     #[pyo3(signature = (format = "text"))]
     fn document(&self, py: Python<'_>, format: &str) -> PyResult<String> {
         let format = match format {
             "text" => Format::Text,
             "latex" => Format::Latex,
             "json" => Format::Json,
+            "rust" => Format::Rust,
             _ => {
                 return Err(PyValueError::new_err(format!(
-                    "unknown format `{format}` (formats: text, latex, json)"
+                    "unknown format `{format}` (formats: text, latex, json, rust)"
                 )));
             }
         };

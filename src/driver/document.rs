@@ -1,7 +1,8 @@
 //! The derivation document of a model (the
 //! constraint analysis, the Lagrange-d'Alembert equations, the reduced
 //! port-Hamiltonian form, the momentum equation with a symmetry, the
-//! report) as text, LaTeX or JSON, from `chaplygin_codegen::document`.
+//! report) as text, LaTeX or JSON, from `chaplygin_codegen::document`; or
+//! the Rust the model compiles to.
 //! For a model declared as a mechanism, each format also shows what the
 //! mechanism sections derived (docs/INTERFACE.md section 4): the frames and
 //! points, the bodies' `T` and `V`, the rolling-contact rows of `A(q)` and
@@ -34,16 +35,9 @@ pub enum Format {
     Latex,
     /// JSON.
     Json,
-}
-
-impl From<Format> for document::Format {
-    fn from(format: Format) -> Self {
-        match format {
-            Format::Text => document::Format::Text,
-            Format::Latex => document::Format::Latex,
-            Format::Json => document::Format::Json,
-        }
-    }
+    /// The Rust that `chaplygin::model!` and the build script compile for
+    /// the model, formatted.
+    Rust,
 }
 
 /// A model rejected by the compiler: its diagnostics rendered
@@ -84,7 +78,13 @@ pub fn document(source: &Source, format: Format) -> Result<String, Box<dyn Error
     let rejected = |diagnostics: Diagnostics| -> Box<dyn Error> {
         Rejected::new(&source.file_name(), &diagnostics).into()
     };
-    let text = derive_document(source.text(), format.into()).map_err(rejected)?;
+    let document_format = match format {
+        Format::Text => document::Format::Text,
+        Format::Latex => document::Format::Latex,
+        Format::Json => document::Format::Json,
+        Format::Rust => return chaplygin_codegen::generate(source.text()).map_err(rejected),
+    };
+    let text = derive_document(source.text(), document_format).map_err(rejected)?;
     let syntax = parse_str(source.text()).map_err(rejected)?;
     let (model, mut cx) = check(&syntax).map_err(rejected)?;
     if !model.mechanism.is_declared() {
@@ -100,6 +100,7 @@ pub fn document(source: &Source, format: Format) -> Result<String, Box<dyn Error
             "\n",
         ),
         Format::Json => mechanism.json(&text)?,
+        Format::Rust => text,
     })
 }
 

@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! chaplygin list
-//! chaplygin derive MODEL [--format text|latex|json]
+//! chaplygin derive MODEL [--format text|latex|json|rust]
 //! chaplygin simulate MODEL [--formulation reduced|lagrange|momentum] [--integrator rk4|dopri5|midpoint|discrete-gradient]
 //!                          [--controller none|energy] [--t-end T] [--dt H] [--stop-when COND]
 //!                          [--engine jit|interpret] [--out DIR]

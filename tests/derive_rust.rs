@@ -1,0 +1,55 @@
+//! `chaplygin derive MODEL --format rust` prints exactly the Rust the build
+//! script writes for the model (docs/INTERFACE.md section 3), for a model
+//! file and for a built-in by name.
+
+use std::path::Path;
+use std::process::Command;
+
+/// What the build-script door (`chaplygin_codegen::Builder`) writes for
+/// the model file `models/{stem}.model`.
+fn written_by_the_build_script(stem: &str) -> String {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("models/{stem}.model"));
+    let out_dir = std::env::temp_dir().join(format!("derive-rust-{stem}-{}", std::process::id()));
+    std::fs::create_dir_all(&out_dir).expect("a directory");
+    let written = chaplygin_codegen::Builder::new()
+        .model_file(&file)
+        .out_dir(&out_dir)
+        .write_to_out_dir()
+        .expect("the model generates");
+    let code = std::fs::read_to_string(&written[0]).expect("the file is written");
+    std::fs::remove_dir_all(&out_dir).expect("removed");
+    code
+}
+
+/// The command's standard output, which must succeed.
+fn printed(arguments: &[&str]) -> String {
+    let output = Command::new(env!("CARGO_BIN_EXE_chaplygin"))
+        .args(arguments)
+        .output()
+        .expect("the binary runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout).expect("UTF-8")
+}
+
+#[test]
+fn a_model_file_prints_what_the_build_script_writes() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
+    let code = printed(&["derive", file, "--format", "rust"]);
+    assert_eq!(code, written_by_the_build_script("sleigh"));
+    assert!(code.contains("pub fn reduced_rhs("), "{code}");
+}
+
+#[test]
+fn a_built_in_prints_what_the_build_script_writes_for_its_file() {
+    let code = printed(&["derive", "snakeboard", "--format", "rust"]);
+    assert_eq!(code, written_by_the_build_script("snakeboard"));
+    assert!(
+        code.lines()
+            .any(|line| line.starts_with("    pub fn reduced_rhs(")),
+        "formatted, one item a line: {code}"
+    );
+}
