@@ -1,5 +1,7 @@
 //! The compiled benchmark bicycle: per-call times of `acceleration` and
-//! `acceleration_jacobian`, and of a linearization about upright running,
+//! `acceleration_jacobian`, of the reduced form's right-hand side and its
+//! Jacobian (in charts 0 and 1, at `x_k = 0.3 (k + 1) / 2`), and of a
+//! linearization about upright running,
 //! for comparison with CasADi's C of the same equations
 //! (`bench/peers/casadi_bicycle.py`, timed by `bench/peers/timing.c`).
 //!
@@ -45,6 +47,18 @@ fn main() {
         bicycle.acceleration_jacobian(q, qdot, u)
     });
     println!("BICYCLE acceleration_jacobian: {jacobian:.1} ns/call");
+    let x: [f64; 11] = std::array::from_fn(|k| 0.3 * (k + 1) as f64 / 2.0);
+    let reduced = [(x, u)];
+    let rhs = best_nanoseconds(&reduced, CALLS, |(x, u)| bicycle.reduced_rhs(x, u));
+    println!("BICYCLE reduced_rhs: {rhs:.1} ns/call");
+    let rhs_jacobian = best_nanoseconds(&reduced, CALLS / 10, |(x, u)| {
+        bicycle.reduced_rhs_jacobian(x, u)
+    });
+    println!("BICYCLE reduced_rhs_jacobian: {rhs_jacobian:.1} ns/call");
+    let in_chart1 = best_nanoseconds(&reduced, CALLS / 10, |(x, u)| {
+        bicycle.reduced_rhs_jacobian_chart1(x, u)
+    });
+    println!("BICYCLE reduced_rhs_jacobian_chart1: {in_chart1:.1} ns/call");
     let model = Compiled::holonomic(&bicycle);
     let upright = |v: f64| {
         let mut velocities = [None; 8];

@@ -15,11 +15,14 @@
 //!
 //! Run with `cargo bench -p chaplygin-models --bench growth`.
 
+mod rustc;
+
 use chaplygin::jit::NativePrograms;
 use chaplygin_codegen::interpret::InterpretedModel;
 use chaplygin_models::snake::n_link_snake;
+use rustc::{compile, operations};
 use std::hint::black_box;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
@@ -78,7 +81,7 @@ fn study(links: usize, budget: f64, workspace: &Path) -> Result<Row, String> {
     let (derivation_seconds, code) = derive_within(links, budget)?;
     let source = workspace.join(format!("snake{links}.rs"));
     std::fs::write(&source, timing_program(links, &code)).map_err(|e| e.to_string())?;
-    let (compile_seconds, binary) = compile(&source)?;
+    let (compile_seconds, binary) = compile(&source, "bin")?;
     let output = Command::new(&binary)
         .output()
         .map_err(|e| format!("running {}: {e}", binary.display()))?;
@@ -166,26 +169,6 @@ fn derive_within(links: usize, budget: f64) -> Result<(f64, String), String> {
     }
 }
 
-/// `(before, after)` from the REPORT line `  name: before -> after`.
-fn operations(code: &str, name: &str) -> Result<(f64, f64), String> {
-    let marker = format!("\\n  {name}: ");
-    let start = code
-        .find(&marker)
-        .ok_or_else(|| format!("no operation count for {name}"))?
-        + marker.len();
-    let counts: Vec<f64> = code[start..]
-        .split("\\n")
-        .next()
-        .unwrap_or_default()
-        .split(" -> ")
-        .filter_map(|count| count.trim().parse().ok())
-        .collect();
-    match counts[..] {
-        [before, after] => Ok((before, after)),
-        _ => Err(format!("unreadable operation count for {name}")),
-    }
-}
-
 /// The generated items and a `main` printing the nanoseconds per call of
 /// `acceleration` and `reduced_rhs` at a bent, moving snake.
 fn timing_program(links: usize, code: &str) -> String {
@@ -206,46 +189,6 @@ fn timing_program(links: usize, code: &str) -> String {
          \x20   println!(\"{{acceleration}} {{reduced_rhs}}\");\n\
          }}\n"
     )
-}
-
-/// `rustc -O` on the program, linked against this build's `chaplygin`.
-fn compile(source: &Path) -> Result<(f64, PathBuf), String> {
-    let deps = std::env::current_exe()
-        .map_err(|e| e.to_string())?
-        .parent()
-        .map(Path::to_path_buf)
-        .ok_or("no directory of the running benchmark")?;
-    let library = newest_rlib(&deps, "libchaplygin-")?;
-    let binary = source.with_extension("bin");
-    let start = Instant::now();
-    let status = Command::new(std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into()))
-        .args(["-O", "--edition", "2024", "-o"])
-        .arg(&binary)
-        .arg("-L")
-        .arg(format!("dependency={}", deps.display()))
-        .arg("--extern")
-        .arg(format!("chaplygin={}", library.display()))
-        .arg(source)
-        .status()
-        .map_err(|e| format!("rustc: {e}"))?;
-    if !status.success() {
-        return Err(format!("rustc failed on {}", source.display()));
-    }
-    Ok((start.elapsed().as_secs_f64(), binary))
-}
-
-/// The most recently built `<prefix>*.rlib` in `directory`.
-fn newest_rlib(directory: &Path, prefix: &str) -> Result<PathBuf, String> {
-    std::fs::read_dir(directory)
-        .map_err(|e| e.to_string())?
-        .filter_map(Result::ok)
-        .filter(|entry| {
-            let name = entry.file_name().to_string_lossy().into_owned();
-            name.starts_with(prefix) && name.ends_with(".rlib")
-        })
-        .max_by_key(|entry| entry.metadata().and_then(|m| m.modified()).ok())
-        .map(|entry| entry.path())
-        .ok_or_else(|| format!("no {prefix}*.rlib in {}", directory.display()))
 }
 
 fn print_row(row: &Row) {
