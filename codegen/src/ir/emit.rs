@@ -31,16 +31,22 @@
 //! cut into blocks of that many by a branch the optimizer cannot see
 //! through and that is never taken
 //! (`if ::core::hint::black_box(false) { ::core::hint::black_box(()); }`).
-//! Values flow across it in registers; it costs a test and a branch.
+//! Values flow across it in registers; it costs a test and a branch, and
+//! the optimizer neither moves code across it nor keeps what it read from
+//! memory (inputs, parameters). Measured on the benchmark bicycle
+//! (BENCHMARKS.md): without blocks `rustc -O` takes 33-37 s on its code,
+//! with blocks of 2,000 operations 20-21 s, as with 500; blocks of 500
+//! made the right-hand side's Jacobian 1.4x slower, with blocks of 2,000 it
+//! runs within 3% of none.
 //!
 //! # Variants
 //!
 //! [`Program::emit_variants`] writes a program whose outputs fall into
 //! variants (the same items in several charts): the instructions every
 //! variant needs first, once, then those each variant needs besides, for a
-//! `match` to run one of. The instructions are written output by output,
-//! each output's operations that no earlier output needed, operands before
-//! their readers, so that a value is computed near its readers.
+//! `match` to run one of. Instructions keep the program's order (rustc
+//! compiled it faster than an order output by output, and the code ran as
+//! fast).
 //!
 //! Values are named `t0, t1, ...` in the order of their `let`s, with
 //! [`Span::mixed_site`]: inside a procedural macro they cannot clash with
@@ -52,7 +58,7 @@
 mod expression;
 mod writer;
 
-use super::{Instruction, IrError, Op, Program, Value};
+use super::{IrError, Program, Value};
 use proc_macro2::TokenStream;
 use writer::Writer;
 
@@ -61,7 +67,7 @@ use writer::Writer;
 pub const WIDTH: usize = 64;
 
 /// The most operations of one basic block of a long program.
-pub const BLOCK_OPERATIONS: u64 = 500;
+pub const BLOCK_OPERATIONS: u64 = 2000;
 
 /// The width a name is counted with when deciding what fits.
 const NAME_WIDTH: usize = 5;
@@ -135,17 +141,16 @@ impl Program {
         let needs: Vec<Vec<bool>> = variants.iter().map(|v| self.needed_by(v)).collect();
         let shared = variants.len() > 1;
         let by_all = |value: Value| shared && needs.iter().all(|need| need[value.index()]);
-        let order = self.scheduled(variants);
         let long = self.operation_count().after_cse > BLOCK_OPERATIONS;
         let mut writer = Writer::new(self, inputs, long.then_some(BLOCK_OPERATIONS));
-        for instruction in order.iter().filter(|i| by_all(i.result)) {
+        for instruction in self.instructions.iter().filter(|i| by_all(i.result)) {
             writer.instruction(instruction);
         }
         let common = std::mem::take(&mut writer.statements);
         let mut emitted = Vec::with_capacity(variants.len());
         for (variant, need) in variants.iter().zip(&needs) {
             let mut own = writer.clone();
-            let instructions = order.iter();
+            let instructions = self.instructions.iter();
             for instruction in instructions.filter(|i| need[i.result.index()] && !by_all(i.result))
             {
                 own.instruction(instruction);
@@ -164,43 +169,5 @@ impl Program {
             common,
             variants: emitted,
         })
-    }
-
-    /// The instructions in the order the outputs need them, output by
-    /// output, variant by variant: each output's operations that no earlier
-    /// output needed, operands before their readers.
-    fn scheduled<'a>(&'a self, variants: &[Vec<usize>]) -> Vec<&'a Instruction> {
-        let mut defining = vec![usize::MAX; self.value_count];
-        for (i, instruction) in self.instructions.iter().enumerate() {
-            defining[instruction.result.index()] = i;
-            if let Op::SinCos { cosine, .. } = instruction.op {
-                defining[cosine.index()] = i;
-            }
-        }
-        let mut placed = vec![false; self.instructions.len()];
-        let mut order = Vec::with_capacity(self.instructions.len());
-        let mut stack: Vec<(usize, bool)> = Vec::new();
-        for &position in variants.iter().flatten() {
-            stack.push((defining[self.outputs[position].index()], false));
-            while let Some((i, operands_placed)) = stack.pop() {
-                if placed[i] {
-                    continue;
-                }
-                if operands_placed {
-                    placed[i] = true;
-                    order.push(&self.instructions[i]);
-                    continue;
-                }
-                stack.push((i, true));
-                let operands: Vec<Value> = self.instructions[i].op.operands().collect();
-                for operand in operands.into_iter().rev() {
-                    let j = defining[operand.index()];
-                    if !placed[j] {
-                        stack.push((j, false));
-                    }
-                }
-            }
-        }
-        order
     }
 }

@@ -547,7 +547,7 @@ fn an_emitted_function_parses_as_rust() {
 /// `rustc --edition 2024 -D warnings`, in a module without the prelude where
 /// the items `f64` and `core` shadow the standard ones, runs it, and compares
 /// every output bit for bit with the interpreter (one rustc run, well under a second).
-/// 1200 more random expressions make one long program, cut into blocks
+/// 4000 more random expressions make one long program, cut into blocks
 /// ([`super::BLOCK_OPERATIONS`]), emitted whole and as two variants (its
 /// first and second halves of outputs, chosen by `chart`).
 #[test]
@@ -567,7 +567,7 @@ fn emitted_code_compiles_warning_free_and_matches_the_interpreter() {
             .collect();
         programs.push(lower(&store, &symbols, &outputs).unwrap());
     }
-    while every_output.len() < 1200 {
+    while every_output.len() < 4000 {
         let tree = tree().new_tree(&mut runner).unwrap().current();
         every_output.push(build(&mut store, &leaves, &tree));
     }

@@ -158,11 +158,17 @@ impl<'a> Writer<'a> {
     }
 
     /// The receiver of a method call, and its width: parenthesized unless
-    /// an atom, and a literal suffixed with its type.
+    /// an atom, a literal suffixed with its type, and an expression of
+    /// literals alone (`(10.0 * 10.0).sin()` does not compile) bound by a
+    /// typed `let`.
     fn method_receiver(&mut self, value: Value) -> (TokenStream, usize) {
-        if let State::Constant(x) = self.states[value.index()] {
-            let receiver = literal(x, true);
-            return (receiver.tokens, receiver.width);
+        match &self.states[value.index()] {
+            State::Constant(x) => {
+                let receiver = literal(*x, true);
+                return (receiver.tokens, receiver.width);
+            }
+            State::Inline(expression) if !expression.typed => self.bind_inline(value),
+            _ => {}
         }
         let receiver = self.fitted(value, WIDTH);
         let parenthesize = receiver.binding < Binding::Atom;
