@@ -10,14 +10,8 @@
 //! the closed form of its appendix A, every entry to 1e-12 relative (1e-12
 //! absolute where it is 0). Each command derives the bicycle once.
 
-#[allow(dead_code)]
-#[path = "../models/tests/support/benchmark_bicycle.rs"]
-mod benchmark_bicycle;
-#[path = "support/canonical_form.rs"]
-mod canonical_form;
-
-use benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
-use canonical_form::{assert_entries, printed_matrix};
+use crate::support::benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
+use crate::support::canonical_form::{assert_entries, printed_matrix};
 use nalgebra::{Complex, Matrix2};
 use std::path::PathBuf;
 use std::process::Command;

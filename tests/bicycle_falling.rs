@@ -10,10 +10,8 @@
 //! horizontal and its contact point, the lowest point of the rim, is
 //! undefined: the error names that square root.
 
-mod support;
-
+use crate::support::{chaplygin, read_csv};
 use std::path::PathBuf;
-use support::{chaplygin, read_csv};
 
 /// Upright at 3 m/s (`dot(theta_r) = -10` with `rR = 0.3`), leaning at
 /// 0.2 rad/s, steer at rest, 1 ms steps.

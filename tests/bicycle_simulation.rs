@@ -14,15 +14,10 @@
 //! by least squares over the run are the coefficients of the polynomial
 //! whose roots are `exp(s h)`, `s` the three eigenvalues.
 
-#[allow(dead_code)]
-#[path = "../models/tests/support/benchmark_bicycle.rs"]
-mod benchmark_bicycle;
-mod support;
-
-use benchmark_bicycle::{BenchmarkParameters, Modes};
+use crate::support::benchmark_bicycle::{BenchmarkParameters, Modes};
+use crate::support::{chaplygin, read_csv};
 use nalgebra::{Complex, DMatrix, DVector, Matrix3};
 use std::path::PathBuf;
-use support::{chaplygin, read_csv};
 
 /// The step of the runs, s.
 const STEP: f64 = 0.01;

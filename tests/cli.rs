@@ -6,10 +6,7 @@
 //! canonical form against a hand derivation, the benchmark bicycle's against
 //! the paper in `tests/bicycle.rs`).
 
-#[path = "support/canonical_form.rs"]
-mod canonical_form;
-
-use canonical_form::{assert_entries, printed_matrix};
+use crate::support::canonical_form::{assert_entries, printed_matrix};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

@@ -6,11 +6,9 @@
 //! everywhere is never changed; a declared momentum basis hands over to a
 //! run-time chart where it degenerates.
 
-mod support;
-
+use crate::support::{chaplygin, read_csv};
 use std::f64::consts::PI;
 use std::path::PathBuf;
-use support::{chaplygin, read_csv};
 
 const FIXTURE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),

@@ -4,10 +4,8 @@
 //! same numbers, since both run the same programs with the same operations;
 //! the summary names the engine. The built-ins run from their text too.
 
-mod support;
-
+use crate::support::{chaplygin, read_csv};
 use std::path::PathBuf;
-use support::{chaplygin, read_csv};
 
 const BICYCLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/bicycle.model");
 const CASTER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/caster_robot.model");

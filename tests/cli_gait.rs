@@ -5,14 +5,10 @@
 //! independently; the cycle's CSV, the path plot and the snake's
 //! curvature plot; the models a gait cannot move.
 
-#[path = "support/snakeboard_gait.rs"]
-mod snakeboard_gait;
-mod support;
+use crate::support::snakeboard_gait::{hand_derived_cycle, rk4_from_zero};
 
-use snakeboard_gait::{hand_derived_cycle, rk4_from_zero};
-
+use crate::support::{chaplygin, read_csv};
 use std::f64::consts::PI;
-use support::{chaplygin, read_csv};
 
 /// The three-link snake's loop `a1 = 0.8 + 0.35 cos t`, `a2 = -0.3 +
 /// 0.35 sin t` by its hand-derived connection (l = 1): with `s_i = sin a_i`,

@@ -2,9 +2,7 @@
 //! `derive` shows what the mechanism sections derived, a broken mechanism
 //! file is reported at its `file:line:col`.
 
-mod support;
-
-use support::{chaplygin, read_csv};
+use crate::support::{chaplygin, read_csv};
 
 #[test]
 fn list_offers_the_mechanisms() {

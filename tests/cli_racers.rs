@@ -17,10 +17,8 @@
 //! also keeps its own discrete power balance,
 //! `H(X) - H(x) = u1(t + h/2) (phi(X) - phi(x))` per step, to round-off.
 
-mod support;
-
+use crate::support::{chaplygin, read_csv};
 use std::path::PathBuf;
-use support::{chaplygin, read_csv};
 
 /// The roller racer with the joint ahead.
 const RACER: &str = concat!(

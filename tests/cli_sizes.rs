@@ -8,10 +8,8 @@
 //! blade runs on the circle `x = (v/w) sin(w t)`, `y = (v/w) (1 - cos(w t))`,
 //! `theta = w t`, and each cart moves at its own constant speed.
 
-mod support;
-
+use crate::support::{chaplygin, read_csv};
 use std::path::PathBuf;
-use support::{chaplygin, read_csv};
 
 const CARTS: usize = 14;
 const SPEED: f64 = 1.0;

@@ -8,11 +8,9 @@
 //! formulation, the built-in on the JIT and its `.model` file on the
 //! interpreter.
 
-mod support;
-
+use crate::support::{chaplygin, read_csv};
 use std::f64::consts::PI;
 use std::process::Output;
-use support::{chaplygin, read_csv};
 
 const SLEIGH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
 const DISK: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/rolling_disk.model");

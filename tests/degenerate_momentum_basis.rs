@@ -8,13 +8,11 @@
 //! from `phi = 0.5` (no force acts on `phi`), `phi` crosses 1 at
 //! `t = 5/7`, inside the step to `t = 0.72`.
 
-mod support;
-
+use crate::support::{chaplygin, read_csv};
 use chaplygin::runtime::integrate::Rk4;
 use chaplygin::runtime::record::Table;
 use chaplygin::runtime::simulate::{RECONSTRUCTION, Simulation, SimulationError};
 use chaplygin::runtime::system::Momentum;
-use support::{chaplygin, read_csv};
 
 chaplygin::model! {
     /// The lever blade of `tests/models/lever_blade.model`.

@@ -5,6 +5,7 @@
 //! sensitivities; the optimum a stationary point of its cost that beats
 //! 1000 random loops of the same harmonics off the singular set.
 
+use crate::support::snakeboard_gait::hand_derived_cycle;
 use chaplygin::driver::catalog::{Source, built_in};
 use chaplygin::driver::engine::{EngineChoice, Loaded, load};
 use chaplygin::driver::gait::locomotion;
@@ -14,11 +15,6 @@ use chaplygin::gait_design::{
 };
 use chaplygin::runtime::gait::{self, ShapeLoop};
 use std::f64::consts::PI;
-
-#[path = "support/snakeboard_gait.rs"]
-mod snakeboard_gait;
-
-use snakeboard_gait::hand_derived_cycle;
 
 fn loaded(name: &str) -> Loaded {
     let source = Source::BuiltIn(built_in(name).expect("built in"));

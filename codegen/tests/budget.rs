@@ -3,15 +3,13 @@
 //! model whose normal form explodes is rejected with one diagnostic stating
 //! the budget.
 
-mod support;
-
 use chaplygin_codegen::sym::{Budget, DEFAULT_DERIVATION_BUDGET};
 use chaplygin_codegen::{generate, generate_within};
 
 /// The sleigh with an extra kinetic-energy term whose normal form expands
 /// `(sin(x + y) + cos(x - y))^64` (line 15 of the text).
 fn exploding_sleigh() -> String {
-    support::models::SLEIGH.replace(
+    crate::support::models::SLEIGH.replace(
         "inertia/2*dot(theta)^2",
         "inertia/2*dot(theta)^2\n        + (sin(x + y) + cos(x - y))^64*dot(theta)^2",
     )
@@ -19,7 +17,7 @@ fn exploding_sleigh() -> String {
 
 #[test]
 fn built_in_models_use_under_one_percent_of_the_default_budget() {
-    for (name, text) in support::models::built_in() {
+    for (name, text) in crate::support::models::built_in() {
         let budget = Budget::default();
         let generated = generate_within(&text, budget.clone());
         assert!(generated.is_ok(), "{name} rejected");
@@ -34,7 +32,7 @@ fn built_in_models_use_under_one_percent_of_the_default_budget() {
 
 #[test]
 fn a_sufficient_budget_does_not_change_the_generated_code() {
-    let (_, snakeboard) = &support::models::built_in()[0];
+    let (_, snakeboard) = &crate::support::models::built_in()[0];
     let within_default = generate(snakeboard).ok();
     let within_large = generate_within(snakeboard, Budget::new(u64::MAX / 2)).ok();
     assert!(within_default.is_some());
@@ -60,7 +58,7 @@ fn an_exploding_normal_form_is_one_diagnostic_stating_the_limit() {
 
 #[test]
 fn a_budget_of_exactly_the_measured_use_suffices_and_one_less_does_not() {
-    let (_, sleigh) = &support::models::built_in()[3];
+    let (_, sleigh) = &crate::support::models::built_in()[3];
     let measured = Budget::default();
     assert!(generate_within(sleigh, measured.clone()).is_ok());
     assert!(generate_within(sleigh, Budget::new(measured.used())).is_ok());

@@ -4,8 +4,6 @@
 //! compiles to code or to diagnostics, never a panic. (The third target's
 //! property, the normal form keeps the value, is in `src/sym/proptests.rs`.)
 
-mod support;
-
 use chaplygin_codegen::generate_within;
 use chaplygin_codegen::sym::Budget;
 use chaplygin_codegen::syntax::parse_str;
@@ -40,7 +38,7 @@ proptest! {
         pick in any::<u8>(),
         mutations in proptest::collection::vec(any::<u8>(), 0..24),
     ) {
-        let text = support::mutate::mutated_model(pick, &mutations);
+        let text = crate::support::mutate::mutated_model(pick, &mutations);
         if let Err(diagnostics) = generate_within(&text, Budget::new(200_000)) {
             prop_assert!(!diagnostics.is_empty());
         }

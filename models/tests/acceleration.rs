@@ -5,13 +5,11 @@
 //! energy rate equals the input power `qdot . B u` (B as declared), and the
 //! multipliers belong to the rows as declared.
 
-mod common;
-
+use crate::common::towed::Towed;
 use chaplygin_models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
     snakeboard::Snakeboard,
 };
-use common::towed::Towed;
 use proptest::prelude::*;
 
 /// Step of the central differences: truncation error ~h^2, rounding ~1e-16/h.

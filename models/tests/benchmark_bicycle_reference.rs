@@ -3,11 +3,9 @@
 //! paper's published numbers: its canonical matrices, table 2's eigenvalues
 //! and the weave and capsize speeds.
 
-mod support;
-
+use crate::support::benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
 use nalgebra::{Complex, Matrix2};
 use proptest::prelude::*;
-use support::benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
 
 /// The paper's matrices at the benchmark parameters, as printed there
 /// (14 decimals; `M[0][0] = 80.81722` and `K0[0][0] = -80.95` are exact).

@@ -6,17 +6,13 @@
 //! differences, its formulations against each other, and the interpreter's
 //! programs of the same text against the compiled functions.
 
-mod common;
-#[allow(dead_code)]
-mod support;
-
+use crate::common::{assert_close, check_jacobians};
+use crate::support::benchmark_bicycle::BenchmarkParameters;
 use chaplygin::runtime::linalg::central_difference_jacobian;
 use chaplygin::runtime::linearize::point::configuration;
 use chaplygin::runtime::linearize::{Compiled, OperatingPoint, linearize};
 use chaplygin_codegen::interpret::InterpretedModel;
 use chaplygin_models::bicycle::{Bicycle, MODEL_TEXT};
-use common::{assert_close, check_jacobians};
-use support::benchmark_bicycle::BenchmarkParameters;
 
 /// Upright straight running at `v`: `dot(theta_r) = -v / rR`, lean, steer
 /// and their rates zero, the rest solved from the constraints.

@@ -9,16 +9,13 @@
 //! the paper, checked in `benchmark_bicycle_reference.rs`) plus the zero of
 //! the conserved speed. The mechanism bicycle will be checked the same way.
 
-#[allow(dead_code)]
-mod support;
-
+use crate::support::benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
 use chaplygin::runtime::linearize::{
     AccelerationJacobian, CanonicalForm, Compiled, GroupFactor, Linearization, OperatingPoint,
     linearize,
 };
 use chaplygin::runtime::nalgebra::{DMatrix, Matrix2, Vector2};
 use chaplygin::runtime::system::{Domain, LagrangeDalembert, ModelNames};
-use support::benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
 
 /// Roll `phi`, steer `delta` and the rear wheel's rotation `theta_r`, with
 /// lean and steer torques as inputs.

@@ -5,13 +5,11 @@
 //! `reduced_rhs`, taken here by Richardson-extrapolated central differences
 //! (error O(h^4)), independent of both derivations.
 
-mod common;
-
+use crate::common::Random;
 use chaplygin_models::{
     bicycle::Bicycle, differential_drive::DifferentialDrive, rolling_disk::RollingDisk,
     sleigh::Sleigh, snakeboard::Snakeboard,
 };
-use common::Random;
 
 /// Checks the agreement at random states of a model; `angle` is the index of
 /// a coordinate kept within (-1.4, 1.4), away from where the model's basis

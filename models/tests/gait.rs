@@ -4,13 +4,11 @@
 //! the area of small loops, and the configuration-level constraints
 //! integrated on their own.
 
-mod common;
-
+use crate::common::Random;
 use chaplygin::jit::JitModel;
 use chaplygin::runtime::gait::{self, Cycle, FromEquations, ShapeLoop};
 use chaplygin_codegen::interpret::InterpretedModel;
 use chaplygin_models::three_link_snake::ThreeLinkSnake;
-use common::Random;
 use nalgebra::{SMatrix, SVector};
 use std::f64::consts::PI;
 

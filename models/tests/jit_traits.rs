@@ -9,8 +9,7 @@
 //! largest entry of each result; and a run of `Simulation` on the reduced
 //! form of each, the runtime's own systems over both models.
 
-mod common;
-
+use crate::common::random::Random;
 use chaplygin::jit::JitModel;
 use chaplygin::jit::{Fixed, SizeMismatch};
 use chaplygin::runtime::integrate::Midpoint;
@@ -30,7 +29,6 @@ use chaplygin_models::{
     sleigh_bodies::SleighBodies, snakeboard::Snakeboard, snakeboard_bodies::SnakeboardBodies,
     three_link_snake::ThreeLinkSnake,
 };
-use common::random::Random;
 
 const TOLERANCE: f64 = 1e-12;
 const STATES: usize = 20;

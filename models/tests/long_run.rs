@@ -4,7 +4,7 @@
 //! largest along the way. Ignored by default (it takes a minute in release):
 //!
 //! ```text
-//! cargo test --release -p chaplygin-models --test long_run -- --ignored --nocapture
+//! cargo test --release -p chaplygin-models --test integration long_run:: -- --ignored --nocapture
 //! ```
 //!
 //! The numbers are recorded in BENCHMARKS.md.

@@ -4,13 +4,11 @@
 //! `momentum_rhs`; the Jacobians of `momentum_rhs` and `body_velocity`
 //! against central differences.
 
-mod common;
-
+use crate::common::{Random, rk4};
 use chaplygin_models::differential_drive::DifferentialDrive;
 use chaplygin_models::rolling_disk::RollingDisk;
 use chaplygin_models::sleigh::Sleigh;
 use chaplygin_models::snakeboard::Snakeboard;
-use common::{Random, rk4};
 
 fn close(actual: f64, expected: f64, tolerance: f64, what: &str) {
     assert!(

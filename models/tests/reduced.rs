@@ -4,13 +4,11 @@
 //! derivatives agree with central differences. A new built-in model joins by
 //! one `reduced_model!` line and one test calling `check_reduced_model`.
 
-mod common;
-
+use crate::common::{Random, check_reduced_model, rk4};
 use chaplygin_models::{
     differential_drive::DifferentialDrive, rolling_disk::RollingDisk, sleigh::Sleigh,
     snakeboard::Snakeboard,
 };
-use common::{Random, check_reduced_model, rk4};
 
 reduced_model!(Snakeboard);
 reduced_model!(Sleigh);

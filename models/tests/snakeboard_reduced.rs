@@ -2,10 +2,8 @@
 //! derivation of MATH.md 3.1 (Duindam & Stramigioli 2004), and the tool's own
 //! momentum basis against the declared one.
 
-mod common;
-
+use crate::common::{Random, rk4};
 use chaplygin_models::snakeboard::Snakeboard;
-use common::{Random, rk4};
 
 chaplygin::model! {
     /// The snakeboard without a declared momentum basis: the tool picks `h = (g X)^T`.

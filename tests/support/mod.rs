@@ -1,5 +1,13 @@
-//! What the command-line tests share: running the binary, reading the CSV
-//! files it writes.
+//! What the integration tests share: running the binary, reading the CSV
+//! files it writes, the canonical form it prints, the snakeboard's
+//! hand-derived gait, the benchmark bicycle's closed form (from the models'
+//! tests).
+
+#[allow(dead_code)]
+#[path = "../../models/tests/support/benchmark_bicycle.rs"]
+pub mod benchmark_bicycle;
+pub mod canonical_form;
+pub mod snakeboard_gait;
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -26,4 +34,31 @@ pub fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
         })
         .collect();
     (columns, rows)
+}
+
+/// Asserts that every `.rs` file in `dir` (relative to `manifest_dir`) but
+/// `main.rs` is declared `mod NAME;` in its `main.rs`, the root of that
+/// crate's test binary: with `autotests = false`, a file not declared there
+/// would not run at all.
+pub fn assert_declared(manifest_dir: &str, dir: &str) {
+    let dir = Path::new(manifest_dir).join(dir);
+    let main = std::fs::read_to_string(dir.join("main.rs")).expect("the tests' main.rs");
+    let mut missing = Vec::new();
+    for entry in std::fs::read_dir(&dir).expect("the tests' folder") {
+        let path = entry.expect("an entry").path();
+        let Some(name) = path.file_name().and_then(|name| name.to_str()) else {
+            continue;
+        };
+        let Some(module) = name.strip_suffix(".rs") else {
+            continue;
+        };
+        if module != "main" && !main.lines().any(|line| line == format!("mod {module};")) {
+            missing.push(name.to_string());
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "not declared in {}: {missing:?}",
+        dir.join("main.rs").display()
+    );
 }
