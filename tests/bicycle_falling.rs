@@ -9,9 +9,19 @@
 //! without a stop condition, both stop where the front wheel's plane turns
 //! horizontal and its contact point, the lowest point of the rim, is
 //! undefined: the error names that square root.
+//!
+//! Each run of the binary derives and compiles the bicycle again (some 5 s
+//! of CPU in the test build, a fall 0.3 to 1.3 s): the falls run in this
+//! process, each test on the bicycle it loads once ([`Model`]), the reduced
+//! form's fall, which three tests read, once for them all
+//! ([`reduced_fall`]); the binary runs the first of the runs on to the flat
+//! wheel, its exit status, its one line on standard error and the rows it
+//! wrote.
 
+use crate::support::in_process::Model;
 use crate::support::{chaplygin, read_csv};
 use std::path::PathBuf;
+use std::sync::OnceLock;
 
 /// Upright at 3 m/s (`dot(theta_r) = -10` with `rR = 0.3`), leaning at
 /// 0.2 rad/s, steer at rest, 1 ms steps.
@@ -50,41 +60,44 @@ fn out(name: &str) -> PathBuf {
     out
 }
 
-/// The fall in `formulation` with `integrator` until the lean passes 1 rad.
-fn until_it_lies_down(formulation: &str, integrator: &str) -> Run {
+/// The bicycle built in, loaded on the JIT.
+fn bicycle() -> Model {
+    Model::load("bicycle", "jit")
+}
+
+/// The fall of the reduced form with the discrete gradient until the lean
+/// passes 1 rad, run once for the tests that read it: on `bicycle` where
+/// the test has loaded it, else on one loaded here.
+fn reduced_fall(bicycle: Option<&Model>) -> &'static Run {
+    static FALL: OnceLock<Run> = OnceLock::new();
+    FALL.get_or_init(|| match bicycle {
+        Some(bicycle) => until_it_lies_down(bicycle, "reduced", "discrete-gradient"),
+        None => until_it_lies_down(&self::bicycle(), "reduced", "discrete-gradient"),
+    })
+}
+
+/// The fall of `bicycle` in `formulation` with `integrator` until the lean
+/// passes 1 rad.
+fn until_it_lies_down(bicycle: &Model, formulation: &str, integrator: &str) -> Run {
     let options = ["--formulation", formulation, "--integrator", integrator];
     let name = format!("{formulation}-{integrator}");
-    until_the_lean_passes_1_rad(&name, &[&options[..], &FALL[..]].concat())
+    until_the_lean_passes_1_rad(bicycle, &name, &[&options[..], &FALL[..]].concat())
 }
 
 /// `simulate bicycle` with `options` until the lean passes 1 rad (at most
-/// 4 s), written into the directory `name`.
-fn until_the_lean_passes_1_rad(name: &str, options: &[&str]) -> Run {
-    let out = out(name);
-    let mut arguments = vec![
-        "simulate",
-        "bicycle",
-        "--t-end",
-        "4",
-        "--stop-when",
-        "abs(phi) > 1",
-        "--out",
-        out.to_str().expect("a UTF-8 path"),
-    ];
+/// 4 s), on the loaded `bicycle`; `name` in the messages.
+fn until_the_lean_passes_1_rad(bicycle: &Model, name: &str, options: &[&str]) -> Run {
+    let mut arguments = vec!["--t-end", "4", "--stop-when", "abs(phi) > 1"];
     arguments.extend(options);
-    let output = chaplygin(&arguments);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success(), "{name}: {stderr}");
-    let summary = String::from_utf8_lossy(&output.stdout)
-        .lines()
-        .next()
-        .expect("a summary line")
-        .to_string();
-    let (header, rows) = read_csv(&out.join("trajectory.csv"));
+    let run = bicycle
+        .simulate(&arguments)
+        .unwrap_or_else(|error| panic!("{name}: {error}"));
     Run {
-        summary,
-        header,
-        rows,
+        summary: run
+            .outcome
+            .unwrap_or_else(|error| panic!("{name}: {error}")),
+        header: run.header,
+        rows: run.rows,
     }
 }
 
@@ -116,8 +129,8 @@ fn assert_fell_through_the_steer_singularity(run: &Run) {
 
 #[test]
 fn the_reduced_form_changes_chart_where_the_steer_passes_90_degrees() {
-    let run = until_it_lies_down("reduced", "discrete-gradient");
-    assert_fell_through_the_steer_singularity(&run);
+    let run = reduced_fall(None);
+    assert_fell_through_the_steer_singularity(run);
     assert!(!run.summary.contains("chart switches 0"), "{}", run.summary);
     let charts = run.column("chart");
     assert_eq!(charts[0], 0.0);
@@ -136,11 +149,12 @@ fn the_reduced_form_changes_chart_where_the_steer_passes_90_degrees() {
 /// a steer spinning at up to 40 rad/s).
 #[test]
 fn the_lagrange_dalembert_form_falls_the_same_way() {
-    let lagrange = until_it_lies_down("lagrange", "rk4");
+    let bicycle = bicycle();
+    let lagrange = until_it_lies_down(&bicycle, "lagrange", "rk4");
     assert_fell_through_the_steer_singularity(&lagrange);
-    let reduced = until_it_lies_down("reduced", "discrete-gradient");
+    let reduced = reduced_fall(Some(&bicycle));
     let end = |run: &Run| *run.column("t").last().expect("rows");
-    assert!((end(&lagrange) - end(&reduced)).abs() < 1e-3);
+    assert!((end(&lagrange) - end(reduced)).abs() < 1e-3);
 }
 
 /// At the default step of 10 ms, Newton's iteration of the discrete
@@ -150,18 +164,19 @@ fn the_lagrange_dalembert_form_falls_the_same_way() {
 /// 1 ms run is 1.1e-4 s from a 0.1 ms run, and 100 times that is 0.011 s).
 #[test]
 fn steps_too_long_for_the_whipping_steer_are_split_not_ended() {
-    let fine = until_it_lies_down("reduced", "discrete-gradient");
+    let bicycle = bicycle();
+    let fine = reduced_fall(Some(&bicycle));
     // the fall without its `--dt`: the default step and integrator
-    let coarse = until_the_lean_passes_1_rad("default-step", &FALL[..6]);
+    let coarse = until_the_lean_passes_1_rad(&bicycle, "default-step", &FALL[..6]);
     let summary = &coarse.summary;
     assert!(summary.contains("of discrete-gradient"), "{summary}");
     assert!(summary.contains("; steps split "), "{summary}");
     let end = |run: &Run| *run.column("t").last().expect("rows");
     assert!(
-        (end(&coarse) - end(&fine)).abs() < 0.02,
+        (end(&coarse) - end(fine)).abs() < 0.02,
         "{} {}",
         end(&coarse),
-        end(&fine)
+        end(fine)
     );
     let energy = coarse.column("energy");
     let drift = energy
@@ -173,41 +188,58 @@ fn steps_too_long_for_the_whipping_steer_are_split_not_ended() {
 
 /// Run on, the fall ends where the front wheel lies flat: every
 /// formulation and integrator stops with the square root of the front
-/// contact named, and never with a bare solver failure.
+/// contact named, and never with a bare solver failure; the binary exits
+/// with that one line on standard error (the first pairing through it, the
+/// others in this process: the same message, the rows it wrote).
 #[test]
 fn run_on_it_stops_where_the_front_wheel_lies_flat() {
-    for (formulation, integrator) in [
+    let bicycle = bicycle();
+    for (i, (formulation, integrator)) in [
         ("reduced", "discrete-gradient"),
         ("reduced", "rk4"),
         ("lagrange", "rk4"),
         ("lagrange", "midpoint"),
         ("lagrange", "dopri5"),
-    ] {
-        let out = out(&format!("flat-{formulation}-{integrator}"));
-        let mut arguments = vec![
-            "simulate",
-            "bicycle",
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut options = vec![
             "--formulation",
             formulation,
             "--integrator",
             integrator,
             "--t-end",
             "4",
-            "--out",
-            out.to_str().expect("a UTF-8 path"),
         ];
-        arguments.extend(FALL);
-        let output = chaplygin(&arguments);
-        let stderr = String::from_utf8_lossy(&output.stderr);
+        options.extend(FALL);
         let context = format!("{formulation} {integrator}");
-        assert!(!output.status.success(), "{context}");
-        assert_eq!(stderr.lines().count(), 1, "{context}: {stderr}");
+        let (error, rows, header) = if i == 0 {
+            let out = out(&format!("flat-{formulation}-{integrator}"));
+            let mut arguments = vec![
+                "simulate",
+                "bicycle",
+                "--out",
+                out.to_str().expect("a UTF-8 path"),
+            ];
+            arguments.extend(&options);
+            let output = chaplygin(&arguments);
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            assert!(!output.status.success(), "{context}");
+            assert_eq!(stderr.lines().count(), 1, "{context}: {stderr}");
+            let (header, rows) = read_csv(&out.join("trajectory.csv"));
+            (stderr.to_string(), rows, header)
+        } else {
+            let run = bicycle.simulate(&options).expect("the run starts");
+            let error = run.outcome.expect_err(&context);
+            assert_eq!(error.lines().count(), 1, "{context}: {error}");
+            (error, run.rows, run.header)
+        };
         assert!(
-            stderr.contains("the model's domain ends in the step from t = 2.9")
-                && stderr.contains("a square root in point `front_contact`"),
-            "{context}: {stderr}"
+            error.contains("the model's domain ends in the step from t = 2.9")
+                && error.contains("a square root in point `front_contact`"),
+            "{context}: {error}"
         );
-        let (header, rows) = read_csv(&out.join("trajectory.csv"));
         let phi = header.iter().position(|h| h == "phi").expect("phi");
         let last = rows.last().expect("rows")[phi];
         assert!(last.abs() > 1.4, "{context}: lean {last}");

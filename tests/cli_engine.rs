@@ -4,7 +4,8 @@
 //! same numbers, since both run the same programs with the same operations;
 //! the summary names the engine. The built-ins run from their text too.
 
-use crate::support::{chaplygin, read_csv};
+use crate::support::chaplygin;
+use crate::support::in_process::Model;
 use std::path::PathBuf;
 
 const BICYCLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/bicycle.model");
@@ -34,13 +35,18 @@ fn summary_without_time(stdout: &str) -> String {
 
 /// The bicycle's file through the lean's push and the chart it runs in,
 /// in the reduced form and in the Lagrange-d'Alembert form: the JIT's
-/// trajectory is the interpreter's, digit for digit.
+/// trajectory is the interpreter's, digit for digit (bit for bit), and the
+/// summaries differ only in the engine they name. In this process, the
+/// file loaded once on each engine ([`Model`]); the tests below run the
+/// binary on both.
 #[test]
 fn the_jit_runs_the_bicycle_file_as_the_interpreter_does() {
+    let (jit, interpreter) = (
+        Model::load(BICYCLE, "jit"),
+        Model::load(BICYCLE, "interpret"),
+    );
     for formulation in ["reduced", "lagrange"] {
-        let common = [
-            "simulate",
-            BICYCLE,
+        let options = [
             "--formulation",
             formulation,
             "--initial",
@@ -54,25 +60,28 @@ fn the_jit_runs_the_bicycle_file_as_the_interpreter_does() {
             "--dt",
             "0.005",
         ];
-        let with = |engine: &str| {
-            let mut arguments = common.to_vec();
-            arguments.extend(["--engine", engine]);
-            run(&format!("bicycle-{formulation}-{engine}"), &arguments)
+        let on = |model: &Model| {
+            let run = model.simulate(&options).expect("the run starts");
+            let summary = run.outcome.expect("the run ends");
+            (summary, run.header, run.rows)
         };
-        let (jit_summary, jit_out) = with("jit");
-        let (interpreted_summary, interpreted_out) = with("interpret");
+        let (jit_summary, header, rows) = on(&jit);
+        let (interpreted_summary, interpreted_header, interpreted_rows) = on(&interpreter);
         assert!(jit_summary.contains("engine jit"), "{jit_summary}");
         assert!(
             interpreted_summary.contains("engine interpret"),
             "{interpreted_summary}"
         );
-        let (header, rows) = read_csv(&jit_out.join("trajectory.csv"));
         assert_eq!(rows.len(), 101, "{formulation}");
         let phi = header.iter().position(|h| h == "phi").expect("a column");
         assert!(rows[100][phi] > 0.05, "the lean moved: {}", rows[100][phi]);
-        let text =
-            |out: &PathBuf| std::fs::read_to_string(out.join("trajectory.csv")).expect("csv");
-        assert_eq!(text(&jit_out), text(&interpreted_out), "{formulation}");
+        let bits = |rows: &[Vec<f64>]| -> Vec<Vec<u64>> {
+            (rows.iter())
+                .map(|row| row.iter().map(|value| value.to_bits()).collect())
+                .collect()
+        };
+        assert_eq!(header, interpreted_header, "{formulation}");
+        assert_eq!(bits(&rows), bits(&interpreted_rows), "{formulation}");
         assert_eq!(
             summary_without_time(&jit_summary).replace("jit", "interpret"),
             summary_without_time(&interpreted_summary)

@@ -16,7 +16,13 @@
 //! implies at the step used, whatever its constant. The discrete gradient
 //! also keeps its own discrete power balance,
 //! `H(X) - H(x) = u1(t + h/2) (phi(X) - phi(x))` per step, to round-off.
+//!
+//! The balances take some 20 runs of one model each: they run in this
+//! process ([`Model`]), the racer derived and compiled once per test, the
+//! options read as the binary reads them; the swing through `phi = 0`, the
+//! derivation report and the refused parameters run the binary.
 
+use crate::support::in_process::Model;
 use crate::support::{chaplygin, read_csv};
 use std::path::PathBuf;
 
@@ -103,7 +109,7 @@ impl Run {
 }
 
 /// `simulate model` in `formulation` with `integrator`, step `dt`, and
-/// `arguments`.
+/// `arguments`, through the binary.
 fn simulate(
     model: &str,
     (formulation, integrator): (&str, &str),
@@ -142,12 +148,52 @@ fn simulate(
         .expect("a summary line")
         .to_string();
     let (header, rows) = read_csv(&out.join("trajectory.csv"));
-    assert_eq!(*rows.last().expect("rows").first().expect("t"), 40.0);
-    let run = Run {
-        summary,
-        header,
-        rows,
-    };
+    checked(
+        Run {
+            summary,
+            header,
+            rows,
+        },
+        &context,
+    )
+}
+
+/// [`simulate`] of the loaded `model`, in this process.
+fn simulated(
+    model: &Model,
+    (formulation, integrator): (&str, &str),
+    dt: &str,
+    arguments: &[&str],
+) -> Run {
+    let mut all = vec![
+        "--formulation",
+        formulation,
+        "--integrator",
+        integrator,
+        "--dt",
+        dt,
+    ];
+    all.extend(arguments);
+    let context = format!("{formulation} {integrator} {arguments:?}");
+    let run = model
+        .simulate(&all)
+        .unwrap_or_else(|error| panic!("{context}: {error}"));
+    let summary = run
+        .outcome
+        .unwrap_or_else(|error| panic!("{context}: {error}"));
+    checked(
+        Run {
+            summary,
+            header: run.header,
+            rows: run.rows,
+        },
+        &context,
+    )
+}
+
+/// `run`, which ended at 40 s with its constraints kept to 1e-9.
+fn checked(run: Run, context: &str) -> Run {
+    assert_eq!(*run.rows.last().expect("rows").first().expect("t"), 40.0);
     assert!(
         run.column("constraint_residual").iter().all(|r| *r < 1e-9),
         "{context}"
@@ -218,8 +264,9 @@ fn the_roller_racer_gait_swings_the_joint_and_balances_its_energy() {
     ];
     let u1 = |t: f64| 0.2 * (2.0 * t).cos();
     let rate = |t: f64| -0.4 * (2.0 * t).sin();
+    let model = Model::load(RACER, "jit");
     for pairing in PAIRINGS {
-        let run = |dt: &str| simulate(RACER, pairing, dt, &gait);
+        let run = |dt: &str| simulated(&model, pairing, dt, &gait);
         let standard = run("0.01");
         let phi = standard.column("phi");
         let swing = phi.iter().fold(0.0_f64, |m, p| m.max(p.abs()));
@@ -258,8 +305,9 @@ fn the_roller_racer_circling_runs_40_s_in_every_form() {
         "--t-end",
         "40",
     ];
+    let model = Model::load(RACER, "jit");
     for pairing in PAIRINGS {
-        let run = |dt: &str| simulate(RACER, pairing, dt, &circling);
+        let run = |dt: &str| simulated(&model, pairing, dt, &circling);
         let standard = run("0.01");
         let phi = standard.column("phi");
         assert!(phi.iter().all(|p| (0.3..=1.4).contains(p)), "{pairing:?}");
@@ -319,8 +367,9 @@ fn the_trailing_racer_turns_through_its_basis_singularity_in_every_form() {
     let (d1, d2) = (0.5, 0.3);
     let singular = |phi: f64| d1 * phi.cos() + d2;
     let torque = ["--input", "u1=0.1", "--t-end", "40"];
+    let model = Model::load(TRAILING, "jit");
     for pairing in PAIRINGS {
-        let run = |dt: &str| simulate(TRAILING, pairing, dt, &torque);
+        let run = |dt: &str| simulated(&model, pairing, dt, &torque);
         let standard = run("0.01");
         let phi = standard.column("phi");
         let crossings = phi

@@ -7,7 +7,13 @@
 //! falls without a steering law and stays upright with one. Every
 //! formulation, the built-in on the JIT and its `.model` file on the
 //! interpreter.
+//!
+//! The closed-form checks run in this process ([`Model`]: each model
+//! derived and compiled once, the options read as the binary reads them);
+//! the stops at the start and at equality, the refused conditions and the
+//! recorded inputs run the binary.
 
+use crate::support::in_process::Model;
 use crate::support::{chaplygin, read_csv};
 use std::f64::consts::PI;
 use std::process::Output;
@@ -81,6 +87,23 @@ fn simulate(name: &str, arguments: &[&str]) -> Run {
     }
 }
 
+/// A successful run of the loaded `model` with `options` (those of
+/// `chaplygin simulate` but the model, the engine and `--out`), in this
+/// process: the closed-form checks below take some 60 runs, each of which
+/// the binary would derive and compile its model for again.
+fn simulated(model: &Model, options: &[&str]) -> Run {
+    let run = model
+        .simulate(options)
+        .unwrap_or_else(|error| panic!("{options:?}: {error}"));
+    Run {
+        summary: run
+            .outcome
+            .unwrap_or_else(|error| panic!("{options:?}: {error}")),
+        header: run.header,
+        rows: run.rows,
+    }
+}
+
 /// The formulations and integrators a model without configuration
 /// constraints runs in.
 const RUNS: [(&str, &str); 9] = [
@@ -106,14 +129,12 @@ const RUNS: [(&str, &str); 9] = [
 fn the_sleigh_stops_where_its_heading_crosses_1() {
     let crossing = 0.9 / 0.7;
     for (model, engine) in [("sleigh", "jit"), (SLEIGH, "interpret")] {
+        let loaded = Model::load(model, engine);
         for (formulation, integrator) in RUNS {
             let context = format!("{model} {formulation} {integrator}");
-            let run = simulate(
-                "sleigh",
+            let run = simulated(
+                &loaded,
                 &[
-                    model,
-                    "--engine",
-                    engine,
                     "--formulation",
                     formulation,
                     "--integrator",
@@ -258,11 +279,11 @@ fn disk_arguments<'a>(model: &'a str, formulation: &'a str, integrator: &'a str)
 #[test]
 fn feedback_laws_close_every_formulation_as_their_closed_form_says() {
     for (model, engine) in [("rolling-disk", "jit"), (DISK, "interpret")] {
+        let loaded = Model::load(model, engine);
         for (formulation, integrator) in RUNS {
             let context = format!("{model} {formulation} {integrator}");
-            let mut arguments = disk_arguments(model, formulation, integrator);
-            arguments.extend(["--engine", engine]);
-            let run = simulate("disk", &arguments);
+            let arguments = disk_arguments(model, formulation, integrator);
+            let run = simulated(&loaded, &arguments[1..]);
             let tolerance = match integrator {
                 "dopri5" => 1e-12,
                 "rk4" => 1e-8,
@@ -311,6 +332,7 @@ fn the_recorded_inputs_are_the_laws_at_the_recorded_state() {
 fn a_condition_on_an_input_stops_where_its_closed_form_crosses() {
     let crossing = PI / (3.0 * 3f64.sqrt());
     for model in ["rolling-disk", DISK] {
+        let loaded = Model::load(model, "jit");
         for (formulation, integrator) in RUNS.iter().filter(|(_, i)| *i != "midpoint") {
             let context = format!("{model} {formulation} {integrator}");
             let mut arguments = disk_arguments(model, formulation, integrator);
@@ -318,7 +340,7 @@ fn a_condition_on_an_input_stops_where_its_closed_form_crosses() {
             if *integrator == "discrete-gradient" {
                 arguments.extend(["--dt", "0.001"]);
             }
-            let run = simulate("input", &arguments);
+            let run = simulated(&loaded, &arguments[1..]);
             let (t, condition) = run.stopped();
             assert_eq!(condition, "u_steer < 0", "{context}");
             assert!((t - crossing).abs() < 1e-9, "{context}: {t}");
@@ -356,11 +378,12 @@ const BICYCLE_AT_2: [&str; 14] = [
 /// form alike (the same lean to 1e-11: measured 7e-13).
 #[test]
 fn steering_into_the_fall_keeps_the_bicycle_upright_below_its_weave_speed() {
+    let bicycle = Model::load("bicycle", "jit");
     let mut leans = Vec::new();
     for formulation in ["lagrange", "reduced"] {
         let mut arguments = BICYCLE_AT_2.to_vec();
         arguments.extend([formulation, "--stop-when", "abs(phi) > 0.5"]);
-        let falls = simulate("falls", &arguments);
+        let falls = simulated(&bicycle, &arguments[1..]);
         let (t, _) = falls.stopped();
         assert!(t < 3.0, "{formulation}: falls at {t}");
         assert!(
@@ -370,7 +393,7 @@ fn steering_into_the_fall_keeps_the_bicycle_upright_below_its_weave_speed() {
 
         let mut arguments = BICYCLE_AT_2.to_vec();
         arguments.extend([formulation, "--input", "steer_torque=50*phi+50*dot(phi)"]);
-        let upright = simulate("upright", &arguments);
+        let upright = simulated(&bicycle, &arguments[1..]);
         assert_eq!(upright.last("t"), 10.0, "{formulation}");
         let lean: Vec<(f64, f64)> = upright
             .column("t")

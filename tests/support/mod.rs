@@ -7,6 +7,7 @@
 #[path = "../../models/tests/support/benchmark_bicycle.rs"]
 pub mod benchmark_bicycle;
 pub mod canonical_form;
+pub mod in_process;
 pub mod snakeboard_gait;
 
 use std::path::Path;

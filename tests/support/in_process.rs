@@ -1,0 +1,92 @@
+//! `chaplygin simulate` run in this process: the model read from its text,
+//! derived and compiled once ([`Model::load`]), then run as often as a test
+//! needs through `chaplygin::driver::simulate`, which the binary calls, its
+//! options read by the binary's own definitions (`Request`'s clap
+//! arguments). For tests whose subject is the numbers of many runs rather
+//! than the command line itself: a run of the binary derives and compiles
+//! its model again each time (some 6 s of CPU for the benchmark bicycle in
+//! the test build) and draws its plots. What a run here returns is what the
+//! binary prints and writes: the summary line, or the error after
+//! `error: `, and the rows of `trajectory.csv`.
+
+use chaplygin::driver::catalog::lookup;
+use chaplygin::driver::engine::{EngineChoice, Loaded, load};
+use chaplygin::driver::simulate::{Request, simulate};
+use chaplygin::runtime::record::{Recorder, Table};
+use clap::Parser;
+
+/// `chaplygin simulate`'s options but the model, the engine and `--out`.
+#[derive(Parser)]
+struct Options {
+    #[command(flatten)]
+    request: Request,
+}
+
+/// A model loaded on an engine, for many runs.
+pub struct Model {
+    loaded: Loaded,
+}
+
+/// What a run printed and recorded.
+pub struct Simulated {
+    /// The summary line of a finished run, or the one-line error (without
+    /// `error: `) of a failed one.
+    pub outcome: Result<String, String>,
+    /// The columns of the trajectory.
+    pub header: Vec<String>,
+    /// Its rows, as far as the run got.
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl Model {
+    /// `model` (a built-in's name or a file's path) loaded on `engine`
+    /// (`jit` or `interpret`).
+    pub fn load(model: &str, engine: &str) -> Self {
+        let engine = match engine {
+            "jit" => EngineChoice::Jit,
+            "interpret" => EngineChoice::Interpret,
+            _ => panic!("no engine `{engine}`"),
+        };
+        let source = lookup(model).unwrap_or_else(|error| panic!("{model}: {error}"));
+        let loaded = load(&source, engine).unwrap_or_else(|error| panic!("{model}: {error}"));
+        assert!(loaded.fallback.is_none(), "{model}: {:?}", loaded.fallback);
+        Self { loaded }
+    }
+
+    /// `chaplygin simulate MODEL` with `options`; `Err` with the message
+    /// where the binary would refuse them before the run.
+    pub fn simulate(&self, options: &[&str]) -> Result<Simulated, String> {
+        let arguments = std::iter::once("simulate").chain(options.iter().copied());
+        let request = Options::try_parse_from(arguments)
+            .unwrap_or_else(|error| panic!("{options:?}: {error}"))
+            .request;
+        let finished = simulate(self.loaded.clone(), &request, &mut Nothing, &mut |_| {})
+            .map_err(|error| error.to_string())?;
+        let Table { columns, rows } = finished.table;
+        Ok(Simulated {
+            outcome: finished
+                .outcome
+                .map(|report| report.to_string())
+                .map_err(|error| error.to_string()),
+            header: columns,
+            rows,
+        })
+    }
+}
+
+/// A recorder that keeps nothing (the run's own table keeps every row).
+struct Nothing;
+
+impl Recorder for Nothing {
+    fn start(&mut self, _: &[String]) -> std::io::Result<()> {
+        Ok(())
+    }
+
+    fn record(&mut self, _: &[f64]) -> std::io::Result<()> {
+        Ok(())
+    }
+
+    fn finish(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
