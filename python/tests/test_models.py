@@ -190,3 +190,12 @@ def test_an_optimal_gait_from_python_equals_the_command_lines(command_line):
     assert found.displacement[2] > 0.5
     with pytest.raises(ValueError, match="the limit must be positive"):
         snake.optimal_gait(limit=0.0)
+
+
+def test_the_rust_a_model_compiles_to_is_the_command_lines(command_line):
+    sleigh = chaplygin.builtin("sleigh")
+    code = sleigh.document(format="rust")
+    assert code == command_line("derive", "sleigh", "--format", "rust")
+    assert "    pub fn reduced_rhs(" in code
+    with pytest.raises(ValueError, match="formats: text, latex, json, rust"):
+        sleigh.document(format="c")
