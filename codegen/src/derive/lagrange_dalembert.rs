@@ -49,6 +49,8 @@
 //! [`CLOSED_FORM_LIMIT`], and within [`CLOSED_FORM_PRODUCTS`] term products;
 //! otherwise the numeric strategy is taken outright.
 
+pub mod jacobian;
+
 use crate::ir;
 use crate::model::Model;
 use crate::sym::Context;
@@ -131,6 +133,25 @@ pub struct Force {
     pub expressions: Matrix<ExprId>,
 }
 
+/// The factors of the solve by blocks (see the module documentation),
+/// taken once and reused for every right-hand side: `acceleration`'s and
+/// the columns of its Jacobian ([`jacobian`]).
+#[derive(Clone, Debug)]
+pub struct BlockFactors {
+    /// `L` of `g = L D L^T`, n x n, unit lower-triangular.
+    lower: Matrix<ExprId>,
+    /// `D`, the pivots of `g`.
+    pivots: Vec<ExprId>,
+    /// `W = L^-1 A^T`, n x c.
+    w: Matrix<ExprId>,
+    /// `D^-1 W`.
+    w_scaled: Matrix<ExprId>,
+    /// `L_S` of the Schur complement `S = W^T D^-1 W = L_S D_S L_S^T`, c x c.
+    schur_lower: Matrix<ExprId>,
+    /// `D_S`, the pivots of `S`.
+    schur_pivots: Vec<ExprId>,
+}
+
 /// The term products the exact `B u - C - dV/dq` may take.
 pub const EXACT_FORCE_PRODUCTS: u64 = 2_000_000;
 
@@ -146,6 +167,8 @@ pub struct LagrangeDalembert {
     pub closed_form: Option<ClosedForm>,
     /// The system solved numerically.
     pub saddle_point: SaddlePointSystem,
+    /// The factors its solve by blocks reuses for every right-hand side.
+    pub block_factors: BlockFactors,
     /// `qddot` then `lambda`, the system's solution by blocks, as
     /// expressions over its pieces.
     pub numeric_solution: Vec<ExprId>,
@@ -181,7 +204,8 @@ pub fn derive(model: &Model, cx: &mut Context) -> Result<LagrangeDalembert, Deri
     let inputs = declare_inputs(model, cx);
     let terms = Terms::of(model, cx, &inputs)?;
     let saddle_point = terms.saddle_point(model, cx);
-    let numeric_solution = saddle_point.solution_by_blocks(model, cx)?;
+    let block_factors = BlockFactors::of(model, cx)?;
+    let numeric_solution = saddle_point.solution_by_blocks(&block_factors, cx)?;
     let numeric_weight = ir::estimated_weight(cx, &numeric_solution);
     let closed_form = if closed_form_is_tractable(model) {
         cx.attempt(CLOSED_FORM_PRODUCTS, |cx| terms.closed_form(model, cx))
@@ -202,6 +226,7 @@ pub fn derive(model: &Model, cx: &mut Context) -> Result<LagrangeDalembert, Deri
         inputs,
         closed_form,
         saddle_point,
+        block_factors,
         numeric_solution,
         weighted_costs: (symbolic_weight, numeric_weight),
         strategy,
@@ -306,29 +331,14 @@ impl ClosedForm {
 
 impl SaddlePointSystem {
     /// `qddot` then `lambda` by blocks (see the module documentation), as
-    /// expressions over the system's pieces.
+    /// expressions over the system's pieces and `factors`.
     pub fn solution_by_blocks(
         &self,
-        model: &Model,
+        factors: &BlockFactors,
         cx: &mut Context,
     ) -> Result<Vec<ExprId>, MatrixError> {
-        let a = &model.constraint_expressions;
-        let g = model.energy_expressions.mass_matrix.clone();
-        let force = self.force.expressions.clone();
         let drift = self.drift.expressions(cx);
-        let (lower, pivots) = cx.ldl(&g)?;
-        let w = cx.forward_substitution(&lower, &a.transpose());
-        let z = cx.forward_substitution(&lower, &force);
-        let w_scaled = cx.divide_rows(&w, &pivots)?;
-        let schur = symmetric_product(cx, &w, &w_scaled)?;
-        let reduced_drift = drift.sub(&w_scaled.transpose().mul(&z, cx)?, cx)?;
-        let (schur_lower, schur_pivots) = cx.ldl(&schur)?;
-        let y = cx.forward_substitution(&schur_lower, &reduced_drift);
-        let y = cx.divide_rows(&y, &schur_pivots)?;
-        let multipliers = cx.back_substitution(&schur_lower, &y);
-        let moved = z.add(&w.mul(&multipliers, cx)?, cx)?;
-        let moved = cx.divide_rows(&moved, &pivots)?;
-        let accelerations = cx.back_substitution(&lower, &moved);
+        let (accelerations, multipliers) = factors.solve(cx, &self.force.expressions, &drift)?;
         let mut outputs = accelerations.entries().to_vec();
         outputs.extend(multipliers.entries());
         Ok(outputs)
@@ -341,6 +351,48 @@ impl SaddlePointSystem {
         outputs.extend(self.force.expressions.entries());
         outputs.extend(self.drift.expressions(cx).entries());
         outputs
+    }
+}
+
+impl BlockFactors {
+    /// The factors of `g` and of the Schur complement `A g^-1 A^T`, over
+    /// the expressions of the model's `g` and `A`.
+    pub fn of(model: &Model, cx: &mut Context) -> Result<BlockFactors, MatrixError> {
+        let g = &model.energy_expressions.mass_matrix;
+        let a = &model.constraint_expressions;
+        let (lower, pivots) = cx.ldl(g)?;
+        let w = cx.forward_substitution(&lower, &a.transpose());
+        let w_scaled = cx.divide_rows(&w, &pivots)?;
+        let schur = symmetric_product(cx, &w, &w_scaled)?;
+        let (schur_lower, schur_pivots) = cx.ldl(&schur)?;
+        Ok(BlockFactors {
+            lower,
+            pivots,
+            w,
+            w_scaled,
+            schur_lower,
+            schur_pivots,
+        })
+    }
+
+    /// `(qddot, lambda)` solving `g qddot = force + A^T lambda`,
+    /// `A qddot = drift` column by column: for `k` columns of `force`
+    /// (n x k) and `drift` (c x k), `qddot` is n x k and `lambda` c x k.
+    pub fn solve(
+        &self,
+        cx: &mut Context,
+        force: &Matrix<ExprId>,
+        drift: &Matrix<ExprId>,
+    ) -> Result<(Matrix<ExprId>, Matrix<ExprId>), MatrixError> {
+        let z = cx.forward_substitution(&self.lower, force);
+        let reduced_drift = drift.sub(&self.w_scaled.transpose().mul(&z, cx)?, cx)?;
+        let y = cx.forward_substitution(&self.schur_lower, &reduced_drift);
+        let y = cx.divide_rows(&y, &self.schur_pivots)?;
+        let multipliers = cx.back_substitution(&self.schur_lower, &y);
+        let moved = z.add(&self.w.mul(&multipliers, cx)?, cx)?;
+        let moved = cx.divide_rows(&moved, &self.pivots)?;
+        let accelerations = cx.back_substitution(&self.lower, &moved);
+        Ok((accelerations, multipliers))
     }
 }
 

@@ -6,44 +6,48 @@
 //! acceleration_jacobian(q, qdot, u)   (d qddot/dq, d qddot/dqdot, d qddot/du)
 //! ```
 //!
-//! The Jacobians are derivatives of the very expressions `acceleration`
-//! is emitted from (the closed form or the solve by blocks, whichever the
-//! derivation chose; MATH.md section 2), taken exactly by the engine
-//! ([`crate::sym::Context::derivatives`]), so they agree with `acceleration`
-//! to round-off wherever it is defined. Linearizing the Lagrange-d'Alembert
-//! flow `d(q, qdot)/dt = (qdot, qddot(q, qdot, u))` needs nothing else
-//! (MATH.md section 6).
+//! The Jacobians are the exact derivatives of the expressions `acceleration`
+//! is emitted from ([`crate::derive::lagrange_dalembert::jacobian`]): the
+//! closed form differentiated, or the solve by blocks differentiated
+//! implicitly (the same saddle-point system, solved with the same factors,
+//! for one right-hand side per variable), whichever `acceleration` computes
+//! (MATH.md section 2), so they agree with `acceleration` to round-off
+//! wherever it is defined. Linearizing the Lagrange-d'Alembert flow
+//! `d(q, qdot)/dt = (qdot, qddot(q, qdot, u))` needs nothing else (MATH.md
+//! section 6).
 
 use super::lagrange_dalembert::solution_expressions;
 use super::{Argument, Function, coordinates, f64_type, function_body, velocities};
 use crate::derive::lagrange_dalembert::LagrangeDalembert;
+use crate::derive::lagrange_dalembert::jacobian;
 use crate::diagnostic::Diagnostics;
 use crate::model::{GroupFactor, Model};
 use crate::sym::Context;
-use crate::sym::{ExprId, SymbolId, SymbolKind};
+use crate::sym::{ExprId, Matrix, SymbolId, SymbolKind};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-/// `acceleration_jacobian(&self, q, qdot, u)`, from the expressions of
-/// `qddot` the derivation chose to emit `acceleration` from.
+/// `acceleration_jacobian(&self, q, qdot, u)`, the exact Jacobians of the
+/// expressions the derivation chose to emit `acceleration` from.
 pub(super) fn acceleration_jacobian(
     model: &Model,
     cx: &mut Context,
     derivation: &LagrangeDalembert,
 ) -> Result<Function, Diagnostics> {
     let (n, p) = (model.n(), model.p());
-    let mut accelerations = solution_expressions(model, cx, derivation, derivation.strategy)?;
-    accelerations.truncate(n);
+    let solution = solution_expressions(model, cx, derivation, derivation.strategy)?;
     let inputs = input_symbols(model, cx);
     let coordinates_argument = coordinates(model);
     let velocities_argument = velocities(model);
-    let mut outputs = derivatives_by(cx, &accelerations, &coordinates_argument.symbols);
-    outputs.extend(derivatives_by(
-        cx,
-        &accelerations,
+    let variables = [
+        coordinates_argument.symbols.as_slice(),
         &velocities_argument.symbols,
-    ));
-    outputs.extend(derivatives_by(cx, &accelerations, &inputs));
+        &inputs,
+    ]
+    .concat();
+    let jacobian = jacobian::acceleration_jacobian(model, cx, derivation, &solution, &variables)
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
+    let outputs = by_variables(&jacobian, n, p);
     let arguments = [
         coordinates_argument,
         velocities_argument,
@@ -91,6 +95,19 @@ pub(super) fn acceleration_jacobian(
     })
 }
 
+/// The entries of `d qddot / d(q, qdot, u)` (n x (2n + p)) as its three
+/// blocks, each row-major: by `q`, by `qdot`, by `u`.
+fn by_variables(jacobian: &Matrix<ExprId>, n: usize, p: usize) -> Vec<ExprId> {
+    let rows: Vec<usize> = (0..n).collect();
+    [0..n, n..2 * n, 2 * n..2 * n + p]
+        .into_iter()
+        .flat_map(|block| {
+            let columns: Vec<usize> = block.collect();
+            jacobian.submatrix(&rows, &columns).entries().to_vec()
+        })
+        .collect()
+}
+
 /// An `rows x columns` array of `values` row-major, also when `columns` is 0.
 fn rows_literal(values: &[TokenStream], rows: usize, columns: usize) -> TokenStream {
     let rows = (0..rows).map(|i| {
@@ -107,17 +124,6 @@ fn input_symbols(model: &Model, cx: &mut Context) -> Vec<SymbolId> {
     names
         .iter()
         .map(|name| cx.declare(name, SymbolKind::Auxiliary))
-        .collect()
-}
-
-/// Row-major `d functions_i / d variables_j`.
-fn derivatives_by(cx: &mut Context, functions: &[ExprId], variables: &[SymbolId]) -> Vec<ExprId> {
-    let by_variable: Vec<Vec<ExprId>> = variables
-        .iter()
-        .map(|&v| cx.derivatives(functions, v))
-        .collect();
-    (0..functions.len())
-        .flat_map(|i| by_variable.iter().map(move |column| column[i]))
         .collect()
 }
 

@@ -1,3 +1,4 @@
+use super::jacobian::implicit_jacobian;
 use super::{LagrangeDalembert, Strategy, derive};
 use crate::ir;
 use crate::model::{Model, check};
@@ -352,4 +353,54 @@ fn the_bicycle_emits_its_structured_force() {
     assert!(emitted * 10 < written, "{emitted} vs {written}");
     derivation.saddle_point.force.exact = Some(exact);
     assert_force_values(&model, &mut cx, &derivation, 3, 1e-10);
+}
+
+/// The Jacobian of `qddot` by implicit differentiation takes the values of
+/// the solution by blocks differentiated through its factorization, at
+/// random states: by `q`, `qdot` and `u`, about the closed form and about
+/// the solution by blocks alike (to round-off relative to the largest
+/// entry: the 3D disk's are a million times its smallest).
+#[test]
+fn the_implicit_jacobian_is_the_derivative_of_the_solve() {
+    for source in [
+        crate::fixtures::SNAKEBOARD,
+        SLEIGH,
+        TOWED,
+        CHAIN,
+        ROLLING_DISK_3D,
+    ] {
+        let (model, mut cx, d) = derived(source);
+        let variables = [
+            model.coordinate_symbols().as_slice(),
+            &model.velocities,
+            &d.inputs,
+        ]
+        .concat();
+        let accelerations = &d.numeric_solution[..model.n()];
+        let differentiated: Vec<ExprId> = variables
+            .iter()
+            .flat_map(|&v| cx.derivatives(accelerations, v))
+            .collect();
+        let mut solutions = vec![d.numeric_solution.clone()];
+        solutions.extend(d.closed_form.as_ref().map(|form| form.outputs(&mut cx)));
+        for solution in solutions {
+            let implicit = implicit_jacobian(&model, &mut cx, &d, &solution, &variables)
+                .expect("solves")
+                .transpose();
+            for seed in 1..=5 {
+                let values = random_point(&model, &d.inputs, seed);
+                let value_of = |s: SymbolId| values[&s];
+                let expected = cx.evaluate_many(&differentiated, &value_of);
+                let found = cx.evaluate_many(implicit.entries(), &value_of);
+                let scale = expected.iter().fold(1.0_f64, |m, e| m.max(e.abs()));
+                for (e, f) in expected.iter().zip(&found) {
+                    assert!(
+                        (e - f).abs() <= 1e-9 * scale,
+                        "{}, seed {seed}: {found:?} vs {expected:?}",
+                        model.name
+                    );
+                }
+            }
+        }
+    }
 }
