@@ -125,16 +125,10 @@ fn simulate(
     let mut all = vec![
         "simulate",
         model,
-        "--formulation",
-        formulation,
-        "--integrator",
-        integrator,
-        "--dt",
-        dt,
         "--out",
         out.to_str().expect("a UTF-8 path"),
     ];
-    all.extend(arguments);
+    all.extend(options((formulation, integrator), dt, arguments));
     let output = chaplygin(&all);
     let context = format!("{formulation} {integrator} {arguments:?}");
     assert!(
@@ -165,15 +159,7 @@ fn simulated(
     dt: &str,
     arguments: &[&str],
 ) -> Run {
-    let mut all = vec![
-        "--formulation",
-        formulation,
-        "--integrator",
-        integrator,
-        "--dt",
-        dt,
-    ];
-    all.extend(arguments);
+    let all = options((formulation, integrator), dt, arguments);
     let context = format!("{formulation} {integrator} {arguments:?}");
     let run = model
         .simulate(&all)
@@ -189,6 +175,25 @@ fn simulated(
         },
         &context,
     )
+}
+
+/// The options of a run in `formulation` with `integrator`, step `dt`, and
+/// `arguments`.
+fn options<'a>(
+    (formulation, integrator): (&'a str, &'a str),
+    dt: &'a str,
+    arguments: &[&'a str],
+) -> Vec<&'a str> {
+    let mut all = vec![
+        "--formulation",
+        formulation,
+        "--integrator",
+        integrator,
+        "--dt",
+        dt,
+    ];
+    all.extend(arguments);
+    all
 }
 
 /// `run`, which ended at 40 s with its constraints kept to 1e-9.
