@@ -87,6 +87,33 @@ fn the_compiled_jacobians_are_the_derivatives() {
     );
 }
 
+/// In both charts of D, `reduced_rhs_jacobian` (the chain rule through
+/// `acceleration_jacobian`) is the central differences of `reduced_rhs`
+/// (the structured reduced form, which does not solve the
+/// Lagrange-d'Alembert system), leaning, steered and rolling.
+#[test]
+fn the_reduced_jacobians_are_the_derivatives_of_the_reduced_flow() {
+    let bicycle = Bicycle::default();
+    let q = leaning(&bicycle);
+    let qdot = bicycle.velocities(&q, &[0.3, -0.4, -10.0]);
+    let u = [0.7, -0.2];
+    let state = |alpha: [f64; 3]| -> [f64; 11] {
+        std::array::from_fn(|i| if i < 8 { q[i] } else { alpha[i - 8] })
+    };
+    let x = state(bicycle.momenta(&q, &qdot));
+    assert_close(
+        &bicycle.reduced_rhs_jacobian(&x, &u),
+        &central_difference_jacobian(|x| bicycle.reduced_rhs(x, &u), &x),
+        "d xdot/dx in chart 0",
+    );
+    let x = state(bicycle.momenta_chart1(&q, &qdot));
+    assert_close(
+        &bicycle.reduced_rhs_jacobian_chart1(&x, &u),
+        &central_difference_jacobian(|x| bicycle.reduced_rhs_chart1(x, &u), &x),
+        "d xdot/dx in chart 1",
+    );
+}
+
 /// The interpreter runs the programs the compiled functions were emitted
 /// from: the same numbers, to round-off, at a leaning, rolling state.
 #[test]

@@ -47,6 +47,7 @@
 mod expressions;
 pub mod items;
 mod structured;
+pub mod through_solve;
 
 use super::constraints::{DistributionBasis, Method};
 use crate::model::Model;
@@ -57,6 +58,7 @@ use crate::sym::{
     Atoms, ExprId, Matrix, MatrixError, Poly, Rational, RationalFunction, SymError, SymbolId,
     SymbolKind,
 };
+use through_solve::ThroughSolve;
 
 /// The term products the exact reduced form with the tool's basis may
 /// take; beyond them only the structured form is derived.
@@ -143,8 +145,31 @@ pub struct ReducedExpressions {
     pub gradient: Vec<ExprId>,
     /// `xdot`, s entries.
     pub rhs: Vec<ExprId>,
+    /// `d xdot / dx`.
+    pub rhs_jacobian: RhsJacobian,
     /// `y`, p entries.
     pub output: Vec<ExprId>,
+}
+
+/// How `d xdot / dx` is written.
+#[derive(Clone, Debug)]
+pub enum RhsJacobian {
+    /// `xdot` differentiated as expressions of the state and the inputs,
+    /// s x s row-major.
+    Differentiated(Vec<ExprId>),
+    /// By the chain rule through the Lagrange-d'Alembert solve (the
+    /// structured form; module `through_solve`).
+    ThroughSolve(ThroughSolve),
+}
+
+impl RhsJacobian {
+    /// The s x s entries, row-major.
+    pub fn entries(&self) -> &[ExprId] {
+        match self {
+            RhsJacobian::Differentiated(entries) => entries,
+            RhsJacobian::ThroughSolve(chain) => &chain.jacobian,
+        }
+    }
 }
 
 /// Why the reduced form could not be derived.
@@ -178,6 +203,17 @@ impl PortHamiltonian {
         state.extend(&self.momenta);
         state
     }
+}
+
+/// The derivatives of `functions` by every variable of `state`, row by row.
+fn state_jacobian(cx: &mut Context, state: &[SymbolId], functions: &[ExprId]) -> Vec<ExprId> {
+    let by_variable: Vec<Vec<ExprId>> = state
+        .iter()
+        .map(|&x| cx.derivatives(functions, x))
+        .collect();
+    (0..functions.len())
+        .flat_map(|i| by_variable.iter().map(move |column| column[i]))
+        .collect()
 }
 
 /// Derives the reduced port-Hamiltonian form of `model` (Theorem 1): with a
@@ -223,8 +259,7 @@ pub fn derive(
             (expressions, constant, diagonal, Method::NormalForm)
         }
         None => {
-            let field_expressions = &basis.field_expressions;
-            let expressions = structured::derive(model, cx, field_expressions, &momenta, &inputs)?;
+            let expressions = structured::derive(model, cx, basis, &momenta, &inputs)?;
             let (constant, diagonal) = facts_at_points(model, cx, &expressions.metric_inverse)?;
             (expressions, constant, diagonal, Method::Modular)
         }

@@ -122,6 +122,8 @@ pub(crate) fn emit(
         lagrange_dalembert::acceleration(model, cx, &derivation.lagrange_dalembert)?;
     let acceleration_jacobian =
         linearization::acceleration_jacobian(model, cx, &derivation.lagrange_dalembert)?;
+    let solve_programs = [&acceleration, &acceleration_jacobian]
+        .map(|function| function.lowered.clone().expect("the solve has a program"));
     functions.extend([acceleration, acceleration_jacobian]);
     let forms: Vec<port_hamiltonian::ChartForm> = std::iter::once(port_hamiltonian::ChartForm {
         chart: 0,
@@ -142,7 +144,11 @@ pub(crate) fn emit(
             }),
     )
     .collect();
-    let (reduced, mut reduced_report) = port_hamiltonian::functions(model, cx, &forms)?;
+    let solve = port_hamiltonian::Solve {
+        acceleration: &solve_programs[0],
+        jacobian: &solve_programs[1],
+    };
+    let (reduced, mut reduced_report) = port_hamiltonian::functions(model, cx, &forms, solve)?;
     functions.extend(reduced.chart0);
     let chart_functions = reduced.charts;
     let primary = match derivation.reduced.declared_basis {

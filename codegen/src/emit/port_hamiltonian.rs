@@ -24,8 +24,13 @@ use super::shared::{self, Member, Shared, SharedItem};
 use super::{
     Argument, Function, Lowered, coordinates, f64_type, function_body, matrix_literal, velocities,
 };
-use crate::derive::port_hamiltonian::PortHamiltonian;
+mod through_solve;
+
+pub(super) use through_solve::Solve;
+
 use crate::derive::port_hamiltonian::items::{Item, Items};
+use crate::derive::port_hamiltonian::through_solve::ThroughSolve;
+use crate::derive::port_hamiltonian::{PortHamiltonian, RhsJacobian};
 use crate::diagnostic::Diagnostics;
 use crate::model::Model;
 use crate::sym::Context;
@@ -41,6 +46,16 @@ pub(super) struct ChartForm<'a> {
     pub(super) dependent: &'a [usize],
     pub(super) reduced: &'a PortHamiltonian,
     pub(super) items: &'a Items,
+}
+
+impl ChartForm<'_> {
+    /// The chain rule through the solve, when this chart's Jacobian takes it.
+    fn through_solve(&self) -> Option<&ThroughSolve> {
+        match &self.reduced.expressions.rhs_jacobian {
+            RhsJacobian::ThroughSolve(chain) => Some(chain),
+            RhsJacobian::Differentiated(_) => None,
+        }
+    }
 }
 
 /// The reduced form's functions in every chart: chart 0's ten in the order
@@ -59,12 +74,14 @@ pub(super) fn functions(
     model: &Model,
     cx: &mut Context,
     forms: &[ChartForm],
+    solve: Solve,
 ) -> Result<(ReducedFunctions, Section), Diagnostics> {
     let section = report_section(cx, forms[0].reduced);
     let mut chart0 = Vec::new();
     let mut charts: Vec<Vec<Function>> = forms[1..].iter().map(|_| Vec::new()).collect();
     let mut shared_items = Vec::new();
-    for family in families(cx, forms[0].items) {
+    let through_solve = forms.iter().any(|form| form.through_solve().is_some());
+    for family in families(cx, forms[0].items, through_solve) {
         let specs: Vec<&Spec> = family.iter().map(|&i| &SPECS[i]).collect();
         let in_every_chart = specs
             .iter()
@@ -93,6 +110,30 @@ pub(super) fn functions(
         }
         shared_items.extend(shared);
     }
+    if through_solve {
+        let spec = SPECS
+            .iter()
+            .find(|spec| spec.item == Item::ReducedRhsJacobian)
+            .expect("a row of SPECS");
+        for form in forms {
+            let functions = match form.chart {
+                0 => &mut chart0,
+                chart => &mut charts[chart - 1],
+            };
+            let function = match form.through_solve() {
+                Some(chain) => {
+                    let velocities = functions
+                        .iter()
+                        .find(|function| function.name == "velocities")
+                        .and_then(|function| function.lowered.as_ref())
+                        .expect("velocities is emitted in every chart");
+                    through_solve::function(model, cx, form, spec, chain, velocities, solve)?
+                }
+                None => emit_item(model, cx, form, spec, None)?,
+            };
+            functions.push(function);
+        }
+    }
     let order = |function: &Function| SPECS.iter().position(|spec| spec.name == function.name);
     chart0.sort_by_key(order);
     for functions in &mut charts {
@@ -111,11 +152,15 @@ pub(super) fn functions(
 /// The items of [`SPECS`] by index, grouped into families that share a
 /// body ([`shared::families`]): those of the state `x` (and inputs `u`)
 /// may share, `momenta` and `velocities` take other arguments and stand
-/// alone.
-fn families(cx: &Context, items: &Items) -> Vec<Vec<usize>> {
+/// alone; with `through_solve`, `reduced_rhs_jacobian` is emitted apart
+/// (module `through_solve`).
+fn families(cx: &Context, items: &Items, through_solve: bool) -> Vec<Vec<usize>> {
     let of_state =
         |spec: &Spec| matches!(spec.arguments, Arguments::State | Arguments::StateInputs);
-    let sharing: Vec<usize> = (0..SPECS.len()).filter(|&i| of_state(&SPECS[i])).collect();
+    let apart = |spec: &Spec| through_solve && spec.item == Item::ReducedRhsJacobian;
+    let sharing: Vec<usize> = (0..SPECS.len())
+        .filter(|&i| of_state(&SPECS[i]) && !apart(&SPECS[i]))
+        .collect();
     let outputs: Vec<&[ExprId]> = sharing
         .iter()
         .map(|&i| items.outputs(SPECS[i].item))
@@ -221,7 +266,8 @@ fn report_section(cx: &mut Context, reduced: &PortHamiltonian) -> Section {
             section.line(
                 "derived structured (the exact form is too large to derive): \
                  gbar_inv = X^T g X and gbar by elimination, not expanded; \
-                 Jbar skew-symmetric: yes (by construction)",
+                 Jbar skew-symmetric: yes (by construction); d xdot/dx by the chain rule \
+                 through acceleration_jacobian at qdot = X alpha",
             );
         }
     }
@@ -572,6 +618,24 @@ fn emit_item(
     spec: &Spec,
     called: Option<(TokenStream, Lowered)>,
 ) -> Result<Function, Diagnostics> {
+    let (signature, name, shape) = chart_signature(model, form, spec);
+    let size = |size: Size| size.of(model, form.reduced);
+    let outputs = form.items.outputs(spec.item);
+    named_item(
+        model,
+        cx,
+        signature,
+        name,
+        outputs,
+        |values| assembled(shape, values, size),
+        called,
+    )
+}
+
+/// The signature, name and shape of one row of [`SPECS`] in the chart of
+/// `form`: named `{item}_chart{i}` beyond chart 0, its doc naming the
+/// chart's dependent speeds.
+fn chart_signature(model: &Model, form: &ChartForm, spec: &Spec) -> (Signature, Ident, Shape) {
     let (mut signature, shape) = signature(model, form.reduced, spec);
     let mut name = Ident::new(spec.name, Span::call_site());
     if form.chart > 0 {
@@ -591,17 +655,7 @@ fn emit_item(
             Span::call_site(),
         );
     }
-    let size = |size: Size| size.of(model, form.reduced);
-    let outputs = form.items.outputs(spec.item);
-    named_item(
-        model,
-        cx,
-        signature,
-        name,
-        outputs,
-        |values| assembled(shape, values, size),
-        called,
-    )
+    (signature, name, shape)
 }
 
 /// The signature of one row of [`SPECS`], and its shape.
@@ -634,6 +688,7 @@ fn assembled(shape: Shape, values: &[TokenStream], size: impl Fn(Size) -> usize)
 mod tests {
     use super::*;
     use crate::derive::constraints::distribution_basis;
+    use crate::derive::lagrange_dalembert;
     use crate::derive::port_hamiltonian::{derive, items::items};
     use crate::model::check;
     use crate::syntax::parse_str;
@@ -651,7 +706,20 @@ mod tests {
             reduced: &reduced,
             items: &chosen,
         };
-        let items: Vec<String> = functions(&model, &mut cx, &[form])
+        let derivation = lagrange_dalembert::derive(&model, &mut cx).expect("derives");
+        let programs = [
+            super::super::lagrange_dalembert::acceleration(&model, &mut cx, &derivation)
+                .expect("emits")
+                .0,
+            super::super::linearization::acceleration_jacobian(&model, &mut cx, &derivation)
+                .expect("emits"),
+        ]
+        .map(|function| function.lowered.expect("a program"));
+        let solve = Solve {
+            acceleration: &programs[0],
+            jacobian: &programs[1],
+        };
+        let items: Vec<String> = functions(&model, &mut cx, &[form], solve)
             .expect("emits")
             .0
             .chart0

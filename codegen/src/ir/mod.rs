@@ -72,6 +72,7 @@
 //! out[1] = t9
 //! ```
 
+mod chain;
 mod cost;
 mod emit;
 mod interpret;
@@ -81,6 +82,7 @@ mod properties;
 #[cfg(test)]
 mod tests;
 
+pub use chain::{Source, Stage};
 pub use cost::{before_cse, estimated_weight};
 pub use emit::{BLOCK_OPERATIONS, RustProgram, RustVariants, WIDTH};
 pub use lower::lower;
@@ -217,6 +219,32 @@ impl Op {
             | Op::Exp(_)
             | Op::Ln(_)
             | Op::SinCos { .. } => 20,
+        }
+    }
+
+    /// The operation on the operands `at` maps this one's to (of
+    /// [`Op::SinCos`], the angle; its cosine stays).
+    pub fn with_operands(&self, at: impl Fn(Value) -> Value) -> Op {
+        match *self {
+            Op::Input(slot) => Op::Input(slot),
+            Op::Constant(ref c) => Op::Constant(c.clone()),
+            Op::Add(a, b) => Op::Add(at(a), at(b)),
+            Op::Sub(a, b) => Op::Sub(at(a), at(b)),
+            Op::Mul(a, b) => Op::Mul(at(a), at(b)),
+            Op::Div(a, b) => Op::Div(at(a), at(b)),
+            Op::Neg(a) => Op::Neg(at(a)),
+            Op::Powi(a, n) => Op::Powi(at(a), n),
+            Op::Sqrt(a) => Op::Sqrt(at(a)),
+            Op::Powf(a, ref e) => Op::Powf(at(a), e.clone()),
+            Op::Sin(a) => Op::Sin(at(a)),
+            Op::Cos(a) => Op::Cos(at(a)),
+            Op::Tan(a) => Op::Tan(at(a)),
+            Op::Exp(a) => Op::Exp(at(a)),
+            Op::Ln(a) => Op::Ln(at(a)),
+            Op::SinCos { angle, cosine } => Op::SinCos {
+                angle: at(angle),
+                cosine,
+            },
         }
     }
 
@@ -392,20 +420,6 @@ impl Program {
                     input_names[new] = name.clone();
                     Op::Input(new)
                 }
-                Op::Constant(c) => Op::Constant(c.clone()),
-                &Op::Add(a, b) => Op::Add(at(a), at(b)),
-                &Op::Sub(a, b) => Op::Sub(at(a), at(b)),
-                &Op::Mul(a, b) => Op::Mul(at(a), at(b)),
-                &Op::Div(a, b) => Op::Div(at(a), at(b)),
-                &Op::Neg(a) => Op::Neg(at(a)),
-                &Op::Powi(a, n) => Op::Powi(at(a), n),
-                &Op::Sqrt(a) => Op::Sqrt(at(a)),
-                Op::Powf(a, e) => Op::Powf(at(*a), e.clone()),
-                &Op::Sin(a) => Op::Sin(at(a)),
-                &Op::Cos(a) => Op::Cos(at(a)),
-                &Op::Tan(a) => Op::Tan(at(a)),
-                &Op::Exp(a) => Op::Exp(at(a)),
-                &Op::Ln(a) => Op::Ln(at(a)),
                 &Op::SinCos { angle, cosine } => {
                     let angle = at(angle);
                     let result = number(instruction.result, &mut renumbered);
@@ -416,6 +430,7 @@ impl Program {
                     });
                     continue;
                 }
+                op => op.with_operands(at),
             };
             let result = number(instruction.result, &mut renumbered);
             instructions.push(Instruction { op, result });

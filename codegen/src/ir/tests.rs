@@ -638,3 +638,110 @@ fn emitted_code_compiles_warning_free_and_matches_the_interpreter() {
     assert_eq!(printed, interpreted);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Two programs, the second reading the first's outputs and an input.
+fn two_stages() -> (Program, Program) {
+    let (mut s, symbols, v) = store_with(&["x", "y", "a", "b"]);
+    let sine = s.apply(Function::Sin, v[0]).unwrap();
+    let cosine = s.apply(Function::Cos, v[0]).unwrap();
+    let first = [s.mul2(sine, v[1]), s.add2(cosine, v[1]), s.mul2(v[0], v[0])];
+    let product = s.mul2(v[2], v[3]);
+    let second = [s.add2(product, sine), s.sub(v[2], cosine)];
+    let first = lower(&s, &symbols[..2], &first).unwrap();
+    let reads = [symbols[2], symbols[3], symbols[0]];
+    let second = lower(&s, &reads, &second).unwrap();
+    (first, second)
+}
+
+#[test]
+fn a_chain_computes_what_its_stages_compute_one_by_one() {
+    use super::{Source, Stage};
+    let (first, second) = two_stages();
+    let names = ["x".to_string(), "y".to_string()];
+    let chained = Program::chained(
+        &names,
+        &[
+            Stage {
+                program: &first,
+                sources: &[Source::Input(0), Source::Input(1)],
+            },
+            Stage {
+                program: &second,
+                sources: &[
+                    Source::Output {
+                        stage: 0,
+                        output: 0,
+                    },
+                    Source::Output {
+                        stage: 0,
+                        output: 1,
+                    },
+                    Source::Input(0),
+                ],
+            },
+        ],
+    )
+    .unwrap();
+    for point in [[0.3, -1.7], [2.5, 0.25]] {
+        let between = first.evaluate_vec(&point).unwrap();
+        let expected = second
+            .evaluate_vec(&[between[0], between[1], point[0]])
+            .unwrap();
+        let got = chained.evaluate_vec(&point).unwrap();
+        assert_eq!(
+            got.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            expected.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+        );
+    }
+    // the second stage's sine and cosine are the first's, and `x * x`,
+    // which no output reads, is gone
+    assert_eq!(
+        count(&chained, |op| matches!(op, Op::SinCos { .. })),
+        1,
+        "{chained}"
+    );
+    assert_eq!(
+        after_cse(&chained),
+        after_cse(&first) - 1 + after_cse(&second) - 1
+    );
+}
+
+#[test]
+fn a_chain_refuses_sources_that_do_not_fit() {
+    use super::{Source, Stage};
+    let (first, second) = two_stages();
+    let names = ["x".to_string(), "y".to_string()];
+    let stage = |sources| Stage {
+        program: &second,
+        sources,
+    };
+    let too_few = Program::chained(&names, &[stage(&[Source::Input(0)])]);
+    assert_eq!(
+        too_few.unwrap_err(),
+        IrError::InputCount {
+            expected: 3,
+            found: 1
+        }
+    );
+    let later = [
+        Source::Output {
+            stage: 1,
+            output: 0,
+        },
+        Source::Input(0),
+        Source::Input(1),
+    ];
+    let first_stage = Stage {
+        program: &first,
+        sources: &[Source::Input(0), Source::Input(1)],
+    };
+    assert!(matches!(
+        Program::chained(&names, &[first_stage, stage(&later)]),
+        Err(IrError::UnboundSymbol { .. })
+    ));
+    let beyond = [Source::Input(2), Source::Input(0), Source::Input(1)];
+    assert!(matches!(
+        Program::chained(&names, &[stage(&beyond)]),
+        Err(IrError::UnboundSymbol { .. })
+    ));
+}

@@ -22,6 +22,11 @@ pub struct DistributionBasis {
     pub field_expressions: Matrix<ExprId>,
     /// `X` in exact normal form, when it fits [`EXACT_BASIS_PRODUCTS`].
     pub fields: Option<Matrix>,
+    /// `S`, k x n: the independent speeds `S qdot` of a velocity, a left
+    /// inverse of `X` (`S X = I`, so `qdot = X a` has `a = S qdot`): the
+    /// rows `independent` of the identity, or of `L^-1 = L^T` in the body
+    /// frame.
+    pub speeds: Matrix<ExprId>,
     /// The coordinates whose speeds are dependent (pivot columns), in row order.
     pub dependent: Vec<usize>,
     /// The coordinates whose speeds are independent, in order: `X_j` has a 1
@@ -175,8 +180,13 @@ fn basis_on(
             field_expressions.set(j, k, *a_n.get(row, k));
         }
     }
+    let mut speeds = cx.zero_matrix(independent.len(), n);
+    for (k, &j) in independent.iter().enumerate() {
+        speeds.set(k, j, one);
+    }
     if let Some(frame) = &frame {
         field_expressions = frame.to_coordinates.mul(&field_expressions, cx)?;
+        speeds = speeds.mul(&frame.to_coordinates.transpose(), cx)?;
     }
     let exact_a = &model.constraint_matrix;
     let exact = |cx: &mut Context| match &frame {
@@ -198,6 +208,7 @@ fn basis_on(
     Ok(DistributionBasis {
         field_expressions,
         fields,
+        speeds,
         dependent,
         independent,
         body_frame: frame.is_some(),

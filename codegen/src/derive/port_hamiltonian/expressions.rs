@@ -4,7 +4,9 @@
 //! `xdot = Jbar dHbar/dx + Bbar u`, `y = Bbar^T dHbar/dx` of the exact
 //! gradient's expressions (Duindam & Stramigioli, Theorem 1; MATH.md 3).
 
-use super::{Exact, ReducedExpressions, reduced_energy, symbols_column};
+use super::{
+    Exact, ReducedExpressions, RhsJacobian, reduced_energy, state_jacobian, symbols_column,
+};
 use crate::model::Model;
 use crate::sym::Context;
 use crate::sym::{Matrix, MatrixError, SymbolId};
@@ -43,6 +45,7 @@ impl Exact {
             .mul(&exact_gradient, cx)?
             .add(&input_matrix.mul(&u, cx)?, cx)?;
         let output = input_matrix.transpose().mul(&exact_gradient, cx)?;
+        let rhs_jacobian = RhsJacobian::Differentiated(state_jacobian(cx, &state, rhs.entries()));
         Ok(ReducedExpressions {
             velocity_map: self.velocity_map.to_expression_matrix(cx),
             momentum_map: self.momentum_map.to_expression_matrix(cx),
@@ -53,6 +56,7 @@ impl Exact {
             hamiltonian,
             gradient,
             rhs: rhs.entries().to_vec(),
+            rhs_jacobian,
             output: output.entries().to_vec(),
         })
     }

@@ -22,7 +22,7 @@
 //! snakeboard's `reduced_rhs` is the structured form, the sleigh's the
 //! expanded one.
 
-use super::{Exact, PortHamiltonian, PortHamiltonianError};
+use super::{Exact, PortHamiltonian, PortHamiltonianError, state_jacobian};
 use crate::ir;
 use crate::model::Model;
 use crate::sym::{Context, ExprId, Matrix, Poly, RationalFunction, SymbolId};
@@ -160,9 +160,9 @@ fn structured(
         Item::StructureMatrix => expressions.structure.entries().to_vec(),
         Item::InputMatrix => expressions.input_matrix.entries().to_vec(),
         Item::ReducedRhs => expressions.rhs.clone(),
-        Item::ReducedRhsJacobian => state_jacobian(model, cx, reduced, &expressions.rhs),
+        Item::ReducedRhsJacobian => expressions.rhs_jacobian.entries().to_vec(),
         Item::Output => expressions.output.clone(),
-        Item::OutputJacobian => state_jacobian(model, cx, reduced, &expressions.output),
+        Item::OutputJacobian => state_jacobian(cx, &reduced.state(model), &expressions.output),
     })
 }
 
@@ -196,7 +196,7 @@ fn expanded(
         Item::Output => expressions_of(cx, &exact.output),
         Item::OutputJacobian => {
             let output = expressions_of(cx, &exact.output);
-            state_jacobian(model, cx, reduced, &output)
+            state_jacobian(cx, &reduced.state(model), &output)
         }
     })
 }
@@ -236,23 +236,6 @@ fn expanded_product(
     let atoms = cx.atoms().clone();
     let product = matrix.mul(&column, &atoms)?;
     Ok(expressions_of(cx, product.entries()))
-}
-
-/// The derivatives of `functions` by every state variable, row by row.
-fn state_jacobian(
-    model: &Model,
-    cx: &mut Context,
-    reduced: &PortHamiltonian,
-    functions: &[ExprId],
-) -> Vec<ExprId> {
-    let state = reduced.state(model);
-    let by_variable: Vec<Vec<ExprId>> = state
-        .iter()
-        .map(|&x| cx.derivatives(functions, x))
-        .collect();
-    (0..functions.len())
-        .flat_map(|i| by_variable.iter().map(move |column| column[i]))
-        .collect()
 }
 
 #[cfg(test)]

@@ -36,7 +36,8 @@
 //! so its diagonal pivots never vanish), so sizes grow with the number of
 //! operations rather than with expanded terms.
 
-use super::{ReducedExpressions, reduced_energy, symbols_column};
+use super::{ReducedExpressions, RhsJacobian, reduced_energy, symbols_column, through_solve};
+use crate::derive::constraints::DistributionBasis;
 use crate::model::Model;
 use crate::sym::{Context, ExprId, Matrix, MatrixError, SymbolId};
 
@@ -44,11 +45,12 @@ use crate::sym::{Context, ExprId, Matrix, MatrixError, SymbolId};
 pub(super) fn derive(
     model: &Model,
     cx: &mut Context,
-    fields: &Matrix<ExprId>,
+    basis: &DistributionBasis,
     momenta: &[SymbolId],
     inputs: &[SymbolId],
 ) -> Result<ReducedExpressions, MatrixError> {
     let n = model.n();
+    let fields = &basis.field_expressions;
     let coordinates = model.coordinate_symbols();
     let g = model.energy_expressions.mass_matrix.clone();
     let b = model.input_matrix.to_expression_matrix(cx);
@@ -71,6 +73,7 @@ pub(super) fn derive(
     let zero = cx.integer(0);
     let input_matrix = maps.projection.mul(&b, cx)?.below_zero_rows(n, zero);
     let (rhs, output) = flow(cx, &maps, &core, &gradient[..n], &alpha, &u, &b)?;
+    let chain = through_solve::derive(cx, fields, &basis.speeds, &coordinates, momenta)?;
     Ok(ReducedExpressions {
         velocity_map: maps.velocities,
         momentum_map: maps.momentum_map,
@@ -81,6 +84,7 @@ pub(super) fn derive(
         hamiltonian,
         gradient,
         rhs,
+        rhs_jacobian: RhsJacobian::ThroughSolve(chain),
         output,
     })
 }

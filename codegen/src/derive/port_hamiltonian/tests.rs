@@ -55,14 +55,9 @@ fn the_structured_form_equals_the_exact_form() {
         let (model, mut cx, reduced) = derived(&source);
         assert!(reduced.exact.is_some(), "the exact form fits");
         let basis = distribution_basis(&model, &mut cx).expect("regular at the defaults");
-        let structured = super::structured::derive(
-            &model,
-            &mut cx,
-            &basis.field_expressions,
-            &reduced.momenta,
-            &reduced.inputs,
-        )
-        .expect("derives");
+        let structured =
+            super::structured::derive(&model, &mut cx, &basis, &reduced.momenta, &reduced.inputs)
+                .expect("derives");
         let exact = exact(&reduced).clone();
         let pairs: [(&str, &[ExprId], &[RationalFunction]); 9] = [
             (
