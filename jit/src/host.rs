@@ -72,6 +72,12 @@ pub(crate) fn compile(programs: &[&Program]) -> Result<Code, JitError> {
     Ok(code)
 }
 
+/// Fails with [`JitError::UnsupportedHost`] where Cranelift has no backend
+/// for the host, as [`compile`] would.
+pub(crate) fn supported() -> Result<(), JitError> {
+    host_isa().map(|_| ())
+}
+
 /// The host's ISA with [`SETTINGS`].
 fn host_isa() -> Result<OwnedTargetIsa, JitError> {
     let mut flags = settings::builder();

@@ -2,10 +2,11 @@
 //! Cranelift.
 //!
 //! [`JitModel::from_source`] and [`JitModel::from_file`] load a model from
-//! its text with every derived function compiled to native code: an
+//! its text with its derived functions run as native code: an
 //! [`InterpretedModel`](chaplygin_codegen::interpret::InterpretedModel)
-//! whose engine ([`chaplygin_codegen::interpret::Engine`]) is
-//! [`NativePrograms`]; [`compile`] does the same to a model already loaded.
+//! whose engine ([`chaplygin_codegen::interpret::Engine`]) is [`OnDemand`],
+//! which compiles each function's program ([`NativePrograms`]) the first
+//! time it runs; [`compile`] does the same to a model already loaded.
 //!
 //! [`NativePrograms::compile`] turns a list of
 //! [`Program`]s (the programs of an
@@ -76,7 +77,7 @@ mod translate;
 
 use chaplygin_codegen::ir::{IrError, Program};
 use cranelift_module::ModuleError;
-pub use model::{JitModel, LoadError, compile};
+pub use model::{JitModel, LoadError, OnDemand, compile};
 use native::Code;
 use std::fmt;
 

@@ -2,8 +2,9 @@
 //! as native code, with the interpreter's values; errors of the text with
 //! their line and column.
 
+use chaplygin_codegen::interpret::Engine;
 use chaplygin_codegen::interpret::InterpretedModel;
-use chaplygin_jit::{JitModel, LoadError};
+use chaplygin_jit::{JitModel, LoadError, OnDemand};
 
 const SNAKEBOARD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/snakeboard.model");
 
@@ -56,4 +57,35 @@ fn bad_text_and_missing_files_are_errors() {
         matches!(&missing, Err(LoadError::Read { path, .. }) if path == "/nonexistent/model.model"),
         "{missing:?}"
     );
+}
+
+/// The engine of a loaded model compiles a program the first time it runs
+/// and no other: after one call of each of two functions two programs are
+/// native, and every program gives the interpreter's bits.
+#[test]
+fn programs_are_compiled_when_first_run() {
+    let text = std::fs::read_to_string(SNAKEBOARD).expect("reads");
+    let model = InterpretedModel::from_source(&text).expect("loads");
+    let programs: Vec<_> = model.programs().map(|(_, program)| program).collect();
+    let engine = OnDemand::new(programs.len());
+    assert_eq!(engine.compiled(), 0);
+    let run = |index: usize| {
+        let program = programs[index];
+        let inputs: Vec<f64> = (0..program.input_count())
+            .map(|i| 0.1 * i as f64 - 0.4)
+            .collect();
+        let mut native = vec![0.0; program.outputs().len()];
+        engine
+            .evaluate(index, program, &inputs, &mut native)
+            .expect("runs");
+        let reference = program.evaluate_vec(&inputs).expect("runs");
+        let bits = |values: &[f64]| values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&native), bits(&reference), "program {index}");
+    };
+    run(3);
+    run(3);
+    run(5);
+    assert_eq!(engine.compiled(), 2);
+    (0..programs.len()).for_each(run);
+    assert_eq!(engine.compiled(), programs.len());
 }

@@ -25,7 +25,7 @@
 //! pitched over); where `df/dq` vanishes at the defaults (a pendulum
 //! declared by its Cartesian coordinates), every point is moved onto the
 //! constraints by least-norm Newton steps instead. Points where Newton's
-//! method fails, or where an
+//! method has not converged after [`NEWTON_STEPS`] steps, or where an
 //! expression is undefined (a square root of a negative number), are
 //! skipped. The parameters are at their defaults.
 
@@ -35,6 +35,7 @@ use crate::sym::zero::SplitMix;
 use crate::sym::{Context, ExprId, Matrix, SymbolId};
 use chaplygin_runtime::monitor::{partial_pivots, signed_pivot_ratio};
 use chaplygin_runtime::nalgebra::{DMatrix, DVector};
+use std::cell::RefCell;
 use std::f64::consts::PI;
 
 /// Random lines searched per chart.
@@ -46,6 +47,13 @@ pub const SAMPLES: usize = 160;
 pub const NEAR_ZERO: f64 = 1e-2;
 /// A pivot ratio below this counts as zero: the point lies on the set.
 pub const ZERO: f64 = 1e-8;
+
+/// The Newton steps onto the configuration constraints after which a
+/// point is given up: from the defaults, Newton's method converges
+/// quadratically or not at all (on the benchmark bicycle's 17,000 points it
+/// took at most 8 steps or never converged: a pitch with no root near the
+/// default branch), so more steps are spent on points it never reaches.
+pub const NEWTON_STEPS: usize = 16;
 
 /// The seed of the lines: the search is deterministic.
 const SEED: u64 = 0x5eed_c4a7_5eed_c4a7;
@@ -62,6 +70,16 @@ pub struct FrameRows {
     /// The coordinates solved from the configuration constraints.
     solved: Vec<usize>,
     parameters: Vec<f64>,
+    /// The program's inputs, value table and outputs, kept from one
+    /// evaluation to the next.
+    buffers: RefCell<Buffers>,
+}
+
+#[derive(Default)]
+struct Buffers {
+    inputs: Vec<f64>,
+    values: Vec<f64>,
+    outputs: Vec<f64>,
 }
 
 /// The rows at a configuration on the constraints.
@@ -100,6 +118,7 @@ impl FrameRows {
             varying,
             solved: Vec::new(),
             parameters: model.parameter_defaults(),
+            buffers: RefCell::default(),
         };
         frame.solved = frame.solved_coordinates();
         frame.varying.retain(|i| !frame.solved.contains(i));
@@ -131,9 +150,17 @@ impl FrameRows {
 
     /// `(rows, df/dq, f)` at `q`; `None` where a value is not finite.
     fn evaluate(&self, q: &[f64]) -> Option<(DMatrix<f64>, DMatrix<f64>, DVector<f64>)> {
-        let mut inputs = q.to_vec();
+        let mut buffers = self.buffers.borrow_mut();
+        let Buffers {
+            inputs,
+            values: table,
+            outputs: values,
+        } = &mut *buffers;
+        inputs.clear();
+        inputs.extend(q);
         inputs.extend(&self.parameters);
-        let values = self.program.evaluate_vec(&inputs).ok()?;
+        values.resize(self.program.outputs().len(), 0.0);
+        self.program.evaluate(inputs, table, values).ok()?;
         if !values.iter().all(|v| v.is_finite()) {
             return None;
         }
@@ -158,7 +185,7 @@ impl FrameRows {
             true => &self.solved,
             false => &self.varying,
         };
-        for _ in 0..50 {
+        for _ in 0..NEWTON_STEPS {
             let (rows, jacobian, residual) = self.evaluate(&q)?;
             let scale = jacobian.amax().max(1.0);
             if residual.amax() <= 1e-13 * scale {
@@ -282,12 +309,17 @@ fn bisect(
 /// reaches [`ZERO`].
 fn minimize(f: impl Fn(f64) -> Option<f64>, mut low: f64, mut high: f64) -> Option<f64> {
     let golden = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut left, mut right) = (high - golden * (high - low), low + golden * (high - low));
+    let (mut f_left, mut f_right) = (f(left)?, f(right)?);
     for _ in 0..100 {
-        let (left, right) = (high - golden * (high - low), low + golden * (high - low));
-        if f(left)? < f(right)? {
-            high = right;
+        if f_left < f_right {
+            (high, right, f_right) = (right, left, f_left);
+            left = high - golden * (high - low);
+            f_left = f(left)?;
         } else {
-            low = left;
+            (low, left, f_left) = (left, right, f_right);
+            right = low + golden * (high - low);
+            f_right = f(right)?;
         }
     }
     let middle = (low + high) / 2.0;
