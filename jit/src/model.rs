@@ -43,7 +43,7 @@ pub fn compile(model: &mut InterpretedModel) -> Result<(), JitError> {
 /// The engine of [`compile`]: each program compiled to native code
 /// ([`NativePrograms`]) on its first run, by the thread that runs it, and
 /// kept. A model loads without compiling what it never runs (a
-/// linearization of the benchmark bicycle runs five of its 33 programs);
+/// linearization of the benchmark bicycle runs six of its 29 programs);
 /// once a program is compiled its runs allocate nothing. Should Cranelift
 /// refuse a program, that program is interpreted instead (the same bits).
 pub struct OnDemand {
