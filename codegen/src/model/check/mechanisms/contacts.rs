@@ -4,7 +4,9 @@
 use super::super::context::Context;
 use super::super::items::{check_unique_in_section, item_expression, named_item};
 use super::bodies::center;
-use super::values::{Row, check_configuration_only, evaluator, linear_coefficients};
+use super::values::{
+    Row, check_configuration_only, evaluator, gradient_coefficients, linear_coefficients,
+};
 use crate::model::Declared;
 use crate::model::mechanism::bodies::Body;
 use crate::model::mechanism::evaluate::Reference;
@@ -176,7 +178,7 @@ pub(super) fn holonomic(
         let Ok(rate) = space::time_derivative(&mut cx.sym, f, q) else {
             continue;
         };
-        let form = match linear_coefficients(cx, rate, q) {
+        let form = match gradient_coefficients(cx, f, q) {
             Ok(form) => form,
             Err(error) => {
                 cx.diagnostics.error(expr.first_span(), error.to_string());

@@ -54,6 +54,21 @@ pub(super) fn check_configuration_only(
     !has_velocity
 }
 
+/// The normal forms of `df/dq_j`, the coefficients of `df/dt`: `f`'s
+/// normal form differentiated exactly, one derivative per coordinate. For
+/// the benchmark bicycle's front contact height (a square root) this takes
+/// a fiftieth of normalizing each coefficient of `df/dt` on its DAG.
+pub(super) fn gradient_coefficients(
+    cx: &mut Context,
+    f: ExprId,
+    q: &[SymbolId],
+) -> Result<Vec<RationalFunction>, SymError> {
+    let form = cx.sym.normal(f)?;
+    q.iter()
+        .map(|&coordinate| cx.sym.derivative_of_normal(&form, coordinate))
+        .collect()
+}
+
 /// The normal forms of the coefficients of `form`, linear in the
 /// velocities of `q`: `d form / d qdot_j` taken on its DAG, then each in
 /// normal form (the whole row's normal form, a rolling wheel's square
