@@ -399,12 +399,17 @@ impl Body {
     /// The name to give argument `name` in the signature: itself, or with a
     /// leading underscore when the body does not read it (no unused warnings).
     pub(crate) fn argument(&self, name: &'static str) -> Ident {
-        let spelled = if self.used.contains(&name) {
+        let spelled = if self.reads(name) {
             name.to_string()
         } else {
             format!("_{name}")
         };
         Ident::new(&spelled, Span::call_site())
+    }
+
+    /// Whether the body reads argument `name`.
+    pub(crate) fn reads(&self, name: &'static str) -> bool {
+        self.used.contains(&name)
     }
 }
 

@@ -49,7 +49,7 @@ pub(super) fn function(
     let body = function_body(model, cx, &arguments, &chain.jacobian, |values| {
         matrix_literal(values, s)
     })?;
-    let reads_accelerations = body.argument("qddot") == Ident::new("qddot", Span::call_site());
+    let reads_accelerations = body.reads("qddot");
     let velocities_call = match form.chart {
         0 => Ident::new("velocities", Span::call_site()),
         chart => Ident::new(&format!("velocities_chart{chart}"), Span::call_site()),
