@@ -50,7 +50,7 @@ pub const ZERO: f64 = 1e-8;
 
 /// The Newton steps onto the configuration constraints after which a
 /// point is given up: from the defaults, Newton's method converges
-/// quadratically or not at all (on the benchmark bicycle's 17,000 points it
+/// quadratically or not at all (on the benchmark bicycle's 10,433 points it
 /// took at most 8 steps or never converged: a pitch with no root near the
 /// default branch), so more steps are spent on points it never reaches.
 pub const NEWTON_STEPS: usize = 16;
