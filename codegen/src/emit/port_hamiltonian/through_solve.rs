@@ -12,7 +12,7 @@
 use super::{ChartForm, Spec, chart_signature};
 use crate::derive::port_hamiltonian::through_solve::ThroughSolve;
 use crate::diagnostic::Diagnostics;
-use crate::emit::{Argument, Function, Lowered, function_body, matrix_literal};
+use crate::emit::{Argument, Function, Lowered, f64_type, function_body, matrix_literal};
 use crate::ir::{Program, Source, Stage};
 use crate::model::Model;
 use crate::sym::Context;
@@ -58,9 +58,10 @@ pub(super) fn function(
         reads_accelerations.then(|| quote!(let (qddot, _) = self.acceleration(&q, &qdot, u);));
     let (by_q, by_qdot) = (body.argument("dqddot_dq"), body.argument("dqddot_dqdot"));
     let statements = body.statements;
+    let f64 = f64_type();
     let prelude = quote! {
-        let q: [::core::primitive::f64; #n] = ::core::array::from_fn(|i| x[i]);
-        let alpha: [::core::primitive::f64; #k] = ::core::array::from_fn(|i| x[#n + i]);
+        let q: [#f64; #n] = ::core::array::from_fn(|i| x[i]);
+        let alpha: [#f64; #k] = ::core::array::from_fn(|i| x[#n + i]);
         let qdot = self.#velocities_call(&q, &alpha);
         #accelerations
         let (#by_q, #by_qdot, _) = self.acceleration_jacobian(&q, &qdot, u);
