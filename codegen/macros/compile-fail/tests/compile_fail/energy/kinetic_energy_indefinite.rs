@@ -1,0 +1,13 @@
+// Rule: mass matrix not positive definite (sign error: `- (dot(y) + ...)^2`, so g_yy = -m). Error at the section name `kinetic_energy`.
+chaplygin_macros::model! {
+    pub struct Sleigh {
+        coordinates: [x, y, theta],
+        parameters: [m = 1.0, inertia = 0.1, a = 0.5],
+        kinetic_energy: m/2*((dot(x) - a*sin(theta)*dot(theta))^2
+            - (dot(y) + a*cos(theta)*dot(theta))^2) + inertia/2*dot(theta)^2,
+        potential_energy: 0,
+        constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
+    }
+}
+
+fn main() {}

@@ -1,0 +1,16 @@
+// Rule: velocities in the mass matrix (entry (3, 3) contains `dot(theta)`). Error at `dot` in `dot(theta)`.
+chaplygin_macros::model! {
+    pub struct Sleigh {
+        coordinates: [x, y, theta],
+        parameters: [m = 1.0, inertia = 0.1, a = 0.5],
+        mass_matrix: [
+            [m, 0, -m*a*sin(theta)],
+            [0, m, m*a*cos(theta)],
+            [-m*a*sin(theta), m*a*cos(theta), inertia + m*a^2*dot(theta)],
+        ],
+        potential_energy: 0,
+        constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
+    }
+}
+
+fn main() {}

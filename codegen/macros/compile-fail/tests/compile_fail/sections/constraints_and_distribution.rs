@@ -1,0 +1,17 @@
+// Rule: both `constraints` and `distribution` given (they agree: D = ker of the blade row). Error at the section name `distribution` (the second one written).
+chaplygin_macros::model! {
+    pub struct Sleigh {
+        coordinates: [x, y, theta],
+        parameters: [m = 1.0, inertia = 0.1, a = 0.5],
+        kinetic_energy: m/2*((dot(x) - a*sin(theta)*dot(theta))^2
+            + (dot(y) + a*cos(theta)*dot(theta))^2) + inertia/2*dot(theta)^2,
+        potential_energy: 0,
+        constraints: [blade = -sin(theta)*dot(x) + cos(theta)*dot(y)],
+        distribution: [
+            forward = [cos(theta), sin(theta), 0],
+            spin = [0, 0, 1],
+        ],
+    }
+}
+
+fn main() {}
