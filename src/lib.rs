@@ -137,7 +137,7 @@ pub mod plot;
 #[cfg(feature = "jit")]
 pub mod jit {
     pub use chaplygin_codegen::interpret::{Fixed, SizeMismatch};
-    pub use chaplygin_jit::{JitError, JitModel, LoadError, NativePrograms, compile};
+    pub use chaplygin_jit::{JitError, JitModel, LoadError, Native, NativePrograms, compile};
 }
 
 /// The README's examples, compiled and run as doctests.

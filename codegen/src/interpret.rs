@@ -27,10 +27,9 @@
 
 mod charts;
 mod dynamics;
-mod engine;
 mod fixed;
 
-pub use engine::{Engine, Interpreter};
+pub use crate::ir::{Backend, Engine, Interpreter};
 pub use fixed::{Fixed, SizeMismatch};
 
 use crate::derive::constraints::ChartFit;
@@ -191,15 +190,26 @@ impl std::fmt::Debug for InterpretedModel {
 
 impl InterpretedModel {
     /// Parses, checks, analyses and emits the model text (the text
-    /// [`crate::generate`] takes), keeping the functions' programs.
+    /// [`crate::generate`] takes), keeping the functions' programs, which
+    /// the [`Interpreter`] runs.
     pub fn from_source(source: &str) -> Result<InterpretedModel, Diagnostics> {
+        InterpretedModel::from_source_on(source, &Interpreter)
+    }
+
+    /// [`InterpretedModel::from_source`], the programs run by the engine
+    /// `backend` makes of them, and the derivation's own numeric searches
+    /// (the charts' singular sets) by the engines it makes of theirs.
+    pub fn from_source_on(
+        source: &str,
+        backend: &dyn Backend,
+    ) -> Result<InterpretedModel, Diagnostics> {
         let Analysed {
             mut model,
             mut cx,
             constraints,
-        } = analysed_model(source)?;
+        } = analysed_model(source, backend)?;
         model.emits_rust = false;
-        let emitted = crate::derive::derivation(&model, &mut cx, &constraints)
+        let emitted = crate::derive::derivation(&model, &mut cx, &constraints, backend)
             .and_then(|derivation| emit::emit(&model, &mut cx, &constraints, &derivation));
         over_budget(&model, &cx)?;
         let emitted = emitted?;
@@ -212,7 +222,7 @@ impl InterpretedModel {
             .collect();
         let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
         let defaults = model.parameter_defaults();
-        Ok(InterpretedModel {
+        let mut interpreted = InterpretedModel {
             names: names(&model),
             sizes: Sizes {
                 n,
@@ -243,7 +253,10 @@ impl InterpretedModel {
                 .as_ref()
                 .map(|symmetry| symmetry.factors.clone())
                 .unwrap_or_default(),
-        })
+        };
+        let programs: Vec<_> = interpreted.programs().map(|(_, program)| program).collect();
+        interpreted.engine = Rc::from(backend.engine(&programs));
+        Ok(interpreted)
     }
 
     /// Runs the programs by the engine `compile` makes of them (given in
@@ -259,8 +272,8 @@ impl InterpretedModel {
         Ok(())
     }
 
-    /// The engine that runs the programs ([`Interpreter`] unless
-    /// [`InterpretedModel::set_engine`] set another).
+    /// The engine that runs the programs ([`Interpreter`] unless loaded on
+    /// another backend or [`InterpretedModel::set_engine`] set another).
     pub fn engine(&self) -> &dyn Engine {
         self.engine.as_ref()
     }

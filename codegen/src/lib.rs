@@ -58,13 +58,17 @@ pub(crate) struct Analysed {
 }
 
 /// A model text parsed, checked and analysed within the default derivation
-/// budget, as both doors do before emitting. The model's context keeps
-/// charging that budget: callers deriving more check [`over_budget`].
-pub(crate) fn analysed_model(source: &str) -> Result<Analysed, diagnostic::Diagnostics> {
+/// budget, as both doors do before emitting, the analysis's numeric search
+/// on the engines `backend` makes. The model's context keeps charging that
+/// budget: callers deriving more check [`over_budget`].
+pub(crate) fn analysed_model(
+    source: &str,
+    backend: &dyn ir::Backend,
+) -> Result<Analysed, diagnostic::Diagnostics> {
     let syntax = syntax::parse_str(source)?;
     let budget = sym::Budget::default();
     let outcome = model::check_within(&syntax, budget.clone()).and_then(|(model, mut cx)| {
-        let constraints = derive::constraints::analyse(&model, &mut cx)?;
+        let constraints = derive::constraints::analyse_on(&model, &mut cx, backend)?;
         Ok(Analysed {
             model,
             cx,
@@ -106,7 +110,7 @@ fn compile_within(
 ) -> Result<TokenStream, diagnostic::Diagnostics> {
     let outcome = model::check_within(syntax, budget.clone()).and_then(|(model, mut cx)| {
         let constraints = derive::constraints::analyse(&model, &mut cx)?;
-        let derivation = derive::derivation(&model, &mut cx, &constraints)?;
+        let derivation = derive::derivation(&model, &mut cx, &constraints, &ir::Interpreter)?;
         emit::model_items(&model, &mut cx, &constraints, &derivation)
     });
     within_budget(syntax, &budget, outcome)

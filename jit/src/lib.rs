@@ -77,7 +77,7 @@ mod translate;
 
 use chaplygin_codegen::ir::{IrError, Program};
 use cranelift_module::ModuleError;
-pub use model::{JitModel, LoadError, OnDemand, compile};
+pub use model::{JitModel, LoadError, Native, OnDemand, compile};
 use native::Code;
 use std::fmt;
 

@@ -1,11 +1,12 @@
 //! A model from its text whose programs run as native code: the engines of
 //! [`InterpretedModel`] ([`chaplygin_codegen::interpret::Engine`]) made of
 //! [`NativePrograms`], all compiled at once or each on its first run
-//! ([`OnDemand`]), and [`JitModel`], a model loaded that way.
+//! ([`OnDemand`], which the [`Native`] backend makes), and [`JitModel`], a
+//! model loaded that way.
 
 use crate::{JitError, NativePrograms, host};
 use chaplygin_codegen::diagnostic::Diagnostics;
-use chaplygin_codegen::interpret::{Engine, InterpretedModel, Interpreter};
+use chaplygin_codegen::interpret::{Backend, Engine, InterpretedModel, Interpreter};
 use chaplygin_codegen::ir::{IrError, Program};
 use std::ops::{Deref, DerefMut};
 use std::path::Path;
@@ -34,10 +35,32 @@ impl Engine for NativePrograms {
 /// # Errors
 /// [`JitError::UnsupportedHost`].
 pub fn compile(model: &mut InterpretedModel) -> Result<(), JitError> {
-    host::supported()?;
-    model.set_engine(|programs| {
-        Ok::<_, JitError>(Box::new(OnDemand::new(programs.len())) as Box<dyn Engine>)
-    })
+    let native = Native::for_host()?;
+    model.set_engine(|programs| Ok(native.engine(programs)))
+}
+
+/// The backend of native code on this host: its engines are [`OnDemand`].
+/// A model loaded on it ([`InterpretedModel::from_source_on`]) runs its
+/// derivation's numeric searches as native code too, not only its
+/// functions.
+#[derive(Clone, Copy, Debug)]
+pub struct Native(());
+
+impl Native {
+    /// The backend, where Cranelift supports the host.
+    ///
+    /// # Errors
+    /// [`JitError::UnsupportedHost`].
+    pub fn for_host() -> Result<Native, JitError> {
+        host::supported()?;
+        Ok(Native(()))
+    }
+}
+
+impl Backend for Native {
+    fn engine(&self, programs: &[&Program]) -> Box<dyn Engine> {
+        Box::new(OnDemand::new(programs.len()))
+    }
 }
 
 /// The engine of [`compile`]: each program compiled to native code
@@ -137,12 +160,13 @@ impl JitModel {
 
     /// The model of `text`, its diagnostics rendered against `file`.
     fn named(file: &str, text: &str) -> Result<JitModel, LoadError> {
-        let mut model =
-            InterpretedModel::from_source(text).map_err(|diagnostics| LoadError::Model {
+        let native = Native::for_host()?;
+        let model = InterpretedModel::from_source_on(text, &native).map_err(|diagnostics| {
+            LoadError::Model {
                 rendered: diagnostics.render(file),
                 diagnostics,
-            })?;
-        compile(&mut model)?;
+            }
+        })?;
         Ok(JitModel(model))
     }
 

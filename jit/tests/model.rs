@@ -2,9 +2,11 @@
 //! as native code, with the interpreter's values; errors of the text with
 //! their line and column.
 
-use chaplygin_codegen::interpret::Engine;
 use chaplygin_codegen::interpret::InterpretedModel;
-use chaplygin_jit::{JitModel, LoadError, OnDemand};
+use chaplygin_codegen::interpret::{Backend, Engine};
+use chaplygin_codegen::ir::Program;
+use chaplygin_jit::{JitModel, LoadError, Native, OnDemand};
+use std::cell::RefCell;
 
 const SNAKEBOARD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/snakeboard.model");
 
@@ -88,4 +90,38 @@ fn programs_are_compiled_when_first_run() {
     assert_eq!(engine.compiled(), 2);
     (0..programs.len()).for_each(run);
     assert_eq!(engine.compiled(), programs.len());
+}
+
+/// A model loaded on the native backend searches for where its charts of D
+/// degenerate on that backend too: the backend makes an engine of the
+/// search's one program, then one of the model's programs, and the search
+/// finds what it finds on the interpreter (the engines agree bit for bit).
+#[test]
+fn the_chart_search_runs_on_the_backend_the_model_loads_on() {
+    struct Recording {
+        native: Native,
+        programs: RefCell<Vec<usize>>,
+    }
+    impl Backend for Recording {
+        fn engine(&self, programs: &[&Program]) -> Box<dyn Engine> {
+            self.programs.borrow_mut().push(programs.len());
+            self.native.engine(programs)
+        }
+    }
+    let text = include_str!("../../tests/models/sleigh_no_symmetry.model");
+    let recording = Recording {
+        native: Native::for_host().expect("Cranelift supports the host"),
+        programs: RefCell::default(),
+    };
+    let native = InterpretedModel::from_source_on(text, &recording).expect("loads");
+    let interpreted = InterpretedModel::from_source(text).expect("loads");
+    assert_eq!(native.engine().name(), "jit");
+    let made = recording.programs.into_inner();
+    assert_eq!(made, [1, native.programs().count()]);
+    assert!(
+        native.report().contains("cos(theta)"),
+        "{}",
+        native.report()
+    );
+    assert_eq!(native.report(), interpreted.report());
 }

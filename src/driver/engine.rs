@@ -4,8 +4,8 @@
 
 use super::catalog::{BuiltIn, Source};
 use super::document::Rejected;
-use crate::jit::JitError;
-use chaplygin_codegen::interpret::InterpretedModel;
+use crate::jit::{JitError, Native};
+use chaplygin_codegen::interpret::{Backend, InterpretedModel, Interpreter};
 
 /// What runs a model's programs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -38,24 +38,32 @@ pub struct Loaded {
 /// # Errors
 /// The model's diagnostics.
 pub fn load(source: &Source, engine: EngineChoice) -> Result<Loaded, Rejected> {
-    load_with(source, engine, crate::jit::compile)
+    load_with(source, engine, Native::for_host)
 }
 
-/// [`load`], the JIT being `compile`: where it fails (Cranelift does not
-/// support the host), the interpreter, and the error in
-/// [`Loaded::fallback`].
+/// [`load`], the JIT's backend being `native`: where there is none
+/// (Cranelift does not support the host), the interpreter, and the error in
+/// [`Loaded::fallback`]. The derivation's own numeric searches run on the
+/// same backend as the model's programs.
 fn load_with(
     source: &Source,
     engine: EngineChoice,
-    compile: impl FnOnce(&mut InterpretedModel) -> Result<(), JitError>,
+    native: impl FnOnce() -> Result<Native, JitError>,
 ) -> Result<Loaded, Rejected> {
     let label = source.file_name();
-    let mut model = InterpretedModel::from_source(source.text())
-        .map_err(|diagnostics| Rejected::new(&label, &diagnostics))?;
-    let fallback = match engine {
-        EngineChoice::Jit => compile(&mut model).err(),
-        EngineChoice::Interpret => None,
+    let (native, fallback) = match engine {
+        EngineChoice::Jit => match native() {
+            Ok(native) => (Some(native), None),
+            Err(error) => (None, Some(error)),
+        },
+        EngineChoice::Interpret => (None, None),
     };
+    let backend: &dyn Backend = match &native {
+        Some(native) => native,
+        None => &Interpreter,
+    };
+    let model = InterpretedModel::from_source_on(source.text(), backend)
+        .map_err(|diagnostics| Rejected::new(&label, &diagnostics))?;
     let built_in = match source {
         Source::BuiltIn(built_in) => Some(*built_in),
         Source::File { .. } => None,
@@ -80,7 +88,7 @@ mod tests {
             path: "sleigh.model".into(),
             text: include_str!("../../models/sleigh.model").into(),
         };
-        let unsupported = |_: &mut _| Err(JitError::UnsupportedHost("riscv32".into()));
+        let unsupported = || Err(JitError::UnsupportedHost("riscv32".into()));
         let loaded = load_with(&sleigh, EngineChoice::Jit, unsupported).expect("the model loads");
         assert_eq!(loaded.model.engine().name(), "interpret");
         assert!(matches!(

@@ -63,6 +63,7 @@ use at_points::{growth_vector_at_point, is_exact_row_at_points, is_involutive_at
 pub use basis::{ChartFit, DistributionBasis, default_point, distribution_basis};
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
+use crate::ir::{Backend, Interpreter};
 use crate::model::Model;
 use crate::sym::modular::ModularError;
 use crate::sym::{Matrix, MatrixError, RationalFunction};
@@ -177,18 +178,33 @@ pub enum AnalysisError {
     Undecided(#[from] ModularError),
 }
 
-/// Analyses the constraints; with `#[deny_holonomic]`, integrable
-/// constraints are an error spanned on the first constraint's name.
+/// Analyses the constraints, the charts' search on the interpreter
+/// ([`analyse_on`]).
 pub fn analyse(model: &Model, cx: &mut Context) -> Result<ConstraintAnalysis, Diagnostics> {
-    let analysis =
-        derive_analysis(model, cx).map_err(|e| Diagnostics::internal(model.name.span(), e))?;
+    analyse_on(model, cx, &Interpreter)
+}
+
+/// Analyses the constraints, the charts' search running its programs on
+/// the engines `backend` makes; with `#[deny_holonomic]`, integrable
+/// constraints are an error spanned on the first constraint's name.
+pub fn analyse_on(
+    model: &Model,
+    cx: &mut Context,
+    backend: &dyn Backend,
+) -> Result<ConstraintAnalysis, Diagnostics> {
+    let analysis = derive_analysis(model, cx, backend)
+        .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
     deny_holonomic(model, &analysis)?;
     Ok(analysis)
 }
 
-fn derive_analysis(model: &Model, cx: &mut Context) -> Result<ConstraintAnalysis, AnalysisError> {
+fn derive_analysis(
+    model: &Model,
+    cx: &mut Context,
+    backend: &dyn Backend,
+) -> Result<ConstraintAnalysis, AnalysisError> {
     let basis = distribution_basis(model, cx)?;
-    let charts = charts::alternative_charts(model, cx, &basis)?;
+    let charts = charts::alternative_charts(model, cx, &basis, backend)?;
     let (integrable, integrability_method) = integrability(model, cx, &basis)?;
     let (growth, growth_complete, growth_method) = growth(model, cx, &basis)?;
     let classification = classify(model, integrable, &growth, growth_complete);

@@ -13,6 +13,7 @@ pub mod momentum;
 pub mod port_hamiltonian;
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
+use crate::ir::Backend;
 use crate::model::Model;
 use crate::sym::Context;
 use constraints::ConstraintAnalysis;
@@ -62,11 +63,14 @@ pub const MOMENTUM_WITH_HOLONOMIC: &str = "not derived: the holonomic constraint
      the shape velocities, and the momentum equation needs free ones; the symmetry reduces \
      the linearization only";
 
-/// Derives every formulation of `model` on the basis of D of `constraints`.
+/// Derives every formulation of `model` on the basis of D of `constraints`,
+/// the numeric searches running their programs on the engines `backend`
+/// makes.
 pub fn derivation(
     model: &Model,
     cx: &mut Context,
     constraints: &ConstraintAnalysis,
+    backend: &dyn Backend,
 ) -> Result<Derivation, Diagnostics> {
     let internal = |model: &Model, error: &dyn std::fmt::Display| {
         Diagnostics::internal(model.name.span(), error)
@@ -79,7 +83,7 @@ pub fn derivation(
         port_hamiltonian::items::items(model, cx, &reduced).map_err(|e| internal(model, &e))?;
     let momentum = match model.symmetry {
         Some(_) if !holonomic_rows_restrict_the_shape(model) => {
-            Some(momentum::derive(model, cx).map_err(|error| refused(model, error))?)
+            Some(momentum::derive(model, cx, backend).map_err(|error| refused(model, error))?)
         }
         _ => None,
     };

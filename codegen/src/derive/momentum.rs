@@ -52,6 +52,7 @@ mod sensitivity;
 use super::constraints::charts::{ChartsError, group_singular_points};
 use super::constraints::default_point;
 use super::port_hamiltonian::{column_of_symbols, fresh_symbol};
+use crate::ir::Backend;
 use crate::model::{GroupFactor, Model};
 use crate::sym::Context;
 use crate::sym::{
@@ -146,8 +147,14 @@ pub enum MomentumError {
     NotQuadratic(usize),
 }
 
-/// Derives the momentum equation and the reconstruction of `model`.
-pub fn derive(model: &Model, cx: &mut Context) -> Result<Momentum, MomentumError> {
+/// Derives the momentum equation and the reconstruction of `model`, the
+/// search for the connection's singular set running its program on the
+/// engine `backend` makes.
+pub fn derive(
+    model: &Model,
+    cx: &mut Context,
+    backend: &dyn Backend,
+) -> Result<Momentum, MomentumError> {
     let symmetry = model.symmetry.as_ref().ok_or(MomentumError::NoSymmetry)?;
     let (factors, group) = (symmetry.factors.clone(), symmetry.group_coordinates());
     let shape: Vec<usize> = (0..model.n()).filter(|i| !group.contains(i)).collect();
@@ -172,7 +179,7 @@ pub fn derive(model: &Model, cx: &mut Context) -> Result<Momentum, MomentumError
                 &shape_symbols,
                 &factors,
             )?),
-            group_singular_points(model, cx)?,
+            group_singular_points(model, cx, backend)?,
         ),
         false => (None, Vec::new()),
     };

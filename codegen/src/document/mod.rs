@@ -53,6 +53,7 @@ use crate::derive::constraints::ConstraintAnalysis;
 use crate::derive::port_hamiltonian::items;
 use crate::diagnostic::Diagnostics;
 use crate::emit;
+use crate::ir::Interpreter;
 use crate::model::Model;
 use crate::sym::latex::latex_rate;
 use crate::sym::{ExprId, Matrix, SymbolId};
@@ -163,7 +164,7 @@ impl Document {
             model,
             mut cx,
             constraints,
-        } = analysed_model(source)?;
+        } = analysed_model(source, &Interpreter)?;
         let document = Self::derive_analysed(&model, &mut cx, &constraints);
         over_budget(&model, &cx)?;
         document
@@ -174,7 +175,7 @@ impl Document {
         cx: &mut Context,
         constraints: &ConstraintAnalysis,
     ) -> Result<Document, Diagnostics> {
-        let derivation = crate::derive::derivation(model, cx, constraints)?;
+        let derivation = crate::derive::derivation(model, cx, constraints, &Interpreter)?;
         let emitted = emit::emit(model, cx, constraints, &derivation)?;
         let rhs = derivation.reduced_items.outputs(items::Item::ReducedRhs);
         let (dalembert, reduced) = (&derivation.lagrange_dalembert, &derivation.reduced);

@@ -75,6 +75,7 @@
 mod chain;
 mod cost;
 mod emit;
+mod engine;
 mod interpret;
 mod lower;
 #[cfg(test)]
@@ -85,6 +86,7 @@ mod tests;
 pub use chain::{Source, Stage};
 pub use cost::{before_cse, estimated_weight};
 pub use emit::{BLOCK_OPERATIONS, RustProgram, RustVariants, WIDTH};
+pub use engine::{Backend, Engine, Interpreter};
 pub use lower::lower;
 
 use crate::sym::Rational;

@@ -45,7 +45,7 @@ mod search;
 use super::DistributionBasis;
 use super::basis::{basis_with_dependent, speed_names};
 use super::body_frame::BodyFrame;
-use crate::ir::IrError;
+use crate::ir::{Backend, IrError};
 use crate::model::Model;
 use crate::sym::Context;
 use crate::sym::{ExprId, Matrix, MatrixError, RationalFunction};
@@ -121,10 +121,12 @@ pub enum ChartsError {
 /// principally kinematic model's connection is singular. Found as the
 /// charts' singular sets are (random lines through the shape coordinates,
 /// the group at its identity, the parameters at their defaults); each
-/// point gives all n coordinates; at most [`KEPT_POINTS`].
+/// point gives all n coordinates; at most [`KEPT_POINTS`]. The rows run on
+/// the engine `backend` makes.
 pub fn group_singular_points(
     model: &Model,
     cx: &mut Context,
+    backend: &dyn Backend,
 ) -> Result<Vec<Vec<f64>>, ChartsError> {
     let Some(symmetry) = &model.symmetry else {
         return Ok(Vec::new());
@@ -134,7 +136,7 @@ pub fn group_singular_points(
     if !frame.body || model.c() != group.len() {
         return Ok(Vec::new());
     }
-    let rows = FrameRows::new(model, cx, &frame.rows, frame.varying.clone())?;
+    let rows = FrameRows::new(model, cx, &frame.rows, frame.varying.clone(), backend)?;
     let mut points: Vec<Vec<f64>> = search::singular_points(&rows, &group)
         .into_iter()
         .map(|at| at.q)
@@ -144,11 +146,13 @@ pub fn group_singular_points(
 }
 
 /// The other charts of D beside `primary` and the singular sets of all;
-/// none for a declared momentum basis or without constraints.
+/// none for a declared momentum basis or without constraints. The search
+/// runs the rows on the engine `backend` makes.
 pub fn alternative_charts(
     model: &Model,
     cx: &mut Context,
     primary: &DistributionBasis,
+    backend: &dyn Backend,
 ) -> Result<Charts, ChartsError> {
     let none = Charts {
         alternatives: Vec::new(),
@@ -158,7 +162,7 @@ pub fn alternative_charts(
         return Ok(none);
     }
     let frame = Frame::of(model, cx, primary.body_frame)?;
-    let rows = FrameRows::new(model, cx, &frame.rows, frame.varying.clone())?;
+    let rows = FrameRows::new(model, cx, &frame.rows, frame.varying.clone(), backend)?;
     let mut charts = vec![primary.dependent.clone()];
     let mut found: Vec<Vec<RowsAt>> = Vec::new();
     while found.len() < charts.len() {
@@ -427,6 +431,7 @@ pub fn report_lines(model: &Model, basis: &DistributionBasis, charts: &Charts) -
 #[cfg(test)]
 mod tests {
     use crate::analysed_model;
+    use crate::ir::Interpreter;
 
     /// The sleigh declared without its symmetry: its blade solved for
     /// `dot(y)` degenerates where `cos(theta) = 0`, solved for `dot(x)` where
@@ -436,7 +441,7 @@ mod tests {
     #[test]
     fn the_sleighs_singular_headings_are_found_and_covered() {
         let source = include_str!("../../../../tests/models/sleigh_no_symmetry.model");
-        let analysed = analysed_model(source).expect("analyses");
+        let analysed = analysed_model(source, &Interpreter).expect("analyses");
         let charts = &analysed.constraints.charts;
         assert_eq!(charts.alternatives.len(), 1);
         assert_eq!(charts.alternatives[0].dependent, [0]);

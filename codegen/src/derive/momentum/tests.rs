@@ -1,4 +1,5 @@
 use super::{Momentum, MomentumError, derive};
+use crate::ir::Interpreter;
 use crate::model::{Model, check};
 use crate::sym::Context;
 use crate::sym::zero::SplitMix;
@@ -10,7 +11,7 @@ const SLEIGH: &str = include_str!("../../../../models/sleigh.model");
 
 fn derived(source: &str) -> (Model, Context, Momentum) {
     let (model, mut cx) = check(&parse_str(source).expect("parses")).expect("checks");
-    let momentum = derive(&model, &mut cx).expect("derives");
+    let momentum = derive(&model, &mut cx, &Interpreter).expect("derives");
     (model, cx, momentum)
 }
 
@@ -170,7 +171,7 @@ fn a_model_without_symmetry_is_refused() {
     let source = SLEIGH.replace("    symmetry: se2(x, y, theta),\n", "");
     let (model, mut cx) = check(&parse_str(&source).expect("parses")).expect("checks");
     assert_eq!(
-        derive(&model, &mut cx).err(),
+        derive(&model, &mut cx, &Interpreter).err(),
         Some(MomentumError::NoSymmetry)
     );
 }

@@ -28,8 +28,12 @@
 //! method has not converged after [`NEWTON_STEPS`] steps, or where an
 //! expression is undefined (a square root of a negative number), are
 //! skipped. The parameters are at their defaults.
+//!
+//! The rows are one program, run by the engine the caller's [`Backend`]
+//! makes of it: the interpreter, or native code where the model is loaded
+//! on the JIT.
 
-use crate::ir::{self, IrError, Program};
+use crate::ir::{self, Backend, Engine, IrError, Program};
 use crate::model::Model;
 use crate::sym::zero::SplitMix;
 use crate::sym::{Context, ExprId, Matrix, SymbolId};
@@ -62,6 +66,7 @@ const SEED: u64 = 0x5eed_c4a7_5eed_c4a7;
 /// points, with the configuration constraints to project onto.
 pub struct FrameRows {
     program: Program,
+    engine: Box<dyn Engine>,
     n: usize,
     c: usize,
     h: usize,
@@ -70,15 +75,14 @@ pub struct FrameRows {
     /// The coordinates solved from the configuration constraints.
     solved: Vec<usize>,
     parameters: Vec<f64>,
-    /// The program's inputs, value table and outputs, kept from one
-    /// evaluation to the next.
+    /// The program's inputs and outputs, kept from one evaluation to the
+    /// next.
     buffers: RefCell<Buffers>,
 }
 
 #[derive(Default)]
 struct Buffers {
     inputs: Vec<f64>,
-    values: Vec<f64>,
     outputs: Vec<f64>,
 }
 
@@ -93,12 +97,13 @@ pub struct RowsAt {
 impl FrameRows {
     /// `rows` (`c x n` expressions), with `varying` the coordinates that
     /// move; the configuration constraints are the model's, each solved for
-    /// one of `varying`.
+    /// one of `varying`; run by the engine `backend` makes.
     pub fn new(
         model: &Model,
         cx: &Context,
         rows: &Matrix<ExprId>,
         varying: Vec<usize>,
+        backend: &dyn Backend,
     ) -> Result<Self, IrError> {
         let (n, c) = (model.n(), model.c());
         let h = model.mechanism.holonomic.len();
@@ -110,8 +115,10 @@ impl FrameRows {
         outputs.extend(model.mechanism.expressions.holonomic_residual.entries());
         let mut inputs: Vec<SymbolId> = model.coordinate_symbols();
         inputs.extend(model.parameter_symbols());
+        let program = ir::lower(cx, &inputs, &outputs)?;
         let mut frame = FrameRows {
-            program: ir::lower(cx, &inputs, &outputs)?,
+            engine: backend.engine(&[&program]),
+            program,
             n,
             c,
             h,
@@ -153,14 +160,13 @@ impl FrameRows {
         let mut buffers = self.buffers.borrow_mut();
         let Buffers {
             inputs,
-            values: table,
             outputs: values,
         } = &mut *buffers;
         inputs.clear();
         inputs.extend(q);
         inputs.extend(&self.parameters);
         values.resize(self.program.outputs().len(), 0.0);
-        self.program.evaluate(inputs, table, values).ok()?;
+        (self.engine.evaluate(0, &self.program, inputs, values)).ok()?;
         if !values.iter().all(|v| v.is_finite()) {
             return None;
         }

@@ -1,11 +1,13 @@
-//! What runs a model's programs: the IR interpreter ([`Interpreter`], the
-//! reference) or another engine made from the same programs, such as native
-//! code compiled from them at run time.
+//! What runs programs: the IR interpreter ([`Interpreter`], the reference)
+//! or another engine made from the same programs, such as native code
+//! compiled from them at run time; and the [`Backend`] that makes an engine
+//! of a set of programs, which a caller chooses once for a model's
+//! programs and for the numeric searches of its derivation alike.
 
-use crate::ir::{IrError, Program};
+use super::{IrError, Program};
 
-/// Runs the programs of one model, numbered as
-/// [`super::InterpretedModel::programs`] lists them.
+/// Runs a set of programs, numbered as their caller lists them (a model's,
+/// or a derivation's own).
 pub trait Engine: Send + Sync {
     /// The engine's name, as summaries print it (`interpret`, `jit`).
     fn name(&self) -> &'static str;
@@ -49,5 +51,18 @@ impl Engine for Interpreter {
         outputs: &mut [f64],
     ) -> Result<(), IrError> {
         VALUES.with_borrow_mut(|values| program.evaluate(inputs, values, outputs))
+    }
+}
+
+/// What makes the engine of a set of programs: the [`Interpreter`], or
+/// another backend (native code compiled at run time).
+pub trait Backend {
+    /// The engine that runs `programs[i]` as program `i`.
+    fn engine(&self, programs: &[&Program]) -> Box<dyn Engine>;
+}
+
+impl Backend for Interpreter {
+    fn engine(&self, _programs: &[&Program]) -> Box<dyn Engine> {
+        Box::new(Interpreter)
     }
 }
