@@ -2,8 +2,9 @@
 //! as native code, with the interpreter's values; errors of the text with
 //! their line and column.
 
+use chaplygin_codegen::document::{Format, derive_document};
 use chaplygin_codegen::interpret::InterpretedModel;
-use chaplygin_codegen::interpret::{Backend, Engine};
+use chaplygin_codegen::interpret::{Backend, Engine, Interpreter};
 use chaplygin_codegen::ir::Program;
 use chaplygin_jit::{JitModel, LoadError, Native, OnDemand};
 use std::cell::RefCell;
@@ -95,7 +96,8 @@ fn programs_are_compiled_when_first_run() {
 /// A model loaded on the native backend searches for where its charts of D
 /// degenerate on that backend too: the backend makes an engine of the
 /// search's one program, then one of the model's programs, and the search
-/// finds what it finds on the interpreter (the engines agree bit for bit).
+/// finds what it finds on the interpreter (the engines agree bit for bit);
+/// so does the derivation document made on it.
 #[test]
 fn the_chart_search_runs_on_the_backend_the_model_loads_on() {
     struct Recording {
@@ -116,7 +118,7 @@ fn the_chart_search_runs_on_the_backend_the_model_loads_on() {
     let native = InterpretedModel::from_source_on(text, &recording).expect("loads");
     let interpreted = InterpretedModel::from_source(text).expect("loads");
     assert_eq!(native.engine().name(), "jit");
-    let made = recording.programs.into_inner();
+    let made = recording.programs.take();
     assert_eq!(made, [1, native.programs().count()]);
     assert!(
         native.report().contains("cos(theta)"),
@@ -124,4 +126,10 @@ fn the_chart_search_runs_on_the_backend_the_model_loads_on() {
         native.report()
     );
     assert_eq!(native.report(), interpreted.report());
+    let document = |backend: &dyn Backend| {
+        derive_document(text, Format::Text, backend).expect("the model derives")
+    };
+    let on_native = document(&recording.native);
+    assert!(on_native.contains("cos(theta)"), "{on_native}");
+    assert_eq!(on_native, document(&Interpreter));
 }

@@ -17,8 +17,10 @@
 //! ```
 
 use super::catalog::Source;
+use crate::jit::Native;
 use chaplygin_codegen::diagnostic::Diagnostics;
 use chaplygin_codegen::document::{self, derive_document};
+use chaplygin_codegen::interpret::{Backend, Interpreter};
 use chaplygin_codegen::model::{Declared, Model, check};
 use chaplygin_codegen::sym::{Context, RationalFunction};
 use chaplygin_codegen::syntax::parse_str;
@@ -70,7 +72,9 @@ impl Rejected {
     }
 }
 
-/// The derivation document of the model in `source`.
+/// The derivation document of the model in `source`, its numeric searches
+/// run as native code where Cranelift supports the host (the same numbers
+/// as the interpreter's).
 ///
 /// # Errors
 /// The model's diagnostics ([`Rejected`]).
@@ -84,7 +88,12 @@ pub fn document(source: &Source, format: Format) -> Result<String, Box<dyn Error
         Format::Json => document::Format::Json,
         Format::Rust => return chaplygin_codegen::generate(source.text()).map_err(rejected),
     };
-    let text = derive_document(source.text(), document_format).map_err(rejected)?;
+    let native = Native::for_host().ok();
+    let backend: &dyn Backend = match &native {
+        Some(native) => native,
+        None => &Interpreter,
+    };
+    let text = derive_document(source.text(), document_format, backend).map_err(rejected)?;
     let syntax = parse_str(source.text()).map_err(rejected)?;
     let (model, mut cx) = check(&syntax).map_err(rejected)?;
     if !model.mechanism.is_declared() {

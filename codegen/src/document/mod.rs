@@ -53,7 +53,7 @@ use crate::derive::constraints::ConstraintAnalysis;
 use crate::derive::port_hamiltonian::items;
 use crate::diagnostic::Diagnostics;
 use crate::emit;
-use crate::ir::Interpreter;
+use crate::ir::Backend;
 use crate::model::Model;
 use crate::sym::latex::latex_rate;
 use crate::sym::{ExprId, Matrix, SymbolId};
@@ -90,10 +90,15 @@ impl std::str::FromStr for Format {
 }
 
 /// The derivation document of the model text (the text
-/// [`crate::generate`] takes), in `format`; the model's diagnostics when it
-/// does not compile.
-pub fn derive_document(source: &str, format: Format) -> Result<String, Diagnostics> {
-    let document = Document::derive(source)?;
+/// [`crate::generate`] takes), in `format`, the derivation's numeric
+/// searches running on the engines `backend` makes; the model's
+/// diagnostics when it does not compile.
+pub fn derive_document(
+    source: &str,
+    format: Format,
+    backend: &dyn Backend,
+) -> Result<String, Diagnostics> {
+    let document = Document::derive(source, backend)?;
     Ok(match format {
         Format::Text => render::text(&document),
         Format::Latex => render::latex(&document),
@@ -159,13 +164,13 @@ enum Item {
 }
 
 impl Document {
-    fn derive(source: &str) -> Result<Document, Diagnostics> {
+    fn derive(source: &str, backend: &dyn Backend) -> Result<Document, Diagnostics> {
         let Analysed {
             model,
             mut cx,
             constraints,
-        } = analysed_model(source, &Interpreter)?;
-        let document = Self::derive_analysed(&model, &mut cx, &constraints);
+        } = analysed_model(source, backend)?;
+        let document = Self::derive_analysed(&model, &mut cx, &constraints, backend);
         over_budget(&model, &cx)?;
         document
     }
@@ -174,8 +179,9 @@ impl Document {
         model: &Model,
         cx: &mut Context,
         constraints: &ConstraintAnalysis,
+        backend: &dyn Backend,
     ) -> Result<Document, Diagnostics> {
-        let derivation = crate::derive::derivation(model, cx, constraints, &Interpreter)?;
+        let derivation = crate::derive::derivation(model, cx, constraints, backend)?;
         let emitted = emit::emit(model, cx, constraints, &derivation)?;
         let rhs = derivation.reduced_items.outputs(items::Item::ReducedRhs);
         let (dalembert, reduced) = (&derivation.lagrange_dalembert, &derivation.reduced);

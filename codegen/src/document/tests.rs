@@ -1,5 +1,6 @@
 use super::{Format, UnknownFormat, derive_document};
 use crate::fixtures::SNAKEBOARD;
+use crate::ir::Interpreter;
 use serde_json::Value;
 
 const SLEIGH: &str = include_str!("../../../models/sleigh.model");
@@ -14,7 +15,7 @@ pub struct Particle {
 "#;
 
 fn document(source: &str, format: Format) -> String {
-    derive_document(source, format).expect("the model compiles")
+    derive_document(source, format, &Interpreter).expect("the model compiles")
 }
 
 /// MATH.md 3.1 with alpha = (group, torso, wheels), u = (u_torso,
@@ -154,7 +155,8 @@ fn a_model_without_symmetry_has_a_null_momentum_section() {
 #[test]
 fn a_broken_model_is_its_diagnostics() {
     let broken = SLEIGH.replace("dot(x) - a", "dot(z) - a");
-    let diagnostics = derive_document(&broken, Format::Text).expect_err("z is not declared");
+    let diagnostics =
+        derive_document(&broken, Format::Text, &Interpreter).expect_err("z is not declared");
     assert!(diagnostics.render("sleigh.model").contains("sleigh.model:"));
 }
 
