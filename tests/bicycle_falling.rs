@@ -24,14 +24,15 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 /// Upright at 3 m/s (`dot(theta_r) = -10` with `rR = 0.3`), leaning at
-/// 0.2 rad/s, steer at rest, 1 ms steps.
-const FALL: [&str; 8] = [
+/// 0.2 rad/s, steer at rest, fixed steps of 1 ms.
+const FALL: [&str; 9] = [
     "--initial",
     "dot(theta_r)=-10",
     "--initial",
     "dot(phi)=0.2",
     "--initial",
     "dot(delta)=0",
+    "--fixed-step",
     "--dt",
     "0.001",
 ];
@@ -166,8 +167,9 @@ fn the_lagrange_dalembert_form_falls_the_same_way() {
 fn steps_too_long_for_the_whipping_steer_are_split_not_ended() {
     let bicycle = bicycle();
     let fine = reduced_fall(Some(&bicycle));
-    // the fall without its `--dt`: the default step and integrator
-    let coarse = until_the_lean_passes_1_rad(&bicycle, "default-step", &FALL[..6]);
+    // the fall without its `--dt`: fixed steps of the default length, the
+    // default integrator
+    let coarse = until_the_lean_passes_1_rad(&bicycle, "default-step", &FALL[..7]);
     let summary = &coarse.summary;
     assert!(summary.contains("of discrete-gradient"), "{summary}");
     assert!(summary.contains("; steps split "), "{summary}");
@@ -212,7 +214,10 @@ fn run_on_it_stops_where_the_front_wheel_lies_flat() {
             "--t-end",
             "4",
         ];
-        options.extend(FALL);
+        // fixed steps of 1 ms but for dopri5, which follows its tolerance
+        let fixed =
+            (FALL.iter()).filter(|option| integrator != "dopri5" || **option != "--fixed-step");
+        options.extend(fixed);
         let context = format!("{formulation} {integrator}");
         let (error, rows, header) = if i == 0 {
             let out = out(&format!("flat-{formulation}-{integrator}"));
@@ -244,4 +249,92 @@ fn run_on_it_stops_where_the_front_wheel_lies_flat() {
         let last = rows.last().expect("rows")[phi];
         assert!(last.abs() > 1.4, "{context}: lean {last}");
     }
+}
+
+/// With the steps following the default tolerance, every formulation and
+/// integrator ends the fall at the lean of 1.2 within 1e-6 s of each
+/// other (a fixed step of 10 ms leaves RK4 0.17 s late), the energy kept
+/// to 1e-6, and to 1e-8 by the structure-preserving integrators
+/// (docs/INTERFACE.md section 12).
+#[test]
+fn at_the_default_tolerance_every_integrator_ends_the_fall_at_the_same_time() {
+    let bicycle = bicycle();
+    let mut ends = Vec::new();
+    for (formulation, integrator, drift_allowed) in [
+        ("reduced", "dopri5", 1e-6),
+        ("reduced", "rk4", 1e-6),
+        ("reduced", "midpoint", 1e-8),
+        ("reduced", "discrete-gradient", 1e-8),
+        ("lagrange", "dopri5", 1e-6),
+        ("lagrange", "rk4", 1e-6),
+        ("lagrange", "midpoint", 1e-8),
+    ] {
+        let mut options = vec!["--formulation", formulation, "--integrator", integrator];
+        options.extend(["--t-end", "5", "--stop-when", "abs(phi) > 1.2"]);
+        options.extend(&FALL[..6]);
+        let run = bicycle.simulate(&options).expect("the run starts");
+        let summary = run.outcome.as_ref().expect(integrator);
+        assert!(summary.ends_with(": abs(phi) > 1.2"), "{summary}");
+        let energy = run.column("energy");
+        let drift = energy
+            .iter()
+            .map(|e| ((e - energy[0]) / energy[0]).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            drift <= drift_allowed,
+            "{formulation} {integrator}: drift {drift:e}"
+        );
+        ends.push(*run.column("t").last().expect("rows"));
+    }
+    let (first, last) = ends
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), t| {
+            (a.min(*t), b.max(*t))
+        });
+    assert!(last - first < 1e-6, "{ends:?}");
+}
+
+/// RK4 at a fixed step of 20 ms gains 845 % of the falling bicycle's
+/// energy: the binary prints the summary, then one `warning:` line naming
+/// the drift, its bound and what to change, and exits 0; with `--strict`
+/// the same run exits 1. Steps following the default tolerance do not
+/// warn (docs/INTERFACE.md section 12).
+#[test]
+fn a_run_beyond_its_tolerance_warns_and_strict_makes_it_an_error() {
+    let run = |name: &str, extra: &[&str]| {
+        let out = out(name);
+        let mut arguments = vec!["simulate", "bicycle", "--integrator", "rk4"];
+        arguments.extend(["--t-end", "5", "--stop-when", "abs(phi) > 1.2"]);
+        arguments.extend(&FALL[..6]);
+        arguments.extend(extra);
+        arguments.extend(["--out", out.to_str().expect("a UTF-8 path")]);
+        chaplygin(&arguments)
+    };
+    let coarse = ["--fixed-step", "--dt", "0.02"];
+    let warned = run("rk4-20ms", &coarse);
+    let stderr = String::from_utf8_lossy(&warned.stderr);
+    assert!(warned.status.success(), "{stderr}");
+    let warning = stderr.lines().find(|line| line.starts_with("warning: "));
+    let warning = warning.unwrap_or_else(|| panic!("a warning in {stderr}"));
+    assert!(
+        warning.contains("energy drift (relative) of a run without inputs 8.4"),
+        "{warning}"
+    );
+    assert!(
+        warning.contains("exceeds 1.0e-6") && warning.contains("--dt"),
+        "{warning}"
+    );
+    let strict = run("rk4-20ms-strict", &[&coarse[..], &["--strict"]].concat());
+    assert_eq!(strict.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&strict.stderr);
+    assert!(
+        stderr.contains("error: the run is not accurate to its tolerance (--strict)"),
+        "{stderr}"
+    );
+    let controlled = run("rk4-controlled", &["--strict"]);
+    let stderr = String::from_utf8_lossy(&controlled.stderr);
+    assert!(
+        controlled.status.success() && !stderr.contains("warning"),
+        "{stderr}"
+    );
 }

@@ -177,8 +177,8 @@ fn simulated(
     )
 }
 
-/// The options of a run in `formulation` with `integrator`, step `dt`, and
-/// `arguments`.
+/// The options of a run in `formulation` with `integrator`, step `dt`
+/// (fixed, but for dopri5), and `arguments`.
 fn options<'a>(
     (formulation, integrator): (&'a str, &'a str),
     dt: &'a str,
@@ -192,6 +192,9 @@ fn options<'a>(
         "--dt",
         dt,
     ];
+    if order(integrator).is_some() {
+        all.push("--fixed-step");
+    }
     all.extend(arguments);
     all
 }

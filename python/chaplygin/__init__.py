@@ -22,6 +22,7 @@ as SymPy expressions.
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy
@@ -222,8 +223,12 @@ class Model:
         integrator: Optional[str] = None,
         stop_when: Optional[str] = None,
         controller: str = "none",
+        rtol: float = 1e-8,
+        atol: float = 1e-8,
+        fixed_step: bool = False,
     ) -> Trajectory:
-        """Simulates the model from ``t = 0`` to ``t_end`` by steps ``dt``.
+        """Simulates the model from ``t = 0`` to ``t_end``, recording every
+        ``dt``.
 
         ``initial`` gives coordinates and velocities ``dot(q)`` (numbers, or
         expressions of the parameters such as ``"-5/rR"``; velocities not
@@ -239,6 +244,14 @@ class Model:
         holds; ``controller="energy"`` closes the built-in snakeboard with
         Duindam and Stramigioli's energy controller.
 
+        Every integrator's step follows the tolerances ``rtol`` and ``atol``
+        of its local error, no step longer than ``dt``; ``fixed_step=True``
+        takes steps of exactly ``dt`` (not with dopri5). A run whose energy
+        drift (without inputs) or constraint residual exceeds what the
+        tolerance allows issues a ``RuntimeWarning`` naming it (the
+        summary's ``warnings``); ``warnings.simplefilter("error",
+        RuntimeWarning)`` makes it an exception.
+
         Raises ``SimulationError`` (with ``t``, ``state`` and the rows
         before it as ``trajectory``) for a run that stops early, and
         ``ValueError`` for input that does not read.
@@ -253,6 +266,9 @@ class Model:
             integrator,
             stop_when,
             controller,
+            float(rtol),
+            float(atol),
+            bool(fixed_step),
         )
         tracks = run["tracks"]
         trajectory = Trajectory(
@@ -264,6 +280,8 @@ class Model:
         failure = run["failure"]
         if failure is not None:
             raise SimulationError(failure["message"], failure["t"], failure["state"], trajectory)
+        for warning in run["summary"]["warnings"]:
+            warnings.warn(warning.removeprefix("warning: "), RuntimeWarning, stacklevel=2)
         return trajectory
 
     def linearize(

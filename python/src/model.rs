@@ -233,7 +233,7 @@ impl Model {
     /// Simulates the model; returns `(columns, data, tracks, summary,
     /// failure)`, `summary` a dict and `failure` `None` for a finished run,
     /// else the other way round (the rows before the failure kept).
-    #[pyo3(signature = (t_end, dt, initial, params, inputs, formulation, integrator, stop_when, controller))]
+    #[pyo3(signature = (t_end, dt, initial, params, inputs, formulation, integrator, stop_when, controller, rtol, atol, fixed_step))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &self,
@@ -247,6 +247,9 @@ impl Model {
         integrator: Option<&str>,
         stop_when: Option<String>,
         controller: &str,
+        rtol: f64,
+        atol: f64,
+        fixed_step: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let request = Request {
             formulation: formulation_named(formulation)?,
@@ -254,6 +257,9 @@ impl Model {
             controller: controller_named(controller)?,
             t_end,
             dt,
+            rtol,
+            atol,
+            fixed_step,
             stop_when,
             params: numbers(params)?,
             initial: assignments(initial)?,
@@ -285,6 +291,10 @@ impl Model {
                 summary.set_item("split_steps", report.split_steps)?;
                 summary.set_item("stopped", report.stopped.clone())?;
                 summary.set_item("seconds", report.seconds)?;
+                let warnings = (report.warnings().iter())
+                    .map(|warning| report.explain(warning))
+                    .collect::<Vec<_>>();
+                summary.set_item("warnings", warnings)?;
                 run.set_item("summary", summary)?;
                 run.set_item("failure", py.None())?;
             }

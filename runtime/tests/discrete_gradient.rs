@@ -8,7 +8,7 @@ use chaplygin_runtime::integrate::{DiscreteGradient, FixedStep, Midpoint, Rk4, i
 use chaplygin_runtime::system::{Energy, Jacobian, OdeSystem, Structured};
 
 /// `qdot = p`, `pdot = -sin q`, with the canonical structure `[[0, 1], [-1, 0]]`.
-struct Pendulum;
+pub(crate) struct Pendulum;
 
 impl OdeSystem<[f64; 2]> for Pendulum {
     fn rhs(&self, _t: f64, x: &[f64; 2]) -> [f64; 2] {
@@ -41,7 +41,7 @@ impl Structured<[f64; 2]> for Pendulum {
 }
 
 /// A large swing: 2 rad from rest.
-const X0: [f64; 2] = [2.0, 0.0];
+pub(crate) const X0: [f64; 2] = [2.0, 0.0];
 
 fn worst_energy_error<M: FixedStep<Pendulum, [f64; 2]>>(method: &M, h: f64, steps: usize) -> f64 {
     let h0 = Pendulum.energy(&X0);

@@ -3,6 +3,7 @@
 //! runs only once declared below (the workspace's
 //! `every_test_file_is_declared` checks that each is).
 
+mod controlled;
 mod discrete_gradient;
 mod integrators;
 mod linalg;

@@ -9,7 +9,7 @@ use chaplygin_runtime::record::Table;
 use chaplygin_runtime::simulate::{HALVINGS, Observed, Regularity, Simulation, SimulationError};
 use chaplygin_runtime::system::{Energy, OdeSystem};
 
-struct Draining;
+pub(crate) struct Draining;
 
 impl OdeSystem<[f64; 1]> for Draining {
     fn rhs(&self, _t: f64, x: &[f64; 1]) -> [f64; 1] {

@@ -17,15 +17,17 @@ mod request;
 mod run;
 mod start;
 mod stop;
+mod trust;
 
 pub use error::InputError;
 pub use inputs::InputLawError;
 pub use request::{
     Controller, FormulationChoice, Integrator, Request, assignment, expression_assignment,
 };
-pub use run::Report;
+pub use run::{Report, Tolerance};
 pub use start::{set_parameters, with_parameters};
 pub use stop::StopError;
+pub use trust::{ALLOWANCE, Warning};
 
 use super::catalog::{BuiltIn, Motion};
 use super::engine::Loaded;

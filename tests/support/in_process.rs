@@ -74,6 +74,16 @@ impl Model {
     }
 }
 
+impl Simulated {
+    /// The column `name` of the rows recorded.
+    pub fn column(&self, name: &str) -> Vec<f64> {
+        let i = (self.header.iter())
+            .position(|column| column == name)
+            .unwrap_or_else(|| panic!("a column `{name}` in {:?}", self.header));
+        self.rows.iter().map(|row| row[i]).collect()
+    }
+}
+
 /// A recorder that keeps nothing (the run's own table keeps every row).
 struct Nothing;
 

@@ -48,6 +48,8 @@ impl Default for DiscreteGradient {
 }
 
 impl<S: Structured<X> + Jacobian<X>, X: State> FixedStep<S, X> for DiscreteGradient {
+    const ORDER: u32 = 2;
+
     fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
         let tm = t + h / 2.0;
         let settings = Settings {

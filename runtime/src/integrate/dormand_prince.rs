@@ -14,7 +14,7 @@
 //! output between steps. It conserves linear invariants; the global error of
 //! other quantities is roughly proportional to the tolerance.
 
-use super::{Error, NonFiniteCause, StepAt, combine, finite_start};
+use super::{Error, Limits, NonFiniteCause, StepAt, Tolerance, combine, finite_start, step_factor};
 use crate::state::State;
 use crate::system::OdeSystem;
 
@@ -44,16 +44,7 @@ impl Default for DormandPrince {
     }
 }
 
-/// The end of an adaptive integration.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Solution<X> {
-    /// The state at the final time.
-    pub x: X,
-    /// Accepted steps.
-    pub accepted: usize,
-    /// Rejected steps.
-    pub rejected: usize,
-}
+pub use super::Solution;
 
 const C: [f64; 6] = [1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
 const A2: [f64; 1] = [1.0 / 5.0];
@@ -200,7 +191,12 @@ impl DormandPrince {
         let (mut accepted, mut rejected, mut just_rejected) = (0, 0, false);
         let mut non_finite_trial = false;
         while (t1 - t) * (t1 - t0).signum() > 0.0 {
-            self.check_step(t, h, x.as_ref(), accepted + rejected)
+            let limits = Limits {
+                min_step: self.min_step,
+                max_steps: self.max_steps,
+            };
+            limits
+                .check(t, h, x.as_ref(), accepted + rejected)
                 .map_err(|error| match error {
                     // the step shrank to nothing because its stages were not finite
                     Error::StepSizeUnderflow { t, h, state } if non_finite_trial => {
@@ -240,8 +236,8 @@ impl DormandPrince {
             } else {
                 rejected += 1;
             }
-            let growth = if just_rejected { 1.0 } else { 5.0 };
-            h = step * (0.9 * error.powf(-0.2)).clamp(0.2, growth);
+            // the embedded estimate is of order 4
+            h = step * step_factor(error, 4, just_rejected);
             just_rejected = error > 1.0;
         }
         Ok(Solution {
@@ -251,44 +247,26 @@ impl DormandPrince {
         })
     }
 
-    /// Whether another step of size `h` at `t` is allowed (a NaN step, e.g.
-    /// from zero tolerances, is an underflow).
-    fn check_step(&self, t: f64, h: f64, x: &[f64], steps: usize) -> Result<(), Error> {
-        if steps >= self.max_steps {
-            return Err(Error::TooManySteps {
-                t,
-                steps,
-                state: x.to_vec(),
-            });
+    fn tolerance(&self) -> Tolerance {
+        Tolerance {
+            rtol: self.rtol,
+            atol: self.atol,
         }
-        if h.is_nan() || h.abs() < self.min_step.max(16.0 * f64::EPSILON * t.abs()) {
-            return Err(Error::StepSizeUnderflow {
-                t,
-                h,
-                state: x.to_vec(),
-            });
-        }
-        Ok(())
     }
 
     /// A first step `0.01 |x| / |f|` (RMS norms scaled by the tolerances;
     /// Hairer, Nørsett & Wanner, section II.4), at most the whole span.
     fn initial_step(&self, x: &[f64], f: &[f64], span: f64) -> f64 {
-        let (dx, df) = (self.scaled_norm(x, x, x), self.scaled_norm(f, x, x));
+        let (dx, df) = (
+            self.tolerance().scaled_norm(x, x, x),
+            self.tolerance().scaled_norm(f, x, x),
+        );
         let h = if dx < 1e-5 || df < 1e-5 {
             1e-6
         } else {
             0.01 * dx / df
         };
         h.min(span.abs()) * span.signum()
-    }
-
-    /// The RMS norm of `v` scaled by `atol + rtol max(|x_i|, |y_i|)`.
-    fn scaled_norm(&self, v: &[f64], x: &[f64], y: &[f64]) -> f64 {
-        let sum: f64 = (0..v.len())
-            .map(|i| (v[i] / (self.atol + self.rtol * x[i].abs().max(y[i].abs()))).powi(2))
-            .sum();
-        (sum / v.len().max(1) as f64).sqrt()
     }
 
     /// The six new stages of a step of size `h`, the order-5 state and its
@@ -331,7 +309,9 @@ impl DormandPrince {
         let all = [k1, &k2, &k3, &k4, &k5, &k6, &k7];
         let difference = x.with_entries(|i| h * (0..7).map(|s| E[s] * all[s][i]).sum::<f64>());
         Trial {
-            error: self.scaled_norm(difference.as_ref(), x.as_ref(), next.as_ref()),
+            error: self
+                .tolerance()
+                .scaled_norm(difference.as_ref(), x.as_ref(), next.as_ref()),
             stages: [k1.clone(), k2, k3, k4, k5, k6, k7],
             x: next,
         }

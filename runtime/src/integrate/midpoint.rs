@@ -45,6 +45,8 @@ impl Default for Midpoint {
 }
 
 impl<S: Jacobian<X>, X: State> FixedStep<S, X> for Midpoint {
+    const ORDER: u32 = 2;
+
     fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
         let (tm, half) = (t + h / 2.0, h / 2.0);
         let at = StepAt {

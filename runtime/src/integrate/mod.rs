@@ -8,16 +8,19 @@
 //! | Gonzalez discrete gradient, Newton | [`discrete_gradient`] | 2 | `H` of `xdot = J(x) dH/dx` for any `H`, skew `J`; the power balance `H(X) - H(x) = h dH . F` with forcing |
 //!
 //! Fixed-step methods implement [`FixedStep`] and run with
-//! [`integrate_fixed`]. Every method is written once over a
+//! [`integrate_fixed`], or with their step following tolerances by step
+//! doubling ([`Controlled`]). Every method is written once over a
 //! [`State`]: on fixed-size arrays a step stays on the stack and does not
 //! allocate; only a returned [`Error`] allocates (a copy of the state).
 
+mod controlled;
 pub mod discrete_gradient;
 pub mod dormand_prince;
 pub mod midpoint;
 mod newton;
 pub mod rk4;
 
+pub use controlled::Controlled;
 pub use discrete_gradient::DiscreteGradient;
 pub use dormand_prince::{DenseStep, DormandPrince};
 pub use midpoint::Midpoint;
@@ -169,6 +172,10 @@ impl std::fmt::Display for NonFiniteCause {
 /// A one-step method with a fixed step size, for systems of type `S` on
 /// states of type `X`.
 pub trait FixedStep<S, X> {
+    /// The order `p` of the method: the local error of a step is
+    /// `O(h^(p+1))`.
+    const ORDER: u32;
+
     /// The state at `t + h` from the state `x` at `t`.
     ///
     /// # Errors
@@ -271,6 +278,76 @@ pub(crate) fn finite_start<X: AsRef<[f64]>>(t0: f64, x0: X) -> Result<X, Error> 
         cause: NonFiniteCause::InitialState,
         state: x0.as_ref().to_vec(),
     })
+}
+
+/// The end of an adaptive integration ([`DormandPrince::integrate`],
+/// [`Controlled::integrate`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solution<X> {
+    /// The state at the final time.
+    pub x: X,
+    /// Accepted steps.
+    pub accepted: usize,
+    /// Rejected steps (the error estimate too large, or, for
+    /// [`Controlled`], the method failing on the step).
+    pub rejected: usize,
+}
+
+/// The tolerances of an adaptive method's local error.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Tolerance {
+    pub(crate) rtol: f64,
+    pub(crate) atol: f64,
+}
+
+impl Tolerance {
+    /// The RMS norm of the error estimate `v` scaled per component by
+    /// `atol + rtol max(|x_i|, |y_i|)`, at the step's two ends `x` and `y`.
+    pub(crate) fn scaled_norm(&self, v: &[f64], x: &[f64], y: &[f64]) -> f64 {
+        let sum: f64 = (0..v.len())
+            .map(|i| (v[i] / (self.atol + self.rtol * x[i].abs().max(y[i].abs()))).powi(2))
+            .sum();
+        (sum / v.len().max(1) as f64).sqrt()
+    }
+}
+
+/// The factor of the next step after one with the scaled error estimate
+/// `error` of a method whose error estimate is of order `order`:
+/// `0.9 error^(-1/(order + 1))`, between 0.2 and 5, at most 1 right after
+/// a rejection (Hairer, Nørsett & Wanner I, section II.4).
+pub(crate) fn step_factor(error: f64, order: u32, just_rejected: bool) -> f64 {
+    let growth = if just_rejected { 1.0 } else { 5.0 };
+    (0.9 * error.powf(-1.0 / f64::from(order + 1))).clamp(0.2, growth)
+}
+
+/// The limits of an adaptive method's steps.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Limits {
+    pub(crate) min_step: f64,
+    pub(crate) max_steps: usize,
+}
+
+impl Limits {
+    /// Whether another step of size `h` at `t` is allowed after `steps`
+    /// steps, from the state `x` (a NaN step, e.g. from zero tolerances, is
+    /// an underflow).
+    pub(crate) fn check(&self, t: f64, h: f64, x: &[f64], steps: usize) -> Result<(), Error> {
+        if steps >= self.max_steps {
+            return Err(Error::TooManySteps {
+                t,
+                steps,
+                state: x.to_vec(),
+            });
+        }
+        if h.is_nan() || h.abs() < self.min_step.max(16.0 * f64::EPSILON * t.abs()) {
+            return Err(Error::StepSizeUnderflow {
+                t,
+                h,
+                state: x.to_vec(),
+            });
+        }
+        Ok(())
+    }
 }
 
 /// `x + h sum_i b_i k_i`.

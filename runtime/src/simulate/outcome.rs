@@ -155,6 +155,11 @@ pub struct Summary<X> {
     /// How many times a step failed and was taken again as two halves
     /// ([`super::HALVINGS`]): 0 where every step passed whole.
     pub split_steps: usize,
+    /// Whether an input was not zero at a recorded state: a run without
+    /// inputs, or whose inputs stayed zero, conserves its energy (the
+    /// model language declares no dissipation), so that
+    /// [`Summary::energy_drift`] is the integrator's error.
+    pub forced: bool,
     /// Why the run ended before the end of its span: the description of
     /// the stop condition that came to hold at [`Summary::t`]
     /// ([`super::Simulation::stop_when`]); `None` for a run to the end.

@@ -81,6 +81,7 @@ where
                 min_regularity: regularity.value.abs(),
                 chart_switches: 0,
                 split_steps: 0,
+                forced: false,
                 stopped: None,
             },
             x,
@@ -294,6 +295,7 @@ where
         let start = self.row.len();
         self.row.resize(start + self.inputs, 0.0);
         self.system.inputs(t, x, &mut self.row[start..]);
+        self.summary.forced |= self.row[start..].iter().any(|u| *u != 0.0);
         self.row.push(self.system.energy(x));
         self.row.push(self.system.constraint_residual(x));
         self.row.extend(self.system.holonomic_residual(x));

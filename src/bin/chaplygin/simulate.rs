@@ -27,6 +27,18 @@ pub struct SimulateArgs {
     /// The directory for `trajectory.csv` and the plots.
     #[arg(long, default_value = "out")]
     out: PathBuf,
+    /// Fail (exit status 1) where the run is not accurate to its tolerance:
+    /// a conservative run's energy drift, or a constraint residual, beyond
+    /// what the tolerance allows (otherwise a warning on stderr).
+    #[arg(long)]
+    strict: bool,
+}
+
+/// A run not accurate to its tolerance, with `--strict`.
+#[derive(Debug, thiserror::Error)]
+#[error("the run is not accurate to its tolerance (--strict): {warnings} warning(s) above")]
+struct Untrusted {
+    warnings: usize,
 }
 
 /// Runs `chaplygin simulate`.
@@ -60,6 +72,16 @@ pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
     }
     for plot in plots? {
         crate::say(&format!("wrote {}\n", plot.display()))?;
+    }
+    let warnings = report.warnings();
+    for warning in &warnings {
+        eprintln!("{}", report.explain(warning));
+    }
+    if args.strict && !warnings.is_empty() {
+        return Err(Untrusted {
+            warnings: warnings.len(),
+        }
+        .into());
     }
     Ok(())
 }

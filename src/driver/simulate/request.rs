@@ -25,9 +25,23 @@ pub struct Request {
     /// The final time.
     #[cfg_attr(feature = "cli", arg(long, default_value_t = Request::T_END))]
     pub t_end: f64,
-    /// The step (for dopri5, the interval between recorded states).
+    /// The largest step and the interval between recorded states (with
+    /// `--fixed-step`, the step).
     #[cfg_attr(feature = "cli", arg(long, default_value_t = Request::DT))]
     pub dt: f64,
+    /// The relative tolerance of each step's local error: every
+    /// integrator's step follows it and `--atol`. It also judges the run:
+    /// an energy drift of a conservative run, or a constraint residual,
+    /// beyond what the tolerance allows is warned about.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = Request::RTOL))]
+    pub rtol: f64,
+    /// The absolute tolerance of each step's local error.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = Request::ATOL))]
+    pub atol: f64,
+    /// Steps of exactly `--dt`, not following the tolerance (rk4, midpoint,
+    /// discrete-gradient).
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub fixed_step: bool,
     /// End the run where a condition first holds: one comparison
     /// `EXPR < EXPR` or `EXPR > EXPR` of `t`, the coordinates, velocities
     /// `dot(q)`, inputs and parameters (`'abs(phi) > 1'`). The crossing is
@@ -58,8 +72,12 @@ pub struct Request {
 impl Request {
     /// The final time unless given.
     pub const T_END: f64 = 30.0;
-    /// The step unless given.
+    /// The largest step unless given.
     pub const DT: f64 = 0.01;
+    /// The relative tolerance unless given.
+    pub const RTOL: f64 = 1e-8;
+    /// The absolute tolerance unless given.
+    pub const ATOL: f64 = 1e-8;
 }
 
 impl Default for Request {
@@ -73,6 +91,9 @@ impl Default for Request {
             controller: Controller::None,
             t_end: Self::T_END,
             dt: Self::DT,
+            rtol: Self::RTOL,
+            atol: Self::ATOL,
+            fixed_step: false,
             stop_when: None,
             params: Vec::new(),
             initial: Vec::new(),

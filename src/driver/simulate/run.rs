@@ -7,20 +7,61 @@ use super::error::InputError;
 use super::request::{Integrator, Request};
 use super::stop::{Comparison, stop_condition};
 use crate::driver::formulation::{Formulation, RunTimeSized};
-use crate::runtime::integrate::{DiscreteGradient, DormandPrince, Midpoint, Rk4};
+use crate::runtime::integrate::{
+    Controlled, DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4,
+};
 use crate::runtime::record::{Recorder, Table};
 use crate::runtime::simulate::{Advance, Simulation, StopCondition, Summary};
 use std::error::Error;
 use std::io;
 use std::time::Instant;
 
-/// What a run is made with: the integrator, the span and step, and the
-/// stop condition.
+/// What a run is made with: the integrator, the span, the largest step,
+/// the tolerances (unless the steps are fixed), and the stop condition.
 pub(super) struct Settings {
     integrator: Integrator,
     t_end: f64,
     dt: f64,
+    tolerance: Tolerance,
+    fixed_step: bool,
     stop: Option<Comparison>,
+}
+
+/// The tolerances of each step's local error.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerance {
+    /// Relative.
+    pub rtol: f64,
+    /// Absolute.
+    pub atol: f64,
+}
+
+impl Tolerance {
+    /// `rtol` and `atol` when both are finite and not negative and one is
+    /// positive.
+    ///
+    /// # Errors
+    /// [`InputError::Unsupported`] naming the tolerance that is not.
+    pub fn new(rtol: f64, atol: f64) -> Result<Self, InputError> {
+        for (name, value) in [("rtol", rtol), ("atol", atol)] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(InputError::Unsupported(format!(
+                    "--{name} {value}: a tolerance is a finite number, not negative"
+                )));
+            }
+        }
+        if rtol == 0.0 && atol == 0.0 {
+            return Err(InputError::Unsupported(
+                "--rtol and --atol are both 0: one of them must be positive".into(),
+            ));
+        }
+        Ok(Self { rtol, atol })
+    }
+
+    /// `method` with its step following these tolerances.
+    fn control<M>(self, method: M) -> Controlled<M> {
+        Controlled::new(method, self.rtol, self.atol)
+    }
 }
 
 /// What a finished run reports.
@@ -49,6 +90,16 @@ pub struct Report {
     pub stopped: Option<String>,
     /// The wall time of the run, in seconds.
     pub seconds: f64,
+    /// The tolerances the steps followed, or judging the fixed steps.
+    pub tolerance: Tolerance,
+    /// Whether the steps were fixed (`--fixed-step`).
+    pub fixed_step: bool,
+    /// Whether every input was zero at every recorded state, so that the
+    /// energy is conserved (see `chaplygin_runtime::simulate::Summary::forced`).
+    pub conservative: bool,
+    /// The largest absolute entry of the final state, the scale of the
+    /// constraint residual.
+    pub final_scale: f64,
 }
 
 impl std::fmt::Display for Report {
@@ -104,10 +155,18 @@ impl Settings {
             )
             .into());
         }
+        if request.fixed_step && integrator == Integrator::Dopri5 {
+            return Err(InputError::Unsupported(
+                "dopri5 always follows the tolerance: --fixed-step takes rk4, midpoint or discrete-gradient".into(),
+            )
+            .into());
+        }
         Ok(Self {
             integrator,
             t_end: request.t_end,
             dt: request.dt,
+            tolerance: Tolerance::new(request.rtol, request.atol)?,
+            fixed_step: request.fixed_step,
             stop,
         })
     }
@@ -132,27 +191,23 @@ impl Settings {
             .map(|comparison| stop_condition(formulation, comparison));
         let holonomic = formulation.holonomic_residual(&x0).is_some();
         let started = Instant::now();
+        let run = Runner {
+            settings: self,
+            system: &system,
+            x0,
+            stop,
+            recorder,
+            progress,
+        };
         let summary = match self.integrator {
-            Integrator::Rk4 => self.run_with(Rk4, &system, x0, stop, recorder, progress),
-            Integrator::Midpoint => {
-                self.run_with(Midpoint::default(), &system, x0, stop, recorder, progress)
-            }
-            Integrator::DiscreteGradient => self.run_with(
-                DiscreteGradient::default(),
-                &system,
-                x0,
-                stop,
-                recorder,
-                progress,
-            ),
-            Integrator::Dopri5 => self.run_with(
-                DormandPrince::default(),
-                &system,
-                x0,
-                stop,
-                recorder,
-                progress,
-            ),
+            Integrator::Rk4 => run.one_step(Rk4),
+            Integrator::Midpoint => run.one_step(Midpoint::default()),
+            Integrator::DiscreteGradient => run.one_step(DiscreteGradient::default()),
+            Integrator::Dopri5 => run.with(DormandPrince {
+                rtol: self.tolerance.rtol,
+                atol: self.tolerance.atol,
+                ..DormandPrince::default()
+            }),
         }?;
         Ok(Report {
             integrator: self.integrator,
@@ -166,28 +221,50 @@ impl Settings {
             split_steps: summary.split_steps,
             stopped: summary.stopped,
             seconds: started.elapsed().as_secs_f64(),
+            tolerance: self.tolerance,
+            fixed_step: self.fixed_step,
+            conservative: !summary.forced,
+            final_scale: summary.state.iter().fold(0.0, |m: f64, v| m.max(v.abs())),
         })
     }
+}
 
-    /// One integrator's run until `stop` holds.
-    fn run_with<M, C>(
-        &self,
-        method: M,
-        system: &RunTimeSized<'_>,
-        x0: Vec<f64>,
-        stop: C,
-        recorder: &mut Both<'_>,
-        progress: &mut dyn FnMut(f64),
-    ) -> Result<Summary<Vec<f64>>, Box<dyn Error>>
+/// A run about to be made with one of the integrators.
+struct Runner<'r, 's, 'b, C> {
+    settings: &'r Settings,
+    system: &'r RunTimeSized<'s>,
+    x0: Vec<f64>,
+    stop: C,
+    recorder: &'r mut Both<'b>,
+    progress: &'r mut dyn FnMut(f64),
+}
+
+impl<C: StopCondition<Vec<f64>>> Runner<'_, '_, '_, C> {
+    /// The run with a one-step `method`, its step following the tolerance
+    /// unless the steps are fixed.
+    fn one_step<M>(self, method: M) -> Result<Summary<Vec<f64>>, Box<dyn Error>>
+    where
+        M: for<'a> FixedStep<RunTimeSized<'a>, Vec<f64>>
+            + for<'a> Advance<RunTimeSized<'a>, Vec<f64>>,
+    {
+        if self.settings.fixed_step {
+            self.with(method)
+        } else {
+            let controlled = self.settings.tolerance.control(method);
+            self.with(controlled)
+        }
+    }
+
+    /// The run with `method` until the stop condition holds.
+    fn with<M>(self, method: M) -> Result<Summary<Vec<f64>>, Box<dyn Error>>
     where
         M: for<'a> Advance<RunTimeSized<'a>, Vec<f64>>,
-        C: StopCondition<Vec<f64>>,
     {
         Ok(Simulation::new(method)
-            .span(0.0, self.t_end)
-            .step(self.dt)
-            .stop_when(stop)
-            .run_with_progress(system, x0, recorder, progress)?)
+            .span(0.0, self.settings.t_end)
+            .step(self.settings.dt)
+            .stop_when(self.stop)
+            .run_with_progress(self.system, self.x0, self.recorder, self.progress)?)
     }
 }
 
