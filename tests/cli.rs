@@ -1086,3 +1086,35 @@ fn a_closed_output_ends_the_command_quietly() {
     assert!(output.status.success(), "{}", stderr(&output));
     assert_eq!(stderr(&output), "");
 }
+
+/// A tolerance that is negative, not finite, or zero with the other, and
+/// `--fixed-step` with dopri5, are refused before the run, naming the
+/// option.
+#[test]
+fn tolerances_that_cannot_be_met_are_refused_naming_the_option() {
+    let sleigh = crate::support::in_process::Model::load("sleigh", "jit");
+    for (options, expected) in [
+        (
+            &["--rtol=-1"][..],
+            "--rtol -1: a tolerance is a finite number, not negative",
+        ),
+        (
+            &["--atol", "inf"][..],
+            "--atol inf: a tolerance is a finite number",
+        ),
+        (
+            &["--rtol", "0", "--atol", "0"][..],
+            "--rtol and --atol are both 0",
+        ),
+        (
+            &["--integrator", "dopri5", "--fixed-step"][..],
+            "--fixed-step takes rk4, midpoint",
+        ),
+    ] {
+        let error = sleigh
+            .simulate(options)
+            .err()
+            .unwrap_or_else(|| panic!("{options:?}"));
+        assert!(error.contains(expected), "{options:?}: {error}");
+    }
+}
