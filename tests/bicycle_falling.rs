@@ -275,6 +275,7 @@ fn at_the_default_tolerance_every_integrator_ends_the_fall_at_the_same_time() {
         let run = bicycle.simulate(&options).expect("the run starts");
         let summary = run.outcome.as_ref().expect(integrator);
         assert!(summary.ends_with(": abs(phi) > 1.2"), "{summary}");
+        assert!(run.warnings.is_empty(), "{:?}", run.warnings);
         let energy = run.column("energy");
         let drift = energy
             .iter()

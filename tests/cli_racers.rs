@@ -453,3 +453,49 @@ fn parameters_that_make_the_momentum_basis_degenerate_are_refused_before_the_run
     reduced.extend(["--out", out.to_str().expect("a UTF-8 path")]);
     assert!(chaplygin(&reduced).status.success());
 }
+
+/// The trailing racer under the constant torque, its steps following the
+/// tolerance: at 1e-5 and at 1e-8, in every formulation with every
+/// integrator, the configuration after 10 s (through the basis
+/// singularity once) is within 100 times the tolerance of Dormand-Prince
+/// at 1e-12, and no run warns (docs/INTERFACE.md section 12).
+#[test]
+fn the_trailing_racer_follows_the_tolerance_in_every_form() {
+    let model = Model::load(TRAILING, "jit");
+    let span = ["--input", "u1=0.1", "--t-end", "10"];
+    let end = |options: &[&str]| {
+        let run = model
+            .simulate(&[&span[..], options].concat())
+            .expect("the run starts");
+        let summary = run.outcome.as_ref().expect("the run ends").clone();
+        assert!(run.warnings.is_empty(), "{options:?}: {:?}", run.warnings);
+        let last = ["x", "y", "theta", "phi"].map(|name| *run.column(name).last().expect("rows"));
+        (summary, last)
+    };
+    let tight = [
+        "--integrator",
+        "dopri5",
+        "--rtol",
+        "1e-12",
+        "--atol",
+        "1e-12",
+    ];
+    let (_, reference) = end(&tight);
+    for tolerance in ["1e-5", "1e-8"] {
+        for (formulation, integrator) in PAIRINGS {
+            let pairing = ["--formulation", formulation, "--integrator", integrator];
+            let (summary, reached) =
+                end(&[&pairing[..], &["--rtol", tolerance, "--atol", tolerance]].concat());
+            let context = format!("{formulation} {integrator} at {tolerance}: {summary}");
+            assert!(
+                !summary.contains("chart switches 0") || formulation != "reduced",
+                "{context}"
+            );
+            let error = (0..4)
+                .map(|i| (reached[i] - reference[i]).abs())
+                .fold(0.0, f64::max);
+            let allowed = 100.0 * tolerance.parse::<f64>().expect("a number");
+            assert!(error < allowed, "{context}: error {error:e}");
+        }
+    }
+}

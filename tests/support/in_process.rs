@@ -32,6 +32,8 @@ pub struct Simulated {
     /// The summary line of a finished run, or the one-line error (without
     /// `error: `) of a failed one.
     pub outcome: Result<String, String>,
+    /// The `warning:` lines the binary would print after the summary.
+    pub warnings: Vec<String>,
     /// The columns of the trajectory.
     pub header: Vec<String>,
     /// Its rows, as far as the run got.
@@ -63,11 +65,20 @@ impl Model {
         let finished = simulate(self.loaded.clone(), &request, &mut Nothing, &mut |_| {})
             .map_err(|error| error.to_string())?;
         let Table { columns, rows } = finished.table;
+        let warnings = (finished.outcome.as_ref()).map_or_else(
+            |_| Vec::new(),
+            |report| {
+                (report.warnings().iter())
+                    .map(|w| report.explain(w))
+                    .collect()
+            },
+        );
         Ok(Simulated {
             outcome: finished
                 .outcome
                 .map(|report| report.to_string())
                 .map_err(|error| error.to_string()),
+            warnings,
             header: columns,
             rows,
         })
