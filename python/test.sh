@@ -10,7 +10,7 @@ venv=target/python-venv
 if [ ! -x "$venv/bin/python" ]; then
     python3 -m venv "$venv"
 fi
-"$venv/bin/python" -m pip install --quiet numpy scipy sympy pytest matplotlib pandas
+"$venv/bin/python" -m pip install --quiet numpy scipy sympy pytest hypothesis matplotlib pandas
 # The command line the tests compare against: the binary the workspace's
 # own tests run, built with their features (after `cargo test --workspace`,
 # as in CI, nothing is rebuilt; `cargo build --bin` would resolve other

@@ -11,10 +11,16 @@
 //! ```
 //!
 //! estimates the error of `X2`. The step is accepted when `err`, scaled per
-//! component by `atol + rtol max(|x_i|, |X2_i|)`, has RMS norm at most 1, and
-//! the run goes on from `X2` itself: not extrapolated, so that what the
-//! method conserves (the discrete gradient's energy, the midpoint rule's
-//! quadratic invariants) stays conserved. The next step is
+//! component by `atol + rtol max(|x_i|, |X2_i|)`, has RMS norm at most 1,
+//! and the run goes on from the local extrapolation `X2 + err`, of order
+//! `p + 1`, and `p + 2` for a symmetric method (the midpoint rule, the
+//! discrete gradient), whose error expansion holds only even powers of `h`
+//! (Hairer, Nørsett & Wanner, section II.8). Where `X1` and `X2` both
+//! keep an invariant `I` of the method (the discrete gradient's energy, the
+//! midpoint rule's quadratic invariants), `I(X2 + err) - I(x)` is
+//! `dI(X2) . err + O(|err|^2)` with `dI(X2) . (X2 - X1) = O(|X2 - X1|^2)`:
+//! the extrapolation moves the invariant by the square of the estimate
+//! only. The next step is
 //! `h min(5, max(0.2, 0.9 err^(-1/(p+1))))`, no larger than the interval
 //! asked for (the command line's `--dt`), and not growing right after a
 //! rejection. A step on which the method fails where shorter steps may
