@@ -7,6 +7,8 @@
 
 mod allocation;
 mod api;
+mod differential;
 mod model;
 mod models;
 mod ops;
+mod support;

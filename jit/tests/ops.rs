@@ -3,6 +3,7 @@
 //! infinities, NaN and values outside each function's domain (where both
 //! give NaN).
 
+use crate::support::random_programs::assert_native_matches_at;
 use chaplygin_codegen::ir::{Op, Program, lower};
 use chaplygin_codegen::sym::{ExprId, Function, Rational, Store, SymbolKind};
 use chaplygin_jit::NativePrograms;
@@ -33,12 +34,6 @@ fn program(build: impl FnOnce(&mut Store, ExprId, ExprId) -> Vec<ExprId>) -> Pro
     lower(&store, &symbols, &outputs).expect("the outputs lower")
 }
 
-/// Whether native code and interpreter agree on a value: the same bits, or
-/// both NaN (IEEE leaves a NaN's sign and payload open).
-fn same(native: f64, interpreted: f64) -> bool {
-    native.to_bits() == interpreted.to_bits() || (native.is_nan() && interpreted.is_nan())
-}
-
 /// Asserts that `program` has an operation `wanted` and that its native code
 /// agrees with the interpreter at every input of [`INPUTS`].
 fn assert_native_matches(program: &Program, wanted: impl Fn(&Op) -> bool) {
@@ -48,17 +43,7 @@ fn assert_native_matches(program: &Program, wanted: impl Fn(&Op) -> bool) {
     );
     let native = NativePrograms::compile(&[program]).expect("the program compiles");
     for inputs in INPUTS {
-        let expected = program.evaluate_vec(&inputs).expect("the interpreter runs");
-        let mut outputs = vec![0.0; expected.len()];
-        native
-            .evaluate(0, &inputs, &mut outputs)
-            .expect("the native code runs");
-        for (j, (&got, &wanted)) in outputs.iter().zip(&expected).enumerate() {
-            assert!(
-                same(got, wanted),
-                "output {j} at {inputs:?}: native {got:e}, interpreter {wanted:e}\n{program}"
-            );
-        }
+        assert_native_matches_at(program, &native, &inputs);
     }
 }
 
