@@ -458,8 +458,7 @@ fn racer(
 
 /// The values of column `name`.
 fn column_of(table: &Csv, name: &str) -> Vec<f64> {
-    let index = table.0.iter().position(|c| c == name).expect(name);
-    table.1.iter().map(|row| row[index]).collect()
+    crate::support::column(&table.0, &table.1, name)
 }
 
 /// `--input NAME=EXPRESSION`: the model language's expressions of `t` and

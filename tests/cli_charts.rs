@@ -6,7 +6,7 @@
 //! everywhere is never changed; a declared momentum basis hands over to a
 //! run-time chart where it degenerates.
 
-use crate::support::{chaplygin, read_csv};
+use crate::support::{chaplygin, column, read_csv};
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
@@ -34,12 +34,6 @@ fn simulate(name: &str, arguments: &[&str]) -> (String, Vec<String>, Vec<Vec<f64
         .to_string();
     let (header, rows) = read_csv(&out.join("trajectory.csv"));
     (summary, header, rows)
-}
-
-/// The values of the column `name`.
-fn column(header: &[String], rows: &[Vec<f64>], name: &str) -> Vec<f64> {
-    let at = header.iter().position(|h| h == name).expect("a column");
-    rows.iter().map(|row| row[at]).collect()
 }
 
 /// Asserts the recorded energies differ from the first by less than 1e-12

@@ -61,12 +61,7 @@ struct Run {
 
 impl Run {
     fn column(&self, name: &str) -> Vec<f64> {
-        let i = self
-            .header
-            .iter()
-            .position(|column| column == name)
-            .unwrap_or_else(|| panic!("a column `{name}` in {:?}", self.header));
-        self.rows.iter().map(|row| row[i]).collect()
+        crate::support::column(&self.header, &self.rows, name)
     }
 
     /// The energy gained minus the discrete gradient's work

@@ -88,10 +88,7 @@ impl Model {
 impl Simulated {
     /// The column `name` of the rows recorded.
     pub fn column(&self, name: &str) -> Vec<f64> {
-        let i = (self.header.iter())
-            .position(|column| column == name)
-            .unwrap_or_else(|| panic!("a column `{name}` in {:?}", self.header));
-        self.rows.iter().map(|row| row[i]).collect()
+        super::column(&self.header, &self.rows, name)
     }
 }
 

@@ -21,6 +21,14 @@ pub fn chaplygin(arguments: &[&str]) -> Output {
         .expect("the binary runs")
 }
 
+/// The values of the column `name` of `rows` under `header`.
+pub fn column(header: &[String], rows: &[Vec<f64>], name: &str) -> Vec<f64> {
+    let at = (header.iter())
+        .position(|column| column == name)
+        .unwrap_or_else(|| panic!("a column `{name}` in {header:?}"));
+    rows.iter().map(|row| row[at]).collect()
+}
+
 /// The header and the rows of a CSV file the command wrote.
 pub fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
     let text = std::fs::read_to_string(path).expect("the file is written");
