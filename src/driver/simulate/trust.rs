@@ -104,3 +104,67 @@ impl Report {
 fn beyond(value: f64, allowed: f64) -> bool {
     value > allowed || value.is_nan()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{ALLOWANCE, Warning};
+    use crate::driver::simulate::{Integrator, Report, Tolerance};
+
+    /// A finished run at the default tolerance with the given drift and
+    /// residuals.
+    fn report(conservative: bool, drift: f64, residual: f64, holonomic: Option<f64>) -> Report {
+        Report {
+            integrator: Integrator::Rk4,
+            engine: "jit",
+            steps: 10,
+            t: 0.1,
+            energy_drift: drift,
+            max_constraint_residual: residual,
+            max_holonomic_residual: holonomic,
+            chart_switches: 0,
+            split_steps: 0,
+            stopped: None,
+            seconds: 0.0,
+            tolerance: Tolerance::new(1e-8, 1e-9).expect("tolerances"),
+            fixed_step: false,
+            conservative,
+            final_scale: 10.0,
+        }
+    }
+
+    /// The energy drift counts only where the run is conservative; the
+    /// residuals are judged against the tolerance times the state's scale
+    /// (here 10); NaN is beyond any bound.
+    #[test]
+    fn each_quantity_is_judged_against_its_bound() {
+        let allowed = ALLOWANCE * 1e-8;
+        assert_eq!(report(true, 0.5 * allowed, 0.0, None).warnings(), []);
+        assert_eq!(
+            report(true, 2.0 * allowed, 0.0, None).warnings(),
+            [Warning::EnergyDrift {
+                drift: 2.0 * allowed,
+                allowed
+            }]
+        );
+        assert_eq!(report(false, 1.0, 0.0, None).warnings(), []);
+        assert_eq!(report(true, 0.0, 5.0 * allowed, Some(0.0)).warnings(), []);
+        assert_eq!(
+            report(false, 0.0, 0.0, Some(20.0 * allowed)).warnings(),
+            [Warning::ConstraintResidual {
+                residual: 20.0 * allowed,
+                allowed: 10.0 * allowed
+            }]
+        );
+        assert_eq!(report(true, f64::NAN, f64::NAN, None).warnings().len(), 2);
+        let line = report(true, 1.0, 0.0, None);
+        let warning = line.warnings()[0];
+        let text = line.explain(&warning);
+        assert!(
+            text.starts_with(
+                "warning: energy drift (relative) of a run without inputs 1.000e0 exceeds 1.0e-6"
+            ),
+            "{text}"
+        );
+        assert!(text.contains("a smaller --rtol and --atol"), "{text}");
+    }
+}
