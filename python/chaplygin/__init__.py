@@ -26,6 +26,7 @@ import warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy
+from numpy.typing import ArrayLike
 
 from . import _chaplygin
 from ._errors import ChaplyginError, ModelError, SimulationError
@@ -287,7 +288,7 @@ class Model:
     def linearize(
         self,
         at: Optional[Mapping[str, Value]] = None,
-        sweep: Optional[Tuple[str, Sequence[float]]] = None,
+        sweep: Optional[Tuple[str, ArrayLike]] = None,
         params: Optional[Mapping[str, float]] = None,
     ) -> Linearization:
         """Linearizes about the steady motion ``at`` (coordinates and
@@ -296,7 +297,7 @@ class Model:
         eliminated; over ``sweep=(variable, values)``, at each value."""
         if sweep is not None:
             variable, values = sweep
-            sweep = (str(variable), numpy.ascontiguousarray(values, dtype=float))
+            sweep = (str(variable), values)
         return Linearization(self._native.linearize(_dict(at), _dict(params), sweep))
 
     def gait(
@@ -368,14 +369,14 @@ class Model:
 
     def acceleration(
         self,
-        q: Sequence[float],
-        qdot: Sequence[float],
-        u: Optional[Sequence[float]] = None,
+        q: ArrayLike,
+        qdot: ArrayLike,
+        u: Optional[ArrayLike] = None,
     ) -> Tuple[numpy.ndarray, numpy.ndarray]:
         """The Lagrange-d'Alembert accelerations and constraint multipliers
         ``(qddot, lambda)`` at ``(q, qdot)`` under the inputs ``u`` (zero if
         ``None``)."""
-        return self._native.acceleration(_array(q), _array(qdot), None if u is None else _array(u))
+        return self._native.acceleration(q, qdot, u)
 
     def document(self, format: str = "text") -> str:
         """The derivation document: ``"text"``, ``"latex"`` or ``"json"``."""
@@ -394,7 +395,3 @@ class Model:
 
 def _dict(values: Optional[Mapping[str, Any]]) -> Optional[Dict[str, Any]]:
     return None if values is None else dict(values)
-
-
-def _array(values: Sequence[float]) -> numpy.ndarray:
-    return numpy.ascontiguousarray(values, dtype=float)

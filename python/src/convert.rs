@@ -1,12 +1,60 @@
 //! Python values to the driver's and back: keyword dictionaries to
-//! assignments, errors to the package's exceptions.
+//! assignments, array arguments to vectors, errors to the package's
+//! exceptions.
 
 use chaplygin::driver::document::Rejected;
-use numpy::{Element, PyArray1, PyArray2, PyArrayMethods};
+use numpy::{AllowTypeChange, Element, PyArray1, PyArray2, PyArrayLikeDyn, PyArrayMethods};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::error::Error;
+
+/// An array argument as `numpy.asarray(value, dtype=float)` reads it: a
+/// list, a tuple, a scalar, an array of any dtype that converts to float
+/// and of any strides.
+pub type ArrayLike<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
+
+/// The entries of the array argument `name`: one-dimensional, or a scalar
+/// for one entry.
+pub fn flat(array: &ArrayLike<'_>, name: &str) -> PyResult<Vec<f64>> {
+    let values = array.as_array();
+    if values.ndim() > 1 {
+        return Err(PyValueError::new_err(format!(
+            "{name} must be one-dimensional; it has shape {}",
+            shape(values.shape())
+        )));
+    }
+    Ok(values.iter().copied().collect())
+}
+
+/// The entries of the array argument `name`, which must be `expected`
+/// (`what` they are, for the message).
+pub fn vector(
+    array: &ArrayLike<'_>,
+    name: &str,
+    expected: usize,
+    what: &str,
+) -> PyResult<Vec<f64>> {
+    let values = flat(array, name)?;
+    if values.len() != expected {
+        return Err(PyValueError::new_err(format!(
+            "{name} must have shape ({expected},), {what}; it has shape {}",
+            shape(array.as_array().shape())
+        )));
+    }
+    Ok(values)
+}
+
+/// A shape as NumPy prints it: `()`, `(7,)`, `(2, 3)`.
+fn shape(lengths: &[usize]) -> String {
+    match lengths {
+        [length] => format!("({length},)"),
+        _ => {
+            let lengths: Vec<String> = lengths.iter().map(usize::to_string).collect();
+            format!("({})", lengths.join(", "))
+        }
+    }
+}
 
 /// `{name: value}` with values numbers or expressions (strings), as
 /// `NAME=EXPRESSION` assignments (a number as the decimal that reads back

@@ -2,7 +2,9 @@
 //! and parameters, and what it does: simulate, linearize, accelerate,
 //! evaluate its right-hand sides, document its derivation.
 
-use crate::convert::{assignments, matrix, model_error, numbers, to_python};
+use crate::convert::{
+    ArrayLike, assignments, flat, matrix, model_error, numbers, to_python, vector,
+};
 use crate::linearization;
 use crate::rhs::Rhs;
 use chaplygin::driver::catalog::Source;
@@ -15,7 +17,8 @@ use chaplygin::driver::simulate::{
 use chaplygin::gait_design::{Cost, Design, Direction};
 use chaplygin::runtime::record::{Recorder, Table};
 use chaplygin::runtime::simulate::SimulationError;
-use numpy::{PyArray1, PyArray2, PyReadonlyArray1};
+use chaplygin_codegen::interpret::Sizes;
+use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyRuntimeWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -315,7 +318,7 @@ impl Model {
         py: Python<'py>,
         at: Option<&Bound<'py, PyDict>>,
         params: Option<&Bound<'py, PyDict>>,
-        sweep: Option<(String, PyReadonlyArray1<'py, f64>)>,
+        sweep: Option<(String, ArrayLike<'py>)>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let mut model = self.fresh().model;
         with_parameters(&mut model, &numbers(params)?)
@@ -324,7 +327,8 @@ impl Model {
         match sweep {
             None => linearization::at_point(py, &model, &at),
             Some((variable, values)) => {
-                linearization::over_sweep(py, &model, &at, (&variable, values.as_slice()?))
+                let values = flat(&values, "sweep's values")?;
+                linearization::over_sweep(py, &model, &at, (&variable, &values))
             }
         }
     }
@@ -450,18 +454,20 @@ impl Model {
     fn acceleration<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArray1<'py, f64>,
-        qdot: PyReadonlyArray1<'py, f64>,
-        u: Option<PyReadonlyArray1<'py, f64>>,
+        q: ArrayLike<'py>,
+        qdot: ArrayLike<'py>,
+        u: Option<ArrayLike<'py>>,
     ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
         let model = &self.loaded.model;
-        let zero = vec![0.0; model.sizes().p];
+        let Sizes { n, p, .. } = model.sizes();
+        let q = vector(&q, "q", n, "one per coordinate")?;
+        let qdot = vector(&qdot, "qdot", n, "one per coordinate")?;
         let u = match &u {
-            Some(u) => u.as_slice()?.to_vec(),
-            None => zero,
+            Some(u) => vector(u, "u", p, "one per input")?,
+            None => vec![0.0; p],
         };
         let (qddot, lambda) = model
-            .acceleration(q.as_slice()?, qdot.as_slice()?, &u)
+            .acceleration(&q, &qdot, &u)
             .map_err(|error| PyValueError::new_err(error.to_string()))?;
         Ok((
             PyArray1::from_vec(py, qddot),

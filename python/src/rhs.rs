@@ -2,10 +2,9 @@
 //! Jacobian `df/dx`, for `scipy.integrate.solve_ivp` and other integrators
 //! of the caller's choice.
 
-use crate::convert::{assignments, matrix, to_python};
+use crate::convert::{ArrayLike, assignments, matrix, to_python, vector};
 use chaplygin::driver::simulate::Prepared;
-use numpy::{PyArray1, PyArray2, PyReadonlyArray1};
-use pyo3::exceptions::PyValueError;
+use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -24,33 +23,16 @@ impl Rhs {
         Self { prepared }
     }
 
-    /// `x` checked against the state's size.
-    fn checked_state<'a>(&self, x: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
-        let x = x.as_slice()?;
-        let d = self.prepared.x0.len();
-        if x.len() != d {
-            return Err(PyValueError::new_err(format!(
-                "the state has {d} entries, x has {}",
-                x.len()
-            )));
-        }
-        Ok(x)
+    /// The state `x`, checked against the state's size.
+    fn state_of(&self, x: &ArrayLike<'_>) -> PyResult<Vec<f64>> {
+        vector(x, "x", self.prepared.x0.len(), "the state's entries")
     }
 
-    /// `u` checked against the number of inputs.
-    fn inputs(&self, u: Option<&PyReadonlyArray1<'_, f64>>) -> PyResult<Option<Vec<f64>>> {
-        let Some(u) = u else {
-            return Ok(None);
-        };
-        let u = u.as_slice()?;
-        let p = self.prepared.input_count();
-        if u.len() != p {
-            return Err(PyValueError::new_err(format!(
-                "the model has {p} inputs, u has {}",
-                u.len()
-            )));
-        }
-        Ok(Some(u.to_vec()))
+    /// The inputs `u`, checked against their number; `None` if not given.
+    fn inputs(&self, u: Option<&ArrayLike<'_>>) -> PyResult<Option<Vec<f64>>> {
+        let count = self.prepared.input_count();
+        u.map(|u| vector(u, "u", count, "one per input"))
+            .transpose()
     }
 }
 
@@ -62,14 +44,15 @@ impl Rhs {
         &self,
         py: Python<'py>,
         t: f64,
-        x: PyReadonlyArray1<'py, f64>,
-        u: Option<PyReadonlyArray1<'py, f64>>,
+        x: ArrayLike<'py>,
+        u: Option<ArrayLike<'py>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let x = self.checked_state(&x)?;
+        let x = self.state_of(&x)?;
         let u = self.inputs(u.as_ref())?;
         let mut xdot = vec![0.0; x.len()];
-        self.prepared
-            .with_inputs(u.as_deref(), |formulation| formulation.rhs(t, x, &mut xdot));
+        self.prepared.with_inputs(u.as_deref(), |formulation| {
+            formulation.rhs(t, &x, &mut xdot)
+        });
         Ok(PyArray1::from_vec(py, xdot))
     }
 
@@ -80,15 +63,15 @@ impl Rhs {
         &self,
         py: Python<'py>,
         t: f64,
-        x: PyReadonlyArray1<'py, f64>,
-        u: Option<PyReadonlyArray1<'py, f64>>,
+        x: ArrayLike<'py>,
+        u: Option<ArrayLike<'py>>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let x = self.checked_state(&x)?;
+        let x = self.state_of(&x)?;
         let u = self.inputs(u.as_ref())?;
         let d = x.len();
         let mut jacobian = vec![0.0; d * d];
         self.prepared.with_inputs(u.as_deref(), |formulation| {
-            formulation.jacobian(t, x, &mut jacobian);
+            formulation.jacobian(t, &x, &mut jacobian);
         });
         matrix(py, jacobian, d)
     }
@@ -100,8 +83,8 @@ impl Rhs {
     }
 
     /// The energy `H(x)`.
-    fn energy(&self, x: PyReadonlyArray1<'_, f64>) -> PyResult<f64> {
-        Ok(self.prepared.formulation.energy(self.checked_state(&x)?))
+    fn energy(&self, x: ArrayLike<'_>) -> PyResult<f64> {
+        Ok(self.prepared.formulation.energy(&self.state_of(&x)?))
     }
 
     /// A consistent state from the model's defaults and `initial`

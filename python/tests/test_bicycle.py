@@ -104,3 +104,11 @@ def test_a_run_beyond_its_tolerance_warns_and_one_within_it_does_not(bicycle):
         controlled = fall(integrator="rk4")
     assert controlled.summary["warnings"] == []
     assert abs(controlled.t[-1] - reference.t[-1]) < 1e-6, (controlled.t[-1], reference.t[-1])
+
+
+def test_a_sweep_over_a_list_is_the_sweep_over_its_array(bicycle):
+    speeds = [1.0, 4.5, 7]
+    over_list = bicycle.linearize(at=UPRIGHT, sweep=("v", speeds))
+    over_array = bicycle.linearize(at=UPRIGHT, sweep=("v", numpy.array(speeds)))
+    assert numpy.array_equal(over_list.values, over_array.values)
+    assert numpy.array_equal(over_list.eigenvalues, over_array.eigenvalues)

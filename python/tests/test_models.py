@@ -199,3 +199,51 @@ def test_the_rust_a_model_compiles_to_is_the_command_lines(command_line):
     assert "    pub fn reduced_rhs(" in code
     with pytest.raises(ValueError, match="formats: text, latex, json, rust"):
         sleigh.document(format="c")
+
+
+def test_array_arguments_take_what_numpy_asarray_takes(root):
+    board = chaplygin.builtin("snakeboard")
+    f = board.rhs("reduced")
+    x = f.initial_state({"phi": 0.4, "dot(phi)": 0.2, "dot(psi)": 0.1, "dot(x)": 0.5})
+    u = numpy.array([0.7, -0.2])
+    xdot, jacobian, energy = f(0.3, x, u), f.jacobian(0.3, x, u), f.energy(x)
+    column = numpy.zeros((len(x), 3))
+    column[:, 1] = x  # a view with a stride of three entries
+    for state in (list(x), tuple(x), column[:, 1]):
+        for inputs in (list(u), tuple(u), u[::-1][::-1]):
+            assert numpy.array_equal(f(0.3, state, inputs), xdot)
+            assert numpy.array_equal(f.jacobian(0.3, state, inputs), jacobian)
+        assert f.energy(state) == energy
+    # another dtype: the same as its float64 copy
+    single = x.astype(numpy.float32)
+    assert numpy.array_equal(f(0.3, single, [1, 0]), f(0.3, single.astype(float), numpy.array([1.0, 0.0])))
+    # a model with one input takes a scalar for it
+    racer = chaplygin.load(str(root / "tests" / "models" / "roller_racer.model"))
+    g = racer.rhs("reduced")
+    y = g.initial_state({"phi": 0.3, "dot(x)": 1.0, "dot(phi)": 0.0})
+    assert numpy.array_equal(g(0.0, y, 0.05), g(0.0, y, numpy.array([0.05])))
+    assert numpy.array_equal(g(0.0, y, [0.05]), g(0.0, y, numpy.array([0.05])))
+    # acceleration, from lists and tuples
+    q, qdot = [0.1, -0.2, 0.3, 0.4, 0.5], (0.0, 0.0, 0.0, 0.2, 0.1)
+    by_lists = board.acceleration(q, qdot, [0.7, -0.2])
+    by_arrays = board.acceleration(numpy.array(q), numpy.array(qdot), numpy.array([0.7, -0.2]))
+    assert all(numpy.array_equal(a, b) for a, b in zip(by_lists, by_arrays))
+
+
+def test_an_array_argument_of_another_shape_is_named_in_the_error():
+    board = chaplygin.builtin("snakeboard")
+    f = board.rhs("reduced")
+    x = f.initial_state()
+    d = len(x)
+    with pytest.raises(ValueError, match=rf"x must have shape \({d},\), the state's entries; it has shape \({d - 1},\)"):
+        f(0.0, x[:-1])
+    with pytest.raises(ValueError, match=r"u must have shape \(2,\), one per input; it has shape \(3,\)"):
+        f.jacobian(0.0, x, [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match=rf"x must be one-dimensional; it has shape \(2, {d}\)"):
+        f.energy(numpy.stack([x, x]))
+    with pytest.raises(ValueError, match=r"u must have shape \(2,\), one per input; it has shape \(\)"):
+        f(0.0, x, 0.5)
+    with pytest.raises(ValueError, match=r"qdot must have shape \(5,\), one per coordinate; it has shape \(4,\)"):
+        board.acceleration([0.0] * 5, [0.0] * 4)
+    with pytest.raises(ValueError, match="could not convert"):
+        f(0.0, ["a"] * d)
