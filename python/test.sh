@@ -13,7 +13,7 @@ fi
 # Without byte-compiling what it installs: 22 s instead of 57 (the tests
 # import a small part of it).
 "$venv/bin/python" -m pip install --quiet --no-compile \
-    numpy scipy sympy pytest pytest-xdist hypothesis matplotlib pandas
+    numpy scipy sympy pytest pytest-xdist hypothesis matplotlib pandas 'dask[distributed]'
 # The command line the tests compare against: the binary the workspace's
 # own tests run, built with their features (after `cargo test --workspace`,
 # as in CI, nothing is rebuilt; `cargo build --bin` would resolve other

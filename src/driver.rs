@@ -16,11 +16,14 @@
 //!   cycle by cycle;
 //! - [`linearize`]: operating points, linear systems, eigenvalue sweeps
 //!   with their intervals of stability, the canonical form;
+//!   [`design_map`]: the self-stable speeds over a grid of parameters, on
+//!   every core;
 //! - [`expression`]: the expressions of input laws, stop conditions,
 //!   initial values and operating points, in the model language's syntax;
 //! - [`document`]: the derivation document as text, LaTeX or JSON.
 
 pub mod catalog;
+pub mod design_map;
 pub mod document;
 pub mod engine;
 pub mod expression;

@@ -23,7 +23,8 @@
 //!
 //! And for `chaplygin linearize --sweep`, [`write_eigenvalue_plot`] writes
 //! `eigenvalues.png`: the real and imaginary parts of the eigenvalues
-//! against the swept variable; for `chaplygin gait`, [`write_path_plot`]
+//! against the swept variable; for `chaplygin map`, [`write_design_map`]
+//! `map.png`: the self-stable speeds over one or two parameters; for `chaplygin gait`, [`write_path_plot`]
 //! the planar path alone and, for a principally kinematic model,
 //! [`write_curvature_plot`] `curvature.png`: its constraint curvature
 //! functions over the shape plane with the loop drawn on them; and
@@ -36,6 +37,7 @@
 //! with plotters' `ab_glyph` renderer, so no system font library is needed.
 
 mod curvature;
+mod design_map;
 mod eigenvalues;
 mod error;
 mod figure4;
@@ -46,6 +48,7 @@ mod spec;
 mod style;
 
 pub use curvature::{CurvatureField, write_curvature_plot};
+pub use design_map::{DesignMapPlot, write_design_map};
 pub use eigenvalues::{EigenvalueSweep, write_eigenvalue_plot};
 pub use error::PlotError;
 pub use gaits::{GaitCurve, write_gait_comparison};

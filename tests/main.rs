@@ -23,6 +23,7 @@ mod cli_sizes;
 mod cli_stop;
 mod degenerate_momentum_basis;
 mod derive_rust;
+mod design_map;
 mod gait_design;
 mod holonomic;
 mod hygiene;

@@ -41,7 +41,7 @@ use crate::model::{GroupFactor, Model};
 use crate::{Analysed, analysed_model, over_budget};
 use chaplygin_runtime::simulate::GuardedValue;
 use chaplygin_runtime::system::Guard;
-use std::rc::Rc;
+use std::sync::Arc;
 
 /// The names of a model and its sizes.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -171,7 +171,7 @@ pub struct InterpretedModel {
     basis_divisors: Vec<String>,
     report: String,
     /// What runs the programs.
-    engine: Rc<dyn Engine>,
+    engine: Arc<dyn Engine>,
     /// With a symmetry, the coordinates the group acts on.
     group: Option<Vec<usize>>,
     /// The symmetry group's factors (empty without a symmetry).
@@ -243,7 +243,7 @@ impl InterpretedModel {
                 .collect(),
             basis_divisors: emitted.basis_divisors,
             report: emitted.report,
-            engine: Rc::new(Interpreter),
+            engine: Arc::new(Interpreter),
             group: model
                 .symmetry
                 .as_ref()
@@ -255,7 +255,7 @@ impl InterpretedModel {
                 .unwrap_or_default(),
         };
         let programs: Vec<_> = interpreted.programs().map(|(_, program)| program).collect();
-        interpreted.engine = Rc::from(backend.engine(&programs));
+        interpreted.engine = Arc::from(backend.engine(&programs));
         Ok(interpreted)
     }
 
@@ -268,7 +268,7 @@ impl InterpretedModel {
         compile: impl FnOnce(&[&crate::ir::Program]) -> Result<Box<dyn Engine>, E>,
     ) -> Result<(), E> {
         let programs: Vec<_> = self.programs().map(|(_, program)| program).collect();
-        self.engine = Rc::from(compile(&programs)?);
+        self.engine = Arc::from(compile(&programs)?);
         Ok(())
     }
 

@@ -10,7 +10,9 @@ functions compiled to native code at run time. ``Model.simulate`` returns a
 with eigenvalues and intervals of stability, ``Model.gait`` what a shape
 loop does and ``Model.optimal_gait`` the loop that does most, ``Model.rhs`` a right-hand side
 for ``scipy.integrate.solve_ivp``, and ``Model.sympy`` the derived matrices
-as SymPy expressions.
+as SymPy expressions; ``design_map`` the self-stable speeds over a grid of
+parameters, on every core or on any ``concurrent.futures.Executor`` (a
+Dask cluster's).
 
     >>> import chaplygin
     >>> board = chaplygin.builtin("snakeboard")
@@ -21,8 +23,10 @@ as SymPy expressions.
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
+from concurrent.futures import Executor
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy
@@ -34,6 +38,7 @@ from ._sympy import derived_expressions
 
 __all__ = [
     "ChaplyginError",
+    "DesignMap",
     "Gait",
     "Linearization",
     "Model",
@@ -44,6 +49,7 @@ __all__ = [
     "Trajectory",
     "builtin",
     "builtins",
+    "design_map",
     "load",
 ]
 
@@ -212,6 +218,14 @@ class Model:
 
     def __repr__(self) -> str:
         return f"Model({self.name!r}, coordinates={self.coordinates}, engine={self.engine!r})"
+
+    def __reduce__(self) -> Tuple[Any, Tuple[Optional[str], str, str]]:
+        """Pickles as the model's text (or built-in name) and engine: a
+        worker process rebuilds it (derived and compiled once per process)."""
+        return (_rebuilt, self._state())
+
+    def _state(self) -> Tuple[Optional[str], str, str]:
+        return (self._native.builtin_name, self._native.text, self.engine)
 
     def simulate(
         self,
@@ -395,3 +409,95 @@ class Model:
 
 def _dict(values: Optional[Mapping[str, Any]]) -> Optional[Dict[str, Any]]:
     return None if values is None else dict(values)
+
+
+@functools.lru_cache(maxsize=8)
+def _rebuilt(builtin_name: Optional[str], text: str, engine: str) -> Model:
+    """The model of a pickled state, derived and compiled once per process."""
+    if builtin_name is not None:
+        return builtin(builtin_name, engine)
+    return load(text, engine)
+
+
+class DesignMap:
+    """The self-stable speeds of a steady motion over a grid of parameters.
+
+    ``params`` maps each parameter varied to its grid values (in the order
+    given); ``shape`` is their lengths. Per design point (arrays of that
+    shape): ``stable_from`` and ``stable_to`` the first stable interval's
+    ends (NaN where there is none); ``intervals`` (nested lists) every
+    stable interval ``(from, to)``; ``changes`` each ``(speed, before,
+    after)`` where the number of unstable modes changes; ``failures``
+    ``None`` or why the point could not be linearized. Interval ends and
+    changes are refined by bisection between the speed grid's points.
+    """
+
+    def __init__(self, params: Dict[str, numpy.ndarray], points: List[Dict[str, Any]]) -> None:
+        self.params = params
+        self.shape = tuple(len(values) for values in params.values())
+        self.intervals = _nested([list(map(tuple, p["intervals"])) for p in points], self.shape)
+        self.changes = _nested([list(map(tuple, p["changes"])) for p in points], self.shape)
+        self.failures = _nested([p["failure"] for p in points], self.shape)
+        ends = [p["intervals"][0] if p["intervals"] else (math.nan, math.nan) for p in points]
+        self.stable_from = numpy.array([e[0] for e in ends]).reshape(self.shape)
+        self.stable_to = numpy.array([e[1] for e in ends]).reshape(self.shape)
+
+    def __repr__(self) -> str:
+        stable = int(numpy.count_nonzero(~numpy.isnan(self.stable_from)))
+        return f"DesignMap({self.shape} design points over {list(self.params)}, {stable} self-stable)"
+
+
+def _nested(flat: List[Any], shape: Tuple[int, ...]) -> List[Any]:
+    """The row-major list ``flat`` as nested lists of ``shape``."""
+    if len(shape) <= 1:
+        return list(flat)
+    step = len(flat) // shape[0]
+    return [_nested(flat[i * step : (i + 1) * step], shape[1:]) for i in range(shape[0])]
+
+
+def design_map(
+    model: Model,
+    speed: Tuple[str, ArrayLike],
+    params: Mapping[str, Any],
+    at: Optional[Mapping[str, Value]] = None,
+    executor: Optional[Executor] = None,
+    jobs: Optional[int] = None,
+    chunks: int = 64,
+) -> DesignMap:
+    """At every design point of the grid of ``params`` (``{name: values}``
+    for each parameter varied, ``{name: value}`` for one held at a value;
+    the last varied parameter fastest), the speeds ``speed = (variable,
+    values)`` at which the steady motion ``at`` (as for
+    ``Model.linearize``) is asymptotically stable, as ``chaplygin map``
+    finds them.
+
+    With ``executor=None`` every design point runs here, on ``jobs``
+    threads (every core by default) with the GIL released. With any
+    ``concurrent.futures.Executor`` (``dask.distributed.Client(...)
+    .get_executor()``, a ``ProcessPoolExecutor``) the points go out in
+    about ``chunks`` tasks, each rebuilding the model from its pickled text
+    once per worker process and running on one thread; the result is the
+    same, bit for bit."""
+    variable, values = speed
+    speed = (str(variable), numpy.asarray(values, dtype=float))
+    fixed = {name: float(v) for name, v in params.items() if numpy.ndim(v) == 0}
+    varied = {name: numpy.asarray(v, dtype=float) for name, v in params.items() if numpy.ndim(v) != 0}
+    names = list(varied)
+    if not names:
+        raise ValueError("params: vary at least one parameter ({name: values})")
+    grid = numpy.array(numpy.meshgrid(*varied.values(), indexing="ij")).reshape(len(names), -1).T
+    request = (_dict(at), fixed, speed, names)
+    if executor is None:
+        points = model._native.design_points(*request, grid, jobs)
+    else:
+        size = max(1, -(-len(grid) // max(1, chunks)))
+        parts = [grid[i : i + size] for i in range(0, len(grid), size)]
+        tasks = [executor.submit(_design_points, model._state(), request, part) for part in parts]
+        points = [point for task in tasks for point in task.result()]
+    return DesignMap(varied, list(points))
+
+
+def _design_points(state: Tuple[Optional[str], str, str], request: Any, points: numpy.ndarray) -> List[Dict[str, Any]]:
+    """One executor task: ``points`` of a design map on one thread, the
+    model rebuilt from ``state`` (once per process)."""
+    return list(_rebuilt(*state)._native.design_points(*request, points, 1))

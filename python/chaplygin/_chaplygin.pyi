@@ -21,6 +21,8 @@ class Model:
     parameters: Dict[str, float]
     engine: str
     report: str
+    builtin_name: Optional[str]
+    text: str
     def simulate(
         self,
         t_end: float,
@@ -69,6 +71,15 @@ class Model:
     def acceleration(
         self, q: ArrayLike, qdot: ArrayLike, u: Optional[ArrayLike] = None
     ) -> Tuple[numpy.ndarray, numpy.ndarray]: ...
+    def design_points(
+        self,
+        at: Optional[Dict[str, Any]],
+        params: Optional[Dict[str, float]],
+        speed: Tuple[str, ArrayLike],
+        names: List[str],
+        points: ArrayLike,
+        jobs: Optional[int],
+    ) -> List[Dict[str, Any]]: ...
     def document(self, format: str = "text") -> str: ...
 
 class Rhs:

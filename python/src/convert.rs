@@ -3,7 +3,10 @@
 //! exceptions.
 
 use chaplygin::driver::document::Rejected;
-use numpy::{AllowTypeChange, Element, PyArray1, PyArray2, PyArrayLikeDyn, PyArrayMethods};
+use numpy::{
+    AllowTypeChange, Element, PyArray1, PyArray2, PyArrayLikeDyn, PyArrayMethods,
+    PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -14,17 +17,32 @@ use std::error::Error;
 /// and of any strides.
 pub type ArrayLike<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
 
+/// The entries of an array argument, row-major, and its shape. An array
+/// whose data are not aligned for `f64` (as one a cluster sent may be) is
+/// copied first: a view needs them aligned.
+pub fn array_entries(array: &ArrayLike<'_>) -> PyResult<(Vec<f64>, Vec<usize>)> {
+    let align = std::mem::align_of::<f64>();
+    let aligned = (array.data() as usize).is_multiple_of(align)
+        && (array.strides().iter()).all(|stride| stride.unsigned_abs().is_multiple_of(align));
+    if !aligned {
+        let copy: ArrayLike<'_> = array.as_any().call_method0("copy")?.extract()?;
+        return array_entries(&copy);
+    }
+    let view = array.as_array();
+    Ok((view.iter().copied().collect(), view.shape().to_vec()))
+}
+
 /// The entries of the array argument `name`: one-dimensional, or a scalar
 /// for one entry.
 pub fn flat(array: &ArrayLike<'_>, name: &str) -> PyResult<Vec<f64>> {
-    let values = array.as_array();
-    if values.ndim() > 1 {
+    let (values, lengths) = array_entries(array)?;
+    if lengths.len() > 1 {
         return Err(PyValueError::new_err(format!(
             "{name} must be one-dimensional; it has shape {}",
-            shape(values.shape())
+            shape(&lengths)
         )));
     }
-    Ok(values.iter().copied().collect())
+    Ok(values)
 }
 
 /// The entries of the array argument `name`, which must be `expected`
@@ -39,14 +57,14 @@ pub fn vector(
     if values.len() != expected {
         return Err(PyValueError::new_err(format!(
             "{name} must have shape ({expected},), {what}; it has shape {}",
-            shape(array.as_array().shape())
+            shape(array.shape())
         )));
     }
     Ok(values)
 }
 
 /// A shape as NumPy prints it: `()`, `(7,)`, `(2, 3)`.
-fn shape(lengths: &[usize]) -> String {
+pub fn shape(lengths: &[usize]) -> String {
     match lengths {
         [length] => format!("({length},)"),
         _ => {

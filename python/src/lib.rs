@@ -3,13 +3,14 @@
 //! `chaplygin::driver`, the engine the command line runs. A model is read
 //! from its text (a built-in's or a `.model` file's), its programs compiled
 //! to native code at run time (the interpreter where Cranelift does not
-//! support the host); it simulates, linearizes and evaluates its
-//! right-hand sides, NumPy arrays in and out. The Python layer
+//! support the host); it simulates, linearizes, maps stability over
+//! designs and evaluates its right-hand sides, NumPy arrays in and out. The Python layer
 //! (`chaplygin/__init__.py`) wraps what this module returns into
 //! `Trajectory` and `Linearization` objects, raises `SimulationError`, and
 //! turns the derivation document into SymPy expressions.
 
 mod convert;
+mod design;
 mod linearization;
 mod model;
 mod rhs;

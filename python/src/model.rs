@@ -5,9 +5,11 @@
 use crate::convert::{
     ArrayLike, assignments, flat, matrix, model_error, numbers, to_python, vector,
 };
+use crate::design;
 use crate::linearization;
 use crate::rhs::Rhs;
 use chaplygin::driver::catalog::Source;
+use chaplygin::driver::design_map::Motion;
 use chaplygin::driver::document::{self, Format};
 use chaplygin::driver::engine::{self, EngineChoice, Loaded};
 use chaplygin::driver::gait::{self, GaitRequest, OptimalGaitRequest};
@@ -21,13 +23,14 @@ use chaplygin_codegen::interpret::Sizes;
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyRuntimeWarning, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 use std::ffi::CString;
 use std::io;
 
 /// A model read from its text (a built-in's or a `.model` file's), derived
-/// exactly, its programs compiled to native code.
-#[pyclass(unsendable, module = "chaplygin._chaplygin")]
+/// exactly, its programs compiled to native code; shared between threads
+/// (its native code is immutable once compiled).
+#[pyclass(module = "chaplygin._chaplygin")]
 pub struct Model {
     loaded: Loaded,
     source: Source,
@@ -473,6 +476,52 @@ impl Model {
             PyArray1::from_vec(py, qddot),
             PyArray1::from_vec(py, lambda),
         ))
+    }
+
+    /// At each row of `points` (values of the parameters `names`; the
+    /// others at `params` or their defaults), the self-stable speeds of the
+    /// steady motion `at` over `speed = (variable, values)` and where it
+    /// gains or loses an unstable mode, on `jobs` threads (every core by
+    /// default) with the GIL released; one dict per point.
+    #[pyo3(signature = (at, params, speed, names, points, jobs))]
+    #[allow(clippy::too_many_arguments)]
+    fn design_points<'py>(
+        &self,
+        py: Python<'py>,
+        at: Option<&Bound<'py, PyDict>>,
+        params: Option<&Bound<'py, PyDict>>,
+        speed: (String, ArrayLike<'py>),
+        names: Vec<String>,
+        points: ArrayLike<'py>,
+        jobs: Option<usize>,
+    ) -> PyResult<Bound<'py, PyList>> {
+        let mut model = self.fresh().model;
+        with_parameters(&mut model, &numbers(params)?)
+            .map_err(|error| PyValueError::new_err(error.to_string()))?;
+        let at = assignments(at)?;
+        let speeds = flat(&speed.1, "speed's values")?;
+        let motion = Motion {
+            at: &at,
+            speed: (&speed.0, &speeds),
+        };
+        let points = design::rows(&points, names.len())?;
+        design::stability_at(py, &model, (&names, &points), motion, jobs)
+    }
+
+    /// The built-in model's name, or `None` for a model read from a file
+    /// or a text.
+    #[getter]
+    fn builtin_name(&self) -> Option<&'static str> {
+        match &self.source {
+            Source::BuiltIn(built_in) => Some(built_in.name),
+            Source::File { .. } => None,
+        }
+    }
+
+    /// The model's text, as read.
+    #[getter]
+    fn text(&self) -> &str {
+        self.source.text()
     }
 
     /// The derivation document as `"text"`, `"latex"` or `"json"`, or

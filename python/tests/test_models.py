@@ -214,6 +214,10 @@ def test_array_arguments_take_what_numpy_asarray_takes(root):
             assert numpy.array_equal(f(0.3, state, inputs), xdot)
             assert numpy.array_equal(f.jacobian(0.3, state, inputs), jacobian)
         assert f.energy(state) == energy
+    # data not aligned for float64 (as a buffer a cluster sent may be)
+    unaligned = numpy.frombuffer(bytes(1) + x.tobytes(), dtype=float, offset=1)
+    assert not unaligned.flags.aligned
+    assert numpy.array_equal(f(0.3, unaligned, u), xdot)
     # another dtype: the same as its float64 copy
     single = x.astype(numpy.float32)
     assert numpy.array_equal(f(0.3, single, [1, 0]), f(0.3, single.astype(float), numpy.array([1.0, 0.0])))

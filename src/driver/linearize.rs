@@ -19,7 +19,7 @@ use crate::runtime::linearize::{
     self as runtime_linearize, Dynamics, LinearSystem, OperatingPoint, PointError, SteadyError,
 };
 use std::collections::BTreeMap;
-use sweep::Interval;
+use sweep::{Change, Interval};
 
 /// A problem with the assignments or the operating point, in one line.
 #[derive(Debug, thiserror::Error)]
@@ -175,6 +175,91 @@ impl SweepAnalysis {
 /// sense, the family's zeros of conserved quantities discounted.
 type Verdict = fn(&LinearSystem, usize) -> bool;
 
+/// The steady motions `at` over a sweep variable: the linearization at
+/// each of its values, the expressions reading the parameters too.
+struct Family<'a> {
+    model: &'a dyn Dynamics,
+    parameters: &'a BTreeMap<String, f64>,
+    variable: &'a str,
+    at: &'a [(String, String)],
+}
+
+impl Family<'_> {
+    /// The family of `at` over `variable`, which must not be a parameter.
+    fn new<'a>(
+        model: &'a dyn Dynamics,
+        parameters: &'a BTreeMap<String, f64>,
+        variable: &'a str,
+        at: &'a [(String, String)],
+    ) -> Result<Family<'a>, LinearizeError> {
+        if parameters.contains_key(variable) {
+            return Err(LinearizeError::ParameterSwept(variable.to_string()));
+        }
+        Ok(Family {
+            model,
+            parameters,
+            variable,
+            at,
+        })
+    }
+
+    /// The linear system at `value` of the variable.
+    fn at_value(&self, value: f64) -> Result<LinearSystem, LinearizeError> {
+        let mut names = self.parameters.clone();
+        names.insert(self.variable.to_string(), value);
+        linearize_at(self.model, &names, self.at, &[]).map_err(|source| {
+            LinearizeError::AtSweepValue {
+                variable: self.variable.to_string(),
+                value,
+                source: Box::new(source),
+            }
+        })
+    }
+
+    /// The linear systems at `values`, and the zeros of conserved
+    /// quantities every one of them has: a point with more has an
+    /// eigenvalue crossing zero.
+    fn over(&self, values: &[f64]) -> Result<(Vec<LinearSystem>, usize), LinearizeError> {
+        let systems = values
+            .iter()
+            .map(|&value| self.at_value(value))
+            .collect::<Result<Vec<_>, _>>()?;
+        let conserved = systems
+            .iter()
+            .map(LinearSystem::conserved_zeros)
+            .min()
+            .unwrap_or(0);
+        Ok((systems, conserved))
+    }
+
+    /// The runs of `values` (where the `systems` are) where `holds`, their
+    /// ends refined by bisection on `between`.
+    fn intervals(
+        &self,
+        (values, systems): (&[f64], &[LinearSystem]),
+        conserved: usize,
+        (holds, between): (Verdict, Verdict),
+    ) -> Result<Vec<Interval>, LinearizeError> {
+        let on_grid: Vec<bool> = systems.iter().map(|l| holds(l, conserved)).collect();
+        sweep::refined_intervals(values, &on_grid, |value| {
+            self.at_value(value)
+                .map(|linear| between(&linear, conserved))
+        })
+    }
+
+    /// The intervals of asymptotic stability: a grid point is stable by a
+    /// margin; between grid points the change is where the largest real
+    /// part crosses zero.
+    fn stable(
+        &self,
+        grid: (&[f64], &[LinearSystem]),
+        conserved: usize,
+    ) -> Result<Vec<Interval>, LinearizeError> {
+        let crossed: Verdict = |linear, conserved| linear.largest_real_part_modulo(conserved) < 0.0;
+        self.intervals(grid, conserved, (LinearSystem::is_stable_modulo, crossed))
+    }
+}
+
 /// The point of `at` linearized at each of `values` of `variable`, the
 /// expressions reading the `parameters` too, and the intervals of
 /// stability. A grid point is stable by a margin; between grid points the
@@ -190,42 +275,11 @@ pub fn sweep(
     (variable, values): (&str, &[f64]),
     at: &[(String, String)],
 ) -> Result<SweepAnalysis, LinearizeError> {
-    if parameters.contains_key(variable) {
-        return Err(LinearizeError::ParameterSwept(variable.to_string()));
-    }
-    let at_value = |value: f64| {
-        let mut names = parameters.clone();
-        names.insert(variable.to_string(), value);
-        linearize_at(model, &names, at, &[]).map_err(|source| LinearizeError::AtSweepValue {
-            variable: variable.to_string(),
-            value,
-            source: Box::new(source),
-        })
-    };
-    let systems = values
-        .iter()
-        .map(|&value| at_value(value))
-        .collect::<Result<Vec<_>, _>>()?;
-    // The zeros of conserved quantities are those every point of the family
-    // has: a point with more has an eigenvalue crossing zero.
-    let conserved = systems
-        .iter()
-        .map(LinearSystem::conserved_zeros)
-        .min()
-        .unwrap_or(0);
-    let verdicts = |holds: Verdict, between: Verdict| {
-        let on_grid: Vec<bool> = systems.iter().map(|l| holds(l, conserved)).collect();
-        sweep::refined_intervals(values, &on_grid, |value| {
-            at_value(value).map(|linear| between(&linear, conserved))
-        })
-    };
-    let stable = verdicts(LinearSystem::is_stable_modulo, |linear, conserved| {
-        linear.largest_real_part_modulo(conserved) < 0.0
-    })?;
-    let neutral = verdicts(
-        LinearSystem::is_neutral_modulo,
-        LinearSystem::is_neutral_modulo,
-    )?;
+    let family = Family::new(model, parameters, variable, at)?;
+    let (systems, conserved) = family.over(values)?;
+    let stable = family.stable((values, &systems), conserved)?;
+    let neutral = LinearSystem::is_neutral_modulo;
+    let neutral = family.intervals((values, &systems), conserved, (neutral, neutral))?;
     Ok(SweepAnalysis {
         variable: variable.to_string(),
         values: values.to_vec(),
@@ -233,5 +287,64 @@ pub fn sweep(
         conserved,
         stable,
         neutral,
+    })
+}
+
+/// Where the steady motions of a sweep are asymptotically stable, and
+/// where they gain or lose an unstable mode.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stability {
+    /// The zeros of conserved quantities every point of the family has.
+    pub conserved: usize,
+    /// The intervals of asymptotic stability, as [`sweep`] finds them.
+    pub stable: Vec<Interval>,
+    /// Where the number of unstable modes changes ([`unstable_modes`]),
+    /// in increasing order of the variable.
+    pub changes: Vec<Change>,
+}
+
+/// The number of the eigenvalues of `linear` but `conserved` zeros of
+/// conserved quantities whose real part is not below `-margin max(1, max
+/// |A_ij|)` (every eigenvalue where they are undefined: a Jordan chain at
+/// zero). Zero exactly where the motion is asymptotically stable.
+pub fn unstable_modes(linear: &LinearSystem, conserved: usize, margin: f64) -> usize {
+    let bound = -margin * linear.a.amax().max(1.0);
+    linear
+        .free_eigenvalues(conserved)
+        .map_or(linear.eigenvalues.len(), |free| {
+            free.iter().filter(|e| e.re >= bound).count()
+        })
+}
+
+/// The intervals of asymptotic stability of the steady motions `at` over
+/// `values` of `variable` (the expressions reading the `parameters` too),
+/// as [`sweep`] finds them, and the values where the number of unstable
+/// modes changes: between grid values where it differs (counted with
+/// [`LinearSystem::MARGIN`]), located by bisection on the count without
+/// margin (to [`sweep::REFINED`]). Neither the eigenvalues nor the neutral
+/// intervals are kept.
+///
+/// # Errors
+/// The variable is a parameter, or a point of the sweep fails (named with
+/// its value).
+pub fn stability(
+    model: &dyn Dynamics,
+    parameters: &BTreeMap<String, f64>,
+    (variable, values): (&str, &[f64]),
+    at: &[(String, String)],
+) -> Result<Stability, LinearizeError> {
+    let family = Family::new(model, parameters, variable, at)?;
+    let (systems, conserved) = family.over(values)?;
+    let stable = family.stable((values, &systems), conserved)?;
+    let counts: Vec<usize> = (systems.iter())
+        .map(|linear| unstable_modes(linear, conserved, LinearSystem::MARGIN))
+        .collect();
+    let changes = sweep::changes(values, &counts, |value| {
+        (family.at_value(value)).map(|linear| unstable_modes(&linear, conserved, 0.0))
+    })?;
+    Ok(Stability {
+        conserved,
+        stable,
+        changes,
     })
 }

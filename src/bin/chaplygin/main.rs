@@ -11,6 +11,8 @@
 //! chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
 //!                           [--param NAME=VALUE]... [--engine jit|interpret] [--out DIR]
 //!                           [--canonical Q1,Q2,... --canonical-speed VAR[=V1,V2] [--canonical-gravity NAME]]
+//! chaplygin map MODEL --speed VAR=START:STOP:STEP --param NAME=START:STOP:STEP [--param NAME2=START:STOP:STEP]
+//!                     [--at NAME=EXPR]... [--param NAME=VALUE]... [--jobs N] [--engine jit|interpret] [--out DIR]
 //! chaplygin gait MODEL --shape A,B,... --cycle NAME=EXPR... --period T [--cycles N] [--steps S]
 //!                      [--param NAME=VALUE]... [--initial pI=VALUE]... [--engine jit|interpret] [--out DIR]
 //! ```
@@ -28,6 +30,7 @@
 
 mod gait;
 mod linearize;
+mod map;
 mod model_args;
 mod options;
 mod output;

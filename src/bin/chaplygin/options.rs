@@ -1,8 +1,9 @@
 //! The command line: its commands, and what each does with its arguments
-//! (those of `simulate` and `linearize` are defined with them).
+//! (those of `simulate`, `linearize`, `map` and `gait` are defined with them).
 
 use crate::gait::{self, GaitArgs};
 use crate::linearize::{self, LinearizeArgs};
+use crate::map::{self, MapArgs};
 use crate::simulate::{self, SimulateArgs};
 use chaplygin::driver::catalog::{self, lookup};
 use chaplygin::driver::document::{self, Format};
@@ -35,6 +36,9 @@ enum Action {
     /// `--sweep`, write `eigenvalues.csv` and `eigenvalues.png`; with
     /// `--canonical`, print the canonical form M, C1, K0, K2.
     Linearize(Box<LinearizeArgs>),
+    /// The self-stable speeds of a steady motion over a grid of one or two
+    /// parameters, on every core, writing `map.csv` and `map.png`.
+    Map(Box<MapArgs>),
     /// The net displacement per cycle of a prescribed periodic shape
     /// trajectory, writing `cycle.csv` and `gait_path.png`.
     Gait(Box<GaitArgs>),
@@ -53,6 +57,7 @@ impl Command {
             }
             Action::Simulate(args) => simulate::run(&args),
             Action::Linearize(args) => linearize::run(&args),
+            Action::Map(args) => map::run(&args),
             Action::Gait(args) => gait::run(&args),
         }
     }

@@ -1,7 +1,7 @@
 //! `--sweep VAR=START:STOP:STEP`: the grid, `eigenvalues.csv` (columns
 //! `VAR, re_1, im_1, ..., re_m, im_m`, eigenvalues by descending real
-//! part) and the intervals of VAR over which the motion is asymptotically
-//! stable.
+//! part), the intervals of VAR over which the motion is asymptotically
+//! stable and the values where a count (of unstable modes) changes.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -219,6 +219,41 @@ pub fn refined_intervals<E>(
     Ok(intervals)
 }
 
+/// Where a count over a sweep (of unstable modes) changes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Change {
+    /// The value where it changes, refined between the grid values on
+    /// either side to [`REFINED`] relative.
+    pub value: f64,
+    /// The count below and above it.
+    pub counts: (usize, usize),
+}
+
+/// Where `counts` (one per grid value of `values`) changes between
+/// consecutive grid values, each located by bisection of `at` (the count
+/// at a value) for where it first takes the count of the grid value above.
+///
+/// # Errors
+/// The first error of `at`.
+pub fn changes<E>(
+    values: &[f64],
+    counts: &[usize],
+    mut at: impl FnMut(f64) -> Result<usize, E>,
+) -> Result<Vec<Change>, E> {
+    let mut found = Vec::new();
+    for (pair, grid) in counts.windows(2).zip(values.windows(2)) {
+        let (below, above) = (pair[0], pair[1]);
+        if below != above {
+            let value = bisect(grid[0], grid[1], &mut |value| at(value).map(|n| n == above))?;
+            found.push(Change {
+                value,
+                counts: (below, above),
+            });
+        }
+    }
+    Ok(found)
+}
+
 /// Where the property changes between `outside` (where it does not hold)
 /// and `inside` (where it does), to [`REFINED`]; the midpoint of the last
 /// bracket.
@@ -317,5 +352,24 @@ mod tests {
         assert_eq!(found[1].refined.1, 10.0);
         let none = refined_intervals(&values, &[false; 11], |_| Ok::<_, ()>(false)).unwrap();
         assert!(none.is_empty());
+    }
+
+    /// A count that steps at 2.5 (1 -> 0) and at pi (0 -> 2), the grid
+    /// seeing both: each change located between its grid values.
+    #[test]
+    fn counts_change_where_bisection_finds_them() {
+        let values: Vec<f64> = (0..=5).map(f64::from).collect();
+        let count = |v: f64| match v {
+            v if v < 2.5 => 1,
+            v if v < std::f64::consts::PI => 0,
+            _ => 2,
+        };
+        let counts: Vec<usize> = values.iter().map(|&v| count(v)).collect();
+        let found = changes(&values, &counts, |v| Ok::<_, ()>(count(v))).unwrap();
+        assert_eq!(found.len(), 2);
+        assert_eq!(found[0].counts, (1, 0));
+        assert!((found[0].value - 2.5).abs() <= 2.0 * REFINED * 2.5);
+        assert_eq!(found[1].counts, (0, 2));
+        assert!((found[1].value - std::f64::consts::PI).abs() <= 2.0 * REFINED * 4.0);
     }
 }
