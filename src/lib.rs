@@ -121,6 +121,8 @@ pub use chaplygin_macros::model;
 pub use chaplygin_runtime as runtime;
 
 #[cfg(feature = "driver")]
+pub mod animate;
+#[cfg(feature = "driver")]
 pub mod driver;
 pub mod energy_control;
 #[cfg(feature = "design")]

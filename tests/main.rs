@@ -7,6 +7,7 @@
 
 mod support;
 
+mod animate;
 mod bicycle;
 mod bicycle_falling;
 mod bicycle_simulation;
