@@ -32,3 +32,8 @@ pub mod gait;
 pub mod interpreted;
 pub mod linearize;
 pub mod simulate;
+
+/// What a driver call that fails returns: its error, which may travel
+/// between threads (out of a call that released Python's GIL, back from a
+/// worker).
+pub type Failure = Box<dyn std::error::Error + Send + Sync>;

@@ -69,13 +69,10 @@ pub fn over_sweep<'py>(
     at: &[(String, String)],
     (variable, values): (&str, &[f64]),
 ) -> PyResult<Bound<'py, PyDict>> {
-    let analysis = linearize::sweep(
-        model as &dyn Dynamics,
-        &parameters(model),
-        (variable, values),
-        at,
-    )
-    .map_err(|error| to_python(py, error.into()))?;
+    let parameters = parameters(model);
+    let analysis = py
+        .detach(|| linearize::sweep(model as &dyn Dynamics, &parameters, (variable, values), at))
+        .map_err(|error| to_python(py, error.into()))?;
     let result = PyDict::new(py);
     result.set_item("variable", &analysis.variable)?;
     result.set_item(

@@ -271,7 +271,9 @@ impl Model {
             initial: assignments(initial)?,
             inputs: assignments(inputs)?,
         };
-        let finished = simulate::simulate(self.fresh(), &request, &mut Nowhere, &mut |_| {})
+        let loaded = self.fresh();
+        let finished = py
+            .detach(|| simulate::simulate(loaded, &request, &mut Nowhere, &mut |_| {}))
             .map_err(|error| to_python(py, error))?;
         let run = PyDict::new(py);
         let (columns, data) = table(py, &finished.table)?;
@@ -359,7 +361,10 @@ impl Model {
             params: numbers(params)?,
             initial: numbers(initial)?,
         };
-        let run = gait::gait(self.fresh(), &request).map_err(|error| to_python(py, error))?;
+        let loaded = self.fresh();
+        let run = py
+            .detach(|| gait::gait(loaded, &request))
+            .map_err(|error| to_python(py, error))?;
         let result = PyDict::new(py);
         let (columns, data) = table(py, &run.table)?;
         result.set_item("columns", columns)?;
@@ -406,8 +411,10 @@ impl Model {
             design,
             params: numbers(params)?,
         };
-        let found =
-            gait::optimal_gait(self.fresh(), &request).map_err(|error| to_python(py, error))?;
+        let loaded = self.fresh();
+        let found = py
+            .detach(|| gait::optimal_gait(loaded, &request))
+            .map_err(|error| to_python(py, error))?;
         let optimum = &found.optimum;
         let result = PyDict::new(py);
         result.set_item("laws", found.laws.clone())?;
@@ -539,6 +546,7 @@ impl Model {
                 )));
             }
         };
-        document::document(&self.source, format).map_err(|error| to_python(py, error))
+        py.detach(|| document::document(&self.source, format))
+            .map_err(|error| to_python(py, error))
     }
 }

@@ -17,6 +17,7 @@
 //! ```
 
 use super::catalog::Source;
+use crate::driver::Failure;
 use crate::jit::Native;
 use chaplygin_codegen::diagnostic::Diagnostics;
 use chaplygin_codegen::document::{self, derive_document};
@@ -25,7 +26,6 @@ use chaplygin_codegen::model::{Declared, Model, check};
 use chaplygin_codegen::sym::{Context, RationalFunction};
 use chaplygin_codegen::syntax::parse_str;
 use serde_json::{Map, Value, json};
-use std::error::Error;
 
 /// The document's format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -78,8 +78,8 @@ impl Rejected {
 ///
 /// # Errors
 /// The model's diagnostics ([`Rejected`]).
-pub fn document(source: &Source, format: Format) -> Result<String, Box<dyn Error>> {
-    let rejected = |diagnostics: Diagnostics| -> Box<dyn Error> {
+pub fn document(source: &Source, format: Format) -> Result<String, Failure> {
+    let rejected = |diagnostics: Diagnostics| -> Failure {
         Rejected::new(&source.file_name(), &diagnostics).into()
     };
     let document_format = match format {

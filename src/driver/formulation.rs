@@ -8,13 +8,13 @@
 //! states of the size it has at run time, which the runtime's integrators
 //! and simulation loop run as they run a generated model.
 
+use crate::driver::Failure;
 use crate::runtime::arrays::leading;
 use crate::runtime::linalg::Square;
 use crate::runtime::nalgebra::{Const, DMatrix};
 use crate::runtime::projection::ProjectionError;
 use crate::runtime::simulate::{GuardedValue, Observed, Regularity};
 use crate::runtime::system::{Energy, Jacobian, OdeSystem, Structured};
-use std::error::Error;
 
 /// A closed system `xdot = f(t, x)` with what the simulation loop observes.
 pub trait Formulation {
@@ -31,7 +31,7 @@ pub trait Formulation {
     /// # Errors
     /// A velocity the formulation cannot represent, or a formulation whose
     /// state is not made of `(q, qdot)` alone (a controller's).
-    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Box<dyn Error>>;
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Failure>;
     /// `f(t, x)` into `xdot`.
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]);
     /// `df/dx` into `jacobian`, row-major.
@@ -135,7 +135,7 @@ where
     }
 
     /// Not made of `(q, qdot)` alone: the controller's states complete it.
-    fn state_of(&self, _q: &[f64], _qdot: &[f64]) -> Result<Vec<f64>, Box<dyn Error>> {
+    fn state_of(&self, _q: &[f64], _qdot: &[f64]) -> Result<Vec<f64>, Failure> {
         Err("a closed loop's state includes its controller's: it is not a configuration's and a velocity's".into())
     }
 

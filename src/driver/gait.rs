@@ -10,13 +10,13 @@ use super::engine::Loaded;
 use super::expression::{Expression, Scope};
 use super::interpreted::evaluated;
 use super::simulate::{borrowed, with_parameters};
+use crate::driver::Failure;
 use crate::gait_design::{self, Design, GaitModel, Jacobians, Optimum};
 use crate::runtime::gait::{self, Cycle, GaitState, Locomotion, ShapeLoop};
 use crate::runtime::linearize::GroupFactor;
 use crate::runtime::record::Table;
 use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
 use chaplygin_codegen::interpret::InterpretedModel;
-use std::error::Error;
 
 /// A prescribed gait: the shape coordinates and their laws, the period,
 /// how many cycles, the parameters and the initial momenta.
@@ -299,7 +299,7 @@ fn initial_momenta(given: &[(String, f64)], count: usize) -> Result<Vec<f64>, Ga
 /// push the momentum, laws that do not name each shape coordinate once as
 /// an expression of `t` and the parameters, a bad span, or an I/O error
 /// of the table.
-pub fn gait(loaded: Loaded, request: &GaitRequest) -> Result<GaitRun, Box<dyn Error>> {
+pub fn gait(loaded: Loaded, request: &GaitRequest) -> Result<GaitRun, Failure> {
     if !(request.period > 0.0 && request.period.is_finite())
         || request.cycles == 0
         || request.steps == 0
@@ -462,10 +462,7 @@ pub struct OptimalGait {
 /// coordinates, whose inputs push its momentum (at eight shapes spread
 /// over the survey's box), a bad request, no loop off the singular set,
 /// or the run's errors.
-pub fn optimal_gait(
-    loaded: Loaded,
-    request: &OptimalGaitRequest,
-) -> Result<OptimalGait, Box<dyn Error>> {
+pub fn optimal_gait(loaded: Loaded, request: &OptimalGaitRequest) -> Result<OptimalGait, Failure> {
     let Loaded {
         mut model, label, ..
     } = loaded;

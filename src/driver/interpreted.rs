@@ -12,6 +12,7 @@
 mod surface;
 
 use super::formulation::Formulation;
+use crate::driver::Failure;
 use crate::runtime::monitor::{gram_regularity, hadamard_ratio};
 use crate::runtime::nalgebra::DMatrix;
 use crate::runtime::projection::ProjectionError;
@@ -20,7 +21,6 @@ use crate::runtime::system::next_chart;
 pub(crate) use chaplygin_codegen::interpret::evaluated;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 use std::cell::Cell;
-use std::error::Error;
 use surface::{holonomic_residual, keeps_configuration, onto_surface};
 
 /// `(q, alpha)` or `(q, qdot)` split at `n`.
@@ -201,7 +201,7 @@ impl Formulation for InterpretedReduced {
         self.model.engine().name()
     }
 
-    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Box<dyn Error>> {
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Failure> {
         Ok(self.initial_state(q, qdot)?)
     }
 
@@ -358,7 +358,7 @@ impl Formulation for InterpretedDalembert {
         self.model.engine().name()
     }
 
-    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Box<dyn Error>> {
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Failure> {
         Ok(q.iter().chain(qdot).copied().collect())
     }
 
@@ -557,7 +557,7 @@ impl Formulation for InterpretedMomentum {
         self.model.engine().name()
     }
 
-    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Box<dyn Error>> {
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Failure> {
         Ok(self.initial_state(q, qdot)?)
     }
 

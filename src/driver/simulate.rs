@@ -36,6 +36,7 @@ use super::formulation::{Formulation, Typed};
 use super::interpreted::{
     InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced, evaluated,
 };
+use crate::driver::Failure;
 use crate::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
 use crate::runtime::arrays::leading;
 use crate::runtime::nalgebra::DMatrix;
@@ -47,7 +48,6 @@ use inputs::InputSchedule;
 use run::Settings;
 use start::{Kinematics, Start, initial_state, initial_values, with_default_motion};
 use std::cell::RefCell;
-use std::error::Error;
 use std::rc::Rc;
 
 /// A formulation of a model closed by its inputs, and its initial state.
@@ -78,7 +78,7 @@ pub struct Finished {
     pub parameters: Vec<(String, f64)>,
     /// The run's report, or why it failed (the rows before the failure
     /// stay recorded).
-    pub outcome: Result<Report, Box<dyn Error>>,
+    pub outcome: Result<Report, Failure>,
 }
 
 /// Runs `request` on the `loaded` model, recording every row into the
@@ -93,7 +93,7 @@ pub fn simulate(
     request: &Request,
     also: &mut dyn Recorder,
     progress: &mut dyn FnMut(f64),
-) -> Result<Finished, Box<dyn Error>> {
+) -> Result<Finished, Failure> {
     if request.controller == Controller::Energy {
         return match loaded.built_in {
             Some(built_in) if built_in.name == "snakeboard" => {
@@ -127,7 +127,7 @@ pub fn simulate(
 ///
 /// # Errors
 /// Bad input, or a formulation the model does not derive.
-pub fn prepare(loaded: Loaded, request: &Request) -> Result<Prepared, Box<dyn Error>> {
+pub fn prepare(loaded: Loaded, request: &Request) -> Result<Prepared, Failure> {
     if request.controller == Controller::Energy {
         return Err(no_controller(&loaded.label).into());
     }
@@ -191,7 +191,7 @@ fn closed(
     inputs: InputLaw,
     start: &Start,
     label: &str,
-) -> Result<ClosedFrom, Box<dyn Error>> {
+) -> Result<ClosedFrom, Failure> {
     Ok(match choice {
         FormulationChoice::Reduced => {
             let reduced = InterpretedReduced::new(model, inputs);
@@ -229,7 +229,7 @@ impl Prepared {
     /// An unknown name, a value that does not read, velocities the
     /// constraints do not determine, or a velocity the formulation cannot
     /// represent.
-    pub fn initial_state(&self, given: &[(String, String)]) -> Result<Vec<f64>, Box<dyn Error>> {
+    pub fn initial_state(&self, given: &[(String, String)]) -> Result<Vec<f64>, Failure> {
         let start = start_of(
             &self.model,
             self.built_in,
@@ -267,7 +267,7 @@ impl Prepared {
 
     /// The declared points' positions at every row of `table`, `None`
     /// without points.
-    fn tracks(&self, table: &Table) -> Result<Option<Table>, Box<dyn Error>> {
+    fn tracks(&self, table: &Table) -> Result<Option<Table>, Failure> {
         let names = &self.model.names().points;
         if names.is_empty() {
             return Ok(None);
@@ -374,7 +374,7 @@ fn energy_controlled(
     request: &Request,
     also: &mut dyn Recorder,
     progress: &mut dyn FnMut(f64),
-) -> Result<Finished, Box<dyn Error>> {
+) -> Result<Finished, Failure> {
     if request.formulation != FormulationChoice::Reduced {
         return Err(InputError::Unsupported(
             "the energy controller closes the reduced port-Hamiltonian form: use --formulation reduced".into(),

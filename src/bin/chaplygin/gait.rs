@@ -11,6 +11,7 @@
 
 use crate::model_args::{ModelArgs, loaded};
 use crate::output::{plotted, write_table};
+use chaplygin::driver::Failure;
 use chaplygin::driver::gait::{
     CurvatureGrid, GaitRequest, GaitRun, OptimalGait, OptimalGaitRequest, gait, optimal_gait,
 };
@@ -19,7 +20,6 @@ use chaplygin::gait_design::{Cost, Design, Direction};
 use chaplygin::plot;
 use chaplygin::runtime::record::shortest_decimal;
 use std::collections::BTreeSet;
-use std::error::Error;
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
@@ -84,7 +84,7 @@ pub struct GaitArgs {
 ///
 /// # Errors
 /// Bad input, a model a gait does not move, or an I/O error.
-pub fn run(args: &GaitArgs) -> Result<(), Box<dyn Error>> {
+pub fn run(args: &GaitArgs) -> Result<(), Failure> {
     if let Some(direction) = args.optimize {
         return optimize(args, direction);
     }
@@ -112,7 +112,7 @@ pub fn run(args: &GaitArgs) -> Result<(), Box<dyn Error>> {
 }
 
 /// `--optimize`: the loop, its laws, its run and `gait.csv`.
-fn optimize(args: &GaitArgs, direction: Direction) -> Result<(), Box<dyn Error>> {
+fn optimize(args: &GaitArgs, direction: Direction) -> Result<(), Failure> {
     let design = Design {
         direction,
         cost: args.cost,
@@ -182,7 +182,7 @@ fn summary(found: &OptimalGait) -> String {
 
 /// `gait.csv`: one row per shape coordinate, its constant then the cosine
 /// and sine coefficients of each harmonic.
-fn write_coefficients(found: &OptimalGait, path: &std::path::Path) -> Result<(), Box<dyn Error>> {
+fn write_coefficients(found: &OptimalGait, path: &std::path::Path) -> Result<(), Failure> {
     let shape_loop = &found.optimum.shape_loop;
     let mut text = String::from("coordinate,constant");
     for k in 1..=shape_loop.harmonics {
@@ -208,7 +208,7 @@ fn write_run(
     run: GaitRun,
     out: &std::path::Path,
     mut written: Vec<PathBuf>,
-) -> Result<(), Box<dyn Error>> {
+) -> Result<(), Failure> {
     let csv_path = out.join("cycle.csv");
     write_table(&run.table, &csv_path)?;
     let png_path = out.join("gait_path.png");

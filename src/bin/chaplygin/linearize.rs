@@ -11,6 +11,7 @@
 //! in those coordinates. The inputs are zero.
 
 use crate::model_args::{ModelArgs, loaded};
+use chaplygin::driver::Failure;
 use chaplygin::driver::linearize::canonical::{self, CanonicalSpeed};
 use chaplygin::driver::linearize::sweep::{self, Interval, Sweep};
 use chaplygin::driver::linearize::{LinearizeError, SweepAnalysis, linearize_at};
@@ -18,7 +19,6 @@ use chaplygin::driver::simulate::{assignment, expression_assignment, with_parame
 use chaplygin::plot::{EigenvalueSweep, write_eigenvalue_plot};
 use chaplygin::runtime::linearize::{Dynamics, LinearSystem};
 use std::collections::BTreeMap;
-use std::error::Error;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -71,7 +71,7 @@ pub struct LinearizeArgs {
 ///
 /// # Errors
 /// Bad input, a point that is not a steady motion, an I/O error.
-pub fn run(args: &LinearizeArgs) -> Result<(), Box<dyn Error>> {
+pub fn run(args: &LinearizeArgs) -> Result<(), Failure> {
     let mut model = loaded(&args.model)?.model;
     let parameters = with_parameters(&mut model, &args.params)?;
     analyse(&model, parameters.into_iter().collect(), args)
@@ -82,7 +82,7 @@ fn analyse(
     model: &dyn Dynamics,
     parameters: BTreeMap<String, f64>,
     args: &LinearizeArgs,
-) -> Result<(), Box<dyn Error>> {
+) -> Result<(), Failure> {
     if let Some(speed) = &args.canonical_speed {
         let request = canonical::Request {
             coordinates: &args.canonical,

@@ -8,12 +8,12 @@
 //! fails.
 
 use crate::model_args::{ModelArgs, loaded};
+use chaplygin::driver::Failure;
 use chaplygin::driver::design_map::{self, Axis, Motion, Run};
 use chaplygin::driver::linearize::sweep::{self, Sweep};
 use chaplygin::driver::linearize::{LinearizeError, Stability};
 use chaplygin::driver::simulate::{assignment, expression_assignment, with_parameters};
 use chaplygin::plot::{DesignMapPlot, write_design_map};
-use std::error::Error;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -66,7 +66,7 @@ static STOP: AtomicBool = AtomicBool::new(false);
 /// # Errors
 /// Bad input (no varied parameter or more than two, an unknown name, an
 /// empty grid), an I/O error, or Ctrl-C (after writing the points done).
-pub fn run(args: &MapArgs) -> Result<(), Box<dyn Error>> {
+pub fn run(args: &MapArgs) -> Result<(), Failure> {
     ctrlc::set_handler(|| STOP.store(true, Ordering::Relaxed))?;
     let axes = axes(&args.params)?;
     let mut model = loaded(&args.model)?.model;
@@ -109,7 +109,7 @@ pub fn run(args: &MapArgs) -> Result<(), Box<dyn Error>> {
 }
 
 /// The varied parameters' axes: one or two.
-fn axes(params: &[DesignParameter]) -> Result<Vec<Axis>, Box<dyn Error>> {
+fn axes(params: &[DesignParameter]) -> Result<Vec<Axis>, Failure> {
     let mut axes = Vec::new();
     for parameter in params {
         if let DesignParameter::Varied(grid) = parameter {
@@ -142,7 +142,7 @@ fn write(
     points: &[Vec<f64>],
     results: &[Option<Result<Stability, LinearizeError>>],
     plotted: &DesignMapPlot,
-) -> Result<(), Box<dyn Error>> {
+) -> Result<(), Failure> {
     let csv_file = args.out.join("map.csv");
     sweep::write(&csv_file, &design_map::csv(names, points, results))
         .map_err(|error| format!("cannot write {}: {error}", csv_file.display()))?;

@@ -1,8 +1,8 @@
 //! The model argument the commands share, and the engine that runs it.
 
+use chaplygin::driver::Failure;
 use chaplygin::driver::catalog::lookup;
 use chaplygin::driver::engine::{self, EngineChoice, Loaded};
-use std::error::Error;
 
 /// The model a command runs, and the engine that runs it.
 #[derive(Debug, clap::Args)]
@@ -20,7 +20,7 @@ pub struct ModelArgs {
 ///
 /// # Errors
 /// An unknown model, or the model's diagnostics.
-pub fn loaded(args: &ModelArgs) -> Result<Loaded, Box<dyn Error>> {
+pub fn loaded(args: &ModelArgs) -> Result<Loaded, Failure> {
     let loaded = engine::load(&lookup(&args.model)?, args.engine)?;
     if let Some(error) = &loaded.fallback {
         eprintln!("note: {error}; running the interpreter");

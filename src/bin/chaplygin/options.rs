@@ -5,6 +5,7 @@ use crate::gait::{self, GaitArgs};
 use crate::linearize::{self, LinearizeArgs};
 use crate::map::{self, MapArgs};
 use crate::simulate::{self, SimulateArgs};
+use chaplygin::driver::Failure;
 use chaplygin::driver::catalog::{self, lookup};
 use chaplygin::driver::document::{self, Format};
 use clap::{Parser, Subcommand};
@@ -49,7 +50,7 @@ impl Command {
     ///
     /// # Errors
     /// A one-line description of what went wrong.
-    pub fn run(self) -> Result<(), Box<dyn std::error::Error>> {
+    pub fn run(self) -> Result<(), Failure> {
         match self.action {
             Action::List => Ok(crate::say(&catalog::listing())?),
             Action::Derive { model, format } => {

@@ -9,10 +9,10 @@
 
 use crate::model_args::{ModelArgs, loaded};
 use crate::output::write_table;
+use chaplygin::driver::Failure;
 use chaplygin::driver::simulate::{self, Controller, Finished, Request};
 use chaplygin::plot;
 use chaplygin::runtime::record::{CsvRecorder, Recorder, Table};
-use std::error::Error;
 use std::io;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -45,7 +45,7 @@ struct Untrusted {
 ///
 /// # Errors
 /// Bad input, a failed simulation, or an I/O error.
-pub fn run(args: &SimulateArgs) -> Result<(), Box<dyn Error>> {
+pub fn run(args: &SimulateArgs) -> Result<(), Failure> {
     let loaded = loaded(&args.model)?;
     let csv_path = args.out.join("trajectory.csv");
     let mut csv = CsvOnStart {

@@ -6,13 +6,13 @@ use super::ScopeNames;
 use super::error::InputError;
 use super::request::{Integrator, Request};
 use super::stop::{Comparison, stop_condition};
+use crate::driver::Failure;
 use crate::driver::formulation::{Formulation, RunTimeSized};
 use crate::runtime::integrate::{
     Controlled, DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4,
 };
 use crate::runtime::record::{Recorder, Table};
 use crate::runtime::simulate::{Advance, Simulation, StopCondition, Summary};
-use std::error::Error;
 use std::io;
 use std::time::Instant;
 
@@ -141,7 +141,7 @@ impl Settings {
         request: &Request,
         formulation: &dyn Formulation,
         scope: &ScopeNames,
-    ) -> Result<Self, Box<dyn Error>> {
+    ) -> Result<Self, Failure> {
         let stop = request
             .stop_when
             .as_deref()
@@ -182,7 +182,7 @@ impl Settings {
         x0: &[f64],
         recorder: &mut Both<'_>,
         progress: &mut dyn FnMut(f64),
-    ) -> Result<Report, Box<dyn Error>> {
+    ) -> Result<Report, Failure> {
         let system = RunTimeSized(formulation);
         let x0 = x0.to_vec();
         let stop = self
@@ -242,7 +242,7 @@ struct Runner<'r, 's, 'b, C> {
 impl<C: StopCondition<Vec<f64>>> Runner<'_, '_, '_, C> {
     /// The run with a one-step `method`, its step following the tolerance
     /// unless the steps are fixed.
-    fn one_step<M>(self, method: M) -> Result<Summary<Vec<f64>>, Box<dyn Error>>
+    fn one_step<M>(self, method: M) -> Result<Summary<Vec<f64>>, Failure>
     where
         M: for<'a> FixedStep<RunTimeSized<'a>, Vec<f64>>
             + for<'a> Advance<RunTimeSized<'a>, Vec<f64>>,
@@ -256,7 +256,7 @@ impl<C: StopCondition<Vec<f64>>> Runner<'_, '_, '_, C> {
     }
 
     /// The run with `method` until the stop condition holds.
-    fn with<M>(self, method: M) -> Result<Summary<Vec<f64>>, Box<dyn Error>>
+    fn with<M>(self, method: M) -> Result<Summary<Vec<f64>>, Failure>
     where
         M: for<'a> Advance<RunTimeSized<'a>, Vec<f64>>,
     {
