@@ -1,7 +1,8 @@
 """chaplygin.design_map: the self-stable speeds over a grid of parameters,
 against the closed form of the Chaplygin sleigh, against the command line,
-the same bit for bit on every executor (here, a process pool and a local
-Dask cluster); models pickle; long native calls release the GIL."""
+the same bit for bit on an executor (a process pool here; README's example,
+run by test_readme.py, on a local Dask cluster); models pickle; long native
+calls release the GIL."""
 
 import csv
 import math
@@ -96,17 +97,6 @@ def test_a_process_pool_gives_the_same_map_bit_for_bit():
     assert_same_map(there, here)
 
 
-def test_a_dask_cluster_gives_the_same_map_bit_for_bit():
-    from dask import distributed
-
-    sleigh = chaplygin.builtin("sleigh")
-    here = chaplygin.design_map(sleigh, jobs=1, **SLEIGH_MAP)
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
-    with cluster, distributed.Client(cluster) as client:
-        there = chaplygin.design_map(sleigh, executor=client.get_executor(), chunks=3, **SLEIGH_MAP)
-    assert_same_map(there, here)
-
-
 def test_models_pickle_as_their_text(root):
     for model in (chaplygin.builtin("sleigh"), chaplygin.load((root / "models/sleigh.model").read_text())):
         copy = pickle.loads(pickle.dumps(model))
@@ -116,27 +106,35 @@ def test_models_pickle_as_their_text(root):
         numpy.testing.assert_array_equal(copy.linearize(at=at).eigenvalues, model.linearize(at=at).eigenvalues)
 
 
-#: Long native calls on the benchmark bicycle, each of which releases the GIL.
+#: Long native calls, each of which releases the GIL, and the built-in
+#: model each runs on.
 LONG_CALLS = {
-    "design_map": lambda m: m._native.design_points(
+    "design_map": ("bicycle", lambda m: m._native.design_points(
         UPRIGHT, None, ("v", numpy.arange(0, 11.0)), ["c"], numpy.array([[0.04], [0.06], [0.08]]), 1
-    ),
-    "simulate": lambda m: m.simulate(t_end=1.0, dt=0.01, initial={"dot(theta_r)": "-5/rR", "dot(phi)": 0.5, "dot(delta)": 0.0}),
-    "linearize": lambda m: m.linearize(at=UPRIGHT, sweep=("v", numpy.linspace(0, 10, 41))),
-    "document": lambda m: m.document("json"),
+    )),
+    "simulate": ("bicycle", lambda m: m.simulate(t_end=1.0, dt=0.01, initial={"dot(theta_r)": "-5/rR", "dot(phi)": 0.5, "dot(delta)": 0.0})),
+    "linearize": ("bicycle", lambda m: m.linearize(at=UPRIGHT, sweep=("v", numpy.linspace(0, 10, 41)))),
+    "document": ("snakeboard", lambda m: m.document("json")),
 }
 
 
+@pytest.fixture(scope="module")
+def built_ins():
+    """The built-in models the long calls run on, each loaded once."""
+    return {name: chaplygin.builtin(name) for name in {model for model, _ in LONG_CALLS.values()}}
+
+
 @pytest.mark.parametrize("call", sorted(LONG_CALLS))
-def test_long_calls_release_the_gil(call):
+def test_long_calls_release_the_gil(call, built_ins):
     """While a long native call runs in one thread, Python code runs in
     another: its loop turns inside the call's own time window."""
-    bicycle = chaplygin.builtin("bicycle")
+    model_name, run = LONG_CALLS[call]
+    model = built_ins[model_name]
     window = {}
 
     def native_call():
         window["start"] = time.perf_counter()
-        LONG_CALLS[call](bicycle)
+        run(model)
         window["end"] = time.perf_counter()
 
     worker = threading.Thread(target=native_call)
