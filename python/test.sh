@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The Python package's tests: a virtual environment in target/python-venv,
-# the package built into it from this tree (unoptimized, in the
+# The Python package's tests: a virtual environment in target/python-venv
+# with the tests' dependencies (all that `python/test.sh dependencies`
+# does), the package built into it from this tree (unoptimized, in the
 # workspace's target directory), then pytest on every core (pytest-xdist),
 # the command line it compares against built beside it.
 set -euo pipefail
@@ -14,6 +15,11 @@ fi
 # import a small part of it).
 "$venv/bin/python" -m pip install --quiet --no-compile \
     numpy scipy sympy pytest pytest-xdist hypothesis matplotlib pandas 'dask[distributed]'
+# `python/test.sh dependencies` stops here (CI prepares the environment
+# beside its lints).
+if [ "${1:-}" = dependencies ]; then
+    exit 0
+fi
 # The command line the tests compare against: the binary the workspace's
 # own tests run, built with their features (after `cargo test --workspace`,
 # as in CI, nothing is rebuilt; `cargo build --bin` would resolve other
