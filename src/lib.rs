@@ -146,3 +146,17 @@ pub mod jit {
 #[doc = include_str!("../README.md")]
 #[cfg(doctest)]
 pub struct ReadmeDoctests;
+
+/// The guide's Rust examples (`docs/guide/`), compiled and run as
+/// doctests, a chapter each.
+#[cfg(doctest)]
+pub mod guide {
+    #[doc = include_str!("../docs/guide/model-language.md")]
+    pub struct ModelLanguage;
+    #[doc = include_str!("../docs/guide/mechanisms.md")]
+    pub struct Mechanisms;
+    #[doc = include_str!("../docs/guide/simulating.md")]
+    pub struct Simulating;
+    #[doc = include_str!("../docs/guide/how-it-works.md")]
+    pub struct HowItWorks;
+}

@@ -1,5 +1,5 @@
 //! The benchmark bicycle falling over at 3 m/s, below its weave speed, run
-//! until it lies on its side (README, "Chart switching" and "Where a run
+//! until it lies on its side (docs/guide/simulating.md, "Chart switching" and "Where a run
 //! ends"). The steer swings round through +-90 degrees, where the basis of
 //! D chosen in the body frame (the rear wheel's rate an independent speed)
 //! degenerates while the constraint rows stay independent: the reduced form

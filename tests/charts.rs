@@ -1,4 +1,4 @@
-//! Chart switching in the reduced form (README, "Chart switching"): the
+//! Chart switching in the reduced form (docs/guide/simulating.md, "Chart switching"): the
 //! sleigh declared without its symmetry has a basis of D solved for
 //! `dot(y)`, singular at `theta = +-pi/2` where the blade's row is regular.
 //! Its reduced form runs through those headings by switching to the chart

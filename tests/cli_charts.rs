@@ -1,4 +1,4 @@
-//! Chart switching through the command line (README, "Chart switching"):
+//! Chart switching through the command line (docs/guide/simulating.md, "Chart switching"):
 //! a `.model` file whose basis of D degenerates where its constraint row
 //! does not (`tests/models/sleigh_no_symmetry.model`) runs through those
 //! configurations in the interpreted reduced form, the summary line counts

@@ -1,4 +1,4 @@
-//! The engines of the command line (README, "The command line"): a model
+//! The engines of the command line (docs/guide/simulating.md, "The command line"): a model
 //! from its text runs on native code compiled at run time (`--engine jit`,
 //! the default) or on the IR interpreter (`--engine interpret`), with the
 //! same numbers, since both run the same programs with the same operations;

@@ -26,6 +26,7 @@ mod degenerate_momentum_basis;
 mod derive_rust;
 mod design_map;
 mod gait_design;
+mod guide;
 mod holonomic;
 mod hygiene;
 mod import_circles;

@@ -5,7 +5,7 @@
 //! runs (parse, check, constraint analysis, emission) and keeps, for each
 //! emitted function, the [`crate::ir::Program`] its body was emitted from.
 //! Its methods have the meaning of the generated methods of the same name
-//! (README, "What a model compiles into"), on slices instead of arrays:
+//! (docs/guide/build-scripts.md, "What a model compiles into"), on slices instead of arrays:
 //! `q`, `qdot` of length n, `u` of length p, `x = (q, alpha)` of length
 //! s = n + k, `alpha` of length k; matrices are returned row-major.
 //!

@@ -1,5 +1,5 @@
 //! Every configuration where the constraint rows are independent has a
-//! chart that fits (README, "Chart switching"), for every built-in model:
+//! chart that fits (docs/guide/simulating.md, "Chart switching"), for every built-in model:
 //! at random configurations, the chart the runtime chooses (the best of
 //! the charts derived at build time, or the run-time chart of partial
 //! pivoting where none of those fits) has a pivot ratio above a bound

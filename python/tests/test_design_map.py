@@ -1,8 +1,8 @@
 """chaplygin.design_map: the self-stable speeds over a grid of parameters,
 against the closed form of the Chaplygin sleigh, against the command line,
-the same bit for bit on an executor (a process pool here; README's example,
-run by test_readme.py, on a local Dask cluster); models pickle; long native
-calls release the GIL."""
+the same bit for bit on an executor (a process pool here; the guide's
+example, run by test_readme.py, on a local Dask cluster); models pickle;
+long native calls release the GIL."""
 
 import csv
 import math

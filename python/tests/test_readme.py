@@ -1,27 +1,50 @@
-"""The README's Python example runs as written."""
+"""The Python examples of README.md and of the guide (docs/guide/) run as
+written."""
 
 import re
 import shutil
 
+import pytest
 
-def test_the_readmes_python_example_runs(root, tmp_path, monkeypatch):
-    readme = (root / "README.md").read_text()
-    section = readme.split("## From Python", 1)[1].split("\n## ", 1)[0]
-    [example] = re.findall(r"```python\n(.*?)```", section, flags=re.S)
+
+def example(path, heading=None):
+    """The one Python example of the Markdown file `path`, or of its
+    section under `heading`."""
+    text = path.read_text()
+    if heading is not None:
+        text = text.split(heading + "\n", 1)[1].split("\n## ", 1)[0]
+    [code] = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    return code
+
+
+def run(code, name):
+    """Runs `code` as a script (`__name__ == "__main__"`); its namespace."""
+    namespace = {"__name__": "__main__"}
+    exec(compile(code, name, "exec"), namespace)
+    return namespace
+
+
+@pytest.fixture
+def in_scratch(root, tmp_path, monkeypatch):
+    """A scratch directory holding a copy of `models/`, as the current one."""
     shutil.copytree(root / "models", tmp_path / "models")
     monkeypatch.chdir(tmp_path)
-    exec(compile(example, "README.md (From Python)", "exec"), {})
-    assert (tmp_path / "bicycle_lean.png").stat().st_size > 10_000
-    assert (tmp_path / "bicycle_eigenvalues.png").stat().st_size > 5_000
+    return tmp_path
 
 
-def test_the_readmes_design_map_example_runs(root, tmp_path, monkeypatch):
-    """The Dask example of README's "Design maps": the map on every core
+def test_the_readmes_python_example_runs(root, in_scratch):
+    namespace = run(example(root / "README.md", "## The same engine from Python"), "README.md")
+    assert namespace["lin"].stable
+
+
+def test_the_python_chapters_example_runs(root, in_scratch):
+    run(example(root / "docs/guide/python.md"), "docs/guide/python.md")
+    assert (in_scratch / "bicycle_lean.png").stat().st_size > 10_000
+    assert (in_scratch / "bicycle_eigenvalues.png").stat().st_size > 5_000
+
+
+def test_the_design_map_example_runs(root, in_scratch):
+    """The Dask example of the guide's "Design maps": the map on every core
     equals the map on a local Dask cluster."""
-    readme = (root / "README.md").read_text()
-    section = readme.split("### Design maps", 1)[1].split("\n### ", 1)[0]
-    [example] = re.findall(r"```python\n(.*?)```", section, flags=re.S)
-    monkeypatch.chdir(tmp_path)
-    namespace = {"__name__": "__main__"}
-    exec(compile(example, "README.md (Design maps)", "exec"), namespace)
+    namespace = run(example(root / "docs/guide/stability.md", "## Design maps"), "docs/guide/stability.md")
     assert namespace["here"].shape == (2, 2)

@@ -2,7 +2,7 @@
 //! (R. A. Wehage & E. J. Haug, "Generalized coordinate partitioning for
 //! dimension reduction in analysis of constrained dynamic systems",
 //! J. Mech. Design 104 (1982) 247-255), the guarantee behind the charts
-//! derived at build time (README, "Chart switching").
+//! derived at build time (docs/guide/simulating.md, "Chart switching").
 //!
 //! Where the rows of `A(q)` are independent, Gaussian elimination with
 //! partial pivoting picks `c` dependent speeds `r` whose minor `A_r` is

@@ -90,7 +90,7 @@ pub trait ReducedPortHamiltonian<const S: usize, const P: usize> {
     /// The number of charts of D derived at build time: 1, unless the
     /// basis of D degenerates where the constraint rows stay independent;
     /// then chart 0 is that basis and the others choose other dependent
-    /// speeds (README, "Chart switching"). Indices from `charts()` on are
+    /// speeds (docs/guide/simulating.md, "Chart switching"). Indices from `charts()` on are
     /// run-time charts (the `partition` module): chart `charts() + i`
     /// solves for the `i`-th set of dependent speeds in lexicographic order.
     /// Every chart has the state layout `(q, alpha)`, `alpha` the momenta
@@ -282,7 +282,7 @@ pub enum Guard {
     NonZero,
 }
 
-/// Where a model's equations are defined (README, "Where a run ends"):
+/// Where a model's equations are defined (docs/guide/simulating.md, "Where a run ends"):
 /// its own expressions' square roots, logarithms, divisions and tangents,
 /// each with a [`Guard`], and its constraint rows, which must stay
 /// independent. A run evaluates them where a step fails, to name what the

@@ -1,4 +1,4 @@
-//! Where a run ends because the mechanics does (README, "Where a run
+//! Where a run ends because the mechanics does (docs/guide/simulating.md, "Where a run
 //! ends"): a step that fails, or that comes to the edge of the model's own
 //! domain, is stopped with the cause named where it is known.
 //!
