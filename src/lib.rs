@@ -1,5 +1,7 @@
 //! Chaplygin: nonholonomic mechanical models compiled into verified
-//! simulators.
+//! simulators. This is the crate users depend on; the guide
+//! (`docs/guide/` in the repository, an mdBook) shows what to do with it,
+//! task by task.
 //!
 //! # The flow: parse, check, derive, emit, integrate
 //!

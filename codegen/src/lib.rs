@@ -1,4 +1,6 @@
-//! The Chaplygin compiler.
+//! The Chaplygin compiler, which the `chaplygin` crate's `model!` and
+//! build scripts run (the guide, `docs/guide/` in the repository: "How it
+//! works").
 //!
 //! A model flows one way through typed stages:
 //!

@@ -1,5 +1,7 @@
 //! Native code of the IR's straight-line programs, compiled at run time with
-//! Cranelift.
+//! Cranelift: how the `chaplygin` command line and Python package run a
+//! model from its text (the guide, `docs/guide/` in the repository:
+//! "Simulating").
 //!
 //! [`JitModel::from_source`] and [`JitModel::from_file`] load a model from
 //! its text with its derived functions run as native code: an

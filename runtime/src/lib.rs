@@ -1,4 +1,5 @@
-//! The Chaplygin runtime: what generated models plug into.
+//! The Chaplygin runtime: what generated models plug into (the guide,
+//! `docs/guide/` in the repository: "Simulating").
 //!
 //! - [`system`]: the traits a generated model implements
 //!   ([`system::ReducedPortHamiltonian`], [`system::LagrangeDalembert`]) and

@@ -1,4 +1,6 @@
-//! The `model!` procedural macro: a thin shim over [`chaplygin_codegen::expand`].
+//! The `model!` procedural macro: a thin shim over [`chaplygin_codegen::expand`],
+//! re-exported by the `chaplygin` crate (the guide, `docs/guide/` in the
+//! repository: "The model language").
 
 #![warn(missing_docs)]
 
