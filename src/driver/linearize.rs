@@ -296,7 +296,7 @@ pub fn sweep(
 pub struct Stability {
     /// The zeros of conserved quantities every point of the family has.
     pub conserved: usize,
-    /// The intervals of asymptotic stability, as [`sweep`] finds them.
+    /// The intervals of asymptotic stability, as [`mod@sweep`] finds them.
     pub stable: Vec<Interval>,
     /// Where the number of unstable modes changes ([`unstable_modes`]),
     /// in increasing order of the variable.
@@ -318,7 +318,7 @@ pub fn unstable_modes(linear: &LinearSystem, conserved: usize, margin: f64) -> u
 
 /// The intervals of asymptotic stability of the steady motions `at` over
 /// `values` of `variable` (the expressions reading the `parameters` too),
-/// as [`sweep`] finds them, and the values where the number of unstable
+/// as [`mod@sweep`] finds them, and the values where the number of unstable
 /// modes changes: between grid values where it differs (counted with
 /// [`LinearSystem::MARGIN`]), located by bisection on the count without
 /// margin (to [`sweep::REFINED`]). Neither the eigenvalues nor the neutral
