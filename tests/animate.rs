@@ -7,18 +7,16 @@
 //! reads the canvas's pixels; the test checks them against the closed
 //! forms and against docs/INTERFACE.md section 10.
 //!
-//! Chromium (Debian's `chromium`) runs the page where it is on `PATH`;
-//! without it the test says it skipped, and fails where
-//! `CHAPLYGIN_BROWSER_TESTS=require` (as `.ci/run` sets it, after
-//! installing Chromium when missing).
+//! Chromium runs the page as `support::browser` says (skipped without it
+//! unless `CHAPLYGIN_BROWSER_TESTS=require`).
 
+use crate::support::browser::{
+    chromium, distance, dump_dom, num, nums, pose_of, probe_result, probed, scratch,
+};
 use chaplygin::animate::{Item, Label, Pose, Scene, Shape, Trace, page};
 use chaplygin::runtime::nalgebra::{UnitQuaternion, Vector3};
 use serde_json::Value;
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
 /// The disc's radius, the radius of the circle its contact point runs on,
 /// the rate its heading turns at, and the frames: 30 per second for 4 s.
@@ -249,125 +247,6 @@ const PROBE: &str = r#"<script>
 </script>
 "#;
 
-fn on_path(program: &str) -> Option<PathBuf> {
-    let path = std::env::var_os("PATH")?;
-    std::env::split_paths(&path)
-        .map(|dir| dir.join(program))
-        .find(|candidate| candidate.is_file())
-}
-
-/// A fresh directory for this test's files.
-fn scratch() -> PathBuf {
-    let directory = std::env::temp_dir().join(format!("chaplygin-animate-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&directory);
-    std::fs::create_dir_all(&directory).unwrap();
-    directory
-}
-
-/// `page` opened in headless Chromium (WebGL on SwiftShader), its DOM once
-/// the virtual time budget has run out.
-fn dump_dom(chromium: &Path, page: &Path, profile: &Path) -> String {
-    let started = Instant::now();
-    let mut child = Command::new(chromium)
-        .args([
-            "--headless=new",
-            "--no-sandbox",
-            "--use-angle=swiftshader",
-            "--enable-unsafe-swiftshader",
-            "--virtual-time-budget=20000",
-            "--window-size=960,640",
-            "--no-first-run",
-        ])
-        .arg(format!("--user-data-dir={}", profile.display()))
-        .arg("--dump-dom")
-        .arg(format!("file://{}", page.display()))
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("chromium starts");
-    let reader = {
-        let mut stdout = child.stdout.take().unwrap();
-        std::thread::spawn(move || {
-            let mut text = String::new();
-            std::io::Read::read_to_string(&mut stdout, &mut text).unwrap();
-            text
-        })
-    };
-    let errors = {
-        let mut stderr = child.stderr.take().unwrap();
-        std::thread::spawn(move || {
-            let mut text = String::new();
-            let _ = std::io::Read::read_to_string(&mut stderr, &mut text);
-            text
-        })
-    };
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        if started.elapsed() > Duration::from_secs(180) {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("chromium ran for over 180 s: {}", errors.join().unwrap());
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    };
-    let dom = reader.join().unwrap();
-    let errors = errors.join().unwrap();
-    assert!(status.success(), "chromium failed ({status}): {errors}");
-    eprintln!("chromium: {:.1} s", started.elapsed().as_secs_f64());
-    dom
-}
-
-/// The probe's findings in the dumped DOM.
-fn probe_result(dom: &str) -> Value {
-    let start = dom
-        .find("<pre id=\"probe\">")
-        .unwrap_or_else(|| panic!("the probe wrote no result; the DOM:\n{dom}"))
-        + "<pre id=\"probe\">".len();
-    let end = start + dom[start..].find("</pre>").unwrap();
-    let text = dom[start..end]
-        .replace("&lt;", "<")
-        .replace("&gt;", ">")
-        .replace("&quot;", "\"")
-        .replace("&amp;", "&");
-    serde_json::from_str(&text).unwrap_or_else(|e| panic!("the probe's JSON: {e}\n{text}"))
-}
-
-/// A number the probe wrote as its shortest round-trip string.
-fn num(value: &Value) -> f64 {
-    value
-        .as_str()
-        .unwrap_or_else(|| panic!("a number as a string: {value}"))
-        .parse()
-        .unwrap()
-}
-
-fn nums(value: &Value) -> Vec<f64> {
-    value
-        .as_array()
-        .unwrap_or_else(|| panic!("an array: {value}"))
-        .iter()
-        .map(num)
-        .collect()
-}
-
-/// A pose the probe read: position and quaternion.
-fn pose_of(value: &Value) -> ([f64; 3], [f64; 4]) {
-    (
-        nums(&value["position"]).try_into().unwrap(),
-        nums(&value["quaternion"]).try_into().unwrap(),
-    )
-}
-
-fn distance(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).powi(2))
-        .sum::<f64>()
-        .sqrt()
-}
-
 /// The angle of the rotation between two unit quaternions.
 fn angle_between(a: [f64; 4], b: [f64; 4]) -> f64 {
     let dot: f64 = a.iter().zip(&b).map(|(x, y)| x * y).sum();
@@ -400,26 +279,15 @@ fn the_hand_multiplied_quaternion_is_nalgebra_s_product() {
 
 #[test]
 fn the_page_runs_in_headless_chromium() {
-    let Some(chromium) = on_path("chromium") else {
-        assert_ne!(
-            std::env::var("CHAPLYGIN_BROWSER_TESTS").as_deref(),
-            Ok("require"),
-            "chromium is not on PATH: install it (`apt-get install -y chromium` on Debian)"
-        );
-        eprintln!(
-            "skipped: chromium is not on PATH (`apt-get install -y chromium`); \
-             CHAPLYGIN_BROWSER_TESTS=require makes this a failure, as in CI"
-        );
+    let Some(chromium) = chromium() else {
         return;
     };
     let scene = scene();
     let html = page(&scene).unwrap();
-    let directory = scratch();
+    let directory = scratch("animate");
     std::fs::write(directory.join("animation.html"), &html).unwrap();
-    let probed = html.replacen("<head>", &format!("<head>\n{PROBE}"), 1);
-    assert_ne!(probed, html);
     let copy = directory.join("probed.html");
-    std::fs::write(&copy, probed).unwrap();
+    std::fs::write(&copy, probed(&html, PROBE)).unwrap();
 
     let dom = dump_dom(&chromium, &copy, &directory.join("profile"));
     let result = probe_result(&dom);

@@ -8,6 +8,7 @@
 mod support;
 
 mod animate;
+mod animation;
 mod bicycle;
 mod bicycle_falling;
 mod bicycle_simulation;

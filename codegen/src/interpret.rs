@@ -24,12 +24,20 @@
 //! `body_velocity`), and [`InterpretedModel::shape_acceleration`] and
 //! [`InterpretedModel::reconstructed_velocity`] compose `body_velocity` with
 //! `acceleration` and with the group's action as the emitted code does.
+//!
+//! A mechanism with bodies has, for the interpreter alone, `drawing(q)`:
+//! the gravity field, the bodies' centres, frames, masses and inertias and
+//! the contact points ([`InterpretedModel::bodies`],
+//! [`InterpretedModel::drawing`]), what animating a run needs
+//! (docs/INTERFACE.md section 10).
 
 mod charts;
+mod drawing;
 mod dynamics;
 mod fixed;
 
 pub use crate::ir::{Backend, Engine, Interpreter};
+pub use drawing::{Bodies, BodyName, BodyState, ContactName, Drawing};
 pub use fixed::{Fixed, SizeMismatch};
 
 use crate::derive::constraints::ChartFit;
@@ -176,6 +184,8 @@ pub struct InterpretedModel {
     group: Option<Vec<usize>>,
     /// The symmetry group's factors (empty without a symmetry).
     symmetry: Vec<GroupFactor>,
+    /// The mechanism's bodies and contacts, by name (`drawing(q)`'s layout).
+    bodies: drawing::Bodies,
 }
 
 impl std::fmt::Debug for InterpretedModel {
@@ -253,6 +263,7 @@ impl InterpretedModel {
                 .as_ref()
                 .map(|symmetry| symmetry.factors.clone())
                 .unwrap_or_default(),
+            bodies: drawing::bodies(&model),
         };
         let programs: Vec<_> = interpreted.programs().map(|(_, program)| program).collect();
         interpreted.engine = Arc::from(backend.engine(&programs));

@@ -24,10 +24,12 @@ Dask cluster's).
 from __future__ import annotations
 
 import functools
+import html
 import math
+import os
 import warnings
 from concurrent.futures import Executor
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy
 from numpy.typing import ArrayLike
@@ -83,6 +85,8 @@ class Trajectory:
     ``run.columns`` their names, ``run.data`` the ``(rows, columns)``
     array, ``run.summary`` the run's summary (a dict), ``run.tracks`` the
     declared points' positions (a ``Trajectory``, or ``None``).
+    ``run.animate()`` draws a mechanism's run as one offline HTML page, which
+    Jupyter shows inline (``_repr_html_``).
     """
 
     def __init__(
@@ -91,11 +95,13 @@ class Trajectory:
         data: numpy.ndarray,
         summary: Optional[Dict[str, Any]],
         tracks: "Optional[Trajectory]" = None,
+        draw: Optional[Callable[[List[str], numpy.ndarray, float], str]] = None,
     ) -> None:
         self.columns = list(columns)
         self.data = data
         self.summary = summary
         self.tracks = tracks
+        self._draw = draw
 
     @property
     def t(self) -> numpy.ndarray:
@@ -113,6 +119,36 @@ class Trajectory:
 
     def __repr__(self) -> str:
         return f"Trajectory({len(self)} rows, columns {self.columns})"
+
+    def animate(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, fps: float = 60.0) -> str:
+        """The run as one HTML page that works offline (docs/INTERFACE.md
+        section 10): the model's bodies drawn in 3D at every ``1 / fps``
+        seconds of simulated time or so, wheels as discs rolling on their
+        contact points' traces, z up. Writes it to ``path`` when given, and
+        returns it.
+
+        Raises ``ValueError`` for a model declared by its energy (it has no
+        bodies to draw), a trajectory not returned by ``Model.simulate``, or
+        ``fps`` not positive.
+        """
+        if self._draw is None:
+            raise ValueError("this trajectory has no model to draw: animate a run Model.simulate returned")
+        page = self._draw(self.columns, self.data, float(fps))
+        if path is not None:
+            with open(path, "w", encoding="utf-8") as file:
+                file.write(page)
+        return page
+
+    def _repr_html_(self) -> Optional[str]:
+        """The animation in an ``<iframe>`` for Jupyter; ``None`` (the text
+        representation) for a run that cannot be drawn."""
+        try:
+            page = self.animate()
+        except ValueError:
+            return None
+        return '<iframe srcdoc="{}" style="width: 100%; height: 540px; border: 0"></iframe>'.format(
+            html.escape(page, quote=True)
+        )
 
     def to_pandas(self) -> Any:
         """The rows as a ``pandas.DataFrame`` (pandas must be installed)."""
@@ -286,11 +322,17 @@ class Model:
             bool(fixed_step),
         )
         tracks = run["tracks"]
+        native, given = self._native, _dict(params)
+
+        def draw(columns: List[str], data: numpy.ndarray, fps: float) -> str:
+            return native.animation(columns, data.tolist(), given, fps)
+
         trajectory = Trajectory(
             run["columns"],
             run["data"],
             run["summary"],
             Trajectory(tracks[0], tracks[1], None) if tracks is not None else None,
+            draw,
         )
         failure = run["failure"]
         if failure is not None:

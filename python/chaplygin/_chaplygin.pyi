@@ -35,6 +35,13 @@ class Model:
         stop_when: Optional[str],
         controller: str,
     ) -> Dict[str, Any]: ...
+    def animation(
+        self,
+        columns: List[str],
+        rows: List[List[float]],
+        params: Optional[Dict[str, float]],
+        fps: float,
+    ) -> str: ...
     def linearize(
         self,
         at: Optional[Dict[str, Any]],

@@ -8,6 +8,7 @@ use crate::convert::{
 use crate::design;
 use crate::linearization;
 use crate::rhs::Rhs;
+use chaplygin::driver::animation;
 use chaplygin::driver::catalog::Source;
 use chaplygin::driver::design_map::Motion;
 use chaplygin::driver::document::{self, Format};
@@ -523,6 +524,26 @@ impl Model {
             Source::BuiltIn(built_in) => Some(built_in.name),
             Source::File { .. } => None,
         }
+    }
+
+    /// The page animating a run of this model (docs/INTERFACE.md section
+    /// 10): its recorded `columns` and `rows` (`t`, then the coordinates),
+    /// at the parameters `params`, `fps` frames per second of simulated
+    /// time.
+    #[pyo3(signature = (columns, rows, params, fps))]
+    fn animation(
+        &self,
+        columns: Vec<String>,
+        rows: Vec<Vec<f64>>,
+        params: Option<&Bound<'_, PyDict>>,
+        fps: f64,
+    ) -> PyResult<String> {
+        let value_error = |error: &dyn std::fmt::Display| PyValueError::new_err(error.to_string());
+        let mut model = self.loaded.model.clone();
+        let label = &self.loaded.label;
+        animation::check(&model, label).map_err(|e| value_error(&e))?;
+        with_parameters(&mut model, &numbers(params)?).map_err(|e| value_error(&e))?;
+        animation::page(&model, label, &Table { columns, rows }, fps).map_err(|e| value_error(&e))
     }
 
     /// The model's text, as read.

@@ -1,11 +1,12 @@
 //! What the integration tests share: running the binary, reading the CSV
 //! files it writes, the canonical form it prints, the snakeboard's
 //! hand-derived gait, the benchmark bicycle's closed form (from the models'
-//! tests).
+//! tests), pages opened in headless Chromium.
 
 #[allow(dead_code)]
 #[path = "../../models/tests/support/benchmark_bicycle.rs"]
 pub mod benchmark_bicycle;
+pub mod browser;
 pub mod canonical_form;
 pub mod in_process;
 pub mod snakeboard_gait;

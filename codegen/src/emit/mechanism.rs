@@ -3,6 +3,9 @@
 //! `positions(q)` (each point in ground axes), `holonomic_residual(q)`
 //! (`f(q)`) and `holonomic_jacobian(q)` (`df/dq`, by exact
 //! differentiation). A model without mechanism sections has them empty.
+//!
+//! The interpreter alone (not the emitted Rust) has `drawing(q)`, what
+//! drawing a mechanism with bodies needs ([`DRAWING`]).
 
 use super::{Function, coordinates, f64_type, function_body, matrix_literal};
 use crate::diagnostic::Diagnostics;
@@ -180,4 +183,40 @@ fn holonomic_jacobian(
         operations: body.operations,
         lowered: Some(body.lowered),
     })
+}
+
+/// The name of the interpreted function `drawing(q)`: the gravity field
+/// (3 values), then for each body its centre (3), its frame's rotation
+/// matrix row-major (9), its mass (1) and its inertia row-major (9), then
+/// for each `no_slip` contact its point (3), all in ground axes.
+pub(crate) const DRAWING: &str = "drawing";
+
+/// `drawing(q)` for the interpreter, `None` for emitted Rust and for a model
+/// without bodies.
+pub(super) fn drawing(model: &Model, cx: &Context) -> Result<Option<Function>, Diagnostics> {
+    let Some(drawing) = model.mechanism.drawing.as_ref() else {
+        return Ok(None);
+    };
+    if model.emits_rust || drawing.bodies.is_empty() {
+        return Ok(None);
+    }
+    let mut outputs = drawing.gravity.to_vec();
+    for body in &drawing.bodies {
+        outputs.extend(body.center);
+        outputs.extend(body.rotation);
+        outputs.push(body.mass);
+        outputs.extend(body.inertia);
+    }
+    for contact in &drawing.contacts {
+        outputs.extend(contact.point);
+    }
+    let body = function_body(model, cx, &[coordinates(model)], &outputs, |_| {
+        TokenStream::new()
+    })?;
+    Ok(Some(Function {
+        name: DRAWING,
+        item: TokenStream::new(),
+        operations: body.operations,
+        lowered: Some(body.lowered),
+    }))
 }

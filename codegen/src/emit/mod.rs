@@ -39,6 +39,8 @@ pub mod report;
 mod shared;
 mod traits;
 
+pub(crate) use mechanism::DRAWING;
+
 use crate::derive::Derivation;
 use crate::derive::constraints::{ChartFit, ConstraintAnalysis};
 use crate::diagnostic::Diagnostics;
@@ -215,6 +217,7 @@ pub(crate) fn emit(
         #implementations
         #linearization
     };
+    functions.extend(mechanism::drawing(model, cx)?);
     Ok(EmittedModel {
         items,
         guards,

@@ -6,7 +6,7 @@
 //! chaplygin derive MODEL [--format text|latex|json|rust]
 //! chaplygin simulate MODEL [--formulation reduced|lagrange|momentum] [--integrator rk4|dopri5|midpoint|discrete-gradient]
 //!                          [--controller none|energy] [--t-end T] [--dt H] [--stop-when COND]
-//!                          [--engine jit|interpret] [--out DIR]
+//!                          [--engine jit|interpret] [--out DIR] [--animate [--fps F]]
 //!                          [--param NAME=VALUE]... [--initial NAME=EXPRESSION]... [--input NAME=EXPRESSION]...
 //! chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
 //!                           [--param NAME=VALUE]... [--engine jit|interpret] [--out DIR]

@@ -31,6 +31,8 @@ pub(in crate::model) struct Body {
     pub(in crate::model) mass: ExprId,
     /// `I` about the centre in the frame's axes, row-major.
     pub(in crate::model) inertia: [ExprId; 9],
+    /// True for a `particle(point, mass)`.
+    pub(in crate::model) particle: bool,
 }
 
 impl Body {

@@ -45,6 +45,51 @@ pub struct Mechanism {
     /// The same orientations, positions and residuals as the emitted code
     /// computes them.
     pub expressions: MechanismExpressions,
+    /// What drawing the mechanism needs: the gravity field, the bodies and
+    /// the contacts ([`Drawing`]); `None` without mechanism sections.
+    pub drawing: Option<Drawing>,
+}
+
+/// What drawing a mechanism needs, as expressions of the coordinates and
+/// the parameters, in ground axes: the interpreter's `drawing(q)` computes
+/// them (`crate::interpret::InterpretedModel::drawing`).
+#[derive(Clone, Debug)]
+pub struct Drawing {
+    /// The uniform gravity field `g` (zero when not declared).
+    pub gravity: [ExprId; 3],
+    /// The bodies and particles, in declared order.
+    pub bodies: Vec<DrawnBody>,
+    /// The `no_slip` contacts, each once whatever its number of
+    /// directions, in declared order.
+    pub contacts: Vec<DrawnContact>,
+}
+
+/// A body or a particle, as drawing it needs.
+#[derive(Clone, Debug)]
+pub struct DrawnBody {
+    /// Its declared name.
+    pub name: String,
+    /// True for a `particle(point, mass)`.
+    pub particle: bool,
+    /// Its centre `C - origin`.
+    pub center: [ExprId; 3],
+    /// Its frame's rotation matrix, row-major (the identity for a particle).
+    pub rotation: [ExprId; 9],
+    /// Its mass.
+    pub mass: ExprId,
+    /// Its inertia about the centre in its frame's axes, row-major.
+    pub inertia: [ExprId; 9],
+}
+
+/// A `no_slip(body, point, [...])` contact, as drawing it needs.
+#[derive(Clone, Debug)]
+pub struct DrawnContact {
+    /// Its declared name.
+    pub name: String,
+    /// The index of its body in [`Drawing::bodies`].
+    pub body: usize,
+    /// The contact point `P - origin`.
+    pub point: [ExprId; 3],
 }
 
 /// A mechanism's orientations, positions and holonomic residuals as
@@ -79,6 +124,7 @@ impl Mechanism {
                 positions: Matrix::empty(3),
                 holonomic_residual: Matrix::empty(1),
             },
+            drawing: None,
         }
     }
 

@@ -68,6 +68,7 @@ fn body(cx: &mut Context, value: &Value, space: &Space, reference: &Reference) -
                 center: center?,
                 mass: mass?,
                 inertia: inertia?,
+                particle: false,
             })
         }
         ("particle", [point, mass]) => {
@@ -79,6 +80,7 @@ fn body(cx: &mut Context, value: &Value, space: &Space, reference: &Reference) -
                 center: center?,
                 mass: mass?,
                 inertia: [zero; 9],
+                particle: true,
             })
         }
         _ => {

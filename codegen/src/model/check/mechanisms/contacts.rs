@@ -8,6 +8,7 @@ use super::values::{
     Row, check_configuration_only, evaluator, gradient_coefficients, linear_coefficients,
 };
 use crate::model::Declared;
+use crate::model::mechanism::DrawnContact;
 use crate::model::mechanism::bodies::Body;
 use crate::model::mechanism::evaluate::Reference;
 use crate::model::mechanism::space::{self, Space};
@@ -15,6 +16,14 @@ use crate::model::mechanism::vector::{self, Vector};
 use crate::sym::{ExprId, SymbolId};
 use crate::syntax::{self, Expr, Value};
 use proc_macro2::Span;
+
+/// The rolling contacts: each row's name and linear form, and each
+/// contact once as drawing it needs.
+pub(super) struct Contacts {
+    pub(super) names: Vec<Declared>,
+    pub(super) rows: Vec<Row>,
+    pub(super) drawn: Vec<DrawnContact>,
+}
 
 /// `name = no_slip(body, point, [d_1, ...])`: one row `d_i . v_P` each.
 pub(super) fn contacts(
@@ -24,19 +33,25 @@ pub(super) fn contacts(
     reference: &Reference,
     bodies: &[(Declared, Body)],
     q: &[SymbolId],
-) -> (Vec<Declared>, Vec<Row>) {
+) -> Contacts {
     let mut names = Vec::new();
     let mut rows = Vec::new();
+    let mut drawn = Vec::new();
     let Some(list) = section.and_then(|s| cx.list(s)) else {
-        return (names, rows);
+        return Contacts { names, rows, drawn };
     };
     for item in &list.items {
         let Some((declared, value)) = named_item(cx, item, "a rolling contact") else {
             continue;
         };
-        let Some(slips) = contact(cx, value, space, reference, bodies, q) else {
+        let Some((slips, body, point)) = contact(cx, value, space, reference, bodies, q) else {
             continue;
         };
+        drawn.push(DrawnContact {
+            name: declared.name.clone(),
+            body,
+            point,
+        });
         let count = slips.len();
         for (i, slip) in slips.into_iter().enumerate() {
             let name = if count == 1 {
@@ -51,11 +66,11 @@ pub(super) fn contacts(
             rows.push(slip);
         }
     }
-    (names, rows)
+    Contacts { names, rows, drawn }
 }
 
 /// The slip velocities `d_i . v_P` of one contact, in normal form and
-/// as the expression they were derived as.
+/// as the expression they were derived as; its body's index and its point.
 fn contact(
     cx: &mut Context,
     value: &Value,
@@ -63,7 +78,7 @@ fn contact(
     reference: &Reference,
     bodies: &[(Declared, Body)],
     q: &[SymbolId],
-) -> Option<Vec<Row>> {
+) -> Option<(Vec<Row>, usize, Vector)> {
     let Value::Expr(Expr::Call {
         function,
         arguments,
@@ -81,15 +96,16 @@ fn contact(
     let body = check_body_known(cx, body, bodies, space);
     let point = center(cx, point, space, reference);
     let directions = directions(cx, directions_value, space, reference);
-    let (body, point, directions) = (body?, point?, directions?);
+    let ((index, body), point, directions) = (body?, point?, directions?);
     let v = body.material_velocity(&mut cx.sym, &point, q).ok()?;
-    directions
+    let rows = directions
         .iter()
         .map(|d| {
             let slip = vector::inner(&mut cx.sym, d, &v);
             linear_coefficients(cx, slip, q).ok().map(|row| (row, slip))
         })
-        .collect()
+        .collect::<Option<Vec<Row>>>()?;
+    Some((rows, index, point))
 }
 
 /// Reports at `span` that a rolling contact is
@@ -102,16 +118,16 @@ fn report_contact_form<T>(cx: &mut Context, span: Span) -> Option<T> {
     None
 }
 
-/// A contact names a declared body.
+/// A contact names a declared body: its index and the body.
 fn check_body_known<'b>(
     cx: &mut Context,
     value: &Value,
     bodies: &'b [(Declared, Body)],
     space: &Space,
-) -> Option<&'b Body> {
+) -> Option<(usize, &'b Body)> {
     let (found, broken) = match value {
         Value::Expr(Expr::Name(ident)) => (
-            bodies.iter().find(|(d, _)| *ident == d.name),
+            bodies.iter().position(|(d, _)| *ident == d.name),
             space.is_broken(&ident.to_string()),
         ),
         _ => (None, false),
@@ -122,7 +138,7 @@ fn check_body_known<'b>(
             "unknown body: a rolling contact names a body declared in `bodies`",
         );
     }
-    found.map(|(_, body)| body)
+    found.map(|index| (index, &bodies[index].1))
 }
 
 /// At least one direction, each a vector.

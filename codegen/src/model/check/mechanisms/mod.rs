@@ -14,10 +14,11 @@ use values::Row;
 
 use super::context::Context;
 use super::section::{Section, Sections};
+use crate::model::mechanism::bodies::Body;
 use crate::model::mechanism::bodies::BodyMotion;
 use crate::model::mechanism::evaluate::Reference;
 use crate::model::mechanism::space::{GROUND, ORIGIN, Space};
-use crate::model::mechanism::{Mechanism, MechanismExpressions};
+use crate::model::mechanism::{Drawing, DrawnBody, Mechanism, MechanismExpressions};
 use crate::model::{Declared, Parameter, Variable};
 use crate::sym::{ExprId, Matrix, SymbolId};
 use proc_macro2::Span;
@@ -78,7 +79,11 @@ pub(super) fn mechanism(
     let points = frames::points(cx, section(Section::Points), &mut space, &reference);
     let bodies = bodies::bodies(cx, section(Section::Bodies), &mut space, &reference);
     let gravity = bodies::gravity(cx, section(Section::Gravity), &space, &reference);
-    let (contacts, mut rows) = contacts::contacts(
+    let contacts::Contacts {
+        names: contacts,
+        mut rows,
+        drawn: drawn_contacts,
+    } = contacts::contacts(
         cx,
         section(Section::NoSlip),
         &space,
@@ -107,6 +112,11 @@ pub(super) fn mechanism(
     let (positions, position_expressions) = normal_rows(cx, &positions, 3)?;
     let (holonomic_residual, residual_expressions) = normal_rows(cx, &residual, 1)?;
     let names = contacts.iter().chain(&holonomic).cloned().collect();
+    let drawing = Drawing {
+        gravity,
+        bodies: bodies.iter().map(drawn_body).collect(),
+        contacts: drawn_contacts,
+    };
     Some(MechanismParts {
         mechanism: Mechanism {
             frames,
@@ -123,12 +133,25 @@ pub(super) fn mechanism(
                 positions: position_expressions,
                 holonomic_residual: residual_expressions,
             },
+            drawing: Some(drawing),
         },
         names,
         rows,
         energies_derived_as: energies.derived_as,
         motions: energies.motions,
     })
+}
+
+/// A body as drawing it needs.
+fn drawn_body((declared, body): &(Declared, Body)) -> DrawnBody {
+    DrawnBody {
+        name: declared.name.clone(),
+        particle: body.particle,
+        center: body.center,
+        rotation: body.frame.rotation,
+        mass: body.mass,
+        inertia: body.inertia,
+    }
 }
 
 /// Rows of `width` entries: their normal forms, and the expressions to

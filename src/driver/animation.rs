@@ -1,0 +1,383 @@
+//! A run of a mechanism as an animated scene (docs/INTERFACE.md section 10):
+//! the model's bodies drawn at the recorded configurations, one page
+//! written by [`crate::animate::page`].
+//!
+//! # What is drawn
+//!
+//! A mechanism (docs/INTERFACE.md section 4) has bodies; the engine's
+//! `drawing(q)` gives each body's centre, frame rotation, mass and
+//! inertia, and each `no_slip` contact's point, at the model's current
+//! parameter values ([`InterpretedModel::drawing`]). At the run's first
+//! row:
+//!
+//! - a body with a contact whose point lies below its centre, the offset
+//!   `P - C` of length `r > 0` along world down (gravity, or `-z` of
+//!   ground without gravity) seen in a plane through the centre
+//!   perpendicular to one of the body's principal axes of inertia, is a
+//!   wheel: a [`Shape::Disc`](crate::animate::Shape::Disc) of radius `r` whose axle is that principal
+//!   axis (of those, the one with the largest moment: a disc's axle);
+//!   with the offset parallel to gravity this is the principal axis
+//!   perpendicular to it, the frame's y axis for the benchmark bicycle's
+//!   wheels and the rolling disk;
+//! - any other body with a positive mass is a [`Shape::Box`](crate::animate::Shape::Box) whose inertia
+//!   about its centre is the body's ([`box_size`]), along the frame's axes,
+//!   or its principal axes when the inertia is not diagonal;
+//! - a particle with a positive mass is a [`Shape::Sphere`](crate::animate::Shape::Sphere) of water's
+//!   density (at least [`MIN_SIZE`] across);
+//! - a body without mass and without a wheel's contact is not drawn (the
+//!   scene's note lists it).
+//!
+//! Each item's pose at a frame is its body's centre and frame rotation (a
+//! disc's axle being its local y axis), the traces are the contact points,
+//! the labels the first three coordinates.
+//!
+//! # The world
+//!
+//! The page's world has z up and the ground at z = 0. A model whose gravity
+//! points along `+z` of ground (the benchmark bicycle's z axis points down)
+//! is shown rotated by pi about the ground x axis, `(x, y, z) -> (x, -y,
+//! -z)`, and the scene's note says so.
+//!
+//! # Frames
+//!
+//! Of the recorded rows every k-th is a frame, k chosen so that frames are
+//! about `1 / fps` seconds of simulated time apart ([`frame_rows`]); the
+//! last row is always a frame.
+
+mod geometry;
+
+pub use geometry::{box_size, quaternion};
+
+use crate::animate::{AnimateError, Item, Label, Pose, Scene, Trace};
+use crate::runtime::nalgebra::{Matrix3, Vector3};
+use crate::runtime::record::Table;
+use chaplygin_codegen::interpret::{BodyState, CallError, Drawing, InterpretedModel};
+use geometry::{Look, look_of};
+
+/// The default frames per second of simulated time.
+pub const DEFAULT_FPS: f64 = 60.0;
+
+/// The smallest side of a box and the smallest diameter of a sphere, metres.
+pub const MIN_SIZE: f64 = 0.02;
+
+/// How many coordinates the page shows as labels.
+const LABELS: usize = 3;
+
+/// Why a run cannot be animated.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum AnimationError {
+    /// The model has no bodies to draw.
+    #[error(
+        "`{model}` declares no bodies: an animation draws a mechanism's bodies \
+         (`bodies:` with `body(...)` or `particle(...)`, docs/INTERFACE.md section 4)"
+    )]
+    NoBodies {
+        /// The model's name.
+        model: String,
+    },
+    /// The frames per second are not a positive finite number.
+    #[error("--fps {fps}: the frames per second must be a positive finite number")]
+    Fps {
+        /// The value given.
+        fps: f64,
+    },
+    /// The run recorded no row.
+    #[error("the run recorded no row: there is nothing to animate")]
+    NoRows,
+    /// The table's columns are not `t` and the coordinates first.
+    #[error(
+        "the recorded columns {found:?} do not start with `t` and the coordinates {expected:?}"
+    )]
+    Columns {
+        /// `t` and the coordinates.
+        expected: Vec<String>,
+        /// The table's columns.
+        found: Vec<String>,
+    },
+    /// A row has not one value per column.
+    #[error("row {row} has {found} values for {columns} columns")]
+    RowLength {
+        /// The row's index.
+        row: usize,
+        /// Its number of values.
+        found: usize,
+        /// The number of columns.
+        columns: usize,
+    },
+    /// A body's mass or inertia is not finite.
+    #[error("body `{body}`: its mass or inertia is not a finite number")]
+    NotFinite {
+        /// The body.
+        body: String,
+    },
+    /// The engine could not evaluate the drawing.
+    #[error("`{model}`: {source}")]
+    Call {
+        /// The model's name.
+        model: String,
+        /// What the engine reported.
+        source: CallError,
+    },
+    /// The scene is not one the page accepts.
+    #[error(transparent)]
+    Page(#[from] AnimateError),
+}
+
+/// Checks that `model` (named `label`) has bodies to draw, before a run.
+///
+/// # Errors
+/// [`AnimationError::NoBodies`].
+pub fn check(model: &InterpretedModel, label: &str) -> Result<(), AnimationError> {
+    match model.bodies().bodies.is_empty() {
+        true => Err(AnimationError::NoBodies {
+            model: label.to_string(),
+        }),
+        false => Ok(()),
+    }
+}
+
+/// The page of the run recorded in `table` (`t`, then the coordinates,
+/// then anything) of `model`, named `label`, at `fps` frames per second
+/// of simulated time.
+///
+/// # Errors
+/// As [`scene`], and a scene the page refuses.
+pub fn page(
+    model: &InterpretedModel,
+    label: &str,
+    table: &Table,
+    fps: f64,
+) -> Result<String, AnimationError> {
+    Ok(crate::animate::page(&scene(model, label, table, fps)?)?)
+}
+
+/// The scene of the run recorded in `table` (see the [module's
+/// documentation](self)).
+///
+/// # Errors
+/// A model without bodies, `fps` not positive, a table without rows,
+/// whose columns are not `t` and the coordinates first or with a row of
+/// another length, a mass or an inertia not finite.
+pub fn scene(
+    model: &InterpretedModel,
+    label: &str,
+    table: &Table,
+    fps: f64,
+) -> Result<Scene, AnimationError> {
+    check(model, label)?;
+    if !(fps.is_finite() && fps > 0.0) {
+        return Err(AnimationError::Fps { fps });
+    }
+    check_columns(model, table)?;
+    let times: Vec<f64> = table.rows.iter().map(|row| row[0]).collect();
+    let rows = frame_rows(&times, fps);
+    let n = model.sizes().n;
+    let at = |row: usize| {
+        model
+            .drawing(&table.rows[row][1..=n])
+            .map_err(|source| AnimationError::Call {
+                model: label.to_string(),
+                source,
+            })
+    };
+    let first = at(0)?;
+    let world = World::of(&first);
+    let looks = looks(model, &first, &world)?;
+    let drawings = (rows.iter())
+        .map(|&row| at(row))
+        .collect::<Result<Vec<Drawing>, _>>()?;
+    Ok(Scene {
+        title: label.to_string(),
+        note: note(model, &looks, &world),
+        items: items(model, &looks, &drawings, &world),
+        times: rows.iter().map(|&row| times[row]).collect(),
+        labels: labels(model, table, &rows),
+        traces: traces(model, &drawings, &world),
+    })
+}
+
+/// The indices of the rows at `times` that are frames: every k-th, k the
+/// whole number of rows nearest to `1 / fps` seconds at the rows' mean
+/// spacing (at least 1), and the last row; a last row at the time of the
+/// frame before it replaces that frame.
+pub fn frame_rows(times: &[f64], fps: f64) -> Vec<usize> {
+    let Some(last) = times.len().checked_sub(1) else {
+        return Vec::new();
+    };
+    let spacing = (times[last] - times[0]) / last.max(1) as f64;
+    let k = ((1.0 / fps) / spacing).round();
+    let k = if k.is_finite() && k >= 1.0 {
+        k as usize
+    } else {
+        1
+    };
+    let mut rows: Vec<usize> = (0..=last).step_by(k).collect();
+    if rows.last() != Some(&last) {
+        if rows.len() > 1 && rows.last().is_some_and(|&row| times[row] >= times[last]) {
+            rows.pop();
+        }
+        rows.push(last);
+    }
+    rows
+}
+
+fn check_columns(model: &InterpretedModel, table: &Table) -> Result<(), AnimationError> {
+    let expected: Vec<String> = std::iter::once("t".to_string())
+        .chain(model.names().coordinates.iter().cloned())
+        .collect();
+    if !table.columns.starts_with(&expected) {
+        return Err(AnimationError::Columns {
+            expected,
+            found: table.columns.clone(),
+        });
+    }
+    if table.rows.is_empty() {
+        return Err(AnimationError::NoRows);
+    }
+    let columns = table.columns.len();
+    match (table.rows.iter()).position(|row| row.len() != columns) {
+        Some(row) => Err(AnimationError::RowLength {
+            row,
+            found: table.rows[row].len(),
+            columns,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The page's world seen from the model's ground: down, and whether the
+/// model is turned by pi about x to show its `+z` gravity as down.
+struct World {
+    /// The unit vector down in the model's ground axes.
+    down: Vector3<f64>,
+    /// Gravity along `+z`: `(x, y, z) -> (x, -y, -z)`.
+    flipped: bool,
+}
+
+impl World {
+    /// The world of the gravity field `drawing.gravity`; without gravity,
+    /// down is `-z`.
+    fn of(drawing: &Drawing) -> World {
+        let gravity = Vector3::from(drawing.gravity);
+        let down = gravity.try_normalize(0.0).unwrap_or_else(|| -Vector3::z());
+        World {
+            down,
+            flipped: gravity.z > 0.0,
+        }
+    }
+
+    /// The conversion from the model's ground axes to the page's.
+    fn turn(&self) -> Matrix3<f64> {
+        match self.flipped {
+            true => Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, -1.0)),
+            false => Matrix3::identity(),
+        }
+    }
+
+    /// A point of the model in the page's world.
+    fn point(&self, p: [f64; 3]) -> [f64; 3] {
+        (self.turn() * Vector3::from(p)).into()
+    }
+}
+
+/// Each body's look, `None` for a body not drawn.
+fn looks(
+    model: &InterpretedModel,
+    first: &Drawing,
+    world: &World,
+) -> Result<Vec<Option<Look>>, AnimationError> {
+    let bodies = model.bodies();
+    (bodies.bodies.iter().enumerate())
+        .map(|(i, body)| {
+            let state = &first.bodies[i];
+            if !(state.mass.is_finite() && state.inertia.iter().all(|x| x.is_finite())) {
+                return Err(AnimationError::NotFinite {
+                    body: body.name.clone(),
+                });
+            }
+            let contacts: Vec<[f64; 3]> = (bodies.contacts.iter())
+                .zip(&first.contacts)
+                .filter(|(contact, _)| contact.body == i)
+                .map(|(_, &point)| point)
+                .collect();
+            Ok(look_of(state, body.particle, &contacts, &world.down))
+        })
+        .collect()
+}
+
+/// The drawn bodies with their poses at every frame.
+fn items(
+    model: &InterpretedModel,
+    looks: &[Option<Look>],
+    drawings: &[Drawing],
+    world: &World,
+) -> Vec<Item> {
+    (model.bodies().bodies.iter().zip(looks).enumerate())
+        .filter_map(|(i, (body, look))| {
+            let look = look.as_ref()?;
+            Some(Item {
+                name: body.name.clone(),
+                shape: look.shape,
+                poses: drawings
+                    .iter()
+                    .map(|drawing| pose(&drawing.bodies[i], look, world))
+                    .collect(),
+            })
+        })
+        .collect()
+}
+
+/// A body's pose in the page's world: its centre, and its frame rotation
+/// composed with its look's axes.
+fn pose(state: &BodyState, look: &Look, world: &World) -> Pose {
+    let rotation = Matrix3::from_row_slice(&state.rotation);
+    Pose {
+        position: world.point(state.center),
+        quaternion: quaternion(&(world.turn() * rotation * look.axes)),
+    }
+}
+
+fn traces(model: &InterpretedModel, drawings: &[Drawing], world: &World) -> Vec<Trace> {
+    (model.bodies().contacts.iter().enumerate())
+        .map(|(i, contact)| Trace {
+            name: contact.name.clone(),
+            points: drawings
+                .iter()
+                .map(|drawing| world.point(drawing.contacts[i]))
+                .collect(),
+        })
+        .collect()
+}
+
+fn labels(model: &InterpretedModel, table: &Table, rows: &[usize]) -> Vec<Label> {
+    (model.names().coordinates.iter().take(LABELS).enumerate())
+        .map(|(i, name)| Label {
+            name: name.clone(),
+            values: rows.iter().map(|&row| table.rows[row][1 + i]).collect(),
+        })
+        .collect()
+}
+
+/// The note: the world's turn, and the bodies not drawn.
+fn note(model: &InterpretedModel, looks: &[Option<Look>], world: &World) -> Option<String> {
+    let mut parts = Vec::new();
+    if world.flipped {
+        parts.push(
+            "the model's gravity points along its +z axis: shown rotated by pi about x, \
+             (x, y, z) -> (x, -y, -z), so that z is up"
+                .to_string(),
+        );
+    }
+    let hidden: Vec<&str> = (model.bodies().bodies.iter().zip(looks))
+        .filter(|(_, look)| look.is_none())
+        .map(|(body, _)| body.name.as_str())
+        .collect();
+    if !hidden.is_empty() {
+        parts.push(format!("not drawn (no mass): {}", hidden.join(", ")));
+    }
+    (!parts.is_empty()).then(|| parts.join("; "))
+}
+
+#[cfg(test)]
+mod tests;
