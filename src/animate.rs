@@ -6,7 +6,7 @@
 //! point per frame, drawn as a line that grows with time). [`page`] checks
 //! it and writes the page, or says what is wrong with it
 //! ([`AnimateError`], naming the item and the frame); it never panics.
-//! [`crate::driver::animation`] makes the scene of a mechanism's run (its
+//! The driver's `animation` module makes the scene of a mechanism's run (its
 //! bodies, contacts and coordinates), as `chaplygin simulate --animate`
 //! writes it.
 //!

@@ -52,7 +52,7 @@ pub struct Mechanism {
 
 /// What drawing a mechanism needs, as expressions of the coordinates and
 /// the parameters, in ground axes: the interpreter's `drawing(q)` computes
-/// them (`crate::interpret::InterpretedModel::drawing`).
+/// them.
 #[derive(Clone, Debug)]
 pub struct Drawing {
     /// The uniform gravity field `g` (zero when not declared).
