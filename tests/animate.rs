@@ -139,23 +139,10 @@ fn scene() -> Scene {
     }
 }
 
-/// The probe, first in `<head>`: records errors from the first script on,
-/// and after `load` measures the page and writes its findings as JSON into
-/// `<pre id="probe">`, every number as its shortest round-trip string
-/// (`-0` kept).
-const PROBE: &str = r#"<script>
-(() => {
-  const errors = [];
-  const original = console.error.bind(console);
-  console.error = (...args) => { errors.push('console.error: ' + args.map(String).join(' ')); original(...args); };
-  window.addEventListener('error', (event) => {
-    if (event.target && event.target !== window) errors.push('failed load: ' + (event.target.src || event.target.href || event.target.tagName));
-    else errors.push('error: ' + event.message);
-  }, true);
-  window.addEventListener('unhandledrejection', (event) => errors.push('unhandled rejection: ' + event.reason));
-  document.addEventListener('securitypolicyviolation', (event) => errors.push('blocked: ' + event.blockedURI + ' (' + event.violatedDirective + ')'));
-
-  function pixels(canvas) {
+/// The probe's measurements (`measure()` and its helpers), run after
+/// `load` between the shared start and end of `support::browser::probed`,
+/// which record the errors and write the findings as JSON.
+const PROBE: &str = r#"  function pixels(canvas) {
     const copy = document.createElement('canvas');
     copy.width = canvas.width;
     copy.height = canvas.height;
@@ -234,17 +221,6 @@ const PROBE: &str = r#"<script>
     result.errors = errors;
     return result;
   }
-
-  window.addEventListener('load', () => {
-    measure().catch((error) => ({ errors: errors.concat(['probe: ' + error]) })).then((result) => {
-      const pre = document.createElement('pre');
-      pre.id = 'probe';
-      pre.textContent = JSON.stringify(result, (key, value) => (typeof value !== 'number' ? value : Object.is(value, -0) ? '-0' : String(value)));
-      document.body.appendChild(pre);
-    });
-  });
-})();
-</script>
 "#;
 
 /// The angle of the rotation between two unit quaternions.

@@ -25,24 +25,13 @@ const RADII: [(&str, &str, f64); 2] = [
     ("front_wheel_body", "front_rolling", 0.35),
 ];
 
-/// The probe, first in `<head>`: records errors, and after `load` writes
+/// The probe's `measure()` (inside `support::browser::probed`'s start and
+/// end, which record the errors): after `load` it writes
 /// the items, the frames' times, every item's pose at every frame's time,
 /// the embedded traces and note, the canvas's drawn pixels and the
 /// resources requested as JSON into `<pre id="probe">`, every number as its
 /// shortest round-trip string.
-const PROBE: &str = r#"<script>
-(() => {
-  const errors = [];
-  const original = console.error.bind(console);
-  console.error = (...args) => { errors.push('console.error: ' + args.map(String).join(' ')); original(...args); };
-  window.addEventListener('error', (event) => {
-    if (event.target && event.target !== window) errors.push('failed load: ' + (event.target.src || event.target.href || event.target.tagName));
-    else errors.push('error: ' + event.message);
-  }, true);
-  window.addEventListener('unhandledrejection', (event) => errors.push('unhandled rejection: ' + event.reason));
-  document.addEventListener('securitypolicyviolation', (event) => errors.push('blocked: ' + event.blockedURI + ' (' + event.violatedDirective + ')'));
-
-  async function measure() {
+const PROBE: &str = r#"  async function measure() {
     const c = window.chaplygin;
     await c.ready;
     const data = JSON.parse(document.getElementById('chaplygin-data').textContent);
@@ -67,17 +56,6 @@ const PROBE: &str = r#"<script>
     result.resources = performance.getEntriesByType('resource').map((entry) => entry.name);
     return result;
   }
-
-  window.addEventListener('load', () => {
-    measure().catch((error) => ({ errors: errors.concat(['probe: ' + error]) })).then((result) => {
-      const pre = document.createElement('pre');
-      pre.id = 'probe';
-      pre.textContent = JSON.stringify(result, (key, value) => (typeof value !== 'number' ? value : Object.is(value, -0) ? '-0' : String(value)));
-      document.body.appendChild(pre);
-    });
-  });
-})();
-</script>
 "#;
 
 fn out(name: &str) -> PathBuf {

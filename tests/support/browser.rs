@@ -47,8 +47,43 @@ pub fn scratch(name: &str) -> PathBuf {
     directory
 }
 
-/// `html` with `probe` first in its `<head>`.
-pub fn probed(html: &str, probe: &str) -> String {
+/// What every probe script does first: it records console errors, page
+/// errors, failed loads, unhandled rejections and blocked requests in
+/// `errors`.
+const PROBE_START: &str = r#"<script>
+(() => {
+  const errors = [];
+  const original = console.error.bind(console);
+  console.error = (...args) => { errors.push('console.error: ' + args.map(String).join(' ')); original(...args); };
+  window.addEventListener('error', (event) => {
+    if (event.target && event.target !== window) errors.push('failed load: ' + (event.target.src || event.target.href || event.target.tagName));
+    else errors.push('error: ' + event.message);
+  }, true);
+  window.addEventListener('unhandledrejection', (event) => errors.push('unhandled rejection: ' + event.reason));
+  document.addEventListener('securitypolicyviolation', (event) => errors.push('blocked: ' + event.blockedURI + ' (' + event.violatedDirective + ')'));
+"#;
+
+/// What every probe script does last: once the page has loaded, it runs the
+/// test's `measure()` and writes its result (numbers as strings, `-0` kept)
+/// as JSON into `<pre id="probe">`, for [`probe_result`].
+const PROBE_END: &str = r#"
+  window.addEventListener('load', () => {
+    measure().catch((error) => ({ errors: errors.concat(['probe: ' + error]) })).then((result) => {
+      const pre = document.createElement('pre');
+      pre.id = 'probe';
+      pre.textContent = JSON.stringify(result, (key, value) => (typeof value !== 'number' ? value : Object.is(value, -0) ? '-0' : String(value)));
+      document.body.appendChild(pre);
+    });
+  });
+})();
+</script>
+"#;
+
+/// `html` with a probe script first in its `<head>`: [`PROBE_START`], the
+/// test's `measure` (an `async function measure()` returning the result,
+/// which may read `errors`), [`PROBE_END`].
+pub fn probed(html: &str, measure: &str) -> String {
+    let probe = format!("{PROBE_START}\n{measure}{PROBE_END}");
     let probed = html.replacen("<head>", &format!("<head>\n{probe}"), 1);
     assert_ne!(probed, html, "the page has a <head>");
     probed
