@@ -32,7 +32,7 @@ mod sensitivity;
 mod variation;
 
 pub use fourier::FourierLoop;
-pub use score::{Evaluation, Scoring, clearance};
+pub use score::{Evaluation, Scoring, clearances};
 pub use search::{Design, DesignError, Optimum, SURVEY, optimize};
 pub use sensitivity::by_sensitivities;
 pub use variation::by_curvature;

@@ -11,7 +11,7 @@ use chaplygin::driver::engine::{EngineChoice, Loaded, load};
 use chaplygin::driver::gait::locomotion;
 use chaplygin::gait_design::{
     Cost, Design, Direction, Evaluation, FourierLoop, GaitModel, Optimum, Scoring, by_curvature,
-    by_sensitivities, clearance, evaluate, optimize,
+    by_sensitivities, clearances, evaluate, optimize,
 };
 use chaplygin::runtime::gait::{self, ShapeLoop};
 use std::f64::consts::PI;
@@ -262,7 +262,7 @@ fn random_efficiencies(body: &dyn GaitModel, scoring: &Scoring, count: usize) ->
     );
     while found.len() < count {
         let candidate = loops.next();
-        if clearance(body, &candidate, scoring, 200) < 2.0 {
+        if clearances(body, &candidate, scoring, 200).any(|s| s < 2.0) {
             continue;
         }
         let law = |t: f64| candidate.shape(t);

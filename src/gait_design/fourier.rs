@@ -45,6 +45,22 @@ impl FourierLoop {
         (values, rates)
     }
 
+    /// `r(t)`, without its rate: the first half of [`FourierLoop::shape`],
+    /// the same sums in the same order.
+    pub fn position(&self, t: f64) -> Vec<f64> {
+        let w = 2.0 * std::f64::consts::PI / self.period;
+        let per = self.per_coordinate();
+        let mut r: Vec<f64> = self.coefficients.iter().step_by(per).copied().collect();
+        for k in 1..=self.harmonics {
+            let (sin, cos) = (k as f64 * w * t).sin_cos();
+            for (r, c) in r.iter_mut().zip(self.coefficients.chunks(per)) {
+                *r += c[2 * k - 1] * cos;
+                *r += c[2 * k] * sin;
+            }
+        }
+        r
+    }
+
     /// `(r(t), rdot(t))`.
     pub fn shape(&self, t: f64) -> (Vec<f64>, Vec<f64>) {
         let (values, rates) = self.basis(t);
@@ -104,6 +120,9 @@ mod tests {
         ];
         for i in 0..2 {
             assert!((r[i] - expected[i]).abs() < 1e-15 && (rdot[i] - rates[i]).abs() < 1e-14);
+        }
+        for t in [0.0, 0.3, 1.7, 2.9] {
+            assert_eq!(shape_loop.position(t), shape_loop.shape(t).0);
         }
         let laws = shape_loop.laws(&["a".into(), "b".into()]);
         assert_eq!(

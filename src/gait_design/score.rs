@@ -211,26 +211,25 @@ pub(super) fn simpson(steps: usize, period: f64) -> Vec<f64> {
 }
 
 /// The least clearance, from the singular set (`s_0 = |d(r)| /
-/// clearance`) and from the limits (`s_i`), at `samples` points of the
-/// loop, without integrating it: a cheap test of whether a loop keeps off
-/// the singular set and inside the limits (`s > 1`).
-pub fn clearance(
-    model: &dyn GaitModel,
-    shape_loop: &FourierLoop,
-    scoring: &Scoring,
+/// clearance`) and from the limits (`s_i`), at each of `samples` points of
+/// the loop in turn, without integrating it: a cheap test of whether a loop
+/// keeps off the singular set and inside the limits (`s > 1`). Each point
+/// is computed as it is asked for, so a loop is rejected at its first point
+/// below a bound (`clearances(..).any(|s| s < bound)`) without the rest
+/// being evaluated.
+pub fn clearances<'a>(
+    model: &'a dyn GaitModel,
+    shape_loop: &'a FourierLoop,
+    scoring: &'a Scoring,
     samples: usize,
-) -> f64 {
-    (0..samples)
-        .map(|k| {
-            let r = shape_loop
-                .shape(shape_loop.period * k as f64 / samples as f64)
-                .0;
-            let s = model.divisor(&r).0.abs() / scoring.clearance;
-            (r.iter())
-                .map(|&r| limit_clearance(r, scoring))
-                .fold(s, f64::min)
-        })
-        .fold(f64::INFINITY, f64::min)
+) -> impl Iterator<Item = f64> + 'a {
+    (0..samples).map(move |k| {
+        let r = shape_loop.position(shape_loop.period * k as f64 / samples as f64);
+        let s = model.divisor(&r).0.abs() / scoring.clearance;
+        (r.iter())
+            .map(|&r| limit_clearance(r, scoring))
+            .fold(s, f64::min)
+    })
 }
 
 /// `psi(s - 1)` and its derivative in `s`.

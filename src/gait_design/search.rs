@@ -8,7 +8,7 @@
 //! kept.
 
 use super::fourier::FourierLoop;
-use super::score::{Evaluation, Scoring, clearance};
+use super::score::{Evaluation, Scoring, clearances};
 use super::{Cost, Direction, GaitModel, evaluate};
 use argmin::core::{CostFunction, Error, Executor, Gradient, State};
 use argmin::solver::linesearch::BacktrackingLineSearch;
@@ -225,7 +225,7 @@ fn survey(
             harmonics: design.harmonics,
             coefficients,
         };
-        if clearance(model, &candidate, &quick, quick.steps) <= 1.0 {
+        if clearances(model, &candidate, &quick, quick.steps).any(|s| s <= 1.0) {
             continue;
         }
         let cost = evaluate(model, &candidate, &quick).cost(&quick);
