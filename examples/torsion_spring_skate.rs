@@ -25,6 +25,7 @@ chaplygin::model! {
             forward = [m*cos(theta), m*sin(theta), 0],
             turning = [0, 0, inertia],
         ],
+        drawing: [skate = box(center = [x, y, 0.03], heading = theta, size = [0.3, 0.08, 0.04])],
     }
 }
 

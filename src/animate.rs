@@ -30,7 +30,8 @@
 //! the same doubles, and a Content-Security-Policy forbids every network
 //! request. It shows the items moving over a ground grid, with a play/pause
 //! button, a time slider, a speed selector, a "follow" checkbox that keeps
-//! the camera on the items' centroid, orbit, pan and zoom with the mouse,
+//! the camera on the items' centroid (brought within a few times the largest
+//! item when checked), orbit, pan and zoom with the mouse,
 //! the time and the labels' values, and the note. Keys: space plays or
 //! pauses, the left and right arrows step one frame.
 //!

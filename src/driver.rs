@@ -21,7 +21,7 @@
 //! - [`expression`]: the expressions of input laws, stop conditions,
 //!   initial values and operating points, in the model language's syntax;
 //! - [`document`]: the derivation document as text, LaTeX or JSON;
-//! - [`animation`]: a run of a mechanism as an animated scene, one offline
+//! - [`animation`]: a run of a model as an animated scene, one offline
 //!   HTML page (docs/INTERFACE.md section 10).
 
 pub mod animation;

@@ -1,36 +1,44 @@
-//! `chaplygin simulate bicycle ... --animate` (docs/INTERFACE.md section
-//! 10): the benchmark bicycle for a second at 3 m/s, below its weave speed,
-//! pushed to lean (as `bicycle_falling` starts it), its `animation.html`
-//! opened in headless Chromium with a probe that reads
-//! `window.chaplygin.pose` of every item at every frame's time, the
-//! embedded traces and the canvas's pixels. At every frame each wheel's
-//! disc touches the ground (z = 0) at its contact point's trace, and the
-//! rear wheel's centre is the one the paper's geometry gives from the
-//! frame's row of `trajectory.csv` (the model's z axis points down: the
-//! page shows it turned by pi about x). The page makes no request and logs
-//! no error, and draws something. A model declared by its energy is
-//! refused by name.
+//! `chaplygin simulate MODEL ... --animate` for every built-in model and
+//! `chaplygin gait snakeboard ... --animate` (docs/INTERFACE.md section
+//! 10), the pages opened together in one headless Chromium with a probe
+//! that reads `window.chaplygin.pose` of every item at every frame's time,
+//! the embedded traces and the canvas's pixels. Every page makes no
+//! request, logs no error and draws something; its frames are rows of the
+//! run's table. Against what the tests compute from `trajectory.csv` (or
+//! the gait's `cycle.csv`) themselves:
+//!
+//! - the benchmark bicycle pushed to lean at 3 m/s, below its weave speed,
+//!   until it falls: at every frame each wheel's disc touches the ground
+//!   (z = 0) at its contact point's trace, and the rear wheel's centre is
+//!   the one the paper's geometry gives (the model's z axis points down:
+//!   the page shows it turned by pi about x);
+//! - the snakeboard's gait `psi = 0.8 sin t`, `phi = 0.5 cos t`: the board
+//!   turned about z by `theta`, at `(x, y)`, and the front wheels' axle
+//!   across the direction `theta + phi` they roll in, `r` ahead;
+//! - the vertical rolling disk: its disc at `(x, y, r)`, turned by `theta`
+//!   about z and by `phi` about its axle.
+//!
+//! The guide's screenshots of the bicycle's fall and the snakeboard's gait
+//! are these pages (`support::browser::screenshot`). A model with nothing
+//! to draw is refused by name.
 
 use crate::support::browser::{
-    chromium, distance, dump_dom, num, nums, pose_of, probe_result, probed, scratch,
+    chromium, distance, num, nums, pose_of, probe_pages, scratch, screenshot,
 };
-use crate::support::{chaplygin, column, read_csv};
+use crate::support::snakeboard_gait::GAIT;
+use crate::support::{FALL, chaplygin, column, read_csv};
+use chaplygin::driver::catalog::BUILT_IN;
 use chaplygin::runtime::nalgebra::{UnitQuaternion, Vector3};
 use serde_json::Value;
+use std::f64::consts::PI;
 use std::path::PathBuf;
-
-/// The paper's wheel radii, rear and front.
-const RADII: [(&str, &str, f64); 2] = [
-    ("rear_wheel_body", "rear_rolling", 0.3),
-    ("front_wheel_body", "front_rolling", 0.35),
-];
+use std::process::{Command, Stdio};
+use std::sync::OnceLock;
 
 /// The probe's `measure()` (inside `support::browser::probed`'s start and
-/// end, which record the errors): after `load` it writes
-/// the items, the frames' times, every item's pose at every frame's time,
-/// the embedded traces and note, the canvas's drawn pixels and the
-/// resources requested as JSON into `<pre id="probe">`, every number as its
-/// shortest round-trip string.
+/// end, which record the errors): the items, the frames' times, every
+/// item's pose at every frame's time, the embedded traces and note, the
+/// canvas's drawn pixels and the resources requested.
 const PROBE: &str = r#"  async function measure() {
     const c = window.chaplygin;
     await c.ready;
@@ -58,11 +66,179 @@ const PROBE: &str = r#"  async function measure() {
   }
 "#;
 
-fn out(name: &str) -> PathBuf {
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("animation-{name}"));
-    let _ = std::fs::remove_dir_all(&out);
-    out
+/// Until the bicycle's lean reaches 1.2 rad, after its push (`FALL`, as
+/// `bicycle_falling` starts it).
+const UNTIL_IT_FALLS: [&str; 4] = ["--t-end", "3", "--stop-when", "abs(phi) > 1.2"];
+
+/// The snakeboard's half length `r`, where its wheels are.
+const SNAKEBOARD_R: f64 = 0.5;
+
+/// A run with `--animate`: its name, directory, what it printed, its table
+/// (`trajectory.csv` or the gait's `cycle.csv`) and page.
+struct Run {
+    name: String,
+    directory: PathBuf,
+    stdout: String,
+    table: (Vec<String>, Vec<Vec<f64>>),
+    page: String,
 }
+
+/// Every run, and what the probe found in each page (`None` without
+/// Chromium).
+struct Runs {
+    runs: Vec<Run>,
+    probes: Option<Vec<Value>>,
+}
+
+impl Runs {
+    /// The run named `name` and its probe's findings.
+    fn get(&self, name: &str) -> (&Run, Option<&Value>) {
+        let i = (self.runs.iter())
+            .position(|run| run.name == name)
+            .unwrap_or_else(|| panic!("a run `{name}`"));
+        (&self.runs[i], self.probes.as_ref().map(|probes| &probes[i]))
+    }
+}
+
+/// The runs, made once for all the tests here: each built-in model's
+/// `simulate` (for 1 s from its default motion, the bicycle falling), and
+/// the snakeboard's gait, as concurrent processes; then their pages in one
+/// Chromium.
+fn runs() -> &'static Runs {
+    static RUNS: OnceLock<Runs> = OnceLock::new();
+    RUNS.get_or_init(|| {
+        let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("animation");
+        let _ = std::fs::remove_dir_all(&root);
+        let mut commands: Vec<(String, Vec<String>, &str)> = (BUILT_IN.iter())
+            .map(|model| {
+                let mut arguments = vec!["simulate".to_string(), model.name.to_string()];
+                match model.name {
+                    "bicycle" => arguments
+                        .extend((FALL.iter().chain(&UNTIL_IT_FALLS)).map(|a| a.to_string())),
+                    _ => arguments.extend(["--t-end", "1"].map(String::from)),
+                }
+                (model.name.to_string(), arguments, "trajectory.csv")
+            })
+            .collect();
+        let mut gait = vec!["gait".to_string()];
+        gait.extend(GAIT.map(String::from));
+        commands.push(("snakeboard-gait".to_string(), gait, "cycle.csv"));
+        let children: Vec<_> = (commands.iter())
+            .map(|(name, arguments, _)| {
+                let directory = root.join(name);
+                Command::new(env!("CARGO_BIN_EXE_chaplygin"))
+                    .args(arguments)
+                    .arg("--animate")
+                    .arg("--out")
+                    .arg(&directory)
+                    .stdout(Stdio::piped())
+                    .stderr(Stdio::piped())
+                    .spawn()
+                    .expect("the binary runs")
+            })
+            .collect();
+        let runs: Vec<Run> = (commands.iter().zip(children))
+            .map(|((name, arguments, table), child)| {
+                let output = child.wait_with_output().expect("the run ends");
+                let stdout = String::from_utf8_lossy(&output.stdout).to_string();
+                assert!(
+                    output.status.success(),
+                    "{arguments:?}: {stdout}{}",
+                    String::from_utf8_lossy(&output.stderr)
+                );
+                let directory = root.join(name);
+                Run {
+                    name: name.clone(),
+                    table: read_csv(&directory.join(table)),
+                    page: std::fs::read_to_string(directory.join("animation.html")).unwrap(),
+                    directory,
+                    stdout,
+                }
+            })
+            .collect();
+        let probes = chromium().map(|chromium| {
+            let pages: Vec<&str> = runs.iter().map(|run| run.page.as_str()).collect();
+            probe_pages(&chromium, &pages, PROBE, &scratch("animation"))
+        });
+        Runs { runs, probes }
+    })
+}
+
+#[test]
+fn every_built_in_model_s_page_renders_with_no_error_and_no_request() {
+    let runs = runs();
+    assert_eq!(runs.runs.len(), BUILT_IN.len() + 1);
+    for run in &runs.runs {
+        let path = run.directory.join("animation.html");
+        let said = format!(
+            "wrote {} ({} kB)",
+            path.display(),
+            run.page.len().div_ceil(1000)
+        );
+        assert!(run.stdout.contains(&said), "{said} in {}", run.stdout);
+    }
+    let Some(probes) = &runs.probes else {
+        return;
+    };
+    for (run, result) in runs.runs.iter().zip(probes) {
+        let name = &run.name;
+        assert_eq!(result["errors"], Value::Array(vec![]), "{name}: errors");
+        assert_eq!(
+            result["resources"],
+            Value::Array(vec![]),
+            "{name}: requests"
+        );
+        assert!(!result["items"].as_array().unwrap().is_empty(), "{name}");
+        // every frame is a row of the table, the first and the last among them
+        let (header, rows) = &run.table;
+        let t = column(header, rows, "t");
+        let times = nums(&result["times"]);
+        assert!(times.len() > 10, "{name}: {} frames", times.len());
+        assert_eq!(
+            (times.first(), times.last()),
+            (t.first(), t.last()),
+            "{name}"
+        );
+        for time in &times {
+            assert!(
+                t.iter().any(|row| row.to_bits() == time.to_bits()),
+                "{name}: no row at the frame's time {time}"
+            );
+        }
+        let pixels = &result["pixels"];
+        let total = num(&pixels["total"]);
+        assert!(total >= 100_000.0, "{name}: {pixels}");
+        assert!(
+            num(&pixels["drawn"]) > 0.02 * total,
+            "{name} blank: {pixels}"
+        );
+        assert!(num(&pixels["colours"]) > 50.0, "{name} blank: {pixels}");
+    }
+}
+
+/// The columns `names` of `table`.
+fn columns<const N: usize>(
+    table: &(Vec<String>, Vec<Vec<f64>>),
+    names: [&str; N],
+) -> [Vec<f64>; N] {
+    names.map(|name| column(&table.0, &table.1, name))
+}
+
+/// The rows of `t` at the frames' `times`.
+fn frame_rows(t: &[f64], times: &[f64]) -> Vec<usize> {
+    (times.iter())
+        .map(|time| {
+            (t.iter().position(|row| row.to_bits() == time.to_bits()))
+                .unwrap_or_else(|| panic!("a row at the frame's time {time}"))
+        })
+        .collect()
+}
+
+/// The paper's wheel radii, rear and front.
+const RADII: [(&str, &str, f64); 2] = [
+    ("rear_wheel_body", "rear_rolling", 0.3),
+    ("front_wheel_body", "front_rolling", 0.35),
+];
 
 /// The rear wheel's centre in the page's world from the paper's
 /// coordinates: the rear contact `(x_p, y_p, 0)` plus `rR` along the lean
@@ -78,12 +254,17 @@ fn rear_centre(x_p: f64, y_p: f64, psi: f64, phi: f64) -> [f64; 3] {
     [centre[0], -centre[1], -centre[2]]
 }
 
+/// The unit quaternion `[x, y, z, w]` as nalgebra's.
+fn rotation(quaternion: [f64; 4]) -> UnitQuaternion<f64> {
+    let [i, j, k, w] = quaternion;
+    UnitQuaternion::from_quaternion([i, j, k, w].into())
+}
+
 /// The lowest point of a disc of `radius` at `centre` whose axle is the
 /// local y axis turned by `quaternion`: the centre plus the radius along
 /// world down (`-z`) made perpendicular to the axle.
 fn lowest_point(centre: [f64; 3], quaternion: [f64; 4], radius: f64) -> [f64; 3] {
-    let [i, j, k, w] = quaternion;
-    let axle = UnitQuaternion::from_quaternion([i, j, k, w].into()) * Vector3::y();
+    let axle = rotation(quaternion) * Vector3::y();
     let down = -Vector3::z();
     let below = (down - axle * axle.dot(&down)).normalize();
     (Vector3::from(centre) + radius * below).into()
@@ -91,65 +272,18 @@ fn lowest_point(centre: [f64; 3], quaternion: [f64; 4], radius: f64) -> [f64; 3]
 
 #[test]
 fn the_falling_bicycle_s_wheels_roll_on_the_ground_in_the_page() {
-    let directory = out("bicycle");
-    let dir = directory.to_str().unwrap();
-    let output = chaplygin(&[
-        "simulate",
-        "bicycle",
-        "--initial",
-        "dot(theta_r)=-10",
-        "--initial",
-        "dot(phi)=0.2",
-        "--initial",
-        "dot(delta)=0",
-        "--fixed-step",
-        "--dt",
-        "0.001",
-        "--t-end",
-        "1",
-        "--animate",
-        "--out",
-        dir,
-    ]);
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let page = directory.join("animation.html");
-    let html = std::fs::read_to_string(&page).unwrap();
-    let said = format!(
-        "wrote {} ({} kB)",
-        page.display(),
-        html.len().div_ceil(1000)
-    );
-    assert!(stdout.contains(&said), "{said} in {stdout}");
-    let (header, rows) = read_csv(&directory.join("trajectory.csv"));
-
-    let Some(chromium) = chromium() else {
+    let (run, result) = runs().get("bicycle");
+    let Some(result) = result else {
         return;
     };
-    let copy = directory.join("probed.html");
-    std::fs::write(&copy, probed(&html, PROBE)).unwrap();
-    let result = probe_result(&dump_dom(&chromium, &copy, &scratch("animation")));
-    assert_eq!(result["errors"], Value::Array(vec![]), "errors in the page");
-    assert_eq!(result["resources"], Value::Array(vec![]), "requests");
     assert!(result["note"].as_str().unwrap().contains("(x, -y, -z)"));
-
-    // The frames are rows of trajectory.csv, 1 ms apart: every 17th for
-    // 60 frames per second, and the last.
-    let t = column(&header, &rows, "t");
+    let (header, rows) = &run.table;
+    let t = column(header, rows, "t");
     let times = nums(&result["times"]);
-    assert_eq!(times.len(), 60, "{times:?}");
-    assert_eq!(times.last(), t.last());
-    let frame_rows: Vec<usize> = (times.iter())
-        .map(|time| {
-            (t.iter().position(|row| row.to_bits() == time.to_bits()))
-                .unwrap_or_else(|| panic!("a row at the frame's time {time}"))
-        })
-        .collect();
-    assert_eq!(&frame_rows[..3], &[0, 17, 34]);
+    let frames = frame_rows(&t, &times);
+    // rows 1 ms apart: every 17th for 60 frames per second, and the last
+    assert_eq!(&frames[..3], &[0, 17, 34]);
+    assert_eq!(frames.last(), Some(&(t.len() - 1)));
 
     let items = result["items"].as_array().unwrap();
     let names: Vec<&str> = items.iter().map(|i| i["name"].as_str().unwrap()).collect();
@@ -159,7 +293,9 @@ fn the_falling_bicycle_s_wheels_roll_on_the_ground_in_the_page() {
             "rear_wheel_body",
             "rear_body",
             "front_body",
-            "front_wheel_body"
+            "front_wheel_body",
+            "rear_frame_tube",
+            "fork_tube"
         ]
     );
     let traces = result["traces"].as_array().unwrap();
@@ -189,15 +325,9 @@ fn the_falling_bicycle_s_wheels_roll_on_the_ground_in_the_page() {
             worst[1] = worst[1].max(off_trace);
         }
     }
-    let coordinate = |name: &str| column(&header, &rows, name);
-    let (x_p, y_p, psi, phi) = (
-        coordinate("x_p"),
-        coordinate("y_p"),
-        coordinate("psi"),
-        coordinate("phi"),
-    );
+    let [x_p, y_p, psi, phi] = columns(&run.table, ["x_p", "y_p", "psi", "phi"]);
     let rear = result["poses"]["rear_wheel_body"].as_array().unwrap();
-    for (i, (&row, pose)) in frame_rows.iter().zip(rear).enumerate() {
+    for (i, (&row, pose)) in frames.iter().zip(rear).enumerate() {
         let (centre, _) = pose_of(pose);
         let expected = rear_centre(x_p[row], y_p[row], psi[row], phi[row]);
         let error = distance(&centre, &expected);
@@ -207,32 +337,122 @@ fn the_falling_bicycle_s_wheels_roll_on_the_ground_in_the_page() {
         );
         worst[2] = worst[2].max(error);
     }
-    // it rolled some 3 m and turned to the right of its x axis (y_p > 0,
-    // which the page shows at -y)
-    let last = *frame_rows.last().unwrap();
+    // it rolled some 6 m, weaving, and fell
+    let last = *frames.last().unwrap();
     assert!(
-        x_p[last] > 2.5 && y_p[last] > 0.2 && psi[last] > 0.2,
-        "{}",
-        x_p[last]
+        x_p[last] > 5.0 && phi[last].abs() >= 1.2,
+        "{} {}",
+        x_p[last],
+        phi[last]
     );
     eprintln!(
         "worst: lowest point's height {:.1e}, from its contact {:.1e}, rear centre {:.1e}",
         worst[0], worst[1], worst[2]
     );
+    screenshot(&run.page, 0.9 * t[last], "bicycle-fall", &run.directory);
+}
 
-    let pixels = &result["pixels"];
-    let total = num(&pixels["total"]);
-    assert!(total >= 100_000.0, "{pixels}");
-    assert!(num(&pixels["drawn"]) > 0.02 * total, "blank: {pixels}");
-    assert!(num(&pixels["colours"]) > 50.0, "blank: {pixels}");
+/// The angle `a` in `(-pi, pi]` plus a whole number of turns nearest `b`,
+/// minus `b`.
+fn angle_difference(a: f64, b: f64) -> f64 {
+    let d = a - b;
+    d - 2.0 * PI * (d / (2.0 * PI)).round()
+}
+
+/// The heading of a turn about z alone, after checking it is one.
+fn heading_of(quaternion: [f64; 4], what: &str) -> f64 {
+    let [i, j, k, w] = quaternion;
+    assert!(i.abs() < 1e-15 && j.abs() < 1e-15, "{what}: {quaternion:?}");
+    2.0 * k.atan2(w)
 }
 
 #[test]
-fn a_model_declared_by_its_energy_is_not_animated() {
-    let directory = out("snakeboard");
+fn the_snakeboard_s_gait_turns_its_board_by_theta_in_the_page() {
+    let (run, result) = runs().get("snakeboard-gait");
+    let [t, x, y, theta, phi] = columns(&run.table, ["t", "x", "y", "theta", "phi"]);
+    // one period of 2000 steps, from rest to x = -0.807
+    assert_eq!(t.len(), 2001);
+    assert!((x[2000] + 0.807).abs() < 1e-3, "{}", x[2000]);
+    let Some(result) = result else {
+        return;
+    };
+    let frames = frame_rows(&t, &nums(&result["times"]));
+    let board = result["poses"]["board"].as_array().unwrap();
+    let axle = result["poses"]["front_axle"].as_array().unwrap();
+    let items = result["items"].as_array().unwrap();
+    let length = items.iter().find(|i| i["name"] == "front_axle").unwrap();
+    assert!((num(&length["length"]) - 0.4).abs() < 1e-15, "{length}");
+    let mut worst = [0.0f64; 4];
+    for (i, &row) in frames.iter().enumerate() {
+        let (position, quaternion) = pose_of(&board[i]);
+        let heading = angle_difference(heading_of(quaternion, "board"), theta[row]);
+        let off = distance(&position, &[x[row], y[row], 0.08]);
+        assert!(heading.abs() <= 1e-9, "the board at frame {i}: {heading}");
+        assert!(off <= 1e-9, "the board at frame {i}: {position:?}");
+        // the front axle, from its first end to its second, points to the
+        // left of the direction theta + phi the wheels roll in, r ahead
+        let (position, quaternion) = pose_of(&axle[i]);
+        let across = theta[row] + phi[row] + PI / 2.0;
+        let turned = angle_difference(heading_of(quaternion, "front_axle"), across);
+        let ahead = [
+            x[row] + SNAKEBOARD_R * theta[row].cos(),
+            y[row] + SNAKEBOARD_R * theta[row].sin(),
+            0.04,
+        ];
+        let axle_off = distance(&position, &ahead);
+        assert!(
+            turned.abs() <= 1e-9,
+            "the front axle at frame {i}: {turned}"
+        );
+        assert!(
+            axle_off <= 1e-9,
+            "the front axle at frame {i}: {position:?}"
+        );
+        for (worst, error) in worst.iter_mut().zip([heading, off, turned, axle_off]) {
+            *worst = worst.max(error.abs());
+        }
+    }
+    eprintln!(
+        "worst: board heading {:.1e}, centre {:.1e}; front axle {:.1e}, {:.1e}",
+        worst[0], worst[1], worst[2], worst[3]
+    );
+    screenshot(&run.page, 0.8 * t[2000], "snakeboard-gait", &run.directory);
+}
+
+#[test]
+fn the_rolling_disk_s_disc_turns_and_rolls_with_its_coordinates_in_the_page() {
+    let (run, result) = runs().get("rolling-disk");
+    let Some(result) = result else {
+        return;
+    };
+    let [t, x, y, theta, phi] = columns(&run.table, ["t", "x", "y", "theta", "phi"]);
+    let frames = frame_rows(&t, &nums(&result["times"]));
+    let disk = result["poses"]["disk"].as_array().unwrap();
+    let r = 0.5;
+    for (i, &row) in frames.iter().enumerate() {
+        let (position, quaternion) = pose_of(&disk[i]);
+        let expected = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), theta[row])
+            * UnitQuaternion::from_axis_angle(&Vector3::y_axis(), phi[row]);
+        let angle = rotation(quaternion).angle_to(&expected);
+        assert!(angle <= 1e-9, "the disk at frame {i}: {angle}");
+        let off = distance(&position, &[x[row], y[row], r]);
+        assert!(off <= 1e-9, "the disk at frame {i}: {position:?}");
+    }
+    // it rolled: its spin and heading changed
+    let last = *frames.last().unwrap();
+    assert!(phi[last].abs() > 0.1 && theta[last].abs() > 0.1);
+}
+
+#[test]
+fn a_model_with_nothing_to_draw_is_not_animated() {
+    let directory = scratch("animation-refused");
+    let model = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/models/sleigh_no_symmetry.model"
+    );
     let output = chaplygin(&[
         "simulate",
-        "snakeboard",
+        model,
         "--t-end",
         "0.1",
         "--animate",
@@ -241,9 +461,34 @@ fn a_model_declared_by_its_energy_is_not_animated() {
     ]);
     assert!(!output.status.success());
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        stderr.starts_with("error: `snakeboard.model` declares no bodies"),
-        "{stderr}"
-    );
+    let expected = format!("error: `{model}` has nothing to draw");
+    assert!(stderr.starts_with(&expected), "{stderr}");
     assert!(!directory.join("trajectory.csv").exists());
+}
+
+#[test]
+fn a_model_file_s_bad_drawing_items_are_reported_at_their_tokens() {
+    let directory = scratch("animation-bad-drawing");
+    let file = directory.join("sleigh.model");
+    let text = include_str!("../models/sleigh.model")
+        .replace("heading = theta,\n", "heading = theta, colour = 1,\n")
+        .replace("mass_center = sphere", "sled = sphere");
+    std::fs::write(&file, &text).unwrap();
+    let output = chaplygin(&["simulate", file.to_str().unwrap(), "--animate"]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let at = |token: &str, message: &str| {
+        let (line, text) = (text.lines().enumerate())
+            .find(|(_, line)| line.contains(token))
+            .unwrap_or_else(|| panic!("`{token}` in the model"));
+        let column = text.find(token).unwrap() + 1;
+        format!("{}:{}:{column}: error: {message}", file.display(), line + 1)
+    };
+    for expected in [
+        at("colour", "unknown keyword argument `colour` of `box`"),
+        at("sled = sphere", "`sled` is declared twice in this section"),
+    ] {
+        assert!(stderr.contains(&expected), "{expected}\nin\n{stderr}");
+    }
+    assert!(!directory.join("animation.html").exists());
 }

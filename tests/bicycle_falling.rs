@@ -19,23 +19,9 @@
 //! wrote.
 
 use crate::support::in_process::Model;
-use crate::support::{chaplygin, read_csv};
+use crate::support::{FALL, chaplygin, read_csv};
 use std::path::PathBuf;
 use std::sync::OnceLock;
-
-/// Upright at 3 m/s (`dot(theta_r) = -10` with `rR = 0.3`), leaning at
-/// 0.2 rad/s, steer at rest, fixed steps of 1 ms.
-const FALL: [&str; 9] = [
-    "--initial",
-    "dot(theta_r)=-10",
-    "--initial",
-    "dot(phi)=0.2",
-    "--initial",
-    "dot(delta)=0",
-    "--fixed-step",
-    "--dt",
-    "0.001",
-];
 
 /// A run's summary line and columns.
 struct Run {

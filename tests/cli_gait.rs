@@ -5,7 +5,7 @@
 //! independently; the cycle's CSV, the path plot and the snake's
 //! curvature plot; the models a gait cannot move.
 
-use crate::support::snakeboard_gait::{hand_derived_cycle, rk4_from_zero};
+use crate::support::snakeboard_gait::{GAIT, hand_derived_cycle, rk4_from_zero};
 
 use crate::support::{chaplygin, read_csv};
 use std::f64::consts::PI;
@@ -57,23 +57,13 @@ fn displacement(stdout: &str) -> [f64; 3] {
 #[test]
 fn the_snakeboards_cycle_moves_it_as_the_hand_derived_equations_do() {
     let out = std::env::temp_dir().join(format!("chaplygin-gait-{}", std::process::id()));
-    let period = format!("{}", 2.0 * PI);
-    let stdout = succeeded(&[
-        "gait",
-        "snakeboard",
-        "--shape",
-        "psi,phi",
-        "--cycle",
-        "psi=0.8*sin(t)",
-        "--cycle",
-        "phi=0.5*cos(t)",
-        "--period",
-        &period,
-        "--cycles",
-        "2",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    assert_eq!(GAIT[8], format!("{}", 2.0 * PI));
+    let arguments = [
+        &["gait"],
+        &GAIT[..],
+        &["--cycles", "2", "--out", out.to_str().unwrap()],
+    ];
+    let stdout = succeeded(&arguments.concat());
     let moved = displacement(&stdout);
     let expected = hand_derived_cycle(20_000);
     assert!(

@@ -53,3 +53,26 @@ fn a_built_in_prints_what_the_build_script_writes_for_its_file() {
         "formatted, one item a line: {code}"
     );
 }
+
+/// The model text `source` without its `drawing:` section, the last one.
+fn without_drawing(source: &str) -> String {
+    let (before, _) = source
+        .split_once("    drawing: [")
+        .expect("a drawing section");
+    format!("{before}}}")
+}
+
+/// The drawing section is read by the interpreter alone (docs/INTERFACE.md
+/// section 10): the Rust of a model declared by its energy and of a
+/// mechanism is the same with and without it.
+#[test]
+fn the_drawing_section_leaves_the_emitted_rust_as_it_is() {
+    for source in [
+        include_str!("../models/snakeboard.model"),
+        include_str!("../models/sleigh_bodies.model"),
+    ] {
+        let drawn = chaplygin_codegen::generate(source).expect("generates");
+        let plain = chaplygin_codegen::generate(&without_drawing(source)).expect("generates");
+        assert!(drawn == plain, "the drawing changed the Rust of\n{source}");
+    }
+}

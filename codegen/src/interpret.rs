@@ -25,9 +25,10 @@
 //! [`InterpretedModel::reconstructed_velocity`] compose `body_velocity` with
 //! `acceleration` and with the group's action as the emitted code does.
 //!
-//! A mechanism with bodies has, for the interpreter alone, `drawing(q)`:
-//! the gravity field, the bodies' centres, frames, masses and inertias and
-//! the contact points ([`InterpretedModel::bodies`],
+//! A mechanism with bodies, or a model with a `drawing:` section, has, for
+//! the interpreter alone, `drawing(q)`: the gravity field, the bodies'
+//! centres, frames, masses and inertias, the contact points and the drawing
+//! items' positions, orientations and sizes ([`InterpretedModel::bodies`],
 //! [`InterpretedModel::drawing`]), what animating a run needs
 //! (docs/INTERFACE.md section 10).
 
@@ -37,6 +38,7 @@ mod dynamics;
 mod fixed;
 
 pub use crate::ir::{Backend, Engine, Interpreter};
+pub use crate::model::drawing::{DISC_THICKNESS, DrawnItem, Figure, Orientation};
 pub use drawing::{Bodies, BodyName, BodyState, ContactName, Drawing};
 pub use fixed::{Fixed, SizeMismatch};
 

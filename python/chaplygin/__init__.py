@@ -85,8 +85,8 @@ class Trajectory:
     ``run.columns`` their names, ``run.data`` the ``(rows, columns)``
     array, ``run.summary`` the run's summary (a dict), ``run.tracks`` the
     declared points' positions (a ``Trajectory``, or ``None``).
-    ``run.animate()`` draws a mechanism's run as one offline HTML page, which
-    Jupyter shows inline (``_repr_html_``).
+    ``run.animate()`` draws the run as one offline HTML page, which Jupyter
+    shows inline (``_repr_html_``).
     """
 
     def __init__(
@@ -122,14 +122,14 @@ class Trajectory:
 
     def animate(self, path: Optional[Union[str, "os.PathLike[str]"]] = None, fps: float = 60.0) -> str:
         """The run as one HTML page that works offline (docs/INTERFACE.md
-        section 10): the model's bodies drawn in 3D at every ``1 / fps``
-        seconds of simulated time or so, wheels as discs rolling on their
-        contact points' traces, z up. Writes it to ``path`` when given, and
-        returns it.
+        section 10): a mechanism's bodies (wheels as discs rolling on their
+        contact points' traces) and the items of the model's ``drawing:``
+        section drawn in 3D at every ``1 / fps`` seconds of simulated time
+        or so, z up. Writes it to ``path`` when given, and returns it.
 
-        Raises ``ValueError`` for a model declared by its energy (it has no
-        bodies to draw), a trajectory not returned by ``Model.simulate``, or
-        ``fps`` not positive.
+        Raises ``ValueError`` for a model with nothing to draw (neither
+        bodies nor a drawing section), a trajectory not returned by
+        ``Model.simulate``, or ``fps`` not positive.
         """
         if self._draw is None:
             raise ValueError("this trajectory has no model to draw: animate a run Model.simulate returned")

@@ -148,7 +148,7 @@
         group.add(new THREE.Mesh(new THREE.BoxGeometry(a, b, c), material));
         // A dark nose on the +x face marks the heading.
         const nose = new THREE.Mesh(new THREE.BoxGeometry(0.1 * a, 0.3 * b, 1.02 * c), dark);
-        nose.position.x = 0.45 * a;
+        nose.position.x = 0.47 * a; // its outer face outside the box's, clear of it
         group.add(nose);
         break;
       }
@@ -166,7 +166,7 @@
         const rod = new THREE.CylinderGeometry(1, 1, item.length, 12);
         rod.rotateZ(-Math.PI / 2);
         const mesh = new THREE.Mesh(rod, material);
-        const thickness = Math.max(0.01 * item.length, 0.004);
+        const thickness = Math.max(0.015 * item.length, 0.005);
         mesh.scale.set(1, thickness, thickness);
         group.add(mesh);
         break;
@@ -276,12 +276,22 @@
     return x.toExponential(5);
   }
 
+  // Following, the camera keeps its direction to the items' centroid; when
+  // the box is first checked it also comes as close as a few times the
+  // largest item (the whole run's framing is usually much wider).
+  let followed = false;
   function followCentroid() {
-    if (!ui.follow.checked || meshes.length === 0 || !controls) return;
+    if (!ui.follow.checked || meshes.length === 0 || !controls) {
+      followed = false;
+      return;
+    }
     const c = new THREE.Vector3();
     for (const mesh of meshes) c.add(mesh.position);
     c.divideScalar(meshes.length);
-    camera.position.add(c.clone().sub(controls.target));
+    const offset = camera.position.clone().sub(controls.target);
+    if (!followed) offset.setLength(Math.min(offset.length(), 3 * Math.max(largest, 0.25)));
+    followed = true;
+    camera.position.copy(c).add(offset);
     controls.target.copy(c);
     controls.update();
   }

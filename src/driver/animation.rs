@@ -1,6 +1,7 @@
-//! A run of a mechanism as an animated scene (docs/INTERFACE.md section 10):
-//! the model's bodies drawn at the recorded configurations, one page
-//! written by [`crate::animate::page`].
+//! A run of a model as an animated scene (docs/INTERFACE.md section 10):
+//! a mechanism's bodies and the items of the model's `drawing:` section
+//! drawn at the recorded configurations, one page written by
+//! [`crate::animate::page`].
 //!
 //! # What is drawn
 //!
@@ -31,6 +32,13 @@
 //! disc's axle being its local y axis), the traces are the contact points,
 //! the labels the first three coordinates.
 //!
+//! A model's `drawing:` section (docs/INTERFACE.md section 10) adds items
+//! and traces, placed by `drawing(q)` as well ([`LENGTH_TOLERANCE`] says
+//! how rigid a segment is): a shape named like a body replaces the body's
+//! automatic shape, a trace named like a contact that contact's trace, and
+//! the others follow the bodies and the contacts in the section's order. A
+//! model declared by its energy is drawn by its drawing section alone.
+//!
 //! # The world
 //!
 //! The page's world has z up and the ground at z = 0. A model whose gravity
@@ -45,13 +53,15 @@
 //! last row is always a frame.
 
 mod geometry;
+mod items;
 
 pub use geometry::{box_size, quaternion};
+pub use items::LENGTH_TOLERANCE;
 
 use crate::animate::{AnimateError, Item, Label, Pose, Scene, Trace};
 use crate::runtime::nalgebra::{Matrix3, Vector3};
 use crate::runtime::record::Table;
-use chaplygin_codegen::interpret::{BodyState, CallError, Drawing, InterpretedModel};
+use chaplygin_codegen::interpret::{BodyState, CallError, Drawing, Figure, InterpretedModel};
 use geometry::{Look, look_of};
 
 /// The default frames per second of simulated time.
@@ -67,12 +77,13 @@ const LABELS: usize = 3;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum AnimationError {
-    /// The model has no bodies to draw.
+    /// The model has neither bodies nor drawing items.
     #[error(
-        "`{model}` declares no bodies: an animation draws a mechanism's bodies \
-         (`bodies:` with `body(...)` or `particle(...)`, docs/INTERFACE.md section 4)"
+        "`{model}` has nothing to draw: an animation draws a mechanism's bodies \
+         (`bodies:` with `body(...)` or `particle(...)`, docs/INTERFACE.md section 4) \
+         and the items of a `drawing:` section (section 10)"
     )]
-    NoBodies {
+    NothingToDraw {
         /// The model's name.
         model: String,
     },
@@ -111,6 +122,17 @@ pub enum AnimationError {
         /// The body.
         body: String,
     },
+    /// A drawing item cannot be placed at a frame.
+    #[error("drawing item `{item}` at t = {time}: {reason}")]
+    Item {
+        /// The item's name.
+        item: String,
+        /// The frame's time.
+        time: f64,
+        /// What is wrong: a zero axle, coinciding ends, a segment's length
+        /// that changed.
+        reason: String,
+    },
     /// The engine could not evaluate the drawing.
     #[error("`{model}`: {source}")]
     Call {
@@ -124,13 +146,14 @@ pub enum AnimationError {
     Page(#[from] AnimateError),
 }
 
-/// Checks that `model` (named `label`) has bodies to draw, before a run.
+/// Checks that `model` (named `label`) has bodies or drawing items to
+/// draw, before a run.
 ///
 /// # Errors
-/// [`AnimationError::NoBodies`].
+/// [`AnimationError::NothingToDraw`].
 pub fn check(model: &InterpretedModel, label: &str) -> Result<(), AnimationError> {
-    match model.bodies().bodies.is_empty() {
-        true => Err(AnimationError::NoBodies {
+    match model.bodies().is_empty() {
+        true => Err(AnimationError::NothingToDraw {
             model: label.to_string(),
         }),
         false => Ok(()),
@@ -156,9 +179,10 @@ pub fn page(
 /// documentation](self)).
 ///
 /// # Errors
-/// A model without bodies, `fps` not positive, a table without rows,
+/// A model with nothing to draw, `fps` not positive, a table without rows,
 /// whose columns are not `t` and the coordinates first or with a row of
-/// another length, a mass or an inertia not finite.
+/// another length, a mass or an inertia not finite, a drawing item that
+/// cannot be placed.
 pub fn scene(
     model: &InterpretedModel,
     label: &str,
@@ -187,13 +211,14 @@ pub fn scene(
     let drawings = (rows.iter())
         .map(|&row| at(row))
         .collect::<Result<Vec<Drawing>, _>>()?;
+    let times: Vec<f64> = rows.iter().map(|&row| times[row]).collect();
     Ok(Scene {
         title: label.to_string(),
         note: note(model, &looks, &world),
-        items: items(model, &looks, &drawings, &world),
-        times: rows.iter().map(|&row| times[row]).collect(),
+        items: scene_items(model, &looks, &drawings, &world, &times)?,
         labels: labels(model, table, &rows),
         traces: traces(model, &drawings, &world),
+        times,
     })
 }
 
@@ -306,26 +331,63 @@ fn looks(
         .collect()
 }
 
-/// The drawn bodies with their poses at every frame.
-fn items(
+/// The drawn bodies with their poses at every frame, each replaced by the
+/// drawing item of its name if there is one, then the other drawing items.
+fn scene_items(
     model: &InterpretedModel,
     looks: &[Option<Look>],
     drawings: &[Drawing],
     world: &World,
-) -> Vec<Item> {
-    (model.bodies().bodies.iter().zip(looks).enumerate())
-        .filter_map(|(i, (body, look))| {
-            let look = look.as_ref()?;
-            Some(Item {
+    times: &[f64],
+) -> Result<Vec<Item>, AnimationError> {
+    let bodies = &model.bodies().bodies;
+    let mut scene_items = Vec::new();
+    for (i, (body, look)) in bodies.iter().zip(looks).enumerate() {
+        if let Some(replacing) = drawn_item(model, &body.name) {
+            scene_items.extend(drawing_item(replacing, drawings, world, times)?);
+        } else if let Some(look) = look {
+            scene_items.push(Item {
                 name: body.name.clone(),
                 shape: look.shape,
-                poses: drawings
-                    .iter()
+                poses: (drawings.iter())
                     .map(|drawing| pose(&drawing.bodies[i], look, world))
                     .collect(),
-            })
-        })
-        .collect()
+            });
+        }
+    }
+    for (i, item) in model.bodies().items.iter().enumerate() {
+        if !bodies.iter().any(|body| body.name == item.name) {
+            scene_items.extend(drawing_item(i, drawings, world, times)?);
+        }
+    }
+    Ok(scene_items)
+}
+
+/// The index of the drawing item (not a trace) named `name`.
+fn drawn_item(model: &InterpretedModel, name: &str) -> Option<usize> {
+    (model.bodies().items.iter())
+        .position(|item| item.name == name && !matches!(item.figure, Figure::Trace { .. }))
+}
+
+/// The drawing item `i` with its poses at every frame; `None` for a trace.
+fn drawing_item(
+    i: usize,
+    drawings: &[Drawing],
+    world: &World,
+    times: &[f64],
+) -> Result<Option<Item>, AnimationError> {
+    let first = &drawings[0].items[i];
+    let Some(shape) = items::shape(first) else {
+        return Ok(None);
+    };
+    let poses = (drawings.iter().zip(times))
+        .map(|(drawing, &time)| items::pose(&drawing.items[i], &shape, world, time))
+        .collect::<Result<_, _>>()?;
+    Ok(Some(Item {
+        name: first.name.clone(),
+        shape,
+        poses,
+    }))
 }
 
 /// A body's pose in the page's world: its centre, and its frame rotation
@@ -338,16 +400,37 @@ fn pose(state: &BodyState, look: &Look, world: &World) -> Pose {
     }
 }
 
+/// The contacts' traces, each replaced by the drawing's trace of its name
+/// if there is one, then the drawing's other traces.
 fn traces(model: &InterpretedModel, drawings: &[Drawing], world: &World) -> Vec<Trace> {
-    (model.bodies().contacts.iter().enumerate())
-        .map(|(i, contact)| Trace {
-            name: contact.name.clone(),
-            points: drawings
-                .iter()
-                .map(|drawing| world.point(drawing.contacts[i]))
+    let bodies = model.bodies();
+    let mut drawn: Vec<Trace> = (bodies.items.iter().enumerate())
+        .filter(|(_, item)| matches!(item.figure, Figure::Trace { .. }))
+        .map(|(i, item)| Trace {
+            name: item.name.clone(),
+            points: (drawings.iter())
+                .filter_map(|drawing| match drawing.items[i].figure {
+                    Figure::Trace { point } => Some(world.point(point)),
+                    _ => None,
+                })
                 .collect(),
         })
-        .collect()
+        .collect();
+    let mut traces: Vec<Trace> = (bodies.contacts.iter().enumerate())
+        .map(
+            |(i, contact)| match drawn.iter().position(|t| t.name == contact.name) {
+                Some(replacing) => drawn.remove(replacing),
+                None => Trace {
+                    name: contact.name.clone(),
+                    points: (drawings.iter())
+                        .map(|drawing| world.point(drawing.contacts[i]))
+                        .collect(),
+                },
+            },
+        )
+        .collect();
+    traces.append(&mut drawn);
+    traces
 }
 
 fn labels(model: &InterpretedModel, table: &Table, rows: &[usize]) -> Vec<Label> {
@@ -370,7 +453,7 @@ fn note(model: &InterpretedModel, looks: &[Option<Look>], world: &World) -> Opti
         );
     }
     let hidden: Vec<&str> = (model.bodies().bodies.iter().zip(looks))
-        .filter(|(_, look)| look.is_none())
+        .filter(|(body, look)| look.is_none() && drawn_item(model, &body.name).is_none())
         .map(|(body, _)| body.name.as_str())
         .collect();
     if !hidden.is_empty() {

@@ -304,6 +304,14 @@ fn resolve(expr: &Expr, scope: &Scope<'_>) -> Result<Expression, ExpressionError
             }
         }
         Expr::Call {
+            function, keywords, ..
+        } if !keywords.is_empty() => {
+            let name = &keywords[0].name;
+            return Err(invalid(format!(
+                "`{function}` takes no keyword argument such as `{name} = ...`"
+            )));
+        }
+        Expr::Call {
             function,
             arguments,
             ..

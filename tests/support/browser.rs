@@ -1,8 +1,10 @@
 //! Pages opened in headless Chromium (WebGL on SwiftShader), what the
 //! animation tests share: finding Chromium (or saying the test skipped),
 //! a scratch directory, the DOM dumped once the page's virtual time has
-//! run out, and the JSON a probe script wrote into `<pre id="probe">`
-//! with every number as its shortest round-trip string.
+//! run out, the JSON a probe script wrote into `<pre id="probe">` with
+//! every number as its shortest round-trip string, several pages probed
+//! in one launch ([`probe_pages`]), and the screenshots the guide shows
+//! ([`screenshot`]).
 //!
 //! Chromium (Debian's `chromium`) runs the pages where it is on `PATH`;
 //! without it a test says it skipped, and fails where
@@ -10,6 +12,7 @@
 //! installing Chromium when missing).
 
 use serde_json::Value;
+use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -89,20 +92,131 @@ pub fn probed(html: &str, measure: &str) -> String {
     probed
 }
 
+/// The harness's script: once every frame's probe has written its
+/// result, their JSON texts as one array in the harness's own
+/// `<pre id="probe">`.
+const HARNESS: &str = r#"<script>
+(() => {
+  function collect() {
+    const found = Array.from(document.querySelectorAll('iframe'), (frame) => {
+      const probe = frame.contentDocument && frame.contentDocument.getElementById('probe');
+      return probe ? probe.textContent : null;
+    });
+    if (found.some((text) => text === null)) return setTimeout(collect, 50);
+    const pre = document.createElement('pre');
+    pre.id = 'probe';
+    pre.textContent = '[' + found.join(',') + ']';
+    document.body.appendChild(pre);
+  }
+  window.addEventListener('load', collect);
+})();
+</script>
+"#;
+
+/// `pages` opened together in one headless Chromium, each in an
+/// `<iframe srcdoc>` of 480 x 320 pixels of a harness page (which shares
+/// the frames' origin) written in `directory`, each probed with `measure`
+/// as [`probed`] does: the probes' results in the order of `pages`.
+pub fn probe_pages(chromium: &Path, pages: &[&str], measure: &str, directory: &Path) -> Vec<Value> {
+    let mut harness =
+        String::from("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"></head><body>\n");
+    for page in pages {
+        let escaped = probed(page, measure)
+            .replace('&', "&amp;")
+            .replace('"', "&quot;");
+        writeln!(
+            harness,
+            "<iframe width=\"480\" height=\"320\" srcdoc=\"{escaped}\"></iframe>"
+        )
+        .expect("writing to a String");
+    }
+    harness.push_str(HARNESS);
+    harness.push_str("</body></html>\n");
+    let path = directory.join("harness.html");
+    std::fs::write(&path, harness).unwrap();
+    let result = probe_result(&dump_dom(chromium, &path, &directory.join("profile")));
+    let results = result.as_array().expect("one result per page").clone();
+    assert_eq!(results.len(), pages.len());
+    results
+}
+
+/// The width and height of the guide's screenshots, pixels.
+pub const SCREENSHOT_SIZE: (u32, u32) = (960, 540);
+
+/// The guide's screenshot `docs/guide/images/{name}.png` of `page` at time
+/// `t`, the camera following the items: taken by headless Chromium where
+/// `CHAPLYGIN_SCREENSHOTS=write` (docs/guide/contributing.md), and otherwise
+/// checked to be there, a PNG of [`SCREENSHOT_SIZE`].
+pub fn screenshot(page: &str, t: f64, name: &str, directory: &Path) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("docs/guide/images/{name}.png"));
+    if std::env::var("CHAPLYGIN_SCREENSHOTS").as_deref() == Ok("write")
+        && let Some(chromium) = chromium()
+    {
+        let script = format!(
+            "<script>window.addEventListener('load', () => window.chaplygin.ready.then(() => {{ \
+             document.getElementById('follow').checked = true; window.chaplygin.seek({t}); }}));</script>"
+        );
+        let copy = directory.join(format!("{name}.html"));
+        std::fs::write(
+            &copy,
+            page.replacen("</body>", &format!("{script}</body>"), 1),
+        )
+        .unwrap();
+        let (width, height) = SCREENSHOT_SIZE;
+        let status = Command::new(chromium)
+            .args(HEADLESS)
+            .arg(format!("--window-size={width},{height}"))
+            .arg("--hide-scrollbars")
+            .arg(format!(
+                "--user-data-dir={}",
+                directory.join("profile").display()
+            ))
+            .arg(format!("--screenshot={}", path.display()))
+            .arg(format!("file://{}", copy.display()))
+            .stderr(Stdio::null())
+            .status()
+            .expect("chromium starts");
+        assert!(status.success(), "chromium's screenshot: {status}");
+        eprintln!("wrote {}", path.display());
+    }
+    let bytes = std::fs::read(&path).unwrap_or_else(|e| {
+        panic!(
+            "{}: {e}; take it with CHAPLYGIN_SCREENSHOTS=write (docs/guide/contributing.md)",
+            path.display()
+        )
+    });
+    assert!(
+        bytes.starts_with(b"\x89PNG\r\n\x1a\n") && &bytes[12..16] == b"IHDR",
+        "{} is a PNG",
+        path.display()
+    );
+    let number = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().unwrap());
+    assert_eq!(
+        (number(16), number(20)),
+        SCREENSHOT_SIZE,
+        "{}",
+        path.display()
+    );
+}
+
+/// How Chromium runs the pages: headless, WebGL on SwiftShader, the page's
+/// time virtual.
+const HEADLESS: [&str; 6] = [
+    "--headless=new",
+    "--no-sandbox",
+    "--use-angle=swiftshader",
+    "--enable-unsafe-swiftshader",
+    "--virtual-time-budget=20000",
+    "--no-first-run",
+];
+
 /// `page` opened in headless Chromium (WebGL on SwiftShader), its DOM once
 /// the virtual time budget has run out.
 pub fn dump_dom(chromium: &Path, page: &Path, profile: &Path) -> String {
     let started = Instant::now();
     let mut child = Command::new(chromium)
-        .args([
-            "--headless=new",
-            "--no-sandbox",
-            "--use-angle=swiftshader",
-            "--enable-unsafe-swiftshader",
-            "--virtual-time-budget=20000",
-            "--window-size=960,640",
-            "--no-first-run",
-        ])
+        .args(HEADLESS)
+        .arg("--window-size=960,640")
         .arg(format!("--user-data-dir={}", profile.display()))
         .arg("--dump-dom")
         .arg(format!("file://{}", page.display()))

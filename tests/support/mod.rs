@@ -14,6 +14,21 @@ pub mod snakeboard_gait;
 use std::path::Path;
 use std::process::{Command, Output};
 
+/// The benchmark bicycle's push, as `simulate bicycle` takes it: upright at
+/// 3 m/s (`dot(theta_r) = -10` with `rR = 0.3`), leaning at 0.2 rad/s, steer
+/// at rest, fixed steps of 1 ms.
+pub const FALL: [&str; 9] = [
+    "--initial",
+    "dot(theta_r)=-10",
+    "--initial",
+    "dot(phi)=0.2",
+    "--initial",
+    "dot(delta)=0",
+    "--fixed-step",
+    "--dt",
+    "0.001",
+];
+
 /// The `chaplygin` binary run with `arguments`.
 pub fn chaplygin(arguments: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_chaplygin"))

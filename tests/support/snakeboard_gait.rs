@@ -1,8 +1,22 @@
 //! The snakeboard's gait `psi = 0.8 sin t`, `phi = 0.5 cos t` from rest by
 //! the hand-derived equations of MATH.md 4.1, integrated independently of
-//! the tool.
+//! the tool, and as `chaplygin gait` takes it.
 
 use std::f64::consts::PI;
+
+/// The gait as `chaplygin gait` takes it: the model, its shape and laws
+/// over the period 2 pi.
+pub const GAIT: [&str; 9] = [
+    "snakeboard",
+    "--shape",
+    "psi,phi",
+    "--cycle",
+    "psi=0.8*sin(t)",
+    "--cycle",
+    "phi=0.5*cos(t)",
+    "--period",
+    "6.283185307179586",
+];
 
 /// One cycle (m = 1, r = 0.5, Jt = 0.3): with
 /// `Delta = m r^2 + Jt sin^2 phi`,

@@ -5,7 +5,8 @@
 //! differentiation). A model without mechanism sections has them empty.
 //!
 //! The interpreter alone (not the emitted Rust) has `drawing(q)`, what
-//! drawing a mechanism with bodies needs ([`DRAWING`]).
+//! drawing a mechanism's bodies and a drawing section's items needs
+//! ([`DRAWING`]).
 
 use super::{Function, coordinates, f64_type, function_body, matrix_literal};
 use crate::diagnostic::Diagnostics;
@@ -188,16 +189,18 @@ fn holonomic_jacobian(
 /// The name of the interpreted function `drawing(q)`: the gravity field
 /// (3 values), then for each body its centre (3), its frame's rotation
 /// matrix row-major (9), its mass (1) and its inertia row-major (9), then
-/// for each `no_slip` contact its point (3), all in ground axes.
+/// for each `no_slip` contact its point (3), then for each item of the
+/// drawing section its values in the order `Figure::values` lists them,
+/// all in ground axes.
 pub(crate) const DRAWING: &str = "drawing";
 
 /// `drawing(q)` for the interpreter, `None` for emitted Rust and for a model
-/// without bodies.
+/// with neither bodies nor drawing items.
 pub(super) fn drawing(model: &Model, cx: &Context) -> Result<Option<Function>, Diagnostics> {
     let Some(drawing) = model.mechanism.drawing.as_ref() else {
         return Ok(None);
     };
-    if model.emits_rust || drawing.bodies.is_empty() {
+    if model.emits_rust || (drawing.bodies.is_empty() && drawing.items.is_empty()) {
         return Ok(None);
     }
     let mut outputs = drawing.gravity.to_vec();
@@ -209,6 +212,9 @@ pub(super) fn drawing(model: &Model, cx: &Context) -> Result<Option<Function>, D
     }
     for contact in &drawing.contacts {
         outputs.extend(contact.point);
+    }
+    for item in &drawing.items {
+        outputs.extend(item.figure.values());
     }
     let body = function_body(model, cx, &[coordinates(model)], &outputs, |_| {
         TokenStream::new()

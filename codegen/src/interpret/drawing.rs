@@ -1,21 +1,33 @@
-//! What drawing a mechanism needs (docs/INTERFACE.md sections 4 and 10):
-//! its bodies and contacts by name ([`Bodies`]), and at a configuration the
-//! gravity field, each body's centre, frame rotation, mass and inertia and
-//! each contact's point ([`Drawing`]), computed by the interpreted
+//! What drawing a model needs (docs/INTERFACE.md sections 4 and 10): a
+//! mechanism's bodies and contacts by name and the items of the `drawing:`
+//! section ([`Bodies`]), and at a configuration the gravity field, each
+//! body's centre, frame rotation, mass and inertia, each contact's point
+//! and each item's values ([`Drawing`]), computed by the interpreted
 //! function `drawing(q)` at the current parameter values.
 
 use super::{CallError, InterpretedModel};
 use crate::emit::DRAWING;
 use crate::model::Model;
+use crate::model::drawing::DrawnItem;
 
 /// A mechanism's bodies and `no_slip` contacts, in declared order (empty
-/// for a model declared by its energy).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+/// for a model declared by its energy), and the drawing section's items.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Bodies {
     /// The bodies and particles.
     pub bodies: Vec<BodyName>,
     /// The contacts, each once whatever its number of directions.
     pub contacts: Vec<ContactName>,
+    /// The items of the `drawing:` section, in order: their names and
+    /// shapes (without values).
+    pub items: Vec<DrawnItem<()>>,
+}
+
+impl Bodies {
+    /// True when there is nothing to draw: no body and no drawing item.
+    pub fn is_empty(&self) -> bool {
+        self.bodies.is_empty() && self.items.is_empty()
+    }
 }
 
 /// A body's name and kind.
@@ -45,6 +57,8 @@ pub struct Drawing {
     pub bodies: Vec<BodyState>,
     /// Each contact's point, in the order of [`Bodies::contacts`].
     pub contacts: Vec<[f64; 3]>,
+    /// Each drawing item, in the order of [`Bodies::items`].
+    pub items: Vec<DrawnItem<f64>>,
 }
 
 /// A body at one configuration.
@@ -82,6 +96,12 @@ pub(super) fn bodies(model: &Model) -> Bodies {
                 body: contact.body,
             })
             .collect(),
+        items: (drawing.items.iter())
+            .map(|item| DrawnItem {
+                name: item.name.clone(),
+                figure: item.figure.map(|_| ()),
+            })
+            .collect(),
     }
 }
 
@@ -97,17 +117,19 @@ impl InterpretedModel {
         &self.bodies
     }
 
-    /// The gravity field, the bodies and the contact points at `q`, at the
-    /// current parameter values; without bodies, no gravity either.
+    /// The gravity field, the bodies, the contact points and the drawing
+    /// items at `q`, at the current parameter values; with nothing to draw,
+    /// no gravity either.
     ///
     /// # Errors
     /// [`CallError::ArgumentLength`] when `q` has not n entries.
     pub fn drawing(&self, q: &[f64]) -> Result<Drawing, CallError> {
-        if self.bodies.bodies.is_empty() {
+        if self.bodies.is_empty() {
             return Ok(Drawing {
                 gravity: [0.0; 3],
                 bodies: Vec::new(),
                 contacts: Vec::new(),
+                items: Vec::new(),
             });
         }
         let values = self.call(DRAWING, &[q])?;
@@ -126,10 +148,20 @@ impl InterpretedModel {
         let contacts = (0..self.bodies.contacts.len())
             .map(|i| array(&values, contacts_at + 3 * i))
             .collect();
+        let mut rest = values[contacts_at + 3 * self.bodies.contacts.len()..].iter();
+        let items = (self.bodies.items.iter())
+            .map(|item| DrawnItem {
+                name: item.name.clone(),
+                figure: item
+                    .figure
+                    .map(|_| *rest.next().expect("drawing(q)'s layout")),
+            })
+            .collect();
         Ok(Drawing {
             gravity: array(&values, 0),
             bodies,
             contacts,
+            items,
         })
     }
 }

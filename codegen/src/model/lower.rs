@@ -52,6 +52,8 @@ impl Lowerer<'_> {
         match expr {
             Expr::Number { literal, span } => self.number(literal, *span),
             Expr::Name(ident) => self.name(&ident.to_string(), ident.span()),
+            // Keyword arguments are reported where the section is read.
+            Expr::Call { keywords, .. } if !keywords.is_empty() => None,
             Expr::Call {
                 function,
                 arguments,

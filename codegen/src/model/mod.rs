@@ -20,6 +20,7 @@
 
 mod check;
 pub mod domain;
+pub mod drawing;
 mod invariance;
 mod lower;
 pub mod mechanism;

@@ -124,6 +124,15 @@ impl Item {
     }
 }
 
+/// A keyword argument `name = value` of a call, such as `radius = r`.
+#[derive(Debug, Clone)]
+pub struct Keyword {
+    /// The identifier before `=`.
+    pub name: Ident,
+    /// What follows the `=`.
+    pub value: Value,
+}
+
 /// An expression. Parentheses only group and leave no node behind.
 #[derive(Debug, Clone)]
 pub enum Expr {
@@ -139,14 +148,20 @@ pub enum Expr {
     /// A name: a coordinate, parameter, defined name, ... (resolved later).
     Name(Ident),
     /// `function(arguments)`: any identifier directly followed by `( ... )`,
-    /// such as `sin(x)`, `dot(q)`, `se2(x, y, theta)` or
-    /// `no_slip(wheel, contact, [ground.x, ground.y])`.
+    /// such as `sin(x)`, `dot(q)`, `se2(x, y, theta)`,
+    /// `no_slip(wheel, contact, [ground.x, ground.y])` or
+    /// `sphere(center = [x, y, r], radius = r)`.
     Call {
         /// The identifier before the parentheses.
         function: Ident,
-        /// The comma-separated arguments (possibly none): expressions, or
-        /// bracketed lists such as a list of directions or a 3 x 3 matrix.
+        /// The comma-separated positional arguments (possibly none):
+        /// expressions, or bracketed lists such as a list of directions or
+        /// a 3 x 3 matrix.
         arguments: Vec<Value>,
+        /// The keyword arguments `name = value`, in the order written
+        /// (only a drawing's shapes take them; the check stage says so
+        /// elsewhere).
+        keywords: Vec<Keyword>,
         /// The span of the parenthesized group.
         span: Span,
     },

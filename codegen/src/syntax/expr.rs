@@ -19,7 +19,7 @@ use syn::ext::IdentExt;
 use syn::parse::{End, Lookahead1, Parse, ParseStream, Parser};
 use syn::{Error, Result, Token, bracketed, parenthesized, token};
 
-use super::ast::{BinaryOperator, Expr, Item, List, Value};
+use super::ast::{BinaryOperator, Expr, Item, Keyword, List, Value};
 use super::literal::decimal_number;
 use super::scope::Scope;
 use super::separated::parse_comma_separated;
@@ -255,25 +255,52 @@ fn parse_number(literal: &Literal) -> Result<Parsed> {
     Ok(Parsed::leaf(number))
 }
 
+/// One argument of a call: positional, or `name = value`.
+enum Argument {
+    Positional(Value),
+    Keyword(Keyword),
+}
+
 /// `function(argument, ...)`, each argument parsed independently: an
 /// expression or a bracketed list (one level deep; its own nesting is
-/// bounded by the scope).
+/// bounded by the scope), after `name =` for a keyword argument.
 fn parse_call(input: ParseStream, scope: Scope, function: Ident) -> Result<Parsed> {
     let scope = scope.deeper(input)?;
     let content;
     let parentheses = parenthesized!(content in input);
     let scope = scope.inside(Delimiter::Parenthesis, true);
     let empty = "empty argument: expected an expression before this `,`";
-    let arguments = parse_comma_separated(&content, empty, |argument| {
-        parse_value(argument, scope, "`(`")
-    })?;
-    let depth = arguments.iter().map(|(_, depth)| *depth).max();
+    let parsed =
+        parse_comma_separated(&content, empty, |argument| parse_argument(argument, scope))?;
+    let depth = parsed.iter().map(|(_, depth)| *depth).max();
+    let (mut arguments, mut keywords) = (Vec::new(), Vec::new());
+    for (argument, _) in parsed {
+        match argument {
+            Argument::Positional(value) => arguments.push(value),
+            Argument::Keyword(keyword) => keywords.push(keyword),
+        }
+    }
     let expr = Expr::Call {
         function,
-        arguments: arguments.into_iter().map(|(value, _)| value).collect(),
+        arguments,
+        keywords,
         span: parentheses.span.join(),
     };
     Parsed::node(expr, depth.unwrap_or(0))
+}
+
+/// `name = value` (when an identifier is followed by `=`) or `value`, with
+/// the depth it adds to its call.
+fn parse_argument(input: ParseStream, scope: Scope) -> Result<(Argument, usize)> {
+    if input.peek(Ident::peek_any) && input.peek2(Token![=]) {
+        let name = input.call(Ident::parse_any)?;
+        input.parse::<Token![=]>()?;
+        let expected = format!("a value after `{name} =`");
+        let (value, depth) = parse_value(input, scope, &expected)?;
+        return Ok((Argument::Keyword(Keyword { name, value }), depth));
+    }
+    let (value, depth) = parse_value(input, scope, "`(`")?;
+    Ok((Argument::Positional(value), depth))
 }
 
 /// A list or an expression filling the whole input.

@@ -21,7 +21,8 @@
 //! power      = field ( "^" unary )? ;                 (* right-assoc *)
 //! field      = operand ( "." IDENT )* ;               (* `ground.x` *)
 //! operand    = NUMBER | IDENT | IDENT "(" arguments ")" | "(" expr ")" ;
-//! arguments  = ( value ( "," value )* ","? )? ;
+//! arguments  = ( argument ( "," argument )* ","? )? ;
+//! argument   = IDENT "=" value | value ;         (* keyword or positional *)
 //! NUMBER     = untyped decimal literal: 2, 0.5, 1e-3, 1.5E2 ;
 //! ```
 //!
@@ -49,7 +50,7 @@ mod tests;
 
 use proc_macro2::{LexError, TokenStream};
 
-pub use ast::{Attribute, BinaryOperator, Expr, Item, List, ModelSyntax, Section, Value};
+pub use ast::{Attribute, BinaryOperator, Expr, Item, Keyword, List, ModelSyntax, Section, Value};
 pub use expr::MAX_EXPRESSION_DEPTH;
 
 use crate::diagnostic::{Diagnostic, Diagnostics};

@@ -11,9 +11,11 @@ fn parenthesized(expr: &Expr) -> String {
         Expr::Call {
             function,
             arguments,
+            keywords,
             ..
         } => {
-            let arguments: Vec<String> = arguments.iter().map(printed).collect();
+            let keywords = (keywords.iter()).map(|k| format!("{} = {}", k.name, printed(&k.value)));
+            let arguments: Vec<String> = arguments.iter().map(printed).chain(keywords).collect();
             format!("{function}({})", arguments.join(", "))
         }
         Expr::Field { base, field } => format!("{}.{field}", parenthesized(base)),
@@ -610,6 +612,23 @@ fn lists_are_call_arguments() {
     assert_eq!(
         value_of("body(b, c, m, [[1, 0, 0], [0, 2, 0], [0, 0, 3]])"),
         "body(b, c, m, [[1, 0, 0], [0, 2, 0], [0, 0, 3]])"
+    );
+}
+
+#[test]
+fn calls_take_keyword_arguments_after_their_positional_ones() {
+    assert_eq!(
+        value_of("box(center = [x, y, 0.05], heading = theta, size = [2*l, 0.3, 0.02])"),
+        "box(center = [x, y, 0.05], heading = theta, size = [(2*l), 0.3, 0.02])"
+    );
+    assert_eq!(
+        value_of("f(a, radius = -r^2, b)"),
+        "f(a, b, radius = (-(r^2)))"
+    );
+    let text = errors("struct M { value: f(radius = ) }");
+    assert!(
+        text.contains("expected a value after `radius =`, found `)`"),
+        "{text}"
     );
 }
 

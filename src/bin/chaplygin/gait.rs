@@ -7,8 +7,10 @@
 //! principally kinematic model `DIR/curvature.png`; with `--optimize
 //! forward|lateral|rotate [--harmonics N] [--cost length|none]`, the loop
 //! that moves the model furthest (`chaplygin::gait_design`), its laws and
-//! `DIR/gait.csv`.
+//! `DIR/gait.csv`; with `--animate [--fps F]`, `DIR/animation.html` of the
+//! cycles run (`crate::animate_args`).
 
+use crate::animate_args::{AnimateArgs, Drawn};
 use crate::model_args::{ModelArgs, loaded};
 use crate::output::{plotted, write_table};
 use chaplygin::driver::Failure;
@@ -74,10 +76,12 @@ pub struct GaitArgs {
     /// An initial momentum `pI=VALUE` (zero unless given).
     #[arg(long = "initial", value_parser = assignment)]
     initial: Vec<(String, f64)>,
-    /// Where `cycle.csv`, `gait_path.png`, `curvature.png` and `gait.csv`
-    /// are written.
+    /// Where `cycle.csv`, `gait_path.png`, `curvature.png`, `gait.csv`
+    /// and `animation.html` are written.
     #[arg(long, default_value = "out")]
     out: PathBuf,
+    #[command(flatten)]
+    animate: AnimateArgs,
 }
 
 /// Runs `chaplygin gait`.
@@ -106,9 +110,11 @@ pub fn run(args: &GaitArgs) -> Result<(), Failure> {
         params: args.params.clone(),
         initial: args.initial.clone(),
     };
-    let run = gait(loaded(&args.model)?, &request)?;
+    let loaded = loaded(&args.model)?;
+    let drawn = args.animate.drawn(&loaded)?;
+    let run = gait(loaded, &request)?;
     crate::say(&displacements(&run))?;
-    write_run(run, &args.out, Vec::new())
+    write_run(run, args, drawn, Vec::new())
 }
 
 /// `--optimize`: the loop, its laws, its run and `gait.csv`.
@@ -128,7 +134,9 @@ fn optimize(args: &GaitArgs, direction: Direction) -> Result<(), Failure> {
         design,
         params: args.params.clone(),
     };
-    let found = optimal_gait(loaded(&args.model)?, &request)?;
+    let loaded = loaded(&args.model)?;
+    let drawn = args.animate.drawn(&loaded)?;
+    let found = optimal_gait(loaded, &request)?;
     let given: BTreeSet<&str> = args.shape.iter().map(String::as_str).collect();
     let shape: BTreeSet<&str> = found.shape.iter().map(String::as_str).collect();
     if given != shape {
@@ -142,7 +150,7 @@ fn optimize(args: &GaitArgs, direction: Direction) -> Result<(), Failure> {
     crate::say(&summary(&found))?;
     let gait_csv = args.out.join("gait.csv");
     write_coefficients(&found, &gait_csv)?;
-    write_run(found.run, &args.out, vec![gait_csv])
+    write_run(found.run, args, drawn, vec![gait_csv])
 }
 
 /// The displacement line of each cycle.
@@ -203,12 +211,15 @@ fn write_coefficients(found: &OptimalGait, path: &std::path::Path) -> Result<(),
 }
 
 /// `cycle.csv`, `gait_path.png` and, for a kinematic model,
-/// `curvature.png` of `run` in `out`, then the files written.
+/// `curvature.png` of `run` in `--out`, then the files written; with
+/// `drawn`, `animation.html`.
 fn write_run(
     run: GaitRun,
-    out: &std::path::Path,
+    args: &GaitArgs,
+    drawn: Option<Drawn>,
     mut written: Vec<PathBuf>,
 ) -> Result<(), Failure> {
+    let out = &args.out;
     let csv_path = out.join("cycle.csv");
     write_table(&run.table, &csv_path)?;
     let png_path = out.join("gait_path.png");
@@ -223,7 +234,10 @@ fn write_run(
         .map(|path| format!("wrote {}\n", path.display()))
         .collect();
     crate::say(&lines.concat())?;
-    Ok(())
+    match drawn {
+        Some(drawn) => drawn.write(&run.table, &args.params, out),
+        None => Ok(()),
+    }
 }
 
 /// The plot's view of the curvature grid.

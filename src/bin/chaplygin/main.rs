@@ -28,6 +28,7 @@
 //! on standard error and a non-zero exit status (a malformed command line
 //! gets clap's usage message).
 
+mod animate_args;
 mod gait;
 mod linearize;
 mod map;

@@ -6,19 +6,16 @@
 //! point's position in ground axes (`P.x`, `P.y`, `P.z`) at every recorded
 //! row, whose ground tracks (x, y) `path.png` draws with the path; it
 //! prints the summary, where and why the run stopped. With `--animate`
-//! (a mechanism with bodies) it also writes `animation.html`, the run in
-//! 3D as one offline page (`chaplygin::driver::animation`,
-//! docs/INTERFACE.md section 10), `--fps` frames per second of simulated
-//! time.
+//! it also writes `animation.html`, the run in 3D as one offline page
+//! (`crate::animate_args`).
 
+use crate::animate_args::AnimateArgs;
 use crate::model_args::{ModelArgs, loaded};
 use crate::output::write_table;
 use chaplygin::driver::Failure;
-use chaplygin::driver::animation;
 use chaplygin::driver::simulate::{self, Controller, Finished, Request};
 use chaplygin::plot;
 use chaplygin::runtime::record::{CsvRecorder, Recorder, Table};
-use chaplygin_codegen::interpret::InterpretedModel;
 use std::io;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -38,13 +35,8 @@ pub struct SimulateArgs {
     /// what the tolerance allows (otherwise a warning on stderr).
     #[arg(long)]
     strict: bool,
-    /// Also write `animation.html`: the model's bodies moving in 3D, one
-    /// page that works offline (a mechanism with bodies only).
-    #[arg(long)]
-    animate: bool,
-    /// The animation's frames per second of simulated time.
-    #[arg(long, default_value_t = animation::DEFAULT_FPS, requires = "animate")]
-    fps: f64,
+    #[command(flatten)]
+    animate: AnimateArgs,
 }
 
 /// A run not accurate to its tolerance, with `--strict`.
@@ -60,13 +52,7 @@ struct Untrusted {
 /// Bad input, a failed simulation, or an I/O error.
 pub fn run(args: &SimulateArgs) -> Result<(), Failure> {
     let loaded = loaded(&args.model)?;
-    let drawn = match args.animate {
-        true => {
-            animation::check(&loaded.model, &loaded.label)?;
-            Some((loaded.model.clone(), loaded.label.clone()))
-        }
-        false => None,
-    };
+    let drawn = args.animate.drawn(&loaded)?;
     let csv_path = args.out.join("trajectory.csv");
     let mut csv = CsvOnStart {
         path: csv_path.clone(),
@@ -93,8 +79,8 @@ pub fn run(args: &SimulateArgs) -> Result<(), Failure> {
     for plot in plots? {
         crate::say(&format!("wrote {}\n", plot.display()))?;
     }
-    if let Some((model, label)) = drawn {
-        write_animation(model, &label, &finished.table, &finished.parameters, args)?;
+    if let Some(drawn) = drawn {
+        drawn.write(&finished.table, &finished.parameters, &args.out)?;
     }
     let warnings = report.warnings();
     for warning in &warnings {
@@ -106,28 +92,6 @@ pub fn run(args: &SimulateArgs) -> Result<(), Failure> {
         }
         .into());
     }
-    Ok(())
-}
-
-/// Writes `animation.html` of the run into `args.out` and says so, with
-/// its size; the model drawn at the run's parameters.
-fn write_animation(
-    mut model: InterpretedModel,
-    label: &str,
-    table: &Table,
-    parameters: &[(String, f64)],
-    args: &SimulateArgs,
-) -> Result<(), Failure> {
-    for (name, value) in parameters {
-        if model.names().parameters.contains(name) {
-            model.set_parameter(name, *value)?;
-        }
-    }
-    let html = animation::page(&model, label, table, args.fps)?;
-    let path = args.out.join("animation.html");
-    std::fs::write(&path, &html)?;
-    let kilobytes = html.len().div_ceil(1000);
-    crate::say(&format!("wrote {} ({kilobytes} kB)\n", path.display()))?;
     Ok(())
 }
 

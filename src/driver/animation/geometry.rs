@@ -3,14 +3,11 @@
 use super::MIN_SIZE;
 use crate::animate::Shape;
 use crate::runtime::nalgebra::{Matrix3, SymmetricEigen, Vector3};
-use chaplygin_codegen::interpret::BodyState;
+use chaplygin_codegen::interpret::{BodyState, DISC_THICKNESS};
 
 /// How far from perpendicular, or from parallel, two unit vectors may be
 /// (the sine or cosine of the angle between them).
 const TOLERANCE: f64 = 1e-6;
-
-/// A disc's thickness over its radius.
-const DISC_THICKNESS: f64 = 0.2;
 
 /// The density of a particle's sphere, kg/m^3 (water's).
 const DENSITY: f64 = 1000.0;
@@ -115,7 +112,7 @@ fn wheel(
         Some(Look {
             shape: Shape::Disc {
                 radius,
-                thickness: DISC_THICKNESS * radius,
+                thickness: radius * DISC_THICKNESS.0 as f64 / DISC_THICKNESS.1 as f64,
             },
             axes: Matrix3::from_columns(&[axle.cross(&up), axle, up]),
         })

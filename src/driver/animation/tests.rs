@@ -28,7 +28,15 @@ const DISK_Z_DOWN: &str = "pub struct DiskZDown {
 }";
 
 fn model(source: &str) -> InterpretedModel {
-    InterpretedModel::from_source(source).unwrap_or_else(|e| panic!("{e:?}"))
+    InterpretedModel::from_source(source).unwrap_or_else(|e| panic!("{}", e.render("model")))
+}
+
+/// A model's text without its `drawing:` section (the last one).
+fn without_drawing(source: &str) -> String {
+    let (before, _) = source
+        .split_once("    drawing: [")
+        .expect("a drawing section");
+    format!("{before}}}")
 }
 
 /// A table of the configurations `qs` at times 0, 0.1, ...
@@ -129,6 +137,7 @@ fn gravity_along_plus_z_turns_the_model_by_pi_about_x() {
         gravity,
         bodies: Vec::new(),
         contacts: Vec::new(),
+        items: Vec::new(),
     };
     let down = World::of(&drawing([0.0, 0.0, 9.81]));
     assert!(down.flipped);
@@ -190,7 +199,9 @@ fn a_z_down_disc_is_a_wheel_on_the_ground_shown_with_z_up() {
 
 #[test]
 fn the_sleigh_is_a_box_of_its_inertia_turned_with_it() {
-    let sleigh = model(include_str!("../../../models/sleigh_bodies.model"));
+    let sleigh = model(&without_drawing(include_str!(
+        "../../../models/sleigh_bodies.model"
+    )));
     let qs = vec![vec![0.0, 0.0, 0.0], vec![1.0, 0.5, 0.8]];
     let scene = scene(&sleigh, "sleigh_bodies", &table(&sleigh, &qs), 10.0).unwrap();
     assert_eq!(scene.note, None);
@@ -214,7 +225,9 @@ fn the_sleigh_is_a_box_of_its_inertia_turned_with_it() {
 
 #[test]
 fn massless_bodies_without_a_wheel_are_not_drawn_and_named_in_the_note() {
-    let board = model(include_str!("../../../models/snakeboard_bodies.model"));
+    let board = model(&without_drawing(include_str!(
+        "../../../models/snakeboard_bodies.model"
+    )));
     let qs = vec![vec![0.0; 5]];
     let scene = scene(&board, "snakeboard_bodies", &table(&board, &qs), 60.0).unwrap();
     let names: Vec<&str> = scene.items.iter().map(|item| item.name.as_str()).collect();
@@ -226,20 +239,187 @@ fn massless_bodies_without_a_wheel_are_not_drawn_and_named_in_the_note() {
 }
 
 #[test]
-fn a_model_without_bodies_is_refused_by_name() {
-    let board = model(include_str!("../../../models/snakeboard.model"));
+fn a_model_with_nothing_to_draw_is_refused_by_name() {
+    let board = model(&without_drawing(include_str!(
+        "../../../models/snakeboard.model"
+    )));
     let error = check(&board, "snakeboard").unwrap_err();
-    assert!(matches!(error, AnimationError::NoBodies { .. }));
+    assert!(matches!(error, AnimationError::NothingToDraw { .. }));
     let message = error.to_string();
     assert!(
-        message.starts_with("`snakeboard` declares no bodies"),
+        message.starts_with("`snakeboard` has nothing to draw"),
         "{message}"
     );
     let qs = vec![vec![0.0; 5]];
     assert!(matches!(
         scene(&board, "snakeboard", &table(&board, &qs), 60.0),
-        Err(AnimationError::NoBodies { .. })
+        Err(AnimationError::NothingToDraw { .. })
     ));
+}
+
+/// A model declared by its energy, drawn by every kind of drawing item.
+const DRAWN: &str = "pub struct Drawn {
+    coordinates: [x, y, theta, phi],
+    parameters: [m = 1.0, r = 0.3, l = 0.8],
+    kinetic_energy: m/2*(dot(x)^2 + dot(y)^2 + dot(theta)^2 + dot(phi)^2),
+    drawing: [
+        board = box(center = [x, y, 0.05], heading = theta, size = [2*l, 0.3, 0.02]),
+        wheel = disc(center = [x, y, r], frame = rotate(rotate(ground, z, theta), y, phi),
+            radius = r),
+        rim = disc(center = origin + x*ground.x + y*ground.y + r*ground.z,
+            axle = [-sin(theta), cos(theta), 0], radius = r, thickness = 0.05),
+        rod = segment([x, y, 0.1], [x + l*cos(theta), y + l*sin(theta), 0.1]),
+        ball = sphere(center = [x, y, 1], radius = 0.1),
+        track = trace([x, y, 0]),
+    ],
+}";
+
+/// The turn about z by `a`, `[x, y, z, w]`.
+fn yaw(a: f64) -> [f64; 4] {
+    let (s, c) = (a / 2.0).sin_cos();
+    [0.0, 0.0, s, c]
+}
+
+/// The turn about z by `a`, then about the turned y by `b`: `q_z(a) q_y(b)`
+/// multiplied out by hand, its w made positive.
+fn yaw_spin(a: f64, b: f64) -> [f64; 4] {
+    let (s1, c1) = (a / 2.0).sin_cos();
+    let (s2, c2) = (b / 2.0).sin_cos();
+    let q = [-s1 * s2, c1 * s2, s1 * c2, c1 * c2];
+    let sign = if q[3] < 0.0 { -1.0 } else { 1.0 };
+    q.map(|x| sign * x)
+}
+
+fn assert_near(found: &[f64], expected: &[f64], what: &str) {
+    let error = (found.iter().zip(expected))
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(error < 1e-14, "{what}: {found:?} against {expected:?}");
+}
+
+#[test]
+fn drawing_items_are_posed_by_the_model_s_expressions() {
+    let drawn = model(DRAWN);
+    let qs = vec![
+        vec![0.0, 0.0, 0.0, 0.0],
+        vec![1.0, -0.5, 0.7, 2.0],
+        vec![-0.4, 2.0, -2.5, -1.0],
+    ];
+    let scene = scene(&drawn, "drawn", &table(&drawn, &qs), 10.0).unwrap();
+    let names: Vec<&str> = scene.items.iter().map(|item| item.name.as_str()).collect();
+    assert_eq!(names, ["board", "wheel", "rim", "rod", "ball"]);
+    let shapes: Vec<Shape> = scene.items.iter().map(|item| item.shape).collect();
+    assert_eq!(
+        shapes,
+        [
+            Shape::Box {
+                size: [1.6, 0.3, 0.02]
+            },
+            Shape::Disc {
+                radius: 0.3,
+                thickness: 0.3 / 5.0
+            },
+            Shape::Disc {
+                radius: 0.3,
+                thickness: 0.05
+            },
+            Shape::Segment { length: 0.8 },
+            Shape::Sphere { radius: 0.1 },
+        ]
+    );
+    for (frame, q) in qs.iter().enumerate() {
+        let (x, y, theta, phi) = (q[0], q[1], q[2], q[3]);
+        let expected: [([f64; 3], [f64; 4]); 5] = [
+            ([x, y, 0.05], yaw(theta)),
+            ([x, y, 0.3], yaw_spin(theta, phi)),
+            ([x, y, 0.3], yaw(theta)),
+            (
+                [x + 0.4 * theta.cos(), y + 0.4 * theta.sin(), 0.1],
+                yaw(theta),
+            ),
+            ([x, y, 1.0], [0.0, 0.0, 0.0, 1.0]),
+        ];
+        for (item, (position, quaternion)) in scene.items.iter().zip(expected) {
+            let pose = &item.poses[frame];
+            let what = format!("{} at frame {frame}", item.name);
+            assert_near(&pose.position, &position, &what);
+            assert_near(&pose.quaternion, &quaternion, &what);
+        }
+        assert_eq!(scene.traces[0].points[frame], [x, y, 0.0]);
+    }
+    assert_eq!(scene.traces[0].name, "track");
+    assert_eq!(scene.note, None);
+    crate::animate::page(&scene).unwrap();
+}
+
+#[test]
+fn a_drawing_item_named_like_a_body_replaces_its_shape() {
+    let sleigh = model(include_str!("../../../models/sleigh_bodies.model"));
+    let qs = vec![vec![0.0, 0.0, 0.0], vec![1.0, 0.5, 0.8]];
+    let scene = scene(&sleigh, "sleigh_bodies", &table(&sleigh, &qs), 10.0).unwrap();
+    let names: Vec<&str> = scene.items.iter().map(|item| item.name.as_str()).collect();
+    assert_eq!(names, ["sled", "knife"]);
+    assert_eq!(
+        scene.items[0].shape,
+        Shape::Box {
+            size: [0.9, 0.3, 0.05]
+        }
+    );
+    // a = 0.5: the box's centre a/2 ahead of the blade, 8 cm up
+    let pose = &scene.items[0].poses[1];
+    let ahead = [1.0 + 0.25 * 0.8f64.cos(), 0.5 + 0.25 * 0.8f64.sin(), 0.08];
+    assert_near(&pose.position, &ahead, "sled");
+    assert_near(&pose.quaternion, &yaw(0.8), "sled");
+    assert_eq!(scene.traces[0].name, "blade");
+}
+
+#[test]
+fn a_drawing_item_that_cannot_be_placed_is_an_error_naming_it() {
+    let text = |item: &str| {
+        format!(
+            "pub struct Bad {{
+                coordinates: [x],
+                parameters: [m = 1.0],
+                kinetic_energy: m/2*dot(x)^2,
+                drawing: [{item}],
+            }}"
+        )
+    };
+    for (item, start, frame, reason) in [
+        (
+            "rod = segment([0, 0, 0], [x, 0, 0])",
+            1.0,
+            1,
+            "a segment is rigid",
+        ),
+        (
+            "rod = segment([x, 0, 0], [2*x, 0, 0])",
+            0.0,
+            0,
+            "its ends coincide",
+        ),
+        (
+            "wheel = disc(center = [0, 0, 1], axle = [x, 0, 0], radius = 1)",
+            1.0,
+            2,
+            "its axle is zero",
+        ),
+    ] {
+        let qs = vec![vec![start], vec![2.0], vec![0.0]];
+        let bad = model(&text(item));
+        let error = scene(&bad, "bad", &table(&bad, &qs), 10.0).unwrap_err();
+        let AnimationError::Item {
+            time,
+            reason: found,
+            ..
+        } = &error
+        else {
+            panic!("{item}: {error}");
+        };
+        assert_eq!(*time, frame as f64 / 10.0, "{item}");
+        assert!(found.contains(reason), "{item}: {error}");
+        assert!(error.to_string().starts_with("drawing item `"), "{error}");
+    }
 }
 
 #[test]

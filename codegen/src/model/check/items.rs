@@ -1,5 +1,6 @@
 //! The shapes of list items every section reads: `name = value`, an
-//! expression, a row of `n` expressions; and names unique in their section.
+//! expression, a row of `n` expressions; names unique in their section;
+//! and calls without keyword arguments, which only a drawing's shapes take.
 
 use super::context::Context;
 use crate::model::Declared;
@@ -89,4 +90,50 @@ pub(super) fn check_unique_in_section(
             .error(span, format!("`{name}` is declared twice in this section"));
     }
     unique
+}
+
+/// No call in `value` has keyword arguments (`name = value` inside its
+/// parentheses): each is reported at its name.
+pub(super) fn check_no_keywords(cx: &mut Context, value: &Value) {
+    match value {
+        Value::List(list) => {
+            for item in &list.items {
+                check_no_keywords(cx, item.value());
+            }
+        }
+        Value::Expr(expr) => check_no_keywords_in(cx, expr),
+    }
+}
+
+fn check_no_keywords_in(cx: &mut Context, expr: &Expr) {
+    match expr {
+        Expr::Call {
+            function,
+            arguments,
+            keywords,
+            ..
+        } => {
+            for keyword in keywords {
+                cx.diagnostics.error(
+                    keyword.name.span(),
+                    format!(
+                        "`{} = ...` is a keyword argument, which `{function}` does not take: \
+                         only the shapes of the `drawing` section take keyword arguments",
+                        keyword.name
+                    ),
+                );
+            }
+            for argument in arguments {
+                check_no_keywords(cx, argument);
+            }
+        }
+        Expr::Field { base: inner, .. } | Expr::Negate { operand: inner, .. } => {
+            check_no_keywords_in(cx, inner);
+        }
+        Expr::Binary { left, right, .. } => {
+            check_no_keywords_in(cx, left);
+            check_no_keywords_in(cx, right);
+        }
+        Expr::Number { .. } | Expr::Name(_) => {}
+    }
 }

@@ -1,8 +1,8 @@
 //! The rules of the model language, one function each.
 //!
 //! [`check`] walks the sections in dependency order (names, definitions,
-//! mechanism, energies, constraints, inputs, momentum basis, symmetry),
-//! lowering each expression into the model's context. Each rule is a
+//! mechanism, energies, constraints, inputs, momentum basis, symmetry,
+//! drawing), lowering each expression into the model's context. Each rule is a
 //! function `check_*` of a [`Context`](context::Context) (the symbolic context, the
 //! names earlier sections declared, the diagnostics so far) and of what
 //! earlier sections produced. A rule that fails records a diagnostic on the
@@ -12,6 +12,7 @@
 
 mod constraints;
 mod context;
+mod drawing;
 mod energy;
 mod inputs;
 mod items;
@@ -24,7 +25,11 @@ mod sections;
 mod symmetry;
 mod velocities;
 
+use super::drawing::DrawnItem;
 use super::invariance::Invariants;
+use super::mechanism::evaluate::Reference;
+use super::mechanism::space::Space;
+use super::mechanism::{Drawing, Mechanism};
 use super::{
     Declared, EnergyExpressions, Model, MomentumBasis, Options, Parameter, Symmetry, Variable,
 };
@@ -74,6 +79,7 @@ struct Checked {
     momentum_basis: Option<MomentumBasis>,
     symmetry: Option<Symmetry>,
     energy_expressions: Option<EnergyExpressions>,
+    drawing: Option<Vec<DrawnItem<ExprId>>>,
 }
 
 /// Every section, checked in dependency order.
@@ -113,6 +119,9 @@ fn checked_sections(cx: &mut Context, syntax: &ModelSyntax, sections: &Sections)
         }
         _ => None,
     };
+    let drawing = mechanism
+        .as_ref()
+        .and_then(|parts| check_drawing(cx, sections, parts, &parameters));
     let checked = Checked {
         options,
         coordinates,
@@ -126,9 +135,37 @@ fn checked_sections(cx: &mut Context, syntax: &ModelSyntax, sections: &Sections)
         momentum_basis,
         symmetry,
         energy_expressions,
+        drawing,
     };
     check_symmetry_invariance(cx, &checked);
     checked
+}
+
+/// The drawing section's items (none without it) in the mechanism's space
+/// (`ground` and `origin` alone without one), or `None` after reporting.
+fn check_drawing(
+    cx: &mut Context,
+    sections: &Sections,
+    parts: &MechanismParts,
+    parameters: &[Parameter],
+) -> Option<Vec<DrawnItem<ExprId>>> {
+    let Some(section) = sections.get(Section::Drawing) else {
+        return Some(Vec::new());
+    };
+    let plain;
+    let space = match &parts.space {
+        Some(space) => space,
+        None => {
+            plain = Space::new(&mut cx.sym);
+            &plain
+        }
+    };
+    let reference = Reference::at_defaults(parameters);
+    let place = drawing::Place {
+        space,
+        reference: &reference,
+    };
+    drawing::drawing(cx, section, &place)
 }
 
 /// The invariance under the declared symmetry, once everything it needs
@@ -169,7 +206,7 @@ fn model(
     checked: Checked,
 ) -> Result<(Model, sym::Context), Diagnostics> {
     let Context {
-        sym,
+        mut sym,
         mut diagnostics,
         ..
     } = cx;
@@ -180,6 +217,7 @@ fn model(
         Some((input_names, input_matrix)),
         Some(mechanism),
         Some(energy_expressions),
+        Some(items),
     ) = (
         checked.energy,
         checked.potential_energy,
@@ -187,6 +225,7 @@ fn model(
         checked.inputs,
         checked.mechanism,
         checked.energy_expressions,
+        checked.drawing,
     )
     else {
         diagnostics.error(
@@ -215,7 +254,23 @@ fn model(
         input_matrix,
         momentum_basis: checked.momentum_basis,
         symmetry: checked.symmetry,
-        mechanism: mechanism.mechanism,
+        mechanism: with_items(mechanism.mechanism, items, &mut sym),
     };
     Ok((model, sym))
+}
+
+/// The mechanism, its drawing joined by the drawing section's `items`.
+fn with_items(
+    mut mechanism: Mechanism,
+    items: Vec<DrawnItem<ExprId>>,
+    sym: &mut sym::Context,
+) -> Mechanism {
+    match &mut mechanism.drawing {
+        Some(drawing) => drawing.items = items,
+        None if !items.is_empty() => {
+            mechanism.drawing = Some(Drawing::of_items(items, sym.integer(0)));
+        }
+        None => {}
+    }
+    mechanism
 }

@@ -24,11 +24,12 @@ pub(super) enum Section {
     Gravity,
     NoSlip,
     Holonomic,
+    Drawing,
 }
 
 impl Section {
     /// Every section, in the order the documentation lists them.
-    pub(super) const ALL: [Section; 17] = [
+    pub(super) const ALL: [Section; 18] = [
         Section::Coordinates,
         Section::Parameters,
         Section::Define,
@@ -46,6 +47,7 @@ impl Section {
         Section::Gravity,
         Section::NoSlip,
         Section::Holonomic,
+        Section::Drawing,
     ];
 
     /// The keyword that opens the section.
@@ -68,6 +70,7 @@ impl Section {
             Section::Gravity => "gravity",
             Section::NoSlip => "no_slip",
             Section::Holonomic => "holonomic",
+            Section::Drawing => "drawing",
         }
     }
 

@@ -1,7 +1,9 @@
 //! The rules on the sections as a whole: each known, given once, the
-//! required ones present, alternatives exclusive; and on the attributes.
+//! required ones present, alternatives exclusive, keyword arguments in
+//! the drawing section only; and on the attributes.
 
 use super::context::Context;
+use super::items::check_no_keywords;
 use super::section::{Section, Sections};
 use crate::model::Options;
 use crate::syntax::{self, ModelSyntax};
@@ -14,6 +16,9 @@ pub(super) fn given_sections<'a>(cx: &mut Context, syntax: &'a ModelSyntax) -> S
         let Some(section) = check_known_section(cx, given) else {
             continue;
         };
+        if section != Section::Drawing {
+            check_no_keywords(cx, &given.value);
+        }
         if check_section_once(cx, &sections, section, given) {
             sections.insert(section, given);
         }

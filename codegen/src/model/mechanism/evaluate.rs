@@ -9,6 +9,7 @@
 
 use super::space::Space;
 use super::vector::{self, Vector};
+use crate::model::Parameter;
 use crate::model::lower::Lowerer;
 use crate::sym::{ExprId, Node, SymbolId};
 use crate::syntax::{BinaryOperator, Expr, Value};
@@ -48,6 +49,16 @@ pub(in crate::model) struct Evaluator<'a> {
 pub(in crate::model) struct Reference(pub(in crate::model) HashMap<SymbolId, f64>);
 
 impl Reference {
+    /// The reference of a model whose parameters are `parameters`.
+    pub(in crate::model) fn at_defaults(parameters: &[Parameter]) -> Reference {
+        Reference(
+            parameters
+                .iter()
+                .map(|p| (p.variable.symbol, p.default.to_f64()))
+                .collect(),
+        )
+    }
+
     /// A symbol's value (0 for a coordinate).
     pub(in crate::model) fn value(&self, symbol: SymbolId) -> f64 {
         self.0.get(&symbol).copied().unwrap_or(0.0)
@@ -105,6 +116,8 @@ impl Evaluator<'_> {
         match expr {
             Expr::Name(ident) => self.name(ident),
             Expr::Field { base, field } => self.unit_vector(base, field).map(Quantity::Vector),
+            // Keyword arguments are reported where the section is read.
+            Expr::Call { keywords, .. } if !keywords.is_empty() => None,
             Expr::Call {
                 function,
                 arguments,

@@ -19,6 +19,7 @@ pub(super) mod vector;
 mod tests;
 
 use super::Declared;
+use super::drawing::DrawnItem;
 use crate::sym::{ExprId, Matrix, RationalFunction};
 
 /// What a model's mechanism sections declare, in normal form.
@@ -45,14 +46,16 @@ pub struct Mechanism {
     /// The same orientations, positions and residuals as the emitted code
     /// computes them.
     pub expressions: MechanismExpressions,
-    /// What drawing the mechanism needs: the gravity field, the bodies and
-    /// the contacts ([`Drawing`]); `None` without mechanism sections.
+    /// What drawing the model needs: the gravity field, the bodies, the
+    /// contacts and the drawing section's items ([`Drawing`]); `None`
+    /// without mechanism sections and without a drawing section.
     pub drawing: Option<Drawing>,
 }
 
-/// What drawing a mechanism needs, as expressions of the coordinates and
-/// the parameters, in ground axes: the interpreter's `drawing(q)` computes
-/// them.
+/// What drawing a model needs, as expressions of the coordinates and the
+/// parameters, in ground axes: a mechanism's gravity, bodies and contacts,
+/// and the items of the `drawing:` section; the interpreter's `drawing(q)`
+/// computes them.
 #[derive(Clone, Debug)]
 pub struct Drawing {
     /// The uniform gravity field `g` (zero when not declared).
@@ -62,6 +65,21 @@ pub struct Drawing {
     /// The `no_slip` contacts, each once whatever its number of
     /// directions, in declared order.
     pub contacts: Vec<DrawnContact>,
+    /// The items of the `drawing:` section, in order.
+    pub items: Vec<DrawnItem<ExprId>>,
+}
+
+impl Drawing {
+    /// The drawing of a model without bodies: its `drawing:` section's
+    /// items alone.
+    pub fn of_items(items: Vec<DrawnItem<ExprId>>, zero: ExprId) -> Drawing {
+        Drawing {
+            gravity: [zero; 3],
+            bodies: Vec::new(),
+            contacts: Vec::new(),
+            items,
+        }
+    }
 }
 
 /// A body or a particle, as drawing it needs.

@@ -96,7 +96,10 @@ fn frame_declaration<'a>(cx: &mut Context, item: &'a Item) -> Option<FrameDeclar
 }
 
 /// A frame is named by an identifier.
-pub(super) fn check_frame_name<'a>(cx: &mut Context, value: &'a Value) -> Option<&'a Ident> {
+pub(in crate::model::check) fn check_frame_name<'a>(
+    cx: &mut Context,
+    value: &'a Value,
+) -> Option<&'a Ident> {
     match value {
         Value::Expr(Expr::Name(ident)) => Some(ident),
         _ => {
@@ -108,7 +111,7 @@ pub(super) fn check_frame_name<'a>(cx: &mut Context, value: &'a Value) -> Option
 }
 
 /// A rotation is about the parent's `x`, `y` or `z` axis.
-fn check_axis(cx: &mut Context, value: &Value) -> Option<usize> {
+pub(in crate::model::check) fn check_axis(cx: &mut Context, value: &Value) -> Option<usize> {
     let axis = match value {
         Value::Expr(Expr::Name(ident)) => axis_index(ident),
         _ => None,
@@ -169,8 +172,7 @@ fn check_frame_parent_known(
     }
 }
 
-/// The frame's orientation: its parent's turned by its angle, which
-/// depends on the configuration only.
+/// The frame's orientation: its parent's turned by its angle.
 fn rotated_frame(
     cx: &mut Context,
     frame: &FrameDeclaration,
@@ -178,16 +180,30 @@ fn rotated_frame(
     reference: &Reference,
     q: &[SymbolId],
 ) -> Option<space::FrameState> {
-    let angle = evaluator(cx, space, reference).scalar(frame.angle)?;
-    if !check_configuration_only(cx, &[angle], frame.angle, "a frame's angle") {
+    let parent = space.frame(&frame.parent.to_string())?;
+    turned(cx, parent, frame.axis, frame.angle, space, reference, q)
+}
+
+/// `parent` turned by `angle`, which depends on the configuration only,
+/// about its axis `axis` (0, 1, 2 for x, y, z); its angular velocity from
+/// the rates of `q` (none with `q` empty).
+pub(in crate::model::check) fn turned(
+    cx: &mut Context,
+    parent: &space::FrameState,
+    axis: usize,
+    angle: &Expr,
+    space: &Space,
+    reference: &Reference,
+    q: &[SymbolId],
+) -> Option<space::FrameState> {
+    let value = evaluator(cx, space, reference).scalar(angle)?;
+    if !check_configuration_only(cx, &[value], angle, "a frame's angle") {
         return None;
     }
-    let parent = space.frame(&frame.parent.to_string())?;
-    match space::rotated(&mut cx.sym, parent, frame.axis, angle, q) {
+    match space::rotated(&mut cx.sym, parent, axis, value, q) {
         Ok(state) => Some(state),
         Err(error) => {
-            cx.diagnostics
-                .error(frame.angle.first_span(), error.to_string());
+            cx.diagnostics.error(angle.first_span(), error.to_string());
             None
         }
     }

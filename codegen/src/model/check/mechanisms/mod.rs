@@ -7,8 +7,8 @@
 
 mod bodies;
 mod contacts;
-mod frames;
-mod values;
+pub(super) mod frames;
+pub(super) mod values;
 
 use values::Row;
 
@@ -34,6 +34,9 @@ pub(super) struct MechanismParts {
     pub(super) energies_derived_as: (ExprId, ExprId),
     /// Each body's motion, for Kane's form of its inertia forces.
     pub(super) motions: Vec<BodyMotion>,
+    /// The frames and points, which the drawing section may use (`None`
+    /// without mechanism sections: `ground` and `origin` alone).
+    pub(super) space: Option<Space>,
 }
 
 impl MechanismParts {
@@ -46,6 +49,7 @@ impl MechanismParts {
             rows: Vec::new(),
             energies_derived_as: (zero, zero),
             motions: Vec::new(),
+            space: None,
         }
     }
 }
@@ -61,12 +65,7 @@ pub(super) fn mechanism(
     if !sections.any_mechanism() {
         return Some(MechanismParts::none(cx));
     }
-    let reference = Reference(
-        parameters
-            .iter()
-            .map(|p| (p.variable.symbol, p.default.to_f64()))
-            .collect(),
-    );
+    let reference = Reference::at_defaults(parameters);
     for (name, kind) in [(GROUND, "predeclared frame"), (ORIGIN, "predeclared point")] {
         cx.declared
             .entry(name.to_string())
@@ -116,6 +115,7 @@ pub(super) fn mechanism(
         gravity,
         bodies: bodies.iter().map(drawn_body).collect(),
         contacts: drawn_contacts,
+        items: Vec::new(),
     };
     Some(MechanismParts {
         mechanism: Mechanism {
@@ -139,6 +139,7 @@ pub(super) fn mechanism(
         rows,
         energies_derived_as: energies.derived_as,
         motions: energies.motions,
+        space: Some(space),
     })
 }
 

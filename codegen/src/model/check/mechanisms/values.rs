@@ -15,7 +15,7 @@ use crate::syntax::Expr;
 pub(in crate::model::check) type Row = (Vec<RationalFunction>, ExprId);
 
 /// An evaluator of scalars, vectors and points in `space`.
-pub(super) fn evaluator<'a>(
+pub(in crate::model::check) fn evaluator<'a>(
     cx: &'a mut Context,
     space: &'a Space,
     reference: &'a Reference,
@@ -32,7 +32,7 @@ pub(super) fn evaluator<'a>(
 }
 
 /// Values in mechanism sections depend on the configuration only.
-pub(super) fn check_configuration_only(
+pub(in crate::model::check) fn check_configuration_only(
     cx: &mut Context,
     values: &[ExprId],
     expr: &Expr,
