@@ -12,9 +12,9 @@
 //! refused by name.
 
 use crate::support::browser::{
-    chromium, distance, dump_dom, num, nums, pose_of, probe_result, probed, scratch,
+    chromium, distance, dump_dom, num, nums, pose_of, probe_result, probed,
 };
-use crate::support::{chaplygin, column, read_csv};
+use crate::support::{chaplygin, column, read_csv, scratch};
 use chaplygin::runtime::nalgebra::{UnitQuaternion, Vector3};
 use serde_json::Value;
 use std::path::PathBuf;
