@@ -50,7 +50,16 @@ where
     (summary.energy_drift, summary.state[0], summary.state[1])
 }
 
-fn main() {
+fn main() -> std::io::Result<()> {
+    report(&mut std::io::stdout().lock())
+}
+
+/// Runs the skate with both integrators and writes their energy drift and
+/// end points to `out`.
+///
+/// # Errors
+/// A failed write.
+pub fn report(out: &mut impl std::io::Write) -> std::io::Result<()> {
     let skate = Skate::default();
     for (name, (drift, x, y)) in [
         (
@@ -59,8 +68,10 @@ fn main() {
         ),
         ("implicit midpoint", run(Midpoint::default(), &skate)),
     ] {
-        println!(
+        writeln!(
+            out,
             "{name:>17}: energy drift {drift:.2e}, at t = 100 the skate is at ({x:.4}, {y:.4})"
-        );
+        )?;
     }
+    Ok(())
 }

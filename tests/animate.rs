@@ -11,8 +11,9 @@
 //! unless `CHAPLYGIN_BROWSER_TESTS=require`).
 
 use crate::support::browser::{
-    chromium, distance, dump_dom, num, nums, pose_of, probe_result, probed, scratch,
+    chromium, distance, dump_dom, num, nums, pose_of, probe_result, probed,
 };
+use crate::support::scratch;
 use chaplygin::animate::{Item, Label, Pose, Scene, Shape, Trace, page};
 use chaplygin::runtime::nalgebra::{UnitQuaternion, Vector3};
 use serde_json::Value;

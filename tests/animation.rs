@@ -23,10 +23,10 @@
 //! to draw is refused by name.
 
 use crate::support::browser::{
-    chromium, distance, num, nums, pose_of, probe_pages, scratch, screenshot,
+    chromium, distance, num, nums, pose_of, probe_pages, screenshot,
 };
 use crate::support::snakeboard_gait::GAIT;
-use crate::support::{FALL, chaplygin, column, read_csv};
+use crate::support::{FALL, chaplygin, column, read_csv, scratch};
 use chaplygin::driver::catalog::BUILT_IN;
 use chaplygin::runtime::nalgebra::{UnitQuaternion, Vector3};
 use serde_json::Value;

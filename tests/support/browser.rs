@@ -17,37 +17,14 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn on_path(program: &str) -> Option<PathBuf> {
-    let path = std::env::var_os("PATH")?;
-    std::env::split_paths(&path)
-        .map(|dir| dir.join(program))
-        .find(|candidate| candidate.is_file())
-}
-
 /// Chromium's path; `None` after saying the test skipped, where it is not
 /// on `PATH` and not required.
 pub fn chromium() -> Option<PathBuf> {
-    let found = on_path("chromium");
-    if found.is_none() {
-        assert_ne!(
-            std::env::var("CHAPLYGIN_BROWSER_TESTS").as_deref(),
-            Ok("require"),
-            "chromium is not on PATH: install it (`apt-get install -y chromium` on Debian)"
-        );
-        eprintln!(
-            "skipped: chromium is not on PATH (`apt-get install -y chromium`); \
-             CHAPLYGIN_BROWSER_TESTS=require makes this a failure, as in CI"
-        );
-    }
-    found
-}
-
-/// A fresh directory for the test named `name`.
-pub fn scratch(name: &str) -> PathBuf {
-    let directory = std::env::temp_dir().join(format!("chaplygin-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&directory);
-    std::fs::create_dir_all(&directory).unwrap();
-    directory
+    super::tool(
+        "chromium",
+        "CHAPLYGIN_BROWSER_TESTS",
+        "`apt-get install -y chromium` on Debian",
+    )
 }
 
 /// What every probe script does first: it records console errors, page

@@ -1,7 +1,8 @@
 //! What the integration tests share: running the binary, reading the CSV
 //! files it writes, the canonical form it prints, the snakeboard's
 //! hand-derived gait, the benchmark bicycle's closed form (from the models'
-//! tests), pages opened in headless Chromium.
+//! tests), pages opened in headless Chromium, the guide's Markdown, the
+//! numbers of printed lines.
 
 #[allow(dead_code)]
 #[path = "../../models/tests/support/benchmark_bicycle.rs"]
@@ -9,9 +10,11 @@ pub mod benchmark_bicycle;
 pub mod browser;
 pub mod canonical_form;
 pub mod in_process;
+pub mod markdown;
+pub mod printed;
 pub mod snakeboard_gait;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// The benchmark bicycle's push, as `simulate bicycle` takes it: upright at
@@ -35,6 +38,37 @@ pub fn chaplygin(arguments: &[&str]) -> Output {
         .args(arguments)
         .output()
         .expect("the binary runs")
+}
+
+/// A fresh directory for the test named `name`.
+pub fn scratch(name: &str) -> PathBuf {
+    let directory = std::env::temp_dir().join(format!("chaplygin-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&directory);
+    std::fs::create_dir_all(&directory).unwrap();
+    directory
+}
+
+/// The path of the program `program` on `PATH`, for a test that needs it;
+/// `None` after saying the test skipped, where it is not there and the
+/// environment variable `variable` is not `require` (as `.ci/run` sets
+/// it, after installing the program when missing, as `install` says).
+pub fn tool(program: &str, variable: &str, install: &str) -> Option<PathBuf> {
+    let path = std::env::var_os("PATH").unwrap_or_default();
+    let found = std::env::split_paths(&path)
+        .map(|dir| dir.join(program))
+        .find(|candidate| candidate.is_file());
+    if found.is_none() {
+        assert_ne!(
+            std::env::var(variable).as_deref(),
+            Ok("require"),
+            "{program} is not on PATH: install it ({install})"
+        );
+        eprintln!(
+            "skipped: {program} is not on PATH ({install}); {variable}=require makes this a \
+             failure, as in CI"
+        );
+    }
+    found
 }
 
 /// The values of the column `name` of `rows` under `header`.

@@ -1,6 +1,6 @@
-//! The snakeboard's gait `psi = 0.8 sin t`, `phi = 0.5 cos t` from rest by
-//! the hand-derived equations of MATH.md 4.1, integrated independently of
-//! the tool, and as `chaplygin gait` takes it.
+//! The snakeboard's gaits from rest by the hand-derived equations of
+//! MATH.md 4.1, integrated independently of the tool, and the gait `psi =
+//! 0.8 sin t`, `phi = 0.5 cos t` as `chaplygin gait` takes it.
 
 use std::f64::consts::PI;
 
@@ -18,26 +18,38 @@ pub const GAIT: [&str; 9] = [
     "6.283185307179586",
 ];
 
-/// One cycle (m = 1, r = 0.5, Jt = 0.3): with
-/// `Delta = m r^2 + Jt sin^2 phi`,
+/// One period `2 pi` of the gait `shape(t) = (phi, psidot, phidot)` from rest (m = 1, r = 0.5,
+/// Jt = 0.3): with `Delta = m r^2 + Jt sin^2 phi`,
 /// `pdot = (m r Jt cos phi / Delta) psidot phidot + (Jt sin phi cos phi / Delta) phidot p`,
 /// `v1 = r cos phi (r p - Jt sin phi psidot) / Delta`, `v2 = 0`,
 /// `omega = v1 tan phi / r`, and `(x, y, theta)' = (cos theta v1, sin theta v1, omega)`;
-/// RK4 with `steps` steps over one period. Returns `(x, y, theta)`.
-pub fn hand_derived_cycle(steps: usize) -> [f64; 3] {
+/// RK4 with `steps` steps. Without `momentum` the momentum `p` is held at
+/// 0: the gait's geometric part. Returns `(x, y, theta)`.
+pub fn hand_derived(
+    shape: impl Fn(f64) -> (f64, f64, f64),
+    momentum: bool,
+    steps: usize,
+) -> [f64; 3] {
     let (m, r, jt) = (1.0, 0.5, 0.3);
     let rate = |t: f64, s: [f64; 4]| {
-        let (phi, psidot, phidot) = (0.5 * t.cos(), 0.8 * t.cos(), -0.5 * t.sin());
+        let (phi, psidot, phidot) = shape(t);
         let delta = m * r * r + jt * phi.sin().powi(2);
         let p = s[3];
         let pdot = m * r * jt * phi.cos() / delta * psidot * phidot
             + jt * phi.sin() * phi.cos() / delta * phidot * p;
         let v1 = r * phi.cos() * (r * p - jt * phi.sin() * psidot) / delta;
         let omega = v1 * phi.tan() / r;
+        let pdot = if momentum { pdot } else { 0.0 };
         [s[2].cos() * v1, s[2].sin() * v1, omega, pdot]
     };
     let s = rk4_from_zero(rate, steps);
     [s[0], s[1], s[2]]
+}
+
+/// [`hand_derived`] of the gait `psi = 0.8 sin t`, `phi = 0.5 cos t`.
+pub fn hand_derived_cycle(steps: usize) -> [f64; 3] {
+    let shape = |t: f64| (0.5 * t.cos(), 0.8 * t.cos(), -0.5 * t.sin());
+    hand_derived(shape, true, steps)
 }
 
 /// Classical RK4 of `rate` from 0 over `t` in `[0, 2 pi]`, `steps` steps.
