@@ -18,7 +18,7 @@ use chaplygin::driver::catalog::{Source, built_in};
 use chaplygin::driver::engine::{EngineChoice, load};
 use chaplygin::driver::gait::{FromText, locomotion};
 use chaplygin::gait_design::{
-    Design, Direction, FourierLoop, GaitModel, Scoring, clearance, evaluate, optimize,
+    Design, Direction, FourierLoop, GaitModel, Scoring, clearances, evaluate, optimize,
 };
 use chaplygin::plot::{GaitCurve, write_gait_comparison};
 use chaplygin::runtime::gait::{self, ShapeLoop};
@@ -118,7 +118,7 @@ fn classic(body: &dyn GaitModel, direction: Direction, scoring: &Scoring) -> Fou
     let start = Instant::now();
     let score = |ab: (f64, f64)| -> f64 {
         let shape_loop = classic_loop(direction, ab);
-        match clearance(body, &shape_loop, scoring, 400) > 1.0 {
+        match !clearances(body, &shape_loop, scoring, 400).any(|s| s <= 1.0) {
             true => evaluate(body, &shape_loop, scoring).efficiency(scoring),
             false => f64::NEG_INFINITY,
         }

@@ -22,9 +22,7 @@
 //! are these pages (`support::browser::screenshot`). A model with nothing
 //! to draw is refused by name.
 
-use crate::support::browser::{
-    chromium, distance, num, nums, pose_of, probe_pages, screenshot,
-};
+use crate::support::browser::{chromium, distance, num, nums, pose_of, probe_pages, screenshot};
 use crate::support::snakeboard_gait::GAIT;
 use crate::support::{FALL, chaplygin, column, read_csv, scratch};
 use chaplygin::driver::catalog::BUILT_IN;
