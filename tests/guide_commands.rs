@@ -252,28 +252,19 @@ fn judged(shown: &Shown, output: &Output) -> Result<(), String> {
     Ok(())
 }
 
+/// The guide's commands run all at once, each in a thread of its own (the
+/// longest, a gait optimization, takes seconds unoptimized), and each
+/// judged by what it printed.
 #[test]
 fn the_guides_commands_run_and_print_what_it_shows() {
     let shown: Vec<Shown> = guide_pages()
         .iter()
         .flat_map(|page| commands(page))
         .collect();
-    let mut problems = Vec::new();
-    let mut run_here = 0;
+    let mut binary_runs = Vec::new();
     for (index, command) in shown.iter().enumerate() {
         match kind(&command.words) {
-            Ok(Kind::Binary(arguments)) => {
-                let output = run(index, arguments);
-                if let Err(problem) = judged(command, &output) {
-                    problems.push(format!(
-                        "{}: {problem}\nstdout:\n{}\nstderr:\n{}",
-                        command.place,
-                        String::from_utf8_lossy(&output.stdout),
-                        String::from_utf8_lossy(&output.stderr)
-                    ));
-                }
-                run_here += 1;
-            }
+            Ok(Kind::Binary(arguments)) => binary_runs.push((index, command, arguments)),
             Ok(Kind::Example(name)) => {
                 assert!(is_example(name), "{}: no example `{name}`", command.place);
             }
@@ -281,7 +272,27 @@ fn the_guides_commands_run_and_print_what_it_shows() {
             Err(problem) => panic!("{}: {problem}", command.place),
         }
     }
-    assert!(run_here >= 10, "the guide's commands are found");
+    assert!(binary_runs.len() >= 10, "the guide's commands are found");
+    let problems: Vec<String> = std::thread::scope(|scope| {
+        let running: Vec<_> = (binary_runs.iter())
+            .map(|&(index, command, arguments)| {
+                scope.spawn(move || {
+                    let output = run(index, arguments);
+                    judged(command, &output).err().map(|problem| {
+                        format!(
+                            "{}: {problem}\nstdout:\n{}\nstderr:\n{}",
+                            command.place,
+                            String::from_utf8_lossy(&output.stdout),
+                            String::from_utf8_lossy(&output.stderr)
+                        )
+                    })
+                })
+            })
+            .collect();
+        (running.into_iter())
+            .filter_map(|command| command.join().expect("the command's thread"))
+            .collect()
+    });
     assert!(problems.is_empty(), "{}", problems.join("\n\n"));
 }
 
