@@ -7,9 +7,10 @@
 //! row, whose ground tracks (x, y) `path.png` draws with the path; it
 //! prints the summary, where and why the run stopped. With `--animate`
 //! it also writes `animation.html`, the run in 3D as one offline page
-//! (`crate::animate_args`).
+//! (`crate::animate_args`), for a failed run too, of the rows before the
+//! failure.
 
-use crate::animate_args::AnimateArgs;
+use crate::animate_args::{AnimateArgs, Drawn};
 use crate::model_args::{ModelArgs, loaded};
 use crate::output::write_table;
 use chaplygin::driver::Failure;
@@ -68,7 +69,15 @@ pub fn run(args: &SimulateArgs) -> Result<(), Failure> {
         &args.out,
         figure4,
     );
-    let report = finished.outcome?;
+    let report = match finished.outcome {
+        Ok(report) => report,
+        Err(failure) => {
+            if let Some(drawn) = drawn {
+                animate_until_failure(drawn, &finished.table, &finished.parameters, &args.out);
+            }
+            return Err(failure);
+        }
+    };
     crate::say(&format!("{report}\n"))?;
     crate::say(&format!("wrote {}\n", csv_path.display()))?;
     if let Some(tracks) = &finished.tracks {
@@ -93,6 +102,19 @@ pub fn run(args: &SimulateArgs) -> Result<(), Failure> {
         .into());
     }
     Ok(())
+}
+
+/// With `--animate`, a failed run's rows are drawn too, as its
+/// `trajectory.csv` and plots keep them: the page shows the motion up to
+/// where it failed. A page that cannot be made is said on standard error,
+/// the run's own failure being the error reported.
+fn animate_until_failure(drawn: Drawn, table: &Table, parameters: &[(String, f64)], out: &Path) {
+    if table.rows.is_empty() {
+        return;
+    }
+    if let Err(error) = drawn.write(table, parameters, out) {
+        eprintln!("the rows before the failure are not animated: {error}");
+    }
 }
 
 /// `run` with a progress bar on standard error once it has taken a second.
