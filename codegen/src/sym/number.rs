@@ -5,6 +5,12 @@
 //! that does not fit is promoted to a big rational (`num_rational::BigRational`),
 //! and a big result that fits again is demoted. Overflow therefore never wraps
 //! and equal values always have equal representations (so hashing is sound).
+//!
+//! Equality, order and hashing therefore work on the numerator and the
+//! denominator themselves, in time and stack linear in their size: the
+//! `BigRational` implementations go through the value's continued
+//! fraction, recursively, one stack frame a partial quotient, and a product
+//! of a few constant powers (some 10^5 bits) overflowed the stack.
 
 use num_bigint::BigInt;
 use num_integer::Integer;
@@ -12,12 +18,13 @@ use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive};
 use std::cmp::Ordering;
 use std::fmt;
+use std::hash::{Hash, Hasher};
 
 /// An exact rational number, reduced, with a positive denominator.
 #[derive(Clone, PartialEq, Eq, Hash)]
 pub struct Rational(Repr);
 
-#[derive(Clone, PartialEq, Eq, Hash)]
+#[derive(Clone)]
 enum Repr {
     /// numerator, denominator > 0, gcd = 1
     Small(i64, i64),
@@ -349,7 +356,31 @@ impl Ord for Rational {
             (Repr::Small(a, b), Repr::Small(c, d)) => {
                 (*a as i128 * *d as i128).cmp(&(*c as i128 * *b as i128))
             }
-            _ => self.to_big().cmp(&other.to_big()),
+            _ => {
+                let (x, y) = (self.to_big(), other.to_big());
+                (x.numer() * y.denom()).cmp(&(y.numer() * x.denom()))
+            }
+        }
+    }
+}
+
+impl PartialEq for Repr {
+    fn eq(&self, other: &Repr) -> bool {
+        match (self, other) {
+            (Repr::Small(a, b), Repr::Small(c, d)) => (a, b) == (c, d),
+            (Repr::Big(x), Repr::Big(y)) => x.numer() == y.numer() && x.denom() == y.denom(),
+            _ => false,
+        }
+    }
+}
+
+impl Eq for Repr {}
+
+impl Hash for Repr {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        match self {
+            Repr::Small(n, d) => (0_u8, n, d).hash(state),
+            Repr::Big(b) => (1_u8, b.numer(), b.denom()).hash(state),
         }
     }
 }
@@ -445,6 +476,48 @@ mod tests {
                 .unwrap(),
             Rational::integer(2).powi(200).unwrap()
         );
+    }
+
+    /// `F(n + 1) / F(n)` for the Fibonacci numbers `F`: the continued
+    /// fraction `[1; 1, 1, ...]` with `n` partial quotients, the longest for
+    /// the size of its terms.
+    fn fibonacci_ratio(n: usize) -> Rational {
+        let (mut previous, mut current) = (BigInt::from(1), BigInt::from(1));
+        for _ in 1..n {
+            let next = &previous + &current;
+            previous = std::mem::replace(&mut current, next);
+        }
+        from_big(BigRational::new(current, previous))
+    }
+
+    /// 20,000 partial quotients: `BigRational`'s recursive hash and order
+    /// need more than a 256 KiB stack for them.
+    #[test]
+    fn long_continued_fractions_hash_and_compare_in_little_stack() {
+        let on_a_small_stack = std::thread::Builder::new()
+            .stack_size(256 * 1024)
+            .spawn(|| {
+                let (a, b) = (fibonacci_ratio(20_000), fibonacci_ratio(20_001));
+                let hash = |x: &Rational| {
+                    let mut hasher = std::hash::DefaultHasher::new();
+                    x.hash(&mut hasher);
+                    hasher.finish()
+                };
+                assert_eq!(hash(&a), hash(&a.mul(&Rational::ONE)));
+                assert_ne!(hash(&a), hash(&b));
+                assert_eq!(a, a.add(&Rational::ZERO));
+                assert_ne!(a, b);
+                // Cassini: F(n+1)^2 - F(n) F(n+2) = (-1)^n, so the ratios of
+                // consecutive Fibonacci numbers fall and rise by turns:
+                // F(20001)/F(20000) > F(20002)/F(20001).
+                assert_eq!(a.cmp(&b), Ordering::Greater);
+                assert_eq!(b.cmp(&a), Ordering::Less);
+                assert_eq!(a.cmp(&a.clone()), Ordering::Equal);
+            })
+            .expect("a thread starts");
+        on_a_small_stack
+            .join()
+            .expect("no overflow, no failed assertion");
     }
 
     #[test]
