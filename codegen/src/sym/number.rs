@@ -15,7 +15,7 @@
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{Signed, ToPrimitive};
+use num_traits::{Pow, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::fmt;
 use std::hash::{Hash, Hasher};
@@ -191,7 +191,7 @@ impl Rational {
         match (&self.0, &other.0) {
             (Repr::Small(a, b), Repr::Small(c, d)) => mul_in_i64(*a, *b, *c, *d)
                 .unwrap_or_else(|| from_i128(*a as i128 * *c as i128, *b as i128 * *d as i128)),
-            _ => from_big(self.to_big() * other.to_big()),
+            _ => big_product(&self.to_big(), &other.to_big()),
         }
     }
 
@@ -211,26 +211,30 @@ impl Rational {
         Some(self.mul(&other.recip()?))
     }
 
-    /// `self^exponent` for an integer exponent, or `None` for `0^negative`.
+    /// `self^exponent` for an integer exponent, or `None` for `0^negative`:
+    /// the powers of the numerator and the denominator, coprime as they are.
     pub fn powi(&self, exponent: i64) -> Option<Rational> {
         let base = if exponent < 0 {
             self.recip()?
         } else {
             self.clone()
         };
-        let mut result = Rational::ONE;
-        let mut square = base;
-        let mut remaining = exponent.unsigned_abs();
-        while remaining > 0 {
-            if remaining & 1 == 1 {
-                result = result.mul(&square);
+        let exponent = exponent.unsigned_abs();
+        Some(match base.0 {
+            Repr::Small(n, d) => {
+                let small = u32::try_from(exponent)
+                    .ok()
+                    .and_then(|k| Some((n.checked_pow(k)?, d.checked_pow(k)?)));
+                match small {
+                    Some((n, d)) => Rational(Repr::Small(n, d)),
+                    None => big_power(BigInt::from(n), BigInt::from(d), exponent),
+                }
             }
-            remaining >>= 1;
-            if remaining > 0 {
-                square = square.mul(&square);
+            Repr::Big(b) => {
+                let (n, d) = b.into_raw();
+                big_power(n, d, exponent)
             }
-        }
-        Some(result)
+        })
     }
 
     /// The exact `n`-th root of a non-negative value when it is rational.
@@ -273,6 +277,24 @@ impl Rational {
             Repr::Big(b) => from_big(BigRational::from_integer(b.denom().clone())),
         }
     }
+}
+
+/// `(a/b) (c/d)` for reduced operands, `b, d > 0`: cancelling `gcd(a, d)`
+/// and `gcd(c, b)` leaves the product reduced, which `BigRational`'s
+/// product reduces once more, a third gcd, of the largest numbers.
+fn big_product(x: &BigRational, y: &BigRational) -> Rational {
+    if x.is_zero() || y.is_zero() {
+        return Rational::ZERO;
+    }
+    let (ad, cb) = (x.numer().gcd(y.denom()), y.numer().gcd(x.denom()));
+    let numerator = (x.numer() / &ad) * (y.numer() / &cb);
+    let denominator = (x.denom() / &cb) * (y.denom() / &ad);
+    from_big(BigRational::new_raw(numerator, denominator))
+}
+
+/// `(n/d)^k` for coprime `n` and `d > 0`: coprime again, so not reduced.
+fn big_power(n: BigInt, d: BigInt, k: u64) -> Rational {
+    from_big(BigRational::new_raw(n.pow(k), d.pow(k)))
 }
 
 /// `a/b + c/d` (reduced operands, `b, d > 0`) in checked `i64` arithmetic,
@@ -450,6 +472,36 @@ mod tests {
                 assert_eq!(x.add(y).to_big(), x.to_big() + y.to_big(), "{x} + {y}");
                 assert_eq!(x.mul(y).to_big(), x.to_big() * y.to_big(), "{x} * {y}");
                 assert_eq!(x.add(y), from_big(x.to_big() + y.to_big()), "{x} + {y}");
+                assert_eq!(x.mul(y), from_big(x.to_big() * y.to_big()), "{x} * {y}");
+            }
+        }
+    }
+
+    /// Products and powers of big values against `BigRational`'s, which
+    /// reduce their results: equal values, equal representations.
+    #[test]
+    fn big_products_and_powers_agree_with_big_rationals() {
+        let values: Vec<Rational> = [(i64::MAX, 3), (-(1 << 62), 7), (35, i64::MAX), (6, 35)]
+            .iter()
+            .map(|&(n, d)| Rational::new(n, d).unwrap())
+            .flat_map(|x| [x.clone(), x.powi(3).unwrap(), x.powi(-2).unwrap()])
+            .chain([Rational::ZERO, Rational::ONE])
+            .collect();
+        for x in &values {
+            for k in -3_i64..=5 {
+                let expected = (k >= 0 || !x.is_zero()).then(|| {
+                    let base = if k < 0 {
+                        x.to_big().recip()
+                    } else {
+                        x.to_big()
+                    };
+                    num_traits::pow(base, k.unsigned_abs() as usize)
+                });
+                assert_eq!(x.powi(k).map(|p| p.to_big()), expected, "{x}^{k}");
+                assert_eq!(x.powi(k), expected.map(from_big), "{x}^{k}");
+            }
+            for y in &values {
+                assert_eq!(x.mul(y).to_big(), x.to_big() * y.to_big(), "{x} * {y}");
                 assert_eq!(x.mul(y), from_big(x.to_big() * y.to_big()), "{x} * {y}");
             }
         }
