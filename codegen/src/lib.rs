@@ -86,14 +86,10 @@ pub(crate) fn over_budget(
     model: &model::Model,
     cx: &sym::Context,
 ) -> Result<(), diagnostic::Diagnostics> {
-    let budget = cx.budget();
-    if !budget.is_exhausted() {
+    let Some(error) = cx.budget().error() else {
         return Ok(());
-    }
-    let message = sym::SymError::BudgetExceeded {
-        limit: budget.limit(),
-    }
-    .to_string();
+    };
+    let message = error.to_string();
     Err(diagnostic::Diagnostic::new(model.name.span(), message).into())
 }
 
@@ -126,13 +122,10 @@ fn within_budget<T>(
     budget: &sym::Budget,
     outcome: Result<T, diagnostic::Diagnostics>,
 ) -> Result<T, diagnostic::Diagnostics> {
-    if !budget.is_exhausted() {
+    let Some(error) = budget.error() else {
         return outcome;
-    }
-    let message = sym::SymError::BudgetExceeded {
-        limit: budget.limit(),
-    }
-    .to_string();
+    };
+    let message = error.to_string();
     let span = outcome
         .err()
         .and_then(|diagnostics| {

@@ -149,6 +149,16 @@ pub enum SymError {
         /// The limit that was exceeded.
         limit: u64,
     },
+    /// The normal form needed a polynomial of higher degree in one atom, or
+    /// a denominator factor of higher multiplicity, than
+    /// [`super::budget::MAX_DEGREE`].
+    #[error(
+        "the normal form needs a power of degree above {limit} (the limit); write a lower power"
+    )]
+    DegreeTooLarge {
+        /// The limit that was passed.
+        limit: u32,
+    },
 }
 
 /// The largest integer power of a constant folded, in bits (about 20,000

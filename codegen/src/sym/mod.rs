@@ -15,7 +15,7 @@ pub mod poly;
 pub mod residues;
 pub mod zero;
 
-pub use budget::{Budget, DEFAULT_DERIVATION_BUDGET};
+pub use budget::{Budget, DEFAULT_DERIVATION_BUDGET, MAX_DEGREE};
 pub use context::Context;
 pub use expr::{ExprId, Function, Node, Store, SymError, Symbol, SymbolId, SymbolKind};
 pub use matrix::{Matrix, MatrixError};

@@ -194,6 +194,11 @@ impl RationalFunction {
         }
         let (left, other_denominator) = cancel(&self.numerator, &other.denominator, atoms);
         let (right, own_denominator) = cancel(&other.numerator, &self.denominator, atoms);
+        let multiplicity = highest_multiplicity(&own_denominator)
+            .saturating_add(highest_multiplicity(&other_denominator));
+        if !atoms.budget().admits_degree(multiplicity) {
+            return RationalFunction::zero();
+        }
         RationalFunction {
             numerator: left.mul(&right, atoms),
             denominator: merge(&own_denominator, &other_denominator),
@@ -300,6 +305,15 @@ fn might_divide(factor: &Poly, p: &Poly) -> bool {
         (Some((f, _)), Some((m, _))) => m.div(f).is_some() && factor.len() <= p.len(),
         _ => false,
     }
+}
+
+/// The highest multiplicity in a factor list (0 for none).
+fn highest_multiplicity(factors: &[(Poly, u32)]) -> u64 {
+    factors
+        .iter()
+        .map(|&(_, k)| u64::from(k))
+        .max()
+        .unwrap_or(0)
 }
 
 /// Factor lists multiplied: exponents of equal factors add.

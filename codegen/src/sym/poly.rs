@@ -346,16 +346,27 @@ impl Poly {
     /// `self * other`, reduced by `sin^2 = 1 - cos^2`; zero once the budget
     /// of `atoms` is spent. The product is charged `self.len() * other.len()`
     /// term products, each weighted by the sizes in words of the largest
-    /// coefficients (big coefficients make each product slower).
+    /// coefficients (big coefficients make each product slower), and is
+    /// not computed where an exponent could pass the budget's degree limit.
     pub fn mul(&self, other: &Poly, atoms: &Atoms) -> Poly {
         let products = (self.len() as u64)
             .saturating_mul(other.len() as u64)
             .saturating_mul(self.coefficient_words())
             .saturating_mul(other.coefficient_words());
-        if !atoms.budget().charge(products) {
+        let degree = u64::from(self.highest_exponent()) + u64::from(other.highest_exponent());
+        if !atoms.budget().admits_degree(degree) || !atoms.budget().charge(products) {
             return Poly::zero();
         }
         self.mul_unreduced(other).reduce_trig(atoms)
+    }
+
+    /// The highest exponent of any atom in any term.
+    fn highest_exponent(&self) -> u32 {
+        self.terms
+            .iter()
+            .flat_map(|(m, _)| m.0.iter().map(|&(_, e)| e))
+            .max()
+            .unwrap_or(0)
     }
 
     /// The size in words of the largest coefficient (1 for zero).

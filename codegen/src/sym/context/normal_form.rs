@@ -14,8 +14,9 @@ const MAX_MULTIPLE_ANGLE: i64 = 64;
 impl Context {
     /// The normal form of an expression (memoized).
     ///
-    /// Fails with [`SymError::BudgetExceeded`] once the store's derivation
-    /// budget is spent, here or in an earlier computation.
+    /// Fails with [`SymError::BudgetExceeded`] (or
+    /// [`SymError::DegreeTooLarge`]) once the store's derivation budget is
+    /// spent, here or in an earlier computation.
     pub fn normal(&mut self, id: ExprId) -> Result<RationalFunction, SymError> {
         self.within_budget()?;
         if let Some(found) = self.normal_forms.get(&id) {
@@ -31,16 +32,10 @@ impl Context {
         Ok(self.normal_forms[&id].clone())
     }
 
-    /// `Err(BudgetExceeded)` once the derivation budget is spent.
+    /// The budget's error ([`SymError::BudgetExceeded`] or
+    /// [`SymError::DegreeTooLarge`]) once the derivation budget is spent.
     fn within_budget(&self) -> Result<(), SymError> {
-        let budget = self.atoms.budget();
-        if budget.is_exhausted() {
-            Err(SymError::BudgetExceeded {
-                limit: budget.limit(),
-            })
-        } else {
-            Ok(())
-        }
+        self.atoms.budget().error().map_or(Ok(()), Err)
     }
 
     /// The expression rebuilt from its normal form.
