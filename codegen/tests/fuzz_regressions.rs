@@ -2,7 +2,9 @@
 //! crash the engine, each kept as a test of its fix.
 
 use chaplygin_codegen::generate;
-use chaplygin_codegen::sym::{Context, MAX_DEGREE, Rational, Store, SymError, SymbolKind};
+use chaplygin_codegen::sym::{
+    Context, ExprId, MAX_DEGREE, Node, Rational, Store, SymError, SymbolKind,
+};
 
 /// `normal_form` timeout: `(-6)^4` raised to the 4th power again and again
 /// reaches `6^(4^9)`, a 677,000-bit constant whose exact folding took minutes.
@@ -96,4 +98,50 @@ fn a_model_with_a_power_past_the_degree_limit_is_diagnosed() {
         rendered.contains("the normal form needs a power of degree above 65536"),
         "{rendered}"
     );
+}
+
+/// `jit` stack overflow: five constants raised to the 7776th power, summed,
+/// and the sum squared, a constant of 82,767 and 71,306 bits (numerator and
+/// denominator, by Python's `fractions`) whose continued fraction has
+/// 41,614 partial quotients; `num_rational`'s hash, which the store's
+/// hash-consing called, walked them one stack frame each and overflowed a
+/// test thread's stack.
+#[test]
+fn a_square_of_a_sum_of_large_constant_powers_is_folded() {
+    let mut store = Store::new();
+    let powers: Vec<ExprId> = [(3, 4), (2, 3), (5, 4), (7, 8), (5, 3)]
+        .into_iter()
+        .map(|(n, d)| {
+            let base = store.number(Rational::new(n, d).expect("a fraction"));
+            store
+                .pow(base, Rational::integer(7776))
+                .expect("within the limit")
+        })
+        .collect();
+    let sum = powers[1..]
+        .iter()
+        .fold(powers[0], |sum, &power| store.add2(sum, power));
+    let square = store.mul2(sum, sum);
+    let Node::Number(value) = store.node(square) else {
+        panic!("constants fold to a constant");
+    };
+    assert_eq!(value.bits(), 82_767 + 71_306);
+}
+
+/// `jit` timeout: a rational power of a perfect power, `4^(p/2) = 2^p`, was
+/// folded whatever the size of `p` (the limit on constant powers held for
+/// integer exponents only); `p = 3^30`, some 2e14 bits, now fails at once.
+#[test]
+fn a_rational_power_of_a_perfect_power_is_limited_too() {
+    let mut store = Store::new();
+    let four = store.integer(4);
+    let huge = Rational::new(3_i64.pow(30), 2).expect("a fraction");
+    assert!(matches!(
+        store.pow(four, huge),
+        Err(SymError::ConstantTooLarge { .. })
+    ));
+    let small = store
+        .pow(four, Rational::new(5, 2).expect("a fraction"))
+        .expect("within the limit");
+    assert_eq!(store.as_number(small), Some(&Rational::integer(32)));
 }

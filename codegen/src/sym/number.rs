@@ -15,7 +15,7 @@
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{Pow, Signed, ToPrimitive, Zero};
+use num_traits::{One, Pow, Signed, ToPrimitive, Zero};
 use std::cmp::Ordering;
 use std::fmt;
 use std::hash::{Hash, Hasher};
@@ -286,10 +286,20 @@ fn big_product(x: &BigRational, y: &BigRational) -> Rational {
     if x.is_zero() || y.is_zero() {
         return Rational::ZERO;
     }
-    let (ad, cb) = (x.numer().gcd(y.denom()), y.numer().gcd(x.denom()));
+    let (ad, cb) = (gcd(x.numer(), y.denom()), gcd(y.numer(), x.denom()));
     let numerator = (x.numer() / &ad) * (y.numer() / &cb);
     let denominator = (x.denom() / &cb) * (y.denom() / &ad);
     from_big(BigRational::new_raw(numerator, denominator))
+}
+
+/// `gcd(a, b)`, at once where either is 1 in magnitude: `num-bigint`'s
+/// binary gcd takes a step for about every two bits of the other even then.
+fn gcd(a: &BigInt, b: &BigInt) -> BigInt {
+    if a.magnitude().is_one() || b.magnitude().is_one() {
+        BigInt::one()
+    } else {
+        a.gcd(b)
+    }
 }
 
 /// `(n/d)^k` for coprime `n` and `d > 0`: coprime again, so not reduced.

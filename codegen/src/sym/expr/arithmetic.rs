@@ -265,13 +265,10 @@ impl Store {
             });
         }
         if let Some(n) = exponent.to_i64() {
-            let bits = value.bits().saturating_mul(n.unsigned_abs());
-            if bits > MAX_CONSTANT_BITS && value.abs() != Rational::ONE {
-                return Err(SymError::ConstantTooLarge { bits });
+            within_constant_bits(value, n)?;
+            if let Some(folded) = value.powi(n) {
+                return Ok(self.number(folded));
             }
-        }
-        if let Some(folded) = exponent.to_i64().and_then(|n| value.powi(n)) {
-            return Ok(self.number(folded));
         }
         if value.is_negative() {
             return Err(SymError::NegativeBase {
@@ -288,8 +285,11 @@ impl Store {
         let root = u32::try_from(denominator)
             .ok()
             .and_then(|d| value.exact_root(d));
-        if let Some(power) = root.and_then(|r| r.powi(numerator)) {
-            return Ok(self.number(power));
+        if let Some(root) = root {
+            within_constant_bits(&root, numerator)?;
+            if let Some(power) = root.powi(numerator) {
+                return Ok(self.number(power));
+            }
         }
         let base = self.number(value.clone());
         Ok(self.intern(Node::Pow(base, exponent)))
@@ -371,4 +371,15 @@ impl LikeTerms {
             }
         }
     }
+}
+
+/// Fails with [`SymError::ConstantTooLarge`] where `value^n` would have
+/// more than [`MAX_CONSTANT_BITS`] bits (estimated from `value`'s), rather
+/// than computing it; the powers of 1 and -1 are always small.
+fn within_constant_bits(value: &Rational, n: i64) -> Result<(), SymError> {
+    let bits = value.bits().saturating_mul(n.unsigned_abs());
+    if bits > MAX_CONSTANT_BITS && value.abs() != Rational::ONE {
+        return Err(SymError::ConstantTooLarge { bits });
+    }
+    Ok(())
 }
