@@ -65,13 +65,18 @@ fuzz_target!(|data: &[u8]| {
     let denominator_conditions: Vec<(f64, u32)> = (form.denominator().iter())
         .map(|(factor, k)| (condition(factor, &atom_value), *k))
         .collect();
-    if (denominator_conditions.iter()).any(|&(condition, _)| 1e-9 * condition >= 0.5) {
+    // A condition that is not a number (a term beyond `f64`) says the same.
+    let unknown = |condition: f64| condition.is_nan() || 1e-9 * condition >= 0.5;
+    if (denominator_conditions.iter()).any(|&(condition, _)| unknown(condition)) {
         return;
     }
     let condition = condition(form.numerator(), &atom_value)
         + (denominator_conditions.iter())
             .map(|&(condition, k)| f64::from(k) * condition)
             .sum::<f64>();
+    if condition.is_nan() {
+        return;
+    }
     let tolerance = 1e-9 * ((1.0 + condition) * normal.abs() + tree_error(&cx, root, &value_of));
     assert!(
         (tree - normal).abs() <= tolerance,
@@ -133,9 +138,14 @@ fn condition(p: &Poly, atom_value: &dyn Fn(AtomId) -> f64) -> f64 {
 /// Algorithms*, 2nd ed., section 3.3). Every constant, input and result
 /// adds its own magnitude; every operation carries its operands' errors
 /// times its partial derivatives, and a sum the magnitudes of its terms.
+/// Infinite where a value on the way overflows (a constant beyond `f64`,
+/// say): the final value then bears no bound.
 fn tree_error(store: &Store, root: ExprId, value_of: &dyn Fn(SymbolId) -> f64) -> f64 {
     let nodes = store.reachable(&[root]);
     let values = store.evaluate_many(&nodes, value_of);
+    if values.iter().any(|value| !value.is_finite()) {
+        return f64::INFINITY;
+    }
     let mut bounds: HashMap<ExprId, (f64, f64)> = HashMap::new();
     for (&id, &value) in nodes.iter().zip(&values) {
         let operand = |child: &ExprId| bounds[child];
@@ -176,7 +186,8 @@ fn tree_error(store: &Store, root: ExprId, value_of: &dyn Fn(SymbolId) -> f64) -
         };
         bounds.insert(id, (value, carried + value.abs()));
     }
-    bounds[&root].1
+    let bound = bounds[&root].1;
+    if bound.is_nan() { f64::INFINITY } else { bound }
 }
 
 /// Runs the bytes as stack-machine instructions; the top of the stack is the
