@@ -112,11 +112,12 @@ fn atom_value(cx: &Context, symbols: &[SymbolId; 3], atom: AtomId) -> f64 {
     }
 }
 
-/// `sum |c m(point)| / |p(point)|`: how much rounding in the terms is magnified.
+/// `sum |c m(point)| / |p(point)|`: how much rounding in the terms is
+/// magnified; `NaN` where a term leaves the normal range of `f64` (its
+/// coefficient, `2^-1440` say, or its value under- or overflows), whose
+/// rounding is then no longer relative to it.
 fn condition(p: &Poly, atom_value: &dyn Fn(AtomId) -> f64) -> f64 {
-    let magnitude: f64 = p
-        .terms()
-        .iter()
+    let magnitudes: Vec<f64> = (p.terms().iter())
         .map(|(monomial, coefficient)| {
             monomial
                 .factors()
@@ -125,7 +126,11 @@ fn condition(p: &Poly, atom_value: &dyn Fn(AtomId) -> f64) -> f64 {
                     product * atom_value(atom).abs().powi(exponent as i32)
                 })
         })
-        .sum();
+        .collect();
+    if magnitudes.iter().any(|m| !m.is_normal()) {
+        return f64::NAN;
+    }
+    let magnitude: f64 = magnitudes.iter().sum();
     if magnitude == 0.0 {
         return 0.0;
     }
@@ -138,12 +143,16 @@ fn condition(p: &Poly, atom_value: &dyn Fn(AtomId) -> f64) -> f64 {
 /// Algorithms*, 2nd ed., section 3.3). Every constant, input and result
 /// adds its own magnitude; every operation carries its operands' errors
 /// times its partial derivatives, and a sum the magnitudes of its terms.
-/// Infinite where a value on the way overflows (a constant beyond `f64`,
-/// say): the final value then bears no bound.
+/// Infinite where a value on the way leaves the normal range of `f64` (a
+/// constant beyond it, say), its rounding then no longer relative: the
+/// final value then bears no bound.
 fn tree_error(store: &Store, root: ExprId, value_of: &dyn Fn(SymbolId) -> f64) -> f64 {
     let nodes = store.reachable(&[root]);
     let values = store.evaluate_many(&nodes, value_of);
-    if values.iter().any(|value| !value.is_finite()) {
+    if values
+        .iter()
+        .any(|&value| value != 0.0 && !value.is_normal())
+    {
         return f64::INFINITY;
     }
     let mut bounds: HashMap<ExprId, (f64, f64)> = HashMap::new();
