@@ -112,9 +112,7 @@ impl Budget {
         }
         !self.is_exhausted()
     }
-}
 
-impl Budget {
     /// True when a product of this `degree` (the highest exponent of an
     /// atom, or multiplicity of a denominator factor, it would have) may be
     /// computed; otherwise false, and the budget is spent, as is every
