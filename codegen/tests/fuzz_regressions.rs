@@ -50,9 +50,7 @@ fn a_model_with_a_tower_of_constant_powers_is_diagnosed() {
 /// -0.343. A degree past `MAX_DEGREE` is now an error.
 #[test]
 fn a_power_past_the_degree_limit_is_rejected_not_wrapped() {
-    let mut cx = Context::new();
-    let x = cx.declare("x", SymbolKind::Coordinate);
-    let x = cx.symbol(x);
+    let (mut cx, x) = context_with_x();
     let power = |cx: &mut Context, base, n: i64| cx.pow(base, Rational::integer(n)).unwrap();
     let high = power(&mut cx, x, 412_316_860_416);
     let difference = cx.sub(high, x);
@@ -60,9 +58,7 @@ fn a_power_past_the_degree_limit_is_rejected_not_wrapped() {
     let degree_too_large = Err(SymError::DegreeTooLarge { limit: MAX_DEGREE });
     assert_eq!(cx.normal(cube), degree_too_large);
 
-    let mut cx = Context::new();
-    let x = cx.declare("x", SymbolKind::Coordinate);
-    let x = cx.symbol(x);
+    let (mut cx, x) = context_with_x();
     let at_the_limit = power(&mut cx, x, i64::from(MAX_DEGREE));
     let form = cx
         .normal(at_the_limit)
@@ -75,9 +71,7 @@ fn a_power_past_the_degree_limit_is_rejected_not_wrapped() {
 /// squares the factor's multiplicity up past `MAX_DEGREE`.
 #[test]
 fn a_denominator_past_the_degree_limit_is_rejected() {
-    let mut cx = Context::new();
-    let x = cx.declare("x", SymbolKind::Coordinate);
-    let x = cx.symbol(x);
+    let (mut cx, x) = context_with_x();
     let one = cx.integer(1);
     let sum = cx.add2(x, one);
     let power = cx.pow(sum, Rational::integer(-80_000)).unwrap();
@@ -144,4 +138,12 @@ fn a_rational_power_of_a_perfect_power_is_limited_too() {
         .pow(four, Rational::new(5, 2).expect("a fraction"))
         .expect("within the limit");
     assert_eq!(store.as_number(small), Some(&Rational::integer(32)));
+}
+
+/// A fresh context with the coordinate `x`, and `x`.
+fn context_with_x() -> (Context, ExprId) {
+    let mut cx = Context::new();
+    let x = cx.declare("x", SymbolKind::Coordinate);
+    let x = cx.symbol(x);
+    (cx, x)
 }
