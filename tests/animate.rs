@@ -262,11 +262,11 @@ fn the_page_runs_in_headless_chromium() {
     let scene = scene();
     let html = page(&scene).unwrap();
     let directory = scratch("animate");
-    std::fs::write(directory.join("animation.html"), &html).unwrap();
-    let copy = directory.join("probed.html");
+    std::fs::write(directory.path().join("animation.html"), &html).unwrap();
+    let copy = directory.path().join("probed.html");
     std::fs::write(&copy, probed(&html, PROBE)).unwrap();
 
-    let dom = dump_dom(&chromium, &copy, &directory.join("profile"));
+    let dom = dump_dom(&chromium, &copy, &directory.path().join("profile"));
     let result = probe_result(&dom);
 
     assert_eq!(result["errors"], Value::Array(vec![]), "errors in the page");
@@ -476,5 +476,4 @@ fn the_page_runs_in_headless_chromium() {
         (&Value::from("Pause"), &Value::from("Play")),
         "{keys}"
     );
-    let _ = std::fs::remove_dir_all(&directory);
 }

@@ -167,7 +167,8 @@ fn runs() -> &'static Runs {
             .collect();
         let probes = chromium().map(|chromium| {
             let pages: Vec<&str> = runs.iter().map(|run| run.page.as_str()).collect();
-            probe_pages(&chromium, &pages, PROBE, &scratch("animation"))
+            let probe_directory = scratch("animation-probe");
+            probe_pages(&chromium, &pages, PROBE, probe_directory.path())
         });
         Runs { runs, probes }
     })
@@ -466,19 +467,19 @@ fn a_model_with_nothing_to_draw_is_not_animated() {
         "0.1",
         "--animate",
         "--out",
-        directory.to_str().unwrap(),
+        directory.path().to_str().unwrap(),
     ]);
     assert!(!output.status.success());
     let stderr = String::from_utf8_lossy(&output.stderr);
     let expected = format!("error: `{model}` has nothing to draw");
     assert!(stderr.starts_with(&expected), "{stderr}");
-    assert!(!directory.join("trajectory.csv").exists());
+    assert!(!directory.path().join("trajectory.csv").exists());
 }
 
 #[test]
 fn a_model_file_s_bad_drawing_items_are_reported_at_their_tokens() {
     let directory = scratch("animation-bad-drawing");
-    let file = directory.join("sleigh.model");
+    let file = directory.path().join("sleigh.model");
     let text = include_str!("../models/sleigh.model")
         .replace("heading = theta,\n", "heading = theta, colour = 1,\n")
         .replace("mass_center = sphere", "sled = sphere");
@@ -499,5 +500,5 @@ fn a_model_file_s_bad_drawing_items_are_reported_at_their_tokens() {
     ] {
         assert!(stderr.contains(&expected), "{expected}\nin\n{stderr}");
     }
-    assert!(!directory.join("animation.html").exists());
+    assert!(!directory.path().join("animation.html").exists());
 }

@@ -1,28 +1,22 @@
 //! The build-script door: a `.model` file becomes Rust source, and a broken
 //! file is reported with its path, line and column.
 
+use crate::support::scratch;
 use chaplygin_codegen::{BuildError, Builder};
 
 const SLEIGH: &str = include_str!("../models/sleigh.model");
 
-fn scratch_directory(name: &str) -> std::path::PathBuf {
-    let directory =
-        std::env::temp_dir().join(format!("chaplygin-door-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&directory).expect("temporary directory");
-    directory
-}
-
 #[test]
 fn a_model_file_becomes_rust_source() {
-    let directory = scratch_directory("good");
-    let file = directory.join("sleigh.model");
+    let directory = scratch("door-good");
+    let file = directory.path().join("sleigh.model");
     std::fs::write(&file, SLEIGH).expect("write");
     let written = Builder::new()
         .model_file(&file)
-        .out_dir(&directory)
+        .out_dir(directory.path())
         .write_to_out_dir()
         .expect("generates");
-    assert_eq!(written, [directory.join("sleigh.rs")]);
+    assert_eq!(written, [directory.path().join("sleigh.rs")]);
     let source = std::fs::read_to_string(&written[0]).expect("read");
     assert!(source.contains("pub struct Sleigh"));
     assert!(source.contains("fn constraint_residual"));
@@ -31,15 +25,15 @@ fn a_model_file_becomes_rust_source() {
 
 #[test]
 fn a_broken_model_file_is_reported_with_file_line_and_column() {
-    let directory = scratch_directory("broken");
-    let file = directory.join("sleigh.model");
+    let directory = scratch("door-broken");
+    let file = directory.path().join("sleigh.model");
     // Line 9: the blade constraint, with a velocity squared (not linear).
     let broken = SLEIGH.replace("cos(theta)*dot(y)]", "cos(theta)*dot(y)^2]");
     assert_ne!(broken, SLEIGH);
     std::fs::write(&file, &broken).expect("write");
     let error = Builder::new()
         .model_file(&file)
-        .out_dir(&directory)
+        .out_dir(directory.path())
         .write_to_out_dir()
         .expect_err("rejected");
     let BuildError::Model { path, rendered } = &error else {
@@ -70,7 +64,7 @@ fn a_broken_model_file_is_reported_with_file_line_and_column() {
     std::fs::write(&file, &twice).expect("write");
     let error = Builder::new()
         .model_file(&file)
-        .out_dir(&directory)
+        .out_dir(directory.path())
         .write_to_out_dir()
         .expect_err("rejected");
     assert_eq!(error.to_string().lines().count(), 2, "{error}");

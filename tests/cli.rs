@@ -7,7 +7,8 @@
 //! the paper in `tests/bicycle.rs`).
 
 use crate::support::canonical_form::{assert_entries, printed_matrix};
-use std::path::{Path, PathBuf};
+use crate::support::scratch;
+use std::path::Path;
 use std::process::{Command, Output};
 
 fn chaplygin(arguments: &[&str]) -> Output {
@@ -23,14 +24,6 @@ fn stdout(output: &Output) -> String {
 
 fn stderr(output: &Output) -> String {
     String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-/// A fresh directory for one test's output.
-fn scratch(name: &str) -> PathBuf {
-    let directory =
-        std::env::temp_dir().join(format!("chaplygin-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&directory);
-    directory
 }
 
 /// A CSV's header and rows.
@@ -87,19 +80,19 @@ const SNAKEBOARD_ROLLING: [&str; 10] = [
 ];
 
 /// The CSV of a successful `chaplygin simulate` with `arguments`, written
-/// into a scratch directory called `name`.
+/// into a scratch directory named after `name`.
 fn simulated(name: &str, arguments: &[&str]) -> Csv {
-    let out = scratch(name);
+    let out = scratch(&format!("cli-{name}"));
     let mut all = vec!["simulate"];
     all.extend(arguments);
-    all.extend(["--out", out.to_str().unwrap()]);
+    all.extend(["--out", out.path().to_str().unwrap()]);
     let output = chaplygin(&all);
     assert!(
         output.status.success(),
         "{arguments:?}: {}",
         stderr(&output)
     );
-    read_csv(&out.join("trajectory.csv"))
+    read_csv(&out.path().join("trajectory.csv"))
 }
 
 #[test]
@@ -153,7 +146,7 @@ fn derive_prints_the_reduced_equations_as_text() {
 
 #[test]
 fn the_controlled_snakeboard_keeps_its_energy_in_the_csv() {
-    let out = scratch("energy");
+    let out = scratch("cli-energy");
     let output = chaplygin(&[
         "simulate",
         "snakeboard",
@@ -164,10 +157,10 @@ fn the_controlled_snakeboard_keeps_its_energy_in_the_csv() {
         "--t-end",
         "20",
         "--out",
-        out.to_str().unwrap(),
+        out.path().to_str().unwrap(),
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
-    let (header, rows) = read_csv(&out.join("trajectory.csv"));
+    let (header, rows) = read_csv(&out.path().join("trajectory.csv"));
     assert_eq!(
         header.join(","),
         "t,x,y,theta,psi,phi,group,torso,wheels,xt,xw,u_torso,u_wheels,energy,constraint_residual"
@@ -192,7 +185,7 @@ fn the_controlled_snakeboard_keeps_its_energy_in_the_csv() {
         "constraint_residual.png",
         "figure4.png",
     ] {
-        let bytes = std::fs::read(out.join(plot)).expect("the plot exists");
+        let bytes = std::fs::read(out.path().join(plot)).expect("the plot exists");
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{plot}");
     }
 }
@@ -228,7 +221,7 @@ fn a_model_file_on_the_interpreter_runs_the_built_ins_trajectory_on_the_jit() {
 #[test]
 fn the_same_command_writes_the_same_bytes() {
     let csv = |name: &str| {
-        let out = scratch(name);
+        let out = scratch(&format!("cli-{name}"));
         let output = chaplygin(&[
             "simulate",
             "sleigh",
@@ -237,10 +230,10 @@ fn the_same_command_writes_the_same_bytes() {
             "--t-end",
             "3",
             "--out",
-            out.to_str().unwrap(),
+            out.path().to_str().unwrap(),
         ]);
         assert!(output.status.success(), "{}", stderr(&output));
-        std::fs::read(out.join("trajectory.csv")).unwrap()
+        std::fs::read(out.path().join("trajectory.csv")).unwrap()
     };
     assert_eq!(csv("first"), csv("second"));
 }
@@ -300,9 +293,9 @@ fn driven_into_phi_pi_2(model: &str, out: &Path) -> Output {
 
 #[test]
 fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
-    let out = scratch("singular");
+    let out = scratch("cli-singular");
     // phi'' = u_wheels / jw = 1 from phi = 1.2, phidot = 0.5: phi reaches pi/2 near t = 0.5
-    let output = driven_into_phi_pi_2("snakeboard", &out);
+    let output = driven_into_phi_pi_2("snakeboard", out.path());
     assert_one_line_error(
         &output,
         &[
@@ -312,7 +305,7 @@ fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
             "det[A; V^T]",
         ],
     );
-    let (header, rows) = read_csv(&out.join("trajectory.csv"));
+    let (header, rows) = read_csv(&out.path().join("trajectory.csv"));
     // t, the state, the inputs, energy, constraint_residual and chart
     assert_eq!(header.len(), 1 + 8 + 2 + 2 + 1);
     assert!(rows.len() > 10 && rows.iter().flatten().all(|v| v.is_finite()));
@@ -326,9 +319,9 @@ fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
 #[test]
 fn a_model_file_stops_at_the_singular_configuration_too() {
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
-    let out = scratch("singular-file");
+    let out = scratch("cli-singular-file");
     // From rest at phi = 1.2, phi'' = u_wheels / jw = 1: phi = pi/2 at t = 0.86.
-    let output = driven_into_phi_pi_2(file, &out);
+    let output = driven_into_phi_pi_2(file, out.path());
     assert_one_line_error(
         &output,
         &[
@@ -347,7 +340,7 @@ fn a_model_file_stops_at_the_singular_configuration_too() {
         "--initial",
         "phi=1.5707963267948966",
         "--out",
-        out.to_str().unwrap(),
+        out.path().to_str().unwrap(),
     ]);
     assert_one_line_error(
         &output,
@@ -408,9 +401,8 @@ fn the_momentum_formulation_of_a_model_file_follows_the_built_in() {
         .filter(|line| !line.trim_start().starts_with("symmetry:"))
         .map(|line| format!("{line}\n"))
         .collect();
-    let directory = scratch("no-symmetry");
-    std::fs::create_dir_all(&directory).unwrap();
-    let path = directory.join("sleigh.model");
+    let directory = scratch("cli-no-symmetry");
+    let path = directory.path().join("sleigh.model");
     std::fs::write(&path, without_symmetry).unwrap();
     assert_one_line_error(
         &chaplygin(&[
@@ -438,7 +430,7 @@ fn racer(
     integrator: &str,
     arguments: &[&str],
 ) -> (Output, Option<Csv>) {
-    let out = scratch(&format!("racer-{name}-{formulation}-{integrator}"));
+    let out = scratch(&format!("cli-racer-{name}-{formulation}-{integrator}"));
     let mut all = vec![
         "simulate",
         RACER,
@@ -447,11 +439,11 @@ fn racer(
         "--integrator",
         integrator,
         "--out",
-        out.to_str().unwrap(),
+        out.path().to_str().unwrap(),
     ];
     all.extend(arguments);
     let output = chaplygin(&all);
-    let csv = out.join("trajectory.csv");
+    let csv = out.path().join("trajectory.csv");
     let table = csv.exists().then(|| read_csv(&csv));
     (output, table)
 }
@@ -516,14 +508,14 @@ fn the_default_integrator_keeps_the_sleighs_energy_and_is_named() {
             .expect(summary);
         after.split(';').next().unwrap().parse().unwrap()
     };
-    let out = scratch("default-integrator");
+    let out = scratch("cli-default-integrator");
     let output = chaplygin(&[
         "simulate",
         "sleigh",
         "--t-end",
         "20",
         "--out",
-        out.to_str().unwrap(),
+        out.path().to_str().unwrap(),
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
     let summary = stdout(&output);
@@ -540,7 +532,7 @@ fn the_default_integrator_keeps_the_sleighs_energy_and_is_named() {
         "--t-end",
         "1",
         "--out",
-        out.to_str().unwrap(),
+        out.path().to_str().unwrap(),
     ]);
     assert!(
         stdout(&output).contains("steps of midpoint"),
@@ -553,7 +545,7 @@ fn the_default_integrator_keeps_the_sleighs_energy_and_is_named() {
 /// constraints: the sleigh's blade gives `dot(y) = tan(theta) dot(x)`.
 #[test]
 fn initial_velocities_not_given_are_solved_from_the_constraints() {
-    let out = scratch("solved-initial");
+    let out = scratch("cli-solved-initial");
     let output = chaplygin(&[
         "simulate",
         "sleigh",
@@ -568,10 +560,10 @@ fn initial_velocities_not_given_are_solved_from_the_constraints() {
         "--t-end",
         "0.1",
         "--out",
-        out.to_str().unwrap(),
+        out.path().to_str().unwrap(),
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
-    let (header, rows) = read_csv(&out.join("trajectory.csv"));
+    let (header, rows) = read_csv(&out.path().join("trajectory.csv"));
     let column = |name: &str| header.iter().position(|h| h == name).expect(name);
     assert!((rows[0][column("dot(y)")] - 0.5f64.tan()).abs() < 1e-15);
     assert_eq!(rows[0][column("dot(theta)")], 0.2);
@@ -637,7 +629,7 @@ fn printed_intervals(text: &str, kind: &str) -> Vec<((f64, f64), (f64, f64))> {
 /// to 0, and the neutral point `v = 0`.
 #[test]
 fn linearize_sweeps_write_the_eigenvalues_and_the_stable_intervals() {
-    let out = scratch("sweep");
+    let out = scratch("cli-sweep");
     let output = chaplygin(&[
         "linearize",
         "sleigh",
@@ -652,10 +644,10 @@ fn linearize_sweeps_write_the_eigenvalues_and_the_stable_intervals() {
         "--param",
         "a=0.4",
         "--out",
-        out.to_str().unwrap(),
+        out.path().to_str().unwrap(),
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
-    let (header, rows) = read_csv(&out.join("eigenvalues.csv"));
+    let (header, rows) = read_csv(&out.path().join("eigenvalues.csv"));
     assert_eq!(header, ["v", "re_1", "im_1", "re_2", "im_2"]);
     assert_eq!(rows.len(), 9);
     for row in &rows {
@@ -665,7 +657,7 @@ fn linearize_sweeps_write_the_eigenvalues_and_the_stable_intervals() {
         assert!((row[3] - second).abs() < 1e-10, "{row:?}");
         assert_eq!((row[2], row[4]), (0.0, 0.0));
     }
-    let bytes = std::fs::read(out.join("eigenvalues.png")).expect("the plot exists");
+    let bytes = std::fs::read(out.path().join("eigenvalues.png")).expect("the plot exists");
     assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
     let text = stdout(&output);
     let stable = printed_intervals(&text, "asymptotically stable");
@@ -688,7 +680,7 @@ fn linearize_sweeps_write_the_eigenvalues_and_the_stable_intervals() {
 /// Nowhere is it asymptotically stable: rolling conserves energy.
 #[test]
 fn the_upright_disk_is_neutrally_stable_above_its_critical_spin() {
-    let out = scratch("disk-sweep");
+    let out = scratch("cli-disk-sweep");
     let output = chaplygin(&[
         "linearize",
         "rolling-disk-3d",
@@ -703,7 +695,7 @@ fn the_upright_disk_is_neutrally_stable_above_its_critical_spin() {
         "--sweep",
         "w=1:4:0.5",
         "--out",
-        out.to_str().unwrap(),
+        out.path().to_str().unwrap(),
     ]);
     assert!(output.status.success(), "{}", stderr(&output));
     let text = stdout(&output);
@@ -795,9 +787,8 @@ fn tilting_disk_text() -> String {
 /// (the classical lean equation, quoted in `models/tests/linearization.rs`).
 #[test]
 fn linearize_runs_a_model_file_with_a_rotation_symmetry() {
-    let directory = scratch("tilting-disk");
-    std::fs::create_dir_all(&directory).unwrap();
-    let path = directory.join("disk.model");
+    let directory = scratch("cli-tilting-disk");
+    let path = directory.path().join("disk.model");
     std::fs::write(&path, tilting_disk_text()).unwrap();
     let output = chaplygin(&[
         "linearize",
@@ -845,12 +836,12 @@ fn assert_kept_run(
 ) -> Csv {
     let context = format!("{model} {arguments:?}");
     let out = scratch(&format!(
-        "kept-{}",
+        "cli-kept-{}",
         arguments.join("-").replace(['(', ')', '='], "")
     ));
     let mut all = vec!["simulate", model];
     all.extend(arguments);
-    all.extend(["--out", out.to_str().unwrap()]);
+    all.extend(["--out", out.path().to_str().unwrap()]);
     let output = chaplygin(&all);
     assert!(output.status.success(), "{context}: {}", stderr(&output));
     assert!(
@@ -858,7 +849,7 @@ fn assert_kept_run(
         "{context}: {}",
         stdout(&output)
     );
-    let table = read_csv(&out.join("trajectory.csv"));
+    let table = read_csv(&out.path().join("trajectory.csv"));
     let columns: Vec<&str> = table.0.iter().map(String::as_str).collect();
     let ending = match columns[..] {
         [.., last, "chart"] => last,
@@ -879,7 +870,6 @@ fn assert_kept_run(
         .map(|e| ((e - energy[0]) / energy[0]).abs())
         .fold(0.0, f64::max);
     assert!(drift <= energy_bound, "{context}: energy drift {drift:e}");
-    let _ = std::fs::remove_dir_all(&out);
     table
 }
 

@@ -6,24 +6,21 @@
 //! everywhere is never changed; a declared momentum basis hands over to a
 //! run-time chart where it degenerates.
 
-use crate::support::{chaplygin, column, read_csv};
+use crate::support::{chaplygin, column, read_csv, scratch};
 use std::f64::consts::PI;
-use std::path::PathBuf;
 
 const FIXTURE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/tests/models/sleigh_no_symmetry.model"
 );
 
-/// Runs `simulate` with `arguments` into a fresh directory `name`: the
-/// summary line, the CSV's header and its rows.
+/// Runs `simulate` with `arguments` into a scratch directory named after
+/// `name`: the summary line, the CSV's header and its rows.
 fn simulate(name: &str, arguments: &[&str]) -> (String, Vec<String>, Vec<Vec<f64>>) {
-    let out: PathBuf =
-        std::env::temp_dir().join(format!("chaplygin-charts-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let out = scratch(&format!("charts-{name}"));
     let mut all = vec!["simulate"];
     all.extend(arguments);
-    all.extend(["--out", out.to_str().expect("path")]);
+    all.extend(["--out", out.path().to_str().expect("path")]);
     let output = chaplygin(&all);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{arguments:?}: {stderr}");
@@ -32,7 +29,7 @@ fn simulate(name: &str, arguments: &[&str]) -> (String, Vec<String>, Vec<Vec<f64
         .next()
         .expect("a summary line")
         .to_string();
-    let (header, rows) = read_csv(&out.join("trajectory.csv"));
+    let (header, rows) = read_csv(&out.path().join("trajectory.csv"));
     (summary, header, rows)
 }
 
@@ -123,7 +120,8 @@ pub struct TanSleigh {
 /// difference falls about 4 times when the step halves.
 #[test]
 fn a_declared_basis_hands_over_to_a_run_time_chart_where_it_degenerates() {
-    let model = std::env::temp_dir().join(format!("tan-sleigh-{}.model", std::process::id()));
+    let directory = scratch("charts-tan-sleigh");
+    let model = directory.path().join("tan_sleigh.model");
     std::fs::write(&model, TAN_SLEIGH).expect("written");
     let model = model.to_str().expect("a UTF-8 path");
     let start = [

@@ -4,25 +4,22 @@
 //! same numbers, since both run the same programs with the same operations;
 //! the summary names the engine. The built-ins run from their text too.
 
-use crate::support::chaplygin;
 use crate::support::in_process::Model;
-use std::path::PathBuf;
+use crate::support::{chaplygin, scratch};
 
 const BICYCLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/bicycle.model");
 const CASTER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/caster_robot.model");
 
-/// Runs `chaplygin` with `arguments` and `--out` a fresh directory `name`:
-/// standard output, and the directory.
-fn run(name: &str, arguments: &[&str]) -> (String, PathBuf) {
-    let out: PathBuf =
-        std::env::temp_dir().join(format!("chaplygin-engine-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+/// Runs `chaplygin` with `arguments` and `--out` a scratch directory named
+/// after `name`: its standard output.
+fn run(name: &str, arguments: &[&str]) -> String {
+    let out = scratch(&format!("engine-{name}"));
     let mut all = arguments.to_vec();
-    all.extend(["--out", out.to_str().expect("path")]);
+    all.extend(["--out", out.path().to_str().expect("path")]);
     let output = chaplygin(&all);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{arguments:?}: {stderr}");
-    (String::from_utf8_lossy(&output.stdout).into_owned(), out)
+    String::from_utf8_lossy(&output.stdout).into_owned()
 }
 
 /// The summary line without its wall time.
@@ -109,8 +106,8 @@ fn the_jit_linearizes_as_the_interpreter_does() {
             engine,
         ]
     };
-    let (jit, _) = run("linearize-jit", &arguments("jit"));
-    let (interpreted, _) = run("linearize-interpret", &arguments("interpret"));
+    let jit = run("linearize-jit", &arguments("jit"));
+    let interpreted = run("linearize-interpret", &arguments("interpret"));
     assert!(jit.contains("asymptotically stable: yes"), "{jit}");
     assert_eq!(jit, interpreted);
 }
@@ -120,7 +117,7 @@ fn the_jit_linearizes_as_the_interpreter_does() {
 #[test]
 fn the_summary_names_the_engine_of_each_built_in() {
     let engine_of = |model: &str| {
-        let (stdout, _) = run(
+        let stdout = run(
             &format!("built-in-{model}"),
             &["simulate", model, "--t-end", "0.05"],
         );
@@ -130,7 +127,7 @@ fn the_summary_names_the_engine_of_each_built_in() {
     assert!(caster.contains("engine jit"), "{caster}");
     assert!(engine_of("bicycle").contains("engine jit"));
     assert!(engine_of("snakeboard").contains("engine jit"));
-    let (interpreted, _) = run(
+    let interpreted = run(
         "built-in-interpreted",
         &[
             "simulate",
@@ -142,7 +139,7 @@ fn the_summary_names_the_engine_of_each_built_in() {
         ],
     );
     assert!(summary_without_time(&interpreted).contains("engine interpret"));
-    let (file, _) = run(
+    let file = run(
         "caster-file",
         &[
             "simulate",

@@ -7,7 +7,7 @@
 
 use crate::support::snakeboard_gait::{GAIT, hand_derived_cycle, rk4_from_zero};
 
-use crate::support::{chaplygin, read_csv};
+use crate::support::{chaplygin, read_csv, scratch};
 use std::f64::consts::PI;
 
 /// The three-link snake's loop `a1 = 0.8 + 0.35 cos t`, `a2 = -0.3 +
@@ -56,12 +56,12 @@ fn displacement(stdout: &str) -> [f64; 3] {
 
 #[test]
 fn the_snakeboards_cycle_moves_it_as_the_hand_derived_equations_do() {
-    let out = std::env::temp_dir().join(format!("chaplygin-gait-{}", std::process::id()));
+    let out = scratch("gait");
     assert_eq!(GAIT[8], format!("{}", 2.0 * PI));
     let arguments = [
         &["gait"],
         &GAIT[..],
-        &["--cycles", "2", "--out", out.to_str().unwrap()],
+        &["--cycles", "2", "--out", out.path().to_str().unwrap()],
     ];
     let stdout = succeeded(&arguments.concat());
     let moved = displacement(&stdout);
@@ -76,21 +76,22 @@ fn the_snakeboards_cycle_moves_it_as_the_hand_derived_equations_do() {
     // From rest the board ends the cycle at rest: the second cycle repeats
     // the first in its own frame.
     assert!(stdout.contains("cycle 2: x = -0.80702920679"), "{stdout}");
-    let (header, rows) = read_csv(&out.join("cycle.csv"));
+    let (header, rows) = read_csv(&out.path().join("cycle.csv"));
     assert_eq!(header, ["t", "x", "y", "theta", "psi", "phi", "p1"]);
     assert_eq!(rows.len(), 2 * 2000 + 1);
     let last = rows.last().unwrap();
     assert!((last[0] - 4.0 * PI).abs() < 1e-12 && (last[5] - 0.5).abs() < 1e-12);
-    assert!(std::fs::metadata(out.join("gait_path.png")).unwrap().len() > 10_000);
+    let gait_path = std::fs::metadata(out.path().join("gait_path.png")).unwrap();
+    assert!(gait_path.len() > 10_000);
     assert!(
-        !out.join("curvature.png").exists(),
+        !out.path().join("curvature.png").exists(),
         "the snakeboard carries momentum"
     );
 }
 
 #[test]
 fn the_snakes_cycle_moves_it_as_its_hand_derived_connection_does() {
-    let out = std::env::temp_dir().join(format!("chaplygin-gait-snake-{}", std::process::id()));
+    let out = scratch("gait-snake");
     let period = format!("{}", 2.0 * PI);
     let stdout = succeeded(&[
         "gait",
@@ -104,7 +105,7 @@ fn the_snakes_cycle_moves_it_as_its_hand_derived_connection_does() {
         "--period",
         &period,
         "--out",
-        out.to_str().unwrap(),
+        out.path().to_str().unwrap(),
     ]);
     let moved = displacement(&stdout);
     let expected = hand_derived_snake_cycle(20_000);
@@ -112,7 +113,7 @@ fn the_snakes_cycle_moves_it_as_its_hand_derived_connection_does() {
     for (ours, theirs) in moved.iter().zip(&expected) {
         assert!((ours - theirs).abs() < 1e-8, "{moved:?} vs {expected:?}");
     }
-    let plot = std::fs::read(out.join("curvature.png")).expect("curvature.png");
+    let plot = std::fs::read(out.path().join("curvature.png")).expect("curvature.png");
     assert_eq!(&plot[1..4], b"PNG");
     let (width, height) = (&plot[16..20], &plot[20..24]);
     assert_eq!(

@@ -2,7 +2,7 @@
 //! `derive` shows what the mechanism sections derived, a broken mechanism
 //! file is reported at its `file:line:col`.
 
-use crate::support::{chaplygin, read_csv};
+use crate::support::{chaplygin, read_csv, scratch};
 
 #[test]
 fn list_offers_the_mechanisms() {
@@ -38,9 +38,8 @@ fn derive_shows_the_derived_energies_and_contact_rows() {
 
 #[test]
 fn a_broken_mechanism_file_is_reported_at_its_token() {
-    let directory = std::env::temp_dir().join(format!("cli-mechanism-{}", std::process::id()));
-    std::fs::create_dir_all(&directory).expect("directory");
-    let file = directory.join("disk.model");
+    let directory = scratch("cli-mechanism-broken");
+    let file = directory.path().join("disk.model");
     let text =
         include_str!("../models/rolling_disk_3d.model").replace("rotate(lean, y", "rotate(lean, w");
     std::fs::write(&file, &text).expect("write");
@@ -66,21 +65,15 @@ fn a_broken_mechanism_file_is_reported_at_its_token() {
         message.contains(&expected),
         "{message}\nexpected {expected}"
     );
-    std::fs::remove_dir_all(&directory).expect("clean up");
-}
-
-/// A scratch directory of this test process.
-fn scratch(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("cli-mechanism-{name}-{}", std::process::id()))
 }
 
 /// Runs `simulate` into a scratch directory and returns the trajectory's
 /// and the tracks' tables (`path.png` is drawn for a model with `x` and `y`).
 fn simulate_tracks(name: &str, arguments: &[&str]) -> [(Vec<String>, Vec<Vec<f64>>); 2] {
-    let out = scratch(name);
+    let out = scratch(&format!("cli-mechanism-{name}"));
     let mut all = vec!["simulate"];
     all.extend(arguments);
-    all.extend(["--out", out.to_str().expect("path")]);
+    all.extend(["--out", out.path().to_str().expect("path")]);
     let output = chaplygin(&all);
     assert!(
         output.status.success(),
@@ -90,18 +83,17 @@ fn simulate_tracks(name: &str, arguments: &[&str]) -> [(Vec<String>, Vec<Vec<f64
     let stdout = String::from_utf8_lossy(&output.stdout).to_string();
     assert!(stdout.contains("tracks.csv"), "{stdout}");
     let tables = [
-        read_csv(&out.join("trajectory.csv")),
-        read_csv(&out.join("tracks.csv")),
+        read_csv(&out.path().join("trajectory.csv")),
+        read_csv(&out.path().join("tracks.csv")),
     ];
     let planar = ["x", "y"]
         .iter()
         .all(|c| tables[0].0.iter().any(|n| n == c));
     assert_eq!(
-        out.join("path.png").exists(),
+        out.path().join("path.png").exists(),
         planar,
         "the tracks go with the path plot"
     );
-    std::fs::remove_dir_all(&out).expect("clean up");
     tables
 }
 
@@ -229,10 +221,10 @@ fn simulate_names_a_length_constraint_no_height_meets_with_its_residual() {
             Some("-6e-1"),
         ),
     ] {
-        let out = scratch("pendulum-impossible");
+        let out = scratch("cli-mechanism-pendulum-impossible");
         let mut arguments = vec!["simulate", PENDULUM];
         arguments.extend(&initial);
-        arguments.extend(["--out", out.to_str().expect("path")]);
+        arguments.extend(["--out", out.path().to_str().expect("path")]);
         let output = chaplygin(&arguments);
         assert!(!output.status.success());
         let message = String::from_utf8_lossy(&output.stderr).to_string();
@@ -255,7 +247,7 @@ fn simulate_names_a_length_constraint_no_height_meets_with_its_residual() {
             }
         }
         assert!(
-            !out.join("trajectory.csv").exists(),
+            !out.path().join("trajectory.csv").exists(),
             "no trajectory is written"
         );
     }

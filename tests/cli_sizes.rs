@@ -8,8 +8,7 @@
 //! blade runs on the circle `x = (v/w) sin(w t)`, `y = (v/w) (1 - cos(w t))`,
 //! `theta = w t`, and each cart moves at its own constant speed.
 
-use crate::support::{chaplygin, read_csv};
-use std::path::PathBuf;
+use crate::support::{chaplygin, read_csv, scratch};
 
 const CARTS: usize = 14;
 const SPEED: f64 = 1.0;
@@ -40,20 +39,15 @@ fn cart_speed(i: usize) -> f64 {
 
 /// The final row of a run of `formulation` with RK4, by column name.
 fn final_state(formulation: &str) -> (Vec<String>, Vec<f64>) {
-    let dir: PathBuf = std::env::temp_dir().join(format!(
-        "chaplygin-sizes-{}-{formulation}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("a directory");
-    let model = dir.join("knife_and_carts.model");
+    let dir = scratch(&format!("sizes-{formulation}"));
+    let model = dir.path().join("knife_and_carts.model");
     std::fs::write(&model, knife_and_carts()).expect("the model file");
     let initial: Vec<String> = [format!("dot(x)={SPEED}"), format!("dot(theta)={TURN}")]
         .into_iter()
         .chain((1..=CARTS).map(|i| format!("dot(z{i})={}", cart_speed(i))))
         .flat_map(|value| ["--initial".to_string(), value])
         .collect();
-    let out = dir.join("out");
+    let out = dir.path().join("out");
     let t_end = T_END.to_string();
     let mut arguments = vec![
         "simulate",

@@ -14,9 +14,10 @@
 //! recorded inputs run the binary.
 
 use crate::support::in_process::Model;
-use crate::support::{chaplygin, read_csv};
+use crate::support::{chaplygin, read_csv, scratch};
 use std::f64::consts::PI;
 use std::process::Output;
+use tempfile::TempDir;
 
 const SLEIGH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
 const DISK: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/rolling_disk.model");
@@ -50,14 +51,13 @@ impl Run {
     }
 }
 
-/// The output of `chaplygin simulate` with `arguments`, written into a
-/// fresh directory `name`.
-fn output(name: &str, arguments: &[&str]) -> (Output, std::path::PathBuf) {
-    let out = std::env::temp_dir().join(format!("chaplygin-stop-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+/// The output of `chaplygin simulate` with `arguments`, and the scratch
+/// directory named after `name` it wrote into (removed when dropped).
+fn output(name: &str, arguments: &[&str]) -> (Output, TempDir) {
+    let out = scratch(&format!("stop-{name}"));
     let mut all = vec!["simulate"];
     all.extend(arguments);
-    all.extend(["--out", out.to_str().expect("a UTF-8 path")]);
+    all.extend(["--out", out.path().to_str().expect("a UTF-8 path")]);
     (chaplygin(&all), out)
 }
 
@@ -74,7 +74,7 @@ fn simulate(name: &str, arguments: &[&str]) -> Run {
         .next()
         .expect("a summary line")
         .to_string();
-    let (header, rows) = read_csv(&out.join("trajectory.csv"));
+    let (header, rows) = read_csv(&out.path().join("trajectory.csv"));
     Run {
         summary,
         header,

@@ -8,7 +8,7 @@
 //! from `phi = 0.5` (no force acts on `phi`), `phi` crosses 1 at
 //! `t = 5/7`, inside the step to `t = 0.72`.
 
-use crate::support::{chaplygin, read_csv};
+use crate::support::{chaplygin, read_csv, scratch};
 use chaplygin::runtime::integrate::Rk4;
 use chaplygin::runtime::record::Table;
 use chaplygin::runtime::simulate::{RECONSTRUCTION, Simulation, SimulationError};
@@ -79,9 +79,8 @@ fn simulate(formulation: &str, out: &std::path::Path) -> std::process::Output {
 
 #[test]
 fn the_interpreted_momentum_form_stops_there_and_the_lagrange_form_runs_on() {
-    let out = std::env::temp_dir().join(format!("chaplygin-lever-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    let output = simulate("momentum", &out);
+    let out = scratch("lever");
+    let output = simulate("momentum", out.path());
     assert!(!output.status.success());
     let message = String::from_utf8_lossy(&output.stderr);
     assert_eq!(message.trim_end().lines().count(), 1, "{message}");
@@ -92,11 +91,11 @@ fn the_interpreted_momentum_form_stops_there_and_the_lagrange_form_runs_on() {
     ] {
         assert!(message.contains(needle), "`{needle}` not in {message}");
     }
-    let (_, rows) = read_csv(&out.join("trajectory.csv"));
+    let (_, rows) = read_csv(&out.path().join("trajectory.csv"));
     let last = rows.last().expect("the rows so far");
     assert!(last[0] < 0.72 && rows.len() > 50, "{last:?}");
     assert!(rows.iter().flatten().all(|v| v.is_finite()));
-    let output = simulate("lagrange", &out);
+    let output = simulate("lagrange", out.path());
     assert!(
         output.status.success(),
         "{}",

@@ -2,6 +2,7 @@
 //! script writes for the model (docs/INTERFACE.md section 3), for a model
 //! file and for a built-in by name.
 
+use crate::support::scratch;
 use std::path::Path;
 use std::process::Command;
 
@@ -9,16 +10,13 @@ use std::process::Command;
 /// the model file `models/{stem}.model`.
 fn written_by_the_build_script(stem: &str) -> String {
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("models/{stem}.model"));
-    let out_dir = std::env::temp_dir().join(format!("derive-rust-{stem}-{}", std::process::id()));
-    std::fs::create_dir_all(&out_dir).expect("a directory");
+    let out_dir = scratch(&format!("derive-rust-{stem}"));
     let written = chaplygin_codegen::Builder::new()
         .model_file(&file)
-        .out_dir(&out_dir)
+        .out_dir(out_dir.path())
         .write_to_out_dir()
         .expect("the model generates");
-    let code = std::fs::read_to_string(&written[0]).expect("the file is written");
-    std::fs::remove_dir_all(&out_dir).expect("removed");
-    code
+    std::fs::read_to_string(&written[0]).expect("the file is written")
 }
 
 /// The command's standard output, which must succeed.

@@ -75,10 +75,11 @@ fn the_book_builds_without_a_problem_and_its_links_resolve() {
     ) else {
         return;
     };
-    let book = scratch("book");
+    let scratch_directory = scratch("book");
+    let book = scratch_directory.path();
     let output = Command::new(mdbook)
         .args(["build", "docs", "--dest-dir"])
-        .arg(&book)
+        .arg(book)
         .current_dir(root())
         .output()
         .expect("mdbook runs");
@@ -87,14 +88,14 @@ fn the_book_builds_without_a_problem_and_its_links_resolve() {
     let reported = log.lines().any(is_error_or_warning);
     assert!(output.status.success() && !reported, "{log}");
     let mut problems = Vec::new();
-    let built = pages(&book);
+    let built = pages(book);
     assert!(built.len() > 12, "a page per chapter in {}", book.display());
     for page in &built {
         let html = std::fs::read_to_string(page).expect("a page");
         for target in main_links(&html) {
             if let Some(problem) = broken(page, &target, ids) {
                 let shown = page
-                    .strip_prefix(&book)
+                    .strip_prefix(book)
                     .unwrap_or(page)
                     .display()
                     .to_string();

@@ -183,12 +183,12 @@ fn is_example(name: &str) -> bool {
 fn run(index: usize, arguments: &[String]) -> Output {
     let directory = scratch(&format!("guide-command-{index}"));
     for shared in ["models", "examples", "tests"] {
-        std::os::unix::fs::symlink(root().join(shared), directory.join(shared))
+        std::os::unix::fs::symlink(root().join(shared), directory.path().join(shared))
             .expect("a link in the scratch directory");
     }
     Command::new(env!("CARGO_BIN_EXE_chaplygin"))
         .args(arguments)
-        .current_dir(&directory)
+        .current_dir(directory.path())
         .output()
         .expect("the binary runs")
 }

@@ -10,9 +10,11 @@
 //! the list fails the test, and so does a listed circle that is gone, so
 //! the list can only shrink.
 
+use crate::support::scratch;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::{Path, PathBuf};
+use tempfile::TempDir;
 
 /// The circles that remain, each a folder and the exact set of its
 /// children in the loop (`name.rs`, or `name/` for a folder with a
@@ -87,9 +89,9 @@ fn a_circle_between_siblings_is_found_and_named() {
         "outer/other.rs",
         "pub struct Thing;\nconst S: &str = \"super::inner::Y\";\n#[cfg(test)]\nmod tests {\n    use super::super::inner;\n}\n",
     );
-    let found: Vec<(String, Vec<String>)> = circles(&tree.root)
+    let found: Vec<(String, Vec<String>)> = circles(tree.root())
         .into_iter()
-        .map(|circle| circle.named_in(&tree.root, "."))
+        .map(|circle| circle.named_in(tree.root(), "."))
         .collect();
     assert_eq!(
         found,
@@ -115,9 +117,9 @@ fn a_circle_through_a_parents_import_is_found() {
         "outer/right.rs",
         "pub struct Right;\nfn back() { super::left::left(Right) }\n",
     );
-    let found: Vec<(String, Vec<String>)> = circles(&tree.root)
+    let found: Vec<(String, Vec<String>)> = circles(tree.root())
         .into_iter()
-        .map(|circle| circle.named_in(&tree.root, "."))
+        .map(|circle| circle.named_in(tree.root(), "."))
         .collect();
     assert_eq!(
         found,
@@ -669,32 +671,30 @@ fn strongly_connected(graph: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<Str
     components.into_iter().collect()
 }
 
-/// A crate's source tree written under the temporary directory, removed
-/// when dropped.
+/// A crate's source tree written in a scratch directory, removed when
+/// dropped.
 struct SyntheticTree {
-    root: PathBuf,
+    directory: TempDir,
 }
 
 impl SyntheticTree {
+    /// An empty tree in a scratch directory named after `name`.
     fn new(name: &str) -> SyntheticTree {
-        let root = std::env::temp_dir().join(format!(
-            "chaplygin-import-circles-{name}-{}",
-            std::process::id()
-        ));
-        let _ = fs::remove_dir_all(&root);
-        SyntheticTree { root }
+        SyntheticTree {
+            directory: scratch(&format!("import-circles-{name}")),
+        }
     }
 
+    /// The folder the tree's files are written in.
+    fn root(&self) -> &Path {
+        self.directory.path()
+    }
+
+    /// Writes `text` into the tree's `file`, a path relative to its root.
     fn write(&self, file: &str, text: &str) {
-        let path = self.root.join(file);
+        let path = self.root().join(file);
         fs::create_dir_all(path.parent().expect("a file in a folder"))
             .expect("a writable temp dir");
         fs::write(path, text).expect("a writable temp file");
-    }
-}
-
-impl Drop for SyntheticTree {
-    fn drop(&mut self) {
-        let _ = fs::remove_dir_all(&self.root);
     }
 }

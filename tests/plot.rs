@@ -5,12 +5,13 @@
 //! their PNG signature and size, and the structured errors of bad input.
 #![cfg(feature = "cli")]
 
+use crate::support::scratch;
 use chaplygin::plot::{
     Figure4, GaitCurve, PlanarPath, PlotError, PlotSpec, Table, Track, write_gait_comparison,
     write_plots,
 };
 use std::f64::consts::FRAC_PI_2;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 const COLUMNS: [&str; 9] = [
     "t",
@@ -75,13 +76,6 @@ fn figure4() -> Figure4 {
     }
 }
 
-/// A fresh directory under the system's temporary directory.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("chaplygin-plot-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
-
 /// The width and height in a PNG's IHDR chunk, after checking the signature.
 fn png_size(file: &Path) -> (u32, u32) {
     let bytes = std::fs::read(file).unwrap();
@@ -115,9 +109,9 @@ const RED: [u8; 3] = [255, 0, 0];
 
 #[test]
 fn the_curves_and_their_ends_are_drawn() {
-    let dir = scratch("pixels");
+    let dir = scratch("plot-pixels");
     let spec = PlotSpec::default().with_figure4(figure4());
-    let written = write_plots(&trajectory(400), &spec, &dir).unwrap();
+    let written = write_plots(&trajectory(400), &spec, dir.path()).unwrap();
     let [path, energy, residual, figure4] = [0, 1, 2, 3].map(|i| written[i].as_path());
     for file in [path, figure4] {
         let (curve, start, end) = (
@@ -138,16 +132,15 @@ fn the_curves_and_their_ends_are_drawn() {
         let curve = pixels_of(file, BLUE);
         assert!(curve > 500, "{}: {curve} curve pixels", file.display());
     }
-    std::fs::remove_dir_all(dir).unwrap();
 }
 
 #[test]
 fn every_plot_is_a_png_of_the_requested_size() {
-    let dir = scratch("all");
+    let dir = scratch("plot-all");
     let spec = PlotSpec::default()
         .with_figure4(figure4())
         .with_unit("t", "s");
-    let written = write_plots(&trajectory(400), &spec, &dir).unwrap();
+    let written = write_plots(&trajectory(400), &spec, dir.path()).unwrap();
     let names: Vec<_> = written
         .iter()
         .map(|file| file.file_name().unwrap().to_str().unwrap())
@@ -162,28 +155,26 @@ fn every_plot_is_a_png_of_the_requested_size() {
         ]
     );
     for file in &written {
-        assert_eq!(file.parent(), Some(dir.as_path()));
+        assert_eq!(file.parent(), Some(dir.path()));
         assert_eq!(png_size(file), (1024, 768), "{}", file.display());
     }
-    std::fs::remove_dir_all(dir).unwrap();
 }
 
 #[test]
 fn the_image_size_follows_the_spec() {
-    let dir = scratch("size");
+    let dir = scratch("plot-size");
     let spec = PlotSpec {
         size: (640, 480),
         ..PlotSpec::default()
     };
-    for file in write_plots(&trajectory(50), &spec, &dir).unwrap() {
+    for file in write_plots(&trajectory(50), &spec, dir.path()).unwrap() {
         assert_eq!(png_size(&file), (640, 480));
     }
-    std::fs::remove_dir_all(dir).unwrap();
 }
 
 #[test]
 fn plots_without_their_columns_are_left_out_by_for_table() {
-    let dir = scratch("subset");
+    let dir = scratch("plot-subset");
     let mut table = Table::new(vec!["t".into(), "energy".into()]).unwrap();
     for row in 0..20 {
         table.push_row(vec![row as f64, 2.0]).unwrap();
@@ -191,9 +182,8 @@ fn plots_without_their_columns_are_left_out_by_for_table() {
     let spec = PlotSpec::for_table(&table);
     assert_eq!(spec.path, None);
     assert_eq!(spec.constraint_residual, None);
-    let written = write_plots(&table, &spec, &dir).unwrap();
-    assert_eq!(written, [dir.join("energy.png")]);
-    std::fs::remove_dir_all(dir).unwrap();
+    let written = write_plots(&table, &spec, dir.path()).unwrap();
+    assert_eq!(written, [dir.path().join("energy.png")]);
 }
 
 #[test]
@@ -208,7 +198,8 @@ fn for_table_draws_the_path_without_arrows_when_there_is_no_heading() {
 
 #[test]
 fn a_missing_column_is_named_and_nothing_is_written() {
-    let dir = scratch("missing");
+    let parent = scratch("plot-missing");
+    let dir = parent.path().join("plots");
     let spec = PlotSpec {
         path: Some(PlanarPath {
             x: "x".into(),
@@ -232,7 +223,8 @@ fn a_missing_column_is_named_and_nothing_is_written() {
 
 #[test]
 fn a_track_names_its_columns_and_one_missing_is_an_error() {
-    let dir = scratch("track");
+    let parent = scratch("plot-track");
+    let dir = parent.path().join("plots");
     let track = Track {
         point: "contact".into(),
         x: "contact.x".into(),
@@ -285,7 +277,8 @@ fn column_names_are_distinct() {
 #[test]
 fn an_empty_table_is_an_error() {
     let table = Table::new(COLUMNS.map(String::from).to_vec()).unwrap();
-    let error = write_plots(&table, &PlotSpec::default(), &scratch("empty")).unwrap_err();
+    let dir = scratch("plot-empty");
+    let error = write_plots(&table, &PlotSpec::default(), dir.path()).unwrap_err();
     assert!(matches!(error, PlotError::EmptyTable), "{error:?}");
 }
 
@@ -295,7 +288,8 @@ fn figure4_parameters_must_be_positive() {
         kt: 0.0,
         ..figure4()
     });
-    let error = write_plots(&trajectory(10), &spec, &scratch("kt")).unwrap_err();
+    let dir = scratch("plot-kt");
+    let error = write_plots(&trajectory(10), &spec, dir.path()).unwrap_err();
     assert!(
         matches!(
             error,
@@ -315,7 +309,8 @@ fn image_sizes_outside_200_to_8192_pixels_are_errors() {
             size: (width, height),
             ..PlotSpec::default()
         };
-        let error = write_plots(&trajectory(10), &spec, &scratch("size-limits")).unwrap_err();
+        let dir = scratch("plot-size-limits");
+        let error = write_plots(&trajectory(10), &spec, dir.path()).unwrap_err();
         assert!(
             matches!(error, PlotError::ImageSize { width: w, height: h } if (w, h) == (width, height)),
             "{error:?}"
@@ -327,7 +322,8 @@ fn image_sizes_outside_200_to_8192_pixels_are_errors() {
 fn a_column_without_finite_values_is_an_error() {
     let mut table = Table::new(["t", "energy"].map(String::from).to_vec()).unwrap();
     table.push_row(vec![0.0, f64::NAN]).unwrap();
-    let error = write_plots(&table, &PlotSpec::for_table(&table), &scratch("nan")).unwrap_err();
+    let dir = scratch("plot-nan");
+    let error = write_plots(&table, &PlotSpec::for_table(&table), dir.path()).unwrap_err();
     assert!(
         matches!(&error, PlotError::NoFiniteValue { name } if name == "energy"),
         "{error:?}"
@@ -336,19 +332,19 @@ fn a_column_without_finite_values_is_an_error() {
 
 #[test]
 fn an_output_path_that_is_a_file_is_an_io_error() {
-    let file = scratch("file");
+    let dir = scratch("plot-file");
+    let file = dir.path().join("file");
     std::fs::write(&file, b"not a directory").unwrap();
     let error = write_plots(&trajectory(10), &PlotSpec::default(), &file).unwrap_err();
     assert!(
         matches!(&error, PlotError::Io { path, .. } if *path == file),
         "{error:?}"
     );
-    std::fs::remove_file(file).unwrap();
 }
 
 #[test]
 fn zero_initial_energy_and_non_finite_samples_still_plot() {
-    let dir = scratch("degenerate");
+    let dir = scratch("plot-degenerate");
     let smooth = trajectory(100);
     let mut table = Table::new(smooth.columns().to_vec()).unwrap();
     for (row, values) in smooth.rows().iter().enumerate() {
@@ -360,12 +356,11 @@ fn zero_initial_energy_and_non_finite_samples_still_plot() {
         }
         table.push_row(values).unwrap();
     }
-    let written = write_plots(&table, &PlotSpec::default(), &dir).unwrap();
+    let written = write_plots(&table, &PlotSpec::default(), dir.path()).unwrap();
     assert_eq!(written.len(), 3);
     for file in written {
         assert_eq!(png_size(&file), (1024, 768));
     }
-    std::fs::remove_dir_all(dir).unwrap();
 }
 
 /// Two gaits side by side: an 1800 x 800 PNG with each gait's colour (the
@@ -373,8 +368,7 @@ fn zero_initial_energy_and_non_finite_samples_still_plot() {
 /// points, is an error and writes nothing.
 #[test]
 fn gaits_are_compared_in_their_colours() {
-    let dir = scratch("gaits");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("plot-gaits");
     let circle = |radius: f64| -> Vec<(f64, f64)> {
         (0..=200)
             .map(|k| {
@@ -391,7 +385,7 @@ fn gaits_are_compared_in_their_colours() {
             .map(|&(x, y)| (x + 2.0 * radius, y))
             .collect(),
     };
-    let file = dir.join("gaits.png");
+    let file = dir.path().join("gaits.png");
     let curves = [gait("small", 0.5), gait("large", 1.0)];
     write_gait_comparison("Two gaits", &curves, ["a", "b"], &file).unwrap();
     assert_eq!(png_size(&file), (1800, 800));
@@ -404,11 +398,10 @@ fn gaits_are_compared_in_their_colours() {
         path: Vec::new(),
         ..gait("empty", 1.0)
     };
-    let other = dir.join("none.png");
+    let other = dir.path().join("none.png");
     for curves in [&[][..], &[empty][..]] {
         let error = write_gait_comparison("", curves, ["a", "b"], &other).unwrap_err();
         assert!(matches!(error, PlotError::EmptyTable), "{error:?}");
         assert!(!other.exists());
     }
-    std::fs::remove_dir_all(dir).unwrap();
 }

@@ -349,16 +349,18 @@ fn a_leaning_disk_turns_steadily_as_the_closed_form_says() {
 /// line and column of the offending token, as the macro's does.
 #[test]
 fn a_broken_mechanism_file_is_reported_with_file_line_and_column() {
-    let directory = std::env::temp_dir().join(format!("mechanism-door-{}", std::process::id()));
-    std::fs::create_dir_all(&directory).expect("directory");
-    let file = directory.join("rolling_disk_3d.model");
+    let directory = tempfile::Builder::new()
+        .prefix("chaplygin-mechanism-door-")
+        .tempdir()
+        .expect("a scratch directory under the temporary directory");
+    let file = directory.path().join("rolling_disk_3d.model");
     let broken =
         rolling_disk_3d::MODEL_TEXT.replace("rotate(heading, x, phi)", "rotate(heding, x, phi)");
     assert_ne!(broken, rolling_disk_3d::MODEL_TEXT);
     std::fs::write(&file, &broken).expect("write");
     let error = chaplygin_codegen::Builder::new()
         .model_file(&file)
-        .out_dir(&directory)
+        .out_dir(directory.path())
         .write_to_out_dir()
         .expect_err("rejected");
     let line = broken
@@ -381,7 +383,6 @@ fn a_broken_mechanism_file_is_reported_with_file_line_and_column() {
         "{error}\nexpected {expected}"
     );
     assert_eq!(error.to_string().lines().count(), 1, "{error}");
-    std::fs::remove_dir_all(&directory).expect("clean up");
 }
 
 /// A `.model` file with mechanism sections runs through the interpreter,

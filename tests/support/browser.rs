@@ -1,10 +1,9 @@
 //! Pages opened in headless Chromium (WebGL on SwiftShader), what the
 //! animation tests share: finding Chromium (or saying the test skipped),
-//! a scratch directory, the DOM dumped once the page's virtual time has
-//! run out, the JSON a probe script wrote into `<pre id="probe">` with
-//! every number as its shortest round-trip string, several pages probed
-//! in one launch ([`probe_pages`]), and the screenshots the guide shows
-//! ([`screenshot`]).
+//! the DOM dumped once the page's virtual time has run out, the JSON a
+//! probe script wrote into `<pre id="probe">` with every number as its
+//! shortest round-trip string, several pages probed in one launch
+//! ([`probe_pages`]), and the screenshots the guide shows ([`screenshot`]).
 //!
 //! Chromium (Debian's `chromium`) runs the pages where it is on `PATH`;
 //! without it a test says it skipped, and fails where

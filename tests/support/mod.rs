@@ -1,8 +1,8 @@
-//! What the integration tests share: running the binary, reading the CSV
-//! files it writes, the canonical form it prints, the snakeboard's
-//! hand-derived gait, the benchmark bicycle's closed form (from the models'
-//! tests), pages opened in headless Chromium, the guide's Markdown, the
-//! numbers of printed lines.
+//! What the integration tests share: running the binary, scratch
+//! directories, reading the CSV files it writes, the canonical form it
+//! prints, the snakeboard's hand-derived gait, the benchmark bicycle's
+//! closed form (from the models' tests), pages opened in headless Chromium,
+//! the guide's Markdown, the numbers of printed lines.
 
 #[allow(dead_code)]
 #[path = "../../models/tests/support/benchmark_bicycle.rs"]
@@ -16,6 +16,7 @@ pub mod snakeboard_gait;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use tempfile::TempDir;
 
 /// The benchmark bicycle's push, as `simulate bicycle` takes it: upright at
 /// 3 m/s (`dot(theta_r) = -10` with `rR = 0.3`), leaning at 0.2 rad/s, steer
@@ -40,12 +41,14 @@ pub fn chaplygin(arguments: &[&str]) -> Output {
         .expect("the binary runs")
 }
 
-/// A fresh directory for the test named `name`.
-pub fn scratch(name: &str) -> PathBuf {
-    let directory = std::env::temp_dir().join(format!("chaplygin-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&directory);
-    std::fs::create_dir_all(&directory).unwrap();
-    directory
+/// A fresh, empty directory for the test named `name`, under the system's
+/// temporary directory as `chaplygin-{name}-XXXXXX`: removed when the
+/// returned guard is dropped, so bind it for as long as its path is used.
+pub fn scratch(name: &str) -> TempDir {
+    tempfile::Builder::new()
+        .prefix(&format!("chaplygin-{name}-"))
+        .tempdir()
+        .expect("a scratch directory under the temporary directory")
 }
 
 /// The path of the program `program` on `PATH`, for a test that needs it;

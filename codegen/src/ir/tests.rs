@@ -605,8 +605,11 @@ fn emitted_code_compiles_warning_free_and_matches_the_interpreter() {
          const Q: [f64; 3] = [0.3, -1.1, 0.7];\n\
          fn main() {{\n{calls}}}\n"
     );
-    let dir = std::env::temp_dir().join(format!("ir-emit-check-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let scratch = tempfile::Builder::new()
+        .prefix("chaplygin-ir-emit-check-")
+        .tempdir()
+        .expect("a scratch directory under the temporary directory");
+    let dir = scratch.path();
     std::fs::write(dir.join("main.rs"), &source).unwrap();
     let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
     let compiled = std::process::Command::new(rustc)
@@ -636,7 +639,6 @@ fn emitted_code_compiles_warning_free_and_matches_the_interpreter() {
     interpreted.extend(&long_values);
     let interpreted: Vec<u64> = interpreted.into_iter().map(f64::to_bits).collect();
     assert_eq!(printed, interpreted);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// Two programs, the second reading the first's outputs and an input.
