@@ -182,8 +182,8 @@ fn magnitude(p: &Poly, atom_value: &dyn Fn(AtomId) -> f64) -> f64 {
 /// adds its own magnitude; every operation carries its operands' errors
 /// times its partial derivatives, and a sum the magnitudes of its terms.
 /// Infinite where a value on the way leaves the normal range of `f64` (a
-/// constant beyond it, say), its rounding then no longer relative: the
-/// final value then bears no bound.
+/// constant beyond it, say) or underflows to 0, its rounding then no longer
+/// relative: the final value then bears no bound.
 fn tree_error(store: &Store, root: ExprId, value_of: &dyn Fn(SymbolId) -> f64) -> f64 {
     let nodes = store.reachable(&[root]);
     let values = store.evaluate_many(&nodes, value_of);
@@ -196,6 +196,9 @@ fn tree_error(store: &Store, root: ExprId, value_of: &dyn Fn(SymbolId) -> f64) -
     let mut bounds: HashMap<ExprId, (f64, f64)> = HashMap::new();
     for (&id, &value) in nodes.iter().zip(&values) {
         let operand = |child: &ExprId| bounds[child];
+        if value == 0.0 && underflowed(store.node(id), &|child| operand(child).0) {
+            return f64::INFINITY;
+        }
         let carried = match store.node(id) {
             Node::Number(_) | Node::Symbol(_) => 0.0,
             Node::Add(terms) => terms
@@ -235,6 +238,19 @@ fn tree_error(store: &Store, root: ExprId, value_of: &dyn Fn(SymbolId) -> f64) -
     }
     let bound = bounds[&root].1;
     if bound.is_nan() { f64::INFINITY } else { bound }
+}
+
+/// True when a node whose value is 0 has underflowed: a nonzero constant,
+/// a product or power of nonzero operands (`0.7^3125`, some 1e-484), or an
+/// exponential. Its rounding is then all of its value.
+fn underflowed(node: &Node, operand_value: &dyn Fn(&ExprId) -> f64) -> bool {
+    match node {
+        Node::Number(constant) => !constant.is_zero(),
+        Node::Mul(factors) => factors.iter().all(|factor| operand_value(factor) != 0.0),
+        Node::Pow(base, _) => operand_value(base) != 0.0,
+        Node::Call(function, _) => matches!(function, Function::Exp),
+        Node::Symbol(_) | Node::Add(_) => false,
+    }
 }
 
 /// Runs the bytes as stack-machine instructions; the top of the stack is the
