@@ -177,7 +177,7 @@ impl Rational {
                     from_i128(a * d + c * b, b * d)
                 })
             }
-            _ => from_big(self.to_big() + other.to_big()),
+            _ => big_sum(&self.to_big(), &other.to_big()),
         }
     }
 
@@ -289,6 +289,30 @@ fn big_product(x: &BigRational, y: &BigRational) -> Rational {
     let (ad, cb) = (gcd(x.numer(), y.denom()), gcd(y.numer(), x.denom()));
     let numerator = (x.numer() / &ad) * (y.numer() / &cb);
     let denominator = (x.denom() / &cb) * (y.denom() / &ad);
+    from_big(BigRational::new_raw(numerator, denominator))
+}
+
+/// `a/b + c/d` for reduced operands, `b, d > 0`, by Henrici's algorithm
+/// (Knuth, *The Art of Computer Programming* vol. 2, 4.5.1): with
+/// `g = gcd(b, d)`, `t = a (d/g) + c (b/g)` and `h = gcd(t, g)`, the sum is
+/// `(t/h) / ((b/g) (d/h))`, reduced. Its gcds are of the denominators, 1 for
+/// integers, where `BigRational`'s sum reduces by a gcd of the numerator and
+/// the denominator, which takes a step for about every two bits of the
+/// numerator even when the denominator is 1.
+fn big_sum(x: &BigRational, y: &BigRational) -> Rational {
+    let (a, b, c, d) = (x.numer(), x.denom(), y.numer(), y.denom());
+    let g = gcd(b, d);
+    let (numerator, denominator) = if g.is_one() {
+        (a * d + c * b, b * d)
+    } else {
+        let (b_g, d_g) = (b / &g, d / &g);
+        let t = a * &d_g + c * &b_g;
+        let h = gcd(&t, &g);
+        (&t / &h, b_g * (d / &h))
+    };
+    if numerator.is_zero() {
+        return Rational::ZERO;
+    }
     from_big(BigRational::new_raw(numerator, denominator))
 }
 
@@ -490,12 +514,13 @@ mod tests {
     /// Products and powers of big values against `BigRational`'s, which
     /// reduce their results: equal values, equal representations.
     #[test]
-    fn big_products_and_powers_agree_with_big_rationals() {
+    fn big_sums_products_and_powers_agree_with_big_rationals() {
         let values: Vec<Rational> = [(i64::MAX, 3), (-(1 << 62), 7), (35, i64::MAX), (6, 35)]
             .iter()
             .map(|&(n, d)| Rational::new(n, d).unwrap())
             .flat_map(|x| [x.clone(), x.powi(3).unwrap(), x.powi(-2).unwrap()])
-            .chain([Rational::ZERO, Rational::ONE])
+            .chain([Rational::ZERO, Rational::ONE, Rational::integer(i64::MAX)])
+            .flat_map(|x| [x.neg(), x.mul(&x), x])
             .collect();
         for x in &values {
             for k in -3_i64..=5 {
@@ -511,6 +536,8 @@ mod tests {
                 assert_eq!(x.powi(k), expected.map(from_big), "{x}^{k}");
             }
             for y in &values {
+                assert_eq!(x.add(y).to_big(), x.to_big() + y.to_big(), "{x} + {y}");
+                assert_eq!(x.add(y), from_big(x.to_big() + y.to_big()), "{x} + {y}");
                 assert_eq!(x.mul(y).to_big(), x.to_big() * y.to_big(), "{x} * {y}");
                 assert_eq!(x.mul(y), from_big(x.to_big() * y.to_big()), "{x} * {y}");
             }

@@ -282,32 +282,40 @@ impl Poly {
     /// `self + other`, or `self - other` when `negate_other`, by merging
     /// the sorted term lists (no negated copy of `other`).
     fn merge(&self, other: &Poly, negate_other: bool) -> Poly {
-        let signed = |c: &Rational| if negate_other { c.neg() } else { c.clone() };
-        let (a, b) = (&self.terms, &other.terms);
-        let mut terms = Vec::with_capacity(a.len() + b.len());
-        let (mut i, mut j) = (0, 0);
-        while i < a.len() && j < b.len() {
-            match a[i].0.cmp(&b[j].0) {
-                Ordering::Greater => {
-                    terms.push(a[i].clone());
-                    i += 1;
-                }
-                Ordering::Less => {
-                    terms.push((b[j].0.clone(), signed(&b[j].1)));
-                    j += 1;
-                }
+        Poly::merged(
+            self.terms.iter().cloned(),
+            other.terms.iter().cloned(),
+            negate_other,
+        )
+    }
+
+    /// The sum of two term lists sorted by decreasing monomial, the second
+    /// negated when `negate_other`, by merging them; terms that cancel are
+    /// left out. The terms are taken, not copied, so a long remainder that
+    /// changes in few terms is not copied whole.
+    fn merged(
+        a: impl Iterator<Item = (Monomial, Rational)>,
+        b: impl Iterator<Item = (Monomial, Rational)>,
+        negate_other: bool,
+    ) -> Poly {
+        let signed = |c: Rational| if negate_other { c.neg() } else { c };
+        let (mut a, mut b) = (a.peekable(), b.peekable());
+        let mut terms = Vec::with_capacity(a.size_hint().0 + b.size_hint().0);
+        while let (Some((m, _)), Some((n, _))) = (a.peek(), b.peek()) {
+            match m.cmp(n) {
+                Ordering::Greater => terms.extend(a.next()),
+                Ordering::Less => terms.extend(b.next().map(|(n, d)| (n, signed(d)))),
                 Ordering::Equal => {
-                    let sum = a[i].1.add(&signed(&b[j].1));
+                    let ((m, c), (_, d)) = (a.next().expect("peeked"), b.next().expect("peeked"));
+                    let sum = c.add(&signed(d));
                     if !sum.is_zero() {
-                        terms.push((a[i].0.clone(), sum));
+                        terms.push((m, sum));
                     }
-                    i += 1;
-                    j += 1;
                 }
             }
         }
-        terms.extend_from_slice(&a[i..]);
-        terms.extend(b[j..].iter().map(|(m, c)| (m.clone(), signed(c))));
+        terms.extend(a);
+        terms.extend(b.map(|(n, d)| (n, signed(d))));
         Poly { terms }
     }
 
@@ -479,7 +487,8 @@ impl Poly {
             }
             let factor = monomial.div(lead_monomial)?;
             let c = coefficient.div(lead_coefficient)?;
-            remainder = remainder.sub(&divisor.mul_term(&factor, &c));
+            let product = divisor.mul_term(&factor, &c);
+            remainder = Poly::merged(remainder.terms.into_iter(), product.terms.into_iter(), true);
             quotient.push((factor, c));
         }
         Some(Poly { terms: quotient })
