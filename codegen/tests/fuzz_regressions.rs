@@ -3,7 +3,7 @@
 
 use chaplygin_codegen::generate;
 use chaplygin_codegen::sym::{
-    Context, ExprId, MAX_DEGREE, Node, Rational, Store, SymError, SymbolKind,
+    Budget, Context, ExprId, MAX_DEGREE, Node, Rational, Store, SymError, SymbolKind,
 };
 
 /// `normal_form` timeout: `(-6)^4` raised to the 4th power again and again
@@ -138,6 +138,38 @@ fn a_rational_power_of_a_perfect_power_is_limited_too() {
         .pow(four, Rational::new(5, 2).expect("a fraction"))
         .expect("within the limit");
     assert_eq!(store.as_number(small), Some(&Rational::integer(32)));
+}
+
+/// `normal_form` timeout: `-2 + x^-3/(y^-3 + x^5/(x + 7^-1875) +
+/// (x^5 + 1)^-75)` ran for minutes in the exact divisions of its sum, whose
+/// coefficients carry 7^1875 (5,264 bits): their steps were charged by terms
+/// alone. Weighted by the coefficients' words as products are, they spend
+/// the target's budget of 200,000 at once.
+#[test]
+fn an_exact_division_with_big_coefficients_is_charged_for_them() {
+    let mut cx = Context::with_budget(Budget::new(200_000));
+    let x = cx.declare("x", SymbolKind::Coordinate);
+    let (x, y) = (cx.symbol(x), cx.declare("y", SymbolKind::Coordinate));
+    let y = cx.symbol(y);
+    let power = |cx: &mut Context, base, n: i64| cx.pow(base, Rational::integer(n)).unwrap();
+    let tiny = cx.number(Rational::integer(-7).powi(-1875).expect("nonzero"));
+    let shifted = cx.add2(x, tiny);
+    let fifth = power(&mut cx, x, 5);
+    let quotient = cx.div(fifth, shifted).unwrap();
+    let one = cx.integer(1);
+    let sum = cx.add2(fifth, one);
+    let far = power(&mut cx, sum, -75);
+    let inverse_cube = power(&mut cx, y, -3);
+    let inner = cx.add2(inverse_cube, quotient);
+    let denominator = cx.add2(inner, far);
+    let inverse = power(&mut cx, x, -3);
+    let ratio = cx.div(inverse, denominator).unwrap();
+    let minus_two = cx.integer(-2);
+    let whole = cx.add2(minus_two, ratio);
+    assert_eq!(
+        cx.normal(whole),
+        Err(SymError::BudgetExceeded { limit: 200_000 })
+    );
 }
 
 /// A fresh context with the coordinate `x`, and `x`.

@@ -473,7 +473,10 @@ impl Poly {
     /// `self / divisor` when the division is exact. The divisor must contain no
     /// sine (then no reduction can occur and polynomial division is division in
     /// the trigonometric ring). Each step charges `budget` the terms of the
-    /// remainder it rewrites; `None` once the budget is spent.
+    /// remainder it rewrites, weighted as products are by the sizes in words
+    /// of the largest coefficients (each step multiplies the divisor by a
+    /// coefficient of the remainder's size and reduces the sums); `None` once
+    /// the budget is spent.
     pub fn div_exact(&self, divisor: &Poly, budget: &Budget) -> Option<Poly> {
         let (lead_monomial, lead_coefficient) = divisor.leading()?;
         if let Some(c) = divisor.as_constant() {
@@ -482,7 +485,10 @@ impl Poly {
         let mut remainder = self.clone();
         let mut quotient = Vec::new();
         while let Some((monomial, coefficient)) = remainder.leading() {
-            if !budget.charge((remainder.len() + divisor.len()) as u64) {
+            let rewritten = ((remainder.len() + divisor.len()) as u64)
+                .saturating_mul(remainder.coefficient_words())
+                .saturating_mul(divisor.coefficient_words());
+            if !budget.charge(rewritten) {
                 return None;
             }
             let factor = monomial.div(lead_monomial)?;
