@@ -6,10 +6,11 @@
 //! exponentially: `(sin(x + y) + cos(x - y))^40` expands to products of
 //! polynomials with thousands of terms each. Every polynomial product charges
 //! its `a * b` term products (weighted by the size in words of the largest
-//! coefficients) to a [`Budget`]; exact division, sums of rational functions
-//! and the `sin^2 = 1 - cos^2` reduction charge the terms they rewrite. The
-//! count depends only on the model, never on the clock, so a model is
-//! accepted or rejected the same way on every machine.
+//! coefficients) to a [`Budget`]; exact division (weighted the same way),
+//! sums of rational functions and the `sin^2 = 1 - cos^2` reduction charge
+//! the terms they rewrite. The count depends only on the model, never on
+//! the clock, so a model is accepted or rejected the same way on every
+//! machine.
 //!
 //! The budget is shared by a [`super::Store`] and every copy of its atom
 //! table. Once it is spent, products return zero without being computed (so
