@@ -16,7 +16,7 @@ use chaplygin::driver::Failure;
 use chaplygin::driver::catalog::lookup;
 use chaplygin::driver::engine::{EngineChoice, load};
 use chaplygin::driver::linearize::sweep;
-use chaplygin::driver::simulate::with_parameters;
+use chaplygin::driver::setup::{Asked, resolve};
 use std::io::Write;
 
 /// Upright straight running at the forward speed `v`: the rear wheel
@@ -39,13 +39,19 @@ fn main() -> Result<(), Failure> {
 /// # Errors
 /// The model does not load, a point is not a steady motion, a failed write.
 pub fn report(out: &mut impl Write) -> Result<(), Failure> {
-    let mut bicycle = load(&lookup("bicycle")?, EngineChoice::Jit)?.model;
-    let parameters = with_parameters(&mut bicycle, &[])?.into_iter().collect();
+    let bicycle = load(&lookup("bicycle")?, EngineChoice::Jit)?.model;
     let at: Vec<(String, String)> = (UPRIGHT.iter())
         .map(|(name, value)| (name.to_string(), value.to_string()))
         .collect();
+    let upright = Asked {
+        state_flag: "--at",
+        state: &at,
+        variables: &["v"],
+        ..Asked::default()
+    };
+    let setup = resolve(bicycle, &upright)?;
     let speeds: Vec<f64> = (0..=20).map(|i| 0.5 * f64::from(i)).collect();
-    let analysis = sweep(&bicycle, &parameters, ("v", &speeds), &at)?;
+    let analysis = sweep(&setup, ("v", &speeds))?;
     writeln!(
         out,
         "The benchmark bicycle upright and straight ahead at speed v: the eigenvalues of its"

@@ -9,6 +9,9 @@
 //!   seen through slices ([`formulation::Formulation`]), and
 //!   [`interpreted`], the reduced, Lagrange-d'Alembert and momentum
 //!   formulations of a model read from its text;
+//! - [`setup`]: a command's request resolved once against its model
+//!   (parameters, state assignments and the start they give, input laws,
+//!   stop condition) into the plain value every command consumes;
 //! - [`simulate`]: a [`simulate::Request`] (formulation, integrator,
 //!   controller, span, stop condition, parameters, initial values, input
 //!   laws) run to a table and a report;
@@ -34,6 +37,7 @@ pub mod formulation;
 pub mod gait;
 pub mod interpreted;
 pub mod linearize;
+pub mod setup;
 pub mod simulate;
 
 /// What a driver call that fails returns: its error, which may travel

@@ -15,6 +15,11 @@
 //! separate oscillator with its own constant energy
 //! `alpha3^2/(2 Jw) + kw xw^2/2`.
 //!
+//! What the controller uses of a model is what it reads and drives: the
+//! steering angle `phi`, found by its name among the coordinates
+//! ([`EnergyController::new`]), and two inputs, the torso's and the
+//! wheels', in the reduced state of the snakeboard's size [`S`].
+//!
 //! [`EnergyController`] implements the runtime's
 //! [`PortHamiltonianController`] with `Bc = [[a sin(phi), 0], [0, 1]]`
 //! (exact derivatives) and `Jc = 0`; [`ClosedLoop`] is the runtime's
@@ -35,13 +40,19 @@ use crate::runtime::control::{Interconnection, PortHamiltonianController};
 /// `(x, y, theta, psi, phi)` and three momenta.
 pub const S: usize = 8;
 
-/// Index of `phi` in the snakeboard's state.
-const PHI: usize = 4;
-
 /// Size of the closed-loop state `(q, alpha, xt, xw)`.
 pub const CLOSED_LOOP_STATE: usize = S + 2;
 
-/// The controller's gains (MATH.md 3.2).
+/// The gains' names and their defaults (MATH.md 3.2).
+pub const GAINS: [(&str, f64); 3] = [("a", 1.0), ("kt", 2.0), ("kw", 1.0)];
+
+/// The springs' states and their defaults: energy stored in both springs.
+pub const SPRINGS: [(&str, f64); 2] = [("xt", 1.0), ("xw", 0.5)];
+
+/// The name of the coordinate whose sine modulates the transformer.
+pub const STEERING: &str = "phi";
+
+/// The controller's gains (MATH.md 3.2), and where the steering angle is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EnergyController {
     /// Modulus factor of the transformer `a sin(phi)`, `a > 0`.
@@ -50,6 +61,18 @@ pub struct EnergyController {
     pub kt: f64,
     /// Stiffness of the wheel spring.
     pub kw: f64,
+    /// The index of the steering angle `phi` among the coordinates (and so
+    /// in the reduced state).
+    phi: usize,
+}
+
+impl EnergyController {
+    /// The controller with the gains `a`, `kt`, `kw` for a model with these
+    /// `coordinates`, or `None` where none is [`STEERING`].
+    pub fn new(a: f64, kt: f64, kw: f64, coordinates: &[&str]) -> Option<Self> {
+        let phi = coordinates.iter().position(|&c| c == STEERING)?;
+        Some(Self { a, kt, kw, phi })
+    }
 }
 
 impl PortHamiltonianController<S, 2, 2> for EnergyController {
@@ -71,11 +94,15 @@ impl PortHamiltonianController<S, 2, 2> for EnergyController {
     /// The modulated transformer `a sin(phi)` on the torso port, the wheel
     /// spring directly on the wheel port.
     fn input_matrix(&self, x: &[f64; S], _xc: &[f64; 2]) -> [[f64; 2]; 2] {
-        [[self.a * x[PHI].sin(), 0.0], [0.0, 1.0]]
+        [[self.a * x[self.phi].sin(), 0.0], [0.0, 1.0]]
     }
 
     fn input_matrix_derivative(&self, x: &[f64; S], _xc: &[f64; 2], j: usize) -> [[f64; 2]; 2] {
-        let slope = if j == PHI { self.a * x[PHI].cos() } else { 0.0 };
+        let slope = if j == self.phi {
+            self.a * x[self.phi].cos()
+        } else {
+            0.0
+        };
         [[slope, 0.0], [0.0, 0.0]]
     }
 }

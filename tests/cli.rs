@@ -261,11 +261,14 @@ fn bad_input_is_one_line_and_a_failure() {
     );
     assert_one_line_error(
         &chaplygin(&["simulate", "sleigh", "--initial", "speed=1"]),
-        &["unknown initial value `speed`", "dot(theta)"],
+        &["--initial: unknown name `speed`", "dot(theta)"],
     );
     assert_one_line_error(
         &chaplygin(&["simulate", "sleigh", "--controller", "energy"]),
-        &["energy controller"],
+        &[
+            "energy controller needs",
+            "`sleigh` has no coordinate `phi`",
+        ],
     );
     assert!(
         !chaplygin(&["simulate", "snakeboard", "--integrator", "euler"])

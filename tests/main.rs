@@ -26,6 +26,7 @@ mod cli_stop;
 mod degenerate_momentum_basis;
 mod derive_rust;
 mod design_map;
+mod energy_controller;
 mod examples;
 mod gait_design;
 mod guide;

@@ -368,11 +368,7 @@ fn integrator_steps_do_not_allocate() {
     );
     let closed_loop = ClosedLoop::new(
         board,
-        EnergyController {
-            a: 1.0,
-            kt: 2.0,
-            kw: 1.0,
-        },
+        EnergyController::new(1.0, 2.0, 1.0, &Snakeboard::COORDINATES).expect("phi"),
     );
     let mut z = closed_loop_state(&[0.0, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0], 1.0, 0.5);
     let counted = allocations(|| {

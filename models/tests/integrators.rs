@@ -28,32 +28,31 @@ fn start() -> [f64; S] {
 const D: usize = CLOSED_LOOP_STATE;
 
 /// The closed loop of MATH.md 3.2 with the default board.
-const CLOSED_LOOP: ClosedLoop<Snakeboard> = ClosedLoop {
-    plant: Snakeboard {
-        m: 1.0,
-        r: 0.5,
-        jt: 0.3,
-        jw: 0.05,
-    },
-    controller: EnergyController {
-        a: 1.0,
-        kt: 2.0,
-        kw: 1.0,
-    },
-};
+fn closed_loop() -> ClosedLoop<Snakeboard> {
+    ClosedLoop {
+        plant: Snakeboard {
+            m: 1.0,
+            r: 0.5,
+            jt: 0.3,
+            jw: 0.05,
+        },
+        controller: EnergyController::new(1.0, 2.0, 1.0, &Snakeboard::COORDINATES)
+            .expect("the snakeboard steers by phi"),
+    }
+}
 /// At rest at `phi = 0.2` with energy in both springs (`xt = 1`, `xw = 0.5`).
 const AT_REST: [f64; D] = [0.0, 0.0, 0.0, 0.0, 0.2, 0.0, 0.0, 0.0, 1.0, 0.5];
 
 #[test]
 fn the_closed_loop_jacobian_matches_central_differences() {
     let z = [0.1, -0.2, 0.3, 0.4, 0.5, 0.7, -0.3, 0.1, 0.8, -0.4];
-    let jac = CLOSED_LOOP.jacobian(0.0, &z);
+    let jac = closed_loop().jacobian(0.0, &z);
     let eps = 1e-6;
     for j in 0..D {
         let shifted = |s: f64| {
             let mut w = z;
             w[j] += s;
-            CLOSED_LOOP.rhs(0.0, &w)
+            closed_loop().rhs(0.0, &w)
         };
         let (plus, minus) = (shifted(eps), shifted(-eps));
         for i in 0..D {
@@ -74,21 +73,21 @@ fn energy_drift<M: FixedStep<ClosedLoop<Snakeboard>, [f64; D]>>(
     h: f64,
     steps: usize,
 ) -> (f64, f64) {
-    let h0 = CLOSED_LOOP.energy(&AT_REST);
+    let h0 = closed_loop().energy(&AT_REST);
     let (mut worst, mut alpha1) = (0.0f64, f64::NAN);
     let observe = |t: f64, z: &[f64; D]| {
-        worst = worst.max((CLOSED_LOOP.energy(z) - h0).abs() / h0);
+        worst = worst.max((closed_loop().energy(z) - h0).abs() / h0);
         if (t - 10.0).abs() < h / 2.0 {
             alpha1 = z[5];
         }
     };
-    integrate_fixed(method, &CLOSED_LOOP, (0.0, AT_REST), h, steps, observe).unwrap();
+    integrate_fixed(method, &closed_loop(), (0.0, AT_REST), h, steps, observe).unwrap();
     (worst, alpha1)
 }
 
 #[test]
 fn midpoint_keeps_the_closed_loop_energy_where_rk4_drifts() {
-    assert_eq!(CLOSED_LOOP.plant, Snakeboard::default());
+    assert_eq!(closed_loop().plant, Snakeboard::default());
     let (h, steps) = (0.01, 100_000);
     let (midpoint, alpha1) = energy_drift(&Midpoint::default(), h, steps);
     let (rk4, _) = energy_drift(&Rk4, h, steps);
@@ -200,19 +199,23 @@ fn the_sleigh_tends_to_a_straight_line_at_the_speed_its_energy_allows() {
 /// torso spring's energy `kt xt^2/2` does flow into `alpha1`.
 #[test]
 fn the_wheel_pair_keeps_its_own_energy() {
-    let wheels0 = wheel_energy(CLOSED_LOOP.plant.jw, CLOSED_LOOP.controller.kw, &AT_REST);
+    let wheels0 = wheel_energy(
+        closed_loop().plant.jw,
+        closed_loop().controller.kw,
+        &AT_REST,
+    );
     let (mut worst, mut torso_spring_change) = (0.0f64, 0.0f64);
     let torso0 = 2.0 * AT_REST[S] * AT_REST[S] / 2.0;
     let observe = |_t: f64, z: &[f64; D]| {
         worst = worst.max(
-            (wheel_energy(CLOSED_LOOP.plant.jw, CLOSED_LOOP.controller.kw, z) - wheels0).abs()
+            (wheel_energy(closed_loop().plant.jw, closed_loop().controller.kw, z) - wheels0).abs()
                 / wheels0,
         );
         torso_spring_change = torso_spring_change.max((2.0 * z[S] * z[S] / 2.0 - torso0).abs());
     };
     integrate_fixed(
         &Midpoint::default(),
-        &CLOSED_LOOP,
+        &closed_loop(),
         (0.0, AT_REST),
         0.01,
         2000,

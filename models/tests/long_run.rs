@@ -51,11 +51,7 @@ impl Recorder for Extremes {
 fn long_run<M: for<'a> Advance<ClosedLoop<Snakeboard>, [f64; 10]>>(name: &str, method: M) {
     let closed_loop = ClosedLoop::<Snakeboard>::new(
         Snakeboard::default(),
-        EnergyController {
-            a: 1.0,
-            kt: 2.0,
-            kw: 1.0,
-        },
+        EnergyController::new(1.0, 2.0, 1.0, &Snakeboard::COORDINATES).expect("phi"),
     );
     let start = closed_loop_state(&[0.0; 8], 1.0, 0.5);
     let mut extremes = Extremes {

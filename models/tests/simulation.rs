@@ -16,11 +16,7 @@ use std::f64::consts::FRAC_PI_2;
 fn closed_loop() -> ClosedLoop<Snakeboard> {
     ClosedLoop::<Snakeboard>::new(
         Snakeboard::default(),
-        EnergyController {
-            a: 1.0,
-            kt: 2.0,
-            kw: 1.0,
-        },
+        EnergyController::new(1.0, 2.0, 1.0, &Snakeboard::COORDINATES).expect("phi"),
     )
 }
 

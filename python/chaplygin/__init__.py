@@ -292,8 +292,10 @@ class Model:
         ``"discrete-gradient"`` (default: the discrete gradient for the
         reduced form, the midpoint rule otherwise); ``stop_when`` one
         comparison (``"abs(phi) > 1"``) that ends the run where it first
-        holds; ``controller="energy"`` closes the built-in snakeboard with
-        Duindam and Stramigioli's energy controller.
+        holds; ``controller="energy"`` closes a model with a steering angle
+        ``phi`` and two inputs, the torso's and the wheels' (the snakeboard,
+        from any of its declarations), with Duindam and Stramigioli's energy
+        controller.
 
         Every integrator's step follows the tolerances ``rtol`` and ``atol``
         of its local error, no step longer than ``dt``; ``fixed_step=True``

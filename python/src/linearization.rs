@@ -4,21 +4,12 @@
 
 use crate::convert::{matrix, to_python};
 use chaplygin::driver::linearize::{self, sweep::Interval};
-use chaplygin::runtime::linearize::{Dynamics, LinearSystem};
+use chaplygin::driver::setup::Setup;
+use chaplygin::runtime::linearize::LinearSystem;
 use chaplygin::runtime::nalgebra::DMatrix;
-use chaplygin_codegen::interpret::InterpretedModel;
 use numpy::{Complex64, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use std::collections::BTreeMap;
-
-/// The parameters' names and values.
-fn parameters(model: &InterpretedModel) -> BTreeMap<String, f64> {
-    let names = model.names().parameters.iter().cloned();
-    names
-        .zip(model.parameter_values().iter().copied())
-        .collect()
-}
 
 /// The eigenvalues of `linear` as complex numbers.
 fn eigenvalues(linear: &LinearSystem) -> Vec<Complex64> {
@@ -26,17 +17,13 @@ fn eigenvalues(linear: &LinearSystem) -> Vec<Complex64> {
     values.map(|e| Complex64::new(e.re, e.im)).collect()
 }
 
-/// The linear system about the point `at`: its state's names, `A`, `B`,
+/// The linear system about the point of `setup`: its state's names, `A`, `B`,
 /// the eigenvalues by descending real part, and whether the motion is
 /// asymptotically and neutrally stable modulo the zeros of conserved
 /// quantities.
-pub fn at_point<'py>(
-    py: Python<'py>,
-    model: &InterpretedModel,
-    at: &[(String, String)],
-) -> PyResult<Bound<'py, PyDict>> {
-    let linear = linearize::linearize_at(model as &dyn Dynamics, &parameters(model), at, &[])
-        .map_err(|error| to_python(py, error.into()))?;
+pub fn at_point<'py>(py: Python<'py>, setup: &Setup) -> PyResult<Bound<'py, PyDict>> {
+    let linear =
+        linearize::linearize_at(setup, &[], &[]).map_err(|error| to_python(py, error.into()))?;
     let result = PyDict::new(py);
     result.set_item("state", linear.state.clone())?;
     result.set_item("a", matrix(py, row_major(&linear.a), linear.a.ncols())?)?;
@@ -59,19 +46,17 @@ fn refined(intervals: &[Interval]) -> Vec<(f64, f64)> {
     intervals.iter().map(|interval| interval.refined).collect()
 }
 
-/// The point `at` linearized at each of `values` of `variable`: the
+/// The point of `setup` linearized at each of `values` of `variable`: the
 /// values, the eigenvalues (one row per value, by descending real part),
 /// the intervals of asymptotic and neutral stability (ends refined by
 /// bisection), and the zeros of conserved quantities discounted.
 pub fn over_sweep<'py>(
     py: Python<'py>,
-    model: &InterpretedModel,
-    at: &[(String, String)],
+    setup: &Setup,
     (variable, values): (&str, &[f64]),
 ) -> PyResult<Bound<'py, PyDict>> {
-    let parameters = parameters(model);
     let analysis = py
-        .detach(|| linearize::sweep(model as &dyn Dynamics, &parameters, (variable, values), at))
+        .detach(|| linearize::sweep(setup, (variable, values)))
         .map_err(|error| to_python(py, error.into()))?;
     let result = PyDict::new(py);
     result.set_item("variable", &analysis.variable)?;

@@ -14,9 +14,8 @@ use chaplygin::driver::design_map::Motion;
 use chaplygin::driver::document::{self, Format};
 use chaplygin::driver::engine::{self, EngineChoice, Loaded};
 use chaplygin::driver::gait::{self, GaitRequest, OptimalGaitRequest};
-use chaplygin::driver::simulate::{
-    self, Controller, FormulationChoice, Integrator, Request, with_parameters,
-};
+use chaplygin::driver::setup::{self, Asked, with_parameters};
+use chaplygin::driver::simulate::{self, Controller, FormulationChoice, Integrator, Request};
 use chaplygin::gait_design::{Cost, Design, Direction};
 use chaplygin::runtime::record::{Recorder, Table};
 use chaplygin::runtime::simulate::SimulationError;
@@ -326,15 +325,25 @@ impl Model {
         params: Option<&Bound<'py, PyDict>>,
         sweep: Option<(String, ArrayLike<'py>)>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let mut model = self.fresh().model;
-        with_parameters(&mut model, &numbers(params)?)
+        let (params, at) = (numbers(params)?, assignments(at)?);
+        let variables: Vec<&str> = sweep
+            .iter()
+            .map(|(variable, _)| variable.as_str())
+            .collect();
+        let asked = Asked {
+            params: &params,
+            state_flag: "at",
+            state: &at,
+            variables: &variables,
+            ..Asked::default()
+        };
+        let setup = setup::resolve(self.fresh().model, &asked)
             .map_err(|error| PyValueError::new_err(error.to_string()))?;
-        let at = assignments(at)?;
-        match sweep {
-            None => linearization::at_point(py, &model, &at),
+        match &sweep {
+            None => linearization::at_point(py, &setup),
             Some((variable, values)) => {
-                let values = flat(&values, "sweep's values")?;
-                linearization::over_sweep(py, &model, &at, (&variable, &values))
+                let values = flat(values, "sweep's values")?;
+                linearization::over_sweep(py, &setup, (variable, &values))
             }
         }
     }

@@ -4,8 +4,9 @@
 //! as Kooijman et al. (Science, 2011) and Moore's parameter studies chart
 //! the benchmark bicycle over its trail, head angle and wheel sizes.
 //!
-//! A design point is the model with some parameters set: the model is
-//! cloned, its parameters set, and [`linearize::stability`] run over the
+//! A design point is the model with some parameters set: the request is
+//! resolved on a clone of the model with the point's values
+//! (`crate::driver::setup`), and [`linearize::stability`] run over the
 //! speed grid. Parameters are run-time inputs of the model's programs, so a
 //! design point costs linearizations, never a derivation or a compilation.
 //! The points run in parallel (rayon); each is computed alone, from the
@@ -14,10 +15,9 @@
 //! not yet started out.
 
 use super::linearize::{self, LinearizeError, Stability};
-use super::simulate::{InputError, with_parameters};
+use super::setup::{self, Asked, InputError, Setup};
 use chaplygin_codegen::interpret::InterpretedModel;
 use rayon::prelude::*;
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -57,9 +57,10 @@ pub struct Run<'a> {
 /// A design map's request that cannot be run.
 #[derive(Debug, thiserror::Error)]
 pub enum MapError {
-    /// A varied or fixed parameter the model does not declare.
+    /// A varied or fixed parameter the model does not declare, or an
+    /// `--at` assignment that does not read.
     #[error(transparent)]
-    Parameter(#[from] InputError),
+    Input(#[from] InputError),
     /// A parameter varied twice.
     #[error("--param {0}: varied twice")]
     Repeated(String),
@@ -152,10 +153,10 @@ fn check(
             return Err(MapError::Repeated(name.clone()));
         }
     }
-    with_parameters(&mut model.clone(), &names_at(names, None))?;
     if parameters.iter().any(|name| name == motion.speed.0) {
         return Err(MapError::SpeedIsParameter(motion.speed.0.to_string()));
     }
+    design(model, names, None, motion)?;
     match points.iter().position(|point| point.len() != names.len()) {
         Some(index) => Err(MapError::PointSize {
             index,
@@ -175,6 +176,28 @@ fn names_at(names: &[String], point: Option<&[f64]>) -> Vec<(String, f64)> {
         .collect()
 }
 
+/// The request of `motion` resolved on `model` with the parameters
+/// `names` at `point` (0 without one).
+///
+/// # Errors
+/// A name that is no parameter, or an assignment that does not read.
+fn design(
+    model: &InterpretedModel,
+    names: &[String],
+    point: Option<&[f64]>,
+    motion: Motion<'_>,
+) -> Result<Setup, InputError> {
+    let params = names_at(names, point);
+    let asked = Asked {
+        params: &params,
+        state_flag: "--at",
+        state: motion.at,
+        variables: &[motion.speed.0],
+        ..Asked::default()
+    };
+    setup::resolve(model.clone(), &asked)
+}
+
 /// The stability of `motion` for the design with the parameters `names`
 /// at `point`.
 fn stability_of_design(
@@ -183,13 +206,8 @@ fn stability_of_design(
     point: &[f64],
     motion: Motion<'_>,
 ) -> Result<Stability, LinearizeError> {
-    let mut design = model.clone();
-    let parameters: BTreeMap<String, f64> =
-        with_parameters(&mut design, &names_at(names, Some(point)))
-            .expect("checked: every name is a parameter")
-            .into_iter()
-            .collect();
-    linearize::stability(&design, &parameters, motion.speed, motion.at)
+    let setup = design(model, names, Some(point), motion)?;
+    linearize::stability(&setup, motion.speed)
 }
 
 /// `map.csv` (docs/INTERFACE.md section 11): a header of the parameters'

@@ -1,8 +1,10 @@
 //! Expressions in the model language's syntax, evaluated on `f64`: its
 //! operators `+ - * / ^`, its functions `sin cos tan sqrt exp ln`, `abs`,
 //! and `pi`, of the names a `Scope` binds: the time `t`, the parameters
-//! (at their values), and where the state is known the coordinates `q`,
-//! their velocities `dot(q)` and the inputs. The command line's `--input`
+//! (at their values), a command's variables (a sweep variable, a speed:
+//! their values given where the expression is evaluated), and where the
+//! state is known the coordinates `q`, their velocities `dot(q)` and the
+//! inputs. The command line's `--input`
 //! laws, `--stop-when` conditions, `--initial` values and `--at`
 //! operating points are read here (docs/INTERFACE.md sections 1, 3 and 5).
 
@@ -97,12 +99,15 @@ fn binary_rate(operator: BinaryOperator, (a, da): (f64, f64), (b, db): (f64, f64
 }
 
 /// What an expression may name besides `t`: the parameters, at their
-/// values; where the state is known, the coordinates (and their velocities
-/// `dot(q)`); where the inputs are known, the inputs.
+/// values; variables, whose values come with the point; where the state is
+/// known, the coordinates (and their velocities `dot(q)`); where the
+/// inputs are known, the inputs.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Scope<'a> {
     /// The parameters' names and values.
     pub parameters: &'a [(&'a str, f64)],
+    /// The variables, in order.
+    pub variables: &'a [&'a str],
     /// The coordinates, in order.
     pub coordinates: &'a [&'a str],
     /// The inputs, in order.
@@ -113,6 +118,9 @@ impl Scope<'_> {
     /// `name` is none of the names of the scope: what it could have been.
     fn unknown(&self, name: &str) -> String {
         let mut kinds = vec!["`t`", "a parameter"];
+        if !self.variables.is_empty() {
+            kinds.push("a variable");
+        }
         if !self.coordinates.is_empty() {
             kinds.push("a coordinate");
         }
@@ -127,13 +135,15 @@ impl Scope<'_> {
     }
 }
 
-/// Where an expression is evaluated: the time, the configuration, its
-/// velocity and the inputs, each as long as its names in the [`Scope`]
-/// (empty where the scope has none).
-#[derive(Clone, Copy, Debug)]
+/// Where an expression is evaluated: the time, the variables, the
+/// configuration, its velocity and the inputs, each as long as its names
+/// in the [`Scope`] (empty where the scope has none).
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Point<'a> {
     /// The time.
     pub t: f64,
+    /// The variables.
+    pub variables: &'a [f64],
     /// The coordinates.
     pub q: &'a [f64],
     /// Their velocities.
@@ -150,6 +160,8 @@ pub(crate) enum Expression {
     Number(f64),
     /// The time `t`.
     Time,
+    /// The variable of this index.
+    Variable(usize),
     /// The coordinate of this index.
     Coordinate(usize),
     /// The velocity of the coordinate of this index.
@@ -197,6 +209,11 @@ impl Expression {
         self.contains(&|e| matches!(e, Self::Time))
     }
 
+    /// Whether the expression reads the variable of index `i`.
+    pub(crate) fn reads_variable(&self, i: usize) -> bool {
+        self.contains(&|e| *e == Self::Variable(i))
+    }
+
     /// Whether the expression reads the configuration or the velocity.
     pub(crate) fn reads_state(&self) -> bool {
         self.contains(&|e| matches!(e, Self::Coordinate(_) | Self::Velocity(_)))
@@ -209,7 +226,9 @@ impl Expression {
         match self {
             Self::Number(value) => (*value, 0.0),
             Self::Time => (t, 1.0),
-            Self::Coordinate(_) | Self::Velocity(_) | Self::Input(_) => (f64::NAN, 0.0),
+            Self::Variable(_) | Self::Coordinate(_) | Self::Velocity(_) | Self::Input(_) => {
+                (f64::NAN, 0.0)
+            }
             Self::Call(function, argument) => {
                 let (x, dx) = argument.rate(t);
                 (function.at(x), function.slope(x) * dx)
@@ -229,6 +248,7 @@ impl Expression {
         match self {
             Self::Number(value) => *value,
             Self::Time => point.t,
+            Self::Variable(i) => point.variables[*i],
             Self::Coordinate(i) => point.q[*i],
             Self::Velocity(i) => point.qdot[*i],
             Self::Input(i) => point.u[*i],
@@ -261,12 +281,7 @@ pub(crate) fn constant(text: &str, parameters: &[(&str, f64)]) -> Result<f64, Ex
             "`t` is not known at the start: use numbers and parameters",
         ));
     }
-    let value = law.at(&Point {
-        t: 0.0,
-        q: &[],
-        qdot: &[],
-        u: &[],
-    });
+    let value = law.at(&Point::default());
     if value.is_finite() {
         Ok(value)
     } else {
@@ -292,6 +307,8 @@ fn resolve(expr: &Expr, scope: &Scope<'_>) -> Result<Expression, ExpressionError
             let name = name.to_string();
             if let Some((_, value)) = scope.parameters.iter().find(|(p, _)| *p == name) {
                 Expression::Number(*value)
+            } else if let Some(i) = index(scope.variables, &name) {
+                Expression::Variable(i)
             } else if let Some(i) = index(scope.coordinates, &name) {
                 Expression::Coordinate(i)
             } else if let Some(i) = index(scope.inputs, &name) {

@@ -9,7 +9,7 @@
 use super::engine::Loaded;
 use super::expression::{Expression, Scope};
 use super::interpreted::evaluated;
-use super::simulate::{borrowed, with_parameters};
+use super::setup::{self, Asked, Setup};
 use crate::driver::Failure;
 use crate::gait_design::{self, Design, GaitModel, Jacobians, Optimum};
 use crate::runtime::gait::{self, Cycle, GaitState, Locomotion, ShapeLoop};
@@ -310,17 +310,19 @@ pub fn gait(loaded: Loaded, request: &GaitRequest) -> Result<GaitRun, Failure> {
         ))
         .into());
     }
-    let Loaded {
-        mut model, label, ..
-    } = loaded;
-    let values = with_parameters(&mut model, &request.params)?;
-    let parameters = borrowed(&values);
-    let body = locomotion(&model, &label)?;
-    let laws = laws(&model, &label, &body.shape, request, &parameters)?;
+    let asked = Asked {
+        params: &request.params,
+        ..Asked::default()
+    };
+    let setup = setup::resolve(loaded.model, &asked)?;
+    let (model, label) = (&setup.model, &loaded.label);
+    let parameters = setup.bound();
+    let body = locomotion(model, label)?;
+    let laws = laws(model, label, &body.shape, request, &parameters)?;
     let shape = |t: f64| -> (Vec<f64>, Vec<f64>) { laws.iter().map(|law| law.rate(t)).unzip() };
     let p0 = initial_momenta(&request.initial, body.momenta)?;
     let q0 = vec![0.0; model.sizes().n];
-    refuse_pushed_momentum(&body, &shape, (&q0, request.period), &label)?;
+    refuse_pushed_momentum(&body, &shape, (&q0, request.period), label)?;
     let mut columns = vec!["t".to_string()];
     columns.extend(model.names().coordinates.iter().cloned());
     columns.extend((1..=body.momenta).map(|i| format!("p{i}")));
@@ -463,10 +465,12 @@ pub struct OptimalGait {
 /// over the survey's box), a bad request, no loop off the singular set,
 /// or the run's errors.
 pub fn optimal_gait(loaded: Loaded, request: &OptimalGaitRequest) -> Result<OptimalGait, Failure> {
-    let Loaded {
-        mut model, label, ..
-    } = loaded;
-    with_parameters(&mut model, &request.params)?;
+    let asked = Asked {
+        params: &request.params,
+        ..Asked::default()
+    };
+    let Setup { model, .. } = setup::resolve(loaded.model, &asked)?;
+    let label = loaded.label;
     let body = locomotion(&model, &label)?;
     let extent = request.design.extent;
     let spread = |t: f64| -> (Vec<f64>, Vec<f64>) {

@@ -1,6 +1,7 @@
 //! Linearization of a model about a steady motion (docs/INTERFACE.md
-//! section 5): the operating point from assignments `NAME=EXPR` of
-//! coordinates and velocities (`crate::runtime::linearize::point`), the
+//! section 5): the operating point from the assignments `NAME=EXPR` of
+//! coordinates and velocities of a resolved request
+//! (`crate::driver::setup`, solved by `crate::runtime::linearize::point`), the
 //! linear system about it with the symmetry reduced and the constraints
 //! eliminated (`crate::runtime::linearize::steady`), its eigenvalues; over
 //! a sweep of a variable the assignments read, the intervals where the
@@ -14,48 +15,23 @@
 pub mod canonical;
 pub mod sweep;
 
-use super::expression::{ExpressionError, constant};
+use super::setup::{InputError, Setup};
 use crate::runtime::linearize::{
-    self as runtime_linearize, Dynamics, LinearSystem, OperatingPoint, PointError, SteadyError,
+    self as runtime_linearize, LinearSystem, OperatingPoint, PointError, SteadyError,
 };
-use std::collections::BTreeMap;
 use sweep::{Change, Interval};
 
-/// A problem with the assignments or the operating point, in one line.
+/// A problem with the request or the operating point, in one line.
 #[derive(Debug, thiserror::Error)]
 pub enum LinearizeError {
-    /// An assignment names neither a coordinate nor a velocity.
-    #[error("--at: unknown name `{name}` (coordinates and `dot(q)` velocities: {known})")]
-    UnknownName {
-        /// The name given.
-        name: String,
-        /// The names there are.
-        known: String,
-    },
+    /// The assignments' names or values.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// The sweep variable is also a parameter.
     #[error(
         "--sweep: `{0}` is a parameter; sweep a new name and use it in --at or --param expressions"
     )]
     ParameterSwept(String),
-    /// An assignment's expression names what is neither a parameter nor
-    /// the sweep variable.
-    #[error("--at: `{text}`: unknown name `{name}` (known: {known})")]
-    UnknownExpressionName {
-        /// The expression.
-        text: String,
-        /// The name.
-        name: String,
-        /// The names there are.
-        known: String,
-    },
-    /// An assignment's expression does not read.
-    #[error("--at: `{text}`: {source}")]
-    Expression {
-        /// The expression.
-        text: String,
-        /// What is wrong with it.
-        source: ExpressionError,
-    },
     /// The operating point.
     #[error(transparent)]
     Point(#[from] PointError),
@@ -77,71 +53,26 @@ pub enum LinearizeError {
     },
 }
 
-/// The point the assignments `at` describe, their expressions reading
-/// `names`, linearized with the inputs zero, the entries named
+/// The point the state assignments of `setup` give at the values of its
+/// `variables`, linearized with the inputs zero, the entries named
 /// `independent` kept in the state.
 ///
 /// # Errors
-/// An unknown name, an expression that does not read, or a point that is
-/// not a steady motion.
+/// A value that is not finite, or a point that is not a steady motion.
 pub fn linearize_at(
-    model: &dyn Dynamics,
-    names: &BTreeMap<String, f64>,
-    at: &[(String, String)],
+    setup: &Setup,
+    variables: &[f64],
     independent: &[&str],
 ) -> Result<LinearSystem, LinearizeError> {
-    let coordinates = model.coordinates();
-    let velocities = runtime_linearize::point::velocity_names(&coordinates);
-    let mut q = vec![None; coordinates.len()];
-    let mut qdot = vec![None; coordinates.len()];
-    for (name, text) in at {
-        let value = evaluate(text, names)?;
-        if let Some(i) = coordinates.iter().position(|c| c == name) {
-            q[i] = Some(value);
-        } else if let Some(i) = velocities.iter().position(|v| v == name) {
-            qdot[i] = Some(value);
-        } else {
-            return Err(LinearizeError::UnknownName {
-                name: name.clone(),
-                known: coordinates
-                    .iter()
-                    .chain(&velocities)
-                    .cloned()
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            });
-        }
-    }
-    let point = OperatingPoint::solve(model, &q, &qdot)?;
-    let u = vec![0.0; model.inputs()];
+    let assigned = setup.state.at(variables)?;
+    let point = OperatingPoint::solve(&setup.model, &assigned.q, &assigned.qdot)?;
+    let u = vec![0.0; setup.model.sizes().p];
     Ok(runtime_linearize::linearize(
-        model,
+        &setup.model,
         &point,
         &u,
         independent,
     )?)
-}
-
-/// The value of the expression `text` of `names` (the parameters, the
-/// sweep variable) and `pi`.
-///
-/// # Errors
-/// An unknown name, or a text that is not a finite constant.
-pub fn evaluate(text: &str, names: &BTreeMap<String, f64>) -> Result<f64, LinearizeError> {
-    let bound: Vec<(&str, f64)> = names.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-    constant(text, &bound).map_err(|error| match error {
-        ExpressionError::UnknownName { name, .. } => LinearizeError::UnknownExpressionName {
-            text: text.to_string(),
-            name,
-            known: (names.keys().map(String::as_str).chain(["pi"]))
-                .collect::<Vec<_>>()
-                .join(", "),
-        },
-        source => LinearizeError::Expression {
-            text: text.to_string(),
-            source,
-        },
-    })
 }
 
 /// The linear systems of a sweep and where its motions are stable.
@@ -175,44 +106,29 @@ impl SweepAnalysis {
 /// sense, the family's zeros of conserved quantities discounted.
 type Verdict = fn(&LinearSystem, usize) -> bool;
 
-/// The steady motions `at` over a sweep variable: the linearization at
-/// each of its values, the expressions reading the parameters too.
+/// The steady motions of a setup's state assignments over its one
+/// variable: the linearization at each of its values.
 struct Family<'a> {
-    model: &'a dyn Dynamics,
-    parameters: &'a BTreeMap<String, f64>,
+    setup: &'a Setup,
     variable: &'a str,
-    at: &'a [(String, String)],
 }
 
 impl Family<'_> {
-    /// The family of `at` over `variable`, which must not be a parameter.
-    fn new<'a>(
-        model: &'a dyn Dynamics,
-        parameters: &'a BTreeMap<String, f64>,
-        variable: &'a str,
-        at: &'a [(String, String)],
-    ) -> Result<Family<'a>, LinearizeError> {
-        if parameters.contains_key(variable) {
+    /// The family of `setup` over `variable`, which must not be a
+    /// parameter.
+    fn new<'a>(setup: &'a Setup, variable: &'a str) -> Result<Family<'a>, LinearizeError> {
+        if setup.parameters.iter().any(|(name, _)| name == variable) {
             return Err(LinearizeError::ParameterSwept(variable.to_string()));
         }
-        Ok(Family {
-            model,
-            parameters,
-            variable,
-            at,
-        })
+        Ok(Family { setup, variable })
     }
 
     /// The linear system at `value` of the variable.
     fn at_value(&self, value: f64) -> Result<LinearSystem, LinearizeError> {
-        let mut names = self.parameters.clone();
-        names.insert(self.variable.to_string(), value);
-        linearize_at(self.model, &names, self.at, &[]).map_err(|source| {
-            LinearizeError::AtSweepValue {
-                variable: self.variable.to_string(),
-                value,
-                source: Box::new(source),
-            }
+        linearize_at(self.setup, &[value], &[]).map_err(|source| LinearizeError::AtSweepValue {
+            variable: self.variable.to_string(),
+            value,
+            source: Box::new(source),
         })
     }
 
@@ -260,9 +176,8 @@ impl Family<'_> {
     }
 }
 
-/// The point of `at` linearized at each of `values` of `variable`, the
-/// expressions reading the `parameters` too, and the intervals of
-/// stability. A grid point is stable by a margin; between grid points the
+/// The point of the state assignments of `setup` linearized at each of
+/// `values` of its `variable`, and the intervals of stability. A grid point is stable by a margin; between grid points the
 /// change of asymptotic stability is where the largest real part crosses
 /// zero.
 ///
@@ -270,12 +185,10 @@ impl Family<'_> {
 /// The variable is a parameter, or a point of the sweep fails (named with
 /// its value).
 pub fn sweep(
-    model: &dyn Dynamics,
-    parameters: &BTreeMap<String, f64>,
+    setup: &Setup,
     (variable, values): (&str, &[f64]),
-    at: &[(String, String)],
 ) -> Result<SweepAnalysis, LinearizeError> {
-    let family = Family::new(model, parameters, variable, at)?;
+    let family = Family::new(setup, variable)?;
     let (systems, conserved) = family.over(values)?;
     let stable = family.stable((values, &systems), conserved)?;
     let neutral = LinearSystem::is_neutral_modulo;
@@ -316,9 +229,9 @@ pub fn unstable_modes(linear: &LinearSystem, conserved: usize, margin: f64) -> u
         })
 }
 
-/// The intervals of asymptotic stability of the steady motions `at` over
-/// `values` of `variable` (the expressions reading the `parameters` too),
-/// as [`sweep()`] finds them, and the values where the number of unstable
+/// The intervals of asymptotic stability of the steady motions of the
+/// state assignments of `setup` over `values` of its `variable`, as
+/// [`sweep()`] finds them, and the values where the number of unstable
 /// modes changes: between grid values where it differs (counted with
 /// [`LinearSystem::MARGIN`]), located by bisection on the count without
 /// margin (to [`sweep::REFINED`]). Neither the eigenvalues nor the neutral
@@ -328,12 +241,10 @@ pub fn unstable_modes(linear: &LinearSystem, conserved: usize, margin: f64) -> u
 /// The variable is a parameter, or a point of the sweep fails (named with
 /// its value).
 pub fn stability(
-    model: &dyn Dynamics,
-    parameters: &BTreeMap<String, f64>,
+    setup: &Setup,
     (variable, values): (&str, &[f64]),
-    at: &[(String, String)],
 ) -> Result<Stability, LinearizeError> {
-    let family = Family::new(model, parameters, variable, at)?;
+    let family = Family::new(setup, variable)?;
     let (systems, conserved) = family.over(values)?;
     let stable = family.stable((values, &systems), conserved)?;
     let counts: Vec<usize> = (systems.iter())

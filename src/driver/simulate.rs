@@ -1,52 +1,37 @@
-//! A simulation of a model read from its text: its parameters and initial
-//! state, a formulation closed by a controller (the input laws of the time
-//! and the state, read in every formulation at its configuration and
-//! velocity: `(q, qdot)`, `(q, velocities(q, alpha))` in the active chart,
-//! or `(q, reconstructed_velocity(q, rdot, p))`), an integrator and a stop
-//! condition ([`Request`]); the run records every row and reports the
-//! energy drift, the largest constraint residual, and where and why it
-//! stopped ([`Finished`]). A model with configuration constraints is kept
-//! on `f(q) = 0` after every step, in every formulation. The built-in
-//! snakeboard also runs under the paper's energy-based controller
-//! (`crate::energy_control`), through the runtime's own interconnection of
-//! the model at its fixed sizes (`chaplygin_codegen::interpret::Fixed`).
+//! A simulation of a model read from its text: its request ([`Request`])
+//! resolved once into a [`Setup`] (`crate::driver::setup`: the parameters,
+//! the initial state, the input laws, the stop condition), a formulation
+//! closed by a controller (the input laws of the time and the state, read
+//! in every formulation at its configuration and velocity: `(q, qdot)`,
+//! `(q, velocities(q, alpha))` in the active chart, or
+//! `(q, reconstructed_velocity(q, rdot, p))`), an integrator and a stop
+//! condition; the run records every row and reports the energy drift, the
+//! largest constraint residual, and where and why it stopped
+//! ([`Finished`]). A model with configuration constraints is kept on
+//! `f(q) = 0` after every step, in every formulation. A model with what the
+//! paper's energy-based controller uses also runs under it ([`energy`]).
 
-mod error;
-mod inputs;
+mod energy;
 mod request;
 mod run;
-mod start;
-mod stop;
 mod trust;
 
-pub use error::InputError;
-pub use inputs::InputLawError;
 pub use request::{
     Controller, FormulationChoice, Integrator, Request, assignment, expression_assignment,
 };
 pub use run::{Report, Tolerance};
-pub use start::{set_parameters, with_parameters};
-pub use stop::StopError;
 pub use trust::{ALLOWANCE, Warning};
 
-use super::catalog::{BuiltIn, Motion};
+use super::catalog::BuiltIn;
 use super::engine::Loaded;
-use super::expression::Scope;
-use super::formulation::{Formulation, Typed};
-use super::interpreted::{
-    InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced, evaluated,
-};
+use super::formulation::Formulation;
+use super::interpreted::{InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced};
+use super::setup::{self, Asked, Controls, InputError, InputSchedule, Origin, Setup, Start};
 use crate::driver::Failure;
-use crate::energy_control::{ClosedLoop, EnergyController, closed_loop_state};
-use crate::runtime::arrays::leading;
-use crate::runtime::nalgebra::DMatrix;
 use crate::runtime::record::{Recorder, Table};
-use crate::runtime::system::Momenta;
 use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
-use chaplygin_codegen::interpret::{Fixed, InterpretedModel};
-use inputs::InputSchedule;
+use chaplygin_codegen::interpret::InterpretedModel;
 use run::Settings;
-use start::{Kinematics, Start, initial_state, initial_values, with_default_motion};
 use std::cell::RefCell;
 use std::rc::Rc;
 
@@ -62,6 +47,8 @@ pub struct Prepared {
     fixed_inputs: Rc<RefCell<Option<Vec<f64>>>>,
     /// The model, for its points' positions and initial states.
     model: InterpretedModel,
+    /// The stop condition.
+    stop: Option<setup::Comparison>,
     /// The built-in it is, for its default configuration and motion.
     built_in: Option<&'static BuiltIn>,
 }
@@ -95,15 +82,15 @@ pub fn simulate(
     progress: &mut dyn FnMut(f64),
 ) -> Result<Finished, Failure> {
     if request.controller == Controller::Energy {
-        return match loaded.built_in {
-            Some(built_in) if built_in.name == "snakeboard" => {
-                energy_controlled(loaded.model, built_in, request, also, progress)
-            }
-            _ => Err(no_controller(&loaded.label).into()),
-        };
+        energy::check(&loaded.model, &loaded.label, request)?;
+        let setup = setup::resolve(
+            loaded.model,
+            &request.asked(energy::ORIGIN, energy::CONTROLS),
+        )?;
+        return energy::run(&setup, request, also, progress);
     }
     let prepared = prepare(loaded, request)?;
-    let settings = Settings::new(request, &*prepared.formulation, &prepared.scope_names())?;
+    let settings = Settings::new(request, &*prepared.formulation, prepared.stop.as_ref())?;
     let mut table = Table::new();
     let outcome = settings.run(
         &*prepared.formulation,
@@ -121,63 +108,74 @@ pub fn simulate(
 }
 
 /// The formulation `request` chooses of the `loaded` model, closed by its
-/// `inputs` laws, from its initial state: a built-in's default
-/// configuration and motion, or a file's rest at `q = 0`, unless
-/// `request.initial` says otherwise.
+/// input laws, from its initial state: a built-in's default configuration
+/// and motion, or a file's rest at `q = 0`, unless `request.initial` says
+/// otherwise.
 ///
 /// # Errors
 /// Bad input, or a formulation the model does not derive.
 pub fn prepare(loaded: Loaded, request: &Request) -> Result<Prepared, Failure> {
     if request.controller == Controller::Energy {
-        return Err(no_controller(&loaded.label).into());
+        return Err(InputError::Unsupported(format!(
+            "`{}`: the energy controller's closed loop runs with `simulate` only",
+            loaded.label
+        ))
+        .into());
     }
     let Loaded {
-        mut model,
+        model,
         label,
         built_in,
         ..
     } = loaded;
-    let values = with_parameters(&mut model, &request.params)?;
-    let names = model.names().clone();
-    let parameters = borrowed(&values);
-    let coordinates: Vec<&str> = names.coordinates.iter().map(String::as_str).collect();
-    let start = start_of(&model, built_in, &request.initial, &parameters, &mut [])?;
-    let input_names: Vec<&str> = names.inputs.iter().map(String::as_str).collect();
-    let schedule = InputSchedule::new(&input_names, &request.inputs, &parameters, &coordinates)?;
+    let setup = setup::resolve(model, &request.asked(origin(built_in), Controls::default()))?;
+    let Setup {
+        model,
+        parameters,
+        start,
+        inputs: schedule,
+        stop,
+        ..
+    } = setup;
+    let start = start.expect("a simulation asks for its start");
     let fixed_inputs: Rc<RefCell<Option<Vec<f64>>>> = Rc::default();
-    let fixed = Rc::clone(&fixed_inputs);
-    let inputs = InputLaw {
-        reads_state: schedule.reads_state(),
-        law: Box::new(move |t, q, qdot, u| match fixed.borrow().as_deref() {
-            Some(given) => u.copy_from_slice(given),
-            None => schedule.at(t, q, qdot, u),
-        }),
-    };
-    let (formulation, x0) = closed(model.clone(), request.formulation, inputs, &start, &label)?;
+    let (formulation, x0) = closed(
+        model.clone(),
+        request.formulation,
+        input_law(schedule, Rc::clone(&fixed_inputs)),
+        &start,
+        &label,
+    )?;
     Ok(Prepared {
         formulation,
         x0,
-        parameters: values,
+        parameters,
         fixed_inputs,
+        stop,
         model,
         built_in,
     })
 }
 
-/// `(name, value)` pairs borrowing their names.
-pub(crate) fn borrowed(pairs: &[(String, f64)]) -> Vec<(&str, f64)> {
-    pairs
-        .iter()
-        .map(|(name, value)| (name.as_str(), *value))
-        .collect()
+/// Where a run of a built-in starts: its default configuration and
+/// motion; a model from a file's at rest at `q = 0`.
+fn origin(built_in: Option<&'static BuiltIn>) -> Origin<'static> {
+    built_in.map_or_else(Origin::default, |built_in| Origin {
+        q: Some(built_in.q),
+        motion: Some(built_in.motion),
+    })
 }
 
-/// `(name, value)` pairs owning their names.
-fn owned(pairs: &[(&str, f64)]) -> Vec<(String, f64)> {
-    pairs
-        .iter()
-        .map(|&(name, value)| (name.to_string(), value))
-        .collect()
+/// The input law of `schedule`, or the inputs `fixed` holds while it
+/// holds some.
+fn input_law(schedule: InputSchedule, fixed: Rc<RefCell<Option<Vec<f64>>>>) -> InputLaw {
+    InputLaw {
+        reads_state: schedule.reads_state(),
+        law: Box::new(move |t, q, qdot, u| match fixed.borrow().as_deref() {
+            Some(given) => u.copy_from_slice(given),
+            None => schedule.at(t, q, qdot, u),
+        }),
+    }
 }
 
 /// A closed formulation and its initial state.
@@ -230,13 +228,14 @@ impl Prepared {
     /// constraints do not determine, or a velocity the formulation cannot
     /// represent.
     pub fn initial_state(&self, given: &[(String, String)]) -> Result<Vec<f64>, Failure> {
-        let start = start_of(
-            &self.model,
-            self.built_in,
-            given,
-            &borrowed(&self.parameters),
-            &mut [],
-        )?;
+        let asked = Asked {
+            state_flag: "--initial",
+            state: given,
+            start: Some(origin(self.built_in)),
+            ..Asked::default()
+        };
+        let setup = setup::resolve(self.model.clone(), &asked)?;
+        let start = setup.start.expect("asked for its start");
         self.formulation.state_of(&start.q, &start.qdot)
     }
 
@@ -252,17 +251,6 @@ impl Prepared {
     /// The model's number of inputs.
     pub fn input_count(&self) -> usize {
         self.model.sizes().p
-    }
-
-    /// The names a stop condition may read: the parameters, the
-    /// coordinates and the inputs.
-    fn scope_names(&self) -> ScopeNames {
-        let names = self.model.names();
-        ScopeNames {
-            parameters: self.parameters.clone(),
-            coordinates: names.coordinates.clone(),
-            inputs: names.inputs.clone(),
-        }
     }
 
     /// The declared points' positions at every row of `table`, `None`
@@ -288,173 +276,20 @@ impl Prepared {
     }
 }
 
-/// The names of a run's scope, owned: the parameters with their values,
-/// the coordinates, the inputs.
-pub(crate) struct ScopeNames {
-    parameters: Vec<(String, f64)>,
-    coordinates: Vec<String>,
-    inputs: Vec<String>,
-}
-
-impl ScopeNames {
-    /// `read` with the names as a [`Scope`].
-    fn with_scope<T>(&self, read: impl FnOnce(&Scope<'_>) -> T) -> T {
-        let parameters: Vec<(&str, f64)> = self
-            .parameters
-            .iter()
-            .map(|(name, value)| (name.as_str(), *value))
-            .collect();
-        let coordinates: Vec<&str> = self.coordinates.iter().map(String::as_str).collect();
-        let inputs: Vec<&str> = self.inputs.iter().map(String::as_str).collect();
-        read(&Scope {
-            parameters: &parameters,
-            coordinates: &coordinates,
-            inputs: &inputs,
-        })
+impl Request {
+    /// The request's assignments, for [`setup::resolve`], a run from
+    /// `origin` unless they say otherwise, with the `controls` of its
+    /// controller.
+    fn asked<'a>(&'a self, origin: Origin<'a>, controls: Controls<'a>) -> Asked<'a> {
+        Asked {
+            params: &self.params,
+            state_flag: "--initial",
+            state: &self.initial,
+            inputs: &self.inputs,
+            stop_when: self.stop_when.as_deref(),
+            start: Some(origin),
+            controls,
+            ..Asked::default()
+        }
     }
-}
-
-fn no_controller(model: &str) -> InputError {
-    InputError::Unsupported(format!(
-        "the energy controller is the built-in snakeboard's; `{model}` takes `--controller none`"
-    ))
-}
-
-/// The initial state of `model` from a built-in's default configuration
-/// and motion, or a file's rest at `q = 0`, and the `given` `--initial`
-/// assignments, expressions of the `parameters`; the `controller_states`
-/// take their `--initial` values too.
-fn start_of(
-    model: &InterpretedModel,
-    built_in: Option<&BuiltIn>,
-    given: &[(String, String)],
-    parameters: &[(&str, f64)],
-    controller_states: &mut [(&str, &mut f64)],
-) -> Result<Start, InputError> {
-    let names = model.names();
-    let coordinates: Vec<&str> = names.coordinates.iter().map(String::as_str).collect();
-    let constraints: Vec<&str> = names.constraints.iter().map(String::as_str).collect();
-    let n = coordinates.len();
-    let (alpha, given) = match built_in.map(|built_in| built_in.motion) {
-        Some(Motion::Momenta(alpha)) => (alpha, given.to_vec()),
-        Some(Motion::Velocities(defaults)) => (&[][..], with_default_motion(given, defaults)),
-        None => (&[][..], given.to_vec()),
-    };
-    let initial = initial_values(&given, parameters)?;
-    initial_state(
-        &Kinematics {
-            coordinates: &coordinates,
-            constraints: &constraints,
-            default_q: &built_in.map_or_else(|| vec![0.0; n], |built_in| built_in.q.to_vec()),
-            default_motion: &|q| match alpha.is_empty() {
-                true => vec![0.0; n],
-                false => evaluated(model.velocities(q, alpha)),
-            },
-            constraint_matrix: &|q| {
-                let a = evaluated(model.constraint_matrix(q));
-                DMatrix::from_row_slice(constraints.len(), n, &a)
-            },
-            holonomic: Some(model),
-        },
-        &initial,
-        controller_states,
-    )
-}
-
-/// The snakeboard under the energy-based controller (MATH.md 3.2), from
-/// rest at `q = 0` with energy in the springs (`xt = 1`, `xw = 0.5`) unless
-/// `request.initial` says otherwise; gains `a = 1`, `kt = 2`, `kw = 1`
-/// unless `request.params` says otherwise. The closed loop is the
-/// runtime's interconnection of the model at its sizes: 5 coordinates, 2
-/// constraint rows, 2 inputs, no configuration constraints, 2 shape
-/// coordinates and 1 momentum.
-fn energy_controlled(
-    mut model: InterpretedModel,
-    built_in: &BuiltIn,
-    request: &Request,
-    also: &mut dyn Recorder,
-    progress: &mut dyn FnMut(f64),
-) -> Result<Finished, Failure> {
-    if request.formulation != FormulationChoice::Reduced {
-        return Err(InputError::Unsupported(
-            "the energy controller closes the reduced port-Hamiltonian form: use --formulation reduced".into(),
-        )
-        .into());
-    }
-    if let Some((name, _)) = request.inputs.first() {
-        return Err(InputError::Unsupported(format!(
-            "--input {name}: the energy controller sets the inputs"
-        ))
-        .into());
-    }
-    let mut controller = EnergyController {
-        a: 1.0,
-        kt: 2.0,
-        kw: 1.0,
-    };
-    let names = model.names().clone();
-    let known: Vec<&str> = names
-        .parameters
-        .iter()
-        .map(String::as_str)
-        .chain(["a", "kt", "kw"])
-        .collect();
-    set_parameters(&known, &request.params, &mut |name, value| {
-        let gain = match name {
-            "a" => &mut controller.a,
-            "kt" => &mut controller.kt,
-            "kw" => &mut controller.kw,
-            _ => return model.set_parameter(name, value).is_ok(),
-        };
-        *gain = value;
-        true
-    })?;
-    let mut parameters: Vec<(&str, f64)> = known
-        .iter()
-        .copied()
-        .zip(model.parameter_values().iter().copied())
-        .collect();
-    parameters.extend([
-        ("a", controller.a),
-        ("kt", controller.kt),
-        ("kw", controller.kw),
-    ]);
-    let (mut xt, mut xw) = (1.0, 0.5);
-    let at_rest = BuiltIn {
-        q: &[0.0; 5],
-        motion: Motion::Momenta(&[0.0; 3]),
-        ..*built_in
-    };
-    let start = start_of(
-        &model,
-        Some(&at_rest),
-        &request.initial,
-        &parameters,
-        &mut [("xt", &mut xt), ("xw", &mut xw)],
-    )?;
-    let board = Fixed::<5, 2, 2, 0, 2, 1>::new(&model)?;
-    let alpha: [f64; 3] = board.momenta(&leading(&start.q), &leading(&start.qdot));
-    let x = leading(&start.q.iter().chain(&alpha).copied().collect::<Vec<f64>>());
-    let x0 = closed_loop_state(&x, xt, xw);
-    let scope = ScopeNames {
-        parameters: owned(&parameters),
-        coordinates: names.coordinates.clone(),
-        inputs: names.inputs.clone(),
-    };
-    let closed_loop =
-        Typed::<_, 10>::structured(ClosedLoop::new(board, controller), model.engine().name());
-    let settings = Settings::new(request, &closed_loop, &scope)?;
-    let mut table = Table::new();
-    let outcome = settings.run(
-        &closed_loop,
-        &x0,
-        &mut run::Both(&mut table, also),
-        progress,
-    );
-    Ok(Finished {
-        table,
-        tracks: None,
-        parameters: scope.parameters,
-        outcome,
-    })
 }

@@ -15,10 +15,10 @@ use chaplygin::driver::Failure;
 use chaplygin::driver::linearize::canonical::{self, CanonicalSpeed};
 use chaplygin::driver::linearize::sweep::{self, Interval, Sweep};
 use chaplygin::driver::linearize::{LinearizeError, SweepAnalysis, linearize_at};
-use chaplygin::driver::simulate::{assignment, expression_assignment, with_parameters};
+use chaplygin::driver::setup::{self, Asked, Setup};
+use chaplygin::driver::simulate::{assignment, expression_assignment};
 use chaplygin::plot::{EigenvalueSweep, write_eigenvalue_plot};
-use chaplygin::runtime::linearize::{Dynamics, LinearSystem};
-use std::collections::BTreeMap;
+use chaplygin::runtime::linearize::LinearSystem;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -72,37 +72,37 @@ pub struct LinearizeArgs {
 /// # Errors
 /// Bad input, a point that is not a steady motion, an I/O error.
 pub fn run(args: &LinearizeArgs) -> Result<(), Failure> {
-    let mut model = loaded(&args.model)?.model;
-    let parameters = with_parameters(&mut model, &args.params)?;
-    analyse(&model, parameters.into_iter().collect(), args)
+    let variable = (args.canonical_speed.as_ref().map(|speed| &speed.variable))
+        .or(args.sweep.as_ref().map(|grid| &grid.variable));
+    let variables: Vec<&str> = variable.iter().map(|name| name.as_str()).collect();
+    let asked = Asked {
+        params: &args.params,
+        state_flag: "--at",
+        state: &args.at,
+        variables: &variables,
+        ..Asked::default()
+    };
+    let setup = setup::resolve(loaded(&args.model)?.model, &asked)?;
+    analyse(&setup, args)
 }
 
 /// Linearizes at one point, or over the sweep.
-fn analyse(
-    model: &dyn Dynamics,
-    parameters: BTreeMap<String, f64>,
-    args: &LinearizeArgs,
-) -> Result<(), Failure> {
+fn analyse(setup: &Setup, args: &LinearizeArgs) -> Result<(), Failure> {
     if let Some(speed) = &args.canonical_speed {
         let request = canonical::Request {
             coordinates: &args.canonical,
             speed,
             gravity: &args.canonical_gravity,
         };
-        let form = canonical::canonical_form(model, &parameters, &args.at, &request)?;
+        let form = canonical::canonical_form(setup, &request)?;
         return Ok(crate::say(&form)?);
     }
     let Some(grid) = &args.sweep else {
-        let linear = linearize_at(model, &parameters, &args.at, &[])?;
+        let linear = linearize_at(setup, &[], &[])?;
         return Ok(crate::say(&describe(&linear))?);
     };
     let values = grid.grid().map_err(LinearizeError::from)?;
-    let analysis = chaplygin::driver::linearize::sweep(
-        model,
-        &parameters,
-        (&grid.variable, &values),
-        &args.at,
-    )?;
+    let analysis = chaplygin::driver::linearize::sweep(setup, (&grid.variable, &values))?;
     let csv_file = args.out.join("eigenvalues.csv");
     let eigenvalues = analysis.eigenvalues();
     sweep::write(

@@ -15,10 +15,10 @@
 //! the rest divided by the value of the gravity parameter G (`g` unless
 //! given), all of the speed-independent stiffness taken as gravity's.
 
-use super::{LinearizeError, evaluate, linearize_at};
+use super::{LinearizeError, linearize_at};
+use crate::driver::setup::Setup;
 use crate::runtime::linearize::{CanonicalError, CanonicalForm, Dynamics, point};
 use crate::runtime::nalgebra::DMatrix;
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 /// The speed variable of `--canonical` and its two values.
@@ -107,31 +107,27 @@ pub struct Request<'a> {
     pub gravity: &'a str,
 }
 
-/// The canonical form of `model` at the point `at` describes, printed.
+/// The canonical form of the model of `setup` at the point its state
+/// assignments describe, their one variable the speed, printed.
 ///
 /// # Errors
 /// [`CanonicalRequestError`]: names that are no coordinate or parameter, a
 /// speed variable the point does not use, a point that is not steady at
 /// one of the speeds, inputs that are not one force per coordinate.
-pub fn canonical_form(
-    model: &dyn Dynamics,
-    parameters: &BTreeMap<String, f64>,
-    at: &[(String, String)],
-    request: &Request,
-) -> Result<String, CanonicalRequestError> {
-    let known = model.coordinates();
+pub fn canonical_form(setup: &Setup, request: &Request) -> Result<String, CanonicalRequestError> {
+    let known = setup.model.coordinates();
     if let Some(name) = request.coordinates.iter().find(|c| !known.contains(c)) {
         return Err(CanonicalRequestError::UnknownCoordinate {
             name: name.clone(),
             known: known.join(", "),
         });
     }
-    let g = gravity(parameters, request.gravity)?;
+    let g = gravity(&setup.parameters, request.gravity)?;
     let variable = &request.speed.variable;
-    if parameters.contains_key(variable) {
+    if setup.parameters.iter().any(|(name, _)| name == variable) {
         return Err(CanonicalRequestError::SpeedIsParameter(variable.clone()));
     }
-    if !at.iter().any(|(_, text)| uses(text, variable, parameters)) {
+    if !setup.state.reads(variable) {
         return Err(CanonicalRequestError::SpeedUnused(variable.clone()));
     }
     let coordinates: Vec<&str> = request.coordinates.iter().map(String::as_str).collect();
@@ -140,14 +136,10 @@ pub fn canonical_form(
     let independent: Vec<&str> = coordinates.iter().chain(&speeds).copied().collect();
     let (v1, v2) = request.speed.values;
     let linear_at = |value: f64| {
-        let mut names = parameters.clone();
-        names.insert(variable.clone(), value);
-        linearize_at(model, &names, at, &independent).map_err(|source| {
-            LinearizeError::AtSweepValue {
-                variable: variable.clone(),
-                value,
-                source: Box::new(source),
-            }
+        linearize_at(setup, &[value], &independent).map_err(|source| LinearizeError::AtSweepValue {
+            variable: variable.clone(),
+            value,
+            source: Box::new(source),
         })
     };
     let (slow, fast) = (linear_at(v1)?, linear_at(v2)?);
@@ -157,25 +149,16 @@ pub fn canonical_form(
 }
 
 /// The value of the gravity parameter `name`, which must be nonzero.
-fn gravity(parameters: &BTreeMap<String, f64>, name: &str) -> Result<f64, CanonicalRequestError> {
-    let problem = match parameters.get(name) {
+fn gravity(parameters: &[(String, f64)], name: &str) -> Result<f64, CanonicalRequestError> {
+    let problem = match parameters.iter().find(|(parameter, _)| parameter == name) {
         None => "no parameter of the model",
-        Some(&value) if value != 0.0 => return Ok(value),
+        Some(&(_, value)) if value != 0.0 => return Ok(value),
         Some(_) => "0",
     };
     Err(CanonicalRequestError::Gravity {
         name: name.to_string(),
         problem,
     })
-}
-
-/// Whether the expression `text` uses `variable`: it names it where only
-/// the parameters are bound.
-fn uses(text: &str, variable: &str, parameters: &BTreeMap<String, f64>) -> bool {
-    matches!(
-        evaluate(text, parameters),
-        Err(LinearizeError::UnknownExpressionName { name, .. }) if name == variable
-    )
 }
 
 /// The header and the four matrices, rows and columns named by `q`.

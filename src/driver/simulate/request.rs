@@ -18,8 +18,9 @@ pub struct Request {
     #[cfg_attr(feature = "cli", arg(long, value_enum))]
     pub integrator: Option<Integrator>,
     /// The controller closing the inputs: `none` applies the `--input`
-    /// laws (zero by default); `energy` is the energy-based snakeboard
-    /// controller of Duindam & Stramigioli (reduced form only).
+    /// laws (zero by default); `energy` is the energy-based controller of
+    /// Duindam & Stramigioli (reduced form only), for a model with a
+    /// steering angle `phi` and two inputs, the torso's and the wheels'.
     #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = Controller::None))]
     pub controller: Controller,
     /// The final time.
@@ -135,7 +136,8 @@ pub enum Integrator {
 pub enum Controller {
     /// The `--input` laws (zero by default).
     None,
-    /// The energy-based snakeboard controller (MATH.md 3.2).
+    /// The energy-based controller of the snakeboard (MATH.md 3.2), for
+    /// any model with what it uses.
     Energy,
 }
 

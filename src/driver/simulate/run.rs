@@ -2,12 +2,11 @@
 //! integrator and stop condition, recording every row, and its
 //! [`Report`].
 
-use super::ScopeNames;
-use super::error::InputError;
 use super::request::{Integrator, Request};
-use super::stop::{Comparison, stop_condition};
 use crate::driver::Failure;
 use crate::driver::formulation::{Formulation, RunTimeSized};
+use crate::driver::setup::InputError;
+use crate::driver::setup::stop::{Comparison, stop_condition};
 use crate::runtime::integrate::{
     Controlled, DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4,
 };
@@ -130,23 +129,19 @@ impl std::fmt::Display for Report {
 }
 
 impl Settings {
-    /// The settings of `request` for `formulation`, its stop condition
-    /// read against the names of `scope`: the integrator chosen, or the
-    /// formulation's default (see [`Integrator::chosen_or_default`]).
+    /// The settings of `request` for `formulation`, with its `stop`
+    /// condition: the integrator chosen, or the formulation's default (see
+    /// [`Integrator::chosen_or_default`]).
     ///
     /// # Errors
-    /// A stop condition that does not read, or the discrete gradient on a
-    /// formulation without structure.
+    /// Tolerances that are not, or the discrete gradient on a formulation
+    /// without structure.
     pub(super) fn new(
         request: &Request,
         formulation: &dyn Formulation,
-        scope: &ScopeNames,
+        stop: Option<&Comparison>,
     ) -> Result<Self, Failure> {
-        let stop = request
-            .stop_when
-            .as_deref()
-            .map(|text| scope.with_scope(|scope| Comparison::parse(text, scope)))
-            .transpose()?;
+        let stop = stop.cloned();
         let structured = formulation.is_structured();
         let integrator = Integrator::chosen_or_default(request.integrator, structured);
         if integrator == Integrator::DiscreteGradient && !structured {

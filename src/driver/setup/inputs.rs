@@ -12,25 +12,6 @@
 use super::error::InputError;
 use crate::driver::expression::{Expression, Point, Scope};
 
-/// Why an `--input` cannot be used.
-#[derive(Debug, thiserror::Error)]
-pub enum InputLawError {
-    /// `--input` names no input.
-    #[error(transparent)]
-    UnknownInput(InputError),
-    /// The right-hand side is not an expression of `t`, the parameters and
-    /// the state.
-    #[error("--input {name}={text}: {reason}")]
-    Expression {
-        /// The input.
-        name: String,
-        /// The expression as given.
-        text: String,
-        /// What is wrong with it.
-        reason: String,
-    },
-}
-
 /// The inputs `u(t, q, qdot)` of a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct InputSchedule {
@@ -50,30 +31,31 @@ impl InputSchedule {
         given: &[(String, String)],
         parameters: &[(&str, f64)],
         coordinates: &[&str],
-    ) -> Result<Self, InputLawError> {
+    ) -> Result<Self, InputError> {
         let scope = Scope {
             parameters,
             coordinates,
-            inputs: &[],
+            ..Scope::default()
         };
         let mut laws = vec![Expression::Number(0.0); names.len()];
         for (name, text) in given {
-            let i = names.iter().position(|n| n == name).ok_or_else(|| {
-                InputLawError::UnknownInput(InputError::UnknownInput {
-                    name: name.clone(),
-                    known: if names.is_empty() {
-                        "none".into()
-                    } else {
-                        names.join(", ")
-                    },
-                })
+            let i =
+                names
+                    .iter()
+                    .position(|n| n == name)
+                    .ok_or_else(|| InputError::UnknownInput {
+                        name: name.clone(),
+                        known: if names.is_empty() {
+                            "none".into()
+                        } else {
+                            names.join(", ")
+                        },
+                    })?;
+            laws[i] = Expression::parse(text, &scope).map_err(|error| InputError::InputLaw {
+                name: name.clone(),
+                text: text.clone(),
+                reason: error.to_string(),
             })?;
-            laws[i] =
-                Expression::parse(text, &scope).map_err(|error| InputLawError::Expression {
-                    name: name.clone(),
-                    text: text.clone(),
-                    reason: error.to_string(),
-                })?;
         }
         Ok(Self { laws })
     }
@@ -87,7 +69,12 @@ impl InputSchedule {
     /// The inputs at time `t`, the configuration `q` and its velocity
     /// `qdot`.
     pub fn at(&self, t: f64, q: &[f64], qdot: &[f64], inputs: &mut [f64]) {
-        let point = Point { t, q, qdot, u: &[] };
+        let point = Point {
+            t,
+            q,
+            qdot,
+            ..Point::default()
+        };
         for (input, law) in inputs.iter_mut().zip(&self.laws) {
             *input = law.at(&point);
         }
@@ -96,7 +83,7 @@ impl InputSchedule {
 
 #[cfg(test)]
 mod tests {
-    use super::{InputLawError, InputSchedule};
+    use super::{InputError, InputSchedule};
     use crate::driver::expression::constant;
 
     fn given(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
@@ -165,7 +152,7 @@ mod tests {
     #[test]
     fn unknown_names_and_bad_syntax_are_errors() {
         let error = InputSchedule::new(&["u1"], &given(&[("v", "1")]), &[], &["x"]).unwrap_err();
-        assert!(matches!(error, InputLawError::UnknownInput(_)), "{error}");
+        assert!(matches!(error, InputError::UnknownInput { .. }), "{error}");
         for (text, says) in [
             ("b*t", "`b` is not `t`, a parameter or a coordinate"),
             ("dot(y)", "`dot(y)`: `y` is not a coordinate"),

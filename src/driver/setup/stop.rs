@@ -58,7 +58,7 @@ impl Comparison {
     /// # Errors
     /// No comparison, several, or a side that is not an expression of the
     /// names in `scope`.
-    pub fn parse(text: &str, scope: &Scope<'_>) -> Result<Self, StopError> {
+    pub(crate) fn parse(text: &str, scope: &Scope<'_>) -> Result<Self, StopError> {
         let at: Vec<usize> = text.match_indices(['<', '>']).map(|(i, _)| i).collect();
         let i = match at.as_slice() {
             [i] => *i,
@@ -130,7 +130,13 @@ pub fn stop_condition<'a>(
         let (q, qdot, u) = &mut *buffers.borrow_mut();
         formulation.configuration_velocity(x, q, qdot);
         formulation.inputs(t, x, u);
-        comparison.value(&Point { t, q, qdot, u })
+        comparison.value(&Point {
+            t,
+            q,
+            qdot,
+            u,
+            ..Point::default()
+        })
     })
 }
 
@@ -140,6 +146,7 @@ mod tests {
 
     const SCOPE: Scope<'static> = Scope {
         parameters: &[("k", 2.0)],
+        variables: &[],
         coordinates: &["x", "phi"],
         inputs: &["u1"],
     };
@@ -155,6 +162,7 @@ mod tests {
             q: &[3.0, -1.5],
             qdot: &[0.25, 4.0],
             u: &[7.0],
+            ..Point::default()
         };
         assert_eq!(value("abs(phi) > 1", &point), 0.5);
         assert_eq!(value("abs(phi) < 1", &point), -0.5);
@@ -173,6 +181,7 @@ mod tests {
             q: &[1.0, 0.5],
             qdot: &[0.0, 0.0],
             u: &[0.0],
+            ..Point::default()
         };
         assert_eq!(value("x > 1", &point), 0.0);
         assert_eq!(value("x < 1", &point), 0.0);

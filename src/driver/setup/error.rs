@@ -1,5 +1,6 @@
-//! What is wrong with a simulation's input, stated in one line.
+//! What is wrong with a command's request, stated in one line.
 
+use super::stop::StopError;
 use crate::runtime::linearize::PointError;
 
 /// A problem with the command's input, stated in one line.
@@ -13,9 +14,12 @@ pub enum InputError {
         /// The parameters there are.
         known: String,
     },
-    /// `--initial` names no coordinate, velocity or controller state.
-    #[error("unknown initial value `{name}` (coordinates, `dot(q)` velocities{states}: {known})")]
-    UnknownInitial {
+    /// A state assignment names no coordinate, velocity or controller
+    /// state.
+    #[error("{flag}: unknown name `{name}` (coordinates, `dot(q)` velocities{states}: {known})")]
+    UnknownState {
+        /// The flag it came with (`--initial`, `--at`).
+        flag: String,
         /// What was given.
         name: String,
         /// ", controller states" when there are some.
@@ -23,9 +27,12 @@ pub enum InputError {
         /// The names there are.
         known: String,
     },
-    /// An `--initial` value is not a constant of the parameters.
-    #[error("--initial {name}={text}: {reason}")]
-    InitialValue {
+    /// A state assignment's value is not an expression of the parameters
+    /// and the command's variables, or not finite.
+    #[error("{flag} {name}={text}: {reason}")]
+    StateValue {
+        /// The flag it came with (`--initial`, `--at`).
+        flag: String,
         /// What was given a value.
         name: String,
         /// The value as given.
@@ -41,6 +48,20 @@ pub enum InputError {
         /// The inputs there are.
         known: String,
     },
+    /// An `--input` law is not an expression of `t`, the parameters and
+    /// the state.
+    #[error("--input {name}={text}: {reason}")]
+    InputLaw {
+        /// The input.
+        name: String,
+        /// The law as given.
+        text: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// The `--stop-when` condition.
+    #[error(transparent)]
+    Stop(#[from] StopError),
     /// The coordinates or velocities not given cannot be solved from the
     /// constraints (a configuration constraint no coordinate left unset
     /// meets is named with its residual).
