@@ -376,10 +376,26 @@ fn heading_of(quaternion: [f64; 4], what: &str) -> f64 {
     2.0 * k.atan2(w)
 }
 
+/// `v` turned by the unit quaternion `[i, j, k, w]`.
+fn turned_by(quaternion: [f64; 4], v: [f64; 3]) -> [f64; 3] {
+    let [i, j, k, w] = quaternion;
+    let u = [i, j, k];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let t = cross(u, v).map(|c| 2.0 * c);
+    let ut = cross(u, t);
+    [0, 1, 2].map(|a| v[a] + w * t[a] + ut[a])
+}
+
 #[test]
 fn the_snakeboard_s_gait_turns_its_board_by_theta_in_the_page() {
     let (run, result) = runs().get("snakeboard-gait");
-    let [t, x, y, theta, phi] = columns(&run.table, ["t", "x", "y", "theta", "phi"]);
+    let [t, x, y, theta, psi, phi] = columns(&run.table, ["t", "x", "y", "theta", "psi", "phi"]);
     // one period of 2000 steps, from rest to x = -0.807
     assert_eq!(t.len(), 2001);
     assert!((x[2000] + 0.807).abs() < 1e-3, "{}", x[2000]);
@@ -389,14 +405,20 @@ fn the_snakeboard_s_gait_turns_its_board_by_theta_in_the_page() {
     let frames = frame_rows(&t, &nums(&result["times"]));
     let board = result["poses"]["board"].as_array().unwrap();
     let axle = result["poses"]["front_axle"].as_array().unwrap();
+    let rotor = result["poses"]["torso"].as_array().unwrap();
+    let wheel = result["poses"]["front_right_wheel"].as_array().unwrap();
     let items = result["items"].as_array().unwrap();
+    let radius = num(&items
+        .iter()
+        .find(|i| i["name"] == "front_right_wheel")
+        .unwrap()["radius"]);
     let length = items.iter().find(|i| i["name"] == "front_axle").unwrap();
     assert!((num(&length["length"]) - 0.4).abs() < 1e-15, "{length}");
     let mut worst = [0.0f64; 4];
     for (i, &row) in frames.iter().enumerate() {
         let (position, quaternion) = pose_of(&board[i]);
         let heading = angle_difference(heading_of(quaternion, "board"), theta[row]);
-        let off = distance(&position, &[x[row], y[row], 0.08]);
+        let off = distance(&position, &[x[row], y[row], 0.18]);
         assert!(heading.abs() <= 1e-9, "the board at frame {i}: {heading}");
         assert!(off <= 1e-9, "the board at frame {i}: {position:?}");
         // the front axle, from its first end to its second, points to the
@@ -407,7 +429,7 @@ fn the_snakeboard_s_gait_turns_its_board_by_theta_in_the_page() {
         let ahead = [
             x[row] + SNAKEBOARD_R * theta[row].cos(),
             y[row] + SNAKEBOARD_R * theta[row].sin(),
-            0.04,
+            0.08,
         ];
         let axle_off = distance(&position, &ahead);
         assert!(
@@ -417,6 +439,33 @@ fn the_snakeboard_s_gait_turns_its_board_by_theta_in_the_page() {
         assert!(
             axle_off <= 1e-9,
             "the front axle at frame {i}: {position:?}"
+        );
+        // the front right wheel, a disc on the ground at the axle's end
+        let (position, _) = pose_of(&wheel[i]);
+        let steered = theta[row] + phi[row];
+        let end = [
+            ahead[0] + 0.2 * steered.sin(),
+            ahead[1] - 0.2 * steered.cos(),
+            radius,
+        ];
+        assert!(distance(&position, &end) <= 1e-9, "the wheel: {position:?}");
+        assert!(
+            (ahead[2] - radius).abs() <= 1e-15,
+            "the axle at the wheels' centres"
+        );
+        // the rotor, a disc on a vertical axle above the board, its spoke
+        // (local x) along theta + psi
+        let (position, quaternion) = pose_of(&rotor[i]);
+        let [spoke, up] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]].map(|v| turned_by(quaternion, v));
+        let spun = angle_difference(spoke[1].atan2(spoke[0]), theta[row] + psi[row]);
+        assert!(spun.abs() <= 1e-9, "the rotor at frame {i}: {spun}");
+        assert!(
+            distance(&up, &[0.0, 0.0, 1.0]) <= 1e-9,
+            "the rotor's axle: {up:?}"
+        );
+        assert!(
+            distance(&position, &[x[row], y[row], 0.5]) <= 1e-9,
+            "{position:?}"
         );
         for (worst, error) in worst.iter_mut().zip([heading, off, turned, axle_off]) {
             *worst = worst.max(error.abs());
