@@ -49,7 +49,8 @@ def test_a_model_declared_by_its_energy_is_drawn_by_its_drawing_section():
     run = board.simulate(t_end=1.0, dt=0.01, params={"r": 0.4})
     data = scene(run.animate(fps=20))
     names = [item["name"] for item in data["items"]]
-    assert names == ["board", "front_axle", "back_axle", "torso"]
+    wheels = [f"{end}_{side}_wheel" for end in ("front", "back") for side in ("right", "left")]
+    assert names == ["board", "front_axle", "back_axle", *wheels, "post", "torso"]
     assert [trace["name"] for trace in data["traces"]] == ["front_wheels", "back_wheels"]
     rows = [list(run.t).index(t) for t in data["times"]]
     assert rows == list(range(0, len(run), 5))
