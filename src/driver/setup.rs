@@ -5,7 +5,7 @@
 //! value; nothing here calls back into a command
 //! (docs/guide/how-it-works.md, "A request's way").
 //!
-//! - [`parameters`]: `--param NAME=VALUE`, set on the model, a
+//! - `parameters`: `--param NAME=VALUE`, set on the model, a
 //!   controller's gains beside them ([`Controls`]);
 //! - [`state`]: the state assignments (`--initial`, `--at`), expressions
 //!   of the parameters and the command's variables (a sweep variable, a

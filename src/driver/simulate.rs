@@ -9,7 +9,7 @@
 //! largest constraint residual, and where and why it stopped
 //! ([`Finished`]). A model with configuration constraints is kept on
 //! `f(q) = 0` after every step, in every formulation. A model with what the
-//! paper's energy-based controller uses also runs under it ([`energy`]).
+//! paper's energy-based controller uses also runs under it (`energy`).
 
 mod energy;
 mod request;
