@@ -30,7 +30,10 @@ fn controlled(model: &str) -> Simulated {
 #[test]
 fn the_snakeboard_from_its_file_runs_as_the_built_in_does() {
     let built_in = controlled("snakeboard");
-    let file = controlled(concat!(env!("CARGO_MANIFEST_DIR"), "/../models/snakeboard.model"));
+    let file = controlled(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../models/snakeboard.model"
+    ));
     assert_eq!(file.header, built_in.header);
     assert_eq!(file.rows, built_in.rows);
 }
