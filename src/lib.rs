@@ -39,8 +39,25 @@
 //!    Dormand-Prince 5(4), the implicit midpoint rule, Gonzalez's discrete
 //!    gradient) on every formulation, controllers plain or port-Hamiltonian,
 //!    a simulation loop that stops with a structured error at singular
-//!    configurations, CSV recording; and, with the default `cli` feature,
-//!    [`plot`] for PNG plots and the `chaplygin` command line.
+//!    configurations, CSV recording.
+//!
+//! # Features
+//!
+//! Without features (the default) the crate is the library a model needs:
+//! [`model!`], the runtime, its integrators, controllers and
+//! linearization. Each tool beyond it is a feature:
+//!
+//! - `jit`: models read from their text, compiled to native code at run
+//!   time (`chaplygin::jit`, Cranelift);
+//! - `design`: optimal gaits (`chaplygin::gait_design`, argmin);
+//! - `driver`: models read from their text run by name, simulated,
+//!   linearized, mapped over their parameters and given gaits
+//!   (`chaplygin::driver`, `chaplygin::animate`; with `jit` and `design`);
+//! - `plot`: PNG plots (`chaplygin::plot`, plotters);
+//! - `cli`: what the command line builds on (`driver` and `plot`, the
+//!   requests as clap arguments).
+//!
+//! The `chaplygin` command line itself is the package `chaplygin-cli`.
 //!
 //! # Example
 //!
@@ -129,7 +146,7 @@ pub mod driver;
 pub mod energy_control;
 #[cfg(feature = "design")]
 pub mod gait_design;
-#[cfg(feature = "cli")]
+#[cfg(feature = "plot")]
 pub mod plot;
 
 /// Models read from their text, every derived function compiled to native

@@ -7,7 +7,7 @@
 //! file and an anchor in it, the links of the text it brings in checked
 //! from the page that shows them. Their Rust examples run as doctests
 //! (`src/lib.rs`), their Python examples in `python/tests/test_readme.py`,
-//! their shell commands in `tests/guide_commands.rs`; the book itself is
+//! their shell commands in `cli/tests/guide_commands.rs`; the book itself is
 //! built in `tests/guide_book.rs`.
 
 use crate::support::markdown::{

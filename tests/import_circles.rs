@@ -21,13 +21,12 @@ use tempfile::TempDir;
 /// `mod.rs`): none.
 const KNOWN_CIRCLES: &[(&str, &[&str])] = &[];
 
-/// The source folders of the workspace's crates: the library `chaplygin`
-/// (`src`, its command line `src/bin/chaplygin` read as a crate of its
-/// own), the compiler and its macros, the runtime, the JIT, the models and
-/// the Python module.
+/// The source folders of the workspace's crates: the library `chaplygin`,
+/// its command line, the compiler and its macros, the runtime, the JIT,
+/// the models and the Python module.
 const CRATE_SOURCES: [&str; 8] = [
     "src",
-    "src/bin/chaplygin",
+    "cli/src",
     "codegen/src",
     "codegen/macros/src",
     "runtime/src",

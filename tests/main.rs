@@ -1,6 +1,7 @@
 //! The integration tests of the `chaplygin` package, one test binary: each
 //! file of `tests/` is a module of it (linked once against the engine, the
-//! JIT and the runtime, not once per file), `support/` what they share.
+//! JIT and the runtime, not once per file), `support/` what they share
+//! (with the command line's tests, `cli/tests`, which run its binary).
 //! `Cargo.toml` sets `autotests = false`, so a new file here runs only once
 //! it is declared below; [`every_test_file_is_declared`] fails until then
 //! (here and in the other crates' `tests/main.rs`).
@@ -8,29 +9,13 @@
 mod support;
 
 mod animate;
-mod animation;
-mod bicycle;
-mod bicycle_falling;
-mod bicycle_simulation;
 mod build_script_door;
 mod chart_cover;
 mod charts;
-mod cli;
-mod cli_charts;
-mod cli_engine;
-mod cli_gait;
-mod cli_mechanisms;
-mod cli_racers;
-mod cli_sizes;
-mod cli_stop;
-mod degenerate_momentum_basis;
-mod derive_rust;
-mod design_map;
 mod examples;
 mod gait_design;
 mod guide;
 mod guide_book;
-mod guide_commands;
 mod holonomic;
 mod hygiene;
 mod import_circles;
@@ -42,6 +27,7 @@ mod plot;
 fn every_test_file_is_declared() {
     for dir in [
         "tests",
+        "cli/tests",
         "codegen/tests",
         "runtime/tests",
         "models/tests",

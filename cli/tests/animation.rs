@@ -458,7 +458,7 @@ fn a_model_with_nothing_to_draw_is_not_animated() {
     let directory = scratch("animation-refused");
     let model = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/tests/models/sleigh_no_symmetry.model"
+        "/../tests/models/sleigh_no_symmetry.model"
     );
     let output = chaplygin(&[
         "simulate",
@@ -480,7 +480,7 @@ fn a_model_with_nothing_to_draw_is_not_animated() {
 fn a_model_file_s_bad_drawing_items_are_reported_at_their_tokens() {
     let directory = scratch("animation-bad-drawing");
     let file = directory.path().join("sleigh.model");
-    let text = include_str!("../models/sleigh.model")
+    let text = include_str!("../../models/sleigh.model")
         .replace("heading = theta,\n", "heading = theta, colour = 1,\n")
         .replace("mass_center = sphere", "sled = sphere");
     std::fs::write(&file, &text).unwrap();

@@ -4,7 +4,7 @@
 //! on standard error, a non-zero exit, the CSV written so far kept valid),
 //! `linearize` (eigenvalues, sweeps, and `--canonical`: the snakeboard's
 //! canonical form against a hand derivation, the benchmark bicycle's against
-//! the paper in `tests/bicycle.rs`).
+//! the paper in `cli/tests/bicycle.rs`).
 
 use crate::support::canonical_form::{assert_entries, printed_matrix};
 use crate::support::scratch;
@@ -208,7 +208,7 @@ fn assert_same_run((header, rows): &Csv, (other_header, other_rows): &Csv) {
 
 #[test]
 fn a_model_file_on_the_interpreter_runs_the_built_ins_trajectory_on_the_jit() {
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/snakeboard.model");
     let run = |model: &str, engine: &str| {
         let mut arguments = vec![model, "--initial", "dot(phi)=0.2", "--engine", engine];
         arguments.extend(["--input", "u_torso=0.05", "--t-end", "5"]);
@@ -318,7 +318,7 @@ fn a_singular_configuration_stops_the_run_with_a_valid_partial_csv() {
 /// formulations.
 #[test]
 fn a_model_file_stops_at_the_singular_configuration_too() {
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/snakeboard.model");
     let out = scratch("cli-singular-file");
     // From rest at phi = 1.2, phi'' = u_wheels / jw = 1: phi = pi/2 at t = 0.86.
     let output = driven_into_phi_pi_2(file, out.path());
@@ -385,7 +385,7 @@ fn the_momentum_formulation_follows_the_lagrange_run() {
 /// refused in one line.
 #[test]
 fn the_momentum_formulation_of_a_model_file_follows_the_built_in() {
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/snakeboard.model");
     let run = |model: &str, engine: &str| {
         let mut arguments = vec![model, "--formulation", "momentum", "--integrator", "rk4"];
         arguments.extend(["--input", "u_torso=0.05*sin(3*t)", "--t-end", "3"]);
@@ -394,7 +394,7 @@ fn the_momentum_formulation_of_a_model_file_follows_the_built_in() {
         simulated(&format!("momentum-{engine}"), &arguments)
     };
     assert_same_run(&run("snakeboard", "jit"), &run(file, "interpret"));
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/sleigh.model");
     let source = std::fs::read_to_string(file).unwrap();
     let without_symmetry: String = source
         .lines()
@@ -416,10 +416,10 @@ fn the_momentum_formulation_of_a_model_file_follows_the_built_in() {
 }
 
 /// The roller racer (`tests/models/roller_racer.model`; its runs in
-/// every formulation: `tests/cli_racers.rs`).
+/// every formulation: `cli/tests/cli_racers.rs`).
 const RACER: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/models/roller_racer.model"
+    "/../tests/models/roller_racer.model"
 );
 
 /// The racer's run in `formulation` with `integrator` and `arguments`: the
@@ -455,7 +455,7 @@ fn column_of(table: &Csv, name: &str) -> Vec<f64> {
 
 /// `--input NAME=EXPRESSION`: the model language's expressions of `t` and
 /// the parameters, recorded as applied; a name that is neither, nor a
-/// coordinate, is refused (feedback laws of the state: `tests/cli_stop.rs`).
+/// coordinate, is refused (feedback laws of the state: `cli/tests/cli_stop.rs`).
 #[test]
 fn inputs_are_expressions_of_time_and_the_parameters() {
     for (law, expected) in [
@@ -579,7 +579,7 @@ fn initial_velocities_not_given_are_solved_from_the_constraints() {
 /// its `.model` file through the interpreter print the same.
 #[test]
 fn linearize_prints_the_sleighs_eigenvalues() {
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/sleigh.model");
     let mut printed = Vec::new();
     for model in ["sleigh", file] {
         let output = chaplygin(&[
@@ -762,7 +762,10 @@ fn linearize_bad_input_is_one_line_and_a_failure() {
 /// The thin disk declared in `models/tests/linearization.rs`: the body of
 /// its `chaplygin::model!` invocation, the same text a `.model` file holds.
 fn tilting_disk_text() -> String {
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/tests/linearization.rs");
+    let file = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../models/tests/linearization.rs"
+    );
     let text = std::fs::read_to_string(file).expect("readable");
     let open =
         text.find("chaplygin::model! {").expect("the disk's macro") + "chaplygin::model! ".len();
@@ -811,14 +814,14 @@ fn linearize_runs_a_model_file_with_a_rotation_symmetry() {
 /// `(x, z)` held at length `l = 1` by `x^2 + z^2 - l^2 = 0`.
 const PLANAR_PENDULUM: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/models/planar_pendulum.model"
+    "/../tests/models/planar_pendulum.model"
 );
 
 /// A bead in the tilted trough `z = 2 y^2 - 0.2 x` of
 /// `tests/models/tilted_trough.model`, symmetric under translations along `x`.
 const TILTED_TROUGH: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/models/tilted_trough.model"
+    "/../tests/models/tilted_trough.model"
 );
 
 /// Runs `simulate` on `model` with `arguments` and checks that it kept its
@@ -951,7 +954,7 @@ fn a_model_file_with_a_symmetry_stays_in_its_trough_in_the_momentum_form() {
 /// it, and `K0` is 0 whatever it is.
 #[test]
 fn the_snakeboards_canonical_form_is_the_hand_derivation_on_both_engines() {
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/snakeboard.model");
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/snakeboard.model");
     let (jt, jw, r) = (0.3, 0.05, 0.5);
     let expected = [
         ("M", [[jt, 0.0], [0.0, jw]]),

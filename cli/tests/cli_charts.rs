@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 
 const FIXTURE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/models/sleigh_no_symmetry.model"
+    "/../tests/models/sleigh_no_symmetry.model"
 );
 
 /// Runs `simulate` with `arguments` into a scratch directory named after
@@ -190,7 +190,7 @@ fn derive_lists_the_charts() {
 fn the_cartesian_pendulum_swings_through_x_0_by_switching_charts() {
     let pendulum = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/tests/models/planar_pendulum.model"
+        "/../tests/models/planar_pendulum.model"
     );
     let (summary, header, rows) = simulate(
         "pendulum",

@@ -7,8 +7,8 @@
 use crate::support::in_process::Model;
 use crate::support::{chaplygin, scratch};
 
-const BICYCLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/bicycle.model");
-const CASTER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/caster_robot.model");
+const BICYCLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/bicycle.model");
+const CASTER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/caster_robot.model");
 
 /// Runs `chaplygin` with `arguments` and `--out` a scratch directory named
 /// after `name`: its standard output.

@@ -40,8 +40,8 @@ fn derive_shows_the_derived_energies_and_contact_rows() {
 fn a_broken_mechanism_file_is_reported_at_its_token() {
     let directory = scratch("cli-mechanism-broken");
     let file = directory.path().join("disk.model");
-    let text =
-        include_str!("../models/rolling_disk_3d.model").replace("rotate(lean, y", "rotate(lean, w");
+    let text = include_str!("../../models/rolling_disk_3d.model")
+        .replace("rotate(lean, y", "rotate(lean, w");
     std::fs::write(&file, &text).expect("write");
     let output = chaplygin(&["derive", file.to_str().expect("path")]);
     assert!(!output.status.success());
@@ -194,7 +194,7 @@ fn simulate_writes_the_caster_robots_wheel_contact_tracks() {
 /// The planar pendulum in Cartesian coordinates (`tests/models/planar_pendulum.model`).
 const PENDULUM: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/models/planar_pendulum.model"
+    "/../tests/models/planar_pendulum.model"
 );
 
 #[test]

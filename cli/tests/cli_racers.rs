@@ -29,13 +29,13 @@ use std::path::PathBuf;
 /// The roller racer with the joint ahead.
 const RACER: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/models/roller_racer.model"
+    "/../tests/models/roller_racer.model"
 );
 
 /// The racer whose second platform trails.
 const TRAILING: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/tests/models/trailing_racer.model"
+    "/../tests/models/trailing_racer.model"
 );
 
 /// Every formulation with every integrator it runs with.

@@ -19,8 +19,8 @@ use std::f64::consts::PI;
 use std::process::Output;
 use tempfile::TempDir;
 
-const SLEIGH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
-const DISK: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/rolling_disk.model");
+const SLEIGH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/sleigh.model");
+const DISK: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/rolling_disk.model");
 
 /// A finished run: its summary line and its trajectory.
 struct Run {

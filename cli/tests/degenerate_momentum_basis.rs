@@ -60,7 +60,7 @@ fn the_compiled_momentum_form_stops_where_phi_crosses_1() {
 fn simulate(formulation: &str, out: &std::path::Path) -> std::process::Output {
     let fixture = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/tests/models/lever_blade.model"
+        "/../tests/models/lever_blade.model"
     );
     let mut arguments = vec!["simulate", fixture, "--formulation", formulation];
     for initial in [

@@ -9,7 +9,7 @@ use std::process::Command;
 /// What the build-script door (`chaplygin_codegen::Builder`) writes for
 /// the model file `models/{stem}.model`.
 fn written_by_the_build_script(stem: &str) -> String {
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("models/{stem}.model"));
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../models/{stem}.model"));
     let out_dir = scratch(&format!("derive-rust-{stem}"));
     let written = chaplygin_codegen::Builder::new()
         .model_file(&file)
@@ -35,7 +35,7 @@ fn printed(arguments: &[&str]) -> String {
 
 #[test]
 fn a_model_file_prints_what_the_build_script_writes() {
-    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/models/sleigh.model");
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/sleigh.model");
     let code = printed(&["derive", file, "--format", "rust"]);
     assert_eq!(code, written_by_the_build_script("sleigh"));
     assert!(code.contains("pub fn reduced_rhs("), "{code}");
@@ -66,8 +66,8 @@ fn without_drawing(source: &str) -> String {
 #[test]
 fn the_drawing_section_leaves_the_emitted_rust_as_it_is() {
     for source in [
-        include_str!("../models/snakeboard.model"),
-        include_str!("../models/sleigh_bodies.model"),
+        include_str!("../../models/snakeboard.model"),
+        include_str!("../../models/sleigh_bodies.model"),
     ] {
         let drawn = chaplygin_codegen::generate(source).expect("generates");
         let plain = chaplygin_codegen::generate(&without_drawing(source)).expect("generates");

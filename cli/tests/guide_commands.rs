@@ -32,7 +32,7 @@ use std::process::{Command, Output};
 const NOT_RUN: [(&str, &str); 5] = [
     ("cargo test --workspace", "the tests themselves"),
     (
-        "CHAPLYGIN_SCREENSHOTS=write cargo test -p chaplygin --test integration animation",
+        "CHAPLYGIN_SCREENSHOTS=write cargo test -p chaplygin-cli --test integration animation",
         "the tests themselves, writing the guide's screenshots",
     ),
     (
@@ -48,7 +48,7 @@ const NOT_RUN: [(&str, &str); 5] = [
         "cargo run --release -- map bicycle --at dot(theta_r)=-v/rR --at dot(phi)=0 \
          --at dot(delta)=0 --speed v=0:10:0.05 --param c=0:0.16:0.01 \
          --param w=0.8:1.4:0.05 --out out/map",
-        "221 designs at 201 speeds, two minutes in the test build; `tests/design_map.rs` \
+        "221 designs at 201 speeds, two minutes in the test build; `cli/tests/design_map.rs` \
          checks maps of fewer",
     ),
 ];

@@ -124,7 +124,7 @@ pub const SCREENSHOT_SIZE: (u32, u32) = (960, 540);
 /// `CHAPLYGIN_SCREENSHOTS=write` (docs/guide/contributing.md), and otherwise
 /// checked to be there, a PNG of [`SCREENSHOT_SIZE`].
 pub fn screenshot(page: &str, t: f64, name: &str, directory: &Path) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("docs/guide/images/{name}.png"));
+    let path = super::markdown::root().join(format!("docs/guide/images/{name}.png"));
     if std::env::var("CHAPLYGIN_SCREENSHOTS").as_deref() == Ok("write")
         && let Some(chromium) = chromium()
     {

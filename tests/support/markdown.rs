@@ -5,9 +5,13 @@
 
 use std::path::{Path, PathBuf};
 
-/// The repository's root.
+/// The repository's root: the folder of the workspace's `Cargo.lock`, the
+/// package's own or the one above it (the command line's, `cli/`).
 pub fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    (Path::new(env!("CARGO_MANIFEST_DIR")).ancestors())
+        .find(|folder| folder.join("Cargo.lock").is_file())
+        .expect("the workspace's Cargo.lock")
+        .to_path_buf()
 }
 
 /// The `.md` files of `dir` (relative to the root), sorted.

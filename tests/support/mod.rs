@@ -1,45 +1,23 @@
-//! What the integration tests share: running the binary, scratch
-//! directories, reading the CSV files it writes, the canonical form it
-//! prints, the snakeboard's hand-derived gait, the benchmark bicycle's
-//! closed form (from the models' tests), pages opened in headless Chromium,
-//! the guide's Markdown, the numbers of printed lines.
+//! What the integration tests share, here and in the command line's tests
+//! (`cli/tests`, whose support adds running the binary): scratch
+//! directories, the snakeboard's hand-derived gait, the benchmark
+//! bicycle's closed form (from the models' tests), pages opened in
+//! headless Chromium, the guide's Markdown, the numbers of printed lines.
 
 #[allow(dead_code)]
 #[path = "../../models/tests/support/benchmark_bicycle.rs"]
 pub mod benchmark_bicycle;
+// Parts of these only the command line's tests use.
+#[allow(dead_code)]
 pub mod browser;
-pub mod canonical_form;
-pub mod in_process;
+#[allow(dead_code)]
 pub mod markdown;
 pub mod printed;
+#[allow(dead_code)]
 pub mod snakeboard_gait;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use tempfile::TempDir;
-
-/// The benchmark bicycle's push, as `simulate bicycle` takes it: upright at
-/// 3 m/s (`dot(theta_r) = -10` with `rR = 0.3`), leaning at 0.2 rad/s, steer
-/// at rest, fixed steps of 1 ms.
-pub const FALL: [&str; 9] = [
-    "--initial",
-    "dot(theta_r)=-10",
-    "--initial",
-    "dot(phi)=0.2",
-    "--initial",
-    "dot(delta)=0",
-    "--fixed-step",
-    "--dt",
-    "0.001",
-];
-
-/// The `chaplygin` binary run with `arguments`.
-pub fn chaplygin(arguments: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_chaplygin"))
-        .args(arguments)
-        .output()
-        .expect("the binary runs")
-}
 
 /// A fresh, empty directory for the test named `name`, under the system's
 /// temporary directory as `chaplygin-{name}-XXXXXX`: removed when the
@@ -72,30 +50,6 @@ pub fn tool(program: &str, variable: &str, install: &str) -> Option<PathBuf> {
         );
     }
     found
-}
-
-/// The values of the column `name` of `rows` under `header`.
-pub fn column(header: &[String], rows: &[Vec<f64>], name: &str) -> Vec<f64> {
-    let at = (header.iter())
-        .position(|column| column == name)
-        .unwrap_or_else(|| panic!("a column `{name}` in {header:?}"));
-    rows.iter().map(|row| row[at]).collect()
-}
-
-/// The header and the rows of a CSV file the command wrote.
-pub fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let text = std::fs::read_to_string(path).expect("the file is written");
-    let mut lines = text.lines();
-    let header = lines.next().expect("a header");
-    let columns = header.split(',').map(String::from).collect();
-    let rows = lines
-        .map(|line| {
-            line.split(',')
-                .map(|v| v.parse().expect("a number"))
-                .collect()
-        })
-        .collect();
-    (columns, rows)
 }
 
 /// Asserts that every `.rs` file in `dir` (relative to `manifest_dir`) but
