@@ -20,6 +20,7 @@ mod holonomic;
 mod hygiene;
 mod import_circles;
 mod plot;
+mod user_crate;
 
 /// In every crate whose integration tests are one binary, every `.rs` file
 /// of `tests/` is declared a module of its `tests/main.rs`.
