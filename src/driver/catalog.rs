@@ -1,5 +1,6 @@
 //! The built-in models: their names, sources, default motions, and the
-//! listing of `chaplygin list`.
+//! listing of `chaplygin list`. The sources are the files of `models/`,
+//! linked into `catalog/` so that the crate's package holds them.
 
 use chaplygin_codegen::interpret::InterpretedModel;
 
@@ -34,70 +35,70 @@ pub const BUILT_IN: [BuiltIn; 10] = [
     BuiltIn {
         name: "snakeboard",
         about: "snakeboard of Duindam & Stramigioli (2004), paper's momentum basis",
-        source: include_str!("../../models/snakeboard.model"),
+        source: include_str!("catalog/snakeboard.model"),
         q: &[0.0, 0.0, 0.0, 0.0, 0.3],
         motion: Motion::Momenta(&[1.0, 0.5, 0.025]),
     },
     BuiltIn {
         name: "sleigh",
         about: "Chaplygin sleigh: a knife edge with the centre of mass ahead of it",
-        source: include_str!("../../models/sleigh.model"),
+        source: include_str!("catalog/sleigh.model"),
         q: &[0.0, 0.0, -0.5],
         motion: Motion::Momenta(&[1.0, 0.5]),
     },
     BuiltIn {
         name: "rolling-disk",
         about: "vertical disk rolling without slipping (Bloch 2003, chapter 1)",
-        source: include_str!("../../models/rolling_disk.model"),
+        source: include_str!("catalog/rolling_disk.model"),
         q: &[0.0, 0.0, 0.0, 0.0],
         motion: Motion::Momenta(&[0.5, 0.2]),
     },
     BuiltIn {
         name: "differential-drive",
         about: "two-wheeled differential-drive robot",
-        source: include_str!("../../models/differential_drive.model"),
+        source: include_str!("catalog/differential_drive.model"),
         q: &[0.0, 0.0, 0.0, 0.0, 0.0],
         motion: Motion::Momenta(&[0.2, 0.1]),
     },
     BuiltIn {
         name: "rolling-disk-3d",
         about: "leaning disk rolling under gravity, declared as a mechanism",
-        source: include_str!("../../models/rolling_disk_3d.model"),
+        source: include_str!("catalog/rolling_disk_3d.model"),
         q: &[0.0, 0.0, 0.0, 0.1, 0.0],
         motion: Motion::Momenta(&[0.1, 0.0, 2.0]),
     },
     BuiltIn {
         name: "sleigh-bodies",
         about: "Chaplygin sleigh declared as a body on a blade",
-        source: include_str!("../../models/sleigh_bodies.model"),
+        source: include_str!("catalog/sleigh_bodies.model"),
         q: &[0.0, 0.0, -0.5],
         motion: Motion::Momenta(&[1.0, 0.5]),
     },
     BuiltIn {
         name: "snakeboard-bodies",
         about: "snakeboard declared as bodies and wheel contacts",
-        source: include_str!("../../models/snakeboard_bodies.model"),
+        source: include_str!("catalog/snakeboard_bodies.model"),
         q: &[0.0, 0.0, 0.0, 0.0, 0.3],
         motion: Motion::Momenta(&[1.0, 0.5, 0.025]),
     },
     BuiltIn {
         name: "caster-robot",
         about: "wheeled mobile robot with a passive caster, declared as a mechanism",
-        source: include_str!("../../models/caster_robot.model"),
+        source: include_str!("catalog/caster_robot.model"),
         q: &[0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.0],
         motion: Motion::Momenta(&[0.5, 0.2]),
     },
     BuiltIn {
         name: "three-link-snake",
         about: "three-link kinematic snake in joint angles (Hatton & Choset 2011)",
-        source: include_str!("../../models/three_link_snake.model"),
+        source: include_str!("catalog/three_link_snake.model"),
         q: &[0.0, 0.0, 0.0, 0.5, -0.5],
         motion: Motion::Momenta(&[0.2, 0.1]),
     },
     BuiltIn {
         name: "bicycle",
         about: "benchmark bicycle of Meijaard et al. (2007), declared as a mechanism",
-        source: include_str!("../../models/bicycle.model"),
+        source: include_str!("catalog/bicycle.model"),
         q: &[0.0; 8],
         // Upright at 5 m/s, in the self-stable speed range, pushed sideways:
         // the lean oscillation decays.

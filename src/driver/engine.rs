@@ -86,7 +86,7 @@ mod tests {
     fn a_host_cranelift_does_not_support_runs_the_interpreter() {
         let sleigh = Source::File {
             path: "sleigh.model".into(),
-            text: include_str!("../../models/sleigh.model").into(),
+            text: include_str!("catalog/sleigh.model").into(),
         };
         let unsupported = || Err(JitError::UnsupportedHost("riscv32".into()));
         let loaded = load_with(&sleigh, EngineChoice::Jit, unsupported).expect("the model loads");
