@@ -1,8 +1,9 @@
 """The Python examples of README.md and of the guide (docs/guide/) run as
-written."""
+written, and the installed package describes itself with the README."""
 
 import re
 import shutil
+from importlib import metadata
 
 import pytest
 
@@ -48,3 +49,26 @@ def test_the_design_map_example_runs(root, in_scratch):
     equals the map on a local Dask cluster."""
     namespace = run(example(root / "docs/guide/stability.md", "## Design maps"), "docs/guide/stability.md")
     assert namespace["here"].shape == (2, 2)
+
+
+def test_the_package_s_metadata_is_the_readme_the_licences_and_classifiers(root):
+    """The installed wheel's METADATA (pyproject.toml's `readme`,
+    `license-files` and `classifiers`): the README as the long description,
+    both licence texts, and the package's audience, languages and topic."""
+    found = metadata.metadata("chaplygin")
+    assert found["Description-Content-Type"].startswith("text/markdown")
+    assert found.get_payload().strip() == (root / "README.md").read_text().strip()
+    assert found["License-Expression"] == "MIT OR Apache-2.0"
+    assert sorted(found.get_all("License-File")) == ["LICENSE-APACHE", "LICENSE-MIT"]
+    licences = {path.name: path for path in metadata.files("chaplygin") if "licenses" in path.parts}
+    for name in ["LICENSE-APACHE", "LICENSE-MIT"]:
+        assert licences[name].read_text() == (root / name).read_text()
+    classifiers = found.get_all("Classifier")
+    for expected in [
+        "Development Status :: 3 - Alpha",
+        "Intended Audience :: Science/Research",
+        "Programming Language :: Rust",
+        "Programming Language :: Python :: 3",
+        "Topic :: Scientific/Engineering :: Physics",
+    ]:
+        assert expected in classifiers
