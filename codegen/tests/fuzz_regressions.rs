@@ -38,8 +38,85 @@ fn a_model_with_a_tower_of_constant_powers_is_diagnosed() {
                 kinetic_energy: ((((((((((6^4)^4)^4)^4)^4)^4)^4)^4)^4)*dot(x)^2) }";
     let diagnostics = generate(text).expect_err("the constant is too large");
     let rendered = diagnostics.render("tower.model");
+    assert!(rendered.contains("a constant of about"), "{rendered}");
+}
+
+/// A sum or product of constants is held to the same limit as a power:
+/// squaring `a = 7^14000` (39,304 bits) by products, `b = a*a` and on,
+/// doubled its bits at each definition, and the compile ran for more than
+/// a minute. `a*a` itself, 78,607 bits, is the one diagnostic, on its `*`.
+#[test]
+fn a_model_squaring_a_big_constant_by_products_is_diagnosed() {
+    let text = "pub struct Squares { coordinates: [x], define: [a = 7^14000, b = a*a, \
+                c = b*b, d = c*c, e = d*d, f = e*e, g = f*f, h = g*g, i = h*h, j = i*i, \
+                k = j*j, l = k*k, n = l*l], kinetic_energy: (1 + n)*dot(x)^2 }";
+    assert_constant_too_large_at(text, "*a,");
+}
+
+/// Sums too: `2^-20000 + 3^-20000`, each under the limit, has the product
+/// of their coprime denominators for its own, 83,400 bits in all, and is
+/// diagnosed on its `+` instead of being squared on for more than a minute.
+#[test]
+fn a_model_adding_constants_with_big_coprime_denominators_is_diagnosed() {
+    let text = "pub struct Sums { coordinates: [x], define: [a = 2^-20000, b = 3^-20000, \
+                c = a + b, d = c*c, e = d*d, f = e*e, g = f*f, h = g*g, i = h*h, j = i*i, \
+                k = j*j, l = k*k, n = l*l], kinetic_energy: (1 + n)*dot(x)^2 }";
+    assert_constant_too_large_at(text, "+ b");
+}
+
+/// The constant factor of a product is held to the limit as a constant is:
+/// `p = x*a` squared is `a^2 x^2`, whose factor `a^2` has 78,607 bits.
+/// Squared on, the constant took a minute to reach a mass matrix that is not
+/// positive definite in `f64`.
+#[test]
+fn a_model_squaring_a_coordinate_times_a_big_constant_is_diagnosed() {
+    let text = "pub struct Scaled { coordinates: [x], define: [a = 7^14000, p = x*a, \
+                q = p*p, r = q*q, s = r*r, t = s*s, u = t*t, v = u*u, w = v*v, z = w*w, \
+                zz = z*z, zzz = zz*zz], kinetic_energy: (1 + zzz)*dot(x)^2 }";
+    assert_constant_too_large_at(text, "*p,");
+}
+
+/// In a mechanism's points, vectors scaled by a big constant twice, and the
+/// inner product of a vector with a big component with itself, are held to
+/// the limit as scalars are; squared on through the points, the constants
+/// were folded into code for 18 s.
+#[test]
+fn a_mechanism_squaring_a_big_constant_is_diagnosed() {
+    let points = [
+        ("p = origin + a*(a*ground.x)", "*(a*ground.x)"),
+        (
+            "p = origin + inner(o - origin, o - origin)*ground.x",
+            "inner(o - origin",
+        ),
+    ];
+    for (point, at) in points {
+        let text = format!(
+            "pub struct Points {{ coordinates: [x], parameters: [m = 1.0], \
+             define: [a = 7^14000], frames: [f = rotate(ground, z, x)], \
+             points: [o = origin + a*ground.x, {point}, \
+             q = origin + inner(p - origin, p - origin)*ground.x, \
+             r = origin + inner(q - origin, q - origin)*ground.x, \
+             s = origin + inner(r - origin, r - origin)*ground.x, \
+             t = origin + inner(s - origin, s - origin)*ground.x, \
+             u = origin + inner(t - origin, t - origin)*ground.x, \
+             w = origin + inner(u - origin, u - origin)*ground.x, \
+             y = origin + inner(w - origin, w - origin)*ground.x, \
+             z = origin + inner(y - origin, y - origin)*ground.x], \
+             bodies: [b = body(f, z, m, diag(1, 1, 1))] }}"
+        );
+        assert_constant_too_large_at(&text, at);
+    }
+}
+
+/// Asserts that `text`, one line, is diagnosed with one constant too large,
+/// at the token where `at` (found once in `text`) begins.
+fn assert_constant_too_large_at(text: &str, at: &str) {
+    let diagnostics = generate(text).expect_err("a constant is too large");
+    let rendered = diagnostics.render("model");
+    let column = text.find(at).expect("`at` is in the text") + 1;
+    assert_eq!(diagnostics.len(), 1, "{rendered}");
     assert!(
-        rendered.contains("a constant power with about"),
+        rendered.starts_with(&format!("model:1:{column}: error: a constant of about ")),
         "{rendered}"
     );
 }

@@ -278,7 +278,8 @@ fn underflowed(node: &Node, operand_value: &dyn Fn(&ExprId) -> f64) -> bool {
 
 /// Runs the bytes as stack-machine instructions; the top of the stack is the
 /// expression. `None` when the bytes build nothing or an operation is
-/// rejected (a division by an exact zero).
+/// rejected (a division by an exact zero, a constant past the store's
+/// limit).
 fn build(store: &mut Store, symbols: &[SymbolId; 3], data: &[u8]) -> Option<ExprId> {
     let mut stack: Vec<ExprId> = Vec::new();
     let mut bytes = data.iter().copied();
@@ -295,12 +296,13 @@ fn build(store: &mut Store, symbols: &[SymbolId; 3], data: &[u8]) -> Option<Expr
                 let (Some(b), Some(a)) = (stack.pop(), stack.pop()) else {
                     continue;
                 };
-                match op % 11 {
+                let value = match op % 11 {
                     2 => store.add2(a, b),
                     3 => store.sub(a, b),
                     4 => store.mul2(a, b),
                     _ => store.div(a, b).ok()?,
-                }
+                };
+                store.within_constant_limit(value).ok()?
             }
             6 => {
                 let base = stack.pop()?;

@@ -2,9 +2,11 @@
 //!
 //! Names resolve to coordinates, parameters and earlier definitions;
 //! `dot(q)` to the velocity of coordinate `q`; the functions are
-//! `sin cos tan sqrt exp ln`. Exponents must be constant numbers. Every
-//! failure becomes a diagnostic on the offending token, and both operands of
-//! an operator are lowered even when one fails, so all errors are reported.
+//! `sin cos tan sqrt exp ln`. Exponents must be constant numbers, and the
+//! constants an operator folds are held to the store's limit
+//! ([`crate::sym::Store::within_constant_limit`]). Every failure becomes a
+//! diagnostic on the offending token, and both operands of an operator are
+//! lowered even when one fails, so all errors are reported.
 
 use crate::diagnostic::Diagnostics;
 use crate::sym::{Context, ExprId, Node, Rational, SymError, SymbolId};
@@ -198,14 +200,11 @@ impl Lowerer<'_> {
         let left_value = self.lower(left);
         let right_value = self.lower(right);
         let (a, b) = (left_value?, right_value?);
-        match operator {
-            BinaryOperator::Add => Some(self.cx.add2(a, b)),
-            BinaryOperator::Subtract => Some(self.cx.sub(a, b)),
-            BinaryOperator::Multiply => Some(self.cx.mul2(a, b)),
-            BinaryOperator::Divide => {
-                let quotient = self.cx.div(a, b);
-                self.report(quotient, span)
-            }
+        let value = match operator {
+            BinaryOperator::Add => Ok(self.cx.add2(a, b)),
+            BinaryOperator::Subtract => Ok(self.cx.sub(a, b)),
+            BinaryOperator::Multiply => Ok(self.cx.mul2(a, b)),
+            BinaryOperator::Divide => self.cx.div(a, b),
             BinaryOperator::Power => {
                 let Node::Number(exponent) = self.cx.node(b).clone() else {
                     self.diagnostics.error(
@@ -214,10 +213,11 @@ impl Lowerer<'_> {
                     );
                     return None;
                 };
-                let power = self.cx.pow(a, exponent);
-                self.report(power, span)
+                self.cx.pow(a, exponent)
             }
-        }
+        };
+        let bounded = value.and_then(|value| self.cx.within_constant_limit(value));
+        self.report(bounded, span)
     }
 
     fn report(&mut self, result: Result<ExprId, SymError>, span: Span) -> Option<ExprId> {

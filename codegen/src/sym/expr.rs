@@ -129,13 +129,13 @@ pub enum SymError {
         /// The application, printed.
         expr: String,
     },
-    /// An integer power of a constant too large to compute exactly.
+    /// A power, sum or product of constants too large to compute exactly.
     #[error(
-        "a constant power with about {bits} bits (the limit is {MAX_CONSTANT_BITS}); \
-         write a smaller number"
+        "a constant of about {bits} bits, past the limit of {MAX_CONSTANT_BITS} on powers, \
+         sums and products of constants; write smaller numbers"
     )]
     ConstantTooLarge {
-        /// The estimated size of the power in bits.
+        /// The size of the constant in bits (estimated for a power).
         bits: u64,
     },
     /// The normal form needed more polynomial term products than the
@@ -161,8 +161,10 @@ pub enum SymError {
     },
 }
 
-/// The largest integer power of a constant folded, in bits (about 20,000
-/// decimal digits); larger powers are rejected rather than computed.
+/// The largest constant, in bits (about 20,000 decimal digits), that a
+/// power of a constant folds to or a sum or product built from input holds
+/// ([`Store::within_constant_limit`]); larger ones are rejected rather than
+/// computed.
 pub const MAX_CONSTANT_BITS: u64 = 1 << 16;
 
 /// The expression arena with its symbol table.

@@ -5,7 +5,10 @@
 //! multiples are vectors; `F.x` is a unit vector of frame `F`; `cross` and
 //! `unit` make vectors, `inner` and `norm` scalars. Expressions free of all
 //! of these are lowered as scalars by [`crate::model::lower`]. A value of
-//! the wrong type is reported on its first token.
+//! the wrong type is reported on its first token; a constant that an
+//! operator or a vector function folds past the store's limit
+//! ([`crate::sym::Store::within_constant_limit`]), on the operator or the
+//! function, as in scalars.
 
 use super::space::Space;
 use super::vector::{self, Vector};
@@ -98,6 +101,21 @@ impl Evaluator<'_> {
     fn error<T>(&mut self, span: Span, message: impl Into<String>) -> Option<T> {
         self.lowerer.diagnostics.error(span, message);
         None
+    }
+
+    /// `value`, or `None` after reporting at `span` a constant of it (of a
+    /// scalar, or of a component of a vector or point) past the store's
+    /// limit.
+    fn within_constant_limit(&mut self, value: Quantity, span: Span) -> Option<Quantity> {
+        let components = match &value {
+            Quantity::Scalar(scalar) => std::slice::from_ref(scalar),
+            Quantity::Vector(components) | Quantity::Point(components) => &components[..],
+        };
+        let cx = &*self.lowerer.cx;
+        match (components.iter()).try_for_each(|&c| cx.within_constant_limit(c).map(drop)) {
+            Ok(()) => Some(value),
+            Err(error) => self.error(span, error.to_string()),
+        }
     }
 
     /// The value of any mechanism expression.
@@ -252,7 +270,7 @@ impl Evaluator<'_> {
                 ),
             );
         }
-        match name.as_str() {
+        let value = match name.as_str() {
             "cross" | "inner" => {
                 let a = self.vector(expressions[0]);
                 let b = self.vector(expressions[1]);
@@ -294,7 +312,8 @@ impl Evaluator<'_> {
                     })
                     .ok()
             }
-        }
+        };
+        self.within_constant_limit(value?, function.span())
     }
 
     fn negate(&mut self, operand: &Expr, span: Span) -> Option<Quantity> {
@@ -356,7 +375,7 @@ impl Evaluator<'_> {
                 );
             }
         };
-        Some(value)
+        self.within_constant_limit(value, span)
     }
 
     /// `a / b` and `a ^ n` of scalars that involve vectors (`norm(v)^2`).
@@ -381,7 +400,7 @@ impl Evaluator<'_> {
             cx.pow(a, exponent)
         };
         match result {
-            Ok(value) => Some(Quantity::Scalar(value)),
+            Ok(value) => self.within_constant_limit(Quantity::Scalar(value), span),
             Err(error) => self.error(span, error.to_string()),
         }
     }

@@ -373,6 +373,36 @@ impl LikeTerms {
     }
 }
 
+impl Store {
+    /// `expr`, or [`SymError::ConstantTooLarge`] where one of its own
+    /// constants has more than [`MAX_CONSTANT_BITS`] bits: its value (a
+    /// number), its constant factor (a product), or the constant or a
+    /// term's coefficient (a sum). [`Store::add`] and [`Store::mul`] fold
+    /// constants without a limit; a sum or product built from operands
+    /// that passed this check has at most twice their bits, so checking
+    /// each one built from input stops a constant's growth at once.
+    pub fn within_constant_limit(&self, expr: ExprId) -> Result<ExprId, SymError> {
+        let terms = match self.node(expr) {
+            Node::Add(terms) => terms,
+            _ => std::slice::from_ref(&expr),
+        };
+        for &term in terms {
+            let constant = match self.node(term) {
+                Node::Number(value) => Some(value),
+                Node::Mul(factors) => match self.node(factors[0]) {
+                    Node::Number(value) => Some(value),
+                    _ => None,
+                },
+                _ => None,
+            };
+            if let Some(value) = constant {
+                within_constant_bits(value, 1)?;
+            }
+        }
+        Ok(expr)
+    }
+}
+
 /// Fails with [`SymError::ConstantTooLarge`] where `value^n` would have
 /// more than [`MAX_CONSTANT_BITS`] bits (estimated from `value`'s), rather
 /// than computing it; the powers of 1 and -1 are always small.
