@@ -1,6 +1,7 @@
 """The Python examples of README.md and of the guide (docs/guide/) run as
 written, and the installed package describes itself with the README."""
 
+import email
 import re
 import shutil
 from importlib import metadata
@@ -55,7 +56,8 @@ def test_the_package_s_metadata_is_the_readme_the_licences_and_classifiers(root)
     """The installed wheel's METADATA (pyproject.toml's `readme`,
     `license-files` and `classifiers`): the README as the long description,
     both licence texts, and the package's audience, languages and topic."""
-    found = metadata.metadata("chaplygin")
+    text = metadata.distribution("chaplygin").read_text("METADATA")
+    found = email.message_from_string(text)
     assert found["Description-Content-Type"].startswith("text/markdown")
     assert found.get_payload().strip() == (root / "README.md").read_text().strip()
     assert found["License-Expression"] == "MIT OR Apache-2.0"
