@@ -24,3 +24,4 @@ mod derive_rust;
 mod design_map;
 mod energy_controller;
 mod guide_commands;
+mod wheeled_robots;

@@ -118,7 +118,9 @@ where
 /// `|det A_r| / prod_i |A_i|` is in `[0, 1]` (Hadamard's inequality on the
 /// rows of `A_r`, each no longer than its row of A). By Cauchy-Binet
 /// `sum_r det(A_r)^2 = det(A A^T)`, so where the rows are independent some
-/// choice has a ratio bounded away from 0.
+/// choice has a ratio bounded away from 0. It is the fit of a chart whose
+/// basis is the exact `A_r^-1 A_s`; a basis eliminated in order, row `i`
+/// on column `r_i`, fits by [`elimination_ratio`].
 ///
 /// ```
 /// use chaplygin_runtime::monitor::pivot_ratio;
@@ -135,6 +137,49 @@ where
     Const<C>: Square,
 {
     signed_pivot_ratio(&matrix_from_rows(constraints), dependent).abs()
+}
+
+/// How well Gaussian elimination in order fits: row `i` of `a` pivots on
+/// column `dependent[i]`, without row exchanges, so its `i`-th pivot is
+/// `M_i / M_(i-1)` with `M_i` the leading minor of the first `i` rows on
+/// the first `i` pivot columns. The elimination is regular exactly where
+/// every `M_i` is non-zero; the ratio is the least `|M_i| / prod_(j<=i) |A_j|`,
+/// in `[0, 1]`, and 0 where a pivot vanishes although `det A_r` does not.
+///
+/// ```
+/// use chaplygin_runtime::monitor::elimination_ratio;
+/// use chaplygin_runtime::nalgebra::DMatrix;
+/// // det of the minor on columns (1, 0) is -1, but row 0 has no entry in
+/// // column 1: elimination in order divides by zero.
+/// let rows = DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 1.0]);
+/// assert_eq!(elimination_ratio(&rows, &[1, 0]), 0.0);
+/// assert_eq!(elimination_ratio(&rows, &[0, 1]), 1.0);
+/// ```
+pub fn elimination_ratio<C, N, S>(a: &Matrix<f64, C, N, S>, dependent: &[usize]) -> f64
+where
+    C: Square,
+    N: Dim,
+    S: Storage<f64, C, N>,
+    DefaultAllocator: Allocator<C, C> + Allocator<C>,
+{
+    let mut minor = minor_on(a, dependent);
+    let (mut leading, mut scale, mut least) = (1.0_f64, 1.0_f64, 1.0_f64);
+    for pivot in 0..dependent.len() {
+        scale *= a.row(pivot).norm();
+        leading *= minor[(pivot, pivot)];
+        let ratio = leading.abs() / scale;
+        if ratio.is_nan() || ratio == 0.0 {
+            return 0.0;
+        }
+        least = least.min(ratio);
+        for below in pivot + 1..dependent.len() {
+            let factor = minor[(below, pivot)] / minor[(pivot, pivot)];
+            for column in pivot..dependent.len() {
+                minor[(below, column)] -= factor * minor[(pivot, column)];
+            }
+        }
+    }
+    least
 }
 
 /// [`pivot_ratio`] with its sign, `det A_r / prod_i |A_i|`, for rows `a`
@@ -160,9 +205,19 @@ where
     if scale == 0.0 {
         return 0.0;
     }
+    minor_on(a, dependent).determinant() / scale
+}
+
+/// The square minor `A_r` of the rows `a` on the columns `dependent`.
+fn minor_on<C, N, S>(a: &Matrix<f64, C, N, S>, dependent: &[usize]) -> OMatrix<f64, C, C>
+where
+    C: Square,
+    N: Dim,
+    S: Storage<f64, C, N>,
+    DefaultAllocator: Allocator<C, C>,
+{
     let rows = a.shape_generic().0;
-    let minor = OMatrix::<f64, C, C>::from_fn_generic(rows, rows, |i, k| a[(i, dependent[k])]);
-    minor.determinant() / scale
+    OMatrix::<f64, C, C>::from_fn_generic(rows, rows, |i, k| a[(i, dependent[k])])
 }
 
 /// The constraint rows as they act on the body velocity, `A(q) L(q)`

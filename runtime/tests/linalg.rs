@@ -248,3 +248,26 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    /// A chart's elimination in order against its definition: the least
+    /// ratio of the leading minors `|det A[..i, r[..i]]| / prod_(j<i) |A_j|`,
+    /// each minor's determinant taken by nalgebra's LU with pivoting.
+    #[test]
+    fn the_elimination_ratio_is_the_least_leading_minor_ratio(
+        entries in proptest::collection::vec(-1.0f64..1.0, 12),
+        order in Just(vec![2usize, 0, 3]).prop_shuffle(),
+    ) {
+        use chaplygin_runtime::monitor::elimination_ratio;
+        let a = DMatrix::from_row_slice(3, 4, &entries);
+        let mut scale = 1.0;
+        let mut least = f64::INFINITY;
+        for i in 1..=3 {
+            scale *= a.row(i - 1).norm();
+            let minor = DMatrix::from_fn(i, i, |row, k| a[(row, order[k])]);
+            least = least.min(minor.determinant().abs() / scale);
+        }
+        let found = elimination_ratio(&a, &order);
+        prop_assert!((found - least).abs() <= 1e-12 * (1.0 + least), "{found} against {least}");
+    }
+}

@@ -57,10 +57,12 @@ mod at_points;
 mod basis;
 mod body_frame;
 pub mod charts;
+mod locked;
 
 use crate::sym::Context;
 use at_points::{growth_vector_at_point, is_exact_row_at_points, is_involutive_at_points};
-pub use basis::{ChartFit, DistributionBasis, default_point, distribution_basis};
+pub use basis::{ChartFit, DistributionBasis, Elimination, default_point, distribution_basis};
+pub use locked::Locked;
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::ir::{Backend, Interpreter};
@@ -161,6 +163,8 @@ pub struct ConstraintAnalysis {
     pub classification: Classification,
     /// Moore's test, per constraint row in declared order: is the row exact?
     pub exact_rows: Vec<bool>,
+    /// The bodies the contacts leave unable to move.
+    pub locked: Locked,
 }
 
 /// Why the analysis failed.
@@ -209,6 +213,7 @@ fn derive_analysis(
     let (growth, growth_complete, growth_method) = growth(model, cx, &basis)?;
     let classification = classify(model, integrable, &growth, growth_complete);
     let exact_rows = exact_rows(model, cx)?;
+    let locked = locked::locked_bodies(model, cx, &basis);
     Ok(ConstraintAnalysis {
         basis,
         charts,
@@ -219,6 +224,7 @@ fn derive_analysis(
         integrability_method,
         classification,
         exact_rows,
+        locked,
     })
 }
 

@@ -96,7 +96,7 @@ pub fn derivation(
             let items = port_hamiltonian::items::items(model, cx, &reduced)?;
             Ok(Chart {
                 dependent: basis.dependent.clone(),
-                fit: basis.fit(),
+                fit: basis.fit(reduced.elimination()),
                 reduced,
                 items,
             })

@@ -49,7 +49,7 @@ pub mod items;
 mod structured;
 pub mod through_solve;
 
-use super::constraints::{DistributionBasis, Method};
+use super::constraints::{DistributionBasis, Elimination, Method};
 use crate::model::Model;
 use crate::sym::Context;
 use crate::sym::modular::{self, ModularError};
@@ -91,6 +91,17 @@ pub struct PortHamiltonian {
     /// How the two facts were decided: on the exact forms, or at random
     /// points on the structured ones.
     pub facts_method: Method,
+}
+
+impl PortHamiltonian {
+    /// How the form solves for the dependent speeds: exactly, or by
+    /// elimination in order (structured).
+    pub fn elimination(&self) -> Elimination {
+        match self.exact {
+            Some(_) => Elimination::Exact,
+            None => Elimination::InOrder,
+        }
+    }
 }
 
 /// The reduced form in exact normal form.

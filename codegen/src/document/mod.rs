@@ -245,12 +245,16 @@ fn fact(key: &str, label: &'static str, value: Value, text: String) -> Item {
 
 /// A list of names, read as `a, b, c` (or `none`).
 fn names_fact(key: &str, label: &'static str, names: Vec<String>) -> Item {
-    let text = if names.is_empty() {
-        "none".to_string()
-    } else {
-        names.join(", ")
-    };
+    let text = listed_or_none(&names);
     fact(key, label, json!(names), text)
+}
+
+/// The names joined by commas, or `none`.
+fn listed_or_none(names: &[String]) -> String {
+    match names.is_empty() {
+        true => "none".to_string(),
+        false => names.join(", "),
+    }
 }
 
 fn count_fact(key: &str, label: &'static str, count: usize) -> Item {

@@ -4,7 +4,7 @@
 
 use super::{
     Equation, Item, Printed, Section, count_fact, expression_item, fact, flag_fact, label,
-    matrix_item, names_fact, rates, symbol_name, word_fact,
+    listed_or_none, matrix_item, names_fact, rates, symbol_name, word_fact,
 };
 use crate::derive::constraints::ConstraintAnalysis;
 use crate::derive::lagrange_dalembert::{self, LagrangeDalembert};
@@ -97,10 +97,36 @@ pub(super) fn constraints_section(
         .unzip();
     let growth: Vec<String> = analysis.growth.iter().map(usize::to_string).collect();
     let reachable = analysis.growth.last().copied().unwrap_or(model.n());
+    let redundant: Vec<String> = model.redundant_rows.iter().map(|r| r.describe()).collect();
+    let locked = &analysis.locked;
+    let moving: Vec<&str> = (locked.moving.iter())
+        .map(|&i| model.coordinates[i].declared.name.as_str())
+        .collect();
     Section {
         key: "constraints",
         title: "Constraint analysis (Frobenius, Chow, Moore)",
         items: vec![
+            fact(
+                "redundant_rows",
+                "redundant contact rows dropped",
+                json!(
+                    model
+                        .redundant_rows
+                        .iter()
+                        .map(|r| json!({
+                            "constraint": r.name,
+                            "where": r.redundancy.describe(),
+                        }))
+                        .collect::<Vec<_>>()
+                ),
+                listed_or_none(&redundant),
+            ),
+            fact(
+                "locked_bodies",
+                "bodies unable to move",
+                json!({"bodies": locked.bodies, "moving_coordinates": moving}),
+                locked.describe(model).unwrap_or_else(|| "none".to_string()),
+            ),
             names_fact("dependent_speeds", "dependent speeds", dependent),
             names_fact("independent_speeds", "independent speeds", independent),
             basis_item(cx, analysis),

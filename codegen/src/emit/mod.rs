@@ -155,7 +155,7 @@ pub(crate) fn emit(
     let chart_functions = reduced.charts;
     let primary = match derivation.reduced.declared_basis {
         true => ChartFit::Declared,
-        false => constraints.basis.fit(),
+        false => constraints.basis.fit(derivation.reduced.elimination()),
     };
     let charts: Vec<ChartFit> = std::iter::once(primary)
         .chain(derivation.charts.iter().map(|chart| chart.fit.clone()))

@@ -92,6 +92,12 @@ pub(super) fn constraints(
     let mut section = Section::new("Constraints (Frobenius, Chow, Moore)");
     let (n, c, k, p) = (model.n(), model.c(), model.k(), model.p());
     section.line(format!("sizes: n = {n}, c = {c}, k = {k}, p = {p}"));
+    for row in &model.redundant_rows {
+        section.line(format!("redundant contact row dropped: {}", row.describe()));
+    }
+    if let Some(locked) = analysis.locked.describe(model) {
+        section.line(format!("bodies unable to move: {locked}"));
+    }
     let basis = &analysis.basis;
     section.line(format!(
         "dependent speeds: {}",

@@ -8,7 +8,7 @@
 //! `::chaplygin::runtime::monitor` with the model's sizes.
 
 use super::f64_type;
-use crate::derive::constraints::ChartFit;
+use crate::derive::constraints::{ChartFit, Elimination};
 use crate::model::{GroupFactor, Model, Symmetry};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -20,7 +20,7 @@ pub(crate) fn charts_constant(model: &Model, charts: &[ChartFit]) -> TokenStream
     let dependent: Vec<&Vec<usize>> = charts
         .iter()
         .filter_map(|fit| match fit {
-            ChartFit::Coordinates(dependent) | ChartFit::Body(dependent) => Some(dependent),
+            ChartFit::Coordinates(dependent, _) | ChartFit::Body(dependent, _) => Some(dependent),
             ChartFit::Declared => None,
         })
         .collect();
@@ -96,12 +96,25 @@ fn fit_of(model: &Model, fit: &ChartFit) -> TokenStream {
         quote!([#(#columns),*])
     };
     match fit {
-        ChartFit::Coordinates(dependent) => {
+        ChartFit::Coordinates(dependent, Elimination::Exact) => {
             let dependent = columns(dependent);
             quote!(#monitor::pivot_ratio(&#name::constraint_matrix(self, &q), &#dependent))
         }
-        ChartFit::Body(dependent) => {
+        ChartFit::Coordinates(dependent, Elimination::InOrder) => {
             let dependent = columns(dependent);
+            quote!(#monitor::elimination_ratio(
+                &::chaplygin::runtime::arrays::matrix_from_rows(&#name::constraint_matrix(self, &q)),
+                &#dependent,
+            ))
+        }
+        ChartFit::Body(dependent, elimination) => {
+            let dependent = columns(dependent);
+            let ratio = match elimination {
+                Elimination::Exact => {
+                    quote!(#monitor::signed_pivot_ratio(&rows, &#dependent).abs())
+                }
+                Elimination::InOrder => quote!(#monitor::elimination_ratio(&rows, &#dependent)),
+            };
             quote! {{
                 let mut rows = ::chaplygin::runtime::arrays::matrix_from_rows(
                     &#name::constraint_matrix(self, &q),
@@ -111,7 +124,7 @@ fn fit_of(model: &Model, fit: &ChartFit) -> TokenStream {
                     <#name as ::chaplygin::runtime::linearize::Linearization<#n, #c, #p>>::symmetry(self),
                     &q,
                 );
-                #monitor::signed_pivot_ratio(&rows, &#dependent).abs()
+                #ratio
             }}
         }
         ChartFit::Declared => {

@@ -4,10 +4,10 @@
 //! numbered as the generated code numbers them.
 
 use super::{CallError, Interpreted, InterpretedModel, check_arguments, function_among};
-use crate::derive::constraints::ChartFit;
+use crate::derive::constraints::{ChartFit, Elimination};
 use crate::ir::IrError;
 use chaplygin_runtime::monitor::{
-    declared_basis_fit, hadamard_ratio, in_body_frame, signed_pivot_ratio,
+    declared_basis_fit, elimination_ratio, hadamard_ratio, in_body_frame, signed_pivot_ratio,
 };
 use chaplygin_runtime::nalgebra::{DMatrix, DVector, Dyn};
 use chaplygin_runtime::partition::{self, Constrained, RuntimeChart};
@@ -66,11 +66,13 @@ impl InterpretedModel {
     pub fn chart_fit(&self, chart: usize, q: &[f64]) -> Result<f64, CallError> {
         let rows = Constrained::constraint_matrix(self, q);
         Ok(match self.charts.get(chart) {
-            Some(ChartFit::Coordinates(dependent)) => signed_pivot_ratio(&rows, dependent).abs(),
-            Some(ChartFit::Body(dependent)) => {
+            Some(ChartFit::Coordinates(dependent, elimination)) => {
+                fit_of(&rows, dependent, *elimination)
+            }
+            Some(ChartFit::Body(dependent, elimination)) => {
                 let mut rows = rows;
                 in_body_frame(&mut rows, &self.symmetry, q);
-                signed_pivot_ratio(&rows, dependent).abs()
+                fit_of(&rows, dependent, *elimination)
             }
             Some(ChartFit::Declared) => declared_basis_fit(
                 self.chart_regularity(chart, q)?,
@@ -219,5 +221,14 @@ impl InterpretedModel {
             ("input_matrix", [x]) => sized(s * p, &|out| runtime.input_matrix(x, out)),
             _ => return Err(unknown()),
         })
+    }
+}
+
+/// A chart's fit on its rows: the pivot ratio of its dependent speeds, of
+/// the leading minors where the chart eliminates in order.
+fn fit_of(rows: &DMatrix<f64>, dependent: &[usize], elimination: Elimination) -> f64 {
+    match elimination {
+        Elimination::Exact => signed_pivot_ratio(rows, dependent).abs(),
+        Elimination::InOrder => elimination_ratio(rows, dependent),
     }
 }

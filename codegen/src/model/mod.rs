@@ -97,6 +97,43 @@ impl Symmetry {
     }
 }
 
+/// Where a dropped contact row depends on the others.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Redundancy {
+    /// At every configuration.
+    Everywhere,
+    /// On the surface of the holonomic constraints `f(q) = 0`.
+    OnHolonomicSurface,
+}
+
+impl Redundancy {
+    /// Where, in words, as the report prints it.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Redundancy::Everywhere => "everywhere",
+            Redundancy::OnHolonomicSurface => "on the surface of the holonomic constraints",
+        }
+    }
+}
+
+/// A `no_slip` row dropped because the rows before it imply it
+/// (docs/INTERFACE.md section 4, redundant contacts).
+#[derive(Clone, Debug)]
+pub struct RedundantRow {
+    /// The row's name.
+    pub name: String,
+    /// Where it depends on the others.
+    pub redundancy: Redundancy,
+}
+
+impl RedundantRow {
+    /// The row and where it depends on the others, in words.
+    pub fn describe(&self) -> String {
+        let where_ = self.redundancy.describe();
+        format!("{} (implied by the rows before it {where_})", self.name)
+    }
+}
+
 /// A declared momentum basis `h(q)`: k one-forms spanning `g(D)`.
 #[derive(Clone, Debug)]
 pub struct MomentumBasis {
@@ -165,6 +202,8 @@ pub struct Model {
     /// forms written out, or for a large derived entry the expression it
     /// was derived as (equal to the normal form).
     pub constraint_expressions: Matrix<ExprId>,
+    /// The contact rows dropped because the others imply them.
+    pub redundant_rows: Vec<RedundantRow>,
     /// The input names.
     pub inputs: Vec<Declared>,
     /// `B(q)`, n x p.

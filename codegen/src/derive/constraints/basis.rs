@@ -40,11 +40,13 @@ pub struct DistributionBasis {
 
 impl DistributionBasis {
     /// How the runtime measures where this basis fits: the pivot ratio of
-    /// its dependent speeds on the rows it was eliminated on.
-    pub fn fit(&self) -> ChartFit {
+    /// its dependent speeds on the rows it was eliminated on, as the
+    /// reduced form computes it (`elimination`).
+    pub fn fit(&self, elimination: Elimination) -> ChartFit {
+        let dependent = self.dependent.clone();
         match self.body_frame {
-            true => ChartFit::Body(self.dependent.clone()),
-            false => ChartFit::Coordinates(self.dependent.clone()),
+            true => ChartFit::Body(dependent, elimination),
+            false => ChartFit::Coordinates(dependent, elimination),
         }
     }
 
@@ -93,20 +95,33 @@ fn speed_name(model: &Model, i: usize, body_frame: bool) -> String {
 pub enum ChartFit {
     /// The pivot ratio of these dependent speeds on the coordinates' rows
     /// `A(q)`.
-    Coordinates(Vec<usize>),
+    Coordinates(Vec<usize>, Elimination),
     /// The pivot ratio of these dependent body speeds on the rows acting on
     /// the body velocity, `A(q) L(q)` (the body frame of MATH.md 4).
-    Body(Vec<usize>),
+    Body(Vec<usize>, Elimination),
     /// A declared momentum basis: `|det[A; V^T]|` over its rows' norms.
     Declared,
+}
+
+/// How a chart's reduced form solves for its dependent speeds, which
+/// decides where it degenerates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Elimination {
+    /// The exact `A_r^-1 A_s`, singular only where `det A_r` vanishes:
+    /// its fit is `chaplygin_runtime::monitor::pivot_ratio`.
+    Exact,
+    /// Gaussian elimination in order, row `i` on column `r_i` (the
+    /// structured form): singular where a leading minor vanishes, its fit
+    /// `chaplygin_runtime::monitor::elimination_ratio`.
+    InOrder,
 }
 
 impl ChartFit {
     /// The chart in words: its dependent speeds, or the declared basis.
     pub fn describe(&self, model: &Model) -> String {
         match self {
-            ChartFit::Coordinates(dependent) => speed_names(model, dependent, false).join(", "),
-            ChartFit::Body(dependent) => speed_names(model, dependent, true).join(", "),
+            ChartFit::Coordinates(dependent, _) => speed_names(model, dependent, false).join(", "),
+            ChartFit::Body(dependent, _) => speed_names(model, dependent, true).join(", "),
             ChartFit::Declared => "the declared momentum basis".to_string(),
         }
     }

@@ -5,23 +5,27 @@
 use super::context::Context;
 use super::items::{check_unique_in_section, item_expression, named_item, row_of_expressions};
 use super::mechanisms::MechanismParts;
+use super::redundant::{Layout, Rows, without_redundant};
 use super::rows::check_independent_rows;
 use super::section::{Section, Sections};
 use super::velocities::{check_velocity_degree, velocity_free};
-use crate::model::Declared;
+use crate::model::{Declared, Parameter, Variable};
 use crate::sym::{ExprId, Matrix, RationalFunction, SymbolId, SymbolKind};
 use crate::syntax::{self, Expr};
 
-/// `(names, A, A as expressions)`: the declared rows (or a
-/// distribution's annihilator), then the mechanism's contact and
-/// holonomic rows; independent together.
+/// The constraint rows: the declared rows (or a distribution's
+/// annihilator), then the mechanism's contact and holonomic rows; the
+/// contact rows the others imply dropped ([`super::redundant`]), the rest
+/// independent.
 pub(super) fn constraints(
     cx: &mut Context,
     sections: &Sections,
-    n: usize,
+    (coordinates, parameters): (&[Variable], &[Parameter]),
     mechanism: &MechanismParts,
-) -> Option<(Vec<Declared>, Matrix, Matrix<ExprId>)> {
+) -> Option<Rows> {
+    let n = coordinates.len();
     let (mut names, declared) = declared_constraints(cx, sections, n)?;
+    let declared_rows = names.len();
     let mut entries = declared.entries().to_vec();
     let mut expressions: Vec<ExprId> = entries
         .iter()
@@ -35,9 +39,21 @@ pub(super) fn constraints(
         entries.extend(coefficients.iter().cloned());
         names.push(declared.clone());
     }
-    let a = Matrix::new(names.len(), n, entries).ok()?;
-    let a_expressions = Matrix::new(names.len(), n, expressions).ok()?;
-    check_independent_rows(cx, &a, &names, "constraint").then_some((names, a, a_expressions))
+    let rows = Rows {
+        matrix: Matrix::new(names.len(), n, entries).ok()?,
+        expressions: Matrix::new(names.len(), n, expressions).ok()?,
+        names,
+        redundant: Vec::new(),
+    };
+    let contacts = declared_rows..declared_rows + mechanism.mechanism.contacts.len();
+    let layout = Layout {
+        holonomic: contacts.end..rows.names.len(),
+        contacts,
+        residuals: mechanism.mechanism.expressions.holonomic_residual.entries(),
+        coordinates,
+        parameters,
+    };
+    without_redundant(cx, rows, layout)
 }
 
 /// The entries of a derived row as expressions

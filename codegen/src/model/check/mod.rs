@@ -19,6 +19,7 @@ mod items;
 mod mechanisms;
 mod momentum_basis;
 mod names;
+mod redundant;
 mod rows;
 mod section;
 mod sections;
@@ -31,7 +32,8 @@ use super::mechanism::evaluate::Reference;
 use super::mechanism::space::Space;
 use super::mechanism::{Drawing, Mechanism};
 use super::{
-    Declared, EnergyExpressions, Model, MomentumBasis, Options, Parameter, Symmetry, Variable,
+    Declared, EnergyExpressions, Model, MomentumBasis, Options, Parameter, RedundantRow, Symmetry,
+    Variable,
 };
 use crate::diagnostic::Diagnostics;
 use crate::sym::{self, Budget, ExprId, Matrix, RationalFunction, SymbolId};
@@ -74,7 +76,7 @@ struct Checked {
     mechanism: Option<MechanismParts>,
     energy: Option<(RationalFunction, Matrix)>,
     potential_energy: Option<RationalFunction>,
-    constraints: Option<(Vec<Declared>, Matrix, Matrix<ExprId>)>,
+    constraints: Option<redundant::Rows>,
     inputs: Option<(Vec<Declared>, Matrix)>,
     momentum_basis: Option<MomentumBasis>,
     symmetry: Option<Symmetry>,
@@ -93,17 +95,17 @@ fn checked_sections(cx: &mut Context, syntax: &ModelSyntax, sections: &Sections)
         Some(parts) => (
             energy::metric(cx, sections, &coordinates, &parameters, &parts.mechanism),
             energy::potential(cx, sections.get(Section::PotentialEnergy), &parts.mechanism),
-            constraints::constraints(cx, sections, coordinates.len(), parts),
+            constraints::constraints(cx, sections, (&coordinates, &parameters), parts),
         ),
         None => (None, None, None),
     };
     let inputs = inputs::inputs(cx, sections.get(Section::Inputs), &coordinates);
     let momentum_basis = match (&energy, &constraints) {
-        (Some((_, g)), Some((_, a, _))) => momentum_basis::momentum_basis(
+        (Some((_, g)), Some(rows)) => momentum_basis::momentum_basis(
             cx,
             sections.get(Section::MomentumBasis),
             g,
-            a,
+            &rows.matrix,
             coordinates.len(),
         ),
         _ => None,
@@ -175,7 +177,7 @@ fn check_symmetry_invariance(cx: &mut Context, checked: &Checked) {
         Some(symmetry),
         Some((kinetic_energy, _)),
         Some(potential_energy),
-        Some((_, a, a_expressions)),
+        Some(rows),
         Some(expressions),
     ) = (
         &checked.symmetry,
@@ -192,8 +194,8 @@ fn check_symmetry_invariance(cx: &mut Context, checked: &Checked) {
                 velocities: &checked.velocities,
                 kinetic_energy: (kinetic_energy, expressions.kinetic),
                 potential_energy: (potential_energy, expressions.potential),
-                constraint_matrix: a,
-                constraint_expressions: a_expressions,
+                constraint_matrix: &rows.matrix,
+                constraint_expressions: &rows.expressions,
             },
         );
     }
@@ -213,7 +215,7 @@ fn model(
     let (
         Some((kinetic_energy, mass_matrix)),
         Some(potential_energy),
-        Some((constraint_names, constraint_matrix, constraint_expressions)),
+        Some(rows),
         Some((input_names, input_matrix)),
         Some(mechanism),
         Some(energy_expressions),
@@ -247,16 +249,27 @@ fn model(
         potential_energy,
         mass_matrix,
         energy_expressions,
-        constraints: constraint_names,
-        constraint_matrix,
-        constraint_expressions,
+        mechanism: with_items(
+            without_rows(mechanism.mechanism, &rows.redundant),
+            items,
+            &mut sym,
+        ),
+        constraints: rows.names,
+        constraint_matrix: rows.matrix,
+        constraint_expressions: rows.expressions,
+        redundant_rows: rows.redundant,
         inputs: input_names,
         input_matrix,
         momentum_basis: checked.momentum_basis,
         symmetry: checked.symmetry,
-        mechanism: with_items(mechanism.mechanism, items, &mut sym),
     };
     Ok((model, sym))
+}
+
+/// The mechanism without its redundant contact rows.
+fn without_rows(mut mechanism: Mechanism, redundant: &[RedundantRow]) -> Mechanism {
+    (mechanism.contacts).retain(|contact| !redundant.iter().any(|r| r.name == contact.name));
+    mechanism
 }
 
 /// The mechanism, its drawing joined by the drawing section's `items`.

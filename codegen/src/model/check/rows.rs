@@ -19,14 +19,21 @@ pub(super) fn check_independent_rows(
     let Some(dependent) = first_dependent_row(cx, m) else {
         return true;
     };
+    dependent_row_error(cx, &names[dependent], what, "");
+    false
+}
+
+/// The error on a row that depends on the ones before it (`where_` says
+/// where, if not everywhere).
+pub(super) fn dependent_row_error(cx: &mut Context, row: &Declared, what: &str, where_: &str) {
     cx.diagnostics.error(
-        names[dependent].span,
+        row.span,
         format!(
-            "{what} `{}` depends on the ones before it: the rows must be linearly independent",
-            names[dependent].name
+            "{what} `{}` depends on the ones before it{where_}: the rows must be linearly \
+             independent",
+            row.name
         ),
     );
-    false
 }
 
 /// The first row of `m` in the span of the rows before it. Ranks at
@@ -34,7 +41,7 @@ pub(super) fn check_independent_rows(
 /// rows before it independent; the row they find no rank for is
 /// confirmed by the exact rank within [`EXACT_RANK_PRODUCTS`] (beyond it,
 /// by two random points: wrong with probability below `1e-15`).
-fn first_dependent_row(cx: &mut Context, m: &Matrix) -> Option<usize> {
+pub(super) fn first_dependent_row(cx: &mut Context, m: &Matrix) -> Option<usize> {
     let proved_full = cx
         .sym
         .prefixes_of_full_rank_at_points(m)
