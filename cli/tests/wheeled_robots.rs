@@ -187,3 +187,71 @@ fn the_ackermann_car_turns_on_the_geometrys_radius() {
         );
     }
 }
+
+/// The drive torque's work equals the energy gained: the test integrates
+/// the power `u (dot(phi_rl) + dot(phi_rr))` of the trajectory by Simpson's
+/// rule, and the summary reports the run's own power balance instead of
+/// an energy drift.
+#[test]
+fn the_drive_torques_work_is_the_energy_gained() {
+    let out = tempfile::tempdir().expect("a temporary directory");
+    let output = chaplygin(&[
+        "simulate",
+        &model("ackermann_car"),
+        "--formulation",
+        "lagrange",
+        "--t-end",
+        "1",
+        "--dt",
+        "0.005",
+        "--input",
+        "drive=2",
+        "--initial",
+        "delta_l=0.2",
+        "--initial",
+        "dot(delta_l)=0",
+        "--initial",
+        "dot(phi_rl)=0",
+        "--out",
+        out.path().to_str().expect("a path"),
+    ]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let summary = String::from_utf8_lossy(&output.stdout);
+    let balance: f64 = summary
+        .split("power balance (relative) ")
+        .nth(1)
+        .and_then(|rest| rest.split(';').next())
+        .unwrap_or_else(|| panic!("a power balance in {summary}"))
+        .parse()
+        .expect("a number");
+    assert!(balance < 1e-7, "{summary}");
+    let (header, rows) = read_csv(&out.path().join("trajectory.csv"));
+    let value = |name: &str| column(&header, &rows, name);
+    let (energy, left, right) = (value("energy"), value("dot(phi_rl)"), value("dot(phi_rr)"));
+    let power: Vec<f64> = left
+        .iter()
+        .zip(&right)
+        .map(|(l, r)| 2.0 * (l + r))
+        .collect();
+    let h = 0.005;
+    let pairs = (power.len() - 1) / 2;
+    let work: f64 = (0..pairs)
+        .map(|i| h / 3.0 * (power[2 * i] + 4.0 * power[2 * i + 1] + power[2 * i + 2]))
+        .sum();
+    let gained = energy[2 * pairs] - energy[0];
+    assert!(gained > 1.0, "{gained}");
+    assert!(
+        (gained - work).abs() < 1e-8 * gained,
+        "{gained} against {work}"
+    );
+}
+
+/// Murray and Sastry's kinematic car: drive and steer reach every
+/// direction by the second bracket, growth vector (2, 3, 4).
+#[test]
+fn the_kinematic_cars_growth_vector_is_2_3_4() {
+    let constraints = analysis("kinematic_car");
+    assert_eq!(constraints["growth_vector"], serde_json::json!([2, 3, 4]));
+    assert_eq!(constraints["classification"], "completely nonholonomic");
+}

@@ -98,6 +98,11 @@ impl<const S: usize> Observed<[f64; S]> for Reduced<'_, S> {
         inputs.copy_from_slice(&self.u);
     }
 
+    /// `dH/dx . F`, none: the forcing is zero.
+    fn input_power(&self, _t: f64, _x: &[f64; S]) -> f64 {
+        0.0
+    }
+
     fn configuration_velocity(&self, x: &[f64; S], q: &mut [f64], qdot: &mut [f64]) {
         let (configuration, alpha) = x.split_at(self.model.sizes().n);
         q.copy_from_slice(configuration);

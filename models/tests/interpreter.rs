@@ -17,7 +17,7 @@ use crate::common::random::Random;
 use crate::common::towed::Towed;
 use crate::snake3::Snake3;
 use chaplygin::runtime::system::MomentumEquations;
-use chaplygin_codegen::derive::constraints::ChartFit;
+use chaplygin_codegen::derive::constraints::{ChartFit, Elimination};
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 use chaplygin_models::differential_drive::DifferentialDrive;
 use chaplygin_models::rolling_disk::RollingDisk;
@@ -438,8 +438,8 @@ fn the_second_charts_items_are_interpreted_as_compiled() {
     assert_eq!(
         interpreted.charts(),
         [
-            ChartFit::Coordinates(vec![1]),
-            ChartFit::Coordinates(vec![0])
+            ChartFit::Coordinates(vec![1], Elimination::Exact),
+            ChartFit::Coordinates(vec![0], Elimination::Exact)
         ]
     );
     let towed = Towed::default();

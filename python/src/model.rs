@@ -293,6 +293,7 @@ impl Model {
                 summary.set_item("integrator", report.integrator.name())?;
                 summary.set_item("engine", report.engine)?;
                 summary.set_item("energy_drift", report.energy_drift)?;
+                summary.set_item("power_balance", report.power_balance)?;
                 summary.set_item("max_constraint_residual", report.max_constraint_residual)?;
                 summary.set_item("max_holonomic_residual", report.max_holonomic_residual)?;
                 summary.set_item("chart_switches", report.chart_switches)?;

@@ -50,6 +50,7 @@ mod observed;
 mod outcome;
 mod run;
 pub mod stop;
+mod work;
 
 pub use advance::Advance;
 pub use observed::{GuardedValue, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, Regularity};

@@ -34,6 +34,11 @@ impl Observed<[f64; 1]> for Draining {
 
     fn inputs(&self, _t: f64, _x: &[f64; 1], _inputs: &mut [f64]) {}
 
+    /// No inputs, no work.
+    fn input_power(&self, _t: f64, _x: &[f64; 1]) -> f64 {
+        0.0
+    }
+
     fn configuration_velocity(&self, x: &[f64; 1], q: &mut [f64], qdot: &mut [f64]) {
         (q[0], qdot[0]) = (x[0], -x[0].sqrt());
     }

@@ -55,6 +55,9 @@ pub trait Formulation {
     fn forcing(&self, _t: f64, _x: &[f64], _forcing: &mut [f64]) {}
     /// The inputs applied at `(t, x)`.
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]);
+    /// The power the inputs deliver at `(t, x)` (see
+    /// [`Observed::input_power`]).
+    fn input_power(&self, t: f64, x: &[f64]) -> f64;
     /// The configuration and its velocity at `x` (see
     /// [`Observed::configuration_velocity`]).
     fn configuration_velocity(&self, x: &[f64], q: &mut [f64], qdot: &mut [f64]);
@@ -175,6 +178,10 @@ where
         self.system.inputs(t, &leading(x), inputs);
     }
 
+    fn input_power(&self, t: f64, x: &[f64]) -> f64 {
+        self.system.input_power(t, &leading(x))
+    }
+
     fn configuration_velocity(&self, x: &[f64], q: &mut [f64], qdot: &mut [f64]) {
         self.system.configuration_velocity(&leading(x), q, qdot);
     }
@@ -290,6 +297,10 @@ impl Observed<Vec<f64>> for RunTimeSized<'_> {
 
     fn inputs(&self, t: f64, x: &Vec<f64>, inputs: &mut [f64]) {
         self.0.inputs(t, x, inputs);
+    }
+
+    fn input_power(&self, t: f64, x: &Vec<f64>) -> f64 {
+        self.0.input_power(t, x)
     }
 
     fn configuration_velocity(&self, x: &Vec<f64>, q: &mut [f64], qdot: &mut [f64]) {

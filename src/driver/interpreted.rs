@@ -157,6 +157,29 @@ fn inputs_at(
     u
 }
 
+/// The power `u . B(q)^T qdot` the inputs of `formulation` deliver at
+/// `(t, x)`: with `w = qddot(u) - qddot(0)` of the Lagrange-d'Alembert
+/// accelerations, the polarization `E(q, qdot + w) - E(q, qdot) - E(q, w)
+/// + E(q, 0) = qdot^T g w` of the energy, as
+/// `chaplygin_runtime::simulate::Observed::input_power` takes it.
+fn input_power_of(
+    formulation: &dyn Formulation,
+    model: &InterpretedModel,
+    t: f64,
+    x: &[f64],
+) -> f64 {
+    let n = model.sizes().n;
+    let (mut q, mut qdot) = (vec![0.0; n], vec![0.0; n]);
+    formulation.configuration_velocity(x, &mut q, &mut qdot);
+    let u = inputs_at(formulation, model, t, x);
+    let (forced, _) = evaluated(model.acceleration(&q, &qdot, &u));
+    let (free, _) = evaluated(model.acceleration(&q, &qdot, &vec![0.0; u.len()]));
+    let w: Vec<f64> = forced.iter().zip(&free).map(|(a, b)| a - b).collect();
+    let moved: Vec<f64> = qdot.iter().zip(&w).map(|(v, w)| v + w).collect();
+    let energy = |velocity: &[f64]| evaluated(model.energy(&q, velocity));
+    energy(&moved) - energy(&qdot) - energy(&w) + energy(&vec![0.0; n])
+}
+
 /// The largest `|A(q) qdot|`.
 fn residual(model: &InterpretedModel, q: &[f64], qdot: &[f64]) -> f64 {
     evaluated(model.constraint_residual(q, qdot))
@@ -256,6 +279,10 @@ impl Formulation for InterpretedReduced {
 
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
         self.inputs.apply(self, self.model.sizes().n, t, x, inputs);
+    }
+
+    fn input_power(&self, t: f64, x: &[f64]) -> f64 {
+        input_power_of(self, &self.model, t, x)
     }
 
     /// `qdot = velocities(q, alpha)` in the active chart.
@@ -382,6 +409,10 @@ impl Formulation for InterpretedDalembert {
 
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
         self.inputs.apply(self, self.model.sizes().n, t, x, inputs);
+    }
+
+    fn input_power(&self, t: f64, x: &[f64]) -> f64 {
+        input_power_of(self, &self.model, t, x)
     }
 
     fn configuration_velocity(&self, x: &[f64], q: &mut [f64], qdot: &mut [f64]) {
@@ -597,6 +628,10 @@ impl Formulation for InterpretedMomentum {
 
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
         self.inputs.apply(self, self.model.sizes().n, t, x, inputs);
+    }
+
+    fn input_power(&self, t: f64, x: &[f64]) -> f64 {
+        input_power_of(self, &self.model, t, x)
     }
 
     fn configuration_velocity(&self, x: &[f64], q: &mut [f64], qdot: &mut [f64]) {

@@ -38,6 +38,10 @@ pub trait Observed<X>: Energy<X> {
     /// The inputs applied at `(t, x)`, written into `inputs` (as many as
     /// [`Observed::input_names`]).
     fn inputs(&self, t: f64, x: &X, inputs: &mut [f64]);
+    /// The power the inputs deliver to the mechanism at `(t, x)`,
+    /// `u . B(q)^T qdot`: the rate of the work a run's power balance
+    /// integrates ([`super::Summary::power_balance`]).
+    fn input_power(&self, t: f64, x: &X) -> f64;
     /// The configuration `q` and its velocity `qdot` at `x`, written into
     /// `q` and `qdot` (as long as the model's coordinates): what a law of
     /// the mechanics `u(t, q, qdot)` or a stop condition reads, whatever
@@ -91,6 +95,28 @@ pub trait Observed<X>: Energy<X> {
     fn change_to_pivoted_chart(&self, _x: &mut X) -> bool {
         false
     }
+}
+
+/// `u . B(q)^T qdot` from the Lagrange-d'Alembert accelerations, which
+/// are affine in `u`: with `w = qddot(u) - qddot(0)`, `g w = B u + A^T dl`
+/// and `A qdot = 0`, so the power is `qdot^T g w`, the polarization
+/// `E(q, qdot + w) - E(q, qdot) - E(q, w) + E(q, 0)` of the energy
+/// `E = 1/2 qdot^T g qdot + V`.
+fn dalembert_input_power<M, const N: usize, const C: usize, const P: usize>(
+    model: &M,
+    q: &[f64; N],
+    qdot: &[f64; N],
+    u: &[f64; P],
+) -> f64
+where
+    M: LagrangeDalembert<N, C, P>,
+{
+    let (forced, _) = model.acceleration(q, qdot, u);
+    let (free, _) = model.acceleration(q, qdot, &[0.0; P]);
+    let w: [f64; N] = core::array::from_fn(|i| forced[i] - free[i]);
+    let moved: [f64; N] = core::array::from_fn(|i| qdot[i] + w[i]);
+    model.energy(q, &moved) - model.energy(q, qdot) - model.energy(q, &w)
+        + model.energy(q, &[0.0; N])
 }
 
 /// A guarded expression of a model at a state ([`Observed::domain`]).
@@ -245,6 +271,18 @@ where
         inputs.copy_from_slice(&self.controller().chart_input(chart, t, x));
     }
 
+    /// `u . y` with the collocated output `y = Bbar^T dHbar/dx` of the
+    /// active chart, which equals `B(q)^T qdot`.
+    fn input_power(&self, t: f64, x: &[f64; S]) -> f64 {
+        let chart = Reduced::chart(self);
+        let u = self.controller().chart_input(chart, t, x);
+        let b = self.model().chart_input_matrix(chart, x);
+        let gradient = self.model().chart_hamiltonian_gradient(chart, x);
+        (b.iter().zip(gradient))
+            .map(|(row, g)| g * row.iter().zip(&u).map(|(b, u)| b * u).sum::<f64>())
+            .sum()
+    }
+
     fn configuration_velocity(&self, x: &[f64; S], q: &mut [f64], qdot: &mut [f64]) {
         reduced_configuration_velocity(self.model(), Reduced::chart(self), x, q, qdot);
     }
@@ -315,6 +353,11 @@ where
 
     fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
         inputs.copy_from_slice(&self.controller().input(t, x));
+    }
+
+    fn input_power(&self, t: f64, x: &[f64; D]) -> f64 {
+        let (q, qdot) = split::<N, D>(x);
+        dalembert_input_power(self.model(), &q, &qdot, &self.controller().input(t, x))
     }
 
     fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
@@ -402,6 +445,11 @@ where
         inputs.copy_from_slice(&self.controller().input(t, x));
     }
 
+    fn input_power(&self, t: f64, x: &[f64; D]) -> f64 {
+        let (q, qdot) = Momentum::configuration_velocity(self, x);
+        dalembert_input_power(self.model(), &q, &qdot, &self.controller().input(t, x))
+    }
+
     /// `q` and the reconstructed velocity.
     fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
         let (configuration, velocity) = Momentum::configuration_velocity(self, x);
@@ -458,6 +506,12 @@ where
         inputs.copy_from_slice(&self.input(z));
     }
 
+    /// None from outside: the controller's ports exchange power with the
+    /// plant's, and the energy counts both.
+    fn input_power(&self, _t: f64, _z: &[f64; D]) -> f64 {
+        0.0
+    }
+
     /// The plant's (in its chart 0).
     fn configuration_velocity(&self, z: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
         reduced_configuration_velocity(&self.plant, 0, &Self::split(z).0, q, qdot);
@@ -490,6 +544,10 @@ where
 
     fn inputs(&self, t: f64, x: &[f64; D], inputs: &mut [f64]) {
         self.system().inputs(t, x, inputs);
+    }
+
+    fn input_power(&self, t: f64, x: &[f64; D]) -> f64 {
+        self.system().input_power(t, x)
     }
 
     fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {

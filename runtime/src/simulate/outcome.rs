@@ -142,6 +142,16 @@ pub struct Summary<X> {
     /// The largest `|E(t) - E(0)|` over the steps, divided by `|E(0)|` when
     /// that is not zero.
     pub energy_drift: f64,
+    /// The largest `|E(t) - E(0) - W(t)|` over the steps, relative as
+    /// [`Summary::energy_drift`]: the energy gained less the work `W` the
+    /// inputs did ([`super::Observed::input_power`]), integrated step by
+    /// step by the three-point rule (the quadratic through the last three
+    /// states), a third-order quadrature.
+    pub power_balance: f64,
+    /// Whether the inputs delivered power at some state: the run's
+    /// energy then changes by their work, and [`Summary::power_balance`]
+    /// is the check.
+    pub worked: bool,
     /// The largest constraint residual over the steps.
     pub max_constraint_residual: f64,
     /// The largest `|f(q)|` of the configuration constraints over the steps

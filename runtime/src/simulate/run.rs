@@ -3,6 +3,7 @@
 //! records.
 
 use super::ends::Ends;
+use super::work::Work;
 use super::{
     Advance, CROSSING_TOLERANCE, Observed, Regularity, Simulation, SimulationError, StopCondition,
     Summary,
@@ -34,6 +35,7 @@ pub(super) struct Run<'a, M, C, S, R, X> {
     pub(super) t: f64,
     x: X,
     energy0: f64,
+    work: Work,
     ends: Ends<'a, S, X>,
     regularity: Regularity,
     row: Vec<f64>,
@@ -67,6 +69,7 @@ where
             system,
             t: t0,
             energy0: system.energy(&x),
+            work: Work::start(t0, system.input_power(t0, &x)),
             ends,
             regularity,
             row: Vec::with_capacity(columns.len()),
@@ -76,6 +79,8 @@ where
                 t: t0,
                 state: x.clone(),
                 energy_drift: 0.0,
+                power_balance: 0.0,
+                worked: false,
                 max_constraint_residual: system.constraint_residual(&x),
                 max_holonomic_residual: system.holonomic_residual(&x).unwrap_or(0.0),
                 min_regularity: regularity.value.abs(),
@@ -267,13 +272,18 @@ where
 
     fn update_summary(&mut self, steps: usize) {
         let energy = self.system.energy(&self.x);
-        let drift = (energy - self.energy0).abs()
-            / if self.energy0 == 0.0 {
-                1.0
-            } else {
-                self.energy0.abs()
-            };
+        let power = self.system.input_power(self.t, &self.x);
+        self.work.advance(self.t, power);
+        let scale = if self.energy0 == 0.0 {
+            1.0
+        } else {
+            self.energy0.abs()
+        };
+        let drift = (energy - self.energy0).abs() / scale;
+        let balance = (energy - self.energy0 - self.work.total()).abs() / scale;
         let summary = &mut self.summary;
+        summary.worked |= power != 0.0;
+        summary.power_balance = summary.power_balance.max(balance);
         summary.steps = steps;
         summary.t = self.t;
         summary.state.clone_from(&self.x);

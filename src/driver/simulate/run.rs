@@ -76,6 +76,12 @@ pub struct Report {
     pub t: f64,
     /// The largest relative change of the energy.
     pub energy_drift: f64,
+    /// The largest relative energy gained less the inputs' work (see
+    /// `chaplygin_runtime::simulate::Summary::power_balance`).
+    pub power_balance: f64,
+    /// Whether the inputs did work: the summary then reports the power
+    /// balance instead of the energy drift.
+    pub worked: bool,
     /// The largest `|A(q) qdot|` met.
     pub max_constraint_residual: f64,
     /// The largest `|f(q)|` met, with configuration constraints.
@@ -105,13 +111,20 @@ impl std::fmt::Display for Report {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "t = {}: {} steps of {} in {:.3} s, engine {}; energy drift (relative) {:.3e}; max constraint residual {:.3e}",
+            "t = {}: {} steps of {} in {:.3} s, engine {}; ",
             self.t,
             self.steps,
             self.integrator.name(),
             self.seconds,
             self.engine,
-            self.energy_drift,
+        )?;
+        match self.worked {
+            true => write!(f, "power balance (relative) {:.3e}", self.power_balance)?,
+            false => write!(f, "energy drift (relative) {:.3e}", self.energy_drift)?,
+        }
+        write!(
+            f,
+            "; max constraint residual {:.3e}",
             self.max_constraint_residual
         )?;
         if let Some(residual) = self.max_holonomic_residual {
@@ -210,6 +223,8 @@ impl Settings {
             steps: summary.steps,
             t: summary.t,
             energy_drift: summary.energy_drift,
+            power_balance: summary.power_balance,
+            worked: summary.worked,
             max_constraint_residual: summary.max_constraint_residual,
             max_holonomic_residual: holonomic.then_some(summary.max_holonomic_residual),
             chart_switches: summary.chart_switches,

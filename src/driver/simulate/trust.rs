@@ -119,6 +119,8 @@ mod tests {
             steps: 10,
             t: 0.1,
             energy_drift: drift,
+            power_balance: drift,
+            worked: !conservative,
             max_constraint_residual: residual,
             max_holonomic_residual: holonomic,
             chart_switches: 0,
