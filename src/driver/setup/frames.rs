@@ -218,16 +218,17 @@ pub(super) fn coordinate_rates(
     };
     let jacobian = rate_jacobian(model, q, (base, asked.frame), [first, second, third]);
     let singular = jacobian.singular_values();
-    if singular.min() <= 1e-8 * singular.max() {
-        return Err(refused(format!(
+    let rates = (singular.min() > 1e-8 * singular.max())
+        .then(|| jacobian.lu().solve(&Vector3::from(asked.omega)))
+        .flatten();
+    let rates = rates.ok_or_else(|| {
+        refused(format!(
             "the rates of {} do not turn `{}` about every axis here (a singular orientation \
              of these angles): use an `orient` frame",
             coordinate_names.join(", "),
             names[asked.frame]
-        )));
-    }
-    let omega = Vector3::from(asked.omega);
-    let rates = jacobian.lu().solve(&omega).unwrap_or(omega);
+        ))
+    })?;
     Ok(coordinates.into_iter().zip(rates.iter().copied()).collect())
 }
 

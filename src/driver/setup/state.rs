@@ -7,7 +7,7 @@
 //! `f(q) = 0`; the velocities given are fixed and the others solved from
 //! `A(q) qdot = 0`, as for `chaplygin linearize --at`; without a velocity
 //! given, the default motion. `omega(F)=[..]` and `angles(F, seq)=[..]`
-//! give a frame's state by how it turns ([`super::frames`]).
+//! give a frame's state by how it turns (`setup::frames`).
 
 use super::error::InputError;
 use super::frames::{self, AngularVelocity, FrameSlot, Frames};

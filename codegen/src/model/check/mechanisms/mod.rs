@@ -1,9 +1,11 @@
 //! Mechanism sections: frames turned from `ground` without cycles about
-//! `x`, `y` or `z`, points, bodies with a known frame and centre and a
-//! symmetric inertia, gravity, rolling contacts with at least one direction
-//! on a declared body, and holonomic constraints free of velocities. Every
-//! value has the type its place asks for (scalar, vector or point) and
-//! depends on the configuration only.
+//! `x`, `y` or `z` or by Euler parameters (each `orient` frame adding its
+//! unit constraint and the kinetic energy along `e`: `orientation`),
+//! points, bodies with a known frame and centre and a symmetric inertia,
+//! gravity, rolling contacts with at least one direction on a declared
+//! body, and holonomic constraints free of velocities. Every value has the
+//! type its place asks for (scalar, vector or point) and depends on the
+//! configuration only.
 
 mod bodies;
 mod contacts;
