@@ -12,6 +12,7 @@ mod animate;
 mod build_script_door;
 mod chart_cover;
 mod charts;
+mod euler_parameters;
 mod examples;
 mod gait_design;
 mod guide;

@@ -23,5 +23,6 @@ mod degenerate_momentum_basis;
 mod derive_rust;
 mod design_map;
 mod energy_controller;
+mod euler_parameters;
 mod guide_commands;
 mod wheeled_robots;

@@ -47,7 +47,7 @@ use crate::derive::port_hamiltonian::momentum_names;
 use crate::diagnostic::Diagnostics;
 use crate::emit::{self, Lowered};
 use crate::ir::IrError;
-use crate::model::{GroupFactor, Model};
+use crate::model::{FrameTurn, GroupFactor, Model};
 use crate::{Analysed, analysed_model, over_budget};
 use chaplygin_runtime::simulate::GuardedValue;
 use chaplygin_runtime::system::Guard;
@@ -70,6 +70,8 @@ pub struct Names {
     pub points: Vec<String>,
     /// The configuration constraints `f(q) = 0` (`holonomic_residual`).
     pub holonomic: Vec<String>,
+    /// The declared frames, in the order of `orientations`.
+    pub frames: Vec<String>,
 }
 
 /// The sizes of a model: `n` coordinates, `c` constraints, `k = n - c`,
@@ -188,6 +190,8 @@ pub struct InterpretedModel {
     symmetry: Vec<GroupFactor>,
     /// The mechanism's bodies and contacts, by name (`drawing(q)`'s layout).
     bodies: drawing::Bodies,
+    /// How each frame of [`Names::frames`] is turned from its parent.
+    turns: Vec<FrameTurn>,
 }
 
 impl std::fmt::Debug for InterpretedModel {
@@ -266,6 +270,7 @@ impl InterpretedModel {
                 .map(|symmetry| symmetry.factors.clone())
                 .unwrap_or_default(),
             bodies: drawing::bodies(&model),
+            turns: model.mechanism.turns.clone(),
         };
         let programs: Vec<_> = interpreted.programs().map(|(_, program)| program).collect();
         interpreted.engine = Arc::from(backend.engine(&programs));
@@ -295,6 +300,11 @@ impl InterpretedModel {
     /// momenta, points and configuration constraints.
     pub fn names(&self) -> &Names {
         &self.names
+    }
+
+    /// How each frame of [`Names::frames`] is turned from its parent.
+    pub fn turns(&self) -> &[FrameTurn] {
+        &self.turns
     }
 
     /// The sizes n, c, k, p, s.
@@ -722,6 +732,7 @@ fn names(model: &Model) -> Names {
         momenta: momentum_names(model),
         points: declared(&model.mechanism.points),
         holonomic: declared(&model.mechanism.holonomic),
+        frames: declared(&model.mechanism.frames),
     }
 }
 

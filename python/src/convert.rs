@@ -74,14 +74,30 @@ pub fn shape(lengths: &[usize]) -> String {
     }
 }
 
-/// `{name: value}` with values numbers or expressions (strings), as
-/// `NAME=EXPRESSION` assignments (a number as the decimal that reads back
-/// to it exactly); `None` is none.
+/// `{name: value}` with values numbers, expressions (strings) or lists of
+/// them (`"omega(F)": [wx, wy, wz]`), as `NAME=EXPRESSION` assignments (a
+/// number as the decimal that reads back to it exactly, a list as
+/// `[a, b, c]`); `None` is none.
 pub fn assignments(values: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String)>> {
-    entries(values, |name, value| match value.extract::<String>() {
+    entries(values, |name, value| {
+        match value.extract::<Vec<Bound<'_, PyAny>>>() {
+            Ok(entries) if value.extract::<String>().is_err() => {
+                let texts = (entries.iter())
+                    .map(|entry| assignment(name, entry))
+                    .collect::<PyResult<Vec<String>>>()?;
+                Ok(format!("[{}]", texts.join(", ")))
+            }
+            _ => assignment(name, value),
+        }
+    })
+}
+
+/// A number or an expression as the text of an assignment.
+fn assignment(name: &str, value: &Bound<'_, PyAny>) -> PyResult<String> {
+    match value.extract::<String>() {
         Ok(text) => Ok(text),
         Err(_) => finite(name, value).map(|number| format!("{number}")),
-    })
+    }
 }
 
 /// `{name: number}` as `NAME=VALUE` assignments; `None` is none.

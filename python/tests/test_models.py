@@ -251,3 +251,19 @@ def test_an_array_argument_of_another_shape_is_named_in_the_error():
         board.acceleration([0.0] * 5, [0.0] * 4)
     with pytest.raises(ValueError, match="could not convert"):
         f(0.0, ["a"] * d)
+
+
+def test_a_frames_angles_and_angular_velocity_go_in_as_lists(root):
+    ball = chaplygin.load(str(root / "models" / "chaplygin_ball.model"))
+    run = ball.simulate(
+        t_end=0.01,
+        formulation="lagrange",
+        initial={"angles(ball, zxz)": [0.3, 0.5, 0.7], "omega(ball)": [1.0, 1.6, "2.2"]},
+    )
+    e = numpy.array([run[name][0] for name in ("e0", "e1", "e2", "e3")])
+    rates = numpy.array([run[f"dot({name})"][0] for name in ("e0", "e1", "e2", "e3")])
+    # e = q_z(0.3) q_x(0.5) q_z(0.7): e0 = cos(theta/2) cos((psi + phi)/2)
+    assert abs(e[0] - math.cos(0.25) * math.cos(0.5)) < 1e-12
+    e0, e1, e2, e3 = e
+    turning = numpy.array([[-e1, e0, e3, -e2], [-e2, -e3, e0, e1], [-e3, e2, -e1, e0]])
+    assert numpy.allclose(2.0 * turning @ rates, [1.0, 1.6, 2.2], atol=1e-12)

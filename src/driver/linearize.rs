@@ -65,6 +65,13 @@ pub fn linearize_at(
     independent: &[&str],
 ) -> Result<LinearSystem, LinearizeError> {
     let assigned = setup.state.at(variables)?;
+    if let Some(asked) = assigned.angular_velocities.first() {
+        let (flag, name) = asked.given.clone();
+        let reason = "a frame's angular velocity sets a run's start (--initial): give the \
+                      velocities `dot(q)` here"
+            .to_string();
+        return Err(InputError::FrameState { flag, name, reason }.into());
+    }
     let point = OperatingPoint::solve(&setup.model, &assigned.q, &assigned.qdot)?;
     let u = vec![0.0; setup.model.sizes().p];
     Ok(runtime_linearize::linearize(

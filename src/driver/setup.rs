@@ -18,12 +18,14 @@
 //! Each mistake is an [`InputError`] stated in one line.
 
 mod error;
+mod frames;
 pub mod inputs;
 mod parameters;
 pub mod state;
 pub mod stop;
 
 pub use error::InputError;
+pub use frames::AngularVelocity;
 pub use inputs::InputSchedule;
 pub use parameters::{set_parameters, with_parameters};
 pub use state::{Assigned, Origin, Start, StateFamily};
@@ -117,6 +119,10 @@ pub fn resolve(mut model: InterpretedModel, asked: &Asked<'_>) -> Result<Setup, 
             controller: &controller,
             parameters: &bound,
             variables: asked.variables,
+            frames: frames::Frames {
+                names: &names.frames,
+                turns: model.turns(),
+            },
         },
         asked.state,
     )?;

@@ -29,7 +29,7 @@ mod tests;
 
 pub use check::{check, check_within};
 pub use mechanism::bodies::BodyMotion;
-pub use mechanism::{Mechanism, MechanismExpressions};
+pub use mechanism::{FrameTurn, Mechanism, MechanismExpressions, TurnedBy};
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::sym::{Context, ExprId, Matrix, Rational, RationalFunction, SymbolId};

@@ -1,5 +1,7 @@
 //! The checker on the snakeboard of MATH.md 3.1 and on broken models.
 
+mod orientation;
+
 use super::{Model, check};
 use crate::fixtures::SNAKEBOARD;
 use crate::sym::Context;
@@ -289,6 +291,7 @@ fn the_bodies_kane_metric_is_the_hessian_of_their_energy() {
         include_str!("../../../models/rolling_disk_3d.model"),
         include_str!("../../../models/caster_robot.model"),
         include_str!("../../../models/sleigh_bodies.model"),
+        include_str!("../../../models/chaplygin_ball.model"),
     ] {
         let (model, mut cx) = checked(source);
         let velocities = model.velocities.clone();

@@ -40,6 +40,29 @@ pub enum InputError {
         /// What is wrong with it.
         reason: String,
     },
+    /// `omega(F)` or `angles(F, seq)` names no frame.
+    #[error("{flag} {name}: unknown frame `{frame}` (frames: {known})")]
+    UnknownFrame {
+        /// The flag it came with (`--initial`, `--at`).
+        flag: String,
+        /// What was given a value.
+        name: String,
+        /// The frame named.
+        frame: String,
+        /// The frames there are.
+        known: String,
+    },
+    /// `omega(F)` or `angles(F, seq)` asks what the frame's coordinates
+    /// cannot give.
+    #[error("{flag} {name}: {reason}")]
+    FrameState {
+        /// The flag it came with (`--initial`, `--at`).
+        flag: String,
+        /// What was given a value.
+        name: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// `--input` names no input.
     #[error("unknown input `{name}` (inputs: {known})")]
     UnknownInput {

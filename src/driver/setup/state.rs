@@ -6,15 +6,18 @@
 //! constraints, the coordinates given are fixed and the others solved from
 //! `f(q) = 0`; the velocities given are fixed and the others solved from
 //! `A(q) qdot = 0`, as for `chaplygin linearize --at`; without a velocity
-//! given, the default motion.
+//! given, the default motion. `omega(F)=[..]` and `angles(F, seq)=[..]`
+//! give a frame's state by how it turns (`setup::frames`).
 
 use super::error::InputError;
+use super::frames::{self, AngularVelocity, FrameSlot, Frames};
 use crate::driver::catalog::Motion;
 use crate::driver::expression::{Expression, ExpressionError, Point, Scope, constant};
 use crate::runtime::linearize::Dynamics;
 use crate::runtime::linearize::point::{configuration, solve_velocities, velocity_names};
 use crate::runtime::nalgebra::DMatrix;
 use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
+use chaplygin_codegen::model::{FrameTurn, TurnedBy};
 
 /// What a state assignment sets.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,6 +28,8 @@ enum Slot {
     Velocity(usize),
     /// The controller state of this index.
     Controller(usize),
+    /// A component (0, 1, 2) of what a frame's assignment sets.
+    Frame(FrameSlot, usize),
 }
 
 /// The state assignments of a command, each an expression of the
@@ -36,6 +41,7 @@ pub struct StateFamily {
     assignments: Vec<Assignment>,
     coordinates: usize,
     controller_states: usize,
+    turns: Vec<FrameTurn>,
 }
 
 /// One assignment: what it sets and its expression, with its text.
@@ -57,6 +63,8 @@ pub struct Assigned {
     pub qdot: Vec<Option<f64>>,
     /// The controller's states.
     pub controller: Vec<Option<f64>>,
+    /// The frames' angular velocities asked (`omega(F)`).
+    pub angular_velocities: Vec<AngularVelocity>,
 }
 
 /// The names a state assignment may set or read.
@@ -71,6 +79,8 @@ pub(super) struct StateNames<'a> {
     pub parameters: &'a [(&'a str, f64)],
     /// The command's variables.
     pub variables: &'a [&'a str],
+    /// The model's frames.
+    pub frames: Frames<'a>,
 }
 
 impl StateFamily {
@@ -83,30 +93,30 @@ impl StateFamily {
         names: &StateNames<'_>,
         given: &[(String, String)],
     ) -> Result<Self, InputError> {
-        let assignments = given
-            .iter()
-            .map(|(name, text)| {
-                let slot = slot(names, name)?;
+        let mut assignments = Vec::new();
+        for (name, text) in given {
+            for (slot, text) in slots(names, name, text)? {
                 let value = expression(names, text).map_err(|reason| InputError::StateValue {
                     flag: names.flag.to_string(),
                     name: name.clone(),
-                    text: text.clone(),
+                    text: text.to_string(),
                     reason,
                 })?;
-                Ok(Assignment {
+                assignments.push(Assignment {
                     slot,
                     name: name.clone(),
-                    text: text.clone(),
+                    text: text.to_string(),
                     value,
-                })
-            })
-            .collect::<Result<_, InputError>>()?;
+                });
+            }
+        }
         Ok(Self {
             flag: names.flag.to_string(),
             variables: names.variables.iter().map(|v| v.to_string()).collect(),
             assignments,
             coordinates: names.coordinates.len(),
             controller_states: names.controller.len(),
+            turns: names.frames.turns.to_vec(),
         })
     }
 
@@ -127,7 +137,9 @@ impl StateFamily {
             q: vec![None; n],
             qdot: vec![None; n],
             controller: vec![None; self.controller_states],
+            angular_velocities: Vec::new(),
         };
+        let mut angles: Vec<(usize, [usize; 3], [f64; 3])> = Vec::new();
         let point = Point {
             variables,
             ..Point::default()
@@ -146,11 +158,78 @@ impl StateFamily {
                 Slot::Coordinate(i) => &mut assigned.q[i],
                 Slot::Velocity(i) => &mut assigned.qdot[i],
                 Slot::Controller(i) => &mut assigned.controller[i],
+                Slot::Frame(FrameSlot::Omega(frame), k) => {
+                    self.angular_velocity(&mut assigned, &assignment.name, frame)
+                        .omega[k] = value;
+                    continue;
+                }
+                Slot::Frame(FrameSlot::Angles(frame, axes), k) => {
+                    match angles.iter_mut().find(|(f, ..)| *f == frame) {
+                        Some((_, _, values)) => values[k] = value,
+                        None => {
+                            let mut values = [0.0; 3];
+                            values[k] = value;
+                            angles.push((frame, axes, values));
+                        }
+                    }
+                    continue;
+                }
             };
             *entry = Some(value);
         }
+        for (frame, axes, values) in angles {
+            let TurnedBy::EulerParameters(indices) = self.turns[frame].by else {
+                continue;
+            };
+            let e = frames::euler_parameters(axes, values);
+            for (i, entry) in indices.into_iter().zip(e) {
+                assigned.q[i] = Some(entry);
+            }
+        }
         Ok(assigned)
     }
+
+    /// The angular velocity asked of `frame` by the assignment `name`,
+    /// added at zero where new.
+    fn angular_velocity<'s>(
+        &self,
+        assigned: &'s mut Assigned,
+        name: &str,
+        frame: usize,
+    ) -> &'s mut AngularVelocity {
+        let at = (assigned.angular_velocities.iter()).position(|w| w.frame == frame);
+        let at = at.unwrap_or_else(|| {
+            assigned.angular_velocities.push(AngularVelocity {
+                given: (self.flag.clone(), name.to_string()),
+                frame,
+                omega: [0.0; 3],
+            });
+            assigned.angular_velocities.len() - 1
+        });
+        &mut assigned.angular_velocities[at]
+    }
+}
+
+/// What `name = text` sets: one slot, or the three of a frame's
+/// `[a, b, c]`, each with its text.
+fn slots<'t>(
+    names: &StateNames<'_>,
+    name: &str,
+    text: &'t str,
+) -> Result<Vec<(Slot, &'t str)>, InputError> {
+    let Some(frame_slot) = frames::frame_slot(names.flag, name, names.frames) else {
+        return Ok(vec![(slot(names, name)?, text)]);
+    };
+    let frame_slot = frame_slot?;
+    let entries = frames::components(text).ok_or_else(|| InputError::StateValue {
+        flag: names.flag.to_string(),
+        name: name.to_string(),
+        text: text.to_string(),
+        reason: "expected three values `[a, b, c]`".to_string(),
+    })?;
+    Ok((0..3)
+        .map(|k| (Slot::Frame(frame_slot, k), entries[k]))
+        .collect())
 }
 
 /// What `name` sets.
@@ -238,16 +317,19 @@ pub(super) fn start(
     parameters: &[(&str, f64)],
 ) -> Result<Start, InputError> {
     let n = assigned.q.len();
+    let mut given_q = assigned.q.clone();
+    frames::unturned_where_unset(model.turns(), &mut given_q);
     let mut q = origin.q.map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
-    for (entry, given) in q.iter_mut().zip(&assigned.q) {
+    for (entry, given) in q.iter_mut().zip(&given_q) {
         *entry = given.unwrap_or(*entry);
     }
     if !model.holonomic().is_empty() {
-        q = configuration(model, &assigned.q)?;
+        q = configuration(model, &given_q)?;
     }
-    let given_velocity = assigned.qdot.iter().any(Option::is_some);
+    let given_qdot = with_angular_velocities(model, &q, assigned)?;
+    let given_velocity = given_qdot.iter().any(Option::is_some);
     let qdot = match origin.motion {
-        _ if given_velocity => solved_velocities(model, &q, &assigned.qdot)?,
+        _ if given_velocity => solved_velocities(model, &q, &given_qdot)?,
         Some(Motion::Momenta(alpha)) => evaluated(model.velocities(&q, alpha)),
         Some(Motion::Velocities(defaults)) => {
             let velocities = default_velocities(model, defaults, parameters)?;
@@ -256,6 +338,34 @@ pub(super) fn start(
         None => vec![0.0; n],
     };
     Ok(Start { q, qdot })
+}
+
+/// The velocities given by `dot(q)` and by `omega(F)` at `q`.
+///
+/// # Errors
+/// A frame's angular velocity its coordinates cannot give, or a velocity
+/// given both ways.
+fn with_angular_velocities(
+    model: &InterpretedModel,
+    q: &[f64],
+    assigned: &Assigned,
+) -> Result<Vec<Option<f64>>, InputError> {
+    let mut qdot = assigned.qdot.clone();
+    for asked in &assigned.angular_velocities {
+        for (i, rate) in frames::coordinate_rates(model, q, asked)? {
+            if qdot[i].is_some() {
+                let (flag, name) = asked.given.clone();
+                let coordinate = &model.names().coordinates[i];
+                return Err(InputError::FrameState {
+                    flag,
+                    name,
+                    reason: format!("sets dot({coordinate}), which is also given"),
+                });
+            }
+            qdot[i] = Some(rate);
+        }
+    }
+    Ok(qdot)
 }
 
 /// The velocities `given`, the others solved from `A(q) qdot = 0`.

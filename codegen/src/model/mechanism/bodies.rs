@@ -23,8 +23,9 @@ use crate::sym::{Context, ExprId, SymError, SymbolId};
 /// A rigid body, or a particle (in `ground` with zero inertia).
 #[derive(Clone, Debug)]
 pub(in crate::model) struct Body {
-    /// The frame the body is fixed in.
+    /// The frame the body is fixed in, and its name.
     pub(in crate::model) frame: FrameState,
+    pub(in crate::model) frame_name: String,
     /// The centre of mass.
     pub(in crate::model) center: Vector,
     /// `m`.
@@ -43,7 +44,7 @@ impl Body {
         coordinates: &[SymbolId],
     ) -> Result<BodyMotion, SymError> {
         let velocity = velocity(cx, &self.center, coordinates)?;
-        let angular_velocity = self.frame.to_frame_axes(cx, &self.frame.angular_velocity);
+        let angular_velocity = self.frame.own_axes_angular_velocity(cx);
         Ok(BodyMotion {
             mass: self.mass,
             inertia: self.inertia,

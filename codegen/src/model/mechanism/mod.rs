@@ -27,6 +27,8 @@ use crate::sym::{ExprId, Matrix, RationalFunction};
 pub struct Mechanism {
     /// The declared frames (not `ground`), in the order they were resolved.
     pub frames: Vec<Declared>,
+    /// How each of them is turned from its parent, in the same order.
+    pub turns: Vec<FrameTurn>,
     /// Each frame's rotation matrix in ground axes, row-major: `nf x 9`.
     pub orientations: Matrix,
     /// The declared points (not `origin`), in order.
@@ -50,6 +52,26 @@ pub struct Mechanism {
     /// contacts and the drawing section's items ([`Drawing`]); `None`
     /// without mechanism sections and without a drawing section.
     pub drawing: Option<Drawing>,
+}
+
+/// How a declared frame is turned from its parent.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FrameTurn {
+    /// The parent's name: `ground` or a declared frame.
+    pub parent: String,
+    /// What turns it.
+    pub by: TurnedBy,
+}
+
+/// What turns a frame from its parent.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum TurnedBy {
+    /// `rotate(parent, axis, angle)`: the indices of the coordinates the
+    /// angle reads.
+    Angle(Vec<usize>),
+    /// `orient(parent, e0, e1, e2, e3)`: the indices of the four
+    /// coordinates.
+    EulerParameters([usize; 4]),
 }
 
 /// What drawing a model needs, as expressions of the coordinates and the
@@ -129,6 +151,7 @@ impl Mechanism {
     pub fn none() -> Mechanism {
         Mechanism {
             frames: Vec::new(),
+            turns: Vec::new(),
             orientations: Matrix::zeros(0, 9),
             points: Vec::new(),
             positions: Matrix::zeros(0, 3),

@@ -15,6 +15,29 @@
 //! *Advanced Dynamics*, 2003, section 2.3). The columns of `R_f` are the unit
 //! vectors `f.x`, `f.y`, `f.z`. `ground` has `R = I`, `omega = 0`; `origin`
 //! is at zero.
+//!
+//! A frame `f = orient(p, e0, e1, e2, e3)` is turned by the Euler parameters
+//! `e` (the quaternion `e0 + e1 i + e2 j + e3 k`): `R_f = R_p R(e)` with
+//!
+//! ```text
+//! R(e) = [[e0²+e1²-e2²-e3², 2(e1e2-e0e3),    2(e1e3+e0e2)],
+//!         [2(e1e2+e0e3),    e0²-e1²+e2²-e3², 2(e2e3-e0e1)],
+//!         [2(e1e3-e0e2),    2(e2e3+e0e1),    e0²-e1²-e2²+e3²]]  = G(e) E(e)^T
+//! E(e) = [[-e1, e0, e3, -e2], [-e2, -e3, e0, e1], [-e3, e2, -e1, e0]]
+//! G(e) = [[-e1, e0, -e3, e2], [-e2, e3, e0, -e1], [-e3, -e2, e1, e0]]
+//! ```
+//!
+//! and the angular velocity relative to `p` is `2 G(e) edot` in `p`'s axes
+//! and `2 E(e) edot` in `f`'s own (Nikravesh, *Computer-Aided Analysis of
+//! Mechanical Systems*, 1988, sections 6.3-6.4). On the unit sphere
+//! `|e| = 1` these equal the skew parts of `Rdot R^T` and `R^T Rdot`; off
+//! it `R(e)` is `|e|^2` times a rotation, and the rates stay the linear forms
+//! above. `E e = G e = 0`, so they ignore the rate along `e` whatever its
+//! size: the tool keeps `|e| = 1`, and the equations of motion on it only
+//! read the energies and rows there (docs/MATH.md section 5). The frame's
+//! own-axes rate is kept as `2 E(e) edot` (plus the parent's turned by
+//! `R(e)^T`) instead of `R_f^T omega_f`, which is the same on the sphere at a
+//! third of the polynomial degree.
 
 use super::vector::{self, Vector};
 use crate::sym::{Context, ExprId, Function, Rational, SymError, SymbolId};
@@ -26,6 +49,9 @@ pub(in crate::model) struct FrameState {
     pub(in crate::model) rotation: [ExprId; 9],
     /// `omega`.
     pub(in crate::model) angular_velocity: Vector,
+    /// `omega` in the frame's own axes where it is kept as derived (an
+    /// `orient` frame's); `None` for `R^T omega`.
+    pub(in crate::model) own_angular_velocity: Option<Vector>,
 }
 
 impl FrameState {
@@ -40,6 +66,14 @@ impl FrameState {
             let column = self.axis(axis);
             vector::inner(cx, &column, a)
         })
+    }
+
+    /// `omega` in the frame's own axes.
+    pub(in crate::model) fn own_axes_angular_velocity(&self, cx: &mut Context) -> Vector {
+        match self.own_angular_velocity {
+            Some(own) => own,
+            None => self.to_frame_axes(cx, &self.angular_velocity),
+        }
     }
 }
 
@@ -66,6 +100,7 @@ impl Space {
         let ground = FrameState {
             rotation,
             angular_velocity: vector::zero(cx),
+            own_angular_velocity: None,
         };
         Space {
             frames: vec![(GROUND.to_string(), ground)],
@@ -124,18 +159,127 @@ pub(in crate::model) fn rotated(
     coordinates: &[SymbolId],
 ) -> Result<FrameState, SymError> {
     let elementary = elementary_rotation(cx, axis, angle)?;
-    let rotation = std::array::from_fn(|entry| {
-        let (row, column) = (entry / 3, entry % 3);
-        let products: Vec<ExprId> = (0..3)
-            .map(|k| cx.mul2(parent.rotation[3 * row + k], elementary[3 * k + column]))
-            .collect();
-        cx.add(&products)
-    });
+    let rotation = product(cx, &parent.rotation, &elementary);
     let rate = time_derivative(cx, angle, coordinates)?;
     let turn = vector::scale(cx, rate, &parent.axis(axis));
     Ok(FrameState {
         rotation,
         angular_velocity: vector::add(cx, &parent.angular_velocity, &turn),
+        own_angular_velocity: None,
+    })
+}
+
+/// The frame turned from `parent` by the Euler parameters `e` (see the
+/// module documentation).
+pub(in crate::model) fn oriented(
+    cx: &mut Context,
+    parent: &FrameState,
+    e: [SymbolId; 4],
+) -> FrameState {
+    let e_values = e.map(|entry| cx.symbol(entry));
+    let rates = e.map(|entry| {
+        let velocity = cx.velocity_of(entry);
+        cx.symbol(velocity)
+    });
+    let relative = euler_parameter_rotation(cx, &e_values);
+    let [e0, e1, e2, e3] = e_values;
+    let [m1, m2, m3] = [e1, e2, e3].map(|entry| cx.neg(entry));
+    let in_parent_axes = twice_rows(
+        cx,
+        [[m1, e0, m3, e2], [m2, e3, e0, m1], [m3, m2, e1, e0]],
+        &rates,
+    );
+    let in_own_axes = twice_rows(
+        cx,
+        [[m1, e0, e3, m2], [m2, m3, e0, e1], [m3, e2, m1, e0]],
+        &rates,
+    );
+    let turn = times_vector(cx, &parent.rotation, &in_parent_axes);
+    let parent_own = parent.own_axes_angular_velocity(cx);
+    let carried = transpose_times_vector(cx, &relative, &parent_own);
+    FrameState {
+        rotation: product(cx, &parent.rotation, &relative),
+        angular_velocity: vector::add(cx, &parent.angular_velocity, &turn),
+        own_angular_velocity: Some(vector::add(cx, &carried, &in_own_axes)),
+    }
+}
+
+/// `R(e)`, row-major (see the module documentation).
+fn euler_parameter_rotation(cx: &mut Context, e: &[ExprId; 4]) -> [ExprId; 9] {
+    let two = cx.integer(2);
+    let square = |cx: &mut Context, i: usize| cx.mul2(e[i], e[i]);
+    let squares: [ExprId; 4] = std::array::from_fn(|i| square(cx, i));
+    let diagonal = |cx: &mut Context, plus: usize| {
+        let signed: Vec<ExprId> = (1..4)
+            .map(|i| match i == plus {
+                true => squares[i],
+                false => cx.neg(squares[i]),
+            })
+            .collect();
+        let rest = cx.add(&signed);
+        cx.add2(squares[0], rest)
+    };
+    let twice = |cx: &mut Context, (a, b): (usize, usize), (c, d): (usize, usize), sign: i64| {
+        let first = cx.mul2(e[a], e[b]);
+        let second = cx.mul2(e[c], e[d]);
+        let second = match sign {
+            1 => second,
+            _ => cx.neg(second),
+        };
+        let sum = cx.add2(first, second);
+        cx.mul2(two, sum)
+    };
+    [
+        diagonal(cx, 1),
+        twice(cx, (1, 2), (0, 3), -1),
+        twice(cx, (1, 3), (0, 2), 1),
+        twice(cx, (1, 2), (0, 3), 1),
+        diagonal(cx, 2),
+        twice(cx, (2, 3), (0, 1), -1),
+        twice(cx, (1, 3), (0, 2), -1),
+        twice(cx, (2, 3), (0, 1), 1),
+        diagonal(cx, 3),
+    ]
+}
+
+/// `2 M edot` of the 3 x 4 matrix `M` given by rows.
+fn twice_rows(cx: &mut Context, rows: [[ExprId; 4]; 3], rates: &[ExprId; 4]) -> Vector {
+    let two = cx.integer(2);
+    rows.map(|row| {
+        let products: Vec<ExprId> = row
+            .iter()
+            .zip(rates)
+            .map(|(&m, &r)| cx.mul2(m, r))
+            .collect();
+        let sum = cx.add(&products);
+        cx.mul2(two, sum)
+    })
+}
+
+/// The product `a b` of two 3 x 3 matrices, row-major.
+fn product(cx: &mut Context, a: &[ExprId; 9], b: &[ExprId; 9]) -> [ExprId; 9] {
+    std::array::from_fn(|entry| {
+        let (row, column) = (entry / 3, entry % 3);
+        let products: Vec<ExprId> = (0..3)
+            .map(|k| cx.mul2(a[3 * row + k], b[3 * k + column]))
+            .collect();
+        cx.add(&products)
+    })
+}
+
+/// `m v` of a 3 x 3 matrix, row-major.
+fn times_vector(cx: &mut Context, m: &[ExprId; 9], v: &Vector) -> Vector {
+    [0, 1, 2].map(|row| {
+        let entries = [0, 1, 2].map(|k| m[3 * row + k]);
+        vector::inner(cx, &entries, v)
+    })
+}
+
+/// `m^T v` of a 3 x 3 matrix, row-major.
+fn transpose_times_vector(cx: &mut Context, m: &[ExprId; 9], v: &Vector) -> Vector {
+    [0, 1, 2].map(|column| {
+        let entries = [0, 1, 2].map(|k| m[3 * k + column]);
+        vector::inner(cx, &entries, v)
     })
 }
 

@@ -63,8 +63,10 @@ fn body(cx: &mut Context, value: &Value, space: &Space, reference: &Reference) -
             let center = center(cx, center_value, space, reference);
             let mass = configuration_scalar(cx, mass, space, reference, "a mass");
             let inertia = inertia(cx, inertia_value, space, reference);
+            let (frame_name, frame) = frame?;
             Some(Body {
-                frame: frame?,
+                frame,
+                frame_name,
                 center: center?,
                 mass: mass?,
                 inertia: inertia?,
@@ -77,6 +79,7 @@ fn body(cx: &mut Context, value: &Value, space: &Space, reference: &Reference) -
             let zero = cx.sym.integer(0);
             Some(Body {
                 frame: space.frame(GROUND)?.clone(),
+                frame_name: GROUND.to_string(),
                 center: center?,
                 mass: mass?,
                 inertia: [zero; 9],
@@ -93,8 +96,12 @@ fn body(cx: &mut Context, value: &Value, space: &Space, reference: &Reference) -
     }
 }
 
-/// A body's frame is `ground` or a declared frame.
-fn check_frame_known(cx: &mut Context, value: &Value, space: &Space) -> Option<space::FrameState> {
+/// A body's frame is `ground` or a declared frame: its name and state.
+fn check_frame_known(
+    cx: &mut Context,
+    value: &Value,
+    space: &Space,
+) -> Option<(String, space::FrameState)> {
     let ident = check_frame_name(cx, value)?;
     let frame = space.frame(&ident.to_string()).cloned();
     if frame.is_none() && !space.is_broken(&ident.to_string()) {
@@ -106,7 +113,7 @@ fn check_frame_known(cx: &mut Context, value: &Value, space: &Space) -> Option<s
             ),
         );
     }
-    frame
+    Some((ident.to_string(), frame?))
 }
 
 /// A body's centre (or a contact's point) is a known point.
@@ -238,23 +245,26 @@ pub(super) fn gravity(
     }
 }
 
-/// `T` and `V` of the bodies: the expressions they were derived as,
-/// their normal forms, and each body's motion.
+/// `T` and `V` of the bodies and of the `extra` motions (kinetic energy
+/// alone): the expressions they were derived as, their normal forms, and
+/// each body's motion, then the extra ones.
 pub(super) fn body_energies(
     cx: &mut Context,
     bodies: &[(Declared, Body)],
+    extra: Vec<BodyMotion>,
     gravity: &Vector,
     q: &[SymbolId],
 ) -> Option<BodyEnergies> {
     let mut motions = Vec::new();
-    let mut kinetic = Vec::new();
     let mut potential = Vec::new();
     for (_, body) in bodies {
-        let motion = body.motion(&mut cx.sym, q).ok()?;
-        kinetic.push(motion.kinetic_energy(&mut cx.sym));
+        motions.push(body.motion(&mut cx.sym, q).ok()?);
         potential.push(body.potential_energy(&mut cx.sym, gravity));
-        motions.push(motion);
     }
+    motions.extend(extra);
+    let kinetic: Vec<ExprId> = (motions.iter())
+        .map(|motion| motion.kinetic_energy(&mut cx.sym))
+        .collect();
     let kinetic = cx.sym.add(&kinetic);
     let potential = cx.sym.add(&potential);
     Some(BodyEnergies {

@@ -13,7 +13,7 @@ use crate::model::mechanism::bodies::Body;
 use crate::model::mechanism::evaluate::Reference;
 use crate::model::mechanism::space::{self, Space};
 use crate::model::mechanism::vector::{self, Vector};
-use crate::sym::{ExprId, SymbolId};
+use crate::sym::{ExprId, SymError, SymbolId};
 use crate::syntax::{self, Expr, Value};
 use proc_macro2::Span;
 
@@ -191,19 +191,21 @@ pub(super) fn holonomic(
         if !check_configuration_only(cx, &[f], expr, "a holonomic constraint f(q) = 0") || !unique {
             continue;
         }
-        let Ok(rate) = space::time_derivative(&mut cx.sym, f, q) else {
-            continue;
-        };
-        let form = match gradient_coefficients(cx, f, q) {
-            Ok(form) => form,
+        match velocity_form(cx, f, q) {
+            Ok(form) => forms.push(form),
             Err(error) => {
                 cx.diagnostics.error(expr.first_span(), error.to_string());
                 continue;
             }
-        };
+        }
         names.push(declared);
         residuals.push(f);
-        forms.push((form, rate));
     }
     (names, residuals, forms)
+}
+
+/// The velocity form `(df/dq) qdot` of a holonomic constraint `f(q) = 0`.
+pub(super) fn velocity_form(cx: &mut Context, f: ExprId, q: &[SymbolId]) -> Result<Row, SymError> {
+    let rate = space::time_derivative(&mut cx.sym, f, q)?;
+    Ok((gradient_coefficients(cx, f, q)?, rate))
 }

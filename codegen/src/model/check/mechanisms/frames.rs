@@ -1,33 +1,46 @@
-//! Frames turned from `ground` about `x`, `y` or `z` without cycles, and
-//! points, each `origin` or a point plus or minus vectors.
+//! Frames turned from `ground` without cycles, each by an angle about `x`,
+//! `y` or `z` or by four Euler parameters that are distinct coordinates of
+//! no other frame; and points, each `origin` or a point plus or minus
+//! vectors.
 
 use super::super::context::Context;
 use super::super::items::{item_expression, named_item};
 use super::super::names::check_fresh_name;
 use super::values::{check_configuration_only, evaluator};
 use crate::model::Declared;
+use crate::model::lower::Binding;
 use crate::model::mechanism::evaluate::{Reference, axis_index};
 use crate::model::mechanism::space::{self, Space};
-use crate::sym::SymbolId;
+use crate::model::mechanism::{FrameTurn, TurnedBy};
+use crate::sym::{ExprId, SymbolId};
 use crate::syntax::{self, Expr, Item, Value};
 use proc_macro2::Ident;
 
-/// A frame's declaration: `name = rotate(parent, axis, angle)`.
+/// A frame's declaration: `name = rotate(parent, axis, angle)` or
+/// `name = orient(parent, e0, e1, e2, e3)`.
 struct FrameDeclaration<'a> {
     declared: Declared,
     parent: &'a Ident,
-    axis: usize,
-    angle: &'a Expr,
+    turn: Turn<'a>,
 }
 
-/// The frames, resolved from `ground` in dependency order.
+/// What turns a frame from its parent.
+enum Turn<'a> {
+    /// An angle about the parent's axis (0, 1, 2 for x, y, z).
+    Rotate { axis: usize, angle: &'a Expr },
+    /// The Euler parameters `e0, e1, e2, e3`, coordinates.
+    Orient([SymbolId; 4]),
+}
+
+/// The frames, resolved from `ground` in dependency order, each with how
+/// it is turned.
 pub(super) fn frames(
     cx: &mut Context,
     section: Option<&syntax::Section>,
     space: &mut Space,
     reference: &Reference,
     q: &[SymbolId],
-) -> Vec<Declared> {
+) -> Vec<(Declared, FrameTurn)> {
     let Some(list) = section.and_then(|s| cx.list(s)) else {
         return Vec::new();
     };
@@ -36,15 +49,17 @@ pub(super) fn frames(
         .iter()
         .filter_map(|item| frame_declaration(cx, item))
         .collect();
+    check_parameters_unshared(cx, &pending);
     let mut resolved = Vec::new();
     while let Some(ready) = pending
         .iter()
         .position(|f| space.frame(&f.parent.to_string()).is_some())
     {
         let frame = pending.remove(ready);
-        if let Some(state) = rotated_frame(cx, &frame, space, reference, q) {
+        if let Some((state, by)) = turned_frame(cx, &frame, space, reference, q) {
             space.add_frame(&frame.declared.name, state);
-            resolved.push(frame.declared);
+            let parent = frame.parent.to_string();
+            resolved.push((frame.declared, FrameTurn { parent, by }));
         } else {
             space.mark_broken(&frame.declared.name);
         }
@@ -65,7 +80,8 @@ pub(super) fn frames(
     resolved
 }
 
-/// `name = rotate(parent, x|y|z, angle)` with a fresh name.
+/// `name = rotate(parent, x|y|z, angle)` or `name = orient(parent, e0, e1,
+/// e2, e3)` with a fresh name.
 fn frame_declaration<'a>(cx: &mut Context, item: &'a Item) -> Option<FrameDeclaration<'a>> {
     let (declared, value) = named_item(cx, item, "a frame")?;
     let call = match value {
@@ -73,28 +89,99 @@ fn frame_declaration<'a>(cx: &mut Context, item: &'a Item) -> Option<FrameDeclar
             function,
             arguments,
             ..
-        }) if function == "rotate" && arguments.len() == 3 => Some(arguments),
+        }) => Some((function.to_string(), arguments.as_slice())),
         _ => None,
     };
-    let Some([parent, axis, angle]) = call.map(Vec::as_slice) else {
-        cx.diagnostics.error(
-            value.span(),
-            "a frame is `name = rotate(parent, x|y|z, angle)`",
-        );
-        return None;
+    let (parent, turn) = match call {
+        Some((function, [parent, axis, angle])) if function == "rotate" => {
+            (parent, rotation(cx, axis, angle))
+        }
+        Some((function, [parent, e @ ..])) if function == "orient" && e.len() == 4 => {
+            (parent, euler_parameters(cx, e))
+        }
+        _ => {
+            cx.diagnostics.error(
+                value.span(),
+                "a frame is `name = rotate(parent, x|y|z, angle)` or \
+                 `name = orient(parent, e0, e1, e2, e3)`",
+            );
+            return None;
+        }
     };
     let fresh = check_fresh_name(cx, &declared.name, declared.span, "frame");
     let parent = check_frame_name(cx, parent);
-    let axis = check_axis(cx, axis);
-    let angle = angle.as_expr();
     Some(FrameDeclaration {
         declared,
         parent: parent?,
-        axis: axis?,
-        angle: angle.filter(|_| fresh)?,
+        turn: turn.filter(|_| fresh)?,
     })
 }
 
+/// `x|y|z, angle` of a `rotate` frame.
+fn rotation<'a>(cx: &mut Context, axis: &Value, angle: &'a Value) -> Option<Turn<'a>> {
+    let axis = check_axis(cx, axis)?;
+    let angle = angle.as_expr()?;
+    Some(Turn::Rotate { axis, angle })
+}
+
+/// The four Euler parameters of an `orient` frame: distinct coordinates.
+fn euler_parameters(cx: &mut Context, values: &[Value]) -> Option<Turn<'static>> {
+    let symbols: Vec<Option<SymbolId>> = values.iter().map(|v| coordinate(cx, v)).collect();
+    let symbols: Vec<SymbolId> = symbols.into_iter().collect::<Option<_>>()?;
+    for (index, value) in values.iter().enumerate() {
+        if symbols[..index].contains(&symbols[index]) {
+            cx.diagnostics.error(
+                value.span(),
+                "the four Euler parameters of a frame are four different coordinates",
+            );
+            return None;
+        }
+    }
+    Some(Turn::Orient([
+        symbols[0], symbols[1], symbols[2], symbols[3],
+    ]))
+}
+
+/// A declared coordinate, named.
+fn coordinate(cx: &mut Context, value: &Value) -> Option<SymbolId> {
+    let binding = match value {
+        Value::Expr(Expr::Name(ident)) => cx.scope.get(&ident.to_string()),
+        _ => None,
+    };
+    match binding {
+        Some(Binding::Coordinate(symbol)) => Some(symbol),
+        _ => {
+            cx.diagnostics.error(
+                value.span(),
+                "an Euler parameter is a coordinate declared in `coordinates`, e.g. `e0`",
+            );
+            None
+        }
+    }
+}
+
+/// No coordinate is an Euler parameter of two frames (reported at the
+/// second frame's name).
+fn check_parameters_unshared(cx: &mut Context, declarations: &[FrameDeclaration]) {
+    let mut taken: Vec<(SymbolId, &str)> = Vec::new();
+    for declaration in declarations {
+        let Turn::Orient(e) = declaration.turn else {
+            continue;
+        };
+        let shared = e.iter().find_map(|s| taken.iter().find(|(t, _)| t == s));
+        if let Some(&(symbol, frame)) = shared {
+            let name = cx.sym.symbol_info(symbol).name.clone();
+            cx.diagnostics.error(
+                declaration.declared.span,
+                format!(
+                    "`{name}` is already an Euler parameter of frame `{frame}`: each \
+                     `orient` frame has four coordinates of its own"
+                ),
+            );
+        }
+        taken.extend(e.iter().map(|&s| (s, declaration.declared.name.as_str())));
+    }
+}
 /// A frame is named by an identifier.
 pub(in crate::model::check) fn check_frame_name<'a>(
     cx: &mut Context,
@@ -172,16 +259,29 @@ fn check_frame_parent_known(
     }
 }
 
-/// The frame's orientation: its parent's turned by its angle.
-fn rotated_frame(
+/// The frame's orientation, its parent's turned, and what turns it.
+fn turned_frame(
     cx: &mut Context,
     frame: &FrameDeclaration,
     space: &Space,
     reference: &Reference,
     q: &[SymbolId],
-) -> Option<space::FrameState> {
+) -> Option<(space::FrameState, TurnedBy)> {
     let parent = space.frame(&frame.parent.to_string())?;
-    turned(cx, parent, frame.axis, frame.angle, space, reference, q)
+    let index = |symbol: SymbolId| q.iter().position(|&c| c == symbol);
+    match frame.turn {
+        Turn::Rotate { axis, angle } => {
+            let value = angle_value(cx, angle, space, reference)?;
+            let state = rotated(cx, parent, axis, (angle, value), q)?;
+            let reads = cx.sym.free_symbols(value).into_iter().filter_map(index);
+            Some((state, TurnedBy::Angle(reads.collect())))
+        }
+        Turn::Orient(e) => {
+            let state = space::oriented(&mut cx.sym, parent, e);
+            let indices = e.map(|symbol| index(symbol).unwrap_or_default());
+            Some((state, TurnedBy::EulerParameters(indices)))
+        }
+    }
 }
 
 /// `parent` turned by `angle`, which depends on the configuration only,
@@ -196,10 +296,30 @@ pub(in crate::model::check) fn turned(
     reference: &Reference,
     q: &[SymbolId],
 ) -> Option<space::FrameState> {
+    let value = angle_value(cx, angle, space, reference)?;
+    rotated(cx, parent, axis, (angle, value), q)
+}
+
+/// A frame's angle, which depends on the configuration only.
+fn angle_value(
+    cx: &mut Context,
+    angle: &Expr,
+    space: &Space,
+    reference: &Reference,
+) -> Option<ExprId> {
     let value = evaluator(cx, space, reference).scalar(angle)?;
-    if !check_configuration_only(cx, &[value], angle, "a frame's angle") {
-        return None;
-    }
+    check_configuration_only(cx, &[value], angle, "a frame's angle").then_some(value)
+}
+
+/// `parent` turned about `axis` by the angle written `angle` of value
+/// `value`.
+fn rotated(
+    cx: &mut Context,
+    parent: &space::FrameState,
+    axis: usize,
+    (angle, value): (&Expr, ExprId),
+    q: &[SymbolId],
+) -> Option<space::FrameState> {
     match space::rotated(&mut cx.sym, parent, axis, value, q) {
         Ok(state) => Some(state),
         Err(error) => {

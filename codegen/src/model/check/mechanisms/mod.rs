@@ -1,13 +1,16 @@
 //! Mechanism sections: frames turned from `ground` without cycles about
-//! `x`, `y` or `z`, points, bodies with a known frame and centre and a
-//! symmetric inertia, gravity, rolling contacts with at least one direction
-//! on a declared body, and holonomic constraints free of velocities. Every
-//! value has the type its place asks for (scalar, vector or point) and
-//! depends on the configuration only.
+//! `x`, `y` or `z` or by Euler parameters (each `orient` frame adding its
+//! unit constraint and the kinetic energy along `e`: `orientation`),
+//! points, bodies with a known frame and centre and a symmetric inertia,
+//! gravity, rolling contacts with at least one direction on a declared
+//! body, and holonomic constraints free of velocities. Every value has the
+//! type its place asks for (scalar, vector or point) and depends on the
+//! configuration only.
 
 mod bodies;
 mod contacts;
 pub(super) mod frames;
+mod orientation;
 pub(super) mod values;
 
 use values::Row;
@@ -90,13 +93,17 @@ pub(super) fn mechanism(
         &bodies,
         &q,
     );
-    let (holonomic, residual, velocity_forms) =
+    let (mut holonomic, mut residual, velocity_forms) =
         contacts::holonomic(cx, section(Section::Holonomic), &space, &reference, &q);
+    let units = orientation::unit_constraints(cx, &frames, &holonomic, &q).ok()?;
     if cx.diagnostics.len() > errors_before {
         return None;
     }
-    rows.extend(velocity_forms);
-    let energies = bodies::body_energies(cx, &bodies, &gravity, &q)?;
+    rows.extend(velocity_forms.into_iter().chain(units.rows));
+    holonomic.extend(units.names);
+    residual.extend(units.residuals);
+    let along_parameters = orientation::rate_along_parameters(cx, &frames, &bodies, &q).ok()?;
+    let energies = bodies::body_energies(cx, &bodies, along_parameters, &gravity, &q)?;
     let orientations: Vec<ExprId> = space
         .declared_frames()
         .iter()
@@ -117,9 +124,11 @@ pub(super) fn mechanism(
         contacts: drawn_contacts,
         items: Vec::new(),
     };
+    let (frames, turns) = frames.into_iter().unzip();
     Some(MechanismParts {
         mechanism: Mechanism {
             frames,
+            turns,
             orientations,
             points,
             positions,
