@@ -160,7 +160,8 @@ pub struct EnergyExpressions {
     /// The part of `T` declared as an energy (`T` less the bodies'), its
     /// normal form written out.
     pub declared_kinetic: ExprId,
-    /// The declared bodies' motions.
+    /// The declared bodies' motions, in order, then the motions the
+    /// `orient` frames add (each a unit-norm term of `T`, no body).
     pub bodies: Vec<BodyMotion>,
 }
 

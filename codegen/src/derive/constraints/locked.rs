@@ -51,10 +51,13 @@ impl Locked {
 /// The bodies left unable to move; none when a body's motion is outside
 /// the class evaluated modulo a prime.
 pub(super) fn locked_bodies(model: &Model, cx: &mut Context, basis: &DistributionBasis) -> Locked {
-    let bodies = &model.energy_expressions.bodies;
     let names: Vec<String> = (model.mechanism.drawing.iter())
         .flat_map(|drawing| drawing.bodies.iter().map(|body| body.name.clone()))
         .collect();
+    // The declared bodies' motions come first, in order; the motions after
+    // them (an `orient` frame's unit-norm term) are no bodies.
+    let motions = &model.energy_expressions.bodies;
+    let bodies = &motions[..names.len().min(motions.len())];
     if bodies.is_empty() || model.c() == 0 {
         return Locked::default();
     }
