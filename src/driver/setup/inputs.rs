@@ -157,8 +157,9 @@ mod tests {
             ("b*t", "`b` is not `t`, a parameter or a coordinate"),
             ("dot(y)", "`dot(y)`: `y` is not a coordinate"),
             ("dot(2*x)", "`dot` takes one coordinate"),
-            ("atan(t)", "`atan` is not one of"),
+            ("sinh(t)", "`sinh` is not one of"),
             ("sin(t, t)", "takes one scalar argument"),
+            ("atan2(t)", "`atan2` takes two scalar arguments"),
             ("[t]", "a list"),
         ] {
             let error =
