@@ -439,6 +439,9 @@ mod tests {
         assert_eq!(rate("-cos(t)/tan(v)").1, t.sin() / 2f64.tan());
     }
 
+    /// A function of the time, computed by `f64`'s own methods.
+    type Law = fn(f64) -> f64;
+
     /// The inverse functions' values against `f64`'s, their rates against
     /// central differences of those values.
     #[test]
@@ -449,7 +452,7 @@ mod tests {
         };
         let t: f64 = 0.3;
         let h = 1e-6;
-        let laws: [(&str, fn(f64) -> f64); 5] = [
+        let laws: [(&str, Law); 5] = [
             ("asin(t)", f64::asin),
             ("acos(t/v)", |t| (t / 2.0).acos()),
             ("atan(3*t)", |t| (3.0 * t).atan()),
@@ -460,7 +463,10 @@ mod tests {
             let (value, slope) = Expression::parse(text, &scope).expect("parses").rate(t);
             assert_eq!(value, exact(t), "{text}");
             let difference = (exact(t + h) - exact(t - h)) / (2.0 * h);
-            assert!((slope - difference).abs() < 1e-8, "{text}: {slope} vs {difference}");
+            assert!(
+                (slope - difference).abs() < 1e-8,
+                "{text}: {slope} vs {difference}"
+            );
         }
     }
 

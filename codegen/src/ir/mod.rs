@@ -270,11 +270,9 @@ impl Op {
     pub fn operands(&self) -> impl Iterator<Item = Value> {
         let (first, second) = match *self {
             Op::Input(_) | Op::Constant(_) => (None, None),
-            Op::Add(a, b)
-            | Op::Sub(a, b)
-            | Op::Mul(a, b)
-            | Op::Div(a, b)
-            | Op::Atan2(a, b) => (Some(a), Some(b)),
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Atan2(a, b) => {
+                (Some(a), Some(b))
+            }
             Op::Neg(a)
             | Op::Powi(a, _)
             | Op::Sqrt(a)

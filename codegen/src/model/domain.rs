@@ -207,4 +207,37 @@ mod tests {
         );
         assert_eq!(guards.len(), 3, "{listed:?}");
     }
+
+    /// `asin(u)` and `acos(u)` need `1 - u^2 > 0`, `atan2(y, x)` a point
+    /// off the origin; `atan` is defined everywhere.
+    #[test]
+    fn inverse_functions_are_guarded() {
+        let source = "
+            pub struct Inverse {
+                coordinates: [x, y],
+                parameters: [m = 1.0],
+                kinetic_energy: m/2*(dot(x)^2 + dot(y)^2),
+                potential_energy: asin(x/2) + acos(y) + atan2(y, x) + atan(x*y),
+            }
+        ";
+        let (model, mut cx) = check(&parse_str(source).expect("parses")).expect("checks");
+        let guards = guards(&model, &mut cx).expect("guards");
+        let listed: Vec<(&str, Guard)> = guards
+            .iter()
+            .map(|g| (g.description.as_str(), g.guard))
+            .collect();
+        let expected = [
+            ("1 - 1/4*x^2 must stay positive", Guard::Positive),
+            ("1 - y^2 must stay positive", Guard::Positive),
+            ("x^2 + y^2 must not vanish", Guard::NonZero),
+        ];
+        for (text, guard) in expected {
+            let found = listed
+                .iter()
+                .filter(|(description, kind)| description.ends_with(text) && *kind == guard)
+                .count();
+            assert_eq!(found, 1, "{text}: {listed:?}");
+        }
+        assert_eq!(guards.len(), 3, "{listed:?}");
+    }
 }

@@ -288,7 +288,9 @@ impl Context {
         if numerator.is_zero() {
             return Ok(numerator);
         }
-        let radius_square = x_form.mul(&x_form, atoms).add(&y_form.mul(&y_form, atoms), atoms);
+        let radius_square = x_form
+            .mul(&x_form, atoms)
+            .add(&y_form.mul(&y_form, atoms), atoms);
         numerator
             .div(&radius_square, atoms)
             .ok_or_else(|| SymError::DivisionByZero {

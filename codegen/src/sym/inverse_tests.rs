@@ -19,7 +19,9 @@ fn context() -> (Context, [SymbolId; 3], [ExprId; 3]) {
 
 /// The value of `id` at `(x, y, m)`.
 fn value(cx: &Context, symbols: &[SymbolId; 3], id: ExprId, at: [f64; 3]) -> f64 {
-    cx.evaluate(id, &|s| at[symbols.iter().position(|&t| t == s).unwrap_or(0)])
+    cx.evaluate(id, &|s| {
+        at[symbols.iter().position(|&t| t == s).unwrap_or(0)]
+    })
 }
 
 /// `d id / dx` at `at`, by the tree and by the normal form, each within
@@ -77,7 +79,12 @@ fn atan2_differentiates_exactly_in_every_quadrant() {
     let abscissa = cx.sub(square, one);
     let ordinate = cx.mul2(x, y);
     let angle = cx.atan2(ordinate, abscissa).expect("applies");
-    for at in [[1.5, 0.8, 1.0], [0.5, 0.8, 1.0], [0.5, -0.8, 1.0], [1.5, -0.8, 1.0]] {
+    for at in [
+        [1.5, 0.8, 1.0],
+        [0.5, 0.8, 1.0],
+        [0.5, -0.8, 1.0],
+        [1.5, -0.8, 1.0],
+    ] {
         assert_slope_in_x(&mut cx, &symbols, angle, at, |x, y, m| {
             (x * y).atan2(x * x * m - 1.0)
         });
@@ -107,7 +114,10 @@ fn constant_arguments_fold_or_fail_outside_the_domain() {
     let pi = cx.atan2(zero, minus_one).expect("defined");
     assert_eq!(cx.evaluate(pi, &|_| 0.0), std::f64::consts::PI);
     let quarter_turn = cx.apply(Function::Acos, zero).expect("defined");
-    assert_eq!(cx.evaluate(quarter_turn, &|_| 0.0), std::f64::consts::FRAC_PI_2);
+    assert_eq!(
+        cx.evaluate(quarter_turn, &|_| 0.0),
+        std::f64::consts::FRAC_PI_2
+    );
 }
 
 #[test]

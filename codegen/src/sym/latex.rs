@@ -336,7 +336,9 @@ impl Latex<'_> {
     fn calls_last(&self, factors: &[ExprId]) -> Vec<ExprId> {
         let is_call = |factor: &ExprId| match self.store.node(*factor) {
             Node::Call(..) | Node::Atan2(..) => true,
-            Node::Pow(base, _) => matches!(self.store.node(*base), Node::Call(..) | Node::Atan2(..)),
+            Node::Pow(base, _) => {
+                matches!(self.store.node(*base), Node::Call(..) | Node::Atan2(..))
+            }
             _ => false,
         };
         let (calls, plain): (Vec<ExprId>, Vec<ExprId>) = factors.iter().partition(|f| is_call(f));
@@ -483,6 +485,12 @@ mod tests {
         assert_eq!(f.latex(square), "\\sin^{2}\\phi");
         let root = f.store.sqrt(x).expect("defined");
         assert_eq!(f.latex(root), "\\sqrt{x}");
+        let inverse_tangent = f.call(Function::Atan, x);
+        assert_eq!(f.latex(inverse_tangent), "\\arctan x");
+        let inverse_sine = f.call(Function::Asin, angle);
+        assert_eq!(f.latex(inverse_sine), "\\arcsin(\\theta + \\phi)");
+        let heading = f.store.atan2(phi, x).expect("defined");
+        assert_eq!(f.latex(heading), "\\operatorname{atan2}(\\phi, x)");
     }
 
     /// The snakeboard's `alpha1` equation, `-(sin(phi)/r) u1` (MATH.md 3.1).

@@ -140,7 +140,9 @@ fn construct(store: &mut Context, symbols: &[SymbolId; 3], recipe: &Recipe) -> E
                 Recipe::Atan(_) => Function::Atan,
                 _ => Function::Exp,
             };
-            store.apply(function, a).expect("sin, cos, exp, atan are total")
+            store
+                .apply(function, a)
+                .expect("sin, cos, exp, atan are total")
         }
         Recipe::AsinSafe(a) | Recipe::AcosSafe(a) => {
             let a = go(store, a);
@@ -150,7 +152,9 @@ fn construct(store: &mut Context, symbols: &[SymbolId; 3], recipe: &Recipe) -> E
                 Recipe::AsinSafe(_) => Function::Asin,
                 _ => Function::Acos,
             };
-            store.apply(function, ratio).expect("the ratio lies in [-1/2, 1/2]")
+            store
+                .apply(function, ratio)
+                .expect("the ratio lies in [-1/2, 1/2]")
         }
         Recipe::Atan2(a, b) => {
             let (a, b) = (go(store, a), go(store, b));

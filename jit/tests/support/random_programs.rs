@@ -173,7 +173,7 @@ fn step(
             let operand = stack.pop()?;
             store.apply(function, operand).ok()
         }
-        15 if argument % 2 == 0 => {
+        15 if argument.is_multiple_of(2) => {
             let (x, y) = (stack.pop()?, stack.pop()?);
             store.atan2(y, x).ok()
         }

@@ -1,6 +1,6 @@
 //! The expressions of `chaplygin simulate`, in the model language's syntax
-//! with its operators `+ - * / ^`, its functions `sin cos tan sqrt exp ln`
-//! and `abs`: each `--input NAME=EXPRESSION` is a law of the time `t`, the
+//! with its operators `+ - * / ^`, its functions `sin cos tan sqrt exp ln
+//! asin acos atan atan2` and `abs`: each `--input NAME=EXPRESSION` is a law of the time `t`, the
 //! model's parameters and the state, its coordinates `q` and velocities
 //! `dot(q)` (`0.3*sin(2*t)`, `u0*exp(-t/tau)`, the feedback
 //! `-10*phi-2*dot(phi)`), so that open-loop gaits and feedback laws run
