@@ -265,9 +265,7 @@ fn linear_enough(node: &Node, operand: &dyn Fn(&ExprId) -> (f64, f64)) -> bool {
     match node {
         Node::Mul(factors) => factors.iter().all(known),
         Node::Pow(base, _) => known(base),
-        Node::Number(_) | Node::Symbol(_) | Node::Add(_) | Node::Call(..) | Node::Atan2(..) => {
-            true
-        }
+        Node::Number(_) | Node::Symbol(_) | Node::Add(_) | Node::Call(..) | Node::Atan2(..) => true,
     }
 }
 
