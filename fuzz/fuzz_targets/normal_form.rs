@@ -237,8 +237,14 @@ fn tree_error(store: &Store, root: ExprId, value_of: &dyn Fn(SymbolId) -> f64) -
                     Function::Tan => 1.0 + a.tan().powi(2),
                     Function::Exp => a.exp(),
                     Function::Ln => 1.0 / a,
+                    Function::Asin | Function::Acos => 1.0 / (1.0 - a * a).sqrt(),
+                    Function::Atan => 1.0 / (1.0 + a * a),
                 };
                 slope.abs() * error
+            }
+            Node::Atan2(y, x) => {
+                let ((b, y_error), (a, x_error)) = (operand(y), operand(x));
+                (a.abs() * y_error + b.abs() * x_error) / (a * a + b * b)
             }
         };
         bounds.insert(id, (value, carried + value.abs()));
@@ -259,7 +265,7 @@ fn linear_enough(node: &Node, operand: &dyn Fn(&ExprId) -> (f64, f64)) -> bool {
     match node {
         Node::Mul(factors) => factors.iter().all(known),
         Node::Pow(base, _) => known(base),
-        Node::Number(_) | Node::Symbol(_) | Node::Add(_) | Node::Call(..) => true,
+        Node::Number(_) | Node::Symbol(_) | Node::Add(_) | Node::Call(..) | Node::Atan2(..) => true,
     }
 }
 
@@ -272,7 +278,7 @@ fn underflowed(node: &Node, operand_value: &dyn Fn(&ExprId) -> f64) -> bool {
         Node::Mul(factors) => factors.iter().all(|factor| operand_value(factor) != 0.0),
         Node::Pow(base, _) => operand_value(base) != 0.0,
         Node::Call(function, _) => matches!(function, Function::Exp),
-        Node::Symbol(_) | Node::Add(_) => false,
+        Node::Symbol(_) | Node::Add(_) | Node::Atan2(..) => false,
     }
 }
 

@@ -24,6 +24,14 @@ pub(crate) enum Routine {
     Exp,
     /// `x.ln()`.
     Ln,
+    /// `x.asin()`.
+    Asin,
+    /// `x.acos()`.
+    Acos,
+    /// `x.atan()`.
+    Atan,
+    /// `y.atan2(x)`, with `y` the first argument.
+    Atan2,
     /// `x.powi(n)`, with `n` an `i32`.
     Powi,
     /// `x.powf(e)`.
@@ -32,12 +40,16 @@ pub(crate) enum Routine {
 
 impl Routine {
     /// Every routine, in the order of their discriminants.
-    pub(crate) const ALL: [Routine; 7] = [
+    pub(crate) const ALL: [Routine; 11] = [
         Routine::Sin,
         Routine::Cos,
         Routine::Tan,
         Routine::Exp,
         Routine::Ln,
+        Routine::Asin,
+        Routine::Acos,
+        Routine::Atan,
+        Routine::Atan2,
         Routine::Powi,
         Routine::Powf,
     ];
@@ -50,6 +62,10 @@ impl Routine {
             Routine::Tan => "chaplygin_tan",
             Routine::Exp => "chaplygin_exp",
             Routine::Ln => "chaplygin_ln",
+            Routine::Asin => "chaplygin_asin",
+            Routine::Acos => "chaplygin_acos",
+            Routine::Atan => "chaplygin_atan",
+            Routine::Atan2 => "chaplygin_atan2",
             Routine::Powi => "chaplygin_powi",
             Routine::Powf => "chaplygin_powf",
         }
@@ -63,6 +79,10 @@ impl Routine {
             Routine::Tan => tan as extern "C" fn(f64) -> f64 as *const u8,
             Routine::Exp => exp as extern "C" fn(f64) -> f64 as *const u8,
             Routine::Ln => ln as extern "C" fn(f64) -> f64 as *const u8,
+            Routine::Asin => asin as extern "C" fn(f64) -> f64 as *const u8,
+            Routine::Acos => acos as extern "C" fn(f64) -> f64 as *const u8,
+            Routine::Atan => atan as extern "C" fn(f64) -> f64 as *const u8,
+            Routine::Atan2 => atan2 as extern "C" fn(f64, f64) -> f64 as *const u8,
             Routine::Powi => powi as extern "C" fn(f64, i32) -> f64 as *const u8,
             Routine::Powf => powf as extern "C" fn(f64, f64) -> f64 as *const u8,
         }
@@ -70,13 +90,14 @@ impl Routine {
 
     /// The wrapper's signature in the calling convention `call_conv`, the
     /// host's C convention: an `f64` and, for the powers, the exponent (an
-    /// `i32` for `powi`, an `f64` for `powf`), returning an `f64`.
+    /// `i32` for `powi`, an `f64` for `powf`), for `atan2` the abscissa (an
+    /// `f64`), returning an `f64`.
     pub(crate) fn signature(self, call_conv: CallConv) -> Signature {
         let mut signature = Signature::new(call_conv);
         signature.params.push(AbiParam::new(types::F64));
         match self {
             Routine::Powi => signature.params.push(AbiParam::new(types::I32)),
-            Routine::Powf => signature.params.push(AbiParam::new(types::F64)),
+            Routine::Powf | Routine::Atan2 => signature.params.push(AbiParam::new(types::F64)),
             _ => {}
         }
         signature.returns.push(AbiParam::new(types::F64));
@@ -109,6 +130,22 @@ extern "C" fn exp(x: f64) -> f64 {
 
 extern "C" fn ln(x: f64) -> f64 {
     x.ln()
+}
+
+extern "C" fn asin(x: f64) -> f64 {
+    x.asin()
+}
+
+extern "C" fn acos(x: f64) -> f64 {
+    x.acos()
+}
+
+extern "C" fn atan(x: f64) -> f64 {
+    x.atan()
+}
+
+extern "C" fn atan2(y: f64, x: f64) -> f64 {
+    y.atan2(x)
 }
 
 extern "C" fn powi(x: f64, n: i32) -> f64 {

@@ -305,6 +305,13 @@ impl<'a> Body<'a> {
             Op::Tan(a) => self.call_on(Routine::Tan, *a),
             Op::Exp(a) => self.call_on(Routine::Exp, *a),
             Op::Ln(a) => self.call_on(Routine::Ln, *a),
+            Op::Asin(a) => self.call_on(Routine::Asin, *a),
+            Op::Acos(a) => self.call_on(Routine::Acos, *a),
+            Op::Atan(a) => self.call_on(Routine::Atan, *a),
+            Op::Atan2(y, x) => {
+                let (y, x) = (self.get(*y), self.get(*x));
+                self.call(Routine::Atan2, &[y, x])
+            }
             Op::Input(_) | Op::Constant(_) | Op::SinCos { .. } => {
                 unreachable!("`instruction` emits inputs, constants and sin_cos")
             }

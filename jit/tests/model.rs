@@ -133,3 +133,95 @@ fn the_chart_search_runs_on_the_backend_the_model_loads_on() {
     assert!(on_native.contains("cos(theta)"), "{on_native}");
     assert_eq!(on_native, document(&Interpreter));
 }
+
+/// A bead in the plane, `V = k/2 atan2(y, x)^2 + c atan(x y) + asin(x/3)
+/// acos(y/3)`: `qddot = -grad V / m`, the gradient from the slopes of
+/// `f64`'s functions, on the JIT and on the interpreter.
+const INVERSE_BEAD: &str = "
+    pub struct InverseBead {
+        coordinates: [x, y],
+        parameters: [m = 2.0, k = 3.0, c = 0.5],
+        define: [angle = atan2(y, x)],
+        kinetic_energy: m/2*(dot(x)^2 + dot(y)^2),
+        potential_energy: k/2*angle^2 + c*atan(x*y) + asin(x/3)*acos(y/3),
+    }
+";
+
+#[test]
+fn inverse_functions_run_as_f64_computes_them() {
+    let (m, k, c) = (2.0, 3.0, 0.5);
+    for (x, y) in [(-0.8f64, 0.6f64), (0.5, -1.1), (-1.3, -0.2)] {
+        let radius_square = x * x + y * y;
+        let angle = y.atan2(x);
+        let by_product = 1.0 + (x * y).powi(2);
+        let d_asin = (1.0 / 3.0) / (1.0 - x * x / 9.0).sqrt();
+        let d_acos = -(1.0 / 3.0) / (1.0 - y * y / 9.0).sqrt();
+        let gradient = [
+            -k * angle * y / radius_square + c * y / by_product + d_asin * (y / 3.0).acos(),
+            k * angle * x / radius_square + c * x / by_product + (x / 3.0).asin() * d_acos,
+        ];
+        let jit = JitModel::from_source(INVERSE_BEAD).expect("loads");
+        let interpreted = InterpretedModel::from_source(INVERSE_BEAD).expect("loads");
+        for model in [&*jit, &interpreted] {
+            let (qddot, _) = model
+                .acceleration(&[x, y], &[0.3, -0.2], &[])
+                .expect("runs");
+            for (a, g) in qddot.iter().zip(gradient) {
+                assert!(
+                    (a + g / m).abs() < 1e-13,
+                    "{qddot:?} vs {gradient:?} at ({x}, {y})"
+                );
+            }
+        }
+    }
+}
+
+/// Two steering arms tied by the Ackermann condition, the right angle
+/// `f(delta_l) = atan(l tan(delta_l) / (l + 2 b tan(delta_l)))`: with
+/// `delta_r = f(delta_l)` the arms (particles at radius `w`) have the
+/// inertia `I = m w^2 (1 + f'^2)`, so `I delta_l'' + I'/2 delta_l'^2 = u`.
+const ACKERMANN: &str = "
+    pub struct Ackermann {
+        coordinates: [delta_l, delta_r],
+        parameters: [m = 1.5, w = 0.3, l = 1.2, b = 0.4],
+        define: [ratio = l*tan(delta_l)/(l + 2*b*tan(delta_l))],
+        frames: [left = rotate(ground, z, delta_l), right = rotate(ground, z, delta_r)],
+        points: [
+            left_tip = origin + b*ground.y + w*left.x,
+            right_tip = origin - b*ground.y + w*right.x,
+        ],
+        bodies: [left_arm = particle(left_tip, m), right_arm = particle(right_tip, m)],
+        holonomic: [ackermann = delta_r - atan(ratio)],
+        inputs: [steer = delta_l],
+    }
+";
+
+#[test]
+fn a_holonomic_constraint_written_with_atan_derives_and_runs() {
+    let (m, w, l, b) = (1.5, 0.3, 1.2, 0.4);
+    let f = |delta: f64| (l * delta.tan() / (l + 2.0 * b * delta.tan())).atan();
+    let h = 1e-4;
+    let delta: f64 = 0.35;
+    let slope = (f(delta + h) - f(delta - h)) / (2.0 * h);
+    let curvature = (f(delta + h) - 2.0 * f(delta) + f(delta - h)) / (h * h);
+    let (rate, u) = (0.8, 0.05);
+    let inertia = m * w * w * (1.0 + slope * slope);
+    let expected = (u - m * w * w * slope * curvature * rate * rate) / inertia;
+    let jit = JitModel::from_source(ACKERMANN).expect("derives");
+    let interpreted = InterpretedModel::from_source(ACKERMANN).expect("derives");
+    for model in [&*jit, &interpreted] {
+        let q = [delta, f(delta) + 0.01];
+        let residual = model.call("holonomic_residual", &[&q]).expect("runs");
+        assert!((residual[0] - 0.01).abs() < 1e-15, "{residual:?}");
+        let q = [delta, f(delta)];
+        let (qddot, _) = model
+            .acceleration(&q, &[rate, slope * rate], &[u])
+            .expect("runs");
+        assert!(
+            (qddot[0] - expected).abs() < 1e-6,
+            "{qddot:?} vs {expected}"
+        );
+        let right = slope * qddot[0] + curvature * rate * rate;
+        assert!((qddot[1] - right).abs() < 1e-6, "{qddot:?} vs {right}");
+    }
+}

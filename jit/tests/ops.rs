@@ -176,6 +176,37 @@ fn logarithm() {
     assert_native_matches(&program, |op| matches!(op, Op::Ln(_)));
 }
 
+#[test]
+fn inverse_sine() {
+    let program = program(|s, x, _| vec![apply(s, Function::Asin, x)]);
+    assert_native_matches(&program, |op| matches!(op, Op::Asin(_)));
+}
+
+#[test]
+fn inverse_cosine() {
+    let program = program(|s, x, _| vec![apply(s, Function::Acos, x)]);
+    assert_native_matches(&program, |op| matches!(op, Op::Acos(_)));
+}
+
+#[test]
+fn inverse_tangent() {
+    let program = program(|s, x, _| vec![apply(s, Function::Atan, x)]);
+    assert_native_matches(&program, |op| matches!(op, Op::Atan(_)));
+}
+
+/// `atan2(y, x)` and `atan2(x, y)`: the native code passes the ordinate
+/// first, as the interpreter does.
+#[test]
+fn two_argument_inverse_tangent() {
+    let program = program(|s, x, y| {
+        vec![
+            s.atan2(y, x).expect("not at the origin"),
+            s.atan2(x, y).expect("not at the origin"),
+        ]
+    });
+    assert_native_matches(&program, |op| matches!(op, Op::Atan2(..)));
+}
+
 /// Every operation at once, with values read far from their definitions:
 /// the spilled and reloaded values give the same bits.
 #[test]

@@ -28,7 +28,8 @@ def derived_expressions(document_json: str) -> Dict[str, Any]:
     document = json.loads(document_json)
     symbols = {name: sympy.Symbol(name) for name in _names(document)}
     functions = {"sin": sympy.sin, "cos": sympy.cos, "tan": sympy.tan, "sqrt": sympy.sqrt,
-                 "exp": sympy.exp, "ln": sympy.log}
+                 "exp": sympy.exp, "ln": sympy.log, "asin": sympy.asin, "acos": sympy.acos,
+                 "atan": sympy.atan, "atan2": sympy.atan2}
 
     def expression(text: str) -> Any:
         python = _DOT.sub(r"dot_\1", text).replace("^", "**")

@@ -1,5 +1,6 @@
 //! Expressions in the model language's syntax, evaluated on `f64`: its
-//! operators `+ - * / ^`, its functions `sin cos tan sqrt exp ln`, `abs`,
+//! operators `+ - * / ^`, its functions `sin cos tan sqrt exp ln asin acos
+//! atan` and `atan2(y, x)`, `abs`,
 //! and `pi`, of the names a `Scope` binds: the time `t`, the parameters
 //! (at their values), a command's variables (a sweep variable, a speed:
 //! their values given where the expression is evaluated), and where the
@@ -35,6 +36,9 @@ pub(crate) enum Function {
     Sqrt,
     Exp,
     Ln,
+    Asin,
+    Acos,
+    Atan,
     Abs,
 }
 
@@ -47,6 +51,9 @@ impl Function {
             "sqrt" => Self::Sqrt,
             "exp" => Self::Exp,
             "ln" => Self::Ln,
+            "asin" => Self::Asin,
+            "acos" => Self::Acos,
+            "atan" => Self::Atan,
             "abs" => Self::Abs,
             _ => return None,
         })
@@ -61,6 +68,9 @@ impl Function {
             Self::Sqrt => 0.5 / x.sqrt(),
             Self::Exp => x.exp(),
             Self::Ln => 1.0 / x,
+            Self::Asin => 1.0 / (1.0 - x * x).sqrt(),
+            Self::Acos => -1.0 / (1.0 - x * x).sqrt(),
+            Self::Atan => 1.0 / (1.0 + x * x),
             Self::Abs => x.signum(),
         }
     }
@@ -73,6 +83,9 @@ impl Function {
             Self::Sqrt => x.sqrt(),
             Self::Exp => x.exp(),
             Self::Ln => x.ln(),
+            Self::Asin => x.asin(),
+            Self::Acos => x.acos(),
+            Self::Atan => x.atan(),
             Self::Abs => x.abs(),
         }
     }
@@ -170,6 +183,8 @@ pub(crate) enum Expression {
     Input(usize),
     /// A function of an expression.
     Call(Function, Box<Expression>),
+    /// `atan2(y, x)`.
+    Atan2(Box<Expression>, Box<Expression>),
     /// `-operand`.
     Negate(Box<Expression>),
     /// `left operator right`.
@@ -200,7 +215,9 @@ impl Expression {
         leaf(self)
             || match self {
                 Self::Call(_, operand) | Self::Negate(operand) => operand.contains(leaf),
-                Self::Binary(_, left, right) => left.contains(leaf) || right.contains(leaf),
+                Self::Binary(_, left, right) | Self::Atan2(left, right) => {
+                    left.contains(leaf) || right.contains(leaf)
+                }
                 _ => false,
             }
     }
@@ -233,6 +250,10 @@ impl Expression {
                 let (x, dx) = argument.rate(t);
                 (function.at(x), function.slope(x) * dx)
             }
+            Self::Atan2(ordinate, abscissa) => {
+                let ((y, dy), (x, dx)) = (ordinate.rate(t), abscissa.rate(t));
+                (y.atan2(x), (x * dy - y * dx) / (x * x + y * y))
+            }
             Self::Negate(operand) => {
                 let (x, dx) = operand.rate(t);
                 (-x, -dx)
@@ -253,6 +274,7 @@ impl Expression {
             Self::Velocity(i) => point.qdot[*i],
             Self::Input(i) => point.u[*i],
             Self::Call(function, argument) => function.at(argument.at(point)),
+            Self::Atan2(y, x) => y.at(point).atan2(x.at(point)),
             Self::Negate(operand) => -operand.at(point),
             Self::Binary(operator, left, right) => {
                 let (a, b) = (left.at(point), right.at(point));
@@ -342,10 +364,19 @@ fn resolve(expr: &Expr, scope: &Scope<'_>) -> Result<Expression, ExpressionError
             function,
             arguments,
             ..
+        } if function == "atan2" => match arguments.as_slice() {
+            [Value::Expr(y), Value::Expr(x)] => Expression::Atan2(resolved(y)?, resolved(x)?),
+            _ => return Err(invalid("`atan2` takes two scalar arguments, `atan2(y, x)`")),
+        },
+        Expr::Call {
+            function,
+            arguments,
+            ..
         } => {
             let known = Function::named(&function.to_string()).ok_or_else(|| {
                 invalid(format!(
-                    "`{function}` is not one of sin, cos, tan, sqrt, exp, ln, abs"
+                    "`{function}` is not one of sin, cos, tan, sqrt, exp, ln, asin, acos, atan, \
+                     atan2, abs"
                 ))
             })?;
             match arguments.as_slice() {
@@ -406,6 +437,37 @@ mod tests {
         assert!((slope - exact).abs() < 1e-14, "{slope} vs {exact}");
         assert_eq!(rate("2^t").1, 2f64.powf(t) * 2f64.ln());
         assert_eq!(rate("-cos(t)/tan(v)").1, t.sin() / 2f64.tan());
+    }
+
+    /// A function of the time, computed by `f64`'s own methods.
+    type Law = fn(f64) -> f64;
+
+    /// The inverse functions' values against `f64`'s, their rates against
+    /// central differences of those values.
+    #[test]
+    fn inverse_functions_and_their_rates() {
+        let scope = Scope {
+            parameters: &NAMES,
+            ..Scope::default()
+        };
+        let t: f64 = 0.3;
+        let h = 1e-6;
+        let laws: [(&str, Law); 5] = [
+            ("asin(t)", f64::asin),
+            ("acos(t/v)", |t| (t / 2.0).acos()),
+            ("atan(3*t)", |t| (3.0 * t).atan()),
+            ("atan2(t - 1, rR)", |t| (t - 1.0).atan2(0.5)),
+            ("atan2(v, -t)", |t| 2f64.atan2(-t)),
+        ];
+        for (text, exact) in laws {
+            let (value, slope) = Expression::parse(text, &scope).expect("parses").rate(t);
+            assert_eq!(value, exact(t), "{text}");
+            let difference = (exact(t + h) - exact(t - h)) / (2.0 * h);
+            assert!(
+                (slope - difference).abs() < 1e-8,
+                "{text}: {slope} vs {difference}"
+            );
+        }
     }
 
     #[test]

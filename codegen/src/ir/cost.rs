@@ -85,7 +85,7 @@ fn node_cost(node: &Node) -> u64 {
         Node::Number(_) | Node::Symbol(_) => 0,
         Node::Add(operands) | Node::Mul(operands) => operands.len().saturating_sub(1) as u64,
         Node::Pow(_, exponent) => PowerForm::of(exponent).cost(),
-        Node::Call(..) => 1,
+        Node::Call(..) | Node::Atan2(..) => 1,
     }
 }
 
@@ -167,7 +167,7 @@ pub fn estimated_weight(store: &Store, outputs: &[ExprId]) -> u64 {
                 CALL_WEIGHT
             }
             Node::Call(Function::Sin | Function::Cos, _) => 0,
-            Node::Call(..) => CALL_WEIGHT,
+            Node::Call(..) | Node::Atan2(..) => CALL_WEIGHT,
         });
     }
     weight

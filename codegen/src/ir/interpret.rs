@@ -77,6 +77,10 @@ fn execute(instruction: &Instruction, inputs: &[f64], values: &mut [f64]) {
         Op::Tan(a) => at(*a).tan(),
         Op::Exp(a) => at(*a).exp(),
         Op::Ln(a) => at(*a).ln(),
+        Op::Asin(a) => at(*a).asin(),
+        Op::Acos(a) => at(*a).acos(),
+        Op::Atan(a) => at(*a).atan(),
+        Op::Atan2(y, x) => at(*y).atan2(at(*x)),
         Op::SinCos { angle, cosine } => {
             let (sine, cos) = at(*angle).sin_cos();
             values[cosine.index()] = cos;

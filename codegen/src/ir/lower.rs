@@ -102,6 +102,7 @@ enum Plan {
         exponent: Rational,
     },
     Call(Function, ExprId),
+    Atan2(ExprId, ExprId),
 }
 
 /// One operand of a sum chain.
@@ -154,6 +155,7 @@ impl Plan {
                 .collect(),
             Plan::Power { base, .. } => vec![Need::Plain(*base)],
             Plan::Call(_, argument) => vec![Need::Plain(*argument)],
+            Plan::Atan2(y, x) => vec![Need::Plain(*y), Need::Plain(*x)],
         }
     }
 }
@@ -212,6 +214,7 @@ impl<'a> Planner<'a> {
                 exponent: exponent.clone(),
             },
             Node::Call(function, argument) => Plan::Call(*function, *argument),
+            Node::Atan2(y, x) => Plan::Atan2(*y, *x),
         }
     }
 
@@ -480,6 +483,10 @@ impl<'a> Lowering<'a> {
                 exponent,
             } => self.power(self.value(base), form, exponent),
             Plan::Call(function, argument) => self.call(id, function, argument),
+            Plan::Atan2(y, x) => {
+                let (y, x) = (self.value(y), self.value(x));
+                self.builder.push(Op::Atan2(y, x))
+            }
         }
     }
 
@@ -577,6 +584,9 @@ impl<'a> Lowering<'a> {
             Function::Tan => Op::Tan(angle),
             Function::Exp => Op::Exp(angle),
             Function::Ln => Op::Ln(angle),
+            Function::Asin => Op::Asin(angle),
+            Function::Acos => Op::Acos(angle),
+            Function::Atan => Op::Atan(angle),
         };
         self.builder.push(op)
     }

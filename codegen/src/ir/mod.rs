@@ -184,6 +184,14 @@ pub enum Op {
     Exp(Value),
     /// `a.ln()`.
     Ln(Value),
+    /// `a.asin()`.
+    Asin(Value),
+    /// `a.acos()`.
+    Acos(Value),
+    /// `a.atan()`.
+    Atan(Value),
+    /// `y.atan2(x)`, the angle of the point `(x, y)`.
+    Atan2(Value, Value),
     /// `angle.sin_cos()`: the instruction's result is the sine, and it also
     /// defines `cosine`.
     SinCos {
@@ -220,6 +228,10 @@ impl Op {
             | Op::Tan(_)
             | Op::Exp(_)
             | Op::Ln(_)
+            | Op::Asin(_)
+            | Op::Acos(_)
+            | Op::Atan(_)
+            | Op::Atan2(..)
             | Op::SinCos { .. } => 20,
         }
     }
@@ -243,6 +255,10 @@ impl Op {
             Op::Tan(a) => Op::Tan(at(a)),
             Op::Exp(a) => Op::Exp(at(a)),
             Op::Ln(a) => Op::Ln(at(a)),
+            Op::Asin(a) => Op::Asin(at(a)),
+            Op::Acos(a) => Op::Acos(at(a)),
+            Op::Atan(a) => Op::Atan(at(a)),
+            Op::Atan2(y, x) => Op::Atan2(at(y), at(x)),
             Op::SinCos { angle, cosine } => Op::SinCos {
                 angle: at(angle),
                 cosine,
@@ -254,7 +270,9 @@ impl Op {
     pub fn operands(&self) -> impl Iterator<Item = Value> {
         let (first, second) = match *self {
             Op::Input(_) | Op::Constant(_) => (None, None),
-            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => (Some(a), Some(b)),
+            Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Atan2(a, b) => {
+                (Some(a), Some(b))
+            }
             Op::Neg(a)
             | Op::Powi(a, _)
             | Op::Sqrt(a)
@@ -264,6 +282,9 @@ impl Op {
             | Op::Tan(a)
             | Op::Exp(a)
             | Op::Ln(a)
+            | Op::Asin(a)
+            | Op::Acos(a)
+            | Op::Atan(a)
             | Op::SinCos { angle: a, .. } => (Some(a), None),
         };
         first.into_iter().chain(second)
@@ -510,6 +531,10 @@ impl Program {
             Op::Tan(a) => writeln!(f, "{t} = tan({a})"),
             Op::Exp(a) => writeln!(f, "{t} = exp({a})"),
             Op::Ln(a) => writeln!(f, "{t} = ln({a})"),
+            Op::Asin(a) => writeln!(f, "{t} = asin({a})"),
+            Op::Acos(a) => writeln!(f, "{t} = acos({a})"),
+            Op::Atan(a) => writeln!(f, "{t} = atan({a})"),
+            Op::Atan2(y, x) => writeln!(f, "{t} = atan2({y}, {x})"),
             Op::SinCos { angle, cosine } => writeln!(f, "{t}, {cosine} = sin_cos({angle})"),
         }
     }

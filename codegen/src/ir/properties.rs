@@ -22,6 +22,8 @@ pub(super) enum Tree {
     /// `sqrt(t^2 + 1)`: a square root of a positive expression.
     SqrtOfPositive(Box<Tree>),
     Call(Function, Box<Tree>),
+    /// `atan2(y, x)`.
+    Atan2(Box<Tree>, Box<Tree>),
 }
 
 fn function() -> impl Strategy<Value = Function> {
@@ -30,6 +32,7 @@ fn function() -> impl Strategy<Value = Function> {
         Just(Function::Cos),
         Just(Function::Tan),
         Just(Function::Exp),
+        Just(Function::Atan),
     ]
 }
 
@@ -47,7 +50,8 @@ pub(super) fn tree() -> impl Strategy<Value = Tree> {
             inner
                 .clone()
                 .prop_map(|t| Tree::SqrtOfPositive(Box::new(t))),
-            (function(), inner).prop_map(|(f, t)| Tree::Call(f, Box::new(t))),
+            (function(), inner.clone()).prop_map(|(f, t)| Tree::Call(f, Box::new(t))),
+            (inner.clone(), inner).prop_map(|(y, x)| Tree::Atan2(Box::new(y), Box::new(x))),
         ]
     })
 }
@@ -92,6 +96,10 @@ pub(super) fn build(store: &mut Store, leaves: &[ExprId], tree: &Tree) -> ExprId
         Tree::Call(function, argument) => {
             let argument = build(store, leaves, argument);
             store.apply(*function, argument).unwrap_or(argument)
+        }
+        Tree::Atan2(y, x) => {
+            let (y, x) = (build(store, leaves, y), build(store, leaves, x));
+            store.atan2(y, x).unwrap_or(y)
         }
     }
 }
@@ -152,8 +160,15 @@ pub(super) fn rounding_scale(
                     Function::Tan => 1.0 + values[i] * values[i],
                     Function::Exp => values[i],
                     Function::Ln => 1.0 / u,
+                    Function::Asin | Function::Acos => 1.0 / (1.0 - u * u).sqrt(),
+                    Function::Atan => 1.0 / (1.0 + u * u),
                 };
                 scaled(derivative, *argument) + own
+            }
+            Node::Atan2(y, x) => {
+                let (u, v) = (at(*y), at(*x));
+                let radius_square = u * u + v * v;
+                scaled(v / radius_square, *y) + scaled(u / radius_square, *x) + own
             }
         };
         scale.push(node_scale);

@@ -1,5 +1,5 @@
 //! Where the model's own expressions are defined: the guards of its square
-//! roots, logarithms, divisions and tangents.
+//! roots, logarithms, divisions, tangents and inverse functions.
 //!
 //! A model written by its energy or declared as a mechanism can leave its
 //! domain: the benchmark bicycle's front contact,
@@ -16,13 +16,15 @@
 //! | `b^(1/2)`, `b^(-1/2)`, another fractional power, `ln(b)` | `b` | `b > 0` |
 //! | `b^(-k)` | `b` | `b != 0` (its sign kept) |
 //! | `tan(a)` | `cos(a)` | `cos(a) != 0` (its sign kept) |
+//! | `asin(u)`, `acos(u)` | `1 - u^2` | `1 - u^2 > 0`, where the slope is finite |
+//! | `atan2(y, x)` | `x^2 + y^2` | `x^2 + y^2 != 0` |
 //!
 //! A run evaluates them where a step fails and names the one the step
 //! crossed (`chaplygin_runtime::system::Domain`).
 
 use super::Model;
 use crate::sym::Context;
-use crate::sym::{ExprId, Function, Node, SymError};
+use crate::sym::{ExprId, Function, Node, Rational, SymError};
 use chaplygin_runtime::system::Guard;
 
 /// One guarded expression.
@@ -79,6 +81,18 @@ fn guarded(
         Node::Call(Function::Tan, argument) => {
             let cosine = cx.apply(Function::Cos, argument)?;
             Some(("a tangent", cosine, Guard::NonZero))
+        }
+        Node::Call(Function::Asin | Function::Acos, argument) => {
+            let one = cx.integer(1);
+            let square = cx.pow_of_expression(argument, Rational::integer(2));
+            let room = cx.sub(one, square);
+            Some(("an inverse sine or cosine", room, Guard::Positive))
+        }
+        Node::Atan2(y, x) => {
+            let x_square = cx.pow_of_expression(x, Rational::integer(2));
+            let y_square = cx.pow_of_expression(y, Rational::integer(2));
+            let radius_square = cx.add2(x_square, y_square);
+            Some(("an atan2", radius_square, Guard::NonZero))
         }
         _ => None,
     })
@@ -191,6 +205,39 @@ mod tests {
             1,
             "{listed:?}"
         );
+        assert_eq!(guards.len(), 3, "{listed:?}");
+    }
+
+    /// `asin(u)` and `acos(u)` need `1 - u^2 > 0`, `atan2(y, x)` a point
+    /// off the origin; `atan` is defined everywhere.
+    #[test]
+    fn inverse_functions_are_guarded() {
+        let source = "
+            pub struct Inverse {
+                coordinates: [x, y],
+                parameters: [m = 1.0],
+                kinetic_energy: m/2*(dot(x)^2 + dot(y)^2),
+                potential_energy: asin(x/2) + acos(y) + atan2(y, x) + atan(x*y),
+            }
+        ";
+        let (model, mut cx) = check(&parse_str(source).expect("parses")).expect("checks");
+        let guards = guards(&model, &mut cx).expect("guards");
+        let listed: Vec<(&str, Guard)> = guards
+            .iter()
+            .map(|g| (g.description.as_str(), g.guard))
+            .collect();
+        let expected = [
+            ("1 - 1/4*x^2 must stay positive", Guard::Positive),
+            ("1 - y^2 must stay positive", Guard::Positive),
+            ("x^2 + y^2 must not vanish", Guard::NonZero),
+        ];
+        for (text, guard) in expected {
+            let found = listed
+                .iter()
+                .filter(|(description, kind)| description.ends_with(text) && *kind == guard)
+                .count();
+            assert_eq!(found, 1, "{text}: {listed:?}");
+        }
         assert_eq!(guards.len(), 3, "{listed:?}");
     }
 }

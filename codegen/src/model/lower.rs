@@ -2,13 +2,15 @@
 //!
 //! Names resolve to coordinates, parameters and earlier definitions;
 //! `dot(q)` to the velocity of coordinate `q`; the functions are
-//! `sin cos tan sqrt exp ln`. Exponents must be constant numbers, and the
+//! `sin cos tan sqrt exp ln asin acos atan` of one argument and
+//! `atan2(y, x)` of two ([`crate::sym::expr::FUNCTION_ARITIES`]). Exponents must be constant numbers, and the
 //! constants an operator folds are held to the store's limit
 //! ([`crate::sym::Store::within_constant_limit`]). Every failure becomes a
 //! diagnostic on the offending token, and both operands of an operator are
 //! lowered even when one fails, so all errors are reported.
 
 use crate::diagnostic::Diagnostics;
+use crate::sym::expr::{FUNCTION_LIST, arity};
 use crate::sym::{Context, ExprId, Node, Rational, SymError, SymbolId};
 use crate::syntax::{BinaryOperator, Expr, Value};
 use proc_macro2::Span;
@@ -37,9 +39,6 @@ impl Scope {
         self.names.get(name).copied()
     }
 }
-
-/// The functions of the model language besides `dot`.
-pub(super) const FUNCTIONS: [&str; 6] = ["sin", "cos", "tan", "sqrt", "exp", "ln"];
 
 /// Lowers expressions, collecting diagnostics.
 pub(super) struct Lowerer<'a> {
@@ -118,28 +117,31 @@ impl Lowerer<'_> {
         if name == "dot" {
             return self.velocity(function, arguments);
         }
-        if !FUNCTIONS.contains(&name.as_str()) {
+        let Some(expected) = arity(&name) else {
             self.diagnostics.error(
                 function.span(),
                 format!(
-                    "unknown function `{name}`: the functions are sin, cos, tan, sqrt, exp, ln, \
-                     and dot(q) for a velocity"
-                ),
-            );
-            return None;
-        }
-        let [argument] = arguments else {
-            self.diagnostics.error(
-                function.span(),
-                format!(
-                    "`{name}` takes exactly one argument, found {}",
-                    arguments.len()
+                    "unknown function `{name}`: the functions are {FUNCTION_LIST}, and dot(q) \
+                     for a velocity"
                 ),
             );
             return None;
         };
-        let argument = self.scalar_argument(argument)?;
-        let applied = self.cx.apply_named(&name, argument);
+        if arguments.len() != expected {
+            let error = SymError::ArgumentCount {
+                name,
+                expected,
+                found: arguments.len(),
+            };
+            self.diagnostics.error(function.span(), error.to_string());
+            return None;
+        }
+        let lowered: Vec<Option<ExprId>> = arguments
+            .iter()
+            .map(|argument| self.scalar_argument(argument))
+            .collect();
+        let lowered: Vec<ExprId> = lowered.into_iter().collect::<Option<_>>()?;
+        let applied = self.cx.apply_named(&name, &lowered);
         self.report(applied, function.span())
     }
 

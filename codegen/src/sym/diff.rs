@@ -4,7 +4,9 @@
 //! the DAG so a shared sub-expression is differentiated once; on normal forms
 //! ([`Context::derivative_of_normal`]) term by term, with
 //! `d sin u = cos u du`, `d cos u = -sin u du`, `d u^(p/q) = (p/q) u^(p/q) du / u`,
-//! `d exp u = exp u du`, `d ln u = du / u`, and the quotient rule on the
+//! `d exp u = exp u du`, `d ln u = du / u`, `d asin u = du / sqrt(1 - u^2)`,
+//! `d acos u = -du / sqrt(1 - u^2)`, `d atan u = du / (1 + u^2)`,
+//! `d atan2(y, x) = (x dy - y dx) / (x^2 + y^2)`, and the quotient rule on the
 //! factored denominator `d(N/F) = (dN - N sum_i k_i df_i / f_i) / F`.
 
 use super::context::Context;
@@ -72,7 +74,11 @@ impl Context {
                 let outer = self.derivative_of_function(function, argument);
                 self.mul(&[outer, d(&argument)])
             }
-            Node::Pow(..) | Node::Call(..) => zero,
+            Node::Atan2(y, x) if d(&y) != zero || d(&x) != zero => {
+                let (dy, dx) = (d(&y), d(&x));
+                self.derivative_of_atan2(y, x, dy, dx)
+            }
+            Node::Pow(..) | Node::Call(..) | Node::Atan2(..) => zero,
         }
     }
 
@@ -90,7 +96,38 @@ impl Context {
             }
             Function::Exp => self.apply_to_expression(Function::Exp, argument),
             Function::Ln => self.pow_of_expression(argument, Rational::integer(-1)),
+            Function::Asin => self.inverse_root_of_one_minus_square(argument),
+            Function::Acos => {
+                let slope = self.inverse_root_of_one_minus_square(argument);
+                self.neg(slope)
+            }
+            Function::Atan => {
+                let one = self.integer(1);
+                let square = self.pow_of_expression(argument, Rational::integer(2));
+                let sum = self.add2(one, square);
+                self.pow_of_expression(sum, Rational::integer(-1))
+            }
         }
+    }
+
+    /// `(1 - u^2)^(-1/2)`, the slope of `asin u`.
+    fn inverse_root_of_one_minus_square(&mut self, argument: ExprId) -> ExprId {
+        let one = self.integer(1);
+        let square = self.pow_of_expression(argument, Rational::integer(2));
+        let difference = self.sub(one, square);
+        self.pow_of_expression(difference, Rational::HALF.neg())
+    }
+
+    /// `(x dy - y dx) / (x^2 + y^2)`, the differential of `atan2(y, x)`.
+    fn derivative_of_atan2(&mut self, y: ExprId, x: ExprId, dy: ExprId, dx: ExprId) -> ExprId {
+        let along = self.mul2(x, dy);
+        let across = self.mul2(y, dx);
+        let numerator = self.sub(along, across);
+        let x_square = self.pow_of_expression(x, Rational::integer(2));
+        let y_square = self.pow_of_expression(y, Rational::integer(2));
+        let radius_square = self.add2(x_square, y_square);
+        let inverse = self.pow_of_expression(radius_square, Rational::integer(-1));
+        self.mul2(numerator, inverse)
     }
 
     /// `d form / d symbol`, in normal form.
@@ -221,8 +258,44 @@ impl Context {
                         expr: self.display(argument).to_string(),
                     })
             }
+            Node::Call(function @ (Function::Asin | Function::Acos | Function::Atan), argument) => {
+                let inner = self.normal(argument)?;
+                let d_inner = self.derivative_of_normal(&inner, symbol)?;
+                if d_inner.is_zero() {
+                    return Ok(d_inner);
+                }
+                let slope = self.derivative_of_function(function, argument);
+                let slope = self.normal(slope)?;
+                Ok(slope.mul(&d_inner, &self.atoms))
+            }
+            Node::Atan2(y, x) => self.derivative_of_atan2_form(y, x, symbol),
             _ => Ok(RationalFunction::zero()),
         }
+    }
+
+    /// `d atan2(y, x) / d symbol = (x dy - y dx) / (x^2 + y^2)` in normal form.
+    fn derivative_of_atan2_form(
+        &mut self,
+        y: ExprId,
+        x: ExprId,
+        symbol: SymbolId,
+    ) -> Result<RationalFunction, SymError> {
+        let (y_form, x_form) = (self.normal(y)?, self.normal(x)?);
+        let dy = self.derivative_of_normal(&y_form, symbol)?;
+        let dx = self.derivative_of_normal(&x_form, symbol)?;
+        let atoms = &self.atoms;
+        let numerator = x_form.mul(&dy, atoms).sub(&y_form.mul(&dx, atoms), atoms);
+        if numerator.is_zero() {
+            return Ok(numerator);
+        }
+        let radius_square = x_form
+            .mul(&x_form, atoms)
+            .add(&y_form.mul(&y_form, atoms), atoms);
+        numerator
+            .div(&radius_square, atoms)
+            .ok_or_else(|| SymError::DivisionByZero {
+                expr: format!("{}^2 + {}^2", self.display(x), self.display(y)),
+            })
     }
 }
 
@@ -249,6 +322,7 @@ impl Store {
                 }
                 Node::Pow(base, exponent) => self.pow(rebuilt[&base], exponent)?,
                 Node::Call(function, argument) => self.apply(function, rebuilt[&argument])?,
+                Node::Atan2(y, x) => self.atan2(rebuilt[&y], rebuilt[&x])?,
             };
             rebuilt.insert(id, new);
         }

@@ -39,6 +39,7 @@ impl Store {
             Node::Mul(factors) => factors.iter().map(|f| values[f]).product(),
             Node::Pow(base, exponent) => power(values[base], exponent),
             Node::Call(function, argument) => function.apply(values[argument]),
+            Node::Atan2(y, x) => values[y].atan2(values[x]),
         }
     }
 }

@@ -46,7 +46,9 @@ pub struct Symbol {
     pub kind: SymbolKind,
 }
 
-/// The elementary functions the engine knows (`sqrt` is stored as a power 1/2).
+/// The elementary functions of one argument the engine knows (`sqrt` is
+/// stored as a power 1/2, `atan2(y, x)` as a node of its own,
+/// [`Node::Atan2`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Function {
     /// Sine.
@@ -59,6 +61,39 @@ pub enum Function {
     Exp,
     /// Natural logarithm.
     Ln,
+    /// Inverse sine, in `[-pi/2, pi/2]`.
+    Asin,
+    /// Inverse cosine, in `[0, pi]`.
+    Acos,
+    /// Inverse tangent, in `(-pi/2, pi/2)`.
+    Atan,
+}
+
+/// The functions of the model language with the number of arguments each
+/// takes.
+pub const FUNCTION_ARITIES: [(&str, usize); 10] = [
+    ("sin", 1),
+    ("cos", 1),
+    ("tan", 1),
+    ("sqrt", 1),
+    ("exp", 1),
+    ("ln", 1),
+    ("asin", 1),
+    ("acos", 1),
+    ("atan", 1),
+    ("atan2", 2),
+];
+
+/// The functions of the model language as messages list them.
+pub const FUNCTION_LIST: &str = "sin, cos, tan, sqrt, exp, ln, asin, acos, atan, atan2(y, x)";
+
+/// The number of arguments the model-language function `name` takes
+/// (`None` for a name that is no function).
+pub fn arity(name: &str) -> Option<usize> {
+    FUNCTION_ARITIES
+        .iter()
+        .find(|(known, _)| *known == name)
+        .map(|&(_, count)| count)
 }
 
 impl Function {
@@ -70,6 +105,9 @@ impl Function {
             Function::Tan => "tan",
             Function::Exp => "exp",
             Function::Ln => "ln",
+            Function::Asin => "asin",
+            Function::Acos => "acos",
+            Function::Atan => "atan",
         }
     }
 
@@ -81,6 +119,9 @@ impl Function {
             Function::Tan => x.tan(),
             Function::Exp => x.exp(),
             Function::Ln => x.ln(),
+            Function::Asin => x.asin(),
+            Function::Acos => x.acos(),
+            Function::Atan => x.atan(),
         }
     }
 }
@@ -100,6 +141,8 @@ pub enum Node {
     Pow(ExprId, Rational),
     /// An elementary function applied to one argument.
     Call(Function, ExprId),
+    /// `atan2(y, x)`: the angle of the point `(x, y)`, in `(-pi, pi]`.
+    Atan2(ExprId, ExprId),
 }
 
 /// Errors of the symbolic engine, each printing the offending expression.
@@ -118,10 +161,20 @@ pub enum SymError {
         expr: String,
     },
     /// A function name the engine does not know.
-    #[error("unknown function `{name}`; the functions are sin, cos, tan, sqrt, exp, ln")]
+    #[error("unknown function `{name}`; the functions are {FUNCTION_LIST}")]
     UnknownFunction {
         /// The name as written.
         name: String,
+    },
+    /// A function called with a number of arguments it does not take.
+    #[error("`{name}` takes {expected} argument{}, found {found}", plural(*expected))]
+    ArgumentCount {
+        /// The function's name.
+        name: String,
+        /// How many arguments it takes.
+        expected: usize,
+        /// How many were given.
+        found: usize,
     },
     /// A function outside its domain at a constant argument, e.g. `ln(0)`.
     #[error("{expr} is undefined")]
@@ -159,6 +212,11 @@ pub enum SymError {
         /// The limit that was passed.
         limit: u32,
     },
+}
+
+/// The suffix of a count's noun: `s` but for one.
+fn plural(count: usize) -> &'static str {
+    if count == 1 { "" } else { "s" }
 }
 
 /// The largest constant, in bits (about 20,000 decimal digits), that a
@@ -329,6 +387,7 @@ impl Store {
             Node::Add(items) | Node::Mul(items) => items.to_vec(),
             Node::Pow(base, _) => vec![*base],
             Node::Call(_, argument) => vec![*argument],
+            Node::Atan2(y, x) => vec![*y, *x],
         }
     }
 

@@ -11,6 +11,8 @@
 //! x^(1/2)         \sqrt{x}
 //! sin(phi)        \sin\phi; sin(theta + phi) -> \sin(\theta + \phi); sin(x)^2 -> \sin^{2}x
 //! exp, ln, tan    \exp, \ln, \tan, as sin
+//! asin, acos, atan  \arcsin, \arccos, \arctan, as sin
+//! atan2(y, x)     \operatorname{atan2}(y, x)
 //! dot(x)          \dot{x}
 //! ```
 //!
@@ -25,7 +27,7 @@
 //! word otherwise (`jt` -> `\mathrm{jt}`, `group` -> `\mathrm{group}`), so
 //! that a multi-letter name never reads as a product of letters.
 
-use super::expr::{ExprId, Node, Store, SymbolKind};
+use super::expr::{ExprId, Function, Node, Store, SymbolKind};
 use super::number::Rational;
 
 /// Binding strength: sum < product < power < function call < atom.
@@ -164,6 +166,17 @@ fn rational(value: &Rational) -> String {
     )
 }
 
+/// The LaTeX command of a function: its name, but `\arcsin`, `\arccos`
+/// and `\arctan` for the inverse functions.
+fn command(function: Function) -> String {
+    match function {
+        Function::Asin => "\\arcsin".to_string(),
+        Function::Acos => "\\arccos".to_string(),
+        Function::Atan => "\\arctan".to_string(),
+        _ => format!("\\{}", function.name()),
+    }
+}
+
 struct Latex<'a> {
     store: &'a Store,
 }
@@ -189,7 +202,7 @@ impl Latex<'_> {
             Node::Pow(_, exponent) if exponent.is_negative() => PRODUCT,
             Node::Pow(..) => POWER,
             Node::Call(..) => CALL,
-            Node::Number(_) | Node::Symbol(_) => ATOM,
+            Node::Number(_) | Node::Symbol(_) | Node::Atan2(..) => ATOM,
         }
     }
 
@@ -205,8 +218,13 @@ impl Latex<'_> {
             Node::Pow(_, exponent) if exponent.is_negative() => self.product(&Rational::ONE, &[id]),
             Node::Pow(base, exponent) => self.power(*base, exponent),
             Node::Call(function, argument) => {
-                format!("\\{}{}", function.name(), self.argument(*argument))
+                format!("{}{}", command(*function), self.argument(*argument))
             }
+            Node::Atan2(y, x) => format!(
+                "\\operatorname{{atan2}}({}, {})",
+                self.render(*y, 0),
+                self.render(*x, 0)
+            ),
         }
     }
 
@@ -317,8 +335,10 @@ impl Latex<'_> {
     /// `\frac{1}{\cos\phi}`) moved after the others, each group in order.
     fn calls_last(&self, factors: &[ExprId]) -> Vec<ExprId> {
         let is_call = |factor: &ExprId| match self.store.node(*factor) {
-            Node::Call(..) => true,
-            Node::Pow(base, _) => matches!(self.store.node(*base), Node::Call(..)),
+            Node::Call(..) | Node::Atan2(..) => true,
+            Node::Pow(base, _) => {
+                matches!(self.store.node(*base), Node::Call(..) | Node::Atan2(..))
+            }
             _ => false,
         };
         let (calls, plain): (Vec<ExprId>, Vec<ExprId>) = factors.iter().partition(|f| is_call(f));
@@ -337,8 +357,8 @@ impl Latex<'_> {
         };
         if let Node::Call(function, argument) = self.store.node(base) {
             return format!(
-                "\\{}^{{{exponent}}}{}",
-                function.name(),
+                "{}^{{{exponent}}}{}",
+                command(*function),
                 self.argument(*argument)
             );
         }
@@ -465,6 +485,12 @@ mod tests {
         assert_eq!(f.latex(square), "\\sin^{2}\\phi");
         let root = f.store.sqrt(x).expect("defined");
         assert_eq!(f.latex(root), "\\sqrt{x}");
+        let inverse_tangent = f.call(Function::Atan, x);
+        assert_eq!(f.latex(inverse_tangent), "\\arctan x");
+        let inverse_sine = f.call(Function::Asin, angle);
+        assert_eq!(f.latex(inverse_sine), "\\arcsin(\\theta + \\phi)");
+        let heading = f.store.atan2(phi, x).expect("defined");
+        assert_eq!(f.latex(heading), "\\operatorname{atan2}(\\phi, x)");
     }
 
     /// The snakeboard's `alpha1` equation, `-(sin(phi)/r) u1` (MATH.md 3.1).

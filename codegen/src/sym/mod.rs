@@ -25,6 +25,8 @@ pub use poly::{Atom, AtomId, Atoms, Monomial, Poly};
 pub use zero::{Decision, NumericZeroTest, ZeroTest};
 
 #[cfg(test)]
+mod inverse_tests;
+#[cfg(test)]
 mod proptests;
 #[cfg(test)]
 mod tests;

@@ -41,7 +41,11 @@
 //! module is the arithmetic and the points alone: a symbol is named by its
 //! index.
 //! Expressions outside the class (`exp`, `ln`, fractional powers, `sin` of a
-//! non-linear argument) are not evaluated: [`ModularError`].
+//! non-linear argument, the inverse functions `asin acos atan atan2`) are not
+//! evaluated: [`ModularError`]. An inverse function is not a free value
+//! either: it is tied to its argument by identities no residue keeps
+//! (`atan(tan q) = q` near `q = 0`, `asin u + acos u = pi/2`), so a random
+//! residue for it could prove an expression that vanishes non-zero.
 
 /// The Mersenne prime `2^61 - 1`.
 pub const PRIME: u64 = (1 << 61) - 1;

@@ -25,6 +25,12 @@ enum Recipe {
     SinOfSum(i64, i64),
     CosOfSum(i64, i64),
     Exp(Box<Recipe>),
+    Atan(Box<Recipe>),
+    /// `asin(a / (a^2 + 1))`: the argument stays within `[-1/2, 1/2]`.
+    AsinSafe(Box<Recipe>),
+    /// `acos(a / (a^2 + 1))`.
+    AcosSafe(Box<Recipe>),
+    Atan2(Box<Recipe>, Box<Recipe>),
 }
 
 fn recipe() -> impl Strategy<Value = Recipe> {
@@ -34,9 +40,11 @@ fn recipe() -> impl Strategy<Value = Recipe> {
         (-2i64..3, -2i64..3).prop_map(|(a, b)| Recipe::SinOfSum(a, b)),
         (-2i64..3, -2i64..3).prop_map(|(a, b)| Recipe::CosOfSum(a, b)),
     ];
-    // Powers and divisors take leaves: nested powers of trigonometric sums
-    // expand exponentially in any expanded normal form, unlike the expressions
-    // mechanics produces (polynomials of low degree in sin q_i, cos q_i).
+    // Powers, divisors and the inverse functions (whose slopes divide by
+    // their argument squared) take leaves: nested powers of trigonometric
+    // sums expand exponentially in any expanded normal form, unlike the
+    // expressions mechanics produces (polynomials of low degree in sin q_i,
+    // cos q_i).
     let small = leaf.clone();
     leaf.prop_recursive(4, 24, 2, move |inner| {
         prop_oneof![
@@ -49,6 +57,10 @@ fn recipe() -> impl Strategy<Value = Recipe> {
             inner.clone().prop_map(|a| Recipe::Sin(a.into())),
             inner.clone().prop_map(|a| Recipe::Cos(a.into())),
             inner.prop_map(|a| Recipe::Exp(a.into())),
+            small.clone().prop_map(|a| Recipe::Atan(a.into())),
+            small.clone().prop_map(|a| Recipe::AsinSafe(a.into())),
+            small.clone().prop_map(|a| Recipe::AcosSafe(a.into())),
+            (small.clone(), small.clone()).prop_map(|(a, b)| Recipe::Atan2(a.into(), b.into())),
         ]
     })
 }
@@ -120,14 +132,34 @@ fn construct(store: &mut Context, symbols: &[SymbolId; 3], recipe: &Recipe) -> E
             let radicand = plus_one_square(store, a);
             store.sqrt(radicand).expect("positive radicand")
         }
-        Recipe::Sin(a) | Recipe::Cos(a) | Recipe::Exp(a) => {
+        Recipe::Sin(a) | Recipe::Cos(a) | Recipe::Exp(a) | Recipe::Atan(a) => {
             let a = go(store, a);
             let function = match recipe {
                 Recipe::Sin(_) => Function::Sin,
                 Recipe::Cos(_) => Function::Cos,
+                Recipe::Atan(_) => Function::Atan,
                 _ => Function::Exp,
             };
-            store.apply(function, a).expect("sin, cos, exp are total")
+            store
+                .apply(function, a)
+                .expect("sin, cos, exp, atan are total")
+        }
+        Recipe::AsinSafe(a) | Recipe::AcosSafe(a) => {
+            let a = go(store, a);
+            let divisor = plus_one_square(store, a);
+            let ratio = store.div(a, divisor).expect("a^2 + 1 is never zero");
+            let function = match recipe {
+                Recipe::AsinSafe(_) => Function::Asin,
+                _ => Function::Acos,
+            };
+            store
+                .apply(function, ratio)
+                .expect("the ratio lies in [-1/2, 1/2]")
+        }
+        Recipe::Atan2(a, b) => {
+            let (a, b) = (go(store, a), go(store, b));
+            let divisor = plus_one_square(store, b);
+            store.atan2(a, divisor).expect("b^2 + 1 is never zero")
         }
         Recipe::SinOfSum(p, q) | Recipe::CosOfSum(p, q) => {
             let (x, y) = (store.symbol(symbols[0]), store.symbol(symbols[1]));
@@ -258,12 +290,18 @@ proptest! {
     }
 }
 
-/// True when the recipe uses `sqrt` or `exp`, whose kernels lie outside the
-/// exact class (`sqrt(u)^2 = u` is applied by the normal form, but whether
-/// `u` is a square, which a zero test would need, is not decided).
+/// True when the recipe uses `sqrt`, `exp` or an inverse function, whose
+/// kernels lie outside the exact class (`sqrt(u)^2 = u` is applied by the
+/// normal form, but whether `u` is a square, which a zero test would need,
+/// is not decided).
 fn recipe_has_kernels(recipe: &Recipe) -> bool {
     match recipe {
-        Recipe::SqrtSafe(_) | Recipe::Exp(_) => true,
+        Recipe::SqrtSafe(_)
+        | Recipe::Exp(_)
+        | Recipe::Atan(_)
+        | Recipe::AsinSafe(_)
+        | Recipe::AcosSafe(_)
+        | Recipe::Atan2(..) => true,
         Recipe::Symbol(_) | Recipe::Constant(..) | Recipe::SinOfSum(..) | Recipe::CosOfSum(..) => {
             false
         }

@@ -73,19 +73,19 @@ impl Store {
                 }
                 _ => return Err(not_in_class()),
             },
-            Node::Call(function, argument) => {
+            Node::Call(function @ (Function::Sin | Function::Cos | Function::Tan), argument) => {
                 let combination = self.angle_combination(*argument).ok_or_else(not_in_class)?;
                 let (cosine, sine) = point.cos_sin(&combination);
                 match function {
                     Function::Sin => sine,
                     Function::Cos => cosine,
-                    Function::Tan => {
+                    _ => {
                         let secant = inverse(cosine, PRIME).ok_or_else(undefined)?;
                         multiply(sine, secant, PRIME)
                     }
-                    Function::Exp | Function::Ln => return Err(not_in_class()),
                 }
             }
+            Node::Call(..) | Node::Atan2(..) => return Err(not_in_class()),
         })
     }
 

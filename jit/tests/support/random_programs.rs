@@ -5,7 +5,8 @@
 //! stack machine over an expression store (the inputs `x`, `y`, `z`; small
 //! rationals, powers of ten from 1e-20 to 1e20; `+ - * /`, negation,
 //! integer powers from -5 to 6, square roots, rational powers, `sin`,
-//! `cos`, `tan`, `exp`, `ln`; duplication, for deep chains and shared
+//! `cos`, `tan`, `exp`, `ln`, `asin`, `acos`, `atan`, `atan2`;
+//! duplication, for deep chains and shared
 //! subexpressions); every value left on the stack is an output, and the
 //! program lowered from them (so every operation of the IR, `sin_cos`
 //! pairs and shared divisors included) runs at three points: the last 24
@@ -116,12 +117,15 @@ fn step(
     op: u8,
     argument: u8,
 ) -> Option<ExprId> {
-    const FUNCTIONS: [Function; 5] = [
+    const FUNCTIONS: [Function; 8] = [
         Function::Sin,
         Function::Cos,
         Function::Tan,
         Function::Exp,
         Function::Ln,
+        Function::Asin,
+        Function::Acos,
+        Function::Atan,
     ];
     match op % 16 {
         0 => Some(inputs[usize::from(argument % 3)]),
@@ -168,6 +172,10 @@ fn step(
             let function = FUNCTIONS[usize::from(argument) % FUNCTIONS.len()];
             let operand = stack.pop()?;
             store.apply(function, operand).ok()
+        }
+        15 if argument.is_multiple_of(2) => {
+            let (x, y) = (stack.pop()?, stack.pop()?);
+            store.atan2(y, x).ok()
         }
         _ => stack.last().copied(),
     }

@@ -1,6 +1,6 @@
 //! The expressions of `chaplygin simulate`, in the model language's syntax
-//! with its operators `+ - * / ^`, its functions `sin cos tan sqrt exp ln`
-//! and `abs`: each `--input NAME=EXPRESSION` is a law of the time `t`, the
+//! with its operators `+ - * / ^`, its functions `sin cos tan sqrt exp ln
+//! asin acos atan atan2` and `abs`: each `--input NAME=EXPRESSION` is a law of the time `t`, the
 //! model's parameters and the state, its coordinates `q` and velocities
 //! `dot(q)` (`0.3*sin(2*t)`, `u0*exp(-t/tau)`, the feedback
 //! `-10*phi-2*dot(phi)`), so that open-loop gaits and feedback laws run
@@ -157,8 +157,9 @@ mod tests {
             ("b*t", "`b` is not `t`, a parameter or a coordinate"),
             ("dot(y)", "`dot(y)`: `y` is not a coordinate"),
             ("dot(2*x)", "`dot` takes one coordinate"),
-            ("atan(t)", "`atan` is not one of"),
+            ("sinh(t)", "`sinh` is not one of"),
             ("sin(t, t)", "takes one scalar argument"),
+            ("atan2(t)", "`atan2` takes two scalar arguments"),
             ("[t]", "a list"),
         ] {
             let error =

@@ -204,6 +204,13 @@ impl<'a> Writer<'a> {
             &Op::Tan(a) => self.method(a, "tan", Expression::empty()),
             &Op::Exp(a) => self.method(a, "exp", Expression::empty()),
             &Op::Ln(a) => self.method(a, "ln", Expression::empty()),
+            &Op::Asin(a) => self.method(a, "asin", Expression::empty()),
+            &Op::Acos(a) => self.method(a, "acos", Expression::empty()),
+            &Op::Atan(a) => self.method(a, "atan", Expression::empty()),
+            &Op::Atan2(y, x) => {
+                let x = self.fitted(x, WIDTH / 2);
+                self.method(y, "atan2", x)
+            }
         }
     }
 

@@ -1,4 +1,9 @@
-//! Inputs: a force on a coordinate or a column of B(q).
+//! Inputs: a force on a coordinate, a linear form of coordinate names, or
+//! a column of B(q).
+
+mod linear_form;
+#[cfg(test)]
+mod tests;
 
 use super::context::Context;
 use super::items::{check_unique_in_section, named_item, row_of_expressions};
@@ -6,8 +11,10 @@ use super::velocities::velocity_free;
 use crate::model::{Declared, Variable};
 use crate::sym::{Matrix, RationalFunction};
 use crate::syntax::{self, Expr, Item, Value};
+use linear_form::linear_form_column;
 
-/// `(names, B)`: each input a force on a coordinate or a column of B.
+/// `(names, B)`: each input a force on a coordinate, a linear form of
+/// coordinate names, or a column of B.
 pub(super) fn inputs(
     cx: &mut Context,
     section: Option<&syntax::Section>,
@@ -45,7 +52,8 @@ pub(super) fn inputs(
     Some((names, b))
 }
 
-/// An input names a coordinate, or gives a column of n velocity-free entries.
+/// An input names a coordinate, gives a linear form of coordinate names
+/// ([`linear_form`]), or a column of n velocity-free entries.
 fn input_column(
     cx: &mut Context,
     item: &Item,
@@ -53,45 +61,36 @@ fn input_column(
     coordinates: &[Variable],
 ) -> Option<Vec<RationalFunction>> {
     let n = coordinates.len();
-    if let Value::Expr(Expr::Name(ident)) = value {
-        let name = ident.to_string();
-        let Some(index) = coordinates.iter().position(|c| c.declared.name == name) else {
+    let expr = match value {
+        Value::Expr(Expr::Name(ident)) if !is_coordinate(ident, coordinates) => {
             cx.diagnostics.error(
                 ident.span(),
                 format!(
-                    "an input acts on a coordinate, and `{name}` is not a coordinate (or give a \
+                    "an input acts on a coordinate, and `{ident}` is not a coordinate (or give a \
                      column `[b_1, ..., b_n]`)"
                 ),
             );
             return None;
-        };
-        return Some(
-            (0..n)
-                .map(|i| {
-                    if i == index {
-                        RationalFunction::one()
-                    } else {
-                        RationalFunction::zero()
-                    }
+        }
+        Value::Expr(expr) => expr,
+        Value::List(_) => {
+            let row = row_of_expressions(cx, item, n, "an input column")?;
+            return row
+                .into_iter()
+                .map(|expr| {
+                    velocity_free(
+                        cx,
+                        expr,
+                        "an input column depends on the configuration only: no velocities",
+                    )
                 })
-                .collect(),
-        );
-    }
-    if value.as_list().is_none() {
-        cx.diagnostics.error(
-            value.span(),
-            "an input is a coordinate's name or a column `[b_1, ..., b_n]`",
-        );
-        return None;
-    }
-    let row = row_of_expressions(cx, item, n, "an input column")?;
-    row.into_iter()
-        .map(|expr| {
-            velocity_free(
-                cx,
-                expr,
-                "an input column depends on the configuration only: no velocities",
-            )
-        })
-        .collect()
+                .collect();
+        }
+    };
+    linear_form_column(cx, expr, coordinates)
+}
+
+/// True when `ident` names one of the coordinates.
+fn is_coordinate(ident: &proc_macro2::Ident, coordinates: &[Variable]) -> bool {
+    coordinates.iter().any(|c| *ident == c.declared.name)
 }

@@ -3,8 +3,9 @@
 
 use super::context::Context;
 use super::items::{item_expression, named_item};
-use crate::model::lower::{Binding, FUNCTIONS};
+use crate::model::lower::Binding;
 use crate::model::{Declared, Parameter, Variable};
+use crate::sym::expr::arity;
 use crate::sym::{Rational, SymbolKind};
 use crate::syntax::{self, Expr, Item, Value};
 use proc_macro2::Span;
@@ -26,7 +27,7 @@ pub(super) fn check_fresh_name(
     span: Span,
     kind: &'static str,
 ) -> bool {
-    if FUNCTIONS.contains(&name) || name == "dot" {
+    if arity(name).is_some() || name == "dot" {
         cx.diagnostics.error(
             span,
             format!("`{name}` is a function of the model language and cannot name a {kind}"),

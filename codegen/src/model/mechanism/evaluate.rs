@@ -14,7 +14,8 @@ use super::space::Space;
 use super::vector::{self, Vector};
 use crate::model::Parameter;
 use crate::model::lower::Lowerer;
-use crate::sym::{ExprId, Node, SymbolId};
+use crate::sym::expr::arity;
+use crate::sym::{ExprId, Node, SymError, SymbolId};
 use crate::syntax::{BinaryOperator, Expr, Value};
 use proc_macro2::{Ident, Span};
 use std::collections::HashMap;
@@ -256,19 +257,17 @@ impl Evaluator<'_> {
             let list = arguments.iter().find(|a| a.as_list().is_some())?;
             return self.error(list.span(), "a list `[...]` where an expression belongs");
         }
-        let arity = if matches!(name.as_str(), "cross" | "inner") {
-            2
-        } else {
-            1
+        let expected = match name.as_str() {
+            "cross" | "inner" => 2,
+            _ => arity(&name).unwrap_or(1),
         };
-        if expressions.len() != arity {
-            return self.error(
-                function.span(),
-                format!(
-                    "`{name}` takes {arity} argument(s), found {}",
-                    expressions.len()
-                ),
-            );
+        if expressions.len() != expected {
+            let error = SymError::ArgumentCount {
+                name,
+                expected,
+                found: expressions.len(),
+            };
+            return self.error(function.span(), error.to_string());
         }
         let value = match name.as_str() {
             "cross" | "inner" => {
@@ -301,8 +300,10 @@ impl Evaluator<'_> {
                     .ok()
             }
             _ => {
-                let argument = self.scalar(expressions[0])?;
-                let applied = self.lowerer.cx.apply_named(&name, argument);
+                let arguments: Vec<Option<ExprId>> =
+                    expressions.iter().map(|&e| self.scalar(e)).collect();
+                let arguments: Vec<ExprId> = arguments.into_iter().collect::<Option<_>>()?;
+                let applied = self.lowerer.cx.apply_named(&name, &arguments);
                 applied
                     .map(Quantity::Scalar)
                     .map_err(|error| {

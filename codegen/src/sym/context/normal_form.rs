@@ -65,6 +65,12 @@ impl Context {
                 let argument_form = form(self, &argument);
                 self.normal_call(function, &argument_form)?
             }
+            Node::Atan2(y, x) => {
+                let y = self.expression_of(&form(self, &y));
+                let x = self.expression_of(&form(self, &x));
+                let applied = self.atan2(y, x)?;
+                self.kernel_form(applied)
+            }
         })
     }
 
@@ -127,14 +133,20 @@ impl Context {
                         expr: "cos of the argument of tan".to_string(),
                     })
             }
-            Function::Exp | Function::Ln => {
+            Function::Exp | Function::Ln | Function::Asin | Function::Acos | Function::Atan => {
                 let canonical = self.expression_of(argument);
                 let applied = self.apply(function, canonical)?;
-                Ok(match self.node(applied) {
-                    Node::Number(value) => RationalFunction::constant(value.clone()),
-                    _ => RationalFunction::from_poly(Poly::atom(self.atoms.kernel(applied))),
-                })
+                Ok(self.kernel_form(applied))
             }
+        }
+    }
+
+    /// A function applied to canonical arguments as a normal form: its
+    /// value where it folded to a constant, else an opaque kernel atom.
+    fn kernel_form(&mut self, applied: ExprId) -> RationalFunction {
+        match self.node(applied) {
+            Node::Number(value) => RationalFunction::constant(value.clone()),
+            _ => RationalFunction::from_poly(Poly::atom(self.atoms.kernel(applied))),
         }
     }
 

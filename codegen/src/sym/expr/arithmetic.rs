@@ -302,47 +302,79 @@ impl Store {
 
     // ----- functions -----------------------------------------------------
 
-    /// Applies a function by its model-language name (`sin cos tan sqrt exp ln`).
-    pub fn apply_named(&mut self, name: &str, argument: ExprId) -> Result<ExprId, SymError> {
-        let function = match name {
-            "sin" => Function::Sin,
-            "cos" => Function::Cos,
-            "tan" => Function::Tan,
-            "exp" => Function::Exp,
-            "ln" => Function::Ln,
-            "sqrt" => return self.sqrt(argument),
-            _ => {
-                return Err(SymError::UnknownFunction {
-                    name: name.to_string(),
-                });
-            }
+    /// Applies a function by its model-language name to its arguments
+    /// (`sin cos tan sqrt exp ln asin acos atan` one, `atan2(y, x)` two).
+    pub fn apply_named(&mut self, name: &str, arguments: &[ExprId]) -> Result<ExprId, SymError> {
+        let expected = super::arity(name).ok_or_else(|| SymError::UnknownFunction {
+            name: name.to_string(),
+        })?;
+        if arguments.len() != expected {
+            return Err(SymError::ArgumentCount {
+                name: name.to_string(),
+                expected,
+                found: arguments.len(),
+            });
+        }
+        let function = match (name, arguments) {
+            ("sqrt", &[argument]) => return self.sqrt(argument),
+            ("atan2", &[y, x]) => return self.atan2(y, x),
+            ("sin", _) => Function::Sin,
+            ("cos", _) => Function::Cos,
+            ("tan", _) => Function::Tan,
+            ("exp", _) => Function::Exp,
+            ("ln", _) => Function::Ln,
+            ("asin", _) => Function::Asin,
+            ("acos", _) => Function::Acos,
+            _ => Function::Atan,
         };
-        self.apply(function, argument)
+        self.apply(function, arguments[0])
     }
 
     /// `function(argument)`, folding the exact constant cases
-    /// (`sin 0 = 0`, `cos 0 = 1`, `tan 0 = 0`, `exp 0 = 1`, `ln 1 = 0`).
+    /// (`sin 0 = 0`, `cos 0 = 1`, `tan 0 = 0`, `exp 0 = 1`, `ln 1 = 0`,
+    /// `asin 0 = 0`, `acos 1 = 0`, `atan 0 = 0`) and failing outside the
+    /// domain at a constant (`ln` of a constant not above 0, `asin` and
+    /// `acos` of one beyond `[-1, 1]`).
     pub fn apply(&mut self, function: Function, argument: ExprId) -> Result<ExprId, SymError> {
         if let Node::Number(value) = self.node(argument) {
-            if value.is_zero() {
-                return match function {
-                    Function::Sin | Function::Tan => Ok(self.integer(0)),
-                    Function::Cos | Function::Exp => Ok(self.integer(1)),
-                    Function::Ln => Err(SymError::Undefined {
-                        expr: "ln(0)".to_string(),
-                    }),
-                };
+            let undefined = || SymError::Undefined {
+                expr: format!("{}({value})", function.name()),
+            };
+            let folded = match function {
+                Function::Sin | Function::Tan | Function::Asin | Function::Atan => {
+                    value.is_zero().then_some(0)
+                }
+                Function::Cos | Function::Exp => value.is_zero().then_some(1),
+                Function::Ln if value.is_negative() || value.is_zero() => return Err(undefined()),
+                Function::Ln | Function::Acos => value.is_one().then_some(0),
+            };
+            let bounded = matches!(function, Function::Asin | Function::Acos);
+            if bounded && value.abs() > Rational::ONE {
+                return Err(undefined());
             }
-            if function == Function::Ln && value.is_one() {
-                return Ok(self.integer(0));
-            }
-            if function == Function::Ln && value.is_negative() {
-                return Err(SymError::Undefined {
-                    expr: format!("ln({value})"),
-                });
+            if let Some(folded) = folded {
+                return Ok(self.integer(folded));
             }
         }
         Ok(self.intern(Node::Call(function, argument)))
+    }
+
+    /// `atan2(y, x)`, the angle of the point `(x, y)`: 0 for a constant
+    /// point on the positive x axis, undefined at the constant origin.
+    pub fn atan2(&mut self, y: ExprId, x: ExprId) -> Result<ExprId, SymError> {
+        if let (Some(y_value), Some(x_value)) = (self.as_number(y), self.as_number(x))
+            && y_value.is_zero()
+        {
+            if x_value.is_zero() {
+                return Err(SymError::Undefined {
+                    expr: "atan2(0, 0)".to_string(),
+                });
+            }
+            if !x_value.is_negative() {
+                return Ok(self.integer(0));
+            }
+        }
+        Ok(self.intern(Node::Atan2(y, x)))
     }
 
     /// `function(argument)` for an argument known not to be a constant.

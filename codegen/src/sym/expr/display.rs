@@ -71,6 +71,13 @@ impl Displayed<'_> {
                 self.write(f, *argument, 0)?;
                 write!(f, ")")
             }
+            Node::Atan2(y, x) => {
+                write!(f, "atan2(")?;
+                self.write(f, *y, 0)?;
+                write!(f, ", ")?;
+                self.write(f, *x, 0)?;
+                write!(f, ")")
+            }
         }
     }
 

@@ -25,7 +25,8 @@ pub enum Atom {
     Sin(ExprId),
     /// `cos(arg)`.
     Cos(ExprId),
-    /// An opaque function of normal-form arguments (`exp`, `ln`, fractional powers).
+    /// An opaque function of normal-form arguments (`exp`, `ln`, fractional
+    /// powers, `asin acos atan atan2`).
     Kernel(ExprId),
 }
 

@@ -1,4 +1,4 @@
-// Rule: unknown name (`sinh` is not one of `sin cos tan sqrt exp ln`). Error at the function name `sinh`.
+// Rule: unknown name (`sinh` is not one of `sin cos tan sqrt exp ln asin acos atan atan2`). Error at the function name `sinh`.
 chaplygin_macros::model! {
     pub struct Sleigh {
         coordinates: [x, y, theta],
