@@ -255,3 +255,20 @@ fn the_kinematic_cars_growth_vector_is_2_3_4() {
     assert_eq!(constraints["growth_vector"], serde_json::json!([2, 3, 4]));
     assert_eq!(constraints["classification"], "completely nonholonomic");
 }
+
+/// With its linkage the car reaches every configuration of the surface
+/// but the rear differential's integral: nonholonomic, not completely,
+/// at 7 = n - h - 1; the Chaplygin ball, with its unit-norm constraint,
+/// reaches `n - h` and is completely nonholonomic there.
+#[test]
+fn completeness_is_judged_on_the_holonomic_surface() {
+    assert_eq!(analysis("ackermann_car")["classification"], "nonholonomic");
+    let ball = chaplygin(&["derive", "--format", "json", &format!(
+        "{}/../models/chaplygin_ball.model",
+        env!("CARGO_MANIFEST_DIR")
+    )]);
+    assert!(ball.status.success(), "{}", String::from_utf8_lossy(&ball.stderr));
+    let json: Value = serde_json::from_slice(&ball.stdout).expect("the JSON parses");
+    assert_eq!(json["constraints"]["reachable_dimension"], 5);
+    assert_eq!(json["constraints"]["classification"], "completely nonholonomic");
+}

@@ -28,8 +28,9 @@
 //! such as the snakeboard's basis at `phi = +-pi/2`, is not seen).
 //! Each level brackets the basis fields with the fields the previous level
 //! added (enough, since `[X, f Y] = f [X, Y] + X(f) Y`). When the growth
-//! reaches n the constraints are completely nonholonomic and every
-//! configuration is reachable (Chow's theorem).
+//! reaches `n - h` the constraints are completely nonholonomic and every
+//! configuration on the surface `f = 0` is reachable (Chow's theorem on
+//! that surface; `h = 0`, the whole space, without holonomic constraints).
 //!
 //! **Large models.** The exact basis grows fast with the size of a chain
 //! (for N wheeled links, entries of `2 * 3^(N-2)` terms), and the brackets
@@ -97,7 +98,9 @@ pub enum Classification {
     /// D is not integrable; its growth was cut short by the budget before
     /// it reached n or stopped, so complete nonholonomy is not decided.
     NonholonomicGrowthOpen,
-    /// The growth of D reaches n: every configuration is reachable (Chow).
+    /// The growth of D reaches n, or `n - h` with `h` holonomic
+    /// constraints: every configuration (on their surface) is reachable
+    /// (Chow).
     CompletelyNonholonomic,
 }
 
@@ -286,7 +289,7 @@ fn classify(model: &Model, integrable: bool, growth: &[usize], complete: bool) -
         Classification::Unconstrained
     } else if integrable {
         Classification::Holonomic
-    } else if growth.last() == Some(&model.n()) {
+    } else if growth.last() == Some(&reachable_bound(model)) {
         Classification::CompletelyNonholonomic
     } else if complete {
         Classification::Nonholonomic
