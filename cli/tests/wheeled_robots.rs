@@ -263,12 +263,34 @@ fn the_kinematic_cars_growth_vector_is_2_3_4() {
 #[test]
 fn completeness_is_judged_on_the_holonomic_surface() {
     assert_eq!(analysis("ackermann_car")["classification"], "nonholonomic");
-    let ball = chaplygin(&["derive", "--format", "json", &format!(
-        "{}/../models/chaplygin_ball.model",
-        env!("CARGO_MANIFEST_DIR")
-    )]);
-    assert!(ball.status.success(), "{}", String::from_utf8_lossy(&ball.stderr));
+    let ball = chaplygin(&[
+        "derive",
+        "--format",
+        "json",
+        &format!(
+            "{}/../models/chaplygin_ball.model",
+            env!("CARGO_MANIFEST_DIR")
+        ),
+    ]);
+    assert!(
+        ball.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ball.stderr)
+    );
     let json: Value = serde_json::from_slice(&ball.stdout).expect("the JSON parses");
     assert_eq!(json["constraints"]["reachable_dimension"], 5);
-    assert_eq!(json["constraints"]["classification"], "completely nonholonomic");
+    assert_eq!(
+        json["constraints"]["classification"],
+        "completely nonholonomic"
+    );
+}
+
+/// The linkage solved for the right wheel's angle by `atan` is the same
+/// surface: the same rows are dropped, and the car turns as the geometry
+/// says.
+#[test]
+fn the_linkage_written_with_atan_is_the_same_car() {
+    let constraints = analysis("ackermann_car_atan");
+    assert_eq!(constraints["degrees_of_freedom"], 2);
+    assert_eq!(dropped(&constraints), dropped(&analysis("ackermann_car")));
 }
