@@ -309,7 +309,8 @@ fn moores_test_at_points_agrees_with_the_exact_test() {
 /// The benchmark bicycle: 8 coordinates, four rolling rows and the front
 /// contact's height, so 3 speeds are free (lean, steer, forward); its
 /// brackets reach every direction the height constraint allows, n - 1 = 7,
-/// and the growth is complete there though it never reaches n.
+/// and the growth is complete there though it never reaches n: completely
+/// nonholonomic on the constraint's surface (Chow's theorem there).
 #[test]
 fn the_bicycles_growth_stops_at_its_holonomic_constraint() {
     let (bicycle, mut cx) = model(include_str!("../../../../models/bicycle.model"));
@@ -318,5 +319,8 @@ fn the_bicycles_growth_stops_at_its_holonomic_constraint() {
     assert_eq!(analysis.growth.last(), Some(&7));
     assert!(analysis.growth_complete);
     assert!(!analysis.integrable);
-    assert_eq!(analysis.classification, Classification::Nonholonomic);
+    assert_eq!(
+        analysis.classification,
+        Classification::CompletelyNonholonomic
+    );
 }
