@@ -193,7 +193,7 @@ fn coordinate_sets_fact(model: &Model, cx: &Context, analysis: &ConstraintAnalys
         .iter()
         .map(|set| {
             json!({
-                "coordinates": [model.coordinates[set.coordinate].declared.name],
+                "coordinates": [set.coordinate_name(model)],
                 "set": set.describe(cx),
             })
         })

@@ -82,7 +82,7 @@ impl CoordinateSet {
             "mass matrix loses rank where {} (coordinates {}): a singularity of the \
              coordinates, not of the mechanics; orient(...) frames have none",
             self.describe(cx),
-            self.name(model)
+            self.coordinate_name(model)
         )
     }
 
@@ -92,7 +92,7 @@ impl CoordinateSet {
             description: format!(
                 "the coordinates {}: {} must not vanish (the mass matrix loses rank there, a \
                  singularity of the coordinates); turn the frame with orient(...) instead",
-                self.name(model),
+                self.coordinate_name(model),
                 cx.display(self.factor)
             ),
             expression: self.factor,
@@ -100,7 +100,8 @@ impl CoordinateSet {
         }
     }
 
-    fn name<'m>(&self, model: &'m Model) -> &'m str {
+    /// The coordinate's declared name.
+    pub fn coordinate_name<'m>(&self, model: &'m Model) -> &'m str {
         &model.coordinates[self.coordinate].declared.name
     }
 }
