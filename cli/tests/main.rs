@@ -19,6 +19,7 @@ mod cli_mechanisms;
 mod cli_racers;
 mod cli_sizes;
 mod cli_stop;
+mod coordinate_singularities;
 mod degenerate_momentum_basis;
 mod derive_rust;
 mod design_map;

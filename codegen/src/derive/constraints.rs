@@ -48,6 +48,10 @@
 //! expressions within [`STRUCTURED_GROWTH_NODES`] new nodes; a growth vector
 //! cut short there is reported as such ([`ConstraintAnalysis::growth_complete`]).
 //!
+//! **Coordinate singularities.** Where the mass matrix loses rank (Euler
+//! angles at gimbal lock) the coordinates are singular, not the mechanics;
+//! [`crate::model::coordinate_sets`] names such sets.
+//!
 //! **Moore's test.** Moore ("Nonholonomic Constraints") checks each row for
 //! exactness, `d a_i / d q_j = d a_j / d q_i`; a row that passes is the
 //! differential of a function and is holonomic. The test misses integrating
@@ -68,6 +72,7 @@ pub use locked::Locked;
 use crate::diagnostic::{Diagnostic, Diagnostics};
 use crate::ir::{Backend, Interpreter};
 use crate::model::Model;
+use crate::model::coordinate_sets::{self, CoordinateSet};
 use crate::sym::modular::ModularError;
 use crate::sym::{Matrix, MatrixError, RationalFunction};
 
@@ -168,6 +173,9 @@ pub struct ConstraintAnalysis {
     pub exact_rows: Vec<bool>,
     /// The bodies the contacts leave unable to move.
     pub locked: Locked,
+    /// Where the mass matrix loses rank: singularities of the coordinates
+    /// ([`crate::model::coordinate_sets`]).
+    pub coordinate_sets: Vec<CoordinateSet>,
 }
 
 /// Why the analysis failed.
@@ -217,6 +225,7 @@ fn derive_analysis(
     let classification = classify(model, integrable, &growth, growth_complete);
     let exact_rows = exact_rows(model, cx)?;
     let locked = locked::locked_bodies(model, cx, &basis);
+    let coordinate_sets = coordinate_sets::coordinate_sets(model, cx).map_err(MatrixError::from)?;
     Ok(ConstraintAnalysis {
         basis,
         charts,
@@ -228,6 +237,7 @@ fn derive_analysis(
         classification,
         exact_rows,
         locked,
+        coordinate_sets,
     })
 }
 

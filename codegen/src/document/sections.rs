@@ -127,6 +127,7 @@ pub(super) fn constraints_section(
                 json!({"bodies": locked.bodies, "moving_coordinates": moving}),
                 locked.describe(model).unwrap_or_else(|| "none".to_string()),
             ),
+            coordinate_sets_fact(model, cx, analysis),
             names_fact("dependent_speeds", "dependent speeds", dependent),
             names_fact("independent_speeds", "independent speeds", independent),
             basis_item(cx, analysis),
@@ -183,6 +184,31 @@ pub(super) fn constraints_section(
             ),
         ],
     }
+}
+
+/// The sets where the mass matrix loses rank, each with its warning.
+fn coordinate_sets_fact(model: &Model, cx: &Context, analysis: &ConstraintAnalysis) -> Item {
+    let sets = &analysis.coordinate_sets;
+    let json: Vec<Value> = sets
+        .iter()
+        .map(|set| {
+            json!({
+                "coordinates": [set.coordinate_name(model)],
+                "set": set.describe(cx),
+            })
+        })
+        .collect();
+    let text: Vec<String> = sets.iter().map(|set| set.warning(model, cx)).collect();
+    let text = match text.is_empty() {
+        true => "none".to_string(),
+        false => text.join("; "),
+    };
+    fact(
+        "coordinate_singularities",
+        "coordinate singularities",
+        Value::Array(json),
+        text,
+    )
 }
 
 pub(super) fn dalembert_section(

@@ -115,8 +115,10 @@ pub(crate) fn emit(
     let definition = parameter_struct(model);
     let constants = constants(model);
     let mechanism_constants = mechanism::constants(model);
-    let guards = crate::model::domain::guards(model, cx)
+    let mut guards = crate::model::domain::guards(model, cx)
         .map_err(|e| Diagnostics::internal(model.name.span(), e))?;
+    let coordinate_sets = constraints.coordinate_sets.iter();
+    guards.extend(coordinate_sets.map(|set| set.guarded(model, cx)));
     let mut functions = kinematics::functions(model, cx)?;
     functions.extend(mechanism::functions(model, cx)?);
     functions.push(domain::function(model, cx, &guards)?);

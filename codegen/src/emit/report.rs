@@ -98,6 +98,9 @@ pub(super) fn constraints(
     if let Some(locked) = analysis.locked.describe(model) {
         section.line(format!("bodies unable to move: {locked}"));
     }
+    for set in &analysis.coordinate_sets {
+        section.line(set.warning(model, cx));
+    }
     let basis = &analysis.basis;
     section.line(format!(
         "dependent speeds: {}",

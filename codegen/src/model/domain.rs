@@ -20,7 +20,9 @@
 //! | `atan2(y, x)` | `x^2 + y^2` | `x^2 + y^2 != 0` |
 //!
 //! A run evaluates them where a step fails and names the one the step
-//! crossed (`chaplygin_runtime::system::Domain`).
+//! crossed (`chaplygin_runtime::system::Domain`). The emitted domain adds,
+//! after them, the factors of the sets where the coordinates are singular
+//! ([`super::coordinate_sets`]).
 
 use super::Model;
 use crate::sym::Context;

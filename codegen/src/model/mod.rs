@@ -19,6 +19,7 @@
 //! context through one `&mut`.
 
 mod check;
+pub mod coordinate_sets;
 pub mod domain;
 pub mod drawing;
 mod invariance;

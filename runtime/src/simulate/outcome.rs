@@ -120,12 +120,15 @@ fn dependency(rows: &[String]) -> String {
     }
 }
 
-/// `name = value, ...`.
+/// `name = value, ...`, a value that is not finite as `name not finite`.
 fn named(names: &[String], values: &[f64]) -> String {
     let pairs: Vec<String> = names
         .iter()
         .zip(values)
-        .map(|(name, value)| format!("{name} = {value:.6}"))
+        .map(|(name, value)| match value.is_finite() {
+            true => format!("{name} = {value:.6}"),
+            false => format!("{name} not finite"),
+        })
         .collect();
     pairs.join(", ")
 }
