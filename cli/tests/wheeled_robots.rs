@@ -33,6 +33,25 @@ fn dropped(constraints: &Value) -> Vec<(String, String)> {
         .collect()
 }
 
+/// A run of the car `name` with `arguments`: its summary line and its
+/// trajectory's header and rows.
+fn simulated(name: &str, arguments: &[&str]) -> (String, (Vec<String>, Vec<Vec<f64>>)) {
+    let out = tempfile::tempdir().expect("a temporary directory");
+    let directory = out.path().to_str().expect("a path");
+    let path = model(name);
+    let all = [
+        &["simulate", path.as_str()],
+        arguments,
+        &["--out", directory],
+    ]
+    .concat();
+    let output = chaplygin(&all);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{name} {arguments:?}: {stderr}");
+    let summary = String::from_utf8_lossy(&output.stdout).to_string();
+    (summary, read_csv(&out.path().join("trajectory.csv")))
+}
+
 fn names(value: &Value) -> Vec<&str> {
     let list = value.as_array().expect("a list");
     list.iter()
@@ -108,22 +127,9 @@ fn the_ackermann_car_with_every_row_has_two_degrees_of_freedom() {
 #[test]
 fn the_ackermann_car_runs_from_heading_zero_and_pi() {
     for heading in ["0", "3.141592653589793"] {
-        let out = tempfile::tempdir().expect("a temporary directory");
-        let output = chaplygin(&[
-            "simulate",
-            &model("ackermann_car"),
-            "--t-end",
-            "2",
-            "--input",
-            "drive=1",
-            "--initial",
-            &format!("theta={heading}"),
-            "--out",
-            out.path().to_str().expect("a path"),
-        ]);
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        assert!(output.status.success(), "heading {heading}: {stderr}");
-        let (header, rows) = read_csv(&out.path().join("trajectory.csv"));
+        let initial = format!("theta={heading}");
+        let arguments = ["--t-end", "2", "--input", "drive=1", "--initial", &initial];
+        let (_, (header, rows)) = simulated("ackermann_car", &arguments);
         let distance = column(&header, &rows, "x").last().copied().expect("rows");
         let theta0: f64 = heading.parse().expect("a number");
         assert!(
@@ -145,30 +151,25 @@ fn the_ackermann_car_runs_from_heading_zero_and_pi() {
 /// `R = l (cot(delta_l) + cot(delta_r)) / 2` from both.
 #[test]
 fn the_ackermann_car_turns_on_the_geometrys_radius() {
-    let out = tempfile::tempdir().expect("a temporary directory");
-    let output = chaplygin(&[
-        "simulate",
-        &model("ackermann_car"),
-        "--formulation",
-        "lagrange",
-        "--t-end",
-        "1",
-        "--input",
-        "drive=1",
-        "--input",
-        "steer_left=-50*(delta_l-0.3)-5*dot(delta_l)",
-        "--initial",
-        "delta_l=0.3",
-        "--initial",
-        "dot(delta_l)=0",
-        "--initial",
-        "dot(phi_rl)=2",
-        "--out",
-        out.path().to_str().expect("a path"),
-    ]);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success(), "{stderr}");
-    let (header, rows) = read_csv(&out.path().join("trajectory.csv"));
+    let (_, (header, rows)) = simulated(
+        "ackermann_car",
+        &[
+            "--formulation",
+            "lagrange",
+            "--t-end",
+            "1",
+            "--input",
+            "drive=1",
+            "--input",
+            "steer_left=-50*(delta_l-0.3)-5*dot(delta_l)",
+            "--initial",
+            "delta_l=0.3",
+            "--initial",
+            "dot(delta_l)=0",
+            "--initial",
+            "dot(phi_rl)=2",
+        ],
+    );
     let value = |name: &str| column(&header, &rows, name);
     let (l, b) = (1.0, 0.4);
     let (dx, dy, dtheta) = (value("dot(x)"), value("dot(y)"), value("dot(theta)"));
@@ -194,30 +195,25 @@ fn the_ackermann_car_turns_on_the_geometrys_radius() {
 /// an energy drift.
 #[test]
 fn the_drive_torques_work_is_the_energy_gained() {
-    let out = tempfile::tempdir().expect("a temporary directory");
-    let output = chaplygin(&[
-        "simulate",
-        &model("ackermann_car"),
-        "--formulation",
-        "lagrange",
-        "--t-end",
-        "1",
-        "--dt",
-        "0.005",
-        "--input",
-        "drive=2",
-        "--initial",
-        "delta_l=0.2",
-        "--initial",
-        "dot(delta_l)=0",
-        "--initial",
-        "dot(phi_rl)=0",
-        "--out",
-        out.path().to_str().expect("a path"),
-    ]);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success(), "{stderr}");
-    let summary = String::from_utf8_lossy(&output.stdout);
+    let (summary, (header, rows)) = simulated(
+        "ackermann_car",
+        &[
+            "--formulation",
+            "lagrange",
+            "--t-end",
+            "1",
+            "--dt",
+            "0.005",
+            "--input",
+            "drive=2",
+            "--initial",
+            "delta_l=0.2",
+            "--initial",
+            "dot(delta_l)=0",
+            "--initial",
+            "dot(phi_rl)=0",
+        ],
+    );
     let balance: f64 = summary
         .split("power balance (relative) ")
         .nth(1)
@@ -226,7 +222,6 @@ fn the_drive_torques_work_is_the_energy_gained() {
         .parse()
         .expect("a number");
     assert!(balance < 1e-7, "{summary}");
-    let (header, rows) = read_csv(&out.path().join("trajectory.csv"));
     let value = |name: &str| column(&header, &rows, name);
     let (energy, left, right) = (value("energy"), value("dot(phi_rl)"), value("dot(phi_rr)"));
     let power: Vec<f64> = left
