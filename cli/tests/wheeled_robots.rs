@@ -251,6 +251,64 @@ fn the_kinematic_cars_growth_vector_is_2_3_4() {
     assert_eq!(constraints["classification"], "completely nonholonomic");
 }
 
+/// The rear wheels' rolling rows differ by the differential of
+/// `2 b theta + r phi_rl - r phi_rr` (by hand: the rows are
+/// `cos(theta) xdot + sin(theta) ydot -+ b thetadot - r phidot`): derive
+/// names that integral, its growth stops at 7 = n - h - 1, and a turning
+/// run keeps the function constant, computed from the trajectory.
+#[test]
+fn the_rear_differentials_integral_is_named_and_kept() {
+    let constraints = analysis("ackermann_car");
+    assert_eq!(
+        constraints["growth_vector"],
+        serde_json::json!([2, 3, 5, 7])
+    );
+    let integrals = constraints["integrals"].as_array().expect("a list");
+    let [integral] = &integrals[..] else {
+        panic!("one integral: {integrals:?}")
+    };
+    let rows: Vec<(&str, &str)> = (integral["rows"].as_array().expect("rows").iter())
+        .map(|row| {
+            (
+                row["constraint"].as_str().unwrap(),
+                row["coefficient"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        rows,
+        [("rear_left_roll_1", "1"), ("rear_right_roll_1", "-1")]
+    );
+    assert!(integral["function"].is_string(), "{integral}");
+    let (_, (header, rows)) = simulated(
+        "ackermann_car",
+        &[
+            "--formulation",
+            "lagrange",
+            "--t-end",
+            "2",
+            "--input",
+            "drive=1",
+            "--input",
+            "steer_left=-50*(delta_l-0.3)-5*dot(delta_l)",
+            "--initial",
+            "dot(delta_l)=0",
+            "--initial",
+            "dot(phi_rl)=2",
+        ],
+    );
+    let value = |name: &str| column(&header, &rows, name);
+    let (b, r) = (0.4, 0.15);
+    let (theta, left, right) = (value("theta"), value("phi_rl"), value("phi_rr"));
+    let integral: Vec<f64> = (0..rows.len())
+        .map(|i| -(2.0 * b * theta[i] + r * left[i] - r * right[i]))
+        .collect();
+    assert!(theta.last().unwrap().abs() > 0.1, "the car turns");
+    for (i, value) in integral.iter().enumerate() {
+        assert!((value - integral[0]).abs() < 1e-9, "row {i}: {value}");
+    }
+}
+
 /// With its linkage the car reaches every configuration of the surface
 /// but the rear differential's integral: nonholonomic, not completely,
 /// at 7 = n - h - 1; the Chaplygin ball, with its unit-norm constraint,

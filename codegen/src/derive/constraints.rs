@@ -62,11 +62,13 @@ mod at_points;
 mod basis;
 mod body_frame;
 pub mod charts;
+mod integrals;
 mod locked;
 
 use crate::sym::Context;
 use at_points::{growth_vector_at_point, is_exact_row_at_points, is_involutive_at_points};
 pub use basis::{ChartFit, DistributionBasis, Elimination, default_point, distribution_basis};
+pub use integrals::Integral;
 pub use locked::Locked;
 
 use crate::diagnostic::{Diagnostic, Diagnostics};
@@ -171,6 +173,9 @@ pub struct ConstraintAnalysis {
     pub classification: Classification,
     /// Moore's test, per constraint row in declared order: is the row exact?
     pub exact_rows: Vec<bool>,
+    /// The combinations of rows not exact alone that are exact: integrals
+    /// of the constraints ([`integrals`]).
+    pub integrals: Vec<Integral>,
     /// The bodies the contacts leave unable to move.
     pub locked: Locked,
     /// Where the mass matrix loses rank: singularities of the coordinates
@@ -224,6 +229,7 @@ fn derive_analysis(
     let (growth, growth_complete, growth_method) = growth(model, cx, &basis)?;
     let classification = classify(model, integrable, &growth, growth_complete);
     let exact_rows = exact_rows(model, cx)?;
+    let integrals = integrals::integrals(model, cx, &exact_rows);
     let locked = locked::locked_bodies(model, cx, &basis);
     let coordinate_sets = coordinate_sets::coordinate_sets(model, cx).map_err(MatrixError::from)?;
     Ok(ConstraintAnalysis {
@@ -236,6 +242,7 @@ fn derive_analysis(
         integrability_method,
         classification,
         exact_rows,
+        integrals,
         locked,
         coordinate_sets,
     })

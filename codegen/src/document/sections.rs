@@ -182,8 +182,32 @@ pub(super) fn constraints_section(
                     exact_text.join(", ")
                 },
             ),
+            integrals_fact(model, cx, analysis),
         ],
     }
+}
+
+/// The combinations of rows that are exact, each with its function where
+/// it is written out.
+fn integrals_fact(model: &Model, cx: &Context, analysis: &ConstraintAnalysis) -> Item {
+    let integrals = &analysis.integrals;
+    let json: Vec<Value> = integrals
+        .iter()
+        .map(|integral| {
+            let rows: Vec<Value> = (integral.rows.iter())
+                .map(|(row, mu)| json!({"constraint": model.constraints[*row].name, "coefficient": mu.to_string()}))
+                .collect();
+            let function = integral.function.map(|f| cx.display(f).to_string());
+            json!({"rows": rows, "function": function})
+        })
+        .collect();
+    let text: Vec<String> = integrals.iter().map(|i| i.describe(model, cx)).collect();
+    fact(
+        "integrals",
+        "integrals of the constraints (exact combinations of rows)",
+        Value::Array(json),
+        listed_or_none(&text),
+    )
 }
 
 /// The sets where the mass matrix loses rank, each with its warning.

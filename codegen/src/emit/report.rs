@@ -164,6 +164,12 @@ pub(super) fn constraints(
         "Moore's mixed-partials test (is each row exact? misses integrating factors): {}",
         moore(model, analysis)
     ));
+    for integral in &analysis.integrals {
+        section.line(format!(
+            "integral of the constraints: {}",
+            integral.describe(model, cx)
+        ));
+    }
     section
 }
 

@@ -256,9 +256,37 @@ fn unsigned_power(mut base: u64, mut exponent: u64, modulus: u64) -> u64 {
 
 /// The rank of a row-major matrix of residues, by Gaussian elimination
 /// modulo [`PRIME`].
-pub fn rank(mut values: Vec<u64>, rows: usize, columns: usize) -> usize {
-    let mut rank = 0;
+pub fn rank(values: Vec<u64>, rows: usize, columns: usize) -> usize {
+    reduced_echelon(values, rows, columns).1.len()
+}
+
+/// A basis of the kernel `{v : M v = 0}` of the row-major matrix `M` of
+/// residues, one vector per free column of its reduced echelon form, that
+/// column's entry 1.
+pub fn kernel(values: Vec<u64>, rows: usize, columns: usize) -> Vec<Vec<u64>> {
+    let (reduced, pivots) = reduced_echelon(values, rows, columns);
+    (0..columns)
+        .filter(|column| !pivots.contains(column))
+        .map(|free| {
+            let mut vector = vec![0; columns];
+            vector[free] = 1;
+            for (row, &pivot) in pivots.iter().enumerate() {
+                vector[pivot] = subtract(0, reduced[row * columns + free]);
+            }
+            vector
+        })
+        .collect()
+}
+
+/// The reduced row echelon form modulo [`PRIME`] of a row-major matrix,
+/// with its pivot columns in order.
+fn reduced_echelon(mut values: Vec<u64>, rows: usize, columns: usize) -> (Vec<u64>, Vec<usize>) {
+    let mut pivots = Vec::new();
     for column in 0..columns {
+        let rank = pivots.len();
+        if rank == rows {
+            break;
+        }
         let Some(pivot) = (rank..rows).find(|&r| values[r * columns + column] != 0) else {
             continue;
         };
@@ -266,8 +294,11 @@ pub fn rank(mut values: Vec<u64>, rows: usize, columns: usize) -> usize {
             values.swap(pivot * columns + j, rank * columns + j);
         }
         let scale = inverse(values[rank * columns + column], PRIME).unwrap_or(0);
-        for i in rank + 1..rows {
-            let factor = multiply(values[i * columns + column], scale, PRIME);
+        for j in column..columns {
+            values[rank * columns + j] = multiply(values[rank * columns + j], scale, PRIME);
+        }
+        for i in (0..rows).filter(|&i| i != rank) {
+            let factor = values[i * columns + column];
             if factor == 0 {
                 continue;
             }
@@ -276,17 +307,31 @@ pub fn rank(mut values: Vec<u64>, rows: usize, columns: usize) -> usize {
                 values[i * columns + j] = subtract(values[i * columns + j], reduction);
             }
         }
-        rank += 1;
-        if rank == rows {
-            break;
-        }
+        pivots.push(column);
     }
-    rank
+    (values, pivots)
+}
+
+/// The rational `numerator / denominator`, both at most `bound` in
+/// magnitude, whose residue is `residue`, if there is one (Wang's rational
+/// reconstruction by the extended Euclidean algorithm; unique for
+/// `2 bound^2 < PRIME`).
+pub fn rational(residue: u64, bound: i64) -> Option<(i64, i64)> {
+    let (mut r0, mut r1) = (PRIME as i128, (residue % PRIME) as i128);
+    let (mut s0, mut s1) = (0i128, 1i128);
+    while r1 > bound as i128 {
+        let quotient = r0 / r1;
+        (r0, r1) = (r1, r0 - quotient * r1);
+        (s0, s1) = (s1, s0 - quotient * s1);
+    }
+    let (numerator, denominator) = if s1 < 0 { (-r1, -s1) } else { (r1, s1) };
+    (denominator != 0 && denominator <= bound as i128)
+        .then_some((numerator as i64, denominator as i64))
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{PRIME, rank};
+    use super::{PRIME, kernel, rank, rational};
 
     #[test]
     fn ranks_of_dependent_and_independent_rows() {
@@ -295,5 +340,37 @@ mod tests {
         assert_eq!(rank(vec![0, 0, 0, 0, 0, 5], 3, 2), 1);
         assert_eq!(rank(vec![PRIME - 1, 1, 1, PRIME - 1], 2, 2), 1);
         assert_eq!(rank(Vec::new(), 0, 3), 0);
+    }
+
+    #[test]
+    fn the_kernel_of_dependent_columns() {
+        // Columns 1 and 2 are twice and minus column 0.
+        let values = vec![1, 2, PRIME - 1, 3, 6, PRIME - 3];
+        let basis = kernel(values.clone(), 2, 3);
+        assert_eq!(basis.len(), 2);
+        for vector in &basis {
+            for row in values.chunks(3) {
+                let product = (row.iter().zip(vector)).fold(0, |sum, (&a, &v)| {
+                    super::add(sum, super::multiply(a, v, PRIME))
+                });
+                assert_eq!(product, 0);
+            }
+        }
+        assert_eq!(kernel(vec![1, 0, 0, 1], 2, 2), Vec::<Vec<u64>>::new());
+    }
+
+    #[test]
+    fn small_rationals_are_reconstructed_from_their_residues() {
+        for (numerator, denominator) in [(1, 1), (-1, 1), (3, 7), (-22, 5), (0, 1)] {
+            let residue = super::multiply(
+                (numerator + PRIME as i64) as u64 % PRIME,
+                super::inverse(denominator as u64, PRIME).unwrap(),
+                PRIME,
+            );
+            assert_eq!(rational(residue, 1 << 20), Some((numerator, denominator)));
+        }
+        // A residue of no small rational (0x0123_4567_89ab_cdef is one:
+        // -233/225), checked by running the same algorithm apart.
+        assert_eq!(rational(0x0bad_5eed_1234_5679, 1 << 20), None);
     }
 }

@@ -40,19 +40,25 @@ pub(super) fn is_exact_row_at_points(
     cx: &mut Context,
     entries: &[ExprId],
 ) -> Result<bool, AnalysisError> {
-    let coordinates = model.coordinate_symbols();
-    let mut asymmetries = Vec::new();
-    for (i, &a_i) in entries.iter().enumerate() {
-        for (j, &a_j) in entries.iter().enumerate().skip(i + 1) {
-            let forward = cx.derivative(a_i, coordinates[j]);
-            let backward = cx.derivative(a_j, coordinates[i]);
-            asymmetries.push(cx.sub(forward, backward));
-        }
-    }
+    let asymmetries = curl(model, cx, entries);
     let values = modular::at_defined_points(modular::SEEDS.len(), |point| {
         Values::at(point).of(cx, &asymmetries)
     })?;
     Ok(values.iter().flatten().all(|&v| v == 0))
+}
+
+/// The curl of a row: `d a_i / d q_j - d a_j / d q_i` for `i < j`.
+pub(super) fn curl(model: &Model, cx: &mut Context, entries: &[ExprId]) -> Vec<ExprId> {
+    let coordinates = model.coordinate_symbols();
+    let mut curl = Vec::new();
+    for (i, &a_i) in entries.iter().enumerate() {
+        for (j, &a_j) in entries.iter().enumerate().skip(i + 1) {
+            let forward = cx.derivative(a_i, coordinates[j]);
+            let backward = cx.derivative(a_j, coordinates[i]);
+            curl.push(cx.sub(forward, backward));
+        }
+    }
+    curl
 }
 
 /// The growth vector from ranks at a random point (the first where every

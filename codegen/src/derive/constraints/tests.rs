@@ -3,7 +3,7 @@
 use super::{Classification, ConstraintAnalysis, analyse, distribution_basis};
 use crate::diagnostic::Diagnostics;
 use crate::model::{Model, check};
-use crate::sym::Context;
+use crate::sym::{Context, Rational};
 use crate::syntax::parse_str;
 
 fn model(source: &str) -> (Model, Context) {
@@ -323,4 +323,92 @@ fn the_bicycles_growth_stops_at_its_holonomic_constraint() {
         analysis.classification,
         Classification::CompletelyNonholonomic
     );
+}
+
+/// A differential-drive robot: its wheels' rolling rows
+/// `cos(theta) xdot + sin(theta) ydot -+ b thetadot - r phidot` differ by
+/// the differential of `-2 b theta - r phi_l + r phi_r` (by hand), the
+/// integral that keeps its reachable dimension at 4 of 5.
+#[test]
+fn the_wheels_rolling_rows_of_a_differential_drive_give_an_integral() {
+    let (m, mut cx) = model(
+        "pub struct Drive {
+            coordinates: [x, y, theta, phi_l, phi_r],
+            parameters: [b = 0.3, r = 0.1],
+            kinetic_energy: (dot(x)^2 + dot(y)^2 + dot(theta)^2 + dot(phi_l)^2 + dot(phi_r)^2)/2,
+            constraints: [
+                left = cos(theta)*dot(x) + sin(theta)*dot(y) - b*dot(theta) - r*dot(phi_l),
+                right = cos(theta)*dot(x) + sin(theta)*dot(y) + b*dot(theta) - r*dot(phi_r),
+                lateral = -sin(theta)*dot(x) + cos(theta)*dot(y),
+            ],
+        }",
+    );
+    let analysis = analyse(&m, &mut cx).expect("analyses");
+    assert_eq!(analysis.growth.last(), Some(&4));
+    let [integral] = &analysis.integrals[..] else {
+        panic!("one integral: {:?}", analysis.integrals)
+    };
+    let (one, minus_one) = (Rational::integer(1), Rational::integer(-1));
+    assert_eq!(integral.rows, [(0, one), (1, minus_one)]);
+    let symbol = |cx: &mut Context, name: &str| {
+        let coordinates = m
+            .coordinates
+            .iter()
+            .map(|q| (q.declared.name.as_str(), q.symbol));
+        let parameters =
+            (m.parameters.iter()).map(|p| (p.variable.declared.name.as_str(), p.variable.symbol));
+        let (_, id) = coordinates
+            .chain(parameters)
+            .find(|(n, _)| *n == name)
+            .expect("declared");
+        cx.symbol(id)
+    };
+    let (b, r) = (symbol(&mut cx, "b"), symbol(&mut cx, "r"));
+    let (theta, phi_l, phi_r) = (
+        symbol(&mut cx, "theta"),
+        symbol(&mut cx, "phi_l"),
+        symbol(&mut cx, "phi_r"),
+    );
+    let two = cx.number(Rational::integer(-2));
+    let terms = [
+        cx.mul(&[two, b, theta]),
+        cx.mul(&[r, phi_l]),
+        cx.mul(&[r, phi_r]),
+    ];
+    let minus_r_phi_l = cx.neg(terms[1]);
+    let by_hand = cx.add(&[terms[0], minus_r_phi_l, terms[2]]);
+    let found = integral.function.expect("constant entries: written out");
+    let difference = cx.sub(found, by_hand);
+    assert!(cx.normal(difference).expect("normal form").is_zero());
+}
+
+/// `y xdot + zdot` and `-x ydot + zdot` are not exact, but their difference
+/// is `d(x y)`: an integral whose entries depend on the coordinates, named
+/// by its rows alone.
+#[test]
+fn an_exact_combination_with_varying_entries_is_named_by_its_rows() {
+    let (m, mut cx) = constrained("x, y, z", "a = y*dot(x) + dot(z), c = -x*dot(y) + dot(z)");
+    let analysis = analyse(&m, &mut cx).expect("analyses");
+    assert_eq!(analysis.exact_rows, [false, false]);
+    let [integral] = &analysis.integrals[..] else {
+        panic!("one integral: {:?}", analysis.integrals)
+    };
+    assert_eq!(
+        integral.rows,
+        [(0, Rational::integer(1)), (1, Rational::integer(-1))]
+    );
+    assert_eq!(integral.function, None);
+    assert_eq!(
+        integral.describe(&m, &cx),
+        "a - c is the differential of a function"
+    );
+}
+
+/// The snakeboard's rows combine to no exact form: no integral, and its
+/// growth reaches n.
+#[test]
+fn the_snakeboard_has_no_integral() {
+    let (snakeboard, mut cx) = model(include_str!("../../../../models/snakeboard.model"));
+    let analysis = analyse(&snakeboard, &mut cx).expect("analysed");
+    assert!(analysis.integrals.is_empty());
 }
