@@ -6,7 +6,8 @@
 //!   vanishes on the lean and the steer); else, of the others, one per
 //!   configuration constraint (the pivots of `df/dq` on them, by complete
 //!   pivoting) is solved from `f(q) = 0` by Newton's method, and the rest
-//!   are 0. Newton starts from 0, or from [`GENERIC_START`] where `df/dq`
+//!   are 0; a constraint the given coordinates meet alone needs none (an
+//!   `orient` frame's unit norm). Newton starts from 0, or from [`GENERIC_START`] where `df/dq`
 //!   is singular in the unset coordinates at 0 (a pendulum's length
 //!   constraint at height 0). An error names the constraint and its
 //!   residual: one the unset coordinates do not change
@@ -137,32 +138,47 @@ pub fn configuration(model: &dyn Dynamics, given: &[Option<f64>]) -> Result<Vec<
     }
     let unset: Vec<usize> = (0..q.len()).filter(|&i| given[i].is_none()).collect();
     let mut chosen = solvable(model, &q, &unset);
-    if chosen.len() < names.len() {
+    if let Some(fixed) = unmet_without_pivot(model, &q, &chosen) {
         let mut generic = q.clone();
         unset.iter().for_each(|&i| generic[i] = GENERIC_START);
         let at_generic = solvable(model, &generic, &unset);
-        if at_generic.len() < names.len() {
+        if unmet_without_pivot(model, &generic, &at_generic).is_some() {
             let residual = model.holonomic_residual(&q);
-            let missed = (0..names.len())
-                .find(|row| at_generic.iter().all(|(r, _)| r != row))
-                .unwrap_or(0);
             return Err(PointError::HolonomicFixed {
-                constraint: names[missed].clone(),
-                residual: residual[missed],
+                constraint: names[fixed].clone(),
+                residual: residual[fixed],
             });
         }
         (q, chosen) = (generic, at_generic);
     }
-    let solved: Vec<usize> = chosen.iter().map(|&(_, column)| column).collect();
-    newton(model, &mut q, &solved, &names)?;
+    newton(model, &mut q, &chosen, &names)?;
     Ok(q)
+}
+
+/// The first constraint that no unset coordinate can change (no pivot in
+/// `chosen`) and that `q` does not meet already: the constraints the
+/// coordinates given meet alone (an `orient` frame's unit norm, given its
+/// parameters) need no coordinate of their own.
+fn unmet_without_pivot(
+    model: &dyn Dynamics,
+    q: &[f64],
+    chosen: &[(usize, usize)],
+) -> Option<usize> {
+    let residual = model.holonomic_residual(q);
+    let tolerance = round_off(q);
+    (0..residual.len())
+        .find(|&row| chosen.iter().all(|&(r, _)| r != row) && residual[row].abs() > tolerance)
+}
+
+/// The residual of `f(q)` that counts as met: round-off at `q`'s scale.
+fn round_off(q: &[f64]) -> f64 {
+    1e-13 * q.iter().fold(1.0f64, |m, v| m.max(v.abs()))
 }
 
 /// Whether `q` meets `f(q) = 0` to round-off (Newton's criterion).
 fn meets(model: &dyn Dynamics, q: &[f64]) -> bool {
-    let scale = q.iter().fold(1.0f64, |m, v| m.max(v.abs()));
     largest(model.holonomic_residual(q).as_slice())
-        .is_none_or(|(_, value)| value.abs() <= 1e-13 * scale)
+        .is_none_or(|(_, value)| value.abs() <= round_off(q))
 }
 
 /// The pivots `(constraint, coordinate)` of `df/dq` at `q` among the
@@ -172,13 +188,16 @@ fn solvable(model: &dyn Dynamics, q: &[f64], unset: &[usize]) -> Vec<(usize, usi
     pivots(&jacobian, unset, 1.0, 1e-12 * jacobian.amax().max(1.0))
 }
 
-/// Newton's method on `f(q) = 0` in the coordinates `solved` (one per constraint).
+/// Newton's method on `f(q) = 0`, each constraint of `pivots` solved for
+/// its coordinate; the constraints without one stay met, or the method
+/// fails.
 fn newton(
     model: &dyn Dynamics,
     q: &mut [f64],
-    solved: &[usize],
+    pivots: &[(usize, usize)],
     names: &[String],
 ) -> Result<(), PointError> {
+    let (rows, solved): (Vec<usize>, Vec<usize>) = pivots.iter().copied().unzip();
     let mut closest: Option<(usize, f64)> = None;
     for step in 0..=NEWTON_STEPS {
         if meets(model, q) {
@@ -194,8 +213,11 @@ fn newton(
         if step == NEWTON_STEPS {
             break;
         }
-        let jacobian = model.holonomic_jacobian(q).select_columns(solved);
-        let Some(newton_step) = jacobian.lu().solve(&residual) else {
+        let jacobian = model
+            .holonomic_jacobian(q)
+            .select_rows(&rows)
+            .select_columns(&solved);
+        let Some(newton_step) = jacobian.lu().solve(&residual.select_rows(&rows)) else {
             break;
         };
         if newton_step.iter().any(|delta| !delta.is_finite()) {
