@@ -116,9 +116,9 @@ fn sphere(mass: f64) -> Look {
 /// the run cannot tell from a wheel.
 fn ball(offsets: &[Vector3<f64>]) -> Option<Look> {
     let radius = offsets[0].norm();
-    if !(radius > 0.0 && radius.is_finite())
-        || (offsets.iter()).any(|offset| !((offset.norm() - radius).abs() <= TOLERANCE * radius))
-    {
+    let steady =
+        (offsets.iter()).all(|offset| (offset.norm() - radius).abs() <= TOLERANCE * radius);
+    if !(steady && radius > 0.0 && radius.is_finite()) {
         return None;
     }
     let spread = (offsets.iter()).fold(Matrix3::zeros(), |sum, offset| {
@@ -153,7 +153,7 @@ fn chassis(run: &Run, axes: &Matrix3<f64>, down: &Vector3<f64>) -> Option<Look> 
             .iter()
             .map(|p| p[k])
             .fold(f64::NEG_INFINITY, f64::max);
-        if !(high - low >= MIN_SIZE) {
+        if high - low < MIN_SIZE {
             return None;
         }
         size[k] = high - low;
