@@ -25,8 +25,8 @@
 //!   axis (of those, the one with the largest moment: a disc's axle);
 //!   with the offset parallel to gravity this is the principal axis
 //!   perpendicular to it, the frame's y axis for the benchmark bicycle's
-//!   wheels and the rolling disk; a ball seen turning about one axis only
-//!   keeps its contact in one plane and is drawn so too;
+//!   wheels and the rolling disk; a ball seen turning about one axis only,
+//!   or not at all, keeps its contact in one plane and is drawn so too;
 //! - any other body with a positive mass is a [`Shape::Box`](crate::animate::Shape::Box) whose inertia
 //!   about its centre is the body's ([`box_size`]), along the frame's axes,
 //!   or its principal axes when the inertia is not diagonal;

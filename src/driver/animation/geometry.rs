@@ -112,8 +112,8 @@ fn sphere(mass: f64) -> Look {
 /// relative [`TOLERANCE`], and their directions keep off every plane
 /// through the centre (the least eigenvalue of their mean `u u^T` is over
 /// [`TOLERANCE`]). A wheel's offsets keep to the plane perpendicular to
-/// its axle; so do those of a ball that turned about one axis only, which
-/// the run cannot tell from a wheel.
+/// its axle; so do those of a ball that turned about one axis only or not
+/// at all, which the run cannot tell from a wheel.
 fn ball(offsets: &[Vector3<f64>]) -> Option<Look> {
     let radius = offsets[0].norm();
     let steady =
