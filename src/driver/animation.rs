@@ -8,12 +8,15 @@
 //! A mechanism (docs/INTERFACE.md section 4) has bodies; the engine's
 //! `drawing(q)` gives each body's centre, frame rotation, mass and
 //! inertia, and each `no_slip` contact's point, at the model's current
-//! parameter values ([`InterpretedModel::drawing`]). Over the run's frames
-//! (a contact's offset `P - C` from its body's centre read in the body's
-//! axes):
+//! parameter values ([`InterpretedModel::drawing`]). The shapes are decided
+//! from the bodies and contacts at the run's frames and at the samples of
+//! the first frame's configuration with each coordinate in turn moved by
+//! one (a metre, a radian: how the mechanism moves, whatever the run
+//! does), a contact's offset `P - C` from its body's centre read in the
+//! body's axes:
 //!
 //! - a body with a contact whose offset has the same length `r > 0` at
-//!   every frame and a direction that does not keep to one plane through
+//!   every sample and a direction that does not keep to one plane through
 //!   the centre (the contact wanders over the body's surface: the Chaplygin
 //!   ball) is a ball: a [`Shape::Sphere`](crate::animate::Shape::Sphere) of
 //!   radius `r` about its centre, on the ground where its contact is;
@@ -25,8 +28,7 @@
 //!   axis (of those, the one with the largest moment: a disc's axle);
 //!   with the offset parallel to gravity this is the principal axis
 //!   perpendicular to it, the frame's y axis for the benchmark bicycle's
-//!   wheels and the rolling disk; a ball seen turning about one axis only,
-//!   or not at all, keeps its contact in one plane and is drawn so too;
+//!   wheels and the rolling disk;
 //! - any other body with a positive mass is a [`Shape::Box`](crate::animate::Shape::Box) whose inertia
 //!   about its centre is the body's ([`box_size`]), along the frame's axes,
 //!   or its principal axes when the inertia is not diagonal;
@@ -34,13 +36,12 @@
 //!   [`MIN_SIZE`]: a car's chassis declared with the inertia of a plate
 //!   about its vertical axis alone, its wheels' masses counted in it), and
 //!   the contacts of any bodies that stay at one place in the body's axes
-//!   over the run (its wheels', wherever they are declared) spread over at
-//!   least [`MIN_SIZE`] across both of the box's axes nearest horizontal:
-//!   then it is the box bounding those contacts across those two axes,
-//!   [`MIN_SIZE`] thick along the third at the body's centre. The mechanism
-//!   does not say which bodies ride on which, but rigidly carried contacts
-//!   are what a chassis's wheels are; a run of one frame carries every
-//!   contact;
+//!   at every sample (its wheels', wherever they are declared) spread over
+//!   at least [`MIN_SIZE`] across both of the box's axes nearest
+//!   horizontal: then it is the box bounding those contacts across those
+//!   two axes, [`MIN_SIZE`] thick along the third at the body's centre. The
+//!   mechanism does not say which bodies ride on which, but rigidly
+//!   carried contacts are what a chassis's wheels are;
 //! - a particle with a positive mass is a [`Shape::Sphere`](crate::animate::Shape::Sphere) of water's
 //!   density (at least [`MIN_SIZE`] across);
 //! - a body without mass and without a wheel's or a ball's contact is not
@@ -216,19 +217,24 @@ pub fn scene(
     let times: Vec<f64> = table.rows.iter().map(|row| row[0]).collect();
     let rows = frame_rows(&times, fps);
     let n = model.sizes().n;
-    let at = |row: usize| {
-        model
-            .drawing(&table.rows[row][1..=n])
-            .map_err(|source| AnimationError::Call {
-                model: label.to_string(),
-                source,
-            })
+    let at = |q: &[f64]| {
+        model.drawing(q).map_err(|source| AnimationError::Call {
+            model: label.to_string(),
+            source,
+        })
     };
     let drawings = (rows.iter())
-        .map(|&row| at(row))
+        .map(|&row| at(&table.rows[row][1..=n]))
+        .collect::<Result<Vec<Drawing>, _>>()?;
+    let probes = (0..n)
+        .map(|i| {
+            let mut q = table.rows[0][1..=n].to_vec();
+            q[i] += 1.0;
+            at(&q)
+        })
         .collect::<Result<Vec<Drawing>, _>>()?;
     let world = World::of(&drawings[0]);
-    let looks = looks(model, &drawings, &world)?;
+    let looks = looks(model, &drawings, &probes, &world)?;
     let times: Vec<f64> = rows.iter().map(|&row| times[row]).collect();
     Ok(Scene {
         title: label.to_string(),
@@ -324,14 +330,17 @@ impl World {
     }
 }
 
-/// Each body's look over the frames `drawings`, `None` for a body not
+/// Each body's look over the frames `drawings` and the first frame's
+/// `probes` (each coordinate in turn moved by one), `None` for a body not
 /// drawn.
 fn looks(
     model: &InterpretedModel,
     drawings: &[Drawing],
+    probes: &[Drawing],
     world: &World,
 ) -> Result<Vec<Option<Look>>, AnimationError> {
     let bodies = model.bodies();
+    let samples: Vec<&Drawing> = drawings.iter().chain(probes).collect();
     (bodies.bodies.iter().enumerate())
         .map(|(i, body)| {
             let state = &drawings[0].bodies[i];
@@ -341,7 +350,7 @@ fn looks(
                 });
             }
             let run = Run {
-                drawings,
+                samples: &samples,
                 body: i,
                 contacts: (bodies.contacts.iter().enumerate())
                     .filter(|(_, contact)| contact.body == i)

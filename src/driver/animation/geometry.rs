@@ -1,6 +1,6 @@
-//! The shapes of bodies, decided from their contacts' offsets over a run
-//! (the module's documentation of `driver::animation` says which shape a
-//! body gets), and the quaternions of their poses.
+//! The shapes of bodies, decided from their contacts' offsets over a run's
+//! samples (the module's documentation of `driver::animation` says which
+//! shape a body gets), and the quaternions of their poses.
 
 use super::MIN_SIZE;
 use crate::animate::Shape;
@@ -36,10 +36,12 @@ impl Look {
     }
 }
 
-/// A body over the run: body `body` of every frame of `drawings`, the
-/// indices of its contacts, and the world's `down` in ground axes.
+/// A body over the run: body `body` of the mechanism drawn at `samples`
+/// (the run's frames, the first one first, and the first frame's
+/// configuration with each coordinate in turn moved by one), the indices of
+/// its contacts, and the world's `down` in ground axes.
 pub(super) struct Run<'a> {
-    pub(super) drawings: &'a [Drawing],
+    pub(super) samples: &'a [&'a Drawing],
     pub(super) body: usize,
     pub(super) contacts: Vec<usize>,
     pub(super) down: Vector3<f64>,
@@ -48,16 +50,19 @@ pub(super) struct Run<'a> {
 impl Run<'_> {
     /// The body at the first frame.
     fn first(&self) -> &BodyState {
-        &self.drawings[0].bodies[self.body]
+        &self.samples[0].bodies[self.body]
     }
 
     /// Contact `contact`'s offset `P - C` from the body's centre, in the
-    /// body's axes, at every frame.
+    /// body's axes, at every sample: by the frame's rotation divided by
+    /// the cube root of its determinant (Euler parameters moved off their
+    /// unit sphere scale it).
     fn offsets(&self, contact: usize) -> Vec<Vector3<f64>> {
-        (self.drawings.iter())
+        (self.samples.iter())
             .map(|drawing| {
                 let state = &drawing.bodies[self.body];
                 let rotation = Matrix3::from_row_slice(&state.rotation);
+                let rotation = rotation / rotation.determinant().cbrt();
                 let offset = Vector3::from(drawing.contacts[contact]) - Vector3::from(state.center);
                 rotation.transpose() * offset
             })
@@ -108,12 +113,11 @@ fn sphere(mass: f64) -> Look {
 }
 
 /// The sphere of a ball whose contact is at `offsets` from its centre
-/// (body axes, a frame each), if it is one: their lengths agree to a
+/// (body axes, a sample each), if it is one: their lengths agree to a
 /// relative [`TOLERANCE`], and their directions keep off every plane
 /// through the centre (the least eigenvalue of their mean `u u^T` is over
 /// [`TOLERANCE`]). A wheel's offsets keep to the plane perpendicular to
-/// its axle; so do those of a ball that turned about one axis only or not
-/// at all, which the run cannot tell from a wheel.
+/// its axle.
 fn ball(offsets: &[Vector3<f64>]) -> Option<Look> {
     let radius = offsets[0].norm();
     let steady =
@@ -130,12 +134,12 @@ fn ball(offsets: &[Vector3<f64>]) -> Option<Look> {
 
 /// The box of a chassis along `axes` (body axes, `down` the world's down in
 /// them): the rectangle bounding the contacts that stay where they are in
-/// the body's axes at every frame (to a relative [`TOLERANCE`]), across the
+/// the body's axes at every sample (to a relative [`TOLERANCE`]), across the
 /// two of `axes` nearest horizontal, [`MIN_SIZE`] thick along the third,
 /// at the body's centre's height along it; `None` when the rectangle is
 /// narrower than [`MIN_SIZE`] either way.
 fn chassis(run: &Run, axes: &Matrix3<f64>, down: &Vector3<f64>) -> Option<Look> {
-    let carried: Vec<Vector3<f64>> = (0..run.drawings[0].contacts.len())
+    let carried: Vec<Vector3<f64>> = (0..run.samples[0].contacts.len())
         .filter_map(|c| {
             let offsets = run.offsets(c);
             let first = offsets[0];

@@ -250,6 +250,10 @@ fn the_chaplygin_ball_is_a_sphere_of_its_radius_on_the_ground_turned_with_it() {
         assert_near(&pose.position, &[q[0], q[1], 0.5], "the ball's centre");
         assert_near(&pose.quaternion, &quaternion, "the ball's turn");
     }
+    // at rest, its contact kept at one place in its axes by the run: the
+    // same sphere, from the samples each moving one Euler parameter
+    let rest = scene(&ball, "chaplygin_ball", &table(&ball, &qs[..1]), 10.0).unwrap();
+    assert_eq!(rest.items[0].shape, Shape::Sphere { radius: 0.5 });
     // by z-x-z angles, turned as much, the same sphere
     let zxz = model(include_str!(
         "../../../tests/models/chaplygin_ball_zxz.model"
@@ -273,18 +277,18 @@ fn a_car_s_flat_chassis_spans_its_wheels_contacts() {
         vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         vec![1.5, -0.5, 0.9, 0.3, 0.25, 2.0, 2.1, 1.9, 2.2],
     ];
-    let scene = scene(&car, "car", &table(&car, &qs), 10.0).unwrap();
-    let names: Vec<&str> = scene.items.iter().map(|item| item.name.as_str()).collect();
+    let drawn = scene(&car, "car", &table(&car, &qs), 10.0).unwrap();
+    let names: Vec<&str> = drawn.items.iter().map(|item| item.name.as_str()).collect();
     let wheels = ["rear_left", "rear_right", "front_left", "front_right"];
     assert_eq!(names, [&["chassis"][..], &wheels].concat());
     assert_eq!(
-        scene.note.as_deref(),
+        drawn.note.as_deref(),
         Some("not drawn (no mass): knuckle_left, knuckle_right")
     );
     // l = 1 from the rear axle to the front one, 2 b = 0.8 across, at the
     // rear axle's height r = 0.15
     let (l, b, r) = (1.0, 0.4, 0.15);
-    let chassis = &scene.items[0];
+    let chassis = &drawn.items[0];
     assert_eq!(
         chassis.shape,
         Shape::Box {
@@ -297,7 +301,19 @@ fn a_car_s_flat_chassis_spans_its_wheels_contacts() {
         assert_near(&pose.position, &middle, "the chassis");
         assert_near(&pose.quaternion, &yaw(theta), "the chassis");
     }
-    for item in &scene.items[1..] {
+    // a run of one frame: the same chassis, from the samples each moving
+    // one coordinate
+    let parked = scene(&car, "car", &table(&car, &qs[1..]), 10.0).unwrap();
+    let Shape::Box { size } = parked.items[0].shape else {
+        panic!("a box: {:?}", parked.items[0].shape)
+    };
+    assert_near(&size, &[l, 2.0 * b, MIN_SIZE], "parked");
+    assert_near(
+        &parked.items[0].poses[0].position,
+        &chassis.poses[1].position,
+        "parked",
+    );
+    for item in &drawn.items[1..] {
         let Shape::Disc { radius, thickness } = item.shape else {
             panic!("{}: a disc, {:?}", item.name, item.shape)
         };
