@@ -1,6 +1,6 @@
-//! `chaplygin simulate MODEL ... --animate` for every built-in model and
-//! `chaplygin gait snakeboard ... --animate` (docs/INTERFACE.md section
-//! 10), the pages opened together in one headless Chromium with a probe
+//! `chaplygin simulate MODEL ... --animate` for every built-in model, the
+//! Chaplygin ball and the Ackermann car of their files, and `chaplygin
+//! gait snakeboard ... --animate` (docs/INTERFACE.md section 10), the pages opened together in one headless Chromium with a probe
 //! that reads `window.chaplygin.pose` of every item at every frame's time,
 //! the embedded traces and the canvas's pixels. Every page makes no
 //! request, logs no error and draws something; its frames are rows of the
@@ -16,15 +16,21 @@
 //!   turned about z by `theta`, at `(x, y)`, and the front wheels' axle
 //!   across the direction `theta + phi` they roll in, `r` ahead;
 //! - the vertical rolling disk: its disc at `(x, y, r)`, turned by `theta`
-//!   about z and by `phi` about its axle.
+//!   about z and by `phi` about its axle;
+//! - the Chaplygin ball turning about all three axes: a sphere of its
+//!   radius `r`, its lowest point on the ground at `(x, y)`, turned by its
+//!   Euler parameters;
+//! - the Ackermann car driven round: its chassis a box spanning the contact
+//!   points its geometry (`l`, `b`) places about `(x, y)` heading `theta`,
+//!   at the rear axle's height.
 //!
-//! The guide's screenshots of the bicycle's fall and the snakeboard's gait
-//! are these pages (`support::browser::screenshot`). A model with nothing
+//! The guide's screenshots of the bicycle's fall, the snakeboard's gait,
+//! the Chaplygin ball and the Ackermann car are these pages (`support::browser::screenshot`). A model with nothing
 //! to draw is refused by name.
 
 use crate::support::browser::{chromium, distance, num, nums, pose_of, probe_pages, screenshot};
 use crate::support::snakeboard_gait::GAIT;
-use crate::support::{FALL, chaplygin, column, read_csv, scratch};
+use crate::support::{FALL, chaplygin, column, markdown, read_csv, scratch};
 use chaplygin::driver::catalog::BUILT_IN;
 use chaplygin::runtime::nalgebra::{UnitQuaternion, Vector3};
 use serde_json::Value;
@@ -70,6 +76,42 @@ const UNTIL_IT_FALLS: [&str; 4] = ["--t-end", "3", "--stop-when", "abs(phi) > 1.
 
 /// The snakeboard's half length `r`, where its wheels are.
 const SNAKEBOARD_R: f64 = 0.5;
+
+/// The Chaplygin ball started at the z-x-z angles (0.3, 0.5, 0.7) turning
+/// at (1, 1.6, 2.2) rad/s in its own axes, for 3 s (as the guide shows it).
+const BALL: [&str; 8] = [
+    "simulate",
+    "models/chaplygin_ball.model",
+    "--initial",
+    "angles(ball, zxz)=[0.3, 0.5, 0.7]",
+    "--initial",
+    "omega(ball)=[1, 1.6, 2.2]",
+    "--t-end",
+    "3",
+];
+
+/// The Ackermann car driven round a circle, its left front wheel held at
+/// `delta_l = 0.3`, for 3 s: the guide's command (docs/guide/mechanisms.md).
+const CAR: [&str; 14] = [
+    "simulate",
+    "tests/models/ackermann_car.model",
+    "--input",
+    "drive=1",
+    "--input",
+    "steer_left=-50*(delta_l-0.3)-5*dot(delta_l)",
+    "--initial",
+    "delta_l=0.3",
+    "--initial",
+    "dot(delta_l)=0",
+    "--initial",
+    "dot(phi_rl)=2",
+    "--t-end",
+    "3",
+];
+
+/// The runs of models' files, from the repository's root: their names and
+/// arguments.
+const FILES: [(&str, &[&str]); 2] = [("chaplygin-ball", &BALL), ("ackermann-car", &CAR)];
 
 /// A run with `--animate`: its name, directory, what it printed, its table
 /// (`trajectory.csv` or the gait's `cycle.csv`) and page.
@@ -128,10 +170,15 @@ fn runs() -> &'static Runs {
         let mut gait = vec!["gait".to_string()];
         gait.extend(GAIT.map(String::from));
         commands.push(("snakeboard-gait".to_string(), gait, "cycle.csv"));
+        for (name, arguments) in FILES {
+            let arguments = arguments.iter().map(|a| a.to_string()).collect();
+            commands.push((name.to_string(), arguments, "trajectory.csv"));
+        }
         let children: Vec<_> = (commands.iter())
             .map(|(name, arguments, _)| {
                 let directory = root.join(name);
                 Command::new(env!("CARGO_BIN_EXE_chaplygin"))
+                    .current_dir(markdown::root())
                     .args(arguments)
                     .arg("--animate")
                     .arg("--out")
@@ -177,7 +224,7 @@ fn runs() -> &'static Runs {
 #[test]
 fn every_built_in_model_s_page_renders_with_no_error_and_no_request() {
     let runs = runs();
-    assert_eq!(runs.runs.len(), BUILT_IN.len() + 1);
+    assert_eq!(runs.runs.len(), BUILT_IN.len() + 1 + FILES.len());
     for run in &runs.runs {
         let path = run.directory.join("animation.html");
         let said = format!(
@@ -500,6 +547,123 @@ fn the_rolling_disk_s_disc_turns_and_rolls_with_its_coordinates_in_the_page() {
     // it rolled: its spin and heading changed
     let last = *frames.last().unwrap();
     assert!(phi[last].abs() > 0.1 && theta[last].abs() > 0.1);
+}
+
+/// The item named `name` of a probe's result.
+fn item<'a>(result: &'a Value, name: &str) -> &'a Value {
+    (result["items"].as_array().unwrap().iter())
+        .find(|item| item["name"] == name)
+        .unwrap_or_else(|| panic!("an item `{name}`"))
+}
+
+#[test]
+fn the_chaplygin_ball_s_sphere_rolls_on_the_ground_turned_by_its_euler_parameters() {
+    let (run, result) = runs().get("chaplygin-ball");
+    let Some(result) = result else {
+        return;
+    };
+    let [t, x, y, e0, e1, e2, e3] = columns(&run.table, ["t", "x", "y", "e0", "e1", "e2", "e3"]);
+    let frames = frame_rows(&t, &nums(&result["times"]));
+    let shell = item(result, "shell");
+    assert_eq!(shell["shape"], "sphere");
+    // the model's r
+    let radius = num(&shell["radius"]);
+    assert!((radius - 0.5).abs() < 1e-12, "{shell}");
+    let poses = result["poses"]["shell"].as_array().unwrap();
+    let mut worst = [0.0f64; 3];
+    for (i, &row) in frames.iter().enumerate() {
+        let (centre, quaternion) = pose_of(&poses[i]);
+        let lowest = centre[2] - radius;
+        assert!(lowest.abs() <= 1e-9, "the ball at frame {i}: z = {lowest}");
+        let off = distance(&centre[..2], &[x[row], y[row]]);
+        assert!(off <= 1e-9, "the ball at frame {i}: {centre:?}");
+        // the frame `ball` is turned by the quaternion e0 + e1 i + e2 j + e3 k
+        let norm = [e0[row], e1[row], e2[row], e3[row]]
+            .iter()
+            .map(|e| e * e)
+            .sum::<f64>();
+        let turned = rotation([e1[row], e2[row], e3[row], e0[row]].map(|e| e / norm.sqrt()));
+        let angle = rotation(quaternion).angle_to(&turned);
+        assert!(angle <= 1e-9, "the ball at frame {i}: {angle} rad off");
+        for (worst, error) in worst.iter_mut().zip([lowest, off, angle]) {
+            *worst = worst.max(error.abs());
+        }
+    }
+    // it turned, and rolled
+    let (first, last) = (pose_of(&poses[0]), pose_of(poses.last().unwrap()));
+    let turn = rotation(first.1).angle_to(&rotation(last.1));
+    assert!(turn > 1.0, "the ball turned by {turn} rad");
+    assert!(distance(&first.0, &last.0) > 0.5, "{first:?} {last:?}");
+    eprintln!(
+        "worst: lowest point's height {:.1e}, centre {:.1e}, turn {:.1e}",
+        worst[0], worst[1], worst[2]
+    );
+    screenshot(
+        &run.page,
+        0.9 * t[t.len() - 1],
+        "chaplygin-ball",
+        &run.directory,
+    );
+}
+
+/// The Ackermann car's wheelbase `l`, half track `b` and wheel radius `r`.
+const CAR_SIZES: (f64, f64, f64) = (1.0, 0.4, 0.15);
+
+/// The car's contact points with its rear axle's middle at `(x, y)`,
+/// heading `theta`: `b` to either side of the rear axle's middle and of the
+/// front one's, `l` ahead, on the ground.
+fn car_contacts(x: f64, y: f64, theta: f64) -> [[f64; 3]; 4] {
+    let (l, b, _) = CAR_SIZES;
+    let (s, c) = theta.sin_cos();
+    [(0.0, b), (0.0, -b), (l, b), (l, -b)]
+        .map(|(ahead, left)| [x + ahead * c - left * s, y + ahead * s + left * c, 0.0])
+}
+
+#[test]
+fn the_ackermann_car_s_chassis_spans_its_wheels_contacts_in_the_page() {
+    let (run, result) = runs().get("ackermann-car");
+    let Some(result) = result else {
+        return;
+    };
+    let [t, x, y, theta] = columns(&run.table, ["t", "x", "y", "theta"]);
+    let frames = frame_rows(&t, &nums(&result["times"]));
+    let chassis = item(result, "chassis");
+    assert_eq!(chassis["shape"], "box");
+    let size = nums(&chassis["size"]);
+    let thickness = num(&item(result, "rear_left")["thickness"]);
+    let poses = result["poses"]["chassis"].as_array().unwrap();
+    let mut worst = 0.0f64;
+    for (i, &row) in frames.iter().enumerate() {
+        let (centre, quaternion) = pose_of(&poses[i]);
+        // at the rear axle's height, r
+        assert!((centre[2] - CAR_SIZES.2).abs() <= 1e-9, "{centre:?}");
+        let to_box = rotation(quaternion).inverse();
+        let local = car_contacts(x[row], y[row], theta[row])
+            .map(|p| to_box * (Vector3::from(p) - Vector3::from(centre)));
+        // the box's sides along its local x and y are the contacts' extremes
+        for k in 0..2 {
+            let low = local.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
+            let high = local.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max);
+            let off = (low + size[k] / 2.0)
+                .abs()
+                .max((high - size[k] / 2.0).abs());
+            assert!(
+                off <= thickness,
+                "frame {i}, axis {k}: the contacts from {low} to {high}, the box {}",
+                size[k]
+            );
+            worst = worst.max(off);
+        }
+    }
+    eprintln!("worst: the chassis's sides from its contacts' extremes {worst:.1e}");
+    // it drove round: its heading turned
+    assert!(theta[t.len() - 1].abs() > 0.5, "{}", theta[t.len() - 1]);
+    screenshot(
+        &run.page,
+        0.9 * t[t.len() - 1],
+        "ackermann-car",
+        &run.directory,
+    );
 }
 
 #[test]

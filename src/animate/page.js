@@ -128,6 +128,12 @@
     }
   }
 
+  // A material of the colour `color` mixed two parts to one with white.
+  function lightOf(color) {
+    const light = new THREE.Color(color).lerp(new THREE.Color(0xffffff), 0.65);
+    return new THREE.MeshStandardMaterial({ color: light, roughness: 0.6, metalness: 0.1 });
+  }
+
   function meshOf(item, color) {
     const material = new THREE.MeshStandardMaterial({ color, roughness: 0.6, metalness: 0.1 });
     const dark = new THREE.MeshStandardMaterial({ color: 0x222222, roughness: 0.8 });
@@ -139,8 +145,14 @@
         const r = item.radius;
         const h = item.thickness;
         group.add(new THREE.Mesh(new THREE.CylinderGeometry(r, r, h, 64), material));
-        // A dark spoke across both faces shows the disc turning.
-        group.add(new THREE.Mesh(new THREE.BoxGeometry(1.9 * r, 1.02 * h, 0.12 * r), dark));
+        // A dark spoke along local x and a light quarter between local +z
+        // and +x, across both faces, show the disc turning (the quarter
+        // tells a half turn from none).
+        // Each stands clear of the faces, the spoke of the quarter, by a
+        // few hundredths of the thickness.
+        group.add(new THREE.Mesh(new THREE.BoxGeometry(1.9 * r, 1.1 * h, 0.12 * r), dark));
+        const quarter = new THREE.CylinderGeometry(0.97 * r, 0.97 * r, 1.05 * h, 16, 1, false, 0, Math.PI / 2);
+        group.add(new THREE.Mesh(quarter, lightOf(color)));
         break;
       }
       case 'box': {
@@ -153,12 +165,17 @@
         break;
       }
       case 'sphere': {
+        // The eight octants of the local axes in two colours, a
+        // checkerboard: a turn about any axis shows. SphereGeometry's phi
+        // runs about local y from -x, its theta from +y.
         const r = item.radius;
-        group.add(new THREE.Mesh(new THREE.SphereGeometry(r, 48, 24), material));
-        // A dark band about the local y axis shows the sphere turning.
-        const band = new THREE.Mesh(new THREE.CylinderGeometry(1.01 * r, 1.01 * r, 0.15 * r, 48, 1, true), dark);
-        band.rotation.x = Math.PI / 2;
-        group.add(band);
+        const light = lightOf(color);
+        for (let octant = 0; octant < 8; octant++) {
+          const around = octant % 4;
+          const down = octant >> 2;
+          const piece = new THREE.SphereGeometry(r, 12, 12, (around * Math.PI) / 2, Math.PI / 2, (down * Math.PI) / 2, Math.PI / 2);
+          group.add(new THREE.Mesh(piece, (around + down) % 2 === 0 ? material : light));
+        }
         break;
       }
       case 'segment': {

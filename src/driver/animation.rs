@@ -8,12 +8,21 @@
 //! A mechanism (docs/INTERFACE.md section 4) has bodies; the engine's
 //! `drawing(q)` gives each body's centre, frame rotation, mass and
 //! inertia, and each `no_slip` contact's point, at the model's current
-//! parameter values ([`InterpretedModel::drawing`]). At the run's first
-//! row:
+//! parameter values ([`InterpretedModel::drawing`]). The shapes are decided
+//! from the bodies and contacts at the run's frames and at the samples of
+//! the first frame's configuration with each coordinate in turn moved by
+//! one (a metre, a radian: how the mechanism moves, whatever the run
+//! does), a contact's offset `P - C` from its body's centre read in the
+//! body's axes:
 //!
-//! - a body with a contact whose point lies below its centre, the offset
-//!   `P - C` of length `r > 0` along world down (gravity, or `-z` of
-//!   ground without gravity) seen in a plane through the centre
+//! - a body with a contact whose offset has the same length `r > 0` at
+//!   every sample and a direction that does not keep to one plane through
+//!   the centre (the contact wanders over the body's surface: the Chaplygin
+//!   ball) is a ball: a [`Shape::Sphere`](crate::animate::Shape::Sphere) of
+//!   radius `r` about its centre, on the ground where its contact is;
+//! - a body with a contact whose point lies below its centre at the first
+//!   frame, the offset of length `r > 0` along world down (gravity, or
+//!   `-z` of ground without gravity) seen in a plane through the centre
 //!   perpendicular to one of the body's principal axes of inertia, is a
 //!   wheel: a [`Shape::Disc`](crate::animate::Shape::Disc) of radius `r` whose axle is that principal
 //!   axis (of those, the one with the largest moment: a disc's axle);
@@ -23,14 +32,25 @@
 //! - any other body with a positive mass is a [`Shape::Box`](crate::animate::Shape::Box) whose inertia
 //!   about its centre is the body's ([`box_size`]), along the frame's axes,
 //!   or its principal axes when the inertia is not diagonal;
+//! - except where that box is flat or a point (a side comes out below
+//!   [`MIN_SIZE`]: a car's chassis declared with the inertia of a plate
+//!   about its vertical axis alone, its wheels' masses counted in it), and
+//!   the contacts of any bodies that stay at one place in the body's axes
+//!   at every sample (its wheels', wherever they are declared) spread over
+//!   at least [`MIN_SIZE`] across both of the box's axes nearest
+//!   horizontal: then it is the box bounding those contacts across those
+//!   two axes, [`MIN_SIZE`] thick along the third at the body's centre. The
+//!   mechanism does not say which bodies ride on which, but rigidly
+//!   carried contacts are what a chassis's wheels are;
 //! - a particle with a positive mass is a [`Shape::Sphere`](crate::animate::Shape::Sphere) of water's
 //!   density (at least [`MIN_SIZE`] across);
-//! - a body without mass and without a wheel's contact is not drawn (the
-//!   scene's note lists it).
+//! - a body without mass and without a wheel's or a ball's contact is not
+//!   drawn (the scene's note lists it).
 //!
-//! Each item's pose at a frame is its body's centre and frame rotation (a
-//! disc's axle being its local y axis), the traces are the contact points,
-//! the labels the first three coordinates.
+//! Each item's pose at a frame is its body's centre (moved to the middle of
+//! a chassis's box) and frame rotation (a disc's axle being its local y
+//! axis, a box's sides along the principal axes), the traces are the
+//! contact points, the labels the first three coordinates.
 //!
 //! A model's `drawing:` section (docs/INTERFACE.md section 10) adds items
 //! and traces, placed by `drawing(q)` as well ([`LENGTH_TOLERANCE`] says
@@ -62,7 +82,7 @@ use crate::animate::{AnimateError, Item, Label, Pose, Scene, Trace};
 use crate::runtime::nalgebra::{Matrix3, Vector3};
 use crate::runtime::record::Table;
 use chaplygin_codegen::interpret::{BodyState, CallError, Drawing, Figure, InterpretedModel};
-use geometry::{Look, look_of};
+use geometry::{Look, Run, look_of};
 
 /// The default frames per second of simulated time.
 pub const DEFAULT_FPS: f64 = 60.0;
@@ -197,20 +217,24 @@ pub fn scene(
     let times: Vec<f64> = table.rows.iter().map(|row| row[0]).collect();
     let rows = frame_rows(&times, fps);
     let n = model.sizes().n;
-    let at = |row: usize| {
-        model
-            .drawing(&table.rows[row][1..=n])
-            .map_err(|source| AnimationError::Call {
-                model: label.to_string(),
-                source,
-            })
+    let at = |q: &[f64]| {
+        model.drawing(q).map_err(|source| AnimationError::Call {
+            model: label.to_string(),
+            source,
+        })
     };
-    let first = at(0)?;
-    let world = World::of(&first);
-    let looks = looks(model, &first, &world)?;
     let drawings = (rows.iter())
-        .map(|&row| at(row))
+        .map(|&row| at(&table.rows[row][1..=n]))
         .collect::<Result<Vec<Drawing>, _>>()?;
+    let probes = (0..n)
+        .map(|i| {
+            let mut q = table.rows[0][1..=n].to_vec();
+            q[i] += 1.0;
+            at(&q)
+        })
+        .collect::<Result<Vec<Drawing>, _>>()?;
+    let world = World::of(&drawings[0]);
+    let looks = looks(model, &drawings, &probes, &world)?;
     let times: Vec<f64> = rows.iter().map(|&row| times[row]).collect();
     Ok(Scene {
         title: label.to_string(),
@@ -306,27 +330,35 @@ impl World {
     }
 }
 
-/// Each body's look, `None` for a body not drawn.
+/// Each body's look over the frames `drawings` and the first frame's
+/// `probes` (each coordinate in turn moved by one), `None` for a body not
+/// drawn.
 fn looks(
     model: &InterpretedModel,
-    first: &Drawing,
+    drawings: &[Drawing],
+    probes: &[Drawing],
     world: &World,
 ) -> Result<Vec<Option<Look>>, AnimationError> {
     let bodies = model.bodies();
+    let samples: Vec<&Drawing> = drawings.iter().chain(probes).collect();
     (bodies.bodies.iter().enumerate())
         .map(|(i, body)| {
-            let state = &first.bodies[i];
+            let state = &drawings[0].bodies[i];
             if !(state.mass.is_finite() && state.inertia.iter().all(|x| x.is_finite())) {
                 return Err(AnimationError::NotFinite {
                     body: body.name.clone(),
                 });
             }
-            let contacts: Vec<[f64; 3]> = (bodies.contacts.iter())
-                .zip(&first.contacts)
-                .filter(|(contact, _)| contact.body == i)
-                .map(|(_, &point)| point)
-                .collect();
-            Ok(look_of(state, body.particle, &contacts, &world.down))
+            let run = Run {
+                samples: &samples,
+                body: i,
+                contacts: (bodies.contacts.iter().enumerate())
+                    .filter(|(_, contact)| contact.body == i)
+                    .map(|(c, _)| c)
+                    .collect(),
+                down: world.down,
+            };
+            Ok(look_of(&run, body.particle))
         })
         .collect()
 }
@@ -390,12 +422,13 @@ fn drawing_item(
     }))
 }
 
-/// A body's pose in the page's world: its centre, and its frame rotation
-/// composed with its look's axes.
+/// A body's pose in the page's world: its centre moved by its look's, and
+/// its frame rotation composed with its look's axes.
 fn pose(state: &BodyState, look: &Look, world: &World) -> Pose {
     let rotation = Matrix3::from_row_slice(&state.rotation);
+    let center = Vector3::from(state.center) + rotation * look.center;
     Pose {
-        position: world.point(state.center),
+        position: world.point(center.into()),
         quaternion: quaternion(&(world.turn() * rotation * look.axes)),
     }
 }

@@ -223,6 +223,104 @@ fn the_sleigh_is_a_box_of_its_inertia_turned_with_it() {
     );
 }
 
+/// The Euler parameters `[e0, e1, e2, e3]` of the turn by `angle` about
+/// `axis`, and the page's quaternion of it `[e1, e2, e3, e0]` as nalgebra
+/// makes it.
+fn turn(axis: [f64; 3], angle: f64) -> ([f64; 4], [f64; 4]) {
+    let q = UnitQuaternion::from_axis_angle(&Unit::new_normalize(Vector3::from(axis)), angle);
+    ([q.w, q.i, q.j, q.k], [q.i, q.j, q.k, q.w])
+}
+
+#[test]
+fn the_chaplygin_ball_is_a_sphere_of_its_radius_on_the_ground_turned_with_it() {
+    let ball = model(include_str!("../../../models/chaplygin_ball.model"));
+    let turns = [
+        turn([1.0, 0.0, 0.0], 0.0),
+        turn([0.3, -0.5, 0.8], 1.1),
+        turn([-0.7, 0.2, 0.4], 2.6),
+    ];
+    let qs: Vec<Vec<f64>> = (turns.iter().enumerate())
+        .map(|(i, (e, _))| [vec![0.4 * i as f64, -0.3 * i as f64], e.to_vec()].concat())
+        .collect();
+    let drawn = scene(&ball, "chaplygin_ball", &table(&ball, &qs), 10.0).unwrap();
+    let shell = &drawn.items[0];
+    // the model's r = 0.5
+    assert_eq!(shell.shape, Shape::Sphere { radius: 0.5 });
+    for ((pose, q), (_, quaternion)) in shell.poses.iter().zip(&qs).zip(turns) {
+        assert_near(&pose.position, &[q[0], q[1], 0.5], "the ball's centre");
+        assert_near(&pose.quaternion, &quaternion, "the ball's turn");
+    }
+    // at rest, its contact kept at one place in its axes by the run: the
+    // same sphere, from the samples each moving one Euler parameter
+    let rest = scene(&ball, "chaplygin_ball", &table(&ball, &qs[..1]), 10.0).unwrap();
+    assert_eq!(rest.items[0].shape, Shape::Sphere { radius: 0.5 });
+    // by z-x-z angles, turned as much, the same sphere
+    let zxz = model(include_str!(
+        "../../../tests/models/chaplygin_ball_zxz.model"
+    ));
+    let qs = vec![
+        vec![0.0, 0.0, 0.3, 0.5, 0.7],
+        vec![0.2, 0.1, 1.0, 1.2, -0.4],
+        vec![0.5, -0.3, 2.0, 0.4, 2.5],
+    ];
+    let drawn = scene(&zxz, "chaplygin_ball_zxz", &table(&zxz, &qs), 10.0).unwrap();
+    let Shape::Sphere { radius } = drawn.items[0].shape else {
+        panic!("a sphere: {:?}", drawn.items[0].shape)
+    };
+    assert!((radius - 0.5).abs() < 1e-15, "{radius}");
+}
+
+#[test]
+fn a_car_s_flat_chassis_spans_its_wheels_contacts() {
+    let car = model(include_str!("../../../tests/models/car.model"));
+    let qs = vec![
+        vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        vec![1.5, -0.5, 0.9, 0.3, 0.25, 2.0, 2.1, 1.9, 2.2],
+    ];
+    let drawn = scene(&car, "car", &table(&car, &qs), 10.0).unwrap();
+    let names: Vec<&str> = drawn.items.iter().map(|item| item.name.as_str()).collect();
+    let wheels = ["rear_left", "rear_right", "front_left", "front_right"];
+    assert_eq!(names, [&["chassis"][..], &wheels].concat());
+    assert_eq!(
+        drawn.note.as_deref(),
+        Some("not drawn (no mass): knuckle_left, knuckle_right")
+    );
+    // l = 1 from the rear axle to the front one, 2 b = 0.8 across, at the
+    // rear axle's height r = 0.15
+    let (l, b, r) = (1.0, 0.4, 0.15);
+    let chassis = &drawn.items[0];
+    assert_eq!(
+        chassis.shape,
+        Shape::Box {
+            size: [l, 2.0 * b, MIN_SIZE]
+        }
+    );
+    for (pose, q) in chassis.poses.iter().zip(&qs) {
+        let (x, y, theta) = (q[0], q[1], q[2]);
+        let middle = [x + l / 2.0 * theta.cos(), y + l / 2.0 * theta.sin(), r];
+        assert_near(&pose.position, &middle, "the chassis");
+        assert_near(&pose.quaternion, &yaw(theta), "the chassis");
+    }
+    // a run of one frame: the same chassis, from the samples each moving
+    // one coordinate
+    let parked = scene(&car, "car", &table(&car, &qs[1..]), 10.0).unwrap();
+    let Shape::Box { size } = parked.items[0].shape else {
+        panic!("a box: {:?}", parked.items[0].shape)
+    };
+    assert_near(&size, &[l, 2.0 * b, MIN_SIZE], "parked");
+    assert_near(
+        &parked.items[0].poses[0].position,
+        &chassis.poses[1].position,
+        "parked",
+    );
+    for item in &drawn.items[1..] {
+        let Shape::Disc { radius, thickness } = item.shape else {
+            panic!("{}: a disc, {:?}", item.name, item.shape)
+        };
+        assert_near(&[radius, thickness], &[r, r / 5.0], &item.name);
+    }
+}
+
 #[test]
 fn massless_bodies_without_a_wheel_are_not_drawn_and_named_in_the_note() {
     let board = model(&without_drawing(include_str!(
