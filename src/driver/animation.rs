@@ -226,13 +226,15 @@ pub fn scene(
     let drawings = (rows.iter())
         .map(|&row| at(&table.rows[row][1..=n]))
         .collect::<Result<Vec<Drawing>, _>>()?;
-    let probes = (0..n)
-        .map(|i| {
+    // A probe where the model is undefined (outside its domain, or not
+    // finite) tells nothing and is left out.
+    let probes: Vec<Drawing> = (0..n)
+        .filter_map(|i| {
             let mut q = table.rows[0][1..=n].to_vec();
             q[i] += 1.0;
-            at(&q)
+            model.drawing(&q).ok().filter(is_finite)
         })
-        .collect::<Result<Vec<Drawing>, _>>()?;
+        .collect();
     let world = World::of(&drawings[0]);
     let looks = looks(model, &drawings, &probes, &world)?;
     let times: Vec<f64> = rows.iter().map(|&row| times[row]).collect();
@@ -328,6 +330,13 @@ impl World {
     fn point(&self, p: [f64; 3]) -> [f64; 3] {
         (self.turn() * Vector3::from(p)).into()
     }
+}
+
+/// Whether every body's centre and rotation and every contact is finite.
+fn is_finite(drawing: &Drawing) -> bool {
+    let bodies = (drawing.bodies.iter()).flat_map(|body| body.center.iter().chain(&body.rotation));
+    let contacts = drawing.contacts.iter().flatten();
+    bodies.chain(contacts).all(|x| x.is_finite())
 }
 
 /// Each body's look over the frames `drawings` and the first frame's
