@@ -3,7 +3,10 @@
 //! redundant contact rows dropped with a note, a body the contacts lock
 //! said in words, degrees of freedom decided on the holonomic surface, and
 //! runs from heading 0 and pi without a declared symmetry. The turning
-//! radius is checked against the classical Ackermann geometry.
+//! radius is checked against the classical Ackermann geometry, and the
+//! kinematic car's against `l / tan(phi)` with its steering angle
+//! prescribed (`--prescribe`), the prescribed force's work against the
+//! energy gained.
 
 use crate::support::{chaplygin, column, read_csv};
 use serde_json::Value;
@@ -306,6 +309,216 @@ fn the_rear_differentials_integral_is_named_and_kept() {
     assert!(theta.last().unwrap().abs() > 0.1, "the car turns");
     for (i, value) in integral.iter().enumerate() {
         assert!((value - integral[0]).abs() < 1e-9, "row {i}: {value}");
+    }
+}
+
+/// The circumradius `abc / (4 area)` of three points.
+fn circumradius([a, b, c]: [(f64, f64); 3]) -> f64 {
+    let side = |p: (f64, f64), q: (f64, f64)| (p.0 - q.0).hypot(p.1 - q.1);
+    let area = ((b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1)).abs() / 2.0;
+    side(a, b) * side(b, c) * side(c, a) / (4.0 * area)
+}
+
+/// Steered by `--prescribe phi=0.3`, the kinematic car's rear axle's
+/// midpoint runs on a circle of radius `l / tan(0.3)` (Murray and Sastry's
+/// `theta' = v tan(phi) / l` at speed `v`): the circumradius of any three
+/// rows of its path. Holding a constant angle takes no force, since no
+/// constraint row has a `dot(phi)` term.
+#[test]
+fn the_kinematic_car_steered_at_a_constant_angle_runs_on_a_circle() {
+    let arguments = [
+        "--prescribe",
+        "phi=0.3",
+        "--initial",
+        "dot(x)=1",
+        "--t-end",
+        "10",
+    ];
+    let (summary, (header, rows)) = simulated("kinematic_car", &arguments);
+    assert!(summary.contains("power balance (relative) "), "{summary}");
+    let value = |name: &str| column(&header, &rows, name);
+    let (x, y) = (value("x"), value("y"));
+    let radius = 1.0 / 0.3f64.tan();
+    let third = rows.len() / 3;
+    for i in (0..third).step_by(50) {
+        let points = [i, i + third, i + 2 * third].map(|j| (x[j], y[j]));
+        let fitted = circumradius(points);
+        assert!(
+            (fitted - radius).abs() < 1e-6,
+            "rows from {i}: {fitted} against {radius}"
+        );
+    }
+    assert!(value("phi").iter().all(|phi| (phi - 0.3).abs() < 1e-9));
+    assert!(value("force(phi)").iter().all(|force| force.abs() < 1e-12));
+}
+
+/// A steering angle that varies, `phi = 0.2 sin t`, in the reduced form
+/// and the Lagrange-d'Alembert form: the angle and its rate follow the law
+/// and its derivative, and the force is the steering row's
+/// `js phi'' = force(phi)` (no constraint row has a `dot(phi)` term).
+#[test]
+fn a_prescribed_steering_angle_follows_its_law() {
+    for formulation in ["reduced", "lagrange"] {
+        let arguments = [
+            "--prescribe",
+            "phi=0.2*sin(t)",
+            "--initial",
+            "dot(x)=1",
+            "--t-end",
+            "5",
+            "--formulation",
+            formulation,
+        ];
+        let (_, (header, rows)) = simulated("kinematic_car", &arguments);
+        let value = |name: &str| column(&header, &rows, name);
+        let (t, phi, force) = (value("t"), value("phi"), value("force(phi)"));
+        let js = 0.01;
+        for i in 0..rows.len() {
+            let law = 0.2 * t[i].sin();
+            assert!(
+                (phi[i] - law).abs() < 1e-8,
+                "{formulation} at t = {}: {}",
+                t[i],
+                phi[i]
+            );
+            assert!(
+                (force[i] + js * law).abs() < 1e-9,
+                "{formulation} at t = {}",
+                t[i]
+            );
+        }
+        if formulation == "lagrange" {
+            let rate = value("dot(phi)");
+            let off =
+                (0..rows.len()).fold(0.0f64, |m, i| m.max((rate[i] - 0.2 * t[i].cos()).abs()));
+            assert!(off < 1e-8, "dot(phi) off by {off}");
+        }
+    }
+}
+
+/// The prescribed force's work is the energy gained: Simpson's rule on
+/// `force(phi) dot(phi)` from the trajectory, against the energy column
+/// and the closed form `js (dot(phi)(T)^2 - dot(phi)(0)^2) / 2`; the
+/// summary reports the power balance.
+#[test]
+fn the_prescribed_forces_work_is_the_energy_gained() {
+    let arguments = [
+        "--prescribe",
+        "phi=0.5*sin(2*t)",
+        "--param",
+        "js=0.5",
+        "--initial",
+        "dot(x)=1",
+        "--formulation",
+        "lagrange",
+        "--t-end",
+        "1",
+        "--dt",
+        "0.005",
+    ];
+    let (summary, (header, rows)) = simulated("kinematic_car", &arguments);
+    let balance: f64 = summary
+        .split("power balance (relative) ")
+        .nth(1)
+        .and_then(|rest| rest.split(';').next())
+        .unwrap_or_else(|| panic!("a power balance in {summary}"))
+        .parse()
+        .expect("a number");
+    assert!(balance < 1e-7, "{summary}");
+    let value = |name: &str| column(&header, &rows, name);
+    let (energy, force, rate) = (value("energy"), value("force(phi)"), value("dot(phi)"));
+    let power: Vec<f64> = force.iter().zip(&rate).map(|(f, v)| f * v).collect();
+    let h = 0.005;
+    let pairs = (power.len() - 1) / 2;
+    let work: f64 = (0..pairs)
+        .map(|i| h / 3.0 * (power[2 * i] + 4.0 * power[2 * i + 1] + power[2 * i + 2]))
+        .sum();
+    let end = 2 * pairs;
+    let gained = energy[end] - energy[0];
+    let closed = 0.5 / 2.0 * (rate[end].powi(2) - 1.0);
+    assert!(gained.abs() > 0.1, "{gained}");
+    assert!(
+        (gained - work).abs() < 1e-8 * gained.abs(),
+        "{gained} against {work}"
+    );
+    assert!((gained - closed).abs() < 1e-9, "{gained} against {closed}");
+}
+
+/// What `--prescribe` refuses, each in one line naming the coordinate.
+#[test]
+fn prescriptions_that_cannot_be_followed_are_refused_in_one_line() {
+    let path = model("kinematic_car");
+    let pinned = tempfile::tempdir().expect("a temporary directory");
+    let pinned_model = pinned.path().join("pinned.model");
+    std::fs::write(
+        &pinned_model,
+        "pub struct Pinned {\n    coordinates: [x, y],\n    parameters: [m = 1.0],\n    \
+         kinetic_energy: m/2*(dot(x)^2 + dot(y)^2),\n    constraints: [pin = dot(y)],\n}\n",
+    )
+    .expect("the model is written");
+    let pinned_model = pinned_model.to_str().expect("a path");
+    let cases: [(&str, &[&str], &str); 9] = [
+        (
+            &path,
+            &["--prescribe", "w=0.3"],
+            "--prescribe w: `w` is not a coordinate (coordinates: x, y, theta, phi)",
+        ),
+        (
+            &path,
+            &["--prescribe", "l=0.3"],
+            "--prescribe l: `l` is a parameter, not a coordinate",
+        ),
+        (
+            &path,
+            &["--prescribe", "phi=0.3", "--prescribe", "phi=0.1"],
+            "--prescribe phi: given twice",
+        ),
+        (
+            &path,
+            &["--prescribe", "phi=0.1*x"],
+            "--prescribe phi=0.1*x: the law reads the state",
+        ),
+        (
+            &path,
+            &["--prescribe", "phi=dot(theta)"],
+            "--prescribe phi=dot(theta): the law reads the state",
+        ),
+        (
+            &path,
+            &["--prescribe", "phi=0.3", "--initial", "dot(phi)=0"],
+            "--prescribe phi: --initial gives dot(phi) too",
+        ),
+        (
+            &path,
+            &["--prescribe", "phi=ln(t)"],
+            "--prescribe phi=ln(t): the law or its rate is not finite at t = 0",
+        ),
+        (
+            &path,
+            &["--prescribe", "phi=0.3", "--input", "force(phi)=1"],
+            "unknown input `force(phi)` (inputs: steer)",
+        ),
+        (
+            pinned_model,
+            &["--prescribe", "y=0.3"],
+            "--prescribe y: the constraints fix y: no force along it moves it",
+        ),
+    ];
+    for (model, arguments, says) in cases {
+        let all = [
+            &["simulate", model, "--initial", "dot(x)=1", "--t-end", "1"],
+            arguments,
+        ]
+        .concat();
+        let output = chaplygin(&all);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success(), "{arguments:?} ran");
+        assert!(stderr.contains(says), "{arguments:?}: {stderr}");
+        assert_eq!(
+            stderr.trim_end().lines().count(),
+            1,
+            "{arguments:?}: {stderr}"
+        );
     }
 }
 

@@ -192,6 +192,9 @@ pub struct InterpretedModel {
     bodies: drawing::Bodies,
     /// How each frame of [`Names::frames`] is turned from its parent.
     turns: Vec<FrameTurn>,
+    /// The model's text, derived again by
+    /// [`InterpretedModel::with_coordinate_forces_on`].
+    source: Arc<str>,
 }
 
 impl std::fmt::Debug for InterpretedModel {
@@ -219,11 +222,38 @@ impl InterpretedModel {
         source: &str,
         backend: &dyn Backend,
     ) -> Result<InterpretedModel, Diagnostics> {
+        InterpretedModel::forced_on(source, backend, &[])
+    }
+
+    /// This model derived again with a generalized force along each
+    /// coordinate of `forced` (indices into [`Names::coordinates`]) as an
+    /// input after the declared ones, named `force(q)`, its column of
+    /// `B(q)` the unit vector of `q` (`Model::with_coordinate_forces`);
+    /// its programs run by the engine `backend` makes, its parameters'
+    /// values kept.
+    pub fn with_coordinate_forces_on(
+        &self,
+        forced: &[usize],
+        backend: &dyn Backend,
+    ) -> Result<InterpretedModel, Diagnostics> {
+        let mut forced = InterpretedModel::forced_on(&self.source, backend, forced)?;
+        forced.parameters.clone_from(&self.parameters);
+        Ok(forced)
+    }
+
+    /// [`InterpretedModel::from_source_on`] with the forces of
+    /// [`InterpretedModel::with_coordinate_forces_on`].
+    fn forced_on(
+        source: &str,
+        backend: &dyn Backend,
+        forced: &[usize],
+    ) -> Result<InterpretedModel, Diagnostics> {
         let Analysed {
-            mut model,
+            model,
             mut cx,
             constraints,
         } = analysed_model(source, backend)?;
+        let mut model = model.with_coordinate_forces(forced);
         model.emits_rust = false;
         let emitted = crate::derive::derivation(&model, &mut cx, &constraints, backend)
             .and_then(|derivation| emit::emit(&model, &mut cx, &constraints, &derivation));
@@ -271,6 +301,7 @@ impl InterpretedModel {
                 .unwrap_or_default(),
             bodies: drawing::bodies(&model),
             turns: model.mechanism.turns.clone(),
+            source: source.into(),
         };
         let programs: Vec<_> = interpreted.programs().map(|(_, program)| program).collect();
         interpreted.engine = Arc::from(backend.engine(&programs));

@@ -76,6 +76,32 @@ fn load_with(
     })
 }
 
+/// `model` derived again with a generalized force `force(q)` along each
+/// coordinate of `forced` as an input after the declared ones
+/// (`InterpretedModel::with_coordinate_forces_on`), run by the engine
+/// `model` runs on, its parameters' values kept; errors are reported
+/// against `label`.
+///
+/// # Errors
+/// The model's diagnostics.
+pub fn with_coordinate_forces(
+    model: &InterpretedModel,
+    forced: &[usize],
+    label: &str,
+) -> Result<InterpretedModel, Rejected> {
+    let native = match model.engine().name() {
+        "jit" => Native::for_host().ok(),
+        _ => None,
+    };
+    let backend: &dyn Backend = match &native {
+        Some(native) => native,
+        None => &Interpreter,
+    };
+    model
+        .with_coordinate_forces_on(forced, backend)
+        .map_err(|diagnostics| Rejected::new(label, &diagnostics))
+}
+
 #[cfg(test)]
 mod tests {
     use super::{EngineChoice, load, load_with};

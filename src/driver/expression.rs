@@ -59,20 +59,27 @@ impl Function {
         })
     }
 
-    /// The derivative at `x`.
-    fn slope(self, x: f64) -> f64 {
-        match self {
-            Self::Sin => x.cos(),
-            Self::Cos => -x.sin(),
-            Self::Tan => 1.0 / x.cos().powi(2),
-            Self::Sqrt => 0.5 / x.sqrt(),
-            Self::Exp => x.exp(),
-            Self::Ln => 1.0 / x,
-            Self::Asin => 1.0 / (1.0 - x * x).sqrt(),
-            Self::Acos => -1.0 / (1.0 - x * x).sqrt(),
-            Self::Atan => 1.0 / (1.0 + x * x),
-            Self::Abs => x.signum(),
-        }
+    /// Its value, first and second derivatives at `x`.
+    fn derivatives(self, x: f64) -> [f64; 3] {
+        let root = (1.0 - x * x).sqrt();
+        let [slope, curvature] = match self {
+            Self::Sin => [x.cos(), -x.sin()],
+            Self::Cos => [-x.sin(), -x.cos()],
+            Self::Tan => [1.0 / x.cos().powi(2), 2.0 * x.tan() / x.cos().powi(2)],
+            Self::Sqrt => [0.5 / x.sqrt(), -0.25 / (x * x.sqrt())],
+            Self::Exp => [x.exp(), x.exp()],
+            Self::Ln => [1.0 / x, -1.0 / (x * x)],
+            Self::Asin => [1.0 / root, x / root.powi(3)],
+            Self::Acos => [-1.0 / root, -x / root.powi(3)],
+            Self::Atan => [1.0 / (1.0 + x * x), -2.0 * x / (1.0 + x * x).powi(2)],
+            Self::Abs => [x.signum(), 0.0],
+        };
+        [self.at(x), slope, curvature]
+    }
+
+    /// `self(argument)` and its derivatives.
+    fn jet(self, argument: Jet) -> Jet {
+        argument.through(self.derivatives(argument.value))
     }
 
     fn at(self, x: f64) -> f64 {
@@ -91,23 +98,119 @@ impl Function {
     }
 }
 
-/// `a op b` and its derivative from those of `a` and `b`.
-fn binary_rate(operator: BinaryOperator, (a, da): (f64, f64), (b, db): (f64, f64)) -> (f64, f64) {
-    match operator {
-        BinaryOperator::Add => (a + b, da + db),
-        BinaryOperator::Subtract => (a - b, da - db),
-        BinaryOperator::Multiply => (a * b, da * b + a * db),
-        BinaryOperator::Divide => (a / b, (da * b - a * db) / (b * b)),
-        BinaryOperator::Power => {
-            let value = a.powf(b);
-            let by_base = if da == 0.0 {
-                0.0
-            } else {
-                b * a.powf(b - 1.0) * da
-            };
-            let by_exponent = if db == 0.0 { 0.0 } else { value * a.ln() * db };
-            (value, by_base + by_exponent)
+/// A value with its first and second derivatives in `t`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Jet {
+    /// The value.
+    pub value: f64,
+    /// Its first derivative.
+    pub slope: f64,
+    /// Its second derivative.
+    pub curvature: f64,
+}
+
+impl Jet {
+    /// A value that does not change with `t`.
+    fn constant(value: f64) -> Jet {
+        Jet {
+            value,
+            slope: 0.0,
+            curvature: 0.0,
         }
+    }
+
+    /// Whether it does not change with `t`.
+    fn is_constant(self) -> bool {
+        self.slope == 0.0 && self.curvature == 0.0
+    }
+
+    /// `factor` times it.
+    fn scaled(self, factor: f64) -> Jet {
+        Jet {
+            value: factor * self.value,
+            slope: factor * self.slope,
+            curvature: factor * self.curvature,
+        }
+    }
+
+    /// `f(self)` from `f`, `f'` and `f''` at its value.
+    fn through(self, [f, df, ddf]: [f64; 3]) -> Jet {
+        if self.is_constant() {
+            return Jet::constant(f);
+        }
+        Jet {
+            value: f,
+            slope: df * self.slope,
+            curvature: ddf * self.slope * self.slope + df * self.curvature,
+        }
+    }
+}
+
+/// `a op b` and its derivatives from those of `a` and `b`.
+fn binary_jet(operator: BinaryOperator, a: Jet, b: Jet) -> Jet {
+    match operator {
+        BinaryOperator::Add => Jet {
+            value: a.value + b.value,
+            slope: a.slope + b.slope,
+            curvature: a.curvature + b.curvature,
+        },
+        BinaryOperator::Subtract => binary_jet(BinaryOperator::Add, a, b.scaled(-1.0)),
+        BinaryOperator::Multiply => Jet {
+            value: a.value * b.value,
+            slope: a.slope * b.value + a.value * b.slope,
+            curvature: a.curvature * b.value + 2.0 * a.slope * b.slope + a.value * b.curvature,
+        },
+        BinaryOperator::Divide => {
+            let value = a.value / b.value;
+            let slope = (a.slope - value * b.slope) / b.value;
+            let curvature = (a.curvature - 2.0 * slope * b.slope - value * b.curvature) / b.value;
+            Jet {
+                value,
+                slope,
+                curvature,
+            }
+        }
+        BinaryOperator::Power => power_jet(a, b),
+    }
+}
+
+/// `a^b`: of a constant exponent `b` by `(a^b)' = b a^(b-1) a'`, else as
+/// `exp(b ln a)`.
+fn power_jet(a: Jet, b: Jet) -> Jet {
+    let value = a.value.powf(b.value);
+    if b.is_constant() {
+        let n = b.value;
+        return a.through([
+            value,
+            n * a.value.powf(n - 1.0),
+            n * (n - 1.0) * a.value.powf(n - 2.0),
+        ]);
+    }
+    let log = Jet {
+        value: a.value.ln(),
+        slope: a.slope / a.value,
+        curvature: (a.curvature * a.value - a.slope * a.slope) / (a.value * a.value),
+    };
+    let exponent = binary_jet(BinaryOperator::Multiply, b, log);
+    Jet {
+        value,
+        slope: value * exponent.slope,
+        curvature: value * (exponent.curvature + exponent.slope * exponent.slope),
+    }
+}
+
+/// `atan2(y, x)`: `theta' = N / D` with `N = x y' - y x'`,
+/// `D = x^2 + y^2`.
+fn atan2_jet(y: Jet, x: Jet) -> Jet {
+    let numerator = x.value * y.slope - y.value * x.slope;
+    let denominator = x.value * x.value + y.value * y.value;
+    let numerator_slope = x.value * y.curvature - y.value * x.curvature;
+    let denominator_slope = 2.0 * (x.value * x.slope + y.value * y.slope);
+    Jet {
+        value: y.value.atan2(x.value),
+        slope: numerator / denominator,
+        curvature: (numerator_slope * denominator - numerator * denominator_slope)
+            / (denominator * denominator),
     }
 }
 
@@ -240,27 +343,30 @@ impl Expression {
     /// and the parameters alone (forward differentiation, exact to
     /// round-off); the state and the inputs read as constants.
     pub(crate) fn rate(&self, t: f64) -> (f64, f64) {
+        let Jet { value, slope, .. } = self.jet(t);
+        (value, slope)
+    }
+
+    /// The value and its first and second time derivatives at `t`, for an
+    /// expression of `t` and the parameters alone: forward
+    /// differentiation to second order, each operation by its chain rule
+    /// (`(f o a)'' = f''(a) a'^2 + f'(a) a''`), exact to round-off; the
+    /// state and the inputs read as constants.
+    pub(crate) fn jet(&self, t: f64) -> Jet {
         match self {
-            Self::Number(value) => (*value, 0.0),
-            Self::Time => (t, 1.0),
+            Self::Number(value) => Jet::constant(*value),
+            Self::Time => Jet {
+                value: t,
+                slope: 1.0,
+                curvature: 0.0,
+            },
             Self::Variable(_) | Self::Coordinate(_) | Self::Velocity(_) | Self::Input(_) => {
-                (f64::NAN, 0.0)
+                Jet::constant(f64::NAN)
             }
-            Self::Call(function, argument) => {
-                let (x, dx) = argument.rate(t);
-                (function.at(x), function.slope(x) * dx)
-            }
-            Self::Atan2(ordinate, abscissa) => {
-                let ((y, dy), (x, dx)) = (ordinate.rate(t), abscissa.rate(t));
-                (y.atan2(x), (x * dy - y * dx) / (x * x + y * y))
-            }
-            Self::Negate(operand) => {
-                let (x, dx) = operand.rate(t);
-                (-x, -dx)
-            }
-            Self::Binary(operator, left, right) => {
-                binary_rate(*operator, left.rate(t), right.rate(t))
-            }
+            Self::Call(function, argument) => function.jet(argument.jet(t)),
+            Self::Atan2(ordinate, abscissa) => atan2_jet(ordinate.jet(t), abscissa.jet(t)),
+            Self::Negate(operand) => operand.jet(t).scaled(-1.0),
+            Self::Binary(operator, left, right) => binary_jet(*operator, left.jet(t), right.jet(t)),
         }
     }
 
@@ -404,7 +510,7 @@ fn invalid(reason: impl Into<String>) -> ExpressionError {
 
 #[cfg(test)]
 mod tests {
-    use super::{Expression, ExpressionError, Scope, constant};
+    use super::{Expression, ExpressionError, Jet, Scope, constant};
 
     const NAMES: [(&str, f64); 2] = [("v", 2.0), ("rR", 0.5)];
 
@@ -437,6 +543,39 @@ mod tests {
         assert!((slope - exact).abs() < 1e-14, "{slope} vs {exact}");
         assert_eq!(rate("2^t").1, 2f64.powf(t) * 2f64.ln());
         assert_eq!(rate("-cos(t)/tan(v)").1, t.sin() / 2f64.tan());
+    }
+
+    /// The second time derivative against the closed form, and against
+    /// second differences of the values for every function and operator.
+    #[test]
+    fn the_jet_is_the_second_time_derivative() {
+        let scope = Scope {
+            parameters: &NAMES,
+            ..Scope::default()
+        };
+        let jet = |text, t| Expression::parse(text, &scope).expect("parses").jet(t);
+        let t: f64 = 0.7;
+        let curvature = jet("v*sin(2*t) + t^3/rR - sqrt(exp(t))", t).curvature;
+        let exact = -8.0 * (2.0 * t).sin() + 6.0 * t / 0.5 - 0.25 * (t / 2.0).exp();
+        assert!((curvature - exact).abs() < 1e-13, "{curvature} vs {exact}");
+        let h = 1e-4;
+        for text in [
+            "tan(t)*cos(t^2)",
+            "ln(1 + t)/exp(-t)",
+            "asin(t/v) - acos(t/v) + atan(3*t)",
+            "atan2(t - 1, rR + t^2)",
+            "t^t + 2^t + abs(t - 2)",
+            "sqrt(t)*(1 - t)",
+        ] {
+            let second = (jet(text, t + h).value - 2.0 * jet(text, t).value
+                + jet(text, t - h).value)
+                / (h * h);
+            let Jet { curvature, .. } = jet(text, t);
+            assert!(
+                (curvature - second).abs() < 1e-6 * second.abs().max(1.0),
+                "{text}: {curvature} vs {second}"
+            );
+        }
     }
 
     /// A function of the time, computed by `f64`'s own methods.

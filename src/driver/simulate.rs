@@ -12,6 +12,7 @@
 //! paper's energy-based controller uses also runs under it (`energy`).
 
 mod energy;
+mod prescribe;
 mod request;
 mod run;
 mod trust;
@@ -23,7 +24,7 @@ pub use run::{Report, Tolerance};
 pub use trust::{ALLOWANCE, Warning};
 
 use super::catalog::BuiltIn;
-use super::engine::Loaded;
+use super::engine::{self, Loaded};
 use super::formulation::Formulation;
 use super::interpreted::{InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced};
 use super::setup::{self, Asked, Controls, InputError, InputSchedule, Origin, Setup, Start};
@@ -31,6 +32,7 @@ use crate::driver::Failure;
 use crate::runtime::record::{Recorder, Table};
 use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
 use chaplygin_codegen::interpret::InterpretedModel;
+use prescribe::{Forces, Prescribed};
 use run::Settings;
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -51,6 +53,9 @@ pub struct Prepared {
     stop: Option<setup::Comparison>,
     /// The built-in it is, for its default configuration and motion.
     built_in: Option<&'static BuiltIn>,
+    /// Whether a coordinate is prescribed: the run then reports its power
+    /// balance, its forces doing work.
+    prescribed: bool,
 }
 
 /// What a run recorded and how it ended.
@@ -82,6 +87,7 @@ pub fn simulate(
     progress: &mut dyn FnMut(f64),
 ) -> Result<Finished, Failure> {
     if request.controller == Controller::Energy {
+        Prescribed::of(&loaded.model, request)?;
         energy::check(&loaded.model, &loaded.label, request)?;
         let setup = setup::resolve(
             loaded.model,
@@ -92,12 +98,14 @@ pub fn simulate(
     let prepared = prepare(loaded, request)?;
     let settings = Settings::new(request, &*prepared.formulation, prepared.stop.as_ref())?;
     let mut table = Table::new();
-    let outcome = settings.run(
-        &*prepared.formulation,
-        &prepared.x0,
-        &mut run::Both(&mut table, also),
-        progress,
-    );
+    let outcome = settings
+        .run(
+            &*prepared.formulation,
+            &prepared.x0,
+            &mut run::Both(&mut table, also),
+            progress,
+        )
+        .map(|report| report.driven(prepared.prescribed));
     let tracks = prepared.tracks(&table)?;
     Ok(Finished {
         table,
@@ -128,21 +136,29 @@ pub fn prepare(loaded: Loaded, request: &Request) -> Result<Prepared, Failure> {
         built_in,
         ..
     } = loaded;
-    let setup = setup::resolve(model, &request.asked(origin(built_in), Controls::default()))?;
+    let prescribed = Prescribed::of(&model, request)?;
+    let initial = prescribed_start(&model, request, &prescribed)?;
+    let asked = Asked {
+        state: &initial,
+        ..request.asked(origin(built_in), Controls::default())
+    };
+    let setup = setup::resolve(model, &asked)?;
+    let start = setup
+        .start
+        .clone()
+        .expect("a simulation asks for its start");
+    let (model, forces) = forced(&setup, &prescribed, &label, &start)?;
     let Setup {
-        model,
         parameters,
-        start,
         inputs: schedule,
         stop,
         ..
     } = setup;
-    let start = start.expect("a simulation asks for its start");
     let fixed_inputs: Rc<RefCell<Option<Vec<f64>>>> = Rc::default();
     let (formulation, x0) = closed(
         model.clone(),
         request.formulation,
-        input_law(schedule, Rc::clone(&fixed_inputs)),
+        input_law(schedule, forces, Rc::clone(&fixed_inputs)),
         &start,
         &label,
     )?;
@@ -154,7 +170,48 @@ pub fn prepare(loaded: Loaded, request: &Request) -> Result<Prepared, Failure> {
         stop,
         model,
         built_in,
+        prescribed: !prescribed.is_empty(),
     })
+}
+
+/// The request's `--initial` values, and the prescribed coordinates'
+/// starts on their laws at `t = 0` (the laws read at the parameters
+/// `--param` sets).
+fn prescribed_start(
+    model: &InterpretedModel,
+    request: &Request,
+    prescribed: &Prescribed,
+) -> Result<Vec<(String, String)>, Failure> {
+    let mut initial = request.initial.clone();
+    if !prescribed.is_empty() {
+        let asked = Asked {
+            params: &request.params,
+            ..Asked::default()
+        };
+        let setup = setup::resolve(model.clone(), &asked)?;
+        initial.extend(prescribed.starts(&setup.model, &setup.bound())?);
+    }
+    Ok(initial)
+}
+
+/// The model the formulation runs, and the forces that keep the
+/// prescribed coordinates on their laws: `setup`'s model, derived again
+/// with a force along each (checked to move it at the `start`), where
+/// any is prescribed.
+fn forced(
+    setup: &Setup,
+    prescribed: &Prescribed,
+    label: &str,
+    start: &Start,
+) -> Result<(InterpretedModel, Option<Forces>), Failure> {
+    if prescribed.is_empty() {
+        return Ok((setup.model.clone(), None));
+    }
+    let model = engine::with_coordinate_forces(&setup.model, &prescribed.indices, label)?;
+    let declared = setup.model.sizes().p;
+    let forces = prescribed.forces(model.clone(), declared, &setup.bound())?;
+    forces.check_at(&start.q, &start.qdot)?;
+    Ok((model, Some(forces)))
 }
 
 /// Where a run of a built-in starts: its default configuration and
@@ -166,14 +223,23 @@ fn origin(built_in: Option<&'static BuiltIn>) -> Origin<'static> {
     })
 }
 
-/// The input law of `schedule`, or the inputs `fixed` holds while it
-/// holds some.
-fn input_law(schedule: InputSchedule, fixed: Rc<RefCell<Option<Vec<f64>>>>) -> InputLaw {
+/// The input law of `schedule` and the prescribed coordinates' `forces`,
+/// or the inputs `fixed` holds while it holds some.
+fn input_law(
+    schedule: InputSchedule,
+    forces: Option<Forces>,
+    fixed: Rc<RefCell<Option<Vec<f64>>>>,
+) -> InputLaw {
     InputLaw {
-        reads_state: schedule.reads_state(),
+        reads_state: schedule.reads_state() || forces.is_some(),
         law: Box::new(move |t, q, qdot, u| match fixed.borrow().as_deref() {
             Some(given) => u.copy_from_slice(given),
-            None => schedule.at(t, q, qdot, u),
+            None => {
+                schedule.at(t, q, qdot, u);
+                if let Some(forces) = &forces {
+                    forces.apply(t, q, qdot, u);
+                }
+            }
         }),
     }
 }

@@ -290,4 +290,30 @@ impl Model {
     pub fn parameter_defaults(&self) -> Vec<f64> {
         self.parameters.iter().map(|p| p.default.to_f64()).collect()
     }
+
+    /// The model with a generalized force along each coordinate of
+    /// `forced` (indices into [`Model::coordinates`]) as an input after the
+    /// declared ones, named `force(q)`: its column of `B(q)` is the unit
+    /// vector `e_q`, so that `g qddot = ... + B u` gains `e_q force(q)`.
+    pub fn with_coordinate_forces(mut self, forced: &[usize]) -> Model {
+        let (n, p) = (self.n(), self.p());
+        let entries = (0..n).flat_map(|i| {
+            let declared = self.input_matrix.row_entries(i);
+            let unit = forced.iter().map(move |&j| match i == j {
+                true => RationalFunction::one(),
+                false => RationalFunction::zero(),
+            });
+            declared.into_iter().chain(unit)
+        });
+        self.input_matrix = Matrix::new(n, p + forced.len(), entries.collect())
+            .expect("n rows of p + forced entries");
+        self.inputs.extend(forced.iter().map(|&j| {
+            let coordinate = &self.coordinates[j].declared;
+            Declared {
+                name: format!("force({})", coordinate.name),
+                span: coordinate.span,
+            }
+        }));
+        self
+    }
 }

@@ -82,6 +82,16 @@ pub enum InputError {
         /// What is wrong with it.
         reason: String,
     },
+    /// A `--prescribe` that cannot be followed: a name that is no
+    /// coordinate or is given twice, a law not of `t` and the parameters,
+    /// a coordinate the formulation or the constraints let no force move.
+    #[error("--prescribe {name}: {reason}")]
+    Prescribe {
+        /// The coordinate as given, with its law where the law is wrong.
+        name: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// The `--stop-when` condition.
     #[error(transparent)]
     Stop(#[from] StopError),

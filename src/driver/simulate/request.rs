@@ -68,6 +68,12 @@ pub struct Request {
     /// ln abs.
     #[cfg_attr(feature = "cli", arg(long = "input", value_parser = expression_assignment))]
     pub inputs: Vec<(String, String)>,
+    /// A coordinate that follows an expression of the time `t` and the
+    /// model's parameters exactly, `NAME=EXPRESSION` (repeatable): a
+    /// rheonomic constraint (a steering angle, a joint driven by a servo)
+    /// whose force is recorded as `force(NAME)`; it starts on its law.
+    #[cfg_attr(feature = "cli", arg(long = "prescribe", value_parser = expression_assignment))]
+    pub prescribe: Vec<(String, String)>,
 }
 
 impl Request {
@@ -99,6 +105,7 @@ impl Default for Request {
             params: Vec::new(),
             initial: Vec::new(),
             inputs: Vec::new(),
+            prescribe: Vec::new(),
         }
     }
 }

@@ -107,6 +107,17 @@ pub struct Report {
     pub final_scale: f64,
 }
 
+impl Report {
+    /// The report of a run with prescribed coordinates when `prescribed`:
+    /// their forces do work, so it reports the power balance and is not
+    /// judged as conservative.
+    pub(super) fn driven(mut self, prescribed: bool) -> Report {
+        self.worked |= prescribed;
+        self.conservative &= !prescribed;
+        self
+    }
+}
+
 impl std::fmt::Display for Report {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
