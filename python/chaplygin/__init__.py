@@ -277,6 +277,7 @@ class Model:
         rtol: float = 1e-8,
         atol: float = 1e-8,
         fixed_step: bool = False,
+        prescribe: Optional[Mapping[str, Value]] = None,
     ) -> Trajectory:
         """Simulates the model from ``t = 0`` to ``t_end``, recording every
         ``dt``.
@@ -295,7 +296,10 @@ class Model:
         holds; ``controller="energy"`` closes a model with a steering angle
         ``phi`` and two inputs, the torso's and the wheels' (the snakeboard,
         from any of its declarations), with Duindam and Stramigioli's energy
-        controller.
+        controller. ``prescribe`` makes coordinates follow laws of ``t``
+        and the parameters exactly (``{"phi": "0.2*sin(t)"}``): each starts
+        on its law, and the force that keeps it there is the column
+        ``force(NAME)``.
 
         Every integrator's step follows the tolerances ``rtol`` and ``atol``
         of its local error, no step longer than ``dt``; ``fixed_step=True``
@@ -322,6 +326,7 @@ class Model:
             float(rtol),
             float(atol),
             bool(fixed_step),
+            _dict(prescribe),
         )
         tracks = run["tracks"]
         native, given = self._native, _dict(params)

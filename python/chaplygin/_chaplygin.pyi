@@ -34,6 +34,10 @@ class Model:
         integrator: Optional[str],
         stop_when: Optional[str],
         controller: str,
+        rtol: float,
+        atol: float,
+        fixed_step: bool,
+        prescribe: Optional[Dict[str, Any]],
     ) -> Dict[str, Any]: ...
     def animation(
         self,

@@ -239,7 +239,7 @@ impl Model {
     /// Simulates the model; returns `(columns, data, tracks, summary,
     /// failure)`, `summary` a dict and `failure` `None` for a finished run,
     /// else the other way round (the rows before the failure kept).
-    #[pyo3(signature = (t_end, dt, initial, params, inputs, formulation, integrator, stop_when, controller, rtol, atol, fixed_step))]
+    #[pyo3(signature = (t_end, dt, initial, params, inputs, formulation, integrator, stop_when, controller, rtol, atol, fixed_step, prescribe))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &self,
@@ -256,6 +256,7 @@ impl Model {
         rtol: f64,
         atol: f64,
         fixed_step: bool,
+        prescribe: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let request = Request {
             formulation: formulation_named(formulation)?,
@@ -270,6 +271,7 @@ impl Model {
             params: numbers(params)?,
             initial: assignments(initial)?,
             inputs: assignments(inputs)?,
+            prescribe: assignments(prescribe)?,
         };
         let loaded = self.fresh();
         let finished = py

@@ -267,3 +267,20 @@ def test_a_frames_angles_and_angular_velocity_go_in_as_lists(root):
     e0, e1, e2, e3 = e
     turning = numpy.array([[-e1, e0, e3, -e2], [-e2, -e3, e0, e1], [-e3, e2, -e1, e0]])
     assert numpy.allclose(2.0 * turning @ rates, [1.0, 1.6, 2.2], atol=1e-12)
+
+
+def test_a_prescribed_steering_angle_is_followed_and_its_force_recorded(root):
+    car = chaplygin.load(str(root / "tests" / "models" / "kinematic_car.model"))
+    run = car.simulate(
+        t_end=2.0, dt=0.01, formulation="lagrange", initial={"dot(x)": 1}, prescribe={"phi": "0.2*sin(t)"}
+    )
+    t = run.t
+    assert numpy.max(numpy.abs(run["phi"] - 0.2 * numpy.sin(t))) < 1e-8
+    assert numpy.max(numpy.abs(run["dot(phi)"] - 0.2 * numpy.cos(t))) < 1e-8
+    # No constraint row has a dot(phi) term, so the steering row of the
+    # equations of motion is js phi'' = force(phi).
+    js = car.parameters["js"]
+    assert numpy.max(numpy.abs(run["force(phi)"] + js * 0.2 * numpy.sin(t))) < 1e-9
+    assert run.summary["power_balance"] < 1e-7
+    with pytest.raises(ValueError, match="--prescribe l: `l` is a parameter"):
+        car.simulate(t_end=1.0, initial={"dot(x)": 1}, prescribe={"l": 2})
