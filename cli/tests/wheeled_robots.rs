@@ -444,6 +444,65 @@ fn the_prescribed_forces_work_is_the_energy_gained() {
     assert!((gained - closed).abs() < 1e-9, "{gained} against {closed}");
 }
 
+/// The snakeboard's wheel angle prescribed, `phi = 0.3 sin t`, in each
+/// formulation: the momentum form takes it as a shape coordinate, and the
+/// three agree on where the board goes; a group coordinate is refused
+/// there.
+#[test]
+fn every_formulation_follows_a_prescribed_shape_coordinate() {
+    let run = |formulation: &str, law: &str, free: &str| {
+        let out = tempfile::tempdir().expect("a temporary directory");
+        let directory = out.path().to_str().expect("a path");
+        let arguments = [
+            "simulate",
+            "snakeboard",
+            "--prescribe",
+            law,
+            "--initial",
+            free,
+            "--initial",
+            "dot(psi)=0",
+            "--t-end",
+            "3",
+            "--formulation",
+            formulation,
+            "--out",
+            directory,
+        ];
+        let output = chaplygin(&arguments);
+        let stderr = String::from_utf8_lossy(&output.stderr).to_string();
+        let csv = output
+            .status
+            .success()
+            .then(|| read_csv(&out.path().join("trajectory.csv")));
+        (csv, stderr)
+    };
+    let mut ends = Vec::new();
+    for formulation in ["reduced", "lagrange", "momentum"] {
+        let (csv, stderr) = run(formulation, "phi=0.3*sin(t)", "dot(x)=1");
+        let (header, rows) = csv.unwrap_or_else(|| panic!("{formulation}: {stderr}"));
+        let value = |name: &str| column(&header, &rows, name);
+        let (t, phi) = (value("t"), value("phi"));
+        for (t, phi) in t.iter().zip(&phi) {
+            assert!(
+                (phi - 0.3 * t.sin()).abs() < 1e-8,
+                "{formulation} at t = {t}: {phi}"
+            );
+        }
+        ends.push([value("x"), value("y")].map(|v| *v.last().expect("rows")));
+    }
+    for end in &ends[1..] {
+        let apart = (end[0] - ends[0][0]).hypot(end[1] - ends[0][1]);
+        assert!(apart < 1e-6, "{ends:?}");
+    }
+    let (_, stderr) = run("momentum", "x=0.1*t", "dot(phi)=0");
+    assert!(
+        stderr
+            .contains("--prescribe x: the momentum formulation prescribes shape coordinates only"),
+        "{stderr}"
+    );
+}
+
 /// What `--prescribe` refuses, each in one line naming the coordinate.
 #[test]
 fn prescriptions_that_cannot_be_followed_are_refused_in_one_line() {

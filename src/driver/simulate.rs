@@ -4,12 +4,14 @@
 //! closed by a controller (the input laws of the time and the state, read
 //! in every formulation at its configuration and velocity: `(q, qdot)`,
 //! `(q, velocities(q, alpha))` in the active chart, or
-//! `(q, reconstructed_velocity(q, rdot, p))`), an integrator and a stop
-//! condition; the run records every row and reports the energy drift, the
-//! largest constraint residual, and where and why it stopped
-//! ([`Finished`]). A model with configuration constraints is kept on
-//! `f(q) = 0` after every step, in every formulation. A model with what the
-//! paper's energy-based controller uses also runs under it (`energy`).
+//! `(q, reconstructed_velocity(q, rdot, p))`, and the forces that keep
+//! the coordinates `--prescribe` names on their laws, `prescribe`), an
+//! integrator and a stop condition; the run records every row and reports
+//! the energy drift (or, driven, the power balance), the largest
+//! constraint residual, and where and why it stopped ([`Finished`]). A
+//! model with configuration constraints is kept on `f(q) = 0` after every
+//! step, in every formulation. A model with what the paper's energy-based
+//! controller uses also runs under it (`energy`).
 
 mod energy;
 mod prescribe;
