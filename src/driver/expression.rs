@@ -165,6 +165,18 @@ pub(crate) struct Point<'a> {
     pub u: &'a [f64],
 }
 
+/// The derivatives of an expression by the coordinates, their velocities
+/// and the inputs.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Gradient {
+    /// By the coordinates.
+    pub q: Vec<f64>,
+    /// By their velocities.
+    pub qdot: Vec<f64>,
+    /// By the inputs.
+    pub u: Vec<f64>,
+}
+
 /// An expression resolved against a [`Scope`], the parameters' values
 /// substituted.
 #[derive(Clone, Debug, PartialEq)]
@@ -240,26 +252,58 @@ impl Expression {
     /// and the parameters alone (forward differentiation, exact to
     /// round-off); the state and the inputs read as constants.
     pub(crate) fn rate(&self, t: f64) -> (f64, f64) {
+        self.forward(&|leaf| match leaf {
+            Self::Time => (t, 1.0),
+            _ => (f64::NAN, 0.0),
+        })
+    }
+
+    /// The value at `point` and the gradient by the coordinates, their
+    /// velocities and the inputs, each as long as `point`'s (forward
+    /// differentiation, one pass per name, exact to round-off).
+    pub(crate) fn gradient(&self, point: &Point<'_>) -> (f64, Gradient) {
+        let by = |seed: &dyn Fn(&Self) -> bool| {
+            self.forward(&|leaf| (leaf.at(point), if seed(leaf) { 1.0 } else { 0.0 }))
+                .1
+        };
+        let gradient = Gradient {
+            q: (0..point.q.len())
+                .map(|i| by(&|l| *l == Self::Coordinate(i)))
+                .collect(),
+            qdot: (0..point.qdot.len())
+                .map(|i| by(&|l| *l == Self::Velocity(i)))
+                .collect(),
+            u: (0..point.u.len())
+                .map(|i| by(&|l| *l == Self::Input(i)))
+                .collect(),
+        };
+        (self.at(point), gradient)
+    }
+
+    /// The value and the derivative along a direction `leaf` gives: each
+    /// leaf's value and derivative (forward differentiation).
+    fn forward(&self, leaf: &dyn Fn(&Self) -> (f64, f64)) -> (f64, f64) {
         match self {
             Self::Number(value) => (*value, 0.0),
-            Self::Time => (t, 1.0),
-            Self::Variable(_) | Self::Coordinate(_) | Self::Velocity(_) | Self::Input(_) => {
-                (f64::NAN, 0.0)
-            }
+            Self::Time
+            | Self::Variable(_)
+            | Self::Coordinate(_)
+            | Self::Velocity(_)
+            | Self::Input(_) => leaf(self),
             Self::Call(function, argument) => {
-                let (x, dx) = argument.rate(t);
+                let (x, dx) = argument.forward(leaf);
                 (function.at(x), function.slope(x) * dx)
             }
             Self::Atan2(ordinate, abscissa) => {
-                let ((y, dy), (x, dx)) = (ordinate.rate(t), abscissa.rate(t));
+                let ((y, dy), (x, dx)) = (ordinate.forward(leaf), abscissa.forward(leaf));
                 (y.atan2(x), (x * dy - y * dx) / (x * x + y * y))
             }
             Self::Negate(operand) => {
-                let (x, dx) = operand.rate(t);
+                let (x, dx) = operand.forward(leaf);
                 (-x, -dx)
             }
             Self::Binary(operator, left, right) => {
-                binary_rate(*operator, left.rate(t), right.rate(t))
+                binary_rate(*operator, left.forward(leaf), right.forward(leaf))
             }
         }
     }
@@ -404,7 +448,7 @@ fn invalid(reason: impl Into<String>) -> ExpressionError {
 
 #[cfg(test)]
 mod tests {
-    use super::{Expression, ExpressionError, Scope, constant};
+    use super::{Expression, ExpressionError, Point, Scope, constant};
 
     const NAMES: [(&str, f64); 2] = [("v", 2.0), ("rR", 0.5)];
 
@@ -437,6 +481,35 @@ mod tests {
         assert!((slope - exact).abs() < 1e-14, "{slope} vs {exact}");
         assert_eq!(rate("2^t").1, 2f64.powf(t) * 2f64.ln());
         assert_eq!(rate("-cos(t)/tan(v)").1, t.sin() / 2f64.tan());
+    }
+
+    #[test]
+    fn the_gradient_is_the_closed_form_derivative() {
+        let scope = Scope {
+            parameters: &NAMES,
+            coordinates: &["x", "y"],
+            inputs: &["F"],
+            ..Scope::default()
+        };
+        let cost =
+            Expression::parse("v*dot(x)^2 + sin(y)*F^2 + atan2(y, x)", &scope).expect("parses");
+        let (x, y, xdot, f) = (0.3, -1.2, 0.8, 2.5);
+        let point = Point {
+            t: 0.1,
+            q: &[x, y],
+            qdot: &[xdot, 0.4],
+            u: &[f],
+            ..Point::default()
+        };
+        let (value, gradient) = cost.gradient(&point);
+        let r2 = x * x + y * y;
+        let close = |a: f64, b: f64| assert!((a - b).abs() < 1e-14, "{a} vs {b}");
+        close(value, 2.0 * xdot * xdot + y.sin() * f * f + y.atan2(x));
+        close(gradient.q[0], -y / r2);
+        close(gradient.q[1], y.cos() * f * f + x / r2);
+        close(gradient.qdot[0], 4.0 * xdot);
+        close(gradient.qdot[1], 0.0);
+        close(gradient.u[0], 2.0 * y.sin() * f);
     }
 
     /// A function of the time, computed by `f64`'s own methods.
