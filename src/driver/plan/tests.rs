@@ -94,6 +94,28 @@ fn the_point_mass_plan_converges_to_the_closed_form_at_the_schemes_order() {
     }
 }
 
+/// With `|push| <= 2.5` the optimal input saturates: `u = clip(k (1 - t))`
+/// with `s0 = 2.5 / k`, `x(T) = 1` giving `s0^2 = 0.6` and the cost
+/// `J = 12.5 (1 - 2 s0 / 3)` (the Pontryagin solution, worked by hand). The
+/// active bounds' multipliers pass the KKT check, which allows a bound
+/// to be exceeded by 1e-6 (the solver relaxes its bounds by 1e-8).
+#[test]
+fn a_saturated_point_mass_plan_meets_its_closed_form() {
+    let exact = 12.5 * (1.0 - 2.0 * 0.6_f64.sqrt() / 3.0);
+    let mut request = rest_to_rest(Scheme::Midpoint, 41);
+    request.bounds.push(("push".into(), "-2.5:2.5".into()));
+    let plan = plan(point_mass(), &request, &Ripopt).expect("a plan");
+    let push = plan.table.column("push").expect("push");
+    let largest = push.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
+    let saturated = push.iter().filter(|u| u.abs() > 2.5 - 1e-6).count();
+    eprintln!(
+        "saturated: objective {} vs {exact}, {saturated} nodes at the bound, {} iterations, {:?}",
+        plan.report.objective, plan.report.iterations, plan.report.kkt
+    );
+    assert!(largest <= 2.5 + 1e-6 && saturated >= 4, "{push:?}");
+    assert!((plan.report.objective - exact).abs() < 1e-2);
+}
+
 /// The differential drive from rest at the origin to the pose (0.3, 0.1,
 /// 0) at rest in 4 s, by the midpoint rule on `nodes` nodes.
 fn parking(nodes: usize) -> Request {
