@@ -167,6 +167,7 @@ pub(crate) struct Point<'a> {
 
 /// The derivatives of an expression by the coordinates, their velocities
 /// and the inputs.
+#[cfg(feature = "plan")]
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Gradient {
     /// By the coordinates.
@@ -261,6 +262,7 @@ impl Expression {
     /// The value at `point` and the gradient by the coordinates, their
     /// velocities and the inputs, each as long as `point`'s (forward
     /// differentiation, one pass per name, exact to round-off).
+    #[cfg(feature = "plan")]
     pub(crate) fn gradient(&self, point: &Point<'_>) -> (f64, Gradient) {
         let by = |seed: &dyn Fn(&Self) -> bool| {
             self.forward(&|leaf| (leaf.at(point), if seed(leaf) { 1.0 } else { 0.0 }))
@@ -448,7 +450,7 @@ fn invalid(reason: impl Into<String>) -> ExpressionError {
 
 #[cfg(test)]
 mod tests {
-    use super::{Expression, ExpressionError, Point, Scope, constant};
+    use super::{Expression, ExpressionError, Scope, constant};
 
     const NAMES: [(&str, f64); 2] = [("v", 2.0), ("rR", 0.5)];
 
@@ -483,8 +485,10 @@ mod tests {
         assert_eq!(rate("-cos(t)/tan(v)").1, t.sin() / 2f64.tan());
     }
 
+    #[cfg(feature = "plan")]
     #[test]
     fn the_gradient_is_the_closed_form_derivative() {
+        use super::Point;
         let scope = Scope {
             parameters: &NAMES,
             coordinates: &["x", "y"],
