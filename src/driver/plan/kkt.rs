@@ -164,7 +164,6 @@ mod tests {
             upper: vec![upper, 0.0],
             iterations: 0,
             status: "test".into(),
-            converged: true,
         };
         residuals(&Bounded, &solution).expect("finite")
     }

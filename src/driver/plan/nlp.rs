@@ -48,10 +48,8 @@ pub struct Solution {
     pub upper: Vec<f64>,
     /// The solver's iterations.
     pub iterations: usize,
-    /// The solver's own word on the outcome.
+    /// The solver's own word on the outcome (not trusted: see `kkt`).
     pub status: String,
-    /// Whether the solver says it converged.
-    pub converged: bool,
 }
 
 /// A solver of [`Nlp`]s.
@@ -80,7 +78,6 @@ impl Solver for Ripopt {
             ..ripopt::SolverOptions::default()
         };
         let result = ripopt::solve(&Problem(nlp), &options);
-        let converged = result.status == ripopt::SolveStatus::Optimal;
         Solution {
             z: result.x,
             multipliers: result.constraint_multipliers,
@@ -88,7 +85,6 @@ impl Solver for Ripopt {
             upper: result.bound_multipliers_upper,
             iterations: result.iterations,
             status: format!("{:?}", result.status),
-            converged,
         }
     }
 }
