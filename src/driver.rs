@@ -21,6 +21,8 @@
 //!   with their intervals of stability, the canonical form;
 //!   [`design_map`]: the self-stable speeds over a grid of parameters, on
 //!   every core;
+//! - [`plan`] (feature `plan`): optimal control by direct collocation on
+//!   the exact derivatives, its optimum verified by the KKT conditions;
 //! - [`expression`]: the expressions of input laws, stop conditions,
 //!   initial values and operating points, in the model language's syntax;
 //! - [`document`]: the derivation document as text, LaTeX or JSON;
@@ -37,6 +39,8 @@ pub mod formulation;
 pub mod gait;
 pub mod interpreted;
 pub mod linearize;
+#[cfg(feature = "plan")]
+pub mod plan;
 pub mod setup;
 pub mod simulate;
 

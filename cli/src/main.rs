@@ -15,6 +15,9 @@
 //!                     [--at NAME=EXPR]... [--param NAME=VALUE]... [--jobs N] [--engine jit|interpret] [--out DIR]
 //! chaplygin gait MODEL --shape A,B,... --cycle NAME=EXPR... --period T [--cycles N] [--steps S]
 //!                      [--param NAME=VALUE]... [--initial pI=VALUE]... [--engine jit|interpret] [--out DIR]
+//! chaplygin plan MODEL --duration T --nodes N [--scheme backward-euler|midpoint] [--start NAME=EXPR]...
+//!                      [--goal NAME=EXPR]... [--minimize EXPR] [--bound NAME=LO:HI]... [--param NAME=VALUE]...
+//!                      [--tol TOL] [--engine jit|interpret] [--out DIR]
 //! ```
 //!
 //! MODEL is a built-in model's name or the path of a `.model` file. Either
@@ -35,6 +38,7 @@ mod map;
 mod model_args;
 mod options;
 mod output;
+mod plan;
 mod simulate;
 
 use clap::Parser;

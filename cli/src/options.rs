@@ -1,9 +1,11 @@
 //! The command line: its commands, and what each does with its arguments
-//! (those of `simulate`, `linearize`, `map` and `gait` are defined with them).
+//! (those of `simulate`, `linearize`, `map`, `gait` and `plan` are defined
+//! with them).
 
 use crate::gait::{self, GaitArgs};
 use crate::linearize::{self, LinearizeArgs};
 use crate::map::{self, MapArgs};
+use crate::plan::{self, PlanArgs};
 use crate::simulate::{self, SimulateArgs};
 use chaplygin::driver::Failure;
 use chaplygin::driver::catalog::{self, lookup};
@@ -43,6 +45,10 @@ enum Action {
     /// The net displacement per cycle of a prescribed periodic shape
     /// trajectory, writing `cycle.csv` and `gait_path.png`.
     Gait(Box<GaitArgs>),
+    /// Optimal inputs and trajectory between a start and a goal by direct
+    /// collocation, verified by the KKT conditions, writing `plan.csv` and
+    /// `plan.json`.
+    Plan(Box<PlanArgs>),
 }
 
 impl Command {
@@ -60,6 +66,7 @@ impl Command {
             Action::Linearize(args) => linearize::run(&args),
             Action::Map(args) => map::run(&args),
             Action::Gait(args) => gait::run(&args),
+            Action::Plan(args) => plan::run(&args),
         }
     }
 }

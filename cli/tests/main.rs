@@ -16,6 +16,7 @@ mod cli_charts;
 mod cli_engine;
 mod cli_gait;
 mod cli_mechanisms;
+mod cli_plan;
 mod cli_racers;
 mod cli_sizes;
 mod cli_stop;

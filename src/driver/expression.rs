@@ -268,6 +268,19 @@ pub(crate) struct Point<'a> {
     pub u: &'a [f64],
 }
 
+/// The derivatives of an expression by the coordinates, their velocities
+/// and the inputs.
+#[cfg(feature = "plan")]
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Gradient {
+    /// By the coordinates.
+    pub q: Vec<f64>,
+    /// By their velocities.
+    pub qdot: Vec<f64>,
+    /// By the inputs.
+    pub u: Vec<f64>,
+}
+
 /// An expression resolved against a [`Scope`], the parameters' values
 /// substituted.
 #[derive(Clone, Debug, PartialEq)]
@@ -348,25 +361,67 @@ impl Expression {
     }
 
     /// The value and its first and second time derivatives at `t`, for an
-    /// expression of `t` and the parameters alone: forward
-    /// differentiation to second order, each operation by its chain rule
-    /// (`(f o a)'' = f''(a) a'^2 + f'(a) a''`), exact to round-off; the
-    /// state and the inputs read as constants.
+    /// expression of `t` and the parameters alone; the state and the
+    /// inputs read as constants.
     pub(crate) fn jet(&self, t: f64) -> Jet {
-        match self {
-            Self::Number(value) => Jet::constant(*value),
+        self.jet_along(&|leaf| match leaf {
             Self::Time => Jet {
                 value: t,
                 slope: 1.0,
                 curvature: 0.0,
             },
-            Self::Variable(_) | Self::Coordinate(_) | Self::Velocity(_) | Self::Input(_) => {
-                Jet::constant(f64::NAN)
+            _ => Jet::constant(f64::NAN),
+        })
+    }
+
+    /// The value at `point` and the gradient by the coordinates, their
+    /// velocities and the inputs, each as long as `point`'s (forward
+    /// differentiation, one pass per name, exact to round-off).
+    #[cfg(feature = "plan")]
+    pub(crate) fn gradient(&self, point: &Point<'_>) -> (f64, Gradient) {
+        let by = |seed: &dyn Fn(&Self) -> bool| {
+            let along = |leaf: &Self| Jet {
+                value: leaf.at(point),
+                slope: if seed(leaf) { 1.0 } else { 0.0 },
+                curvature: 0.0,
+            };
+            self.jet_along(&along).slope
+        };
+        let gradient = Gradient {
+            q: (0..point.q.len())
+                .map(|i| by(&|l| *l == Self::Coordinate(i)))
+                .collect(),
+            qdot: (0..point.qdot.len())
+                .map(|i| by(&|l| *l == Self::Velocity(i)))
+                .collect(),
+            u: (0..point.u.len())
+                .map(|i| by(&|l| *l == Self::Input(i)))
+                .collect(),
+        };
+        (self.at(point), gradient)
+    }
+
+    /// The value and its first and second derivatives along a path on
+    /// which each leaf (the time, a variable, a coordinate, a velocity, an
+    /// input) has the jet `leaf` gives: forward differentiation to second
+    /// order, each operation by its chain rule
+    /// (`(f o a)'' = f''(a) a'^2 + f'(a) a''`), exact to round-off.
+    fn jet_along(&self, leaf: &dyn Fn(&Self) -> Jet) -> Jet {
+        match self {
+            Self::Number(value) => Jet::constant(*value),
+            Self::Time
+            | Self::Variable(_)
+            | Self::Coordinate(_)
+            | Self::Velocity(_)
+            | Self::Input(_) => leaf(self),
+            Self::Call(function, argument) => function.jet(argument.jet_along(leaf)),
+            Self::Atan2(ordinate, abscissa) => {
+                atan2_jet(ordinate.jet_along(leaf), abscissa.jet_along(leaf))
             }
-            Self::Call(function, argument) => function.jet(argument.jet(t)),
-            Self::Atan2(ordinate, abscissa) => atan2_jet(ordinate.jet(t), abscissa.jet(t)),
-            Self::Negate(operand) => operand.jet(t).scaled(-1.0),
-            Self::Binary(operator, left, right) => binary_jet(*operator, left.jet(t), right.jet(t)),
+            Self::Negate(operand) => operand.jet_along(leaf).scaled(-1.0),
+            Self::Binary(operator, left, right) => {
+                binary_jet(*operator, left.jet_along(leaf), right.jet_along(leaf))
+            }
         }
     }
 
@@ -576,6 +631,37 @@ mod tests {
                 "{text}: {curvature} vs {second}"
             );
         }
+    }
+
+    #[cfg(feature = "plan")]
+    #[test]
+    fn the_gradient_is_the_closed_form_derivative() {
+        use super::Point;
+        let scope = Scope {
+            parameters: &NAMES,
+            coordinates: &["x", "y"],
+            inputs: &["F"],
+            ..Scope::default()
+        };
+        let cost =
+            Expression::parse("v*dot(x)^2 + sin(y)*F^2 + atan2(y, x)", &scope).expect("parses");
+        let (x, y, xdot, f) = (0.3, -1.2, 0.8, 2.5);
+        let point = Point {
+            t: 0.1,
+            q: &[x, y],
+            qdot: &[xdot, 0.4],
+            u: &[f],
+            ..Point::default()
+        };
+        let (value, gradient) = cost.gradient(&point);
+        let r2 = x * x + y * y;
+        let close = |a: f64, b: f64| assert!((a - b).abs() < 1e-14, "{a} vs {b}");
+        close(value, 2.0 * xdot * xdot + y.sin() * f * f + y.atan2(x));
+        close(gradient.q[0], -y / r2);
+        close(gradient.q[1], y.cos() * f * f + x / r2);
+        close(gradient.qdot[0], 4.0 * xdot);
+        close(gradient.qdot[1], 0.0);
+        close(gradient.u[0], 2.0 * y.sin() * f);
     }
 
     /// A function of the time, computed by `f64`'s own methods.

@@ -21,7 +21,8 @@ use crate::runtime::system::next_chart;
 pub(crate) use chaplygin_codegen::interpret::evaluated;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 use std::cell::Cell;
-use surface::{holonomic_residual, keeps_configuration, onto_surface};
+pub(crate) use surface::holonomic_residual;
+use surface::{keeps_configuration, onto_surface};
 
 /// `(q, alpha)` or `(q, qdot)` split at `n`.
 fn split(x: &[f64], n: usize) -> (&[f64], &[f64]) {

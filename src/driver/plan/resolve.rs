@@ -1,0 +1,371 @@
+//! A plan's request read against its model: the parameters set, the
+//! conditions and bounds turned into the variables' bounds, the first
+//! guess (the start and goal interpolated, else 0, inside the bounds), the
+//! cost read; and the solution written as `plan.csv`'s rows.
+
+use super::Request;
+use super::transcription::Transcription;
+use crate::driver::engine::Loaded;
+use crate::driver::expression::{Expression, ExpressionError, Scope, constant};
+use crate::driver::interpreted::holonomic_residual;
+use crate::driver::setup::with_parameters;
+use crate::runtime::record::Table;
+use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
+
+/// A request that does not make a plan of its model, stated in one line.
+#[derive(Debug, PartialEq, thiserror::Error)]
+pub enum RequestError {
+    /// Fewer than two nodes.
+    #[error("--nodes {0}: a plan needs at least 2 nodes")]
+    Nodes(usize),
+    /// A duration that is not positive and finite.
+    #[error("--duration {0}: the duration must be positive and finite")]
+    Duration(f64),
+    /// A tolerance that is not positive and finite.
+    #[error("--tol {0}: the tolerance must be positive and finite")]
+    Tolerance(f64),
+    /// A name that is no coordinate, velocity or input.
+    #[error("{flag}: unknown name `{name}` (coordinates, `dot(q)` velocities, inputs: {known})")]
+    UnknownName {
+        /// The flag it came with.
+        flag: &'static str,
+        /// What was given.
+        name: String,
+        /// The names there are.
+        known: String,
+    },
+    /// A start or goal given to an input.
+    #[error("{flag} {name}: `{name}` is an input; bound it with --bound instead")]
+    InputCondition {
+        /// The flag it came with.
+        flag: &'static str,
+        /// The input.
+        name: String,
+    },
+    /// A bound that is not `LO:HI`.
+    #[error("--bound {name}={text}: expected LO:HI (either may be empty)")]
+    Range {
+        /// What it bounds.
+        name: String,
+        /// The text given.
+        text: String,
+    },
+    /// A bound whose lower end exceeds its upper end.
+    #[error(
+        "--bound {name}: the lower end {lo} exceeds the upper end {hi}: the plan is infeasible"
+    )]
+    Empty {
+        /// What it bounds.
+        name: String,
+        /// The lower end.
+        lo: f64,
+        /// The upper end.
+        hi: f64,
+    },
+    /// A start or goal outside a bound.
+    #[error("{flag} {name}={value} lies outside --bound {name}={lo}:{hi}: the plan is infeasible")]
+    Outside {
+        /// The flag it came with.
+        flag: &'static str,
+        /// What it sets.
+        name: String,
+        /// Its value.
+        value: f64,
+        /// The bound's ends.
+        lo: f64,
+        /// The bound's upper end.
+        hi: f64,
+    },
+    /// A value that is not an expression of the parameters.
+    #[error("{flag} {name}: {source}")]
+    Value {
+        /// The flag it came with.
+        flag: &'static str,
+        /// What it sets.
+        name: String,
+        /// Why.
+        source: ExpressionError,
+    },
+    /// A model with constraints started from a partial state.
+    #[error(
+        "the model has constraints: --start must give every coordinate and velocity (missing: {0})"
+    )]
+    PartialStart(String),
+    /// A start off the model's constraints.
+    #[error("the start is off the model's constraints: residual {0:.1e}")]
+    StartOffConstraints(f64),
+}
+
+/// What a start or goal is checked against: `|A qdot|` and `|f(q)|` up
+/// to this.
+const ON_CONSTRAINTS: f64 = 1e-10;
+
+/// The names of a node's variables: the coordinates, `dot(q)`, the
+/// inputs.
+fn node_columns(model: &InterpretedModel) -> Vec<String> {
+    let names = model.names();
+    let velocities = names.coordinates.iter().map(|q| format!("dot({q})"));
+    let mut columns: Vec<String> = names
+        .coordinates
+        .iter()
+        .cloned()
+        .chain(velocities)
+        .collect();
+    columns.extend(names.inputs.iter().cloned());
+    columns
+}
+
+/// The variables' bounds and guess, and the cost, built up from a request.
+struct Resolver<'a> {
+    columns: Vec<String>,
+    /// The number of coordinates.
+    n: usize,
+    parameters: Vec<(&'a str, f64)>,
+    nodes: usize,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    /// The start's and goal's values, by column.
+    ends: [Vec<Option<f64>>; 2],
+}
+
+impl Resolver<'_> {
+    /// The column `name` is, from `flag`.
+    fn column(&self, flag: &'static str, name: &str) -> Result<usize, RequestError> {
+        let name: String = name.chars().filter(|c| !c.is_whitespace()).collect();
+        self.columns
+            .iter()
+            .position(|c| *c == name)
+            .ok_or_else(|| RequestError::UnknownName {
+                flag,
+                name,
+                known: self.columns.join(", "),
+            })
+    }
+
+    /// The value of `text`, from `flag` for `name`.
+    fn value(&self, flag: &'static str, name: &str, text: &str) -> Result<f64, RequestError> {
+        constant(text, &self.parameters).map_err(|source| RequestError::Value {
+            flag,
+            name: name.to_string(),
+            source,
+        })
+    }
+
+    /// `--bound NAME=LO:HI` at every node.
+    fn bound(&mut self, name: &str, text: &str) -> Result<(), RequestError> {
+        let column = self.column("--bound", name)?;
+        let range = || RequestError::Range {
+            name: name.to_string(),
+            text: text.to_string(),
+        };
+        let (lo, hi) = text.split_once(':').ok_or_else(range)?;
+        let end = |text: &str, infinite: f64| match text.trim() {
+            "" => Ok(infinite),
+            text => self.value("--bound", name, text),
+        };
+        let (lo, hi) = (end(lo, f64::NEG_INFINITY)?, end(hi, f64::INFINITY)?);
+        if lo > hi {
+            let name = name.to_string();
+            return Err(RequestError::Empty { name, lo, hi });
+        }
+        let width = self.columns.len();
+        for node in 0..self.nodes {
+            let j = node * width + column;
+            self.lo[j] = self.lo[j].max(lo);
+            self.hi[j] = self.hi[j].min(hi);
+        }
+        Ok(())
+    }
+
+    /// `--start` (`end` 0) or `--goal` (`end` 1) `NAME=EXPR`.
+    fn condition(&mut self, end: usize, name: &str, text: &str) -> Result<(), RequestError> {
+        let flag = ["--start", "--goal"][end];
+        let column = self.column(flag, name)?;
+        if column >= 2 * self.n {
+            let name = name.to_string();
+            return Err(RequestError::InputCondition { flag, name });
+        }
+        let value = self.value(flag, name, text)?;
+        let j = [0, self.nodes - 1][end] * self.columns.len() + column;
+        if value < self.lo[j] || value > self.hi[j] {
+            let (name, lo, hi) = (self.columns[column].clone(), self.lo[j], self.hi[j]);
+            return Err(RequestError::Outside {
+                flag,
+                name,
+                value,
+                lo,
+                hi,
+            });
+        }
+        (self.lo[j], self.hi[j]) = (value, value);
+        self.ends[end][column] = Some(value);
+        Ok(())
+    }
+
+    /// The start and goal interpolated, else 0, inside the bounds.
+    fn guess(&self) -> Vec<f64> {
+        let width = self.columns.len();
+        let last = (self.nodes - 1) as f64;
+        (0..self.nodes * width)
+            .map(|j| {
+                let (node, column) = (j / width, j % width);
+                let s = node as f64 / last;
+                let value = match (self.ends[0][column], self.ends[1][column]) {
+                    (Some(a), Some(b)) => a + s * (b - a),
+                    (Some(a), None) | (None, Some(a)) => a,
+                    (None, None) => 0.0,
+                };
+                value.clamp(self.lo[j], self.hi[j])
+            })
+            .collect()
+    }
+
+    /// With constraints, the start is given whole and meets them.
+    fn check_start(&self, model: &InterpretedModel) -> Result<(), RequestError> {
+        let n = self.n;
+        if model.sizes().c == 0 && model.names().holonomic.is_empty() {
+            return Ok(());
+        }
+        let start = &self.ends[0][..2 * n];
+        let missing: Vec<&str> = (0..2 * n)
+            .filter(|&k| start[k].is_none())
+            .map(|k| self.columns[k].as_str())
+            .collect();
+        if !missing.is_empty() {
+            return Err(RequestError::PartialStart(missing.join(", ")));
+        }
+        let x: Vec<f64> = start.iter().flatten().copied().collect();
+        let residual = constraint_residual(model, &x[..n], &x[n..])
+            .max(holonomic_residual(model, &x[..n]).unwrap_or(0.0));
+        if residual > ON_CONSTRAINTS {
+            return Err(RequestError::StartOffConstraints(residual));
+        }
+        Ok(())
+    }
+}
+
+/// The largest `|A(q) qdot|`.
+fn constraint_residual(model: &InterpretedModel, q: &[f64], qdot: &[f64]) -> f64 {
+    evaluated(model.constraint_residual(q, qdot))
+        .iter()
+        .fold(0.0, |worst, r| worst.max(r.abs()))
+}
+
+/// The checks of the request's numbers.
+fn check_numbers(request: &Request) -> Result<(), RequestError> {
+    if request.nodes < 2 {
+        return Err(RequestError::Nodes(request.nodes));
+    }
+    if !(request.duration.is_finite() && request.duration > 0.0) {
+        return Err(RequestError::Duration(request.duration));
+    }
+    if !(request.tol.is_finite() && request.tol > 0.0) {
+        return Err(RequestError::Tolerance(request.tol));
+    }
+    Ok(())
+}
+
+/// The plan `request` asks of `loaded`, transcribed.
+///
+/// # Errors
+/// A [`RequestError`], an unknown parameter, or a cost that is not an
+/// expression of the names in scope.
+pub(super) fn transcribe(
+    loaded: Loaded,
+    request: &Request,
+) -> Result<Transcription, crate::driver::Failure> {
+    check_numbers(request)?;
+    let mut model = loaded.model;
+    let parameters = with_parameters(&mut model, &request.params)?;
+    let columns = node_columns(&model);
+    let size = request.nodes * columns.len();
+    let mut resolver = Resolver {
+        ends: [vec![None; columns.len()], vec![None; columns.len()]],
+        columns,
+        n: model.sizes().n,
+        parameters: parameters.iter().map(|(n, v)| (n.as_str(), *v)).collect(),
+        nodes: request.nodes,
+        lo: vec![f64::NEG_INFINITY; size],
+        hi: vec![f64::INFINITY; size],
+    };
+    for (name, text) in &request.bounds {
+        resolver.bound(name, text)?;
+    }
+    for (end, conditions) in [&request.start, &request.goal].into_iter().enumerate() {
+        for (name, text) in conditions {
+            resolver.condition(end, name, text)?;
+        }
+    }
+    resolver.check_start(&model)?;
+    let cost = cost(&model, &resolver.parameters, request.minimize.as_deref())?;
+    let guess = resolver.guess();
+    let bounds = (resolver.lo, resolver.hi, guess);
+    Ok(Transcription::new(
+        model,
+        request.scheme,
+        (request.nodes, request.duration),
+        cost,
+        bounds,
+    ))
+}
+
+/// `--minimize`, or the sum of the inputs squared.
+fn cost(
+    model: &InterpretedModel,
+    parameters: &[(&str, f64)],
+    minimize: Option<&str>,
+) -> Result<Expression, RequestError> {
+    let names = model.names();
+    let coordinates: Vec<&str> = names.coordinates.iter().map(String::as_str).collect();
+    let inputs: Vec<&str> = names.inputs.iter().map(String::as_str).collect();
+    let scope = Scope {
+        parameters,
+        coordinates: &coordinates,
+        inputs: &inputs,
+        ..Scope::default()
+    };
+    let squares = inputs.iter().map(|u| format!("{u}^2")).collect::<Vec<_>>();
+    let default = if squares.is_empty() {
+        "0".to_string()
+    } else {
+        squares.join(" + ")
+    };
+    let text = minimize.unwrap_or(&default);
+    Expression::parse(text, &scope).map_err(|source| RequestError::Value {
+        flag: "--minimize",
+        name: text.to_string(),
+        source,
+    })
+}
+
+/// `plan.csv`'s rows: `t`, the node's variables, `energy`,
+/// `constraint_residual` and, with configuration constraints,
+/// `holonomic_residual`.
+pub(super) fn table(
+    transcription: &Transcription,
+    z: &[f64],
+) -> Result<Table, crate::driver::Failure> {
+    let model = transcription.model();
+    let n = model.sizes().n;
+    let holonomic = !model.names().holonomic.is_empty();
+    let mut columns = vec!["t".to_string()];
+    columns.extend(node_columns(model));
+    columns.extend(["energy", "constraint_residual"].map(String::from));
+    if holonomic {
+        columns.push("holonomic_residual".into());
+    }
+    let mut table = Table::new();
+    crate::runtime::record::Recorder::start(&mut table, &columns)?;
+    let width = transcription.width();
+    for (i, node) in z.chunks(width).enumerate() {
+        let (q, qdot) = (&node[..n], &node[n..2 * n]);
+        let mut row = vec![i as f64 * transcription.step()];
+        row.extend_from_slice(&node[..2 * n]);
+        row.extend_from_slice(&transcription.held_inputs(z, i));
+        row.push(evaluated(model.energy(q, qdot)));
+        row.push(constraint_residual(model, q, qdot));
+        row.extend(holonomic_residual(model, q));
+        crate::runtime::record::Recorder::record(&mut table, &row)?;
+    }
+    Ok(table)
+}
