@@ -50,7 +50,14 @@ impl Default for DiscreteGradient {
 impl<S: Structured<X> + Jacobian<X>, X: State> FixedStep<S, X> for DiscreteGradient {
     const ORDER: u32 = 2;
 
-    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
+    fn step_counting(
+        &self,
+        system: &S,
+        t: f64,
+        x: &X,
+        h: f64,
+        iterations: &mut usize,
+    ) -> Result<X, Error> {
         let tm = t + h / 2.0;
         let settings = Settings {
             tolerance: self.tolerance,
@@ -66,7 +73,7 @@ impl<S: Structured<X> + Jacobian<X>, X: State> FixedStep<S, X> for DiscreteGradi
             explicit_midpoint(system, t, x, h),
             NonFiniteCause::RightHandSide,
         )?;
-        let next = solve_root(start, settings, h / 2.0, |next| {
+        let next = solve_root(start, settings, h / 2.0, iterations, |next| {
             let m = x.with_entries(|i| (x[i] + next[i]) / 2.0);
             let gradient = discrete_gradient(system, energy, x, next, &m);
             let (j, forcing) = (system.structure_matrix(&m), system.forcing(tm, &m));

@@ -47,7 +47,14 @@ impl Default for Midpoint {
 impl<S: Jacobian<X>, X: State> FixedStep<S, X> for Midpoint {
     const ORDER: u32 = 2;
 
-    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
+    fn step_counting(
+        &self,
+        system: &S,
+        t: f64,
+        x: &X,
+        h: f64,
+        iterations: &mut usize,
+    ) -> Result<X, Error> {
         let (tm, half) = (t + h / 2.0, h / 2.0);
         let at = StepAt {
             t,
@@ -60,7 +67,7 @@ impl<S: Jacobian<X>, X: State> FixedStep<S, X> for Midpoint {
             tolerance: self.tolerance,
             max_iterations: self.max_iterations,
         };
-        let midpoint = solve_root(start, settings, half, |m| {
+        let midpoint = solve_root(start, settings, half, iterations, |m| {
             let f = system.rhs(tm, m);
             let g = m.with_entries(|i| m[i] - x[i] - half * f[i]);
             (g, system.jacobian(tm, m))

@@ -36,15 +36,17 @@ pub(crate) enum Failure {
 
 /// The root of `residual(y)` from `y`, where `residual` returns the value
 /// `g(y)` and a matrix `a` whose shift `I - scale a` is (an approximation of)
-/// the Jacobian `dg/dy`.
+/// the Jacobian `dg/dy`; each iteration made is added to `iterations`.
 pub(crate) fn solve_root<X: State>(
     mut y: X,
     settings: Settings,
     scale: f64,
+    iterations: &mut usize,
     residual: impl Fn(&X) -> (X, X::Matrix),
 ) -> Result<X, Failure> {
     let mut update = f64::INFINITY;
     for iteration in 1..=settings.max_iterations {
+        *iterations += 1;
         let previous = update;
         let (value, a) = residual(&y);
         let finite = |values: &[f64]| values.iter().all(|v| v.is_finite());
