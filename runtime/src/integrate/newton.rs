@@ -9,13 +9,14 @@
 //! y_{k+1} = y_k - (I - c A(y_j))^-1 g(y_k)
 //! ```
 //!
-//! solves with those factors. From a predictor `y_0` at a distance `e`
-//! from the root, the updates contract by about `c |dA/dy| e` per
-//! iteration, as small as the quadratic rate of the full method for the
-//! short steps an accurate run takes; where an update does not halve, `A`
-//! is evaluated again at the iterate and factored anew (`j = k`), as the
-//! full method would, so a poor predictor (a fast motion within the step)
-//! still converges.
+//! solves with the factors of the iterate `y_j` they were made at (first
+//! `y_0`). From a predictor `y_0` at a distance `e` from the root, each
+//! update is smaller than the last by a factor of about `c |dA/dy| e`, as
+//! fast as the full method's quadratic rate for the short steps an
+//! accurate run takes; where an update does not halve, `A` is evaluated
+//! again at the new iterate and factored anew (`j = k + 1`), as the full
+//! method would, so a poor predictor (a fast motion within the step) still
+//! converges.
 
 use super::max_norm;
 use crate::state::State;
