@@ -314,14 +314,6 @@ pub struct Effort {
     pub newton_iterations: usize,
 }
 
-impl core::ops::AddAssign for Effort {
-    fn add_assign(&mut self, other: Self) {
-        self.accepted += other.accepted;
-        self.rejected += other.rejected;
-        self.newton_iterations += other.newton_iterations;
-    }
-}
-
 /// The end of an adaptive integration ([`DormandPrince::integrate`],
 /// [`Controlled::integrate`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
