@@ -277,7 +277,9 @@ fn at_the_default_tolerance_every_integrator_ends_the_fall_at_the_same_time() {
 }
 
 /// RK4 at a fixed step of 20 ms gains 845 % of the falling bicycle's
-/// energy: the binary prints the summary, then one `warning:` line naming
+/// energy, nearly all of the kinetic energy the run reaches, so its drift
+/// relative to that is near 1 (0.9986): the binary prints the summary,
+/// then one `warning:` line naming
 /// the drift, its bound and what to change, and exits 0; with `--strict`
 /// the same run exits 1. Steps following the default tolerance do not
 /// warn (docs/INTERFACE.md section 12).
@@ -309,9 +311,9 @@ fn a_run_beyond_its_tolerance_warns_and_strict_makes_it_an_error() {
             .parse()
             .unwrap_or_else(|_| panic!("a number in {after}"))
     };
-    let warned_drift = drift(warning, "energy drift (relative) of a run without inputs ");
-    assert_eq!(warned_drift, drift(&summary, "energy drift (relative) "));
-    assert!(warned_drift > 1.0, "{warning}");
+    let warned_drift = drift(warning, "energy drift of a run without inputs ");
+    assert_eq!(warned_drift, drift(&summary, "energy drift "));
+    assert!(warned_drift > 0.5, "{warning}");
     assert!(
         warning.contains("exceeds 1.0e-6") && warning.contains("--dt"),
         "{warning}"

@@ -25,6 +25,7 @@ mod degenerate_momentum_basis;
 mod derive_rust;
 mod design_map;
 mod energy_controller;
+mod energy_drift;
 mod euler_parameters;
 mod guide_commands;
 mod wheeled_robots;

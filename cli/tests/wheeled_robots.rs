@@ -218,9 +218,9 @@ fn the_drive_torques_work_is_the_energy_gained() {
         ],
     );
     let balance: f64 = summary
-        .split("power balance (relative) ")
+        .split("power balance ")
         .nth(1)
-        .and_then(|rest| rest.split(';').next())
+        .and_then(|rest| rest.split(' ').next())
         .unwrap_or_else(|| panic!("a power balance in {summary}"))
         .parse()
         .expect("a number");

@@ -296,10 +296,14 @@ impl Model {
                 summary.set_item("engine", report.engine)?;
                 summary.set_item("energy_drift", report.energy_drift)?;
                 summary.set_item("power_balance", report.power_balance)?;
+                summary.set_item("energy_scale", report.energy_scale)?;
                 summary.set_item("max_constraint_residual", report.max_constraint_residual)?;
                 summary.set_item("max_holonomic_residual", report.max_holonomic_residual)?;
                 summary.set_item("chart_switches", report.chart_switches)?;
                 summary.set_item("split_steps", report.split_steps)?;
+                summary.set_item("accepted_steps", report.effort.accepted)?;
+                summary.set_item("rejected_steps", report.effort.rejected)?;
+                summary.set_item("newton_iterations", report.effort.newton_iterations)?;
                 summary.set_item("stopped", report.stopped.clone())?;
                 summary.set_item("seconds", report.seconds)?;
                 let warnings = (report.warnings().iter())

@@ -85,8 +85,9 @@ def test_a_fall_at_the_default_step_is_split_where_the_steer_whips_round(bicycle
 
 
 def test_a_run_beyond_its_tolerance_warns_and_one_within_it_does_not(bicycle):
-    """RK4 at a fixed 20 ms step gains 845 % of the falling bicycle's energy:
-    the run issues a RuntimeWarning naming the drift. With its step following
+    """RK4 at a fixed 20 ms step gains 845 % of the falling bicycle's energy,
+    nearly all of the kinetic energy the run reaches (a drift of 0.9986 of
+    it): the run issues a RuntimeWarning naming the drift. With its step following
     the default tolerance it does not warn, and the lean reaches 1.2 within
     1e-6 s of Dormand-Prince at a tolerance of 1e-11."""
     initial = {"dot(theta_r)": -10, "dot(phi)": 0.2, "dot(delta)": 0}
@@ -96,7 +97,7 @@ def test_a_run_beyond_its_tolerance_warns_and_one_within_it_does_not(bicycle):
 
     with pytest.warns(RuntimeWarning, match="energy drift"):
         coarse = fall(integrator="rk4", dt=0.02, fixed_step=True)
-    assert coarse.summary["energy_drift"] > 1
+    assert coarse.summary["energy_drift"] > 0.5
     assert len(coarse.summary["warnings"]) == 1
     reference = fall(integrator="dopri5", rtol=1e-11, atol=1e-11)
     with warnings.catch_warnings():

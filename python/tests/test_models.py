@@ -142,8 +142,14 @@ def test_a_trajectory_has_named_columns_and_a_summary():
     assert run.summary["max_holonomic_residual"] is None
     assert set(run.summary) >= {
         "t_end", "steps", "integrator", "engine", "energy_drift", "max_constraint_residual",
-        "max_holonomic_residual", "chart_switches", "stopped",
+        "max_holonomic_residual", "chart_switches", "stopped", "energy_scale",
+        "accepted_steps", "rejected_steps", "newton_iterations",
     }
+    # discrete-gradient steps following the tolerance: three implicit
+    # solves per trial, each at least one Newton iteration
+    trials = run.summary["accepted_steps"] + run.summary["rejected_steps"]
+    assert run.summary["accepted_steps"] >= run.summary["steps"]
+    assert run.summary["newton_iterations"] >= 3 * trials
     assert numpy.array_equal(run["x"], run.data[:, run.columns.index("x")])
     frame = run.to_pandas()
     assert list(frame.columns) == run.columns and numpy.array_equal(frame["phi"], run["phi"])

@@ -30,6 +30,12 @@
 //! rows recorded until then stay recorded and the recorder is finished
 //! (flushed) on every exit.
 //!
+//! The summary counts what the integrator took ([`Summary::effort`]: steps
+//! accepted and rejected, Newton iterations) and measures the energy drift
+//! against the run's kinetic energy and the range of its potential
+//! ([`Summary::energy_drift`], [`Summary::energy_scale`]), which a constant
+//! added to the potential does not change.
+//!
 //! A formulation with several charts (the reduced form of a model with
 //! constraints: the charts derived at build time and the run-time charts
 //! of [`crate::partition`]) is then asked to change its chart
@@ -45,6 +51,7 @@
 //! chart.
 
 mod advance;
+mod drift;
 pub mod ends;
 mod observed;
 mod outcome;

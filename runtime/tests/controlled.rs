@@ -33,7 +33,7 @@ fn error_and_steps<M: FixedStep<Pendulum, [f64; 2]>>(method: M, tolerance: f64) 
         let solution = controlled
             .integrate(&Pendulum, (f64::from(i), x), f64::from(i + 1))
             .unwrap();
-        (x, accepted) = (solution.x, accepted + solution.accepted);
+        (x, accepted) = (solution.x, accepted + solution.effort.accepted);
     }
     let exact = reference();
     let error = (x[0] - exact[0]).abs().max((x[1] - exact[1]).abs());
@@ -90,9 +90,9 @@ fn the_controlled_discrete_gradient_keeps_the_energy() {
     let per_step = (3.0 * tolerance * (1.0 + X0[0])).powi(2);
     let drift = drift(&gradient);
     assert!(
-        drift < gradient.accepted as f64 * per_step,
+        drift < gradient.effort.accepted as f64 * per_step,
         "{drift:e} in {} steps",
-        gradient.accepted
+        gradient.effort.accepted
     );
 }
 
@@ -109,7 +109,7 @@ fn a_step_leaving_the_domain_is_shortened() {
         .integrate(&Draining, (0.0, [1.0]), 1.5)
         .unwrap();
     assert!((solution.x[0] - 0.0625).abs() < 1e-9, "{:?}", solution.x);
-    assert!(solution.rejected > 0);
+    assert!(solution.effort.rejected > 0);
 }
 
 /// Tolerances no step above the smallest allowed can meet end in a step

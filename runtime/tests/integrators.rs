@@ -138,8 +138,8 @@ fn dormand_prince_global_error_tracks_its_tolerance() {
         println!(
             "Dormand-Prince tol {tolerance:e}: error {error:.3e} ({:.2} tol), {} accepted, {} rejected",
             error / tolerance,
-            end.accepted,
-            end.rejected
+            end.effort.accepted,
+            end.effort.rejected
         );
         // within a decade of the tolerance, and proportional to it: 100 times
         // tighter gives at least 50 times smaller

@@ -5,6 +5,7 @@
 
 mod controlled;
 mod discrete_gradient;
+mod effort;
 mod integrators;
 mod linalg;
 mod split_steps;

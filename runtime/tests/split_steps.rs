@@ -4,7 +4,7 @@
 //! `sqrt(x) = 1 - t/2`, so `x` reaches 0 at `t = 2`, and the right-hand
 //! side is NaN below 0.
 
-use chaplygin_runtime::integrate::{Error, FixedStep, NonFiniteCause, Rk4};
+use chaplygin_runtime::integrate::{Effort, Error, FixedStep, NonFiniteCause, Rk4};
 use chaplygin_runtime::record::Table;
 use chaplygin_runtime::simulate::{HALVINGS, Observed, Regularity, Simulation, SimulationError};
 use chaplygin_runtime::system::{Energy, OdeSystem};
@@ -77,6 +77,12 @@ fn a_step_that_leaves_the_domain_is_taken_in_halves() {
         .run(&Draining, [1.0], &mut Table::new())
         .unwrap();
     assert_eq!((summary.steps, summary.split_steps), (1, 1));
+    let effort = Effort {
+        accepted: 2,
+        rejected: 1,
+        newton_iterations: 0,
+    };
+    assert_eq!(summary.effort, effort);
     assert_eq!(summary.state, halves);
     assert!(
         (summary.state[0] - 0.0625).abs() < 0.02,

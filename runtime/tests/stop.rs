@@ -16,7 +16,7 @@ use chaplygin_runtime::system::{Energy, Jacobian, OdeSystem, Structured};
 /// integrator here follows exactly (RK4 and Dormand-Prince by their order;
 /// the midpoint rule and the discrete gradient, which equal each other for
 /// this quadratic `H`, by `q1 = q0 + h (p0 + p1)/2`).
-struct Thrown;
+pub(crate) struct Thrown;
 
 const G: f64 = 1.0;
 
@@ -70,6 +70,11 @@ impl Observed<[f64; 2]> for Thrown {
 
     fn configuration_velocity(&self, x: &[f64; 2], q: &mut [f64], qdot: &mut [f64]) {
         (q[0], qdot[0]) = (x[0], x[1]);
+    }
+
+    /// The height's `G q`.
+    fn energy_at_rest(&self, x: &[f64; 2]) -> f64 {
+        G * x[0]
     }
 
     fn constraint_residual(&self, _x: &[f64; 2]) -> f64 {

@@ -38,6 +38,9 @@ pub trait Formulation {
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]);
     /// The stored energy.
     fn energy(&self, x: &[f64]) -> f64;
+    /// The stored energy at rest at `x`'s configuration (see
+    /// [`Observed::energy_at_rest`]).
+    fn energy_at_rest(&self, x: &[f64]) -> f64;
     /// Whether [`Formulation::structure_matrix`],
     /// [`Formulation::energy_gradient`] and [`Formulation::forcing`] are
     /// available (by default not).
@@ -152,6 +155,10 @@ where
 
     fn energy(&self, x: &[f64]) -> f64 {
         self.system.energy(&leading(x))
+    }
+
+    fn energy_at_rest(&self, x: &[f64]) -> f64 {
+        self.system.energy_at_rest(&leading(x))
     }
 
     fn engine(&self) -> &'static str {
@@ -305,6 +312,10 @@ impl Observed<Vec<f64>> for RunTimeSized<'_> {
 
     fn configuration_velocity(&self, x: &Vec<f64>, q: &mut [f64], qdot: &mut [f64]) {
         self.0.configuration_velocity(x, q, qdot);
+    }
+
+    fn energy_at_rest(&self, x: &Vec<f64>) -> f64 {
+        self.0.energy_at_rest(x)
     }
 
     fn constraint_residual(&self, x: &Vec<f64>) -> f64 {

@@ -29,6 +29,12 @@ fn split(x: &[f64], n: usize) -> (&[f64], &[f64]) {
     x.split_at(n)
 }
 
+/// `E(q, 0)` at the configuration `q` that leads the state `x`.
+fn energy_at_rest(model: &InterpretedModel, x: &[f64]) -> f64 {
+    let n = model.sizes().n;
+    evaluated(model.energy(&x[..n], &vec![0.0; n]))
+}
+
 /// `u(t, q, qdot)`, written into a slice of the model's inputs.
 pub type Law = Box<dyn Fn(f64, &[f64], &[f64], &mut [f64])>;
 
@@ -256,6 +262,15 @@ impl Formulation for InterpretedReduced {
         self.call("hamiltonian", &[x])[0]
     }
 
+    /// `H(q, 0)`: the momenta of a velocity zero are zero.
+    fn energy_at_rest(&self, x: &[f64]) -> f64 {
+        let n = self.model.sizes().n;
+        let rest: Vec<f64> = (0..x.len())
+            .map(|i| if i < n { x[i] } else { 0.0 })
+            .collect();
+        self.energy(&rest)
+    }
+
     fn is_structured(&self) -> bool {
         true
     }
@@ -406,6 +421,10 @@ impl Formulation for InterpretedDalembert {
     fn energy(&self, x: &[f64]) -> f64 {
         let (q, qdot) = split(x, self.model.sizes().n);
         evaluated(self.model.energy(q, qdot))
+    }
+
+    fn energy_at_rest(&self, x: &[f64]) -> f64 {
+        energy_at_rest(&self.model, x)
     }
 
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {
@@ -625,6 +644,10 @@ impl Formulation for InterpretedMomentum {
     fn energy(&self, x: &[f64]) -> f64 {
         let (q, qdot) = self.reconstructed(x);
         evaluated(self.model.energy(q, &qdot))
+    }
+
+    fn energy_at_rest(&self, x: &[f64]) -> f64 {
+        energy_at_rest(&self.model, x)
     }
 
     fn inputs(&self, t: f64, x: &[f64], inputs: &mut [f64]) {

@@ -11,7 +11,7 @@
 
 use chaplygin::driver::catalog::lookup;
 use chaplygin::driver::engine::{EngineChoice, Loaded, load};
-use chaplygin::driver::simulate::{Request, simulate};
+use chaplygin::driver::simulate::{Request, prepare, simulate};
 use chaplygin::runtime::record::{Recorder, Table};
 use clap::Parser;
 
@@ -55,13 +55,36 @@ impl Model {
         Self { loaded }
     }
 
+    /// The configuration and velocity `(q, qdot)` of the `n` coordinates
+    /// at each of `rows` (`t`, then the state) of a run with `options`:
+    /// the formulation's own, as an input law reads them (for the reduced
+    /// form `velocities(q, alpha)` in the chart the run starts in).
+    pub fn configurations_velocities(
+        &self,
+        options: &[&str],
+        n: usize,
+        rows: &[Vec<f64>],
+    ) -> Vec<(Vec<f64>, Vec<f64>)> {
+        let prepared = prepare(self.loaded.clone(), &request(options))
+            .unwrap_or_else(|error| panic!("{options:?}: {error}"));
+        let dimension = prepared.x0.len();
+        (rows.iter())
+            .map(|row| {
+                let (mut q, mut qdot) = (vec![0.0; n], vec![0.0; n]);
+                (prepared.formulation).configuration_velocity(
+                    &row[1..=dimension],
+                    &mut q,
+                    &mut qdot,
+                );
+                (q, qdot)
+            })
+            .collect()
+    }
+
     /// `chaplygin simulate MODEL` with `options`; `Err` with the message
     /// where the binary would refuse them before the run.
     pub fn simulate(&self, options: &[&str]) -> Result<Simulated, String> {
-        let arguments = std::iter::once("simulate").chain(options.iter().copied());
-        let request = Options::try_parse_from(arguments)
-            .unwrap_or_else(|error| panic!("{options:?}: {error}"))
-            .request;
+        let request = request(options);
         let finished = simulate(self.loaded.clone(), &request, &mut Nothing, &mut |_| {})
             .map_err(|error| error.to_string())?;
         let Table { columns, rows } = finished.table;
@@ -90,6 +113,14 @@ impl Simulated {
     pub fn column(&self, name: &str) -> Vec<f64> {
         super::column(&self.header, &self.rows, name)
     }
+}
+
+/// `chaplygin simulate MODEL OPTIONS`'s request.
+fn request(options: &[&str]) -> Request {
+    let arguments = std::iter::once("simulate").chain(options.iter().copied());
+    Options::try_parse_from(arguments)
+        .unwrap_or_else(|error| panic!("{options:?}: {error}"))
+        .request
 }
 
 /// A recorder that keeps nothing (the run's own table keeps every row).

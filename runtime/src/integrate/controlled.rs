@@ -29,7 +29,7 @@
 //! again four times shorter, so the implicit solve's convergence feeds the
 //! same control.
 
-use super::{Error, FixedStep, Limits, Solution, Tolerance, step_factor};
+use super::{Effort, Error, FixedStep, Limits, Solution, Tolerance, step_factor};
 use crate::state::State;
 use std::cell::Cell;
 
@@ -77,9 +77,30 @@ impl<M> Controlled<M> {
     pub fn integrate<S, X>(
         &self,
         system: &S,
-        (t0, x0): (f64, X),
+        start: (f64, X),
         t1: f64,
     ) -> Result<Solution<X>, Error>
+    where
+        M: FixedStep<S, X>,
+        X: State,
+    {
+        let mut effort = Effort::default();
+        let x = self.integrate_counting(system, start, t1, &mut effort)?;
+        Ok(Solution { x, effort })
+    }
+
+    /// [`Controlled::integrate`], adding its steps and Newton iterations
+    /// to `effort` (those before a failure too).
+    ///
+    /// # Errors
+    /// As [`Controlled::integrate`].
+    pub fn integrate_counting<S, X>(
+        &self,
+        system: &S,
+        (t0, x0): (f64, X),
+        t1: f64,
+        effort: &mut Effort,
+    ) -> Result<X, Error>
     where
         M: FixedStep<S, X>,
         X: State,
@@ -90,26 +111,26 @@ impl<M> Controlled<M> {
             _ => span,
         };
         let (mut t, mut x) = (t0, x0);
-        let (mut accepted, mut rejected, mut just_rejected) = (0, 0, false);
+        let (steps, mut just_rejected) = (effort.accepted + effort.rejected, false);
         while t < t1 {
             let last = t + h >= t1 - 16.0 * f64::EPSILON * t1.abs();
             let step = if last { t1 - t } else { h };
-            self.limits()
-                .check(t, step, x.as_ref(), accepted + rejected)?;
-            let error = match self.trial(system, t, &x, step) {
+            let taken = effort.accepted + effort.rejected - steps;
+            self.limits().check(t, step, x.as_ref(), taken)?;
+            let error = match self.trial(system, t, &x, step, &mut effort.newton_iterations) {
                 Ok((next, error)) if error <= 1.0 => {
                     (t, x) = (if last { t1 } else { t + step }, next);
-                    accepted += 1;
+                    effort.accepted += 1;
                     error
                 }
                 Ok((_, error)) => {
-                    rejected += 1;
+                    effort.rejected += 1;
                     error
                 }
                 Err(failure)
                     if failure.may_pass_in_shorter_steps() && step / 4.0 >= self.min_step =>
                 {
-                    rejected += 1;
+                    effort.rejected += 1;
                     h = step / 4.0;
                     just_rejected = true;
                     continue;
@@ -125,11 +146,7 @@ impl<M> Controlled<M> {
             };
         }
         self.proposed.set(h);
-        Ok(Solution {
-            x,
-            accepted,
-            rejected,
-        })
+        Ok(x)
     }
 
     fn tolerance(&self) -> Tolerance {
@@ -148,15 +165,23 @@ impl<M> Controlled<M> {
 
     /// One step of size `h` and two of `h/2` from `x` at `t`: the state
     /// the two reach and their scaled error estimate (infinite where it is
-    /// not a number).
-    fn trial<S, X>(&self, system: &S, t: f64, x: &X, h: f64) -> Result<(X, f64), Error>
+    /// not a number); their Newton iterations added to `iterations`.
+    fn trial<S, X>(
+        &self,
+        system: &S,
+        t: f64,
+        x: &X,
+        h: f64,
+        iterations: &mut usize,
+    ) -> Result<(X, f64), Error>
     where
         M: FixedStep<S, X>,
         X: State,
     {
-        let whole = self.method.step(system, t, x, h)?;
-        let half = self.method.step(system, t, x, h / 2.0)?;
-        let two_halves = self.method.step(system, t + h / 2.0, &half, h / 2.0)?;
+        let method = &self.method;
+        let whole = method.step_counting(system, t, x, h, iterations)?;
+        let half = method.step_counting(system, t, x, h / 2.0, iterations)?;
+        let two_halves = method.step_counting(system, t + h / 2.0, &half, h / 2.0, iterations)?;
         let denominator = f64::from((1_u32 << M::ORDER) - 1);
         let difference = x.with_entries(|i| (two_halves[i] - whole[i]) / denominator);
         let error =

@@ -23,7 +23,7 @@
 //! equation (exact for quadratic `H`); the correction term's derivative is
 //! left out, which slows convergence a little but not the step it finds.
 
-use super::newton::{Settings, solve_root};
+use super::newton::{Equation, Settings, solve_root};
 use super::{Error, FixedStep, NonFiniteCause, StepAt, newton_failure};
 use crate::state::State;
 use crate::system::{Jacobian, Structured};
@@ -50,7 +50,14 @@ impl Default for DiscreteGradient {
 impl<S: Structured<X> + Jacobian<X>, X: State> FixedStep<S, X> for DiscreteGradient {
     const ORDER: u32 = 2;
 
-    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
+    fn step_counting(
+        &self,
+        system: &S,
+        t: f64,
+        x: &X,
+        h: f64,
+        iterations: &mut usize,
+    ) -> Result<X, Error> {
         let tm = t + h / 2.0;
         let settings = Settings {
             tolerance: self.tolerance,
@@ -66,19 +73,24 @@ impl<S: Structured<X> + Jacobian<X>, X: State> FixedStep<S, X> for DiscreteGradi
             explicit_midpoint(system, t, x, h),
             NonFiniteCause::RightHandSide,
         )?;
-        let next = solve_root(start, settings, h / 2.0, |next| {
-            let m = x.with_entries(|i| (x[i] + next[i]) / 2.0);
-            let gradient = discrete_gradient(system, energy, x, next, &m);
-            let (j, forcing) = (system.structure_matrix(&m), system.forcing(tm, &m));
-            let value = x.with_entries(|i| {
-                let flow: f64 = (0..gradient.as_ref().len())
-                    .map(|k| X::entry(&j, i, k) * gradient[k])
-                    .sum();
-                next[i] - x[i] - h * (flow + forcing[i])
-            });
-            (value, system.jacobian(tm, &m))
-        })
-        .map_err(|failure| newton_failure(failure, t, h, x.as_ref()))?;
+        let midpoint = |next: &X| x.with_entries(|i| (x[i] + next[i]) / 2.0);
+        let equation = Equation {
+            scale: h / 2.0,
+            residual: |next: &X| {
+                let m = midpoint(next);
+                let gradient = discrete_gradient(system, energy, x, next, &m);
+                let (j, forcing) = (system.structure_matrix(&m), system.forcing(tm, &m));
+                x.with_entries(|i| {
+                    let flow: f64 = (0..gradient.as_ref().len())
+                        .map(|k| X::entry(&j, i, k) * gradient[k])
+                        .sum();
+                    next[i] - x[i] - h * (flow + forcing[i])
+                })
+            },
+            matrix: |next: &X| system.jacobian(tm, &midpoint(next)),
+        };
+        let next = solve_root(start, settings, equation, iterations)
+            .map_err(|failure| newton_failure(failure, t, h, x.as_ref()))?;
         at.finite(next, NonFiniteCause::NewState)
     }
 }

@@ -14,7 +14,9 @@
 //! output between steps. It conserves linear invariants; the global error of
 //! other quantities is roughly proportional to the tolerance.
 
-use super::{Error, Limits, NonFiniteCause, StepAt, Tolerance, combine, finite_start, step_factor};
+use super::{
+    Effort, Error, Limits, NonFiniteCause, StepAt, Tolerance, combine, finite_start, step_factor,
+};
 use crate::state::State;
 use crate::system::OdeSystem;
 
@@ -176,10 +178,40 @@ impl DormandPrince {
     pub fn integrate_with<S: OdeSystem<X>, X: State>(
         &self,
         system: &S,
+        start: (f64, X),
+        t1: f64,
+        observe: impl FnMut(&DenseStep<X>),
+    ) -> Result<Solution<X>, Error> {
+        let mut effort = Effort::default();
+        let x = self.steps(system, start, t1, observe, &mut effort)?;
+        Ok(Solution { x, effort })
+    }
+
+    /// [`DormandPrince::integrate`], adding its steps to `effort` (those
+    /// before a failure too).
+    ///
+    /// # Errors
+    /// As [`DormandPrince::integrate`].
+    pub fn integrate_counting<S: OdeSystem<X>, X: State>(
+        &self,
+        system: &S,
+        start: (f64, X),
+        t1: f64,
+        effort: &mut Effort,
+    ) -> Result<X, Error> {
+        self.steps(system, start, t1, |_| {}, effort)
+    }
+
+    /// The steps from `x0` at `t0` to `t1`, each accepted one observed,
+    /// counted in `effort`.
+    fn steps<S: OdeSystem<X>, X: State>(
+        &self,
+        system: &S,
         (t0, x0): (f64, X),
         t1: f64,
         mut observe: impl FnMut(&DenseStep<X>),
-    ) -> Result<Solution<X>, Error> {
+        effort: &mut Effort,
+    ) -> Result<X, Error> {
         let (mut t, mut x) = (t0, finite_start(t0, x0)?);
         let start = StepAt {
             t,
@@ -188,7 +220,7 @@ impl DormandPrince {
         };
         let mut f = start.finite(system.rhs(t, &x), NonFiniteCause::RightHandSide)?;
         let mut h = self.initial_step(x.as_ref(), f.as_ref(), t1 - t0);
-        let (mut accepted, mut rejected, mut just_rejected) = (0, 0, false);
+        let (steps, mut just_rejected) = (effort.accepted + effort.rejected, false);
         let mut non_finite_trial = false;
         while (t1 - t) * (t1 - t0).signum() > 0.0 {
             let limits = Limits {
@@ -196,7 +228,7 @@ impl DormandPrince {
                 max_steps: self.max_steps,
             };
             limits
-                .check(t, h, x.as_ref(), accepted + rejected)
+                .check(t, h, x.as_ref(), effort.accepted + effort.rejected - steps)
                 .map_err(|error| match error {
                     // the step shrank to nothing because its stages were not finite
                     Error::StepSizeUnderflow { t, h, state } if non_finite_trial => {
@@ -232,19 +264,15 @@ impl DormandPrince {
                 let [.., last_stage] = trial.stages;
                 (x, f) = (next, last_stage);
                 t = if last { t1 } else { t + step };
-                accepted += 1;
+                effort.accepted += 1;
             } else {
-                rejected += 1;
+                effort.rejected += 1;
             }
             // the embedded estimate is of order 4
             h = step * step_factor(error, 4, just_rejected);
             just_rejected = error > 1.0;
         }
-        Ok(Solution {
-            x,
-            accepted,
-            rejected,
-        })
+        Ok(x)
     }
 
     fn tolerance(&self) -> Tolerance {

@@ -18,7 +18,7 @@
 //! reduced port-Hamiltonian form with zero input and a constant metric, e.g.
 //! the snakeboard in the paper's momentum basis.)
 
-use super::newton::{Settings, solve_root};
+use super::newton::{Equation, Settings, solve_root};
 use super::{Error, FixedStep, NonFiniteCause, StepAt, newton_failure};
 use crate::state::State;
 use crate::system::Jacobian;
@@ -47,7 +47,14 @@ impl Default for Midpoint {
 impl<S: Jacobian<X>, X: State> FixedStep<S, X> for Midpoint {
     const ORDER: u32 = 2;
 
-    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
+    fn step_counting(
+        &self,
+        system: &S,
+        t: f64,
+        x: &X,
+        h: f64,
+        iterations: &mut usize,
+    ) -> Result<X, Error> {
         let (tm, half) = (t + h / 2.0, h / 2.0);
         let at = StepAt {
             t,
@@ -60,12 +67,16 @@ impl<S: Jacobian<X>, X: State> FixedStep<S, X> for Midpoint {
             tolerance: self.tolerance,
             max_iterations: self.max_iterations,
         };
-        let midpoint = solve_root(start, settings, half, |m| {
-            let f = system.rhs(tm, m);
-            let g = m.with_entries(|i| m[i] - x[i] - half * f[i]);
-            (g, system.jacobian(tm, m))
-        })
-        .map_err(|failure| newton_failure(failure, t, h, x.as_ref()))?;
+        let equation = Equation {
+            scale: half,
+            residual: |m: &X| {
+                let f = system.rhs(tm, m);
+                m.with_entries(|i| m[i] - x[i] - half * f[i])
+            },
+            matrix: |m: &X| system.jacobian(tm, m),
+        };
+        let midpoint = solve_root(start, settings, equation, iterations)
+            .map_err(|failure| newton_failure(failure, t, h, x.as_ref()))?;
         at.finite(
             x.with_entries(|i| 2.0 * midpoint[i] - x[i]),
             NonFiniteCause::NewState,

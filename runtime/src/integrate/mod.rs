@@ -12,6 +12,8 @@
 //! doubling ([`Controlled`]). Every method is written once over a
 //! [`State`]: on fixed-size arrays a step stays on the stack and does not
 //! allocate; only a returned [`Error`] allocates (a copy of the state).
+//! An integration counts what it takes ([`Effort`]): its steps accepted
+//! and rejected and the Newton iterations of its implicit steps.
 
 mod controlled;
 pub mod discrete_gradient;
@@ -181,7 +183,24 @@ pub trait FixedStep<S, X> {
     /// # Errors
     /// [`Error::NonFinite`] when the new state is not finite; the method's own
     /// failures (e.g. [`Error::NewtonFailure`], [`Error::SingularJacobian`]).
-    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error>;
+    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
+        self.step_counting(system, t, x, h, &mut 0)
+    }
+
+    /// [`FixedStep::step`], adding the Newton iterations it makes to
+    /// `iterations` (those of a solve that fails too; none for an explicit
+    /// method).
+    ///
+    /// # Errors
+    /// As [`FixedStep::step`].
+    fn step_counting(
+        &self,
+        system: &S,
+        t: f64,
+        x: &X,
+        h: f64,
+        iterations: &mut usize,
+    ) -> Result<X, Error>;
 }
 
 /// Takes `steps` steps of size `h` from `x0` at `t0`, calling
@@ -280,17 +299,29 @@ pub(crate) fn finite_start<X: AsRef<[f64]>>(t0: f64, x0: X) -> Result<X, Error> 
     })
 }
 
+/// What an integration took: its steps and the Newton iterations of its
+/// implicit steps.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Effort {
+    /// Accepted steps.
+    pub accepted: usize,
+    /// Rejected steps: the error estimate too large, or the method failing
+    /// on the step (Newton's iteration diverging, a stage leaving the
+    /// model's domain), the step then taken again shorter.
+    pub rejected: usize,
+    /// Newton iterations, in accepted and rejected steps alike (each one
+    /// evaluation of `f` and its Jacobian and one LU solve).
+    pub newton_iterations: usize,
+}
+
 /// The end of an adaptive integration ([`DormandPrince::integrate`],
 /// [`Controlled::integrate`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Solution<X> {
     /// The state at the final time.
     pub x: X,
-    /// Accepted steps.
-    pub accepted: usize,
-    /// Rejected steps (the error estimate too large, or, for
-    /// [`Controlled`], the method failing on the step).
-    pub rejected: usize,
+    /// The steps accepted and rejected, and the Newton iterations.
+    pub effort: Effort,
 }
 
 /// The tolerances of an adaptive method's local error.

@@ -18,7 +18,14 @@ pub struct Rk4;
 impl<S: OdeSystem<X>, X: State> FixedStep<S, X> for Rk4 {
     const ORDER: u32 = 4;
 
-    fn step(&self, system: &S, t: f64, x: &X, h: f64) -> Result<X, Error> {
+    fn step_counting(
+        &self,
+        system: &S,
+        t: f64,
+        x: &X,
+        h: f64,
+        _iterations: &mut usize,
+    ) -> Result<X, Error> {
         let half = h / 2.0;
         let at = StepAt {
             t,

@@ -1,9 +1,10 @@
 //! The integrators as the simulation loop drives them ([`Advance`]): one
 //! step for the fixed-step methods, steps following the tolerances for
-//! Dormand-Prince and the controlled methods.
+//! Dormand-Prince and the controlled methods, each counting what it took
+//! ([`Effort`]).
 
 use crate::integrate::{
-    self, Controlled, DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4,
+    self, Controlled, DiscreteGradient, DormandPrince, Effort, FixedStep, Midpoint, Rk4,
 };
 use crate::state::State;
 use crate::system::OdeSystem;
@@ -11,11 +12,18 @@ use crate::system::OdeSystem;
 /// An integrator as the simulation loop uses it: from `x` at `t` to the
 /// state at `t_next`.
 pub trait Advance<S, X> {
-    /// The state at `t_next`.
+    /// The state at `t_next`, the steps and Newton iterations taken added
+    /// to `effort` (a step that fails counts as rejected).
     ///
     /// # Errors
     /// The integrator's [`integrate::Error`].
-    fn advance(&self, system: &S, t: f64, x: &X, t_next: f64) -> Result<X, integrate::Error>;
+    fn advance(
+        &self,
+        system: &S,
+        start: (f64, &X),
+        t_next: f64,
+        effort: &mut Effort,
+    ) -> Result<X, integrate::Error>;
 }
 
 macro_rules! one_step_advances {
@@ -28,11 +36,17 @@ macro_rules! one_step_advances {
             fn advance(
                 &self,
                 system: &S,
-                t: f64,
-                x: &X,
+                (t, x): (f64, &X),
                 t_next: f64,
+                effort: &mut Effort,
             ) -> Result<X, integrate::Error> {
-                self.step(system, t, x, t_next - t)
+                let iterations = &mut effort.newton_iterations;
+                let stepped = self.step_counting(system, t, x, t_next - t, iterations);
+                match stepped {
+                    Ok(_) => effort.accepted += 1,
+                    Err(_) => effort.rejected += 1,
+                }
+                stepped
             }
         }
     )*};
@@ -42,15 +56,27 @@ one_step_advances!(Rk4, Midpoint, DiscreteGradient);
 
 /// Adaptive steps to `t_next` within the tolerances.
 impl<S: OdeSystem<X>, X: State> Advance<S, X> for DormandPrince {
-    fn advance(&self, system: &S, t: f64, x: &X, t_next: f64) -> Result<X, integrate::Error> {
-        Ok(self.integrate(system, (t, x.clone()), t_next)?.x)
+    fn advance(
+        &self,
+        system: &S,
+        (t, x): (f64, &X),
+        t_next: f64,
+        effort: &mut Effort,
+    ) -> Result<X, integrate::Error> {
+        self.integrate_counting(system, (t, x.clone()), t_next, effort)
     }
 }
 
 /// Steps within the tolerances to `t_next`, none longer than
 /// `t_next - t`.
 impl<M: FixedStep<S, X>, S, X: State> Advance<S, X> for Controlled<M> {
-    fn advance(&self, system: &S, t: f64, x: &X, t_next: f64) -> Result<X, integrate::Error> {
-        Ok(self.integrate(system, (t, x.clone()), t_next)?.x)
+    fn advance(
+        &self,
+        system: &S,
+        (t, x): (f64, &X),
+        t_next: f64,
+        effort: &mut Effort,
+    ) -> Result<X, integrate::Error> {
+        self.integrate_counting(system, (t, x.clone()), t_next, effort)
     }
 }

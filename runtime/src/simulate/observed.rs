@@ -47,6 +47,15 @@ pub trait Observed<X>: Energy<X> {
     /// the mechanics `u(t, q, qdot)` or a stop condition reads, whatever
     /// the formulation's state.
     fn configuration_velocity(&self, x: &X, q: &mut [f64], qdot: &mut [f64]);
+    /// The energy at rest at `x`'s configuration: its velocities zero,
+    /// any controller's states kept (the potential energy, springs
+    /// included). The energy above it is the kinetic energy, the scale of a
+    /// run's energy drift ([`super::Summary::energy_drift`]), which a
+    /// constant added to the potential does not change. By default 0: all
+    /// of the energy counts as kinetic.
+    fn energy_at_rest(&self, _x: &X) -> f64 {
+        0.0
+    }
     /// The largest `|A(q) qdot|` at `x`.
     fn constraint_residual(&self, x: &X) -> f64;
     /// The regularity measure at `x`.
@@ -240,6 +249,11 @@ fn reduced_configuration_velocity<M, const S: usize, const P: usize>(
     qdot.copy_from_slice(&model.chart_rhs(chart, x, &[0.0; P])[..n]);
 }
 
+/// `x` with its entries from `n` on zero: a state `(q, alpha)` at rest.
+fn at_rest<const S: usize>(x: &[f64; S], n: usize) -> [f64; S] {
+    core::array::from_fn(|i| if i < n { x[i] } else { 0.0 })
+}
+
 fn owned(names: &[&str]) -> Vec<String> {
     names.iter().map(|name| name.to_string()).collect()
 }
@@ -285,6 +299,12 @@ where
 
     fn configuration_velocity(&self, x: &[f64; S], q: &mut [f64], qdot: &mut [f64]) {
         reduced_configuration_velocity(self.model(), Reduced::chart(self), x, q, qdot);
+    }
+
+    /// `H(q, 0)`: the momenta of a velocity zero are zero.
+    fn energy_at_rest(&self, x: &[f64; S]) -> f64 {
+        let rest = at_rest(x, self.model().coordinate_names().len());
+        self.model().chart_hamiltonian(self.chart(), &rest)
     }
 
     fn constraint_residual(&self, x: &[f64; S]) -> f64 {
@@ -363,6 +383,11 @@ where
     fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
         q.copy_from_slice(&x[..N]);
         qdot.copy_from_slice(&x[N..]);
+    }
+
+    /// `E(q, 0)`.
+    fn energy_at_rest(&self, x: &[f64; D]) -> f64 {
+        self.model().energy(&split::<N, D>(x).0, &[0.0; N])
     }
 
     fn constraint_residual(&self, x: &[f64; D]) -> f64 {
@@ -457,6 +482,12 @@ where
         qdot.copy_from_slice(&velocity);
     }
 
+    /// `E(q, 0)`.
+    fn energy_at_rest(&self, x: &[f64; D]) -> f64 {
+        let q: [f64; N] = core::array::from_fn(|i| x[i]);
+        LagrangeDalembert::energy(self.model(), &q, &[0.0; N])
+    }
+
     fn constraint_residual(&self, x: &[f64; D]) -> f64 {
         let (q, qdot) = Momentum::configuration_velocity(self, x);
         largest_residual(self.model(), &q, &qdot)
@@ -517,6 +548,13 @@ where
         reduced_configuration_velocity(&self.plant, 0, &Self::split(z).0, q, qdot);
     }
 
+    /// The plant's `H(q, 0)` and the controller's energy.
+    fn energy_at_rest(&self, z: &[f64; D]) -> f64 {
+        let (x, xc) = Self::split(z);
+        let rest = at_rest(&x, self.plant.coordinate_names().len());
+        self.plant.hamiltonian(&rest) + self.controller.energy(&xc)
+    }
+
     fn constraint_residual(&self, z: &[f64; D]) -> f64 {
         self.plant.constraint_violation(&Self::split(z).0)
     }
@@ -552,6 +590,10 @@ where
 
     fn configuration_velocity(&self, x: &[f64; D], q: &mut [f64], qdot: &mut [f64]) {
         self.system().configuration_velocity(x, q, qdot);
+    }
+
+    fn energy_at_rest(&self, x: &[f64; D]) -> f64 {
+        self.system().energy_at_rest(x)
     }
 
     fn constraint_residual(&self, x: &[f64; D]) -> f64 {

@@ -2,7 +2,7 @@
 //! span, or where its stop condition came to hold), or the
 //! [`SimulationError`] that stopped it.
 
-use crate::integrate;
+use crate::integrate::{self, Effort};
 use crate::projection::ProjectionError;
 
 /// Why a simulation stopped early.
@@ -142,8 +142,8 @@ pub struct Summary<X> {
     pub t: f64,
     /// The final state.
     pub state: X,
-    /// The largest `|E(t) - E(0)|` over the steps, divided by `|E(0)|` when
-    /// that is not zero.
+    /// The largest `|E(t) - E(0)|` over the steps, relative to
+    /// [`Summary::energy_scale`] (absolute where that is 0).
     pub energy_drift: f64,
     /// The largest `|E(t) - E(0) - W(t)|` over the steps, relative as
     /// [`Summary::energy_drift`]: the energy gained less the work `W` the
@@ -151,6 +151,11 @@ pub struct Summary<X> {
     /// step by the three-point rule (the quadratic through the last three
     /// states), a third-order quadrature.
     pub power_balance: f64,
+    /// The scale of [`Summary::energy_drift`]: the largest kinetic energy
+    /// `T = E - V` over the steps plus the range of the energy at rest `V`
+    /// ([`super::Observed::energy_at_rest`]), which a constant added to the
+    /// potential does not change.
+    pub energy_scale: f64,
     /// Whether the inputs delivered power at some state: the run's
     /// energy then changes by their work, and [`Summary::power_balance`]
     /// is the check.
@@ -168,6 +173,12 @@ pub struct Summary<X> {
     /// How many times a step failed and was taken again as two halves
     /// ([`super::HALVINGS`]): 0 where every step passed whole.
     pub split_steps: usize,
+    /// The integrator's steps accepted and rejected and its Newton
+    /// iterations, over the whole run (a crossing's search included): for
+    /// a fixed-step method one accepted step per step of the run and one
+    /// rejected per split; for an adaptive one as many as its tolerance
+    /// needs.
+    pub effort: Effort,
     /// Whether an input was not zero at a recorded state: a run without
     /// inputs, or whose inputs stayed zero, conserves its energy (the
     /// model language declares no dissipation), so that

@@ -2,15 +2,17 @@
 //! condition comes to hold, checks the regularity, updates the summary and
 //! records.
 
+use super::drift::Drift;
 use super::ends::Ends;
 use super::work::Work;
 use super::{
     Advance, CROSSING_TOLERANCE, Observed, Regularity, Simulation, SimulationError, StopCondition,
     Summary,
 };
-use crate::integrate;
+use crate::integrate::{self, Effort};
 use crate::record::Recorder;
 use crate::state::State;
+use std::cell::Cell;
 
 /// How many times a step is halved at most where the integrator fails on
 /// it and shorter steps may pass (see [`super::Summary::split_steps`]):
@@ -34,12 +36,15 @@ pub(super) struct Run<'a, M, C, S, R, X> {
     pub(super) recorder: &'a mut R,
     pub(super) t: f64,
     x: X,
-    energy0: f64,
+    drift: Drift,
     work: Work,
     ends: Ends<'a, S, X>,
     regularity: Regularity,
     row: Vec<f64>,
     inputs: usize,
+    /// What the integrator took so far (kept apart from the summary,
+    /// which the steps read while they count).
+    effort: Cell<Effort>,
     pub(super) summary: Summary<X>,
 }
 
@@ -68,24 +73,27 @@ where
             settings,
             system,
             t: t0,
-            energy0: system.energy(&x),
+            drift: Drift::start(system.energy(&x), system.energy_at_rest(&x)),
             work: Work::start(t0, system.input_power(t0, &x)),
             ends,
             regularity,
             row: Vec::with_capacity(columns.len()),
             inputs: system.input_names().len(),
+            effort: Cell::default(),
             summary: Summary {
                 steps: 0,
                 t: t0,
                 state: x.clone(),
                 energy_drift: 0.0,
                 power_balance: 0.0,
+                energy_scale: 0.0,
                 worked: false,
                 max_constraint_residual: system.constraint_residual(&x),
                 max_holonomic_residual: system.holonomic_residual(&x).unwrap_or(0.0),
                 min_regularity: regularity.value.abs(),
                 chart_switches: 0,
                 split_steps: 0,
+                effort: Effort::default(),
                 forced: false,
                 stopped: None,
             },
@@ -153,6 +161,15 @@ where
         self.step_from(self.t, &self.x, t_next, HALVINGS)
     }
 
+    /// The method's advance from `x` at `t` to `t_next`, its steps and
+    /// Newton iterations counted in the summary.
+    fn advance(&self, t: f64, x: &X, t_next: f64) -> Result<X, integrate::Error> {
+        let mut effort = self.effort.get();
+        let advanced = (self.settings.method).advance(self.system, (t, x), t_next, &mut effort);
+        self.effort.set(effort);
+        advanced
+    }
+
     /// The state at `t_next` advanced from `x` at `t` and projected onto
     /// the constraints ([`Observed::project`]), inside the model's domain;
     /// where the integrator fails and shorter steps may pass
@@ -168,7 +185,7 @@ where
         halvings: u32,
     ) -> Result<Stepped<X>, SimulationError> {
         let h = t_next - t;
-        let advanced = match self.settings.method.advance(self.system, t, x, t_next) {
+        let advanced = match self.advance(t, x, t_next) {
             Ok(advanced) => advanced,
             Err(error) if halvings > 0 && error.may_pass_in_shorter_steps() => {
                 let middle = 0.5 * (t + t_next);
@@ -274,20 +291,16 @@ where
         let energy = self.system.energy(&self.x);
         let power = self.system.input_power(self.t, &self.x);
         self.work.advance(self.t, power);
-        let scale = if self.energy0 == 0.0 {
-            1.0
-        } else {
-            self.energy0.abs()
-        };
-        let drift = (energy - self.energy0).abs() / scale;
-        let balance = (energy - self.energy0 - self.work.total()).abs() / scale;
+        let at_rest = self.system.energy_at_rest(&self.x);
+        self.drift.observe(energy, at_rest, self.work.total());
         let summary = &mut self.summary;
+        summary.energy_drift = self.drift.energy_drift();
+        summary.power_balance = self.drift.power_balance();
+        summary.energy_scale = self.drift.scale();
         summary.worked |= power != 0.0;
-        summary.power_balance = summary.power_balance.max(balance);
         summary.steps = steps;
         summary.t = self.t;
         summary.state.clone_from(&self.x);
-        summary.energy_drift = summary.energy_drift.max(drift);
         summary.max_constraint_residual = summary
             .max_constraint_residual
             .max(self.system.constraint_residual(&self.x));
@@ -295,6 +308,7 @@ where
             summary.max_holonomic_residual = summary.max_holonomic_residual.max(residual);
         }
         summary.min_regularity = summary.min_regularity.min(self.regularity.value.abs());
+        summary.effort = self.effort.get();
     }
 
     fn record(&mut self) -> Result<(), SimulationError> {

@@ -8,7 +8,7 @@ use crate::driver::formulation::{Formulation, RunTimeSized};
 use crate::driver::setup::InputError;
 use crate::driver::setup::stop::{Comparison, stop_condition};
 use crate::runtime::integrate::{
-    Controlled, DiscreteGradient, DormandPrince, FixedStep, Midpoint, Rk4,
+    Controlled, DiscreteGradient, DormandPrince, Effort, FixedStep, Midpoint, Rk4,
 };
 use crate::runtime::record::{Recorder, Table};
 use crate::runtime::simulate::{Advance, Simulation, StopCondition, Summary};
@@ -63,6 +63,11 @@ impl Tolerance {
     }
 }
 
+/// What the energy drift and the power balance are relative to: the
+/// largest kinetic energy `T` of the run plus the range of its potential
+/// energy `V`, which a constant added to `V` does not change.
+pub const RELATIVE: &str = "relative to max T + range V";
+
 /// What a finished run reports.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Report {
@@ -74,11 +79,16 @@ pub struct Report {
     pub steps: usize,
     /// The time reached.
     pub t: f64,
-    /// The largest relative change of the energy.
+    /// The largest change of the energy, relative to
+    /// [`Report::energy_scale`].
     pub energy_drift: f64,
-    /// The largest relative energy gained less the inputs' work (see
+    /// The largest energy gained less the inputs' work, relative to
+    /// [`Report::energy_scale`] (see
     /// `chaplygin_runtime::simulate::Summary::power_balance`).
     pub power_balance: f64,
+    /// The largest kinetic energy plus the range of the potential energy
+    /// (see `chaplygin_runtime::simulate::Summary::energy_scale`).
+    pub energy_scale: f64,
     /// Whether the inputs did work: the summary then reports the power
     /// balance instead of the energy drift.
     pub worked: bool,
@@ -91,6 +101,9 @@ pub struct Report {
     /// How many times a fixed step failed and was taken again as two
     /// halves (see `chaplygin_runtime::simulate::Advanced`).
     pub split_steps: usize,
+    /// The integrator's steps accepted and rejected and its Newton
+    /// iterations (see `chaplygin_runtime::simulate::Summary::effort`).
+    pub effort: Effort,
     /// The stop condition that ended the run, as given.
     pub stopped: Option<String>,
     /// The wall time of the run, in seconds.
@@ -129,9 +142,18 @@ impl std::fmt::Display for Report {
             self.seconds,
             self.engine,
         )?;
+        let Effort {
+            accepted,
+            rejected,
+            newton_iterations,
+        } = self.effort;
+        write!(
+            f,
+            "steps {accepted} accepted, {rejected} rejected, {newton_iterations} Newton iterations; "
+        )?;
         match self.worked {
-            true => write!(f, "power balance (relative) {:.3e}", self.power_balance)?,
-            false => write!(f, "energy drift (relative) {:.3e}", self.energy_drift)?,
+            true => write!(f, "power balance {:.3e} ({RELATIVE})", self.power_balance)?,
+            false => write!(f, "energy drift {:.3e} ({RELATIVE})", self.energy_drift)?,
         }
         write!(
             f,
@@ -235,11 +257,13 @@ impl Settings {
             t: summary.t,
             energy_drift: summary.energy_drift,
             power_balance: summary.power_balance,
+            energy_scale: summary.energy_scale,
             worked: summary.worked,
             max_constraint_residual: summary.max_constraint_residual,
             max_holonomic_residual: holonomic.then_some(summary.max_holonomic_residual),
             chart_switches: summary.chart_switches,
             split_steps: summary.split_steps,
+            effort: summary.effort,
             stopped: summary.stopped,
             seconds: started.elapsed().as_secs_f64(),
             tolerance: self.tolerance,

@@ -8,7 +8,7 @@
 //! stderr (an error with `--strict`), Python raises a `RuntimeWarning`.
 
 use super::request::Integrator;
-use super::run::Report;
+use super::run::{RELATIVE, Report};
 
 /// How many times the tolerance the energy drift and the constraint
 /// residual of a run may reach: each step's local error is within the
@@ -82,17 +82,19 @@ impl Report {
             _ => "another integrator (discrete-gradient keeps the energy of the reduced form)",
         };
         let (what, value, allowed) = match *warning {
-            Warning::EnergyDrift { drift, allowed } => (
-                "energy drift (relative) of a run without inputs",
-                drift,
-                allowed,
-            ),
+            Warning::EnergyDrift { drift, allowed } => {
+                ("energy drift of a run without inputs", drift, allowed)
+            }
             Warning::ConstraintResidual { residual, allowed } => {
                 ("constraint residual", residual, allowed)
             }
         };
+        let relative = match warning {
+            Warning::EnergyDrift { .. } => format!(" ({RELATIVE})"),
+            Warning::ConstraintResidual { .. } => String::new(),
+        };
         format!(
-            "warning: {what} {value:.3e} exceeds {allowed:.1e}, {ALLOWANCE} times the tolerance \
+            "warning: {what} {value:.3e}{relative} exceeds {allowed:.1e}, {ALLOWANCE} times the tolerance \
              (--rtol {:e}, --atol {:e}): the run is not accurate to its tolerance; try {change}, \
              or {other}",
             self.tolerance.rtol, self.tolerance.atol
@@ -109,6 +111,7 @@ fn beyond(value: f64, allowed: f64) -> bool {
 mod tests {
     use super::{ALLOWANCE, Warning};
     use crate::driver::simulate::{Integrator, Report, Tolerance};
+    use crate::runtime::integrate::Effort;
 
     /// A finished run at the default tolerance with the given drift and
     /// residuals.
@@ -120,11 +123,13 @@ mod tests {
             t: 0.1,
             energy_drift: drift,
             power_balance: drift,
+            energy_scale: 1.0,
             worked: !conservative,
             max_constraint_residual: residual,
             max_holonomic_residual: holonomic,
             chart_switches: 0,
             split_steps: 0,
+            effort: Effort::default(),
             stopped: None,
             seconds: 0.0,
             tolerance: Tolerance::new(1e-8, 1e-9).expect("tolerances"),
@@ -163,7 +168,7 @@ mod tests {
         let text = line.explain(&warning);
         assert!(
             text.starts_with(
-                "warning: energy drift (relative) of a run without inputs 1.000e0 exceeds 1.0e-6"
+                "warning: energy drift of a run without inputs 1.000e0 (relative to max T + range V) exceeds 1.0e-6"
             ),
             "{text}"
         );
