@@ -21,6 +21,8 @@
 //!   with their intervals of stability, the canonical form;
 //!   [`design_map`]: the self-stable speeds over a grid of parameters, on
 //!   every core;
+//! - [`steady`]: steady motions found from unknowns of the point, and
+//!   their stability;
 //! - [`expression`]: the expressions of input laws, stop conditions,
 //!   initial values and operating points, in the model language's syntax;
 //! - [`document`]: the derivation document as text, LaTeX or JSON;
@@ -39,6 +41,7 @@ pub mod interpreted;
 pub mod linearize;
 pub mod setup;
 pub mod simulate;
+pub mod steady;
 
 /// What a driver call that fails returns: its error, which may travel
 /// between threads (out of a call that released Python's GIL, back from a

@@ -98,7 +98,7 @@ impl Function {
     }
 }
 
-/// A value with its first and second derivatives in `t`.
+/// A value with its first and second derivatives in `t` or a variable.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Jet {
     /// The value.
@@ -268,6 +268,14 @@ pub(crate) struct Point<'a> {
     pub u: &'a [f64],
 }
 
+/// What forward differentiation differentiates by: the time, or a
+/// variable.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Seed {
+    Time,
+    Variable(usize),
+}
+
 /// An expression resolved against a [`Scope`], the parameters' values
 /// substituted.
 #[derive(Clone, Debug, PartialEq)]
@@ -353,20 +361,47 @@ impl Expression {
     /// (`(f o a)'' = f''(a) a'^2 + f'(a) a''`), exact to round-off; the
     /// state and the inputs read as constants.
     pub(crate) fn jet(&self, t: f64) -> Jet {
+        let point = Point {
+            t,
+            ..Point::default()
+        };
+        self.jet_along(&point, Seed::Time)
+    }
+
+    /// The value at `point` and its derivative in the variable of index
+    /// `variable` (forward differentiation, exact to round-off).
+    pub(crate) fn slope(&self, point: &Point<'_>, variable: usize) -> (f64, f64) {
+        let Jet { value, slope, .. } = self.jet_along(point, Seed::Variable(variable));
+        (value, slope)
+    }
+
+    /// The value at `point` and its first and second derivatives along
+    /// `seed`; a name `point` does not give reads as NaN.
+    fn jet_along(&self, point: &Point<'_>, seed: Seed) -> Jet {
+        let read = |values: &[f64], i: usize| values.get(i).copied().unwrap_or(f64::NAN);
+        let leaf = |value: f64, seeded: bool| Jet {
+            value,
+            slope: f64::from(u8::from(seeded)),
+            curvature: 0.0,
+        };
         match self {
             Self::Number(value) => Jet::constant(*value),
-            Self::Time => Jet {
-                value: t,
-                slope: 1.0,
-                curvature: 0.0,
-            },
-            Self::Variable(_) | Self::Coordinate(_) | Self::Velocity(_) | Self::Input(_) => {
-                Jet::constant(f64::NAN)
-            }
-            Self::Call(function, argument) => function.jet(argument.jet(t)),
-            Self::Atan2(ordinate, abscissa) => atan2_jet(ordinate.jet(t), abscissa.jet(t)),
-            Self::Negate(operand) => operand.jet(t).scaled(-1.0),
-            Self::Binary(operator, left, right) => binary_jet(*operator, left.jet(t), right.jet(t)),
+            Self::Time => leaf(point.t, seed == Seed::Time),
+            Self::Variable(i) => leaf(read(point.variables, *i), seed == Seed::Variable(*i)),
+            Self::Coordinate(i) => Jet::constant(read(point.q, *i)),
+            Self::Velocity(i) => Jet::constant(read(point.qdot, *i)),
+            Self::Input(i) => Jet::constant(read(point.u, *i)),
+            Self::Call(function, argument) => function.jet(argument.jet_along(point, seed)),
+            Self::Atan2(ordinate, abscissa) => atan2_jet(
+                ordinate.jet_along(point, seed),
+                abscissa.jet_along(point, seed),
+            ),
+            Self::Negate(operand) => operand.jet_along(point, seed).scaled(-1.0),
+            Self::Binary(operator, left, right) => binary_jet(
+                *operator,
+                left.jet_along(point, seed),
+                right.jet_along(point, seed),
+            ),
         }
     }
 
