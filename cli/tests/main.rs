@@ -26,4 +26,5 @@ mod design_map;
 mod energy_controller;
 mod euler_parameters;
 mod guide_commands;
+mod steady;
 mod wheeled_robots;

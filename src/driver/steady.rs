@@ -137,6 +137,15 @@ pub fn problem(
     if request.solve.is_empty() {
         return Err(SteadyMotionError::NoUnknowns);
     }
+    if let Some(name) = (request.solve.iter()).find(|name| model.names().parameters.contains(name))
+    {
+        return Err(SteadyMotionError::Unknown {
+            name: name.clone(),
+            reason: "is a parameter; name a new variable and use it in --at or --input \
+                     expressions"
+                .into(),
+        });
+    }
     let coordinates = model.names().coordinates.clone();
     let variables: Vec<&str> = (request.solve.iter())
         .filter(|name| !coordinates.contains(name))
@@ -178,11 +187,6 @@ fn unknown(
         name: name.to_string(),
         reason: reason.to_string(),
     };
-    if setup.parameters.iter().any(|(p, _)| p == name) {
-        return Err(error(
-            "is a parameter; name a new variable and use it in --at or --input expressions",
-        ));
-    }
     let coordinates = &setup.model.names().coordinates;
     if let Some(i) = coordinates.iter().position(|c| c == name) {
         return match request.at.iter().any(|(given, _)| given == name) {
