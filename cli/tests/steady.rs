@@ -1,7 +1,7 @@
 //! `chaplygin steady` (docs/INTERFACE.md section 14): steady motions found
 //! from unknowns of their point, checked against sources independent of
 //! the tool. The rolling disk's steady turns against the Newton-Euler
-//! condition of MATH.md section 6.4 and the radius `r |dot(theta)| /
+//! condition of MATH.md section 6.2 and the radius `r |dot(theta)| /
 //! |dot(psi)|` of its contact's circle; the benchmark bicycle's hands-free
 //! turn at a small lean against the capsize speed of the linear benchmark
 //! (Meijaard et al. 2007, closed form in `tests/support/benchmark_bicycle.rs`);
@@ -45,7 +45,7 @@ const GRAVITY: f64 = 9.81;
 
 /// The spin `dot(theta)` of the disk's steady turn at lean `phi` and
 /// turning rate `omega`, from the Newton-Euler condition (MATH.md section
-/// 6.4): `A W^2 sin cos - (C + m r^2) w2 W cos - m g r sin = 0` with
+/// 6.2): `A W^2 sin cos - (C + m r^2) w2 W cos - m g r sin = 0` with
 /// `w2 = dot(theta) + W sin(phi)`, `A = m r^2/4`, `C = m r^2/2`.
 fn disk_spin(phi: f64, omega: f64) -> f64 {
     let (a, c) = (MASS * RADIUS * RADIUS / 4.0, MASS * RADIUS * RADIUS / 2.0);
@@ -238,7 +238,7 @@ fn a_found_turn_simulated_stays_steady() {
 /// The sleigh (built-in `sleigh`, `models/sleigh.model`: m = 1, inertia = 0.1, a = 0.5) moves
 /// steadily only straight: from a turning guess the turning rate goes to
 /// 0, the radius is infinite, and the eigenvalue besides the speed's zero
-/// is `-m a v / (I + m a^2)` (MATH.md section 6.4): stable forwards,
+/// is `-m a v / (I + m a^2)` (MATH.md section 6.3): stable forwards,
 /// unstable backwards.
 #[test]
 fn the_sleighs_steady_motions_are_straight() {

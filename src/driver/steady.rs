@@ -1,5 +1,5 @@
 //! Steady motions found (docs/INTERFACE.md section 14, MATH.md section
-//! 6.4): the `--at` and `--input` expressions may read unknowns besides
+//! 6.1): the `--at` and `--input` expressions may read unknowns besides
 //! the parameters, and `--solve` names the unknowns, such variables or
 //! coordinates `--at` leaves free. From `--guess` (0 where not given),
 //! `crate::runtime::linearize::find` solves for them by Gauss-Newton on

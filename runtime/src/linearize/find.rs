@@ -1,5 +1,5 @@
 //! Finding a steady motion (docs/INTERFACE.md section 14, MATH.md section
-//! 6.4): unknowns `x` (variables of the operating point's expressions, and
+//! 6.1): unknowns `x` (variables of the operating point's expressions, and
 //! coordinates it leaves free) such that the point they give is a zero of
 //! the reduced flow `z' = F(z, u)` of [`super::steady`].
 //!
