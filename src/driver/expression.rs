@@ -613,6 +613,33 @@ mod tests {
         }
     }
 
+    /// The derivative in a variable against the closed form, the other
+    /// variable and `t` held.
+    #[test]
+    fn the_slope_is_the_derivative_in_a_variable() {
+        let scope = Scope {
+            parameters: &NAMES,
+            variables: &["a", "b"],
+            ..Scope::default()
+        };
+        let law = Expression::parse("-a/rR + b*sin(a^2) + atan2(b, a)", &scope).expect("parses");
+        let (a, b) = (0.8f64, -1.3f64);
+        let point = super::Point {
+            variables: &[a, b],
+            ..super::Point::default()
+        };
+        let (value, by_a) = law.slope(&point, 0);
+        let exact_value = -a / 0.5 + b * (a * a).sin() + b.atan2(a);
+        assert!(
+            (value - exact_value).abs() < 1e-15,
+            "{value} vs {exact_value}"
+        );
+        let exact_a = -1.0 / 0.5 + 2.0 * a * b * (a * a).cos() - b / (a * a + b * b);
+        assert!((by_a - exact_a).abs() < 1e-14, "{by_a} vs {exact_a}");
+        let exact_b = (a * a).sin() + a / (a * a + b * b);
+        assert!((law.slope(&point, 1).1 - exact_b).abs() < 1e-15);
+    }
+
     /// A function of the time, computed by `f64`'s own methods.
     type Law = fn(f64) -> f64;
 

@@ -120,7 +120,7 @@ mod tests {
             &["u1", "u2", "u3"],
             &given(&[("u1", "0.3*sin(2*t)"), ("u3", "-a^2/t + 1.5e-1")]),
             &[("a", 3.0)],
-            (&[], (&[], &["x"])),
+            (&[], &["x"]),
         )
         .unwrap();
         assert!(!schedule.reads_state());
