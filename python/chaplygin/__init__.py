@@ -48,6 +48,7 @@ __all__ = [
     "OptimalGait",
     "Rhs",
     "SimulationError",
+    "Steady",
     "Trajectory",
     "builtin",
     "builtins",
@@ -191,6 +192,33 @@ class Linearization:
             f"Linearization({self.variable} over {len(self.values)} values, "
             f"stable={self.stable}, neutral={self.neutral})"
         )
+
+
+class Steady:
+    """A steady motion found by ``Model.steady``.
+
+    ``values`` maps the unknowns, every coordinate and ``dot(q)``, the inputs
+    and, for a model with a planar symmetry, ``radius`` (of the circle the
+    body frame's origin follows; ``inf`` when straight) to their values.
+    ``eigenvalues`` are the linearization's, by descending real part, in the
+    variables ``state``; ``stable`` whether the motion is asymptotically
+    stable modulo the zeros of conserved quantities. ``family`` gives one
+    direction per such zero, ``{entry: coefficient}``, along which the steady
+    motions form a family. ``steps`` and ``residual``: the Gauss-Newton steps
+    taken and the largest rate of the reduced flow left.
+    """
+
+    def __init__(self, fields: Mapping[str, Any]) -> None:
+        self.values: Dict[str, float] = dict(fields["values"])
+        self.eigenvalues: numpy.ndarray = fields["eigenvalues"]
+        self.stable: bool = fields["stable"]
+        self.state: List[str] = fields["state"]
+        self.family: List[Dict[str, float]] = fields["family"]
+        self.steps: int = fields["steps"]
+        self.residual: float = fields["residual"]
+
+    def __repr__(self) -> str:
+        return f"Steady(values={self.values}, stable={self.stable})"
 
 
 class Gait:
@@ -362,6 +390,26 @@ class Model:
             variable, values = sweep
             sweep = (str(variable), values)
         return Linearization(self._native.linearize(_dict(at), _dict(params), sweep))
+
+    def steady(
+        self,
+        at: Optional[Mapping[str, Value]] = None,
+        inputs: Optional[Mapping[str, Value]] = None,
+        solve: Sequence[str] = (),
+        guess: Optional[Mapping[str, float]] = None,
+        params: Optional[Mapping[str, float]] = None,
+    ) -> Steady:
+        """Finds a steady motion, as ``chaplygin steady``: ``at`` (coordinates
+        and velocities) and ``inputs`` are numbers or expressions of the
+        parameters and the unknowns; ``solve`` names the unknowns (such
+        variables, or coordinates ``at`` leaves free), found by Gauss-Newton
+        on the exact Jacobian from ``guess`` (0 where not given). Raises
+        ``ValueError`` in one line where there is none near the guess."""
+        return Steady(
+            self._native.steady(
+                _dict(at), _dict(inputs), [str(name) for name in solve], _dict(guess), _dict(params)
+            )
+        )
 
     def gait(
         self,
