@@ -1,9 +1,12 @@
 //! `chaplygin steady MODEL [--at NAME=EXPR]... [--input NAME=EXPR]...
-//! --solve NAME,... [--guess NAME=VALUE]... [--param NAME=VALUE]...
-//! [--out DIR]` (docs/INTERFACE.md section 14), over
+//! --solve NAME,... [--guess NAME=VALUE]... [--trace VAR=START:STOP:STEP]
+//! [--param NAME=VALUE]... [--out DIR]` (docs/INTERFACE.md section 14), over
 //! `chaplygin::driver::steady`: the steady motion near the guess, its
 //! eigenvalues and whether it is stable, as `chaplygin linearize` prints
-//! them; with `--out`, `DIR/steady.csv` (one row: the unknowns, every
+//! them; with `--trace`, the family followed over VAR's grid, its folds,
+//! changes of stability and end, `DIR/steady.csv` (a row per grid point
+//! crossed, VAR first) and `DIR/steady.png`. With `--out`,
+//! `DIR/steady.csv` (one row: the unknowns, every
 //! coordinate and velocity, the inputs, `radius` for a model with a planar
 //! symmetry, the eigenvalues `re_i, im_i` and `stable`); an unknown that
 //! is a coordinate has its column among the coordinates.
@@ -13,10 +16,13 @@ use crate::model_args::{ModelArgs, loaded};
 use chaplygin::driver::Failure;
 use chaplygin::driver::linearize::sweep;
 use chaplygin::driver::simulate::{assignment, expression_assignment};
-use chaplygin::driver::steady::{Request, SteadyMotion, steady};
+use chaplygin::driver::steady::trace::{self, End, Event, Family};
+use chaplygin::driver::steady::{Request, SteadyMotion, problem, steady};
+use chaplygin::plot::{SteadyFamily, write_steady_plot};
 use chaplygin::runtime::linearize::point::velocity_names;
+use chaplygin::runtime::record::shortest_decimal;
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The arguments of `chaplygin steady`.
 #[derive(Debug, clap::Args)]
@@ -38,12 +44,22 @@ pub struct SteadyArgs {
     /// Where an unknown starts, `NAME=VALUE` (0 unless given).
     #[arg(long = "guess", value_parser = assignment)]
     pub guess: Vec<(String, f64)>,
+    /// Follow the family over VAR (a variable of the expressions) from
+    /// START to STOP by STEP, from the first solution.
+    #[arg(long, value_name = "VAR=START:STOP:STEP", value_parser = trace_grid)]
+    pub trace: Option<sweep::Sweep>,
     /// A parameter's value, `NAME=VALUE`.
     #[arg(long = "param", value_parser = assignment)]
     pub params: Vec<(String, f64)>,
-    /// Where to write `steady.csv`.
+    /// Where to write `steady.csv` (and with `--trace`, `steady.png`;
+    /// default `out` there).
     #[arg(long)]
     pub out: Option<PathBuf>,
+}
+
+/// `VAR=START:STOP:STEP`, its errors named by `--trace`.
+fn trace_grid(text: &str) -> Result<sweep::Sweep, String> {
+    sweep::parse(text).map_err(|error| error.replacen("--sweep", "--trace", 1))
 }
 
 /// Runs `chaplygin steady`.
@@ -57,22 +73,113 @@ pub fn run(args: &SteadyArgs) -> Result<(), Failure> {
         inputs: &args.inputs,
         solve: &args.solve,
         guess: &args.guess,
+        trace: args.trace.as_ref().map(|grid| grid.variable.as_str()),
     };
     let loaded = loaded(&args.model)?;
     let names = loaded.model.names().clone();
+    let columns = Columns {
+        coordinates: &names.coordinates,
+        inputs: &names.inputs,
+    };
+    if let Some(grid) = &args.trace {
+        let values =
+            (grid.grid()).map_err(|error| error.to_string().replacen("--sweep", "--trace", 1))?;
+        let family = trace::trace(&problem(loaded.model, &request)?, &values)?;
+        let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out"));
+        return traced(&columns, (&grid.variable, &family), &out);
+    }
     let motion = steady(loaded.model, &request)?;
     crate::say(&report(&motion))?;
     let Some(out) = &args.out else {
         return Ok(());
     };
     let file = out.join("steady.csv");
-    let columns = Columns {
-        coordinates: &names.coordinates,
-        inputs: &names.inputs,
-    };
-    sweep::write(&file, &csv(&columns, &motion))
+    let text = format!(
+        "{}\n{}\n",
+        header(&columns, &motion).join(","),
+        row(&columns, &motion)
+    );
+    sweep::write(&file, &text)
         .map_err(|error| format!("cannot write {}: {error}", file.display()))?;
     Ok(crate::say(&format!("wrote {}\n", file.display()))?)
+}
+
+/// Prints what happened along `family`, writes `steady.csv` and
+/// `steady.png` in `out`.
+fn traced(
+    columns: &Columns<'_>,
+    (variable, family): (&str, &Family),
+    out: &Path,
+) -> Result<(), Failure> {
+    crate::say(&events(variable, family))?;
+    let Some(first) = family.rows.first() else {
+        return Ok(());
+    };
+    let mut text = format!("{variable},{}\n", header(columns, &first.motion).join(","));
+    for entry in &family.rows {
+        let value = shortest_decimal(entry.value);
+        let _ = writeln!(text, "{value},{}", row(columns, &entry.motion));
+    }
+    let file = out.join("steady.csv");
+    sweep::write(&file, &text)
+        .map_err(|error| format!("cannot write {}: {error}", file.display()))?;
+    let png_file = out.join("steady.png");
+    let (unknown, _) = (first.motion.values.iter())
+        .find(|(name, _)| !columns.coordinates.contains(name))
+        .unwrap_or(&first.motion.values[0]);
+    let at = |motion: &SteadyMotion| {
+        (motion.values.iter())
+            .find(|(name, _)| name == unknown)
+            .map_or(f64::NAN, |(_, v)| *v)
+    };
+    let plotted = SteadyFamily {
+        variable: variable.to_string(),
+        unknown: unknown.clone(),
+        points: family
+            .rows
+            .iter()
+            .map(|r| (r.value, at(&r.motion)))
+            .collect(),
+        stable: family.rows.iter().map(|r| r.motion.stable()).collect(),
+    };
+    write_steady_plot(&plotted, &png_file)?;
+    Ok(crate::say(&format!(
+        "wrote {} and {}\n",
+        file.display(),
+        png_file.display()
+    ))?)
+}
+
+/// The rows, the folds, the changes of stability and the end of `family`.
+fn events(variable: &str, family: &Family) -> String {
+    let mut text = format!(
+        "followed the family of steady motions over {variable}: {} rows\n",
+        family.rows.len()
+    );
+    for (after, event) in &family.events {
+        let _ = match event {
+            Event::Fold(value) => writeln!(
+                text,
+                "fold near {variable} = {value:.6} (after row {after}): the family turns back and goes on around it"
+            ),
+            Event::Stability(value, stable) => writeln!(
+                text,
+                "{} from {variable} = {value:.9} on (after row {after})",
+                if *stable { "stable" } else { "unstable" }
+            ),
+        };
+    }
+    let _ = match &family.end {
+        End::LeftRange(edge) => {
+            writeln!(text, "the family leaves the range at {variable} = {edge}")
+        }
+        End::Ended(value, reason) => writeln!(
+            text,
+            "the family ends near {variable} = {value:.6} (a singular configuration?): {reason}"
+        ),
+        End::Steps(steps) => writeln!(text, "stopped after {steps} continuation steps"),
+    };
+    text
 }
 
 /// The unknowns found, the radius, the eigenvalues and the verdict.
@@ -106,27 +213,37 @@ struct Columns<'a> {
     inputs: &'a [String],
 }
 
-/// `steady.csv`: a header and one row.
-fn csv(columns: &Columns<'_>, motion: &SteadyMotion) -> String {
+/// The columns of a row of `steady.csv` after VAR: the unknowns that are
+/// not coordinates, the coordinates, the velocities, the inputs, `radius`
+/// with a planar symmetry, the eigenvalues and `stable`.
+fn header(columns: &Columns<'_>, motion: &SteadyMotion) -> Vec<String> {
     let variables = (motion.values.iter()).filter(|(name, _)| !columns.coordinates.contains(name));
-    let mut header: Vec<String> = variables.clone().map(|(n, _)| n.clone()).collect();
+    let mut header: Vec<String> = variables.map(|(n, _)| n.clone()).collect();
     header.extend(columns.coordinates.iter().cloned());
     header.extend(velocity_names(columns.coordinates));
     header.extend(columns.inputs.iter().cloned());
+    if motion.radius.is_some() {
+        header.push("radius".into());
+    }
+    for i in 1..=motion.linear.eigenvalues.len() {
+        header.extend([format!("re_{i}"), format!("im_{i}")]);
+    }
+    header.push("stable".into());
+    header
+}
+
+/// The values of [`header`]'s columns, comma-separated.
+fn row(columns: &Columns<'_>, motion: &SteadyMotion) -> String {
+    let variables = (motion.values.iter()).filter(|(name, _)| !columns.coordinates.contains(name));
     let mut row: Vec<f64> = variables.map(|(_, v)| *v).collect();
     row.extend(&motion.point.q);
     row.extend(&motion.point.qdot);
     row.extend(&motion.inputs);
-    if let Some(radius) = motion.radius {
-        header.push("radius".into());
-        row.push(radius);
-    }
-    for (i, eigenvalue) in motion.linear.eigenvalues.iter().enumerate() {
-        header.extend([format!("re_{}", i + 1), format!("im_{}", i + 1)]);
+    row.extend(motion.radius);
+    for eigenvalue in &motion.linear.eigenvalues {
         row.extend([eigenvalue.re, eigenvalue.im]);
     }
-    header.push("stable".into());
     row.push(f64::from(u8::from(motion.stable())));
-    let fields: Vec<String> = row.iter().map(f64::to_string).collect();
-    format!("{}\n{}\n", header.join(","), fields.join(","))
+    let fields: Vec<String> = row.iter().map(|&value| shortest_decimal(value)).collect();
+    fields.join(",")
 }

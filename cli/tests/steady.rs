@@ -376,3 +376,120 @@ fn unknowns_the_conditions_do_not_fix_are_refused() {
     assert!(stderr.contains("the conditions do not fix"), "{stderr}");
     assert!(stderr.contains("lean"), "{stderr}");
 }
+
+/// `chaplygin steady ... --trace ... --out DIR`: its standard output and
+/// the rows of `steady.csv`, with `steady.png` written.
+fn traced(name: &str, model: &str, arguments: &[&str]) -> (String, Vec<String>, Vec<Vec<f64>>) {
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&out);
+    let mut all = vec!["steady", model, "--out", out.to_str().expect("UTF-8")];
+    all.extend_from_slice(arguments);
+    let output = chaplygin(&all);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(out.join("steady.png").is_file());
+    let (header, rows) = read_csv(&out.join("steady.csv"));
+    (
+        String::from_utf8(output.stdout).expect("UTF-8"),
+        header,
+        rows,
+    )
+}
+
+/// The bicycle's hands-free turns over lean (INTERFACE.md section 14's
+/// example): the family folds near lean 0.42 and comes back on a slower
+/// branch, the rows in the family's order. A row on each branch equals the
+/// point solved alone, from its values rounded to 0.1, to 1e-9.
+#[test]
+fn the_bicycles_turns_fold_near_lean_0_42() {
+    let turn = [
+        "--at",
+        "phi=lean",
+        "--at",
+        "dot(theta_r)=-v/rR",
+        "--at",
+        "dot(phi)=0",
+        "--at",
+        "dot(delta)=0",
+        "--input",
+        "steer_torque=0",
+        "--solve",
+        "delta,v",
+    ];
+    let mut arguments = turn.to_vec();
+    arguments.extend(["--guess", "v=6", "--trace", "lean=0.01:0.5:0.01"]);
+    let (stdout, header, rows) = traced("steady-bicycle-trace", "bicycle", &arguments);
+    let lean = column(&header, &rows, "lean");
+    let speed = column(&header, &rows, "v");
+    let top = lean.iter().copied().fold(f64::MIN, f64::max);
+    assert!((top - 0.42).abs() < 1e-12, "{lean:?}");
+    let fold = stdout
+        .lines()
+        .find_map(|line| line.strip_prefix("fold near lean = "))
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|value| value.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("a fold in\n{stdout}"));
+    assert!((0.42..0.43).contains(&fold), "{stdout}");
+    let turning = lean.iter().position(|&l| l == top).expect("the top");
+    assert!(lean[..=turning].windows(2).all(|w| w[1] > w[0]));
+    assert!(lean[turning + 1..].windows(2).all(|w| w[1] < w[0]));
+    assert!(
+        stdout.contains("the family leaves the range at lean = 0.01"),
+        "{stdout}"
+    );
+    let steer = column(&header, &rows, "delta");
+    for index in [9, rows.len() - 10] {
+        let phi = format!("phi={}", lean[index]);
+        let (guess_v, guess_delta) = (
+            format!("v={:.1}", speed[index]),
+            format!("delta={:.1}", steer[index]),
+        );
+        let single: Vec<&str> = ["--at", phi.as_str()]
+            .into_iter()
+            .chain(turn[2..].iter().copied())
+            .chain(["--guess", &guess_v, "--guess", &guess_delta])
+            .collect();
+        let (_, single_header, row) = steady("steady-bicycle-alone", "bicycle", &single);
+        let v = value(&single_header, &row, "v");
+        assert!(
+            (v - speed[index]).abs() < 1e-9,
+            "{phi}: {v} vs {}",
+            speed[index]
+        );
+    }
+}
+
+/// The sleigh's straight motions over the speed: straight at every speed,
+/// unstable backwards and stable forwards, the change located at 0 (where
+/// `-m a v / (I + m a^2)` crosses zero) to 1e-9.
+#[test]
+fn the_sleigh_becomes_stable_at_zero_speed() {
+    let (stdout, header, rows) = traced(
+        "steady-sleigh-trace",
+        "sleigh",
+        &[
+            "--at",
+            "dot(x)=v",
+            "--at",
+            "dot(theta)=w",
+            "--solve",
+            "w",
+            "--guess",
+            "w=0.1",
+            "--trace",
+            "v=-1.1:1:0.3",
+        ],
+    );
+    assert_eq!(column(&header, &rows, "v").len(), 8);
+    assert!(column(&header, &rows, "w").iter().all(|w| w.abs() < 1e-12));
+    let change = stdout
+        .lines()
+        .find_map(|line| line.strip_prefix("stable from v = "))
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|value| value.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("a change in\n{stdout}"));
+    assert!(change.abs() < 1e-9, "{stdout}");
+}

@@ -374,6 +374,7 @@ impl Model {
             inputs: &inputs,
             solve: &solve,
             guess: &guess,
+            trace: None,
         };
         linearization::steady_motion(py, self.fresh().model, &request)
     }

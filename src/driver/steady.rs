@@ -18,6 +18,8 @@ use crate::runtime::linearize::{
 use crate::runtime::nalgebra::{DMatrix, DVector};
 use chaplygin_codegen::interpret::InterpretedModel;
 
+pub mod trace;
+
 /// What `chaplygin steady` asks, as given.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Request<'a> {
@@ -32,6 +34,9 @@ pub struct Request<'a> {
     pub solve: &'a [String],
     /// `--guess NAME=VALUE`: where the unknowns start (0 where not given).
     pub guess: &'a [(String, f64)],
+    /// `--trace VAR=...`'s variable, read by the expressions besides the
+    /// unknowns.
+    pub trace: Option<&'a str>,
 }
 
 /// A problem with the request, or no steady motion, in one line.
@@ -49,6 +54,14 @@ pub enum SteadyMotionError {
         /// The name.
         name: String,
         /// Why it cannot be one.
+        reason: String,
+    },
+    /// `--trace` names no variable of the expressions.
+    #[error("--trace {name}: {reason}")]
+    Trace {
+        /// The name.
+        name: String,
+        /// Why it cannot be traced.
         reason: String,
     },
     /// `--guess` names no unknown.
@@ -147,10 +160,11 @@ pub fn problem(
         });
     }
     let coordinates = model.names().coordinates.clone();
-    let variables: Vec<&str> = (request.solve.iter())
+    let mut variables: Vec<&str> = (request.solve.iter())
         .filter(|name| !coordinates.contains(name))
         .map(String::as_str)
         .collect();
+    variables.extend(request.trace);
     let asked = Asked {
         params: request.params,
         state_flag: "--at",
@@ -163,9 +177,13 @@ pub fn problem(
     if !setup.inputs.is_constant() {
         return Err(SteadyMotionError::InputLaw);
     }
-    let unknowns = (request.solve.iter())
+    let mut unknowns = (request.solve.iter())
         .map(|name| unknown(&setup, request, &variables, name))
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(name) = request.trace {
+        traced(&setup, request, name)?;
+        unknowns.push(Unknown::Variable(variables.len() - 1));
+    }
     let guess = guesses(request)?;
     Ok(Problem {
         setup,
@@ -204,6 +222,26 @@ fn unknown(
             "is neither a coordinate nor read by an --at or --input expression",
         )),
     }
+}
+
+/// Whether the `--trace` variable `name` can be traced: not a parameter, a
+/// coordinate or an unknown, and read by an expression.
+fn traced(setup: &Setup, request: &Request<'_>, name: &str) -> Result<(), SteadyMotionError> {
+    let reason = if setup.parameters.iter().any(|(p, _)| p == name) {
+        "is a parameter; trace a new variable and use it in --at or --input expressions"
+    } else if setup.model.names().coordinates.iter().any(|c| c == name) {
+        "is a coordinate; trace a variable and give the coordinate by it with --at"
+    } else if request.solve.iter().any(|n| n == name) {
+        "is an unknown of --solve"
+    } else if !(setup.state.reads(name) || request.inputs.iter().any(|(_, t)| reads(t, name))) {
+        "no --at or --input expression reads it"
+    } else {
+        return Ok(());
+    };
+    Err(SteadyMotionError::Trace {
+        name: name.to_string(),
+        reason: reason.to_string(),
+    })
 }
 
 /// Whether the expression `text` names `name` (as a whole word).
@@ -282,19 +320,42 @@ impl Problem {
         Ok(given)
     }
 
-    /// The steady motion near the guess, linearized.
+    /// The steady motion near the guess, linearized (without `--trace`).
     ///
     /// # Errors
     /// The guess's point does not read, no steady motion near it, or its
     /// linearization fails.
     pub fn solve(&self) -> Result<SteadyMotion, SteadyMotionError> {
+        let k = self.unknowns.len();
+        let map = Affine {
+            origin: DVector::zeros(k),
+            basis: DMatrix::identity(k, k),
+        };
+        Ok(self.solve_on(&map, &self.guess)?.0)
+    }
+
+    /// The steady motion of the unknowns `y = origin + basis z` near
+    /// `z = start`, and its `y`.
+    ///
+    /// # Errors
+    /// As [`Self::solve`].
+    pub(crate) fn solve_on(
+        &self,
+        map: &Affine,
+        start: &[f64],
+    ) -> Result<(SteadyMotion, Vec<f64>), SteadyMotionError> {
         let model = &self.setup.model;
-        let start = self.given(&self.guess)?;
-        let given = |x: &[f64]| self.given(x).unwrap_or_else(|_| not_finite(&start));
-        let found = find::find(model, &given, &self.names, &self.guess)?;
+        let first = self.given(&map.at(start))?;
+        let given = |z: &[f64]| {
+            (self.given(&map.at(z)).map(|given| map.pulled_back(given)))
+                .unwrap_or_else(|_| not_finite(&first))
+        };
+        let names = &self.names[..start.len().min(self.names.len())];
+        let found = find::find(model, &given, names, start)?;
         let linear = runtime_linearize::linearize(model, &found.point, &found.u, &[])?;
-        Ok(SteadyMotion {
-            values: self.names.iter().cloned().zip(found.x).collect(),
+        let y = map.at(&found.x);
+        let motion = SteadyMotion {
+            values: self.names.iter().cloned().zip(y.iter().copied()).collect(),
             radius: find::radius(model, &found.point),
             family: find::family_directions(&linear),
             point: found.point,
@@ -302,7 +363,55 @@ impl Problem {
             linear,
             steps: found.steps,
             residual: found.residual,
+        };
+        Ok((motion, y))
+    }
+
+    /// The rates of the reduced flow and their Jacobian in all the
+    /// unknowns (with `--trace`, its variable last) at `y`.
+    ///
+    /// # Errors
+    /// The point does not read or cannot be completed.
+    pub(crate) fn conditions(
+        &self,
+        y: &[f64],
+    ) -> Result<(DVector<f64>, DMatrix<f64>), SteadyMotionError> {
+        let given = self.given(y)?;
+        find::conditions(&self.setup.model, &given).map_err(|source| {
+            SteadyMotionError::Find(FindError::Point {
+                at: format!("{y:?}"),
+                source,
+            })
         })
+    }
+
+    /// Where the unknowns start.
+    pub fn guess(&self) -> &[f64] {
+        &self.guess
+    }
+}
+
+/// The unknowns `y = origin + basis z` of the fewer unknowns `z`.
+pub(crate) struct Affine {
+    /// `y` at `z = 0`.
+    pub origin: DVector<f64>,
+    /// `dy/dz`.
+    pub basis: DMatrix<f64>,
+}
+
+impl Affine {
+    /// `y` at `z`.
+    pub(crate) fn at(&self, z: &[f64]) -> Vec<f64> {
+        let y = &self.origin + &self.basis * DVector::from_column_slice(z);
+        y.as_slice().to_vec()
+    }
+
+    /// `given`'s derivatives in `y` taken to `z`.
+    fn pulled_back(&self, mut given: Given) -> Given {
+        given.dq = &given.dq * &self.basis;
+        given.dqdot = &given.dqdot * &self.basis;
+        given.du = &given.du * &self.basis;
+        given
     }
 }
 

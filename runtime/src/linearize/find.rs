@@ -120,6 +120,9 @@ const STEPS: usize = 60;
 /// The halvings of a step tried before it counts as making no progress.
 const HALVINGS: usize = 30;
 
+/// The iterations a singular value decomposition may take.
+const SVD_ITERATIONS: usize = 10_000;
+
 /// Below this times the largest singular value, a singular value of the
 /// Jacobian counts as zero: a direction the conditions do not fix.
 const RANK: f64 = 1e-9;
@@ -196,6 +199,21 @@ pub fn find(
     })
 }
 
+/// The flow's rates `R` at the point `given` completes, and their
+/// Jacobian `dR/dx` in the unknowns `given` differentiates by.
+///
+/// # Errors
+/// The point cannot be completed.
+pub fn conditions(
+    model: &dyn Dynamics,
+    given: &Given,
+) -> Result<(DVector<f64>, DMatrix<f64>), PointError> {
+    let layout = Layout::of(model);
+    let now = iterate(model, &layout, given)?;
+    let jacobian = conditions_jacobian(model, &layout, &now, given);
+    Ok((now.rate, jacobian))
+}
+
 /// `NAME=VALUE, ...` of the unknowns.
 fn assignments(names: &[String], x: &[f64]) -> String {
     let pairs: Vec<String> = (names.iter().zip(x))
@@ -265,10 +283,15 @@ fn line_search(
 /// `dx` of least norm minimizing `|J dx - rate|` (singular values below
 /// [`RANK`] times the largest dropped).
 fn least_squares(jacobian: &DMatrix<f64>, rate: &DVector<f64>) -> DVector<f64> {
-    let svd = jacobian.clone().svd(true, true);
+    let zero = DVector::zeros(jacobian.ncols());
+    let Some(svd) = jacobian
+        .clone()
+        .try_svd(true, true, f64::EPSILON, SVD_ITERATIONS)
+    else {
+        return zero;
+    };
     let tolerance = RANK * svd.singular_values.amax();
-    svd.solve(rate, tolerance)
-        .unwrap_or_else(|_| DVector::zeros(jacobian.ncols()))
+    svd.solve(rate, tolerance).unwrap_or(zero)
 }
 
 /// [`FindError::Underdetermined`] where `jacobian` has a null direction,
@@ -283,7 +306,9 @@ fn isolated(jacobian: &DMatrix<f64>, names: &[String]) -> Result<(), FindError> 
             0.0
         }
     });
-    let svd = padded.svd(false, true);
+    let Some(svd) = padded.try_svd(false, true, f64::EPSILON, SVD_ITERATIONS) else {
+        return Ok(());
+    };
     let Some(v_t) = svd.v_t else {
         return Ok(());
     };
@@ -442,12 +467,18 @@ pub type Direction = Vec<(String, f64)>;
 /// and 0 on the others' (entries below `1e-9` dropped).
 pub fn family_directions(linear: &LinearSystem) -> Vec<Direction> {
     let conserved = linear.conserved_zeros();
-    let svd = linear.a.clone().svd(false, true);
-    let Some(v_t) = svd.v_t.filter(|_| conserved > 0) else {
+    let svd = linear
+        .a
+        .clone()
+        .try_svd(false, true, f64::EPSILON, SVD_ITERATIONS);
+    let Some((v_t, values)) = svd.and_then(|svd| Some((svd.v_t?, svd.singular_values))) else {
         return Vec::new();
     };
-    let mut by_value: Vec<usize> = (0..svd.singular_values.len()).collect();
-    by_value.sort_by(|&i, &j| svd.singular_values[i].total_cmp(&svd.singular_values[j]));
+    if conserved == 0 {
+        return Vec::new();
+    }
+    let mut by_value: Vec<usize> = (0..values.len()).collect();
+    by_value.sort_by(|&i, &j| values[i].total_cmp(&values[j]));
     let null = v_t.select_rows(&by_value[..conserved.min(by_value.len())]);
     let columns: Vec<usize> = (0..null.ncols()).collect();
     let chosen: Vec<usize> = (pivots(&null, &columns, 1.0, 1e-12).into_iter())
