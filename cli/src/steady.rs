@@ -16,10 +16,9 @@ use crate::model_args::{ModelArgs, loaded};
 use chaplygin::driver::Failure;
 use chaplygin::driver::linearize::sweep;
 use chaplygin::driver::simulate::{assignment, expression_assignment};
-use chaplygin::driver::steady::trace::{self, End, Event, Family};
-use chaplygin::driver::steady::{Request, SteadyMotion, problem, steady};
+use chaplygin::driver::steady::trace::{self, Family};
+use chaplygin::driver::steady::{Columns, Request, SteadyMotion, header, problem, row, steady};
 use chaplygin::plot::{SteadyFamily, write_steady_plot};
-use chaplygin::runtime::linearize::point::velocity_names;
 use chaplygin::runtime::record::shortest_decimal;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -97,11 +96,36 @@ pub fn run(args: &SteadyArgs) -> Result<(), Failure> {
     let text = format!(
         "{}\n{}\n",
         header(&columns, &motion).join(","),
-        row(&columns, &motion)
+        fields(&columns, &motion)
     );
     sweep::write(&file, &text)
         .map_err(|error| format!("cannot write {}: {error}", file.display()))?;
     Ok(crate::say(&format!("wrote {}\n", file.display()))?)
+}
+
+/// The unknowns found, the radius, the eigenvalues and the verdict.
+fn report(motion: &SteadyMotion) -> String {
+    let mut text = format!(
+        "steady motion after {} Gauss-Newton steps (largest rate left {:e}):\n",
+        motion.steps, motion.residual
+    );
+    for (name, value) in &motion.values {
+        let _ = writeln!(text, "  {name} = {value}");
+    }
+    if let Some(radius) = motion.radius {
+        let _ = writeln!(text, "radius of the body frame origin's circle: {radius}");
+    }
+    text.push_str(&describe(&motion.linear, "as given"));
+    if !motion.family.is_empty() {
+        text.push_str("zero eigenvalues along the family of steady motions, in the directions:\n");
+    }
+    for direction in &motion.family {
+        let terms: Vec<String> = (direction.iter())
+            .map(|(entry, coefficient)| format!("{coefficient:+.6e} {entry}"))
+            .collect();
+        let _ = writeln!(text, "  {}", terms.join(" "));
+    }
+    text
 }
 
 /// Prints what happened along `family`, writes `steady.csv` and
@@ -111,14 +135,14 @@ fn traced(
     (variable, family): (&str, &Family),
     out: &Path,
 ) -> Result<(), Failure> {
-    crate::say(&events(variable, family))?;
+    crate::say(&family.report(variable))?;
     let Some(first) = family.rows.first() else {
         return Ok(());
     };
     let mut text = format!("{variable},{}\n", header(columns, &first.motion).join(","));
     for entry in &family.rows {
         let value = shortest_decimal(entry.value);
-        let _ = writeln!(text, "{value},{}", row(columns, &entry.motion));
+        let _ = writeln!(text, "{value},{}", fields(columns, &entry.motion));
     }
     let file = out.join("steady.csv");
     sweep::write(&file, &text)
@@ -150,100 +174,10 @@ fn traced(
     ))?)
 }
 
-/// The rows, the folds, the changes of stability and the end of `family`.
-fn events(variable: &str, family: &Family) -> String {
-    let mut text = format!(
-        "followed the family of steady motions over {variable}: {} rows\n",
-        family.rows.len()
-    );
-    for (after, event) in &family.events {
-        let _ = match event {
-            Event::Fold(value) => writeln!(
-                text,
-                "fold near {variable} = {value:.6} (after row {after}): the family turns back and goes on around it"
-            ),
-            Event::Stability(value, stable) => writeln!(
-                text,
-                "{} from {variable} = {value:.9} on (after row {after})",
-                if *stable { "stable" } else { "unstable" }
-            ),
-        };
-    }
-    let _ = match &family.end {
-        End::LeftRange(edge) => {
-            writeln!(text, "the family leaves the range at {variable} = {edge}")
-        }
-        End::Ended(value, reason) => writeln!(
-            text,
-            "the family ends near {variable} = {value:.6} (a singular configuration?): {reason}"
-        ),
-        End::Steps(steps) => writeln!(text, "stopped after {steps} continuation steps"),
-    };
-    text
-}
-
-/// The unknowns found, the radius, the eigenvalues and the verdict.
-fn report(motion: &SteadyMotion) -> String {
-    let mut text = format!(
-        "steady motion after {} Gauss-Newton steps (largest rate left {:e}):\n",
-        motion.steps, motion.residual
-    );
-    for (name, value) in &motion.values {
-        let _ = writeln!(text, "  {name} = {value}");
-    }
-    if let Some(radius) = motion.radius {
-        let _ = writeln!(text, "radius of the body frame origin's circle: {radius}");
-    }
-    text.push_str(&describe(&motion.linear, "as given"));
-    if !motion.family.is_empty() {
-        text.push_str("zero eigenvalues along the family of steady motions, in the directions:\n");
-    }
-    for direction in &motion.family {
-        let terms: Vec<String> = (direction.iter())
-            .map(|(entry, coefficient)| format!("{coefficient:+.6e} {entry}"))
-            .collect();
-        let _ = writeln!(text, "  {}", terms.join(" "));
-    }
-    text
-}
-
-/// The model's names the columns of `steady.csv` take.
-struct Columns<'a> {
-    coordinates: &'a [String],
-    inputs: &'a [String],
-}
-
-/// The columns of a row of `steady.csv` after VAR: the unknowns that are
-/// not coordinates, the coordinates, the velocities, the inputs, `radius`
-/// with a planar symmetry, the eigenvalues and `stable`.
-fn header(columns: &Columns<'_>, motion: &SteadyMotion) -> Vec<String> {
-    let variables = (motion.values.iter()).filter(|(name, _)| !columns.coordinates.contains(name));
-    let mut header: Vec<String> = variables.map(|(n, _)| n.clone()).collect();
-    header.extend(columns.coordinates.iter().cloned());
-    header.extend(velocity_names(columns.coordinates));
-    header.extend(columns.inputs.iter().cloned());
-    if motion.radius.is_some() {
-        header.push("radius".into());
-    }
-    for i in 1..=motion.linear.eigenvalues.len() {
-        header.extend([format!("re_{i}"), format!("im_{i}")]);
-    }
-    header.push("stable".into());
-    header
-}
-
-/// The values of [`header`]'s columns, comma-separated.
-fn row(columns: &Columns<'_>, motion: &SteadyMotion) -> String {
-    let variables = (motion.values.iter()).filter(|(name, _)| !columns.coordinates.contains(name));
-    let mut row: Vec<f64> = variables.map(|(_, v)| *v).collect();
-    row.extend(&motion.point.q);
-    row.extend(&motion.point.qdot);
-    row.extend(&motion.inputs);
-    row.extend(motion.radius);
-    for eigenvalue in &motion.linear.eigenvalues {
-        row.extend([eigenvalue.re, eigenvalue.im]);
-    }
-    row.push(f64::from(u8::from(motion.stable())));
-    let fields: Vec<String> = row.iter().map(|&value| shortest_decimal(value)).collect();
-    fields.join(",")
+/// The values of a row of `steady.csv`, comma-separated.
+fn fields(columns: &Columns<'_>, motion: &SteadyMotion) -> String {
+    let values: Vec<String> = (row(columns, motion).into_iter())
+        .map(shortest_decimal)
+        .collect();
+    values.join(",")
 }

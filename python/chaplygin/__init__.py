@@ -49,6 +49,7 @@ __all__ = [
     "Rhs",
     "SimulationError",
     "Steady",
+    "SteadyFamily",
     "Trajectory",
     "builtin",
     "builtins",
@@ -219,6 +220,28 @@ class Steady:
 
     def __repr__(self) -> str:
         return f"Steady(values={self.values}, stable={self.stable})"
+
+
+class SteadyFamily:
+    """A family of steady motions followed by ``Model.steady(trace=...)``.
+
+    ``columns`` are those of ``chaplygin steady --trace``'s ``steady.csv``
+    (the traced variable first), ``data`` a row per value crossed in the
+    family's order (past a fold, the values come back); ``family["v"]`` is a
+    column. ``report`` names the folds, the changes of stability and why the
+    trace ended.
+    """
+
+    def __init__(self, fields: Mapping[str, Any]) -> None:
+        self.columns: List[str] = list(fields["columns"])
+        self.data: numpy.ndarray = fields["data"]
+        self.report: str = fields["report"]
+
+    def __getitem__(self, name: str) -> numpy.ndarray:
+        return self.data[:, self.columns.index(name)]
+
+    def __repr__(self) -> str:
+        return f"SteadyFamily({len(self.data)} rows of {self.columns[0]})"
 
 
 class Gait:
@@ -398,18 +421,24 @@ class Model:
         solve: Sequence[str] = (),
         guess: Optional[Mapping[str, float]] = None,
         params: Optional[Mapping[str, float]] = None,
-    ) -> Steady:
+        trace: Optional[Tuple[str, ArrayLike]] = None,
+    ) -> Union[Steady, SteadyFamily]:
         """Finds a steady motion, as ``chaplygin steady``: ``at`` (coordinates
         and velocities) and ``inputs`` are numbers or expressions of the
         parameters and the unknowns; ``solve`` names the unknowns (such
         variables, or coordinates ``at`` leaves free), found by Gauss-Newton
         on the exact Jacobian from ``guess`` (0 where not given). Raises
-        ``ValueError`` in one line where there is none near the guess."""
-        return Steady(
-            self._native.steady(
-                _dict(at), _dict(inputs), [str(name) for name in solve], _dict(guess), _dict(params)
-            )
+        ``ValueError`` in one line where there is none near the guess. With
+        ``trace=(variable, values)`` it follows the family over the values
+        (evenly spaced, increasing) from the first solution, by
+        pseudo-arclength continuation, and returns a ``SteadyFamily``."""
+        if trace is not None:
+            variable, values = trace
+            trace = (str(variable), values)
+        found = self._native.steady(
+            _dict(at), _dict(inputs), [str(name) for name in solve], _dict(guess), _dict(params), trace
         )
+        return Steady(found) if trace is None else SteadyFamily(found)
 
     def gait(
         self,

@@ -59,6 +59,7 @@ class Model:
         solve: List[str],
         guess: Optional[Dict[str, float]],
         params: Optional[Dict[str, float]],
+        trace: Optional[Tuple[str, ArrayLike]],
     ) -> Dict[str, Any]: ...
     def gait(
         self,

@@ -6,7 +6,7 @@
 use crate::convert::{matrix, to_python};
 use chaplygin::driver::linearize::{self, sweep::Interval};
 use chaplygin::driver::setup::Setup;
-use chaplygin::driver::steady::{self, Request};
+use chaplygin::driver::steady::{self, Request, trace};
 use chaplygin::runtime::linearize::{LinearSystem, point};
 use chaplygin::runtime::nalgebra::DMatrix;
 use chaplygin_codegen::interpret::InterpretedModel;
@@ -127,5 +127,41 @@ pub fn steady_motion<'py>(
     result.set_item("family", family)?;
     result.set_item("steps", motion.steps)?;
     result.set_item("residual", motion.residual)?;
+    Ok(result)
+}
+
+/// The family of `request` on `model` over `values` of `variable`
+/// (`chaplygin.Model.steady(trace=...)`): `columns` (the variable, then
+/// those of `chaplygin steady --trace`'s `steady.csv`), `data` (a row per
+/// value crossed, in the family's order) and `report` (its folds, changes
+/// of stability and end, as the command prints them).
+pub fn steady_family<'py>(
+    py: Python<'py>,
+    model: InterpretedModel,
+    request: &Request<'_>,
+    (variable, values): (&str, &[f64]),
+) -> PyResult<Bound<'py, PyDict>> {
+    let names = model.names().clone();
+    let columns = steady::Columns {
+        coordinates: &names.coordinates,
+        inputs: &names.inputs,
+    };
+    let problem = steady::problem(model, request).map_err(|error| to_python(py, error.into()))?;
+    let family = py
+        .detach(|| trace::trace(&problem, values))
+        .map_err(|error| to_python(py, error.into()))?;
+    let mut header = vec![variable.to_string()];
+    let mut data = Vec::new();
+    for row in &family.rows {
+        if header.len() == 1 {
+            header.extend(steady::header(&columns, &row.motion));
+        }
+        data.push(row.value);
+        data.extend(steady::row(&columns, &row.motion));
+    }
+    let result = PyDict::new(py);
+    result.set_item("data", matrix(py, data, header.len())?)?;
+    result.set_item("columns", header)?;
+    result.set_item("report", family.report(variable))?;
     Ok(result)
 }

@@ -354,9 +354,11 @@ impl Model {
     }
 
     /// Finds the steady motion of `at` and `inputs` (`{name: value or
-    /// expression}`) in the unknowns `solve` from `guess`; returns a dict
-    /// (see `chaplygin.Steady`).
-    #[pyo3(signature = (at, inputs, solve, guess, params))]
+    /// expression}`) in the unknowns `solve` from `guess`, or with `trace
+    /// = (variable, values)` follows its family; returns a dict (see
+    /// `chaplygin.Steady` and `chaplygin.SteadyFamily`).
+    #[pyo3(signature = (at, inputs, solve, guess, params, trace))]
+    #[allow(clippy::too_many_arguments)]
     fn steady<'py>(
         &self,
         py: Python<'py>,
@@ -365,6 +367,7 @@ impl Model {
         solve: Vec<String>,
         guess: Option<&Bound<'py, PyDict>>,
         params: Option<&Bound<'py, PyDict>>,
+        trace: Option<(String, ArrayLike<'py>)>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let (at, inputs) = (assignments(at)?, assignments(inputs)?);
         let (guess, params) = (numbers(guess)?, numbers(params)?);
@@ -374,9 +377,15 @@ impl Model {
             inputs: &inputs,
             solve: &solve,
             guess: &guess,
-            trace: None,
+            trace: trace.as_ref().map(|(variable, _)| variable.as_str()),
         };
-        linearization::steady_motion(py, self.fresh().model, &request)
+        match &trace {
+            None => linearization::steady_motion(py, self.fresh().model, &request),
+            Some((variable, values)) => {
+                let values = flat(values, "trace's values")?;
+                linearization::steady_family(py, self.fresh().model, &request, (variable, &values))
+            }
+        }
     }
 
     /// Runs the shape laws `cycle` (`{name: expression of t}`, period

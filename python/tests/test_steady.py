@@ -71,3 +71,26 @@ def test_no_steady_motion_near_the_guess_is_a_value_error():
             solve=["s"],
             guess={"s": 2},
         )
+
+
+def test_a_traced_family_is_the_command_lines(command_line, tmp_path):
+    """The sleigh's straight motions over the speed: the rows and the change
+    of stability at v = 0 (where ``-m a v / (I + m a^2)`` crosses zero) as
+    ``chaplygin steady --trace`` gives them."""
+    arguments = ["--at", "dot(x)=v", "--at", "dot(theta)=w", "--solve", "w", "--guess", "w=0.1"]
+    printed = command_line(
+        "steady", "sleigh", *arguments, "--trace", "v=-1.1:1:0.3", "--out", str(tmp_path)
+    )
+    with open(tmp_path / "steady.csv", newline="") as file:
+        rows = list(csv.DictReader(file))
+    family = chaplygin.builtin("sleigh").steady(
+        at={"dot(x)": "v", "dot(theta)": "w"},
+        solve=["w"],
+        guess={"w": 0.1},
+        trace=("v", [-1.1 + 0.3 * i for i in range(8)]),
+    )
+    assert list(family.columns) == list(rows[0].keys())
+    assert family["v"] == pytest.approx([float(row["v"]) for row in rows], abs=1e-12)
+    assert list(family["stable"]) == [float(row["stable"]) for row in rows]
+    assert "stable from v = 0.000000000" in family.report
+    assert "stable from v = 0.000000000" in printed

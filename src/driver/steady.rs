@@ -12,6 +12,7 @@
 
 use super::setup::{self, Asked, InputError, Setup};
 use crate::runtime::linearize::find::{self, Given};
+use crate::runtime::linearize::point::velocity_names;
 use crate::runtime::linearize::{
     self as runtime_linearize, Direction, FindError, LinearSystem, OperatingPoint, SteadyError,
 };
@@ -413,6 +414,49 @@ impl Affine {
         given.du = &given.du * &self.basis;
         given
     }
+}
+
+/// The model's names the columns of `steady.csv` take.
+#[derive(Clone, Copy, Debug)]
+pub struct Columns<'a> {
+    /// The coordinates.
+    pub coordinates: &'a [String],
+    /// The inputs.
+    pub inputs: &'a [String],
+}
+
+/// The columns of a row of `steady.csv` after VAR: the unknowns that are
+/// not coordinates, the coordinates, the velocities, the inputs, `radius`
+/// with a planar symmetry, the eigenvalues and `stable`.
+pub fn header(columns: &Columns<'_>, motion: &SteadyMotion) -> Vec<String> {
+    let variables = (motion.values.iter()).filter(|(name, _)| !columns.coordinates.contains(name));
+    let mut header: Vec<String> = variables.map(|(n, _)| n.clone()).collect();
+    header.extend(columns.coordinates.iter().cloned());
+    header.extend(velocity_names(columns.coordinates));
+    header.extend(columns.inputs.iter().cloned());
+    if motion.radius.is_some() {
+        header.push("radius".into());
+    }
+    for i in 1..=motion.linear.eigenvalues.len() {
+        header.extend([format!("re_{i}"), format!("im_{i}")]);
+    }
+    header.push("stable".into());
+    header
+}
+
+/// The values of [`header`]'s columns.
+pub fn row(columns: &Columns<'_>, motion: &SteadyMotion) -> Vec<f64> {
+    let variables = (motion.values.iter()).filter(|(name, _)| !columns.coordinates.contains(name));
+    let mut row: Vec<f64> = variables.map(|(_, v)| *v).collect();
+    row.extend(&motion.point.q);
+    row.extend(&motion.point.qdot);
+    row.extend(&motion.inputs);
+    row.extend(motion.radius);
+    for eigenvalue in &motion.linear.eigenvalues {
+        row.extend([eigenvalue.re, eigenvalue.im]);
+    }
+    row.push(f64::from(u8::from(motion.stable())));
+    row
 }
 
 /// A point no iterate accepts: `start`'s shape, its values not finite.

@@ -19,6 +19,7 @@
 use super::{Affine, Problem, SteadyMotion, SteadyMotionError};
 use crate::runtime::linearize::FindError;
 use crate::runtime::nalgebra::{DMatrix, DVector};
+use std::fmt::Write as _;
 
 /// A point of the family at a grid value of VAR.
 #[derive(Clone, Debug)]
@@ -59,6 +60,42 @@ pub struct Family {
     pub events: Vec<(usize, Event)>,
     /// Why it stopped.
     pub end: End,
+}
+
+impl Family {
+    /// The rows, the folds, the changes of stability and the end, as
+    /// `chaplygin steady --trace` prints them, VAR named `variable`.
+    pub fn report(&self, variable: &str) -> String {
+        let family = self;
+        let mut text = format!(
+            "followed the family of steady motions over {variable}: {} rows\n",
+            family.rows.len()
+        );
+        for (after, event) in &family.events {
+            let _ = match event {
+                Event::Fold(value) => writeln!(
+                    text,
+                    "fold near {variable} = {value:.6} (after row {after}): the family turns back and goes on around it"
+                ),
+                Event::Stability(value, stable) => writeln!(
+                    text,
+                    "{} from {variable} = {value:.9} on (after row {after})",
+                    if *stable { "stable" } else { "unstable" }
+                ),
+            };
+        }
+        let _ = match &family.end {
+            End::LeftRange(edge) => {
+                writeln!(text, "the family leaves the range at {variable} = {edge}")
+            }
+            End::Ended(value, reason) => writeln!(
+                text,
+                "the family ends near {variable} = {value:.6} (a singular configuration?): {reason}"
+            ),
+            End::Steps(steps) => writeln!(text, "stopped after {steps} continuation steps"),
+        };
+        text
+    }
 }
 
 /// The continuation steps allowed per grid point.
