@@ -399,9 +399,19 @@ fn traced(name: &str, model: &str, arguments: &[&str]) -> (String, Vec<String>, 
     )
 }
 
+/// The number printed after `prefix` at the start of a line of `stdout`.
+fn printed_value(stdout: &str, prefix: &str) -> f64 {
+    (stdout.lines())
+        .find_map(|line| line.strip_prefix(prefix))
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|value| value.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("`{prefix}` in\n{stdout}"))
+}
+
 /// The bicycle's hands-free turns over lean (INTERFACE.md section 14's
 /// example): the family folds near lean 0.42 and comes back on a slower
-/// branch, the rows in the family's order. A row on each branch equals the
+/// branch, the rows in the family's order. The fold is the same, to 1e-9,
+/// traced on a finer grid from lean 0.3. A row on each branch equals the
 /// point solved alone, from its values rounded to 0.1, to 1e-9.
 #[test]
 fn the_bicycles_turns_fold_near_lean_0_42() {
@@ -426,13 +436,13 @@ fn the_bicycles_turns_fold_near_lean_0_42() {
     let speed = column(&header, &rows, "v");
     let top = lean.iter().copied().fold(f64::MIN, f64::max);
     assert!((top - 0.42).abs() < 1e-12, "{lean:?}");
-    let fold = stdout
-        .lines()
-        .find_map(|line| line.strip_prefix("fold near lean = "))
-        .and_then(|rest| rest.split_whitespace().next())
-        .and_then(|value| value.parse::<f64>().ok())
-        .unwrap_or_else(|| panic!("a fold in\n{stdout}"));
+    let fold = printed_value(&stdout, "fold at lean = ");
     assert!((0.42..0.43).contains(&fold), "{stdout}");
+    let mut finer = turn.to_vec();
+    finer.extend(["--guess", "v=5.5", "--trace", "lean=0.3:0.5:0.005"]);
+    let (again, _, _) = traced("steady-bicycle-trace-finer", "bicycle", &finer);
+    let other = printed_value(&again, "fold at lean = ");
+    assert!((fold - other).abs() < 1e-9, "{fold} vs {other}");
     let turning = lean.iter().position(|&l| l == top).expect("the top");
     assert!(lean[..=turning].windows(2).all(|w| w[1] > w[0]));
     assert!(lean[turning + 1..].windows(2).all(|w| w[1] < w[0]));
@@ -485,11 +495,6 @@ fn the_sleigh_becomes_stable_at_zero_speed() {
     );
     assert_eq!(column(&header, &rows, "v").len(), 8);
     assert!(column(&header, &rows, "w").iter().all(|w| w.abs() < 1e-12));
-    let change = stdout
-        .lines()
-        .find_map(|line| line.strip_prefix("stable from v = "))
-        .and_then(|rest| rest.split_whitespace().next())
-        .and_then(|value| value.parse::<f64>().ok())
-        .unwrap_or_else(|| panic!("a change in\n{stdout}"));
+    let change = printed_value(&stdout, "stable from v = ");
     assert!(change.abs() < 1e-9, "{stdout}");
 }

@@ -11,7 +11,8 @@
 //! is halved; one that converges in few steps grows, its VAR advance kept
 //! within STEP. Where the curve crosses a grid value of VAR, the row there
 //! is solved with VAR fixed from the interpolated point. A fold is where
-//! the tangent's VAR component changes sign. Where stability changes
+//! the tangent's VAR component changes sign, located by bisection on the
+//! step's length. Where stability changes
 //! between rows, the change is located by bisection on VAR (to 1e-9). The
 //! trace ends where VAR leaves the grid's range, or where steps shrink to
 //! nothing (the family ends: a singular configuration).
@@ -75,7 +76,7 @@ impl Family {
             let _ = match event {
                 Event::Fold(value) => writeln!(
                     text,
-                    "fold near {variable} = {value:.6} (after row {after}): the family turns back and goes on around it"
+                    "fold at {variable} = {value:.9} (after row {after}): the family turns back and goes on around it"
                 ),
                 Event::Stability(value, stable) => writeln!(
                     text,
@@ -242,11 +243,9 @@ impl Walk<'_> {
                 Err(error) => return self.ended(error.to_string()),
             };
             let last = tangent.len() - 1;
-            let (from, to) = (self.y[last], y[last]);
+            let to = y[last];
             if tangent[last] * t[last] < 0.0 {
-                let share = tangent[last] / (tangent[last] - t[last]);
-                let value = from + 0.5 * share * h * tangent[last];
-                events.push((rows.len(), Event::Fold(value)));
+                events.push((rows.len(), Event::Fold(self.fold(h))));
             }
             if let Err(error) = self.rows_between(grid, (&self.y.clone(), &y), rows) {
                 return self.ended(error.to_string());
@@ -265,6 +264,32 @@ impl Walk<'_> {
             }
         }
         End::Steps(STEPS_PER_POINT * grid.len())
+    }
+
+    /// VAR at the fold within a step of `h`: where the tangent's VAR
+    /// component changes sign, by bisection on the step's length (the
+    /// corrector from the current point), to `1e-12 h`; VAR is extremal
+    /// there, so its error is of the order of the square of that.
+    fn fold(&self, h: f64) -> f64 {
+        let last = self.y.len() - 1;
+        let sign = self.tangent[last].signum();
+        let (mut short, mut long, mut value) = (0.0, h, self.y[last]);
+        while long - short > 1e-12 * h {
+            let middle = 0.5 * (short + long);
+            let at = self
+                .corrected(middle)
+                .and_then(|(y, _)| Ok((tangent_at(self.problem, &y, Some(&self.tangent))?, y)));
+            let Ok((tangent, y)) = at else {
+                break;
+            };
+            value = y[last];
+            if tangent[last] * sign > 0.0 {
+                short = middle;
+            } else {
+                long = middle;
+            }
+        }
+        value
     }
 
     /// [`End::Ended`] at the current point.
