@@ -316,6 +316,50 @@ fn bad_requests_fail_in_one_line() {
             vec!["--at", "dot(theta)=s", "--solve", "s", "--guess", "s=2"],
             "no steady motion near the guess",
         ),
+        (
+            vec![
+                "--at",
+                "dot(theta)=s",
+                "--solve",
+                "s",
+                "--trace",
+                "s=0:1:0.5",
+            ],
+            "--trace s: is an unknown of --solve",
+        ),
+        (
+            vec![
+                "--at",
+                "dot(theta)=s",
+                "--solve",
+                "s",
+                "--trace",
+                "m=0:1:0.5",
+            ],
+            "--trace m: is a parameter",
+        ),
+        (
+            vec![
+                "--at",
+                "dot(theta)=s",
+                "--solve",
+                "s",
+                "--trace",
+                "k=0:1:0.5",
+            ],
+            "--trace k: no --at or --input expression reads it",
+        ),
+        (
+            vec![
+                "--at",
+                "dot(theta)=s",
+                "--solve",
+                "s",
+                "--trace",
+                "k=1:0:0.5",
+            ],
+            "--trace k: empty range",
+        ),
     ];
     for (arguments, says) in cases {
         let mut all = vec!["steady", disk];

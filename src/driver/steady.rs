@@ -321,16 +321,17 @@ impl Problem {
         Ok(given)
     }
 
-    /// The steady motion near the guess, linearized (without `--trace`).
+    /// The steady motion near the guess, linearized (a traced variable
+    /// at 0).
     ///
     /// # Errors
     /// The guess's point does not read, no steady motion near it, or its
     /// linearization fails.
     pub fn solve(&self) -> Result<SteadyMotion, SteadyMotionError> {
-        let k = self.unknowns.len();
+        let (all, k) = (self.unknowns.len(), self.names.len());
         let map = Affine {
-            origin: DVector::zeros(k),
-            basis: DMatrix::identity(k, k),
+            origin: DVector::zeros(all),
+            basis: DMatrix::from_fn(all, k, |i, j| f64::from(u8::from(i == j))),
         };
         Ok(self.solve_on(&map, &self.guess)?.0)
     }
@@ -379,10 +380,11 @@ impl Problem {
     ) -> Result<(DVector<f64>, DMatrix<f64>), SteadyMotionError> {
         let given = self.given(y)?;
         find::conditions(&self.setup.model, &given).map_err(|source| {
-            SteadyMotionError::Find(FindError::Point {
-                at: format!("{y:?}"),
-                source,
-            })
+            let at: Vec<String> = (self.names.iter().zip(y))
+                .map(|(name, value)| format!("{name}={value}"))
+                .collect();
+            let at = at.join(", ");
+            SteadyMotionError::Find(FindError::Point { at, source })
         })
     }
 
