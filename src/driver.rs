@@ -23,6 +23,8 @@
 //!   every core;
 //! - [`plan`] (feature `plan`): optimal control by direct collocation on
 //!   the exact derivatives, its optimum verified by the KKT conditions;
+//! - [`steady`]: steady motions found from unknowns of the point, and
+//!   their stability;
 //! - [`expression`]: the expressions of input laws, stop conditions,
 //!   initial values and operating points, in the model language's syntax;
 //! - [`document`]: the derivation document as text, LaTeX or JSON;
@@ -43,6 +45,7 @@ pub mod linearize;
 pub mod plan;
 pub mod setup;
 pub mod simulate;
+pub mod steady;
 
 /// What a driver call that fails returns: its error, which may travel
 /// between threads (out of a call that released Python's GIL, back from a

@@ -23,7 +23,9 @@
 //!
 //! And for `chaplygin linearize --sweep`, [`write_eigenvalue_plot`] writes
 //! `eigenvalues.png`: the real and imaginary parts of the eigenvalues
-//! against the swept variable; for `chaplygin map`, [`write_design_map`]
+//! against the swept variable; for `chaplygin steady --trace`,
+//! [`write_steady_plot`] `steady.png`: a family of steady motions, its
+//! stable points marked; for `chaplygin map`, [`write_design_map`]
 //! `map.png`: the self-stable speeds over one or two parameters; for `chaplygin gait`, [`write_path_plot`]
 //! the planar path alone and, for a principally kinematic model,
 //! [`write_curvature_plot`] `curvature.png`: its constraint curvature
@@ -45,6 +47,7 @@ mod gaits;
 mod path;
 mod series;
 mod spec;
+mod steady;
 mod style;
 
 pub use curvature::{CurvatureField, write_curvature_plot};
@@ -53,6 +56,7 @@ pub use eigenvalues::{EigenvalueSweep, write_eigenvalue_plot};
 pub use error::PlotError;
 pub use gaits::{GaitCurve, write_gait_comparison};
 pub use spec::{Figure4, PlanarPath, PlotSpec, Table, Track};
+pub use steady::{SteadyFamily, write_steady_plot};
 
 use plotters::style::FontStyle;
 use std::collections::BTreeMap;

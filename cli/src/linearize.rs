@@ -99,7 +99,7 @@ fn analyse(setup: &Setup, args: &LinearizeArgs) -> Result<(), Failure> {
     }
     let Some(grid) = &args.sweep else {
         let linear = linearize_at(setup, &[], &[])?;
-        return Ok(crate::say(&describe(&linear))?);
+        return Ok(crate::say(&describe(&linear, "zero"))?);
     };
     let values = grid.grid().map_err(LinearizeError::from)?;
     let analysis = chaplygin::driver::linearize::sweep(setup, (&grid.variable, &values))?;
@@ -127,10 +127,11 @@ fn analyse(setup: &Setup, args: &LinearizeArgs) -> Result<(), Failure> {
     Ok(crate::say(&stability(&analysis))?)
 }
 
-/// The state, the eigenvalues and the verdict of one linearization.
-fn describe(linear: &LinearSystem) -> String {
+/// The state, the eigenvalues and the verdict of one linearization, the
+/// inputs described as `inputs`.
+pub fn describe(linear: &LinearSystem, inputs: &str) -> String {
     let mut text = format!(
-        "linear system in ({}), inputs zero\neigenvalues (by descending real part):\n",
+        "linear system in ({}), inputs {inputs}\neigenvalues (by descending real part):\n",
         linear.state.join(", ")
     );
     for &eigenvalue in &linear.eigenvalues {

@@ -11,6 +11,8 @@
 //! chaplygin linearize MODEL [--at NAME=EXPR]... [--sweep VAR=START:STOP:STEP]
 //!                           [--param NAME=VALUE]... [--engine jit|interpret] [--out DIR]
 //!                           [--canonical Q1,Q2,... --canonical-speed VAR[=V1,V2] [--canonical-gravity NAME]]
+//! chaplygin steady MODEL [--at NAME=EXPR]... [--input NAME=EXPR]... --solve NAME,... [--guess NAME=VALUE]...
+//!                        [--param NAME=VALUE]... [--engine jit|interpret] [--out DIR]
 //! chaplygin map MODEL --speed VAR=START:STOP:STEP --param NAME=START:STOP:STEP [--param NAME2=START:STOP:STEP]
 //!                     [--at NAME=EXPR]... [--param NAME=VALUE]... [--jobs N] [--engine jit|interpret] [--out DIR]
 //! chaplygin gait MODEL --shape A,B,... --cycle NAME=EXPR... --period T [--cycles N] [--steps S]
@@ -40,6 +42,7 @@ mod options;
 mod output;
 mod plan;
 mod simulate;
+mod steady;
 
 use clap::Parser;
 use std::error::Error;

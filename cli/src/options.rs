@@ -1,12 +1,13 @@
 //! The command line: its commands, and what each does with its arguments
-//! (those of `simulate`, `linearize`, `map`, `gait` and `plan` are defined
-//! with them).
+//! (those of `simulate`, `linearize`, `steady`, `map`, `gait` and `plan` are
+//! defined with them).
 
 use crate::gait::{self, GaitArgs};
 use crate::linearize::{self, LinearizeArgs};
 use crate::map::{self, MapArgs};
 use crate::plan::{self, PlanArgs};
 use crate::simulate::{self, SimulateArgs};
+use crate::steady::{self, SteadyArgs};
 use chaplygin::driver::Failure;
 use chaplygin::driver::catalog::{self, lookup};
 use chaplygin::driver::document::{self, Format};
@@ -39,6 +40,10 @@ enum Action {
     /// `--sweep`, write `eigenvalues.csv` and `eigenvalues.png`; with
     /// `--canonical`, print the canonical form M, C1, K0, K2.
     Linearize(Box<LinearizeArgs>),
+    /// Find a steady motion from unknowns of its point (`--solve`), print
+    /// them, its eigenvalues and whether it is stable; with `--out`, write
+    /// `steady.csv`.
+    Steady(Box<SteadyArgs>),
     /// The self-stable speeds of a steady motion over a grid of one or two
     /// parameters, on every core, writing `map.csv` and `map.png`.
     Map(Box<MapArgs>),
@@ -64,6 +69,7 @@ impl Command {
             }
             Action::Simulate(args) => simulate::run(&args),
             Action::Linearize(args) => linearize::run(&args),
+            Action::Steady(args) => steady::run(&args),
             Action::Map(args) => map::run(&args),
             Action::Gait(args) => gait::run(&args),
             Action::Plan(args) => plan::run(&args),

@@ -28,4 +28,5 @@ mod energy_controller;
 mod energy_drift;
 mod euler_parameters;
 mod guide_commands;
+mod steady;
 mod wheeled_robots;

@@ -48,6 +48,8 @@ __all__ = [
     "OptimalGait",
     "Rhs",
     "SimulationError",
+    "Steady",
+    "SteadyFamily",
     "Trajectory",
     "builtin",
     "builtins",
@@ -191,6 +193,55 @@ class Linearization:
             f"Linearization({self.variable} over {len(self.values)} values, "
             f"stable={self.stable}, neutral={self.neutral})"
         )
+
+
+class Steady:
+    """A steady motion found by ``Model.steady``.
+
+    ``values`` maps the unknowns, every coordinate and ``dot(q)``, the inputs
+    and, for a model with a planar symmetry, ``radius`` (of the circle the
+    body frame's origin follows; ``inf`` when straight) to their values.
+    ``eigenvalues`` are the linearization's, by descending real part, in the
+    variables ``state``; ``stable`` whether the motion is asymptotically
+    stable modulo the zeros of conserved quantities. ``family`` gives one
+    direction per such zero, ``{entry: coefficient}``, along which the steady
+    motions form a family. ``steps`` and ``residual``: the Gauss-Newton steps
+    taken and the largest rate of the reduced flow left.
+    """
+
+    def __init__(self, fields: Mapping[str, Any]) -> None:
+        self.values: Dict[str, float] = dict(fields["values"])
+        self.eigenvalues: numpy.ndarray = fields["eigenvalues"]
+        self.stable: bool = fields["stable"]
+        self.state: List[str] = fields["state"]
+        self.family: List[Dict[str, float]] = fields["family"]
+        self.steps: int = fields["steps"]
+        self.residual: float = fields["residual"]
+
+    def __repr__(self) -> str:
+        return f"Steady(values={self.values}, stable={self.stable})"
+
+
+class SteadyFamily:
+    """A family of steady motions followed by ``Model.steady(trace=...)``.
+
+    ``columns`` are those of ``chaplygin steady --trace``'s ``steady.csv``
+    (the traced variable first), ``data`` a row per value crossed in the
+    family's order (past a fold, the values come back); ``family["v"]`` is a
+    column. ``report`` names the folds, the changes of stability and why the
+    trace ended.
+    """
+
+    def __init__(self, fields: Mapping[str, Any]) -> None:
+        self.columns: List[str] = list(fields["columns"])
+        self.data: numpy.ndarray = fields["data"]
+        self.report: str = fields["report"]
+
+    def __getitem__(self, name: str) -> numpy.ndarray:
+        return self.data[:, self.columns.index(name)]
+
+    def __repr__(self) -> str:
+        return f"SteadyFamily({len(self.data)} rows of {self.columns[0]})"
 
 
 class Gait:
@@ -362,6 +413,32 @@ class Model:
             variable, values = sweep
             sweep = (str(variable), values)
         return Linearization(self._native.linearize(_dict(at), _dict(params), sweep))
+
+    def steady(
+        self,
+        at: Optional[Mapping[str, Value]] = None,
+        inputs: Optional[Mapping[str, Value]] = None,
+        solve: Sequence[str] = (),
+        guess: Optional[Mapping[str, float]] = None,
+        params: Optional[Mapping[str, float]] = None,
+        trace: Optional[Tuple[str, ArrayLike]] = None,
+    ) -> Union[Steady, SteadyFamily]:
+        """Finds a steady motion, as ``chaplygin steady``: ``at`` (coordinates
+        and velocities) and ``inputs`` are numbers or expressions of the
+        parameters and the unknowns; ``solve`` names the unknowns (such
+        variables, or coordinates ``at`` leaves free), found by Gauss-Newton
+        on the exact Jacobian from ``guess`` (0 where not given). Raises
+        ``ValueError`` in one line where there is none near the guess. With
+        ``trace=(variable, values)`` it follows the family over the values
+        (evenly spaced, increasing) from the first solution, by
+        pseudo-arclength continuation, and returns a ``SteadyFamily``."""
+        if trace is not None:
+            variable, values = trace
+            trace = (str(variable), values)
+        found = self._native.steady(
+            _dict(at), _dict(inputs), [str(name) for name in solve], _dict(guess), _dict(params), trace
+        )
+        return Steady(found) if trace is None else SteadyFamily(found)
 
     def gait(
         self,

@@ -52,6 +52,15 @@ class Model:
         params: Optional[Dict[str, float]],
         sweep: Optional[Tuple[str, ArrayLike]],
     ) -> Dict[str, Any]: ...
+    def steady(
+        self,
+        at: Optional[Dict[str, Any]],
+        inputs: Optional[Dict[str, Any]],
+        solve: List[str],
+        guess: Optional[Dict[str, float]],
+        params: Optional[Dict[str, float]],
+        trace: Optional[Tuple[str, ArrayLike]],
+    ) -> Dict[str, Any]: ...
     def gait(
         self,
         cycle: Dict[str, Any],

@@ -1,15 +1,18 @@
 //! Linearizations for `chaplygin.Model.linearize`: one steady motion, or
 //! a sweep with its intervals of asymptotic and neutral stability, as
-//! NumPy arrays.
+//! NumPy arrays; and for `chaplygin.Model.steady`, a steady motion found
+//! from unknowns of its point.
 
 use crate::convert::{matrix, to_python};
 use chaplygin::driver::linearize::{self, sweep::Interval};
 use chaplygin::driver::setup::Setup;
-use chaplygin::runtime::linearize::LinearSystem;
+use chaplygin::driver::steady::{self, Request, trace};
+use chaplygin::runtime::linearize::{LinearSystem, point};
 use chaplygin::runtime::nalgebra::DMatrix;
+use chaplygin_codegen::interpret::InterpretedModel;
 use numpy::{Complex64, PyArray1};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 
 /// The eigenvalues of `linear` as complex numbers.
 fn eigenvalues(linear: &LinearSystem) -> Vec<Complex64> {
@@ -74,5 +77,91 @@ pub fn over_sweep<'py>(
     result.set_item("conserved", analysis.conserved)?;
     result.set_item("stable", refined(&analysis.stable))?;
     result.set_item("neutral", refined(&analysis.neutral))?;
+    Ok(result)
+}
+
+/// The steady motion of `request` on `model` (`chaplygin.Model.steady`):
+/// `values` (the unknowns, every coordinate and `dot(q)`, the inputs and,
+/// with a planar symmetry, `radius`), `eigenvalues`, `stable`, the
+/// linear system's `state`, the `family` directions (a list of
+/// `{entry: coefficient}`), the Gauss-Newton `steps` and the `residual`.
+pub fn steady_motion<'py>(
+    py: Python<'py>,
+    model: InterpretedModel,
+    request: &Request<'_>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let names = model.names().clone();
+    let motion = py
+        .detach(|| steady::steady(model, request))
+        .map_err(|error| to_python(py, error.into()))?;
+    let values = PyDict::new(py);
+    for (name, value) in &motion.values {
+        values.set_item(name, value)?;
+    }
+    let velocities = point::velocity_names(&names.coordinates);
+    let state = (names.coordinates.iter().zip(&motion.point.q))
+        .chain(velocities.iter().zip(&motion.point.qdot))
+        .chain(names.inputs.iter().zip(&motion.inputs));
+    for (name, value) in state {
+        values.set_item(name, value)?;
+    }
+    if let Some(radius) = motion.radius {
+        values.set_item("radius", radius)?;
+    }
+    let family = PyList::empty(py);
+    for direction in &motion.family {
+        let entries = PyDict::new(py);
+        for (entry, coefficient) in direction {
+            entries.set_item(entry, coefficient)?;
+        }
+        family.append(entries)?;
+    }
+    let result = PyDict::new(py);
+    result.set_item("values", values)?;
+    result.set_item(
+        "eigenvalues",
+        PyArray1::from_vec(py, eigenvalues(&motion.linear)),
+    )?;
+    result.set_item("stable", motion.stable())?;
+    result.set_item("state", motion.linear.state.clone())?;
+    result.set_item("family", family)?;
+    result.set_item("steps", motion.steps)?;
+    result.set_item("residual", motion.residual)?;
+    Ok(result)
+}
+
+/// The family of `request` on `model` over `values` of `variable`
+/// (`chaplygin.Model.steady(trace=...)`): `columns` (the variable, then
+/// those of `chaplygin steady --trace`'s `steady.csv`), `data` (a row per
+/// value crossed, in the family's order) and `report` (its folds, changes
+/// of stability and end, as the command prints them).
+pub fn steady_family<'py>(
+    py: Python<'py>,
+    model: InterpretedModel,
+    request: &Request<'_>,
+    (variable, values): (&str, &[f64]),
+) -> PyResult<Bound<'py, PyDict>> {
+    let names = model.names().clone();
+    let columns = steady::Columns {
+        coordinates: &names.coordinates,
+        inputs: &names.inputs,
+    };
+    let problem = steady::problem(model, request).map_err(|error| to_python(py, error.into()))?;
+    let family = py
+        .detach(|| trace::trace(&problem, values))
+        .map_err(|error| to_python(py, error.into()))?;
+    let mut header = vec![variable.to_string()];
+    let mut data = Vec::new();
+    for row in &family.rows {
+        if header.len() == 1 {
+            header.extend(steady::header(&columns, &row.motion));
+        }
+        data.push(row.value);
+        data.extend(steady::row(&columns, &row.motion));
+    }
+    let result = PyDict::new(py);
+    result.set_item("data", matrix(py, data, header.len())?)?;
+    result.set_item("columns", header)?;
+    result.set_item("report", family.report(variable))?;
     Ok(result)
 }

@@ -1,5 +1,6 @@
 //! `chaplygin.Model` (native part): a model read from its text, its names
-//! and parameters, and what it does: simulate, linearize, accelerate,
+//! and parameters, and what it does: simulate, linearize, find steady
+//! motions, accelerate,
 //! evaluate its right-hand sides, document its derivation.
 
 use crate::convert::{
@@ -16,6 +17,7 @@ use chaplygin::driver::engine::{self, EngineChoice, Loaded};
 use chaplygin::driver::gait::{self, GaitRequest, OptimalGaitRequest};
 use chaplygin::driver::setup::{self, Asked, with_parameters};
 use chaplygin::driver::simulate::{self, Controller, FormulationChoice, Integrator, Request};
+use chaplygin::driver::steady::Request as SteadyRequest;
 use chaplygin::gait_design::{Cost, Design, Direction};
 use chaplygin::runtime::record::{Recorder, Table};
 use chaplygin::runtime::simulate::SimulationError;
@@ -351,6 +353,41 @@ impl Model {
             Some((variable, values)) => {
                 let values = flat(values, "sweep's values")?;
                 linearization::over_sweep(py, &setup, (variable, &values))
+            }
+        }
+    }
+
+    /// Finds the steady motion of `at` and `inputs` (`{name: value or
+    /// expression}`) in the unknowns `solve` from `guess`, or with `trace
+    /// = (variable, values)` follows its family; returns a dict (see
+    /// `chaplygin.Steady` and `chaplygin.SteadyFamily`).
+    #[pyo3(signature = (at, inputs, solve, guess, params, trace))]
+    #[allow(clippy::too_many_arguments)]
+    fn steady<'py>(
+        &self,
+        py: Python<'py>,
+        at: Option<&Bound<'py, PyDict>>,
+        inputs: Option<&Bound<'py, PyDict>>,
+        solve: Vec<String>,
+        guess: Option<&Bound<'py, PyDict>>,
+        params: Option<&Bound<'py, PyDict>>,
+        trace: Option<(String, ArrayLike<'py>)>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let (at, inputs) = (assignments(at)?, assignments(inputs)?);
+        let (guess, params) = (numbers(guess)?, numbers(params)?);
+        let request = SteadyRequest {
+            params: &params,
+            at: &at,
+            inputs: &inputs,
+            solve: &solve,
+            guess: &guess,
+            trace: trace.as_ref().map(|(variable, _)| variable.as_str()),
+        };
+        match &trace {
+            None => linearization::steady_motion(py, self.fresh().model, &request),
+            Some((variable, values)) => {
+                let values = flat(values, "trace's values")?;
+                linearization::steady_family(py, self.fresh().model, &request, (variable, &values))
             }
         }
     }

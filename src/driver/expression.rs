@@ -98,7 +98,7 @@ impl Function {
     }
 }
 
-/// A value with its first and second derivatives in `t`.
+/// A value with its first and second derivatives in `t` or a variable.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Jet {
     /// The value.
@@ -401,6 +401,32 @@ impl Expression {
         (self.at(point), gradient)
     }
 
+    /// The value at `point` and its derivative in the variable of index
+    /// `variable` (forward differentiation, exact to round-off); a name
+    /// `point` does not give reads as NaN.
+    pub(crate) fn slope(&self, point: &Point<'_>, variable: usize) -> (f64, f64) {
+        let along = |leaf: &Self| Jet {
+            value: leaf.read(point),
+            slope: f64::from(u8::from(*leaf == Self::Variable(variable))),
+            curvature: 0.0,
+        };
+        let Jet { value, slope, .. } = self.jet_along(&along);
+        (value, slope)
+    }
+
+    /// A leaf's value at `point`, NaN where `point` does not give it.
+    fn read(&self, point: &Point<'_>) -> f64 {
+        let read = |values: &[f64], i: usize| values.get(i).copied().unwrap_or(f64::NAN);
+        match self {
+            Self::Time => point.t,
+            Self::Variable(i) => read(point.variables, *i),
+            Self::Coordinate(i) => read(point.q, *i),
+            Self::Velocity(i) => read(point.qdot, *i),
+            Self::Input(i) => read(point.u, *i),
+            _ => f64::NAN,
+        }
+    }
+
     /// The value and its first and second derivatives along a path on
     /// which each leaf (the time, a variable, a coordinate, a velocity, an
     /// input) has the jet `leaf` gives: forward differentiation to second
@@ -662,6 +688,33 @@ mod tests {
         close(gradient.qdot[0], 4.0 * xdot);
         close(gradient.qdot[1], 0.0);
         close(gradient.u[0], 2.0 * y.sin() * f);
+    }
+
+    /// The derivative in a variable against the closed form, the other
+    /// variable and `t` held.
+    #[test]
+    fn the_slope_is_the_derivative_in_a_variable() {
+        let scope = Scope {
+            parameters: &NAMES,
+            variables: &["a", "b"],
+            ..Scope::default()
+        };
+        let law = Expression::parse("-a/rR + b*sin(a^2) + atan2(b, a)", &scope).expect("parses");
+        let (a, b) = (0.8f64, -1.3f64);
+        let point = super::Point {
+            variables: &[a, b],
+            ..super::Point::default()
+        };
+        let (value, by_a) = law.slope(&point, 0);
+        let exact_value = -a / 0.5 + b * (a * a).sin() + b.atan2(a);
+        assert!(
+            (value - exact_value).abs() < 1e-15,
+            "{value} vs {exact_value}"
+        );
+        let exact_a = -1.0 / 0.5 + 2.0 * a * b * (a * a).cos() - b / (a * a + b * b);
+        assert!((by_a - exact_a).abs() < 1e-14, "{by_a} vs {exact_a}");
+        let exact_b = (a * a).sin() + a / (a * a + b * b);
+        assert!((law.slope(&point, 1).1 - exact_b).abs() < 1e-15);
     }
 
     /// A function of the time, computed by `f64`'s own methods.

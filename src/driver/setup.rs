@@ -126,7 +126,12 @@ pub fn resolve(mut model: InterpretedModel, asked: &Asked<'_>) -> Result<Setup, 
         },
         asked.state,
     )?;
-    let schedule = InputSchedule::new(&inputs, asked.inputs, &bound, &coordinates)?;
+    let schedule = InputSchedule::new(
+        &inputs,
+        asked.inputs,
+        &bound,
+        (asked.variables, &coordinates),
+    )?;
     let scope = Scope {
         parameters: &bound,
         coordinates: &coordinates,

@@ -8,6 +8,8 @@
 //! - [`steady`]: the reduced flow `z' = F(z)` in `z = (r, w)` (shape `r`,
 //!   velocities `w` at the group's identity), the check `F(z) = 0`, and the
 //!   linear system `y' = A y + B u` in independent coordinates and speeds;
+//! - [`find`]: a steady motion from unknowns of the point, by
+//!   Gauss-Newton on the exact Jacobian of the reduced flow's rates;
 //! - [`canonical`]: from two such systems, the canonical form
 //!   `M qddot + v C1 qdot + (g K0 + v^2 K2) q = f` of Meijaard et al. (2007).
 //!
@@ -16,6 +18,7 @@
 //! [`Linearization`] and, with configuration constraints, [`Holonomic`]).
 
 pub mod canonical;
+pub mod find;
 pub mod point;
 pub mod steady;
 
@@ -25,6 +28,7 @@ use crate::system::{Holonomic, LagrangeDalembert, ModelNames};
 use nalgebra::{DMatrix, DVector};
 
 pub use canonical::{CanonicalError, CanonicalForm};
+pub use find::{Direction, FindError, Found, Given};
 pub use point::{OperatingPoint, PointError};
 pub use steady::{LinearSystem, SteadyError, linearize};
 

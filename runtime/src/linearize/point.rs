@@ -183,7 +183,7 @@ fn meets(model: &dyn Dynamics, q: &[f64]) -> bool {
 
 /// The pivots `(constraint, coordinate)` of `df/dq` at `q` among the
 /// coordinates `unset`.
-fn solvable(model: &dyn Dynamics, q: &[f64], unset: &[usize]) -> Vec<(usize, usize)> {
+pub(super) fn solvable(model: &dyn Dynamics, q: &[f64], unset: &[usize]) -> Vec<(usize, usize)> {
     let jacobian = model.holonomic_jacobian(q);
     pivots(&jacobian, unset, 1.0, 1e-12 * jacobian.amax().max(1.0))
 }

@@ -224,15 +224,15 @@ pub enum SteadyError {
 }
 
 /// The reduced state's layout: shape and group coordinates, and names.
-struct Layout {
-    shape: Vec<usize>,
-    se2: Vec<(usize, usize, usize)>,
-    group: Vec<usize>,
-    names: Vec<String>,
+pub(super) struct Layout {
+    pub(super) shape: Vec<usize>,
+    pub(super) se2: Vec<(usize, usize, usize)>,
+    pub(super) group: Vec<usize>,
+    pub(super) names: Vec<String>,
 }
 
 impl Layout {
-    fn of(model: &dyn Dynamics) -> Layout {
+    pub(super) fn of(model: &dyn Dynamics) -> Layout {
         let coordinates = model.coordinates();
         let mut group = Vec::new();
         let mut se2 = Vec::new();
@@ -264,12 +264,12 @@ impl Layout {
         }
     }
 
-    fn nr(&self) -> usize {
+    pub(super) fn nr(&self) -> usize {
         self.shape.len()
     }
 
     /// `(q_e(r), w)` of a point.
-    fn reduce(&self, point: &OperatingPoint) -> (Vec<f64>, Vec<f64>) {
+    pub(super) fn reduce(&self, point: &OperatingPoint) -> (Vec<f64>, Vec<f64>) {
         let mut q = point.q.clone();
         let mut w = point.qdot.clone();
         for &(x, y, theta) in &self.se2 {
@@ -284,7 +284,13 @@ impl Layout {
     }
 
     /// `z' = F(z)` at `(q_e, w)`.
-    fn flow(&self, model: &dyn Dynamics, q: &[f64], w: &[f64], u: &[f64]) -> DVector<f64> {
+    pub(super) fn flow(
+        &self,
+        model: &dyn Dynamics,
+        q: &[f64],
+        w: &[f64],
+        u: &[f64],
+    ) -> DVector<f64> {
         let qddot = model.acceleration(q, w, u);
         let mut rate = DVector::zeros(self.nr() + w.len());
         for (a, &i) in self.shape.iter().enumerate() {
@@ -301,7 +307,7 @@ impl Layout {
     }
 
     /// `(dz'/dz, dz'/du)` at `(q_e, w)`.
-    fn jacobian(
+    pub(super) fn jacobian(
         &self,
         model: &dyn Dynamics,
         q: &[f64],
@@ -330,7 +336,12 @@ impl Layout {
     }
 
     /// `Phi = [[df/dr, 0], [d(A w)/dr, A]]` at `(q_e, w)`.
-    fn constraint_jacobian(&self, model: &dyn Dynamics, q: &[f64], w: &[f64]) -> DMatrix<f64> {
+    pub(super) fn constraint_jacobian(
+        &self,
+        model: &dyn Dynamics,
+        q: &[f64],
+        w: &[f64],
+    ) -> DMatrix<f64> {
         let (nr, n) = (self.nr(), w.len());
         let holonomic = model.holonomic_jacobian(q);
         let a = model.constraint_matrix(q);
@@ -370,7 +381,7 @@ impl Layout {
 
 /// `d g(x + s)/ds` at `s = 0` by central differences extrapolated once
 /// (Richardson): error of order `h^4` with `h = eps^(1/5)`.
-fn richardson(g: impl Fn(f64) -> DVector<f64>) -> DVector<f64> {
+pub(super) fn richardson(g: impl Fn(f64) -> DVector<f64>) -> DVector<f64> {
     let h = f64::EPSILON.powf(0.2);
     let central = |step: f64| (g(step) - g(-step)) / (2.0 * step);
     let (coarse, fine) = (central(h), central(h / 2.0));
@@ -438,7 +449,11 @@ pub fn linearize(
 }
 
 /// [`SteadyError::NotSteady`] unless every rate of `z' = F(z)` is round-off.
-fn check_steady(layout: &Layout, rate: &DVector<f64>, w: &[f64]) -> Result<(), SteadyError> {
+pub(super) fn check_steady(
+    layout: &Layout,
+    rate: &DVector<f64>,
+    w: &[f64],
+) -> Result<(), SteadyError> {
     let speed = w.iter().fold(1.0f64, |m, v| m.max(v.abs()));
     match largest(rate.as_slice()) {
         Some((worst, residual)) if residual.abs() > 1e-8 * speed * speed => {

@@ -20,8 +20,9 @@ pub struct InputSchedule {
 
 impl InputSchedule {
     /// The inputs called `names` from the `--input` assignments `given`,
-    /// expressions of `t`, the `parameters` (name and value) and the state
-    /// (the `coordinates` and their velocities).
+    /// expressions of `t`, the `parameters` (name and value), the
+    /// command's `variables` and the state (the `coordinates` and their
+    /// velocities).
     ///
     /// # Errors
     /// An unknown input, or an expression that is not one of `t`, the
@@ -30,10 +31,11 @@ impl InputSchedule {
         names: &[&str],
         given: &[(String, String)],
         parameters: &[(&str, f64)],
-        coordinates: &[&str],
+        (variables, coordinates): (&[&str], &[&str]),
     ) -> Result<Self, InputError> {
         let scope = Scope {
             parameters,
+            variables,
             coordinates,
             ..Scope::default()
         };
@@ -64,6 +66,25 @@ impl InputSchedule {
     /// `qdot` may be given empty.
     pub fn reads_state(&self) -> bool {
         self.laws.iter().any(Expression::reads_state)
+    }
+
+    /// Whether no input reads the time or the state: each a constant of
+    /// the parameters and the variables.
+    pub fn is_constant(&self) -> bool {
+        !(self.laws.iter()).any(|law| law.reads_state() || law.reads_time())
+    }
+
+    /// Each input's value at `variables` and its derivative in the
+    /// variable of index `variable`, for inputs that are constants
+    /// ([`Self::is_constant`]).
+    pub fn slopes(&self, variables: &[f64], variable: usize) -> Vec<(f64, f64)> {
+        let point = Point {
+            variables,
+            ..Point::default()
+        };
+        (self.laws.iter())
+            .map(|law| law.slope(&point, variable))
+            .collect()
     }
 
     /// The inputs at time `t`, the configuration `q` and its velocity
@@ -99,7 +120,7 @@ mod tests {
             &["u1", "u2", "u3"],
             &given(&[("u1", "0.3*sin(2*t)"), ("u3", "-a^2/t + 1.5e-1")]),
             &[("a", 3.0)],
-            &["x"],
+            (&[], &["x"]),
         )
         .unwrap();
         assert!(!schedule.reads_state());
@@ -115,7 +136,7 @@ mod tests {
             &["u1", "u2"],
             &given(&[("u2", "-k*phi - 2*dot(phi) + abs(dot(x))*t")]),
             &[("k", 10.0)],
-            &["x", "phi"],
+            (&[], &["x", "phi"]),
         )
         .unwrap();
         assert!(schedule.reads_state());
@@ -151,7 +172,8 @@ mod tests {
 
     #[test]
     fn unknown_names_and_bad_syntax_are_errors() {
-        let error = InputSchedule::new(&["u1"], &given(&[("v", "1")]), &[], &["x"]).unwrap_err();
+        let error =
+            InputSchedule::new(&["u1"], &given(&[("v", "1")]), &[], (&[], &["x"])).unwrap_err();
         assert!(matches!(error, InputError::UnknownInput { .. }), "{error}");
         for (text, says) in [
             ("b*t", "`b` is not `t`, a parameter or a coordinate"),
@@ -162,11 +184,12 @@ mod tests {
             ("atan2(t)", "`atan2` takes two scalar arguments"),
             ("[t]", "a list"),
         ] {
-            let error =
-                InputSchedule::new(&["u1"], &given(&[("u1", text)]), &[], &["x"]).unwrap_err();
+            let error = InputSchedule::new(&["u1"], &given(&[("u1", text)]), &[], (&[], &["x"]))
+                .unwrap_err();
             assert!(error.to_string().contains(says), "{text}: {error}");
         }
-        let error = InputSchedule::new(&["u1"], &given(&[("u1", "2*")]), &[], &["x"]).unwrap_err();
+        let error =
+            InputSchedule::new(&["u1"], &given(&[("u1", "2*")]), &[], (&[], &["x"])).unwrap_err();
         assert!(error.to_string().starts_with("--input u1=2*: "), "{error}");
     }
 }

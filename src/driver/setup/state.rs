@@ -189,6 +189,42 @@ impl StateFamily {
         Ok(assigned)
     }
 
+    /// The derivatives of the coordinates and velocities assigned in the
+    /// variable of index `variable` at `variables` (0 where none is
+    /// assigned), by forward differentiation of their expressions.
+    ///
+    /// # Errors
+    /// An assignment of a frame's turn or angular velocity, or of a
+    /// controller state: give the coordinates and `dot(q)` instead.
+    pub fn slopes(
+        &self,
+        variables: &[f64],
+        variable: usize,
+    ) -> Result<(Vec<f64>, Vec<f64>), InputError> {
+        let mut slopes = (vec![0.0; self.coordinates], vec![0.0; self.coordinates]);
+        let point = Point {
+            variables,
+            ..Point::default()
+        };
+        for assignment in &self.assignments {
+            let (_, slope) = assignment.value.slope(&point, variable);
+            match assignment.slot {
+                Slot::Coordinate(i) => slopes.0[i] = slope,
+                Slot::Velocity(i) => slopes.1[i] = slope,
+                Slot::Controller(_) | Slot::Frame(..) => {
+                    return Err(InputError::FrameState {
+                        flag: self.flag.clone(),
+                        name: assignment.name.clone(),
+                        reason: "a steady motion is found from the coordinates and `dot(q)`: \
+                                 give those"
+                            .into(),
+                    });
+                }
+            }
+        }
+        Ok(slopes)
+    }
+
     /// The angular velocity asked of `frame` by the assignment `name`,
     /// added at zero where new.
     fn angular_velocity<'s>(
