@@ -174,7 +174,7 @@ pub struct ConstraintAnalysis {
     /// Moore's test, per constraint row in declared order: is the row exact?
     pub exact_rows: Vec<bool>,
     /// The combinations of rows not exact alone that are exact: integrals
-    /// of the constraints ([`integrals`]).
+    /// of the constraints ([`Integral`]).
     pub integrals: Vec<Integral>,
     /// The bodies the contacts leave unable to move.
     pub locked: Locked,
