@@ -17,8 +17,9 @@
 //!                     [--at NAME=EXPR]... [--param NAME=VALUE]... [--jobs N] [--engine jit|interpret] [--out DIR]
 //! chaplygin gait MODEL --shape A,B,... --cycle NAME=EXPR... --period T [--cycles N] [--steps S]
 //!                      [--param NAME=VALUE]... [--initial pI=VALUE]... [--engine jit|interpret] [--out DIR]
-//! chaplygin plan MODEL --duration T --nodes N [--scheme backward-euler|midpoint] [--start NAME=EXPR]...
-//!                      [--goal NAME=EXPR]... [--minimize EXPR] [--bound NAME=LO:HI]... [--param NAME=VALUE]...
+//! chaplygin plan MODEL --duration T [--free-duration] --nodes N [--scheme backward-euler|midpoint|hermite-simpson]
+//!                      [--start NAME=EXPR]... [--goal NAME=EXPR]... [--minimize EXPR] [--final-cost EXPR]
+//!                      [--bound NAME=LO:HI]... [--param NAME=VALUE]... [--guess FILE.csv]
 //!                      [--tol TOL] [--engine jit|interpret] [--out DIR]
 //! ```
 //!

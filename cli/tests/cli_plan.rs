@@ -1,7 +1,8 @@
 //! `chaplygin plan` (docs/INTERFACE.md section 13) run as a command: a
 //! point mass moved between rests, whose optimal cost `12 m^2 / T^3` is
-//! known in closed form; `plan.csv` with `trajectory.csv`'s columns; and
-//! bad requests refused in one line.
+//! known in closed form, over a given or a free duration, to a hard or a
+//! soft goal, and restarted from its own `plan.csv`; `plan.csv` with
+//! `trajectory.csv`'s columns; and bad requests refused in one line.
 
 use crate::support::{chaplygin, column, read_csv, scratch};
 use std::path::Path;
@@ -113,4 +114,110 @@ fn bad_plans_are_refused_in_one_line() {
         "lies outside --bound x=-inf:0.5",
     );
     refused(&with(&["--bound", "push=-0.1:0.1"]), "no verified optimum");
+}
+
+/// `plan.json` of a successful run in `dir`'s `plan`.
+fn report(dir: &Path, output: &Output) -> serde_json::Value {
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let json = std::fs::read_to_string(dir.join("plan/plan.json")).expect("plan.json");
+    serde_json::from_str(&json).expect("JSON")
+}
+
+/// `min T + int u^2` for the point mass with `m = 1` moved by 1: over a
+/// given `T` the cost is `T + 12/T^3`, least at `T = sqrt 6` where it is
+/// `8/sqrt 6`; Hermite-Simpson is exact on the optimum's cubic.
+#[test]
+fn a_free_duration_plan_by_hermite_simpson_meets_its_closed_form() {
+    let dir = scratch("plan-free-duration");
+    let mut arguments = REST_TO_REST.to_vec();
+    arguments.extend([
+        "--nodes",
+        "21",
+        "--param",
+        "m=1",
+        "--scheme",
+        "hermite-simpson",
+        "--free-duration",
+        "--final-cost",
+        "t",
+    ]);
+    let report = report(dir.path(), &run(dir.path(), "plan", &arguments));
+    let duration = report["duration"].as_f64().expect("a number");
+    let objective = report["objective"].as_f64().expect("a number");
+    assert!((duration - 6.0_f64.sqrt()).abs() < 1e-6, "{duration}");
+    assert!(
+        (objective - 8.0 / 6.0_f64.sqrt()).abs() < 1e-8,
+        "{objective}"
+    );
+    assert_eq!(report["scheme"], "hermite-simpson");
+    let (header, rows) = read_csv(&dir.path().join("plan/plan.csv"));
+    assert!((column(&header, &rows, "t")[20] - duration).abs() < 1e-12);
+}
+
+/// A soft goal `12 (x(T) - 1)^2` for the point mass with `m = 1` over `T =
+/// 1`: reaching `y` costs `12 y^2`, so `y = 1/2` and the cost is 6.
+#[test]
+fn a_final_cost_plan_meets_its_closed_form() {
+    let dir = scratch("plan-final-cost");
+    let arguments = [
+        "--duration",
+        "1",
+        "--nodes",
+        "11",
+        "--param",
+        "m=1",
+        "--scheme",
+        "hermite-simpson",
+        "--start",
+        "x=0",
+        "--start",
+        "dot(x)=0",
+        "--goal",
+        "dot(x)=0",
+        "--final-cost",
+        "12*(x - 1)^2",
+    ];
+    let report = report(dir.path(), &run(dir.path(), "plan", &arguments));
+    let objective = report["objective"].as_f64().expect("a number");
+    assert!((objective - 6.0).abs() < 1e-7, "{objective}");
+    let (header, rows) = read_csv(&dir.path().join("plan/plan.csv"));
+    assert!((column(&header, &rows, "x")[10] - 0.5).abs() < 1e-7);
+}
+
+/// A plan restarted from its own `plan.csv` on a finer grid reaches the
+/// same optimum (the midpoint rule's objective on 21 nodes, `12 m^2 / T^3`
+/// to within its `h^2` error).
+#[test]
+fn a_plan_csv_is_a_guess() {
+    let dir = scratch("plan-guess");
+    let mut coarse = REST_TO_REST.to_vec();
+    coarse.extend(["--nodes", "11"]);
+    report(dir.path(), &run(dir.path(), "plan", &coarse));
+    let guess = dir.path().join("guess.csv");
+    std::fs::rename(dir.path().join("plan/plan.csv"), &guess).expect("moved");
+    let mut fine = REST_TO_REST.to_vec();
+    fine.extend(["--nodes", "21", "--guess", guess.to_str().expect("UTF-8")]);
+    let report = report(dir.path(), &run(dir.path(), "plan", &fine));
+    let objective = report["objective"].as_f64().expect("a number");
+    assert!((objective - 6.0).abs() < 2e-2, "{objective}");
+}
+
+#[test]
+fn bad_guesses_and_free_durations_are_refused_in_one_line() {
+    let dir = scratch("plan-bad-guess");
+    let guess = dir.path().join("guess.csv");
+    std::fs::write(&guess, "t,x,y\n0,0,0\n1,1,0\n").expect("written");
+    let mut arguments = REST_TO_REST.to_vec();
+    arguments.extend(["--nodes", "11", "--guess", guess.to_str().expect("UTF-8")]);
+    refused(&arguments, "guess.csv: unknown columns y");
+    let mut free = REST_TO_REST[2..].to_vec();
+    free.extend(["--nodes", "11", "--free-duration", "--duration", "0"]);
+    refused(
+        &free,
+        "--duration 0: the free duration's first guess must be positive",
+    );
 }

@@ -268,11 +268,13 @@ pub(crate) struct Point<'a> {
     pub u: &'a [f64],
 }
 
-/// The derivatives of an expression by the coordinates, their velocities
-/// and the inputs.
+/// The derivatives of an expression by the time, the coordinates, their
+/// velocities and the inputs.
 #[cfg(feature = "plan")]
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Gradient {
+    /// By the time.
+    pub t: f64,
     /// By the coordinates.
     pub q: Vec<f64>,
     /// By their velocities.
@@ -374,8 +376,8 @@ impl Expression {
         })
     }
 
-    /// The value at `point` and the gradient by the coordinates, their
-    /// velocities and the inputs, each as long as `point`'s (forward
+    /// The value at `point` and the gradient by the time, the coordinates,
+    /// their velocities and the inputs, each as long as `point`'s (forward
     /// differentiation, one pass per name, exact to round-off).
     #[cfg(feature = "plan")]
     pub(crate) fn gradient(&self, point: &Point<'_>) -> (f64, Gradient) {
@@ -388,6 +390,7 @@ impl Expression {
             self.jet_along(&along).slope
         };
         let gradient = Gradient {
+            t: by(&|l| *l == Self::Time),
             q: (0..point.q.len())
                 .map(|i| by(&|l| *l == Self::Coordinate(i)))
                 .collect(),

@@ -3,10 +3,12 @@
 //! conditions and the bounds, and minimize a running cost
 //!
 //! ```text
-//! minimize  integral_0^T L(t, q, qdot, u) dt   (default L = sum u^2)
+//! minimize  integral_0^T L(t, q, qdot, u) dt + Phi(T, q(T), qdot(T))   (default L = sum u^2, Phi = 0)
 //! subject to  d(q, qdot)/dt = (qdot, qddot(q, qdot, u)),  given q, qdot at 0 and T,
-//!             lo <= q, qdot, u <= hi at every node.
+//!             lo <= q, qdot, u <= hi at every node,
 //! ```
+//!
+//! over a given duration `T` or, with `--free-duration`, over `T > 0` too.
 //!
 //! - [`transcription`]: the plan as a nonlinear program on the nodes'
 //!   states and inputs, its derivatives exact;
@@ -40,9 +42,12 @@ pub use transcription::Scheme;
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct Request {
-    /// The duration `T`.
+    /// The duration `T`, or with `--free-duration` its first guess.
     #[cfg_attr(feature = "cli", arg(long))]
     pub duration: f64,
+    /// Makes `T` an unknown, at least a tenth of `--duration`.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub free_duration: bool,
     /// The number of nodes `N` (at least 2), `T / (N - 1)` apart.
     #[cfg_attr(feature = "cli", arg(long))]
     pub nodes: usize,
@@ -62,6 +67,10 @@ pub struct Request {
     /// squared].
     #[cfg_attr(feature = "cli", arg(long, value_name = "EXPR"))]
     pub minimize: Option<String>,
+    /// A cost added at `t = T`, an expression of `t`, the coordinates,
+    /// velocities `dot(q)` and parameters.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "EXPR"))]
+    pub final_cost: Option<String>,
     /// `NAME=LO:HI` bounds an input, coordinate or velocity at every node;
     /// either end may be empty (repeatable).
     #[cfg_attr(feature = "cli", arg(long = "bound", value_parser = super::simulate::expression_assignment))]
@@ -69,6 +78,11 @@ pub struct Request {
     /// A model parameter, `NAME=VALUE` (repeatable).
     #[cfg_attr(feature = "cli", arg(long = "param", value_parser = super::simulate::assignment))]
     pub params: Vec<(String, f64)>,
+    /// A CSV with `t` and any of `plan.csv`'s columns, interpolated onto
+    /// the nodes as the first guess (held beyond its ends); the rest start
+    /// from the start and goal interpolated, else 0.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.csv"))]
+    pub guess: Option<std::path::PathBuf>,
     /// The solver's tolerance; the KKT conditions are verified to 100
     /// times it.
     #[cfg_attr(feature = "cli", arg(long, default_value_t = Request::TOL))]
@@ -80,6 +94,8 @@ impl Request {
     pub const TOL: f64 = 1e-8;
     /// How many times the solver's tolerance the KKT residuals may reach.
     pub const VERIFIED: f64 = 100.0;
+    /// The shortest free duration, as a fraction of its first guess.
+    pub const SHORTEST: f64 = 0.1;
     /// The solver's iterations at most.
     pub const MAX_ITERATIONS: usize = 3000;
 }
@@ -203,7 +219,7 @@ pub fn plan(loaded: Loaded, request: &Request, solver: &dyn Solver) -> Result<Pl
     }
     let report = Report {
         objective,
-        duration: request.duration,
+        duration: transcription.duration(&solution.z),
         nodes: request.nodes,
         scheme: request.scheme,
         solver: solver.name(),

@@ -1,16 +1,23 @@
 //! A plan's request read against its model: the parameters set, the
 //! conditions and bounds turned into the variables' bounds, the first
-//! guess (the start and goal interpolated, else 0, inside the bounds), the
-//! cost read; and the solution written as `plan.csv`'s rows.
+//! guess (`--guess`'s columns interpolated, else the start and goal
+//! interpolated, else 0, inside the bounds), the costs read; and the
+//! solution written as `plan.csv`'s rows. With `--free-duration` the
+//! duration follows the nodes' variables, started at `--duration` and
+//! bounded below by [`Request::SHORTEST`] times it (near `T = 0` the
+//! defects cannot move the state, and the solver would not return).
+
+mod guess;
 
 use super::Request;
-use super::transcription::Transcription;
+use super::transcription::{Costs, Grid, Transcription};
 use crate::driver::engine::Loaded;
 use crate::driver::expression::{Expression, ExpressionError, Scope, constant};
 use crate::driver::interpreted::holonomic_residual;
 use crate::driver::setup::with_parameters;
 use crate::runtime::record::Table;
 use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
+use guess::Guess;
 
 /// A request that does not make a plan of its model, stated in one line.
 #[derive(Debug, PartialEq, thiserror::Error)]
@@ -21,6 +28,27 @@ pub enum RequestError {
     /// A duration that is not positive and finite.
     #[error("--duration {0}: the duration must be positive and finite")]
     Duration(f64),
+    /// A first guess of a free duration that is not positive and finite.
+    #[error("--duration {0}: the free duration's first guess must be positive and finite")]
+    FirstDuration(f64),
+    /// A guess that cannot be read.
+    #[error("--guess {path}: {reason}")]
+    GuessFile {
+        /// The file.
+        path: String,
+        /// Why.
+        reason: String,
+    },
+    /// A guess with columns that are not `plan.csv`'s.
+    #[error("--guess {path}: unknown columns {unknown} (t, {known} and plan.csv's others)")]
+    GuessColumns {
+        /// The file.
+        path: String,
+        /// The columns unknown.
+        unknown: String,
+        /// A node's variables.
+        known: String,
+    },
     /// A tolerance that is not positive and finite.
     #[error("--tol {0}: the tolerance must be positive and finite")]
     Tolerance(f64),
@@ -99,6 +127,10 @@ pub enum RequestError {
 /// What a start or goal is checked against: `|A qdot|` and `|f(q)|` up
 /// to this.
 const ON_CONSTRAINTS: f64 = 1e-10;
+
+/// `plan.csv`'s columns after the nodes' variables (the last only with
+/// configuration constraints).
+const DERIVED_COLUMNS: [&str; 3] = ["energy", "constraint_residual", "holonomic_residual"];
 
 /// The names of a node's variables: the coordinates, `dot(q)`, the
 /// inputs.
@@ -202,22 +234,32 @@ impl Resolver<'_> {
         Ok(())
     }
 
-    /// The start and goal interpolated, else 0, inside the bounds.
-    fn guess(&self) -> Vec<f64> {
+    /// The nodes' variables: `read`'s columns at the nodes' times, `step`
+    /// apart; the rest the start and goal interpolated, else 0; all inside
+    /// the bounds.
+    fn guess(&self, read: Option<&Guess>, step: f64) -> Vec<f64> {
         let width = self.columns.len();
         let last = (self.nodes - 1) as f64;
-        (0..self.nodes * width)
+        let mut guess: Vec<f64> = (0..self.nodes * width)
             .map(|j| {
                 let (node, column) = (j / width, j % width);
                 let s = node as f64 / last;
-                let value = match (self.ends[0][column], self.ends[1][column]) {
+                match (self.ends[0][column], self.ends[1][column]) {
                     (Some(a), Some(b)) => a + s * (b - a),
                     (Some(a), None) | (None, Some(a)) => a,
                     (None, None) => 0.0,
-                };
-                value.clamp(self.lo[j], self.hi[j])
+                }
             })
-            .collect()
+            .collect();
+        for (node, values) in guess.chunks_mut(width).enumerate() {
+            for (column, value) in read.into_iter().flat_map(|r| r.at(node as f64 * step)) {
+                values[column] = value;
+            }
+        }
+        for (j, value) in guess.iter_mut().enumerate() {
+            *value = value.clamp(self.lo[j], self.hi[j]);
+        }
+        guess
     }
 
     /// With constraints, the start is given whole and meets them.
@@ -257,7 +299,11 @@ fn check_numbers(request: &Request) -> Result<(), RequestError> {
         return Err(RequestError::Nodes(request.nodes));
     }
     if !(request.duration.is_finite() && request.duration > 0.0) {
-        return Err(RequestError::Duration(request.duration));
+        return Err(if request.free_duration {
+            RequestError::FirstDuration(request.duration)
+        } else {
+            RequestError::Duration(request.duration)
+        });
     }
     if !(request.tol.is_finite() && request.tol > 0.0) {
         return Err(RequestError::Tolerance(request.tol));
@@ -297,27 +343,76 @@ pub(super) fn transcribe(
         }
     }
     resolver.check_start(&model)?;
-    let cost = cost(&model, &resolver.parameters, request.minimize.as_deref())?;
-    let guess = resolver.guess();
-    let bounds = (resolver.lo, resolver.hi, guess);
+    let costs = Costs {
+        running: running_cost(&model, &resolver.parameters, request.minimize.as_deref())?,
+        terminal: request
+            .final_cost
+            .as_deref()
+            .map(|text| final_cost(&model, &resolver.parameters, text))
+            .transpose()?,
+    };
+    let read = request
+        .guess
+        .as_deref()
+        .map(|path| Guess::read(path, &resolver.columns, &DERIVED_COLUMNS))
+        .transpose()?;
+    let step = request.duration / (request.nodes - 1) as f64;
+    let mut guess = resolver.guess(read.as_ref(), step);
+    let (mut lo, mut hi) = (resolver.lo, resolver.hi);
+    if request.free_duration {
+        lo.push(Request::SHORTEST * request.duration);
+        hi.push(f64::INFINITY);
+        guess.push(request.duration);
+    }
+    let grid = Grid {
+        nodes: request.nodes,
+        duration: request.duration,
+        free_duration: request.free_duration,
+    };
     Ok(Transcription::new(
         model,
         request.scheme,
-        (request.nodes, request.duration),
-        cost,
-        bounds,
+        grid,
+        costs,
+        (lo, hi, guess),
     ))
 }
 
+/// The coordinates' and inputs' names of `model`.
+fn scope_names(model: &InterpretedModel) -> (Vec<&str>, Vec<&str>) {
+    let names = model.names();
+    (
+        names.coordinates.iter().map(String::as_str).collect(),
+        names.inputs.iter().map(String::as_str).collect(),
+    )
+}
+
+/// `--final-cost`, an expression of `t`, the state and the parameters.
+fn final_cost(
+    model: &InterpretedModel,
+    parameters: &[(&str, f64)],
+    text: &str,
+) -> Result<Expression, RequestError> {
+    let (coordinates, _) = scope_names(model);
+    let scope = Scope {
+        parameters,
+        coordinates: &coordinates,
+        ..Scope::default()
+    };
+    Expression::parse(text, &scope).map_err(|source| RequestError::Value {
+        flag: "--final-cost",
+        name: text.to_string(),
+        source,
+    })
+}
+
 /// `--minimize`, or the sum of the inputs squared.
-fn cost(
+fn running_cost(
     model: &InterpretedModel,
     parameters: &[(&str, f64)],
     minimize: Option<&str>,
 ) -> Result<Expression, RequestError> {
-    let names = model.names();
-    let coordinates: Vec<&str> = names.coordinates.iter().map(String::as_str).collect();
-    let inputs: Vec<&str> = names.inputs.iter().map(String::as_str).collect();
+    let (coordinates, inputs) = scope_names(model);
     let scope = Scope {
         parameters,
         coordinates: &coordinates,
@@ -350,16 +445,14 @@ pub(super) fn table(
     let holonomic = !model.names().holonomic.is_empty();
     let mut columns = vec!["t".to_string()];
     columns.extend(node_columns(model));
-    columns.extend(["energy", "constraint_residual"].map(String::from));
-    if holonomic {
-        columns.push("holonomic_residual".into());
-    }
+    let derived = &DERIVED_COLUMNS[..2 + usize::from(holonomic)];
+    columns.extend(derived.iter().map(|c| c.to_string()));
     let mut table = Table::new();
     crate::runtime::record::Recorder::start(&mut table, &columns)?;
-    let width = transcription.width();
-    for (i, node) in z.chunks(width).enumerate() {
+    let (width, step) = (transcription.width(), transcription.step(z));
+    for (i, node) in z[..transcription.nodes() * width].chunks(width).enumerate() {
         let (q, qdot) = (&node[..n], &node[n..2 * n]);
-        let mut row = vec![i as f64 * transcription.step()];
+        let mut row = vec![i as f64 * step];
         row.extend_from_slice(&node[..2 * n]);
         row.extend_from_slice(&transcription.held_inputs(z, i));
         row.push(evaluated(model.energy(q, qdot)));

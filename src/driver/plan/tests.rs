@@ -1,6 +1,9 @@
 //! Plans against independent truths: the closed-form optimum of a point
-//! mass moved between rests, the differential drive's plan simulated, and
-//! the one-line errors of bad requests.
+//! mass moved between rests (over a given or a free duration, to a hard or
+//! a soft goal), the schemes' orders measured against the closed-form
+//! optimum of a linear-quadratic problem, the differential drive's plan
+//! simulated and restarted from a coarser plan, and the one-line errors
+//! of bad requests.
 
 use super::nlp::Ripopt;
 use super::{Plan, Request, Scheme, plan};
@@ -9,6 +12,8 @@ use crate::driver::engine::{EngineChoice, Loaded, load};
 use crate::driver::formulation::RunTimeSized;
 use crate::driver::interpreted::{InputLaw, InterpretedDalembert};
 use crate::runtime::integrate::{Rk4, integrate_fixed};
+use crate::runtime::linalg::solve;
+use crate::runtime::record::{CsvRecorder, Recorder, Table};
 use std::cell::Cell;
 use std::rc::Rc;
 
@@ -43,9 +48,12 @@ fn rest_to_rest(scheme: Scheme, nodes: usize) -> Request {
         scheme,
         start: assigned(&[("x", "0"), ("dot(x)", "0")]),
         goal: assigned(&[("x", "1"), ("dot(x)", "0")]),
+        free_duration: false,
         minimize: None,
+        final_cost: None,
         bounds: Vec::new(),
         params: Vec::new(),
+        guess: None,
         tol: Request::TOL,
     }
 }
@@ -54,14 +62,14 @@ fn rest_to_rest(scheme: Scheme, nodes: usize) -> Request {
 /// 12 t/T^3)`, and of its objective against `12 m^2 / T^3` (m = 2, T = 2:
 /// `u* = 3 - 3t`, `J* = 6`), from the Euler-Lagrange equations of
 /// `min int u^2` under `m xddot = u`. Each node's input is compared where
-/// the scheme applies it: backward Euler's at the node, the midpoint
-/// rule's at the midpoint of the interval it starts.
+/// the scheme applies it: backward Euler's and Hermite-Simpson's at the
+/// node, the midpoint rule's at the midpoint of the interval it starts.
 fn errors(plan: &Plan, scheme: Scheme) -> (f64, f64) {
     let t = plan.table.column("t").expect("t");
     let push = plan.table.column("push").expect("push");
     let h = t[1] - t[0];
     let shift = match scheme {
-        Scheme::BackwardEuler => 0.0,
+        Scheme::BackwardEuler | Scheme::HermiteSimpson => 0.0,
         Scheme::Midpoint => h / 2.0,
     };
     let input = t[..t.len() - 1]
@@ -142,9 +150,12 @@ fn parking(nodes: usize) -> Request {
             ("dot(phi_r)", "0"),
             ("dot(phi_l)", "0"),
         ]),
+        free_duration: false,
         minimize: None,
+        final_cost: None,
         bounds: Vec::new(),
         params: Vec::new(),
+        guess: None,
         tol: Request::TOL,
     }
 }
@@ -249,6 +260,19 @@ fn bad_requests_are_one_line_errors() {
     let mut cost = base();
     cost.minimize = Some("push^2 + w".into());
     assert!(error_of(cost).contains("--minimize"));
+    let mut free = base();
+    (free.free_duration, free.duration) = (true, 0.0);
+    let line = error_of(free);
+    assert!(line.contains("--duration 0: the free duration's first guess must be positive"));
+    let mut final_cost = base();
+    final_cost.final_cost = Some("push^2".into());
+    assert!(error_of(final_cost).contains("--final-cost push^2: `push` is not"));
+    let dir = tempfile::tempdir().expect("a directory");
+    let path = dir.path().join("guess.csv");
+    std::fs::write(&path, "t,x,z,speed\n0,0,1,2\n").expect("written");
+    let mut guess = base();
+    guess.guess = Some(path);
+    assert!(error_of(guess).contains("guess.csv: unknown columns z, speed"));
     let mut partial = parking(5);
     partial.start.pop();
     let error = plan(differential_drive(), &partial, &Ripopt).expect_err("a partial start");
@@ -265,5 +289,179 @@ fn an_infeasible_plan_is_an_error() {
     assert!(
         error.to_string().starts_with("no verified optimum"),
         "{error}"
+    );
+}
+
+/// The point mass with `m = 1` from rest at 0 to rest at `d = 1` in `T = 1`.
+fn unit_rest_to_rest(scheme: Scheme, nodes: usize) -> Request {
+    let mut request = rest_to_rest(scheme, nodes);
+    request.duration = 1.0;
+    request.params.push(("m".into(), 1.0));
+    request
+}
+
+/// Hermite-Simpson is exact on the point mass's optimum, a cubic `x` under
+/// a linear input `u = 6 - 12 t`: the objective is `12 m^2 d^2 / T^3 = 12`.
+#[test]
+fn the_hermite_simpson_point_mass_plan_costs_12() {
+    let plan = plan(
+        point_mass(),
+        &unit_rest_to_rest(Scheme::HermiteSimpson, 51),
+        &Ripopt,
+    )
+    .expect("a plan");
+    eprintln!(
+        "Hermite-Simpson, 51 nodes: objective {:.12} in {} iterations",
+        plan.report.objective, plan.report.iterations
+    );
+    assert!((plan.report.objective - 12.0).abs() < 1e-6);
+    let push = plan.table.column("push").expect("push");
+    let t = plan.table.column("t").expect("t");
+    for (t, u) in t.iter().zip(&push) {
+        assert!((u - (6.0 - 12.0 * t)).abs() < 1e-4, "{t}: {u}");
+    }
+}
+
+/// The optimum of `int_0^T (u^2 + x^2) dt` under `xddot = u` from rest at
+/// 0 to rest at 1. Euler-Lagrange gives `x'''' = -x`, so `x = sum c_k
+/// phi_k` over `Re, Im e^{r t}` with `r = (+-1 + i)/sqrt 2`, the `c_k` from
+/// the four end conditions; by parts, `J = [x'' x' - x''' x]_0^T =
+/// -x'''(T)`.
+fn linear_quadratic_optimum(duration: f64) -> f64 {
+    let a = std::f64::consts::FRAC_1_SQRT_2;
+    let basis = |t: f64, derivative: usize| {
+        let mut values = [0.0; 4];
+        for (pair, sign) in [(0, 1.0), (1, -1.0)] {
+            let grow = (sign * a * t).exp();
+            let (mut re, mut im) = (grow * (a * t).cos(), grow * (a * t).sin());
+            for _ in 0..derivative {
+                (re, im) = (sign * a * re - a * im, a * re + sign * a * im);
+            }
+            values[2 * pair] = re;
+            values[2 * pair + 1] = im;
+        }
+        values
+    };
+    let conditions = [
+        basis(0.0, 0),
+        basis(0.0, 1),
+        basis(duration, 0),
+        basis(duration, 1),
+    ];
+    let c = solve(&conditions, &[0.0, 0.0, 1.0, 0.0]).expect("regular");
+    let third = basis(duration, 3);
+    -(0..4).map(|k| c[k] * third[k]).sum::<f64>()
+}
+
+/// The least-squares slope of `ln error` against `ln h`.
+fn fitted_order(points: &[(f64, f64)]) -> f64 {
+    let logs: Vec<(f64, f64)> = points.iter().map(|(h, e)| (h.ln(), e.ln())).collect();
+    let count = logs.len() as f64;
+    let (mean_h, mean_e) = logs
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (h, e)| (a + h / count, b + e / count));
+    let covariance: f64 = logs.iter().map(|(h, e)| (h - mean_h) * (e - mean_e)).sum();
+    let variance: f64 = logs.iter().map(|(h, _)| (h - mean_h).powi(2)).sum();
+    covariance / variance
+}
+
+#[test]
+fn the_schemes_converge_at_orders_1_2_and_4() {
+    let exact = linear_quadratic_optimum(2.0);
+    let grids = [
+        (Scheme::BackwardEuler, 1.0, [11, 21, 41, 81]),
+        (Scheme::Midpoint, 2.0, [11, 21, 41, 81]),
+        (Scheme::HermiteSimpson, 4.0, [11, 21, 41, 81]),
+    ];
+    for (scheme, order, nodes) in grids {
+        let errors: Vec<(f64, f64)> = nodes
+            .iter()
+            .map(|&nodes| {
+                let mut request = rest_to_rest(scheme, nodes);
+                request.params.push(("m".into(), 1.0));
+                request.minimize = Some("push^2 + x^2".into());
+                let plan = plan(point_mass(), &request, &Ripopt).expect("a plan");
+                let h = 2.0 / (nodes - 1) as f64;
+                (h, (plan.report.objective - exact).abs())
+            })
+            .collect();
+        let measured = fitted_order(&errors);
+        eprintln!("{scheme:?}: J* = {exact:.12}, (h, error) {errors:?}, order {measured:.3}");
+        assert!((measured - order).abs() < 0.3, "{scheme:?}: {measured}");
+    }
+}
+
+/// `min T + int_0^T u^2 dt` for the point mass (`m = d = 1`): over a given
+/// `T` the cost is `T + 12/T^3`, least at `T^4 = 36`, `T = sqrt 6`, where
+/// it is `8/sqrt 6`. The `T` comes as a final cost `t`, or as the running
+/// cost's 1.
+#[test]
+fn a_free_duration_meets_its_closed_form_optimum() {
+    let (best, least) = (6.0_f64.sqrt(), 8.0 / 6.0_f64.sqrt());
+    for (minimize, final_cost) in [(None, Some("t")), (Some("1 + push^2"), None)] {
+        let mut request = unit_rest_to_rest(Scheme::HermiteSimpson, 21);
+        request.free_duration = true;
+        request.minimize = minimize.map(String::from);
+        request.final_cost = final_cost.map(String::from);
+        let plan = plan(point_mass(), &request, &Ripopt).expect("a plan");
+        let report = &plan.report;
+        eprintln!(
+            "free duration: T {:.12} vs {best:.12}, J {:.12} vs {least:.12}, {} iterations",
+            report.duration, report.objective, report.iterations
+        );
+        assert!((report.duration - best).abs() < 1e-6);
+        assert!((report.objective - least).abs() < 1e-8);
+        let t = plan.table.column("t").expect("t");
+        assert!((t[20] - report.duration).abs() < 1e-12);
+    }
+}
+
+/// A soft goal `k m (x(T) - 1)^2` instead of a hard one (`m = 1`, `T = 1`,
+/// `k = 12`): reaching `y` costs `12 y^2 / T^3`, so `y = k / (k + 12) =
+/// 1/2` and the cost is `3 + 3 = 6`.
+#[test]
+fn a_final_cost_meets_its_closed_form_optimum() {
+    let mut request = unit_rest_to_rest(Scheme::HermiteSimpson, 21);
+    request.goal.retain(|(name, _)| name != "x");
+    request.final_cost = Some("12*m*(x - 1)^2".into());
+    let plan = plan(point_mass(), &request, &Ripopt).expect("a plan");
+    let x = plan.table.column("x").expect("x");
+    eprintln!(
+        "soft goal: x(T) {:.12}, J {:.12}",
+        x[20], plan.report.objective
+    );
+    assert!((x[20] - 0.5).abs() < 1e-7);
+    assert!((plan.report.objective - 6.0).abs() < 1e-7);
+}
+
+/// `table` as CSV at `path`.
+fn write_csv(table: &Table, path: &std::path::Path) {
+    let mut recorder = CsvRecorder::create(path).expect("created");
+    recorder.start(&table.columns).expect("header");
+    for row in &table.rows {
+        recorder.record(row).expect("row");
+    }
+    recorder.finish().expect("flushed");
+}
+
+#[test]
+fn a_coarser_plan_as_the_guess_saves_iterations() {
+    let coarse = plan(differential_drive(), &parking(21), &Ripopt).expect("a plan");
+    let dir = tempfile::tempdir().expect("a directory");
+    let path = dir.path().join("plan.csv");
+    write_csv(&coarse.table, &path);
+    let cold = plan(differential_drive(), &parking(41), &Ripopt).expect("a plan");
+    let mut request = parking(41);
+    request.guess = Some(path);
+    let warm = plan(differential_drive(), &request, &Ripopt).expect("a plan");
+    eprintln!(
+        "41 nodes: {} iterations from the default guess, {} from the 21-node plan",
+        cold.report.iterations, warm.report.iterations
+    );
+    assert!(warm.report.iterations < cold.report.iterations);
+    let difference = (warm.report.objective - cold.report.objective).abs();
+    assert!(
+        difference < 1e-6 * cold.report.objective.abs(),
+        "{difference}"
     );
 }

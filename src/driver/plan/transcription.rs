@@ -4,30 +4,49 @@
 //!
 //! The state is the Lagrange-d'Alembert one, `x = (q, qdot)`, moving by
 //! `f(x, u) = (qdot, qddot(q, qdot, u))`. The variables are each node's
-//! state and inputs, `z = (x_0, u_0, ..., x_{N-1}, u_{N-1})`, at
-//! `t_i = i h`, `h = T / (N - 1)`. Each interval's defect is a one-step
-//! scheme written by its stages, a weight `w` at a point `a` of the way
-//! from node `i` to node `i + 1` for the state, `b` for the inputs:
+//! state and inputs, then the plan's globals (with `--free-duration`, the
+//! duration `T`): `z = (x_0, u_0, ..., x_{N-1}, u_{N-1}, T)`, at `t_i =
+//! i h`, `h = T / (N - 1)`. Each interval's defect is a one-step scheme
+//! written by its stages, a weight `w` at a point `a` of the way from node
+//! `i` to node `i + 1` for the state, `b` for the inputs:
 //!
 //! ```text
 //! x_{i+1} - x_i - h sum_k w_k f(X_k, U_k) = 0,
-//! X_k = (1 - a_k) x_i + a_k x_{i+1},   U_k = (1 - b_k) u_i + b_k u_{i+1}.
+//! X_k = (1 - a_k) x_i + a_k x_{i+1} + c_k h (f_i - f_{i+1}),
+//! U_k = (1 - b_k) u_i + b_k u_{i+1},        f_i = f(x_i, u_i).
 //! ```
 //!
-//! Backward Euler is one stage `(w, a, b) = (1, 1, 1)`: first order, the
-//! inputs held from the right, `u(t) = u_{i+1}` on `(t_i, t_{i+1}]`. The
-//! implicit midpoint rule is one stage `(1, 1/2, 0)`: second order, the
-//! inputs held from the left, `u(t) = u_i` on `[t_i, t_{i+1})`, each
+//! Backward Euler is one stage `(w, a, b, c) = (1, 1, 1, 0)`: first order,
+//! the inputs held from the right, `u(t) = u_{i+1}` on `(t_i, t_{i+1}]`.
+//! The implicit midpoint rule is one stage `(1, 1/2, 0, 0)`: second order,
+//! the inputs held from the left, `u(t) = u_i` on `[t_i, t_{i+1})`, each
 //! approximating the optimal input at the interval's midpoint. (Averaging
-//! the inputs instead leaves their mode `u_i + (-1)^i e` free.) The
-//! running cost is integrated by the same stages, `J = sum_i h sum_k w_k
-//! L(t_i + a_k h, X_k, U_k)`. A node's inputs the scheme does not read
-//! (backward Euler's first, the midpoint rule's last) are reported as
-//! their neighbour's.
+//! the inputs instead leaves their mode `u_i + (-1)^i e` free.)
+//!
+//! Compressed Hermite-Simpson (Betts section 4.6.4; Drake's
+//! `DirectCollocation`) is Simpson's rule, stages `(1/6, 0, 0, 0)`, `(4/6,
+//! 1/2, 1/2, 1/8)` and `(1/6, 1, 1, 0)`:
+//!
+//! ```text
+//! x_{i+1} - x_i - h/6 (f_i + 4 f_m + f_{i+1}) = 0,   f_m = f(x_m, u_m),
+//! x_m = (x_i + x_{i+1})/2 + h/8 (f_i - f_{i+1}),     u_m = (u_i + u_{i+1})/2,
+//! ```
+//!
+//! `x_m` being the cubic Hermite interpolant of the nodes' states and
+//! slopes at the midpoint; fourth order, the inputs linear between nodes.
+//!
+//! The running cost is integrated by the same stages, `J = sum_i h sum_k
+//! w_k L(t_i + a_k h, X_k, U_k)`, and the final cost `Phi(T, x_{N-1})`
+//! added. A node's inputs the scheme does not read (backward Euler's
+//! first, the midpoint rule's last) are reported as their neighbour's.
+//!
 //! The constraints' Jacobian is block-sparse: an interval's defect reads
-//! its two nodes only, the `q` rows only `q` and `qdot` entrywise. Its
-//! values are the model's exact Jacobian `acceleration_jacobian`, and the
-//! cost's gradient the expression's exact derivatives.
+//! its two nodes only (and `T`), the `q` rows of the one-stage schemes
+//! only `q` and `qdot` entrywise. Its values are the model's exact
+//! Jacobian `acceleration_jacobian` by the chain rule through the stages'
+//! `X_k` (through `f_i` and `f_{i+1}` for Hermite-Simpson's midpoint), and
+//! the costs' gradients the expressions' exact derivatives. By the
+//! duration, `dh/dT = h/T` and a stage's time `t` moves as `t/T`.
 
 use super::nlp::Nlp;
 use crate::driver::expression::{Expression, Point};
@@ -40,17 +59,39 @@ use std::collections::BTreeSet;
 pub enum Scheme {
     /// `x_{i+1} = x_i + h f(x_{i+1}, u_{i+1})`: first order.
     BackwardEuler,
-    /// `x_{i+1} = x_i + h f((x_i + x_{i+1})/2, (u_i + u_{i+1})/2)`: second
-    /// order.
+    /// `x_{i+1} = x_i + h f((x_i + x_{i+1})/2, u_i)`: second order.
     Midpoint,
+    /// `x_{i+1} = x_i + h/6 (f_i + 4 f_m + f_{i+1})`, `x_m` the Hermite
+    /// interpolant at the midpoint: fourth order.
+    HermiteSimpson,
 }
 
-/// One stage of a scheme: its weight, and where between the nodes it
-/// takes the state and the inputs.
+/// One stage of a scheme: its weight, where between the nodes it takes
+/// the state and the inputs, and the weight `c` of the nodes' slopes in
+/// its state, `c h (f_i - f_{i+1})`.
 struct Stage {
     weight: f64,
     at: f64,
     inputs_at: f64,
+    slopes: f64,
+}
+
+impl Stage {
+    /// A stage whose state lies on the segment between the nodes'.
+    const fn linear(weight: f64, at: f64, inputs_at: f64) -> Self {
+        Self {
+            weight,
+            at,
+            inputs_at,
+            slopes: 0.0,
+        }
+    }
+}
+
+/// The share of node `j` (0: the interval's first, 1: its last) in a
+/// point `at` of the way between them.
+fn share(j: usize, at: f64) -> f64 {
+    if j == 0 { 1.0 - at } else { at }
 }
 
 impl Scheme {
@@ -59,32 +100,64 @@ impl Scheme {
         match self {
             Self::BackwardEuler => "backward-euler",
             Self::Midpoint => "midpoint",
+            Self::HermiteSimpson => "hermite-simpson",
         }
     }
 
     fn stages(self) -> &'static [Stage] {
-        match self {
-            Self::BackwardEuler => &[Stage {
-                weight: 1.0,
-                at: 1.0,
-                inputs_at: 1.0,
-            }],
-            Self::Midpoint => &[Stage {
-                weight: 1.0,
+        const BACKWARD_EULER: [Stage; 1] = [Stage::linear(1.0, 1.0, 1.0)];
+        const MIDPOINT: [Stage; 1] = [Stage::linear(1.0, 0.5, 0.0)];
+        const HERMITE_SIMPSON: [Stage; 3] = [
+            Stage::linear(1.0 / 6.0, 0.0, 0.0),
+            Stage {
+                weight: 4.0 / 6.0,
                 at: 0.5,
-                inputs_at: 0.0,
-            }],
+                inputs_at: 0.5,
+                slopes: 1.0 / 8.0,
+            },
+            Stage::linear(1.0 / 6.0, 1.0, 1.0),
+        ];
+        match self {
+            Self::BackwardEuler => &BACKWARD_EULER,
+            Self::Midpoint => &MIDPOINT,
+            Self::HermiteSimpson => &HERMITE_SIMPSON,
         }
     }
 }
 
-/// The problem's data: the model, the grid, the cost and the bounds.
+/// A variable of the whole plan, after the nodes' variables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Global {
+    /// The duration `T`.
+    Duration,
+}
+
+/// The grid: the number of nodes, the duration (its first guess where it
+/// is free), and whether it is free.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Grid {
+    pub nodes: usize,
+    pub duration: f64,
+    pub free_duration: bool,
+}
+
+/// The objective's terms: the running cost `L(t, q, qdot, u)` and the
+/// final cost `Phi(T, q(T), qdot(T))`.
+pub(crate) struct Costs {
+    pub running: Expression,
+    pub terminal: Option<Expression>,
+}
+
+/// The problem's data: the model, the grid, the costs and the bounds.
 pub struct Transcription {
     model: InterpretedModel,
     scheme: Scheme,
     nodes: usize,
+    /// `T`, or its first guess where it is a variable.
     duration: f64,
-    cost: Expression,
+    /// The variables after the nodes', in order.
+    globals: Vec<Global>,
+    costs: Costs,
     lo: Vec<f64>,
     hi: Vec<f64>,
     guess: Vec<f64>,
@@ -101,24 +174,38 @@ struct StagePoint {
     u: Vec<f64>,
 }
 
+/// How a stage's state moves with the interval's variables: `dX/dz_j`
+/// for its first and last node (2n x (2n + p) each, row-major) and
+/// `dX/dT`.
+struct Motion {
+    by_node: [Vec<f64>; 2],
+    by_duration: Vec<f64>,
+}
+
 impl Transcription {
-    /// The plan of `model` by `scheme` on `nodes` nodes over `duration`,
-    /// minimizing the running cost `cost`, its variables bounded by `lo`
-    /// and `hi` and started at `guess` (each `nodes` times a node's
-    /// variables, `(q, qdot, u)`).
+    /// The plan of `model` by `scheme` on `grid`, minimizing `costs`, its
+    /// variables bounded by `lo` and `hi` and started at `guess` (each
+    /// `nodes` times a node's variables, `(q, qdot, u)`, then the globals:
+    /// `T` where it is free).
     pub(crate) fn new(
         model: InterpretedModel,
         scheme: Scheme,
-        (nodes, duration): (usize, f64),
-        cost: Expression,
+        grid: Grid,
+        costs: Costs,
         (lo, hi, guess): (Vec<f64>, Vec<f64>, Vec<f64>),
     ) -> Self {
+        let globals = if grid.free_duration {
+            vec![Global::Duration]
+        } else {
+            Vec::new()
+        };
         let mut transcription = Self {
             model,
             scheme,
-            nodes,
-            duration,
-            cost,
+            nodes: grid.nodes,
+            duration: grid.duration,
+            globals,
+            costs,
             lo,
             hi,
             guess,
@@ -126,14 +213,20 @@ impl Transcription {
             structure: Vec::new(),
         };
         transcription.local = transcription.local_structure();
-        let (s, w) = (transcription.state(), transcription.width());
-        transcription.structure = (0..nodes - 1)
-            .flat_map(|i| {
-                let local = &transcription.local;
-                local.iter().map(move |&(k, c)| (i * s + k, i * w + c))
-            })
-            .collect();
+        transcription.structure = transcription.global_structure();
         transcription
+    }
+
+    /// The intervals' structure, then the duration's column.
+    fn global_structure(&self) -> Vec<(usize, usize)> {
+        let (s, w) = (self.state(), self.width());
+        let intervals = (0..self.nodes - 1)
+            .flat_map(|i| self.local.iter().map(move |&(k, c)| (i * s + k, i * w + c)));
+        let duration = self.global(Global::Duration);
+        let by_duration = duration
+            .into_iter()
+            .flat_map(|column| (0..(self.nodes - 1) * s).map(move |row| (row, column)));
+        intervals.chain(by_duration).collect()
     }
 
     /// The model.
@@ -141,18 +234,41 @@ impl Transcription {
         &self.model
     }
 
-    /// The time step `h`.
-    pub fn step(&self) -> f64 {
-        self.duration / (self.nodes - 1) as f64
+    /// The number of nodes `N`.
+    pub fn nodes(&self) -> usize {
+        self.nodes
+    }
+
+    /// Where `global` is among the variables, if it is one.
+    pub fn global(&self, global: Global) -> Option<usize> {
+        let first = self.nodes * self.width();
+        self.globals
+            .iter()
+            .position(|g| *g == global)
+            .map(|k| first + k)
+    }
+
+    /// The duration `T` at `z`.
+    pub fn duration(&self, z: &[f64]) -> f64 {
+        self.global(Global::Duration)
+            .map_or(self.duration, |j| z[j])
+    }
+
+    /// The time step `h` at `z`.
+    pub fn step(&self, z: &[f64]) -> f64 {
+        self.duration(z) / (self.nodes - 1) as f64
     }
 
     /// The inputs at node `i` of `z` as the scheme applies them: with
-    /// backward Euler, node 0's are node 1's (held from the right).
+    /// backward Euler, node 0's are node 1's (held from the right); with
+    /// the midpoint rule, the last node's are the one before's (held from
+    /// the left); with Hermite-Simpson, each node's own.
     pub fn held_inputs(&self, z: &[f64], i: usize) -> Vec<f64> {
         let (s, w) = (self.state(), self.width());
         let node = match self.scheme {
             Scheme::BackwardEuler => i.max(1),
             Scheme::Midpoint => i.min(self.nodes - 2),
+            Scheme::HermiteSimpson => i,
         };
         z[node * w + s..(node + 1) * w].to_vec()
     }
@@ -180,9 +296,15 @@ impl Transcription {
 
     /// One interval's structure: each defect row reads its own entry at
     /// both nodes; a `q` row reads `qdot`'s same entry, a `qdot` row every
-    /// state entry and input, of each node a stage reads.
+    /// state entry and input, of each node a stage reads. A stage that
+    /// reads the nodes' slopes makes every row read every variable.
     fn local_structure(&self) -> Vec<(usize, usize)> {
         let (n, s, w) = (self.model.sizes().n, self.state(), self.width());
+        if self.scheme.stages().iter().any(|stage| stage.slopes != 0.0) {
+            return (0..s)
+                .flat_map(|k| (0..2 * w).map(move |c| (k, c)))
+                .collect();
+        }
         let mut entries = BTreeSet::new();
         for k in 0..s {
             entries.extend([(k, k), (k, w + k)]);
@@ -202,9 +324,19 @@ impl Transcription {
         entries.into_iter().collect()
     }
 
+    /// Node `i` of `z` as a point.
+    fn node_point(&self, z: &[f64], i: usize) -> StagePoint {
+        let (s, w) = (self.state(), self.width());
+        StagePoint {
+            t: i as f64 * self.step(z),
+            x: z[i * w..i * w + s].to_vec(),
+            u: z[i * w + s..(i + 1) * w].to_vec(),
+        }
+    }
+
     /// The stage `stage` of interval `i` at `z`.
     fn stage_point(&self, z: &[f64], i: usize, stage: &Stage) -> StagePoint {
-        let (s, w) = (self.state(), self.width());
+        let (s, w, h) = (self.state(), self.width(), self.step(z));
         let (first, last) = (&z[i * w..(i + 1) * w], &z[(i + 1) * w..(i + 2) * w]);
         let mix = |range: std::ops::Range<usize>, at: f64| -> Vec<f64> {
             first[range.clone()]
@@ -213,10 +345,54 @@ impl Transcription {
                 .map(|(a, b)| (1.0 - at) * a + at * b)
                 .collect()
         };
+        let mut x = mix(0..s, stage.at);
+        if stage.slopes != 0.0 {
+            let [f_first, f_last] = [i, i + 1].map(|j| self.rhs(&self.node_point(z, j)));
+            for (k, x) in x.iter_mut().enumerate() {
+                *x += stage.slopes * h * (f_first[k] - f_last[k]);
+            }
+        }
         StagePoint {
-            t: (i as f64 + stage.at) * self.step(),
-            x: mix(0..s, stage.at),
+            t: (i as f64 + stage.at) * h,
+            x,
             u: mix(s..w, stage.inputs_at),
+        }
+    }
+
+    /// How the stage `stage` of interval `i` moves with the interval's
+    /// variables and `T`: `dX/dz_j = share_j I + (+-) c h df_j/dz_j`,
+    /// `dX/dT = c (h/T) (f_i - f_{i+1})`.
+    fn stage_motion(&self, z: &[f64], i: usize, stage: &Stage) -> Motion {
+        let (s, w, h) = (self.state(), self.width(), self.step(z));
+        let p = w - s;
+        let mut by_node = [0, 1].map(|j| {
+            let mut block = vec![0.0; s * w];
+            for k in 0..s {
+                block[k * w + k] = share(j, stage.at);
+            }
+            block
+        });
+        let mut by_duration = vec![0.0; s];
+        if stage.slopes != 0.0 {
+            let c = stage.slopes * h;
+            for (j, sign) in [(0, 1.0), (1, -1.0)] {
+                let node = self.node_point(z, i + j);
+                let ((fx, fu), f) = (self.rhs_jacobian(&node), self.rhs(&node));
+                for k in 0..s {
+                    let row = &mut by_node[j][k * w..(k + 1) * w];
+                    for (r, d) in row[..s].iter_mut().zip(&fx[k * s..(k + 1) * s]) {
+                        *r += sign * c * d;
+                    }
+                    for (r, d) in row[s..].iter_mut().zip(&fu[k * p..(k + 1) * p]) {
+                        *r += sign * c * d;
+                    }
+                    by_duration[k] += sign * c / self.duration(z) * f[k];
+                }
+            }
+        }
+        Motion {
+            by_node,
+            by_duration,
         }
     }
 
@@ -246,7 +422,7 @@ impl Transcription {
         (fx, fu)
     }
 
-    /// Where the cost is evaluated at a stage.
+    /// Where a cost is evaluated at a stage.
     fn cost_point<'a>(&self, point: &'a StagePoint) -> Point<'a> {
         let (q, qdot) = point.x.split_at(self.model.sizes().n);
         Point {
@@ -258,42 +434,134 @@ impl Transcription {
         }
     }
 
-    /// The running cost's gradient by `(q, qdot, u)` at a stage.
-    fn cost_gradient(&self, point: &StagePoint) -> Vec<f64> {
-        let (_, gradient) = self.cost.gradient(&self.cost_point(point));
-        [gradient.q, gradient.qdot, gradient.u].concat()
+    /// The running cost's gradient by `(q, qdot, u)` at a stage, and its
+    /// derivative by `t`.
+    fn cost_gradient(&self, point: &StagePoint) -> (Vec<f64>, f64) {
+        let (_, gradient) = self.costs.running.gradient(&self.cost_point(point));
+        ([gradient.q, gradient.qdot, gradient.u].concat(), gradient.t)
+    }
+
+    /// Adds `scale (G_x dX/dz_j + G_u dU/dz_j)` to node `j`'s columns of
+    /// `block` (rows x 2(2n + p), row-major) for both nodes, and returns
+    /// `scale G_x dX/dT` (rows), for `G_x` (rows x 2n) and `G_u` (rows x
+    /// p) a function's derivatives by a stage's state and inputs.
+    fn chain(
+        &self,
+        (stage, motion): (&Stage, &Motion),
+        (gx, gu): (&[f64], &[f64]),
+        scale: f64,
+        block: &mut [f64],
+    ) -> Vec<f64> {
+        let (s, w) = (self.state(), self.width());
+        let p = w - s;
+        let rows = gx.len() / s;
+        let mut by_duration = vec![0.0; rows];
+        for r in 0..rows {
+            let gx_row = &gx[r * s..(r + 1) * s];
+            for j in 0..2 {
+                let out = &mut block[r * 2 * w + j * w..r * 2 * w + (j + 1) * w];
+                for (k, g) in gx_row.iter().enumerate() {
+                    let moved = &motion.by_node[j][k * w..(k + 1) * w];
+                    for (o, m) in out.iter_mut().zip(moved) {
+                        *o += scale * g * m;
+                    }
+                }
+                let inputs = scale * share(j, stage.inputs_at);
+                for (o, g) in out[s..].iter_mut().zip(&gu[r * p..(r + 1) * p]) {
+                    *o += inputs * g;
+                }
+            }
+            let moved: f64 = gx_row
+                .iter()
+                .zip(&motion.by_duration)
+                .map(|(g, m)| g * m)
+                .sum();
+            by_duration[r] = scale * moved;
+        }
+        by_duration
+    }
+
+    /// Interval `i`'s defect.
+    fn defect(&self, z: &[f64], i: usize) -> Vec<f64> {
+        let (s, w, h) = (self.state(), self.width(), self.step(z));
+        let mut defect: Vec<f64> = (0..s).map(|k| z[(i + 1) * w + k] - z[i * w + k]).collect();
+        for stage in self.scheme.stages() {
+            let f = self.rhs(&self.stage_point(z, i, stage));
+            for (d, fk) in defect.iter_mut().zip(&f) {
+                *d -= h * stage.weight * fk;
+            }
+        }
+        defect
     }
 
     /// One interval's defect Jacobian, dense over its two nodes' variables
-    /// (2n x 2(2n + p)), row-major.
-    fn interval_jacobian(&self, z: &[f64], i: usize) -> Vec<f64> {
-        let (s, w, h) = (self.state(), self.width(), self.step());
+    /// (2n x 2(2n + p), row-major), and its derivative by `T` (2n).
+    fn interval_jacobian(&self, z: &[f64], i: usize) -> (Vec<f64>, Vec<f64>) {
+        let (s, w, h) = (self.state(), self.width(), self.step(z));
         let columns = 2 * w;
         let mut block = vec![0.0; s * columns];
         for k in 0..s {
             block[k * columns + k] = -1.0;
             block[k * columns + w + k] = 1.0;
         }
-        let p = w - s;
+        let mut by_duration = vec![0.0; s];
         for stage in self.scheme.stages() {
-            let (fx, fu) = self.rhs_jacobian(&self.stage_point(z, i, stage));
-            for j in 0..2 {
-                let [state, inputs] = [stage.at, stage.inputs_at].map(|at| {
-                    let share = if j == 0 { 1.0 - at } else { at };
-                    h * stage.weight * share
-                });
-                for k in 0..s {
-                    let row = &mut block[k * columns + j * w..k * columns + (j + 1) * w];
-                    for c in 0..s {
-                        row[c] -= state * fx[k * s + c];
-                    }
-                    for l in 0..p {
-                        row[s + l] -= inputs * fu[k * p + l];
-                    }
-                }
+            let point = self.stage_point(z, i, stage);
+            let ((fx, fu), f) = (self.rhs_jacobian(&point), self.rhs(&point));
+            let motion = self.stage_motion(z, i, stage);
+            let scale = -h * stage.weight;
+            let through = self.chain((stage, &motion), (&fx, &fu), scale, &mut block);
+            for (k, d) in by_duration.iter_mut().enumerate() {
+                *d += through[k] + scale / self.duration(z) * f[k];
             }
         }
-        block
+        (block, by_duration)
+    }
+
+    /// Interval `i`'s running cost.
+    fn interval_cost(&self, z: &[f64], i: usize) -> f64 {
+        let h = self.step(z);
+        self.scheme
+            .stages()
+            .iter()
+            .map(|stage| {
+                let point = self.stage_point(z, i, stage);
+                h * stage.weight * self.costs.running.at(&self.cost_point(&point))
+            })
+            .sum()
+    }
+
+    /// Interval `i`'s running cost's gradient by its two nodes' variables
+    /// (2(2n + p)), and its derivative by `T`.
+    fn interval_cost_gradient(&self, z: &[f64], i: usize) -> (Vec<f64>, f64) {
+        let (s, w, h) = (self.state(), self.width(), self.step(z));
+        let duration = self.duration(z);
+        let mut block = vec![0.0; 2 * w];
+        let mut by_duration = 0.0;
+        for stage in self.scheme.stages() {
+            let point = self.stage_point(z, i, stage);
+            let value = self.costs.running.at(&self.cost_point(&point));
+            let (gradient, by_t) = self.cost_gradient(&point);
+            let motion = self.stage_motion(z, i, stage);
+            let scale = h * stage.weight;
+            let (gx, gu) = gradient.split_at(s);
+            let through = self.chain((stage, &motion), (gx, gu), scale, &mut block);
+            by_duration += through[0] + scale * (value + by_t * point.t) / duration;
+        }
+        (block, by_duration)
+    }
+
+    /// Where the final cost is evaluated: `t = T` and the last node's
+    /// state.
+    fn final_point<'a>(&self, z: &'a [f64]) -> Point<'a> {
+        let (n, w) = (self.model.sizes().n, self.width());
+        let last = (self.nodes - 1) * w;
+        Point {
+            t: self.duration(z),
+            q: &z[last..last + n],
+            qdot: &z[last + n..last + 2 * n],
+            ..Point::default()
+        }
     }
 }
 
@@ -304,7 +572,7 @@ fn finite(values: &[f64]) -> bool {
 
 impl Nlp for Transcription {
     fn variables(&self) -> usize {
-        self.nodes * self.width()
+        self.nodes * self.width() + self.globals.len()
     }
 
     fn constraints(&self) -> usize {
@@ -320,51 +588,47 @@ impl Nlp for Transcription {
     }
 
     fn objective(&self, z: &[f64]) -> Option<f64> {
-        let h = self.step();
-        let total: f64 = (0..self.nodes - 1)
-            .flat_map(|i| {
-                self.scheme.stages().iter().map(move |stage| {
-                    let point = self.stage_point(z, i, stage);
-                    h * stage.weight * self.cost.at(&self.cost_point(&point))
-                })
-            })
-            .sum();
+        let running: f64 = (0..self.nodes - 1).map(|i| self.interval_cost(z, i)).sum();
+        let terminal = self
+            .costs
+            .terminal
+            .as_ref()
+            .map_or(0.0, |phi| phi.at(&self.final_point(z)));
+        let total = running + terminal;
         total.is_finite().then_some(total)
     }
 
     fn gradient(&self, z: &[f64], gradient: &mut [f64]) -> bool {
-        let (w, h) = (self.width(), self.step());
+        let (s, w) = (self.state(), self.width());
+        let duration = self.global(Global::Duration);
         gradient.fill(0.0);
         for i in 0..self.nodes - 1 {
-            for stage in self.scheme.stages() {
-                let by = self.cost_gradient(&self.stage_point(z, i, stage));
-                let s = self.state();
-                for (j, first) in [(i, true), (i + 1, false)] {
-                    let share = |at: f64| h * stage.weight * if first { 1.0 - at } else { at };
-                    let (state, inputs) = (share(stage.at), share(stage.inputs_at));
-                    let node = &mut gradient[j * w..(j + 1) * w];
-                    for (c, (g, d)) in node.iter_mut().zip(&by).enumerate() {
-                        *g += if c < s { state } else { inputs } * d;
-                    }
-                }
+            let (block, by_duration) = self.interval_cost_gradient(z, i);
+            for (g, d) in gradient[i * w..(i + 2) * w].iter_mut().zip(&block) {
+                *g += d;
+            }
+            if let Some(j) = duration {
+                gradient[j] += by_duration;
+            }
+        }
+        if let Some(phi) = &self.costs.terminal {
+            let (_, by) = phi.gradient(&self.final_point(z));
+            let last = (self.nodes - 1) * w;
+            let by_state = by.q.iter().chain(&by.qdot);
+            for (g, d) in gradient[last..last + s].iter_mut().zip(by_state) {
+                *g += d;
+            }
+            if let Some(j) = duration {
+                gradient[j] += by.t;
             }
         }
         finite(gradient)
     }
 
     fn residuals(&self, z: &[f64], residuals: &mut [f64]) -> bool {
-        let (s, w, h) = (self.state(), self.width(), self.step());
+        let s = self.state();
         for i in 0..self.nodes - 1 {
-            let defect = &mut residuals[i * s..(i + 1) * s];
-            for (k, d) in defect.iter_mut().enumerate() {
-                *d = z[(i + 1) * w + k] - z[i * w + k];
-            }
-            for stage in self.scheme.stages() {
-                let f = self.rhs(&self.stage_point(z, i, stage));
-                for (d, fk) in defect.iter_mut().zip(&f) {
-                    *d -= h * stage.weight * fk;
-                }
-            }
+            residuals[i * s..(i + 1) * s].copy_from_slice(&self.defect(z, i));
         }
         finite(residuals)
     }
@@ -376,12 +640,18 @@ impl Nlp for Transcription {
     fn jacobian_values(&self, z: &[f64], values: &mut [f64]) -> bool {
         let columns = 2 * self.width();
         let per_interval = self.local.len();
+        let intervals = (self.nodes - 1) * per_interval;
+        let mut by_duration = Vec::with_capacity(self.constraints());
         for i in 0..self.nodes - 1 {
-            let block = self.interval_jacobian(z, i);
+            let (block, by_t) = self.interval_jacobian(z, i);
             let out = &mut values[i * per_interval..(i + 1) * per_interval];
             for (value, &(k, c)) in out.iter_mut().zip(&self.local) {
                 *value = block[k * columns + c];
             }
+            by_duration.extend(by_t);
+        }
+        if self.global(Global::Duration).is_some() {
+            values[intervals..].copy_from_slice(&by_duration);
         }
         finite(values)
     }
@@ -389,30 +659,53 @@ impl Nlp for Transcription {
 
 #[cfg(test)]
 mod tests {
-    use super::{Nlp, Scheme, Transcription};
+    use super::{Costs, Grid, Nlp, Scheme, Transcription};
     use crate::driver::expression::{Expression, Scope};
     use chaplygin_codegen::interpret::InterpretedModel;
 
     /// The differential drive on 3 nodes at a point with every variable
-    /// nonzero, its cost reading coordinates, velocities and inputs.
-    fn transcription(scheme: Scheme) -> (Transcription, Vec<f64>) {
+    /// nonzero, its running cost reading the time, coordinates, velocities
+    /// and inputs, its final cost the time and the state; with
+    /// `free_duration`, `T = 0.8` a variable.
+    fn transcription(scheme: Scheme, free_duration: bool) -> (Transcription, Vec<f64>) {
         let model =
             InterpretedModel::from_source(include_str!("../catalog/differential_drive.model"))
                 .expect("the model derives");
+        let coordinates = ["x", "y", "theta", "phi_r", "phi_l"];
         let scope = Scope {
-            coordinates: &["x", "y", "theta", "phi_r", "phi_l"],
+            coordinates: &coordinates,
             inputs: &["u_right", "u_left"],
             ..Scope::default()
         };
-        let cost = Expression::parse("u_right^2 + x*dot(theta)^2 + sin(theta)*u_left + t", &scope)
-            .expect("parses");
-        let size = 3 * 12;
-        let z: Vec<f64> = (0..size)
+        let running = Expression::parse(
+            "u_right^2 + x*dot(theta)^2 + sin(theta)*u_left + t*dot(x)",
+            &scope,
+        )
+        .expect("parses");
+        let final_scope = Scope {
+            coordinates: &coordinates,
+            ..Scope::default()
+        };
+        let terminal = Expression::parse("x^2*dot(y) + t^2*theta", &final_scope).expect("parses");
+        let size = 3 * 12 + usize::from(free_duration);
+        let mut z: Vec<f64> = (0..size)
             .map(|j| 0.3 * ((j as f64) * 0.77).sin() + 0.1)
             .collect();
+        if free_duration {
+            z[size - 1] = 0.8;
+        }
         let free = vec![f64::NEG_INFINITY; size];
         let bounds = (free.clone(), free.iter().map(|v| -v).collect(), z.clone());
-        let transcription = Transcription::new(model, scheme, (3, 0.8), cost, bounds);
+        let grid = Grid {
+            nodes: 3,
+            duration: 0.8,
+            free_duration,
+        };
+        let costs = Costs {
+            running,
+            terminal: Some(terminal),
+        };
+        let transcription = Transcription::new(model, scheme, grid, costs, bounds);
         (transcription, z)
     }
 
@@ -429,16 +722,27 @@ mod tests {
             .collect()
     }
 
+    /// The constraints' Jacobian of `nlp` at `z`, dense and row-major.
+    fn dense_jacobian(nlp: &Transcription, z: &[f64]) -> Vec<f64> {
+        let mut dense = vec![0.0; nlp.constraints() * nlp.variables()];
+        let mut values = vec![0.0; nlp.jacobian_structure().len()];
+        assert!(nlp.jacobian_values(z, &mut values));
+        for (&(row, column), value) in nlp.jacobian_structure().iter().zip(&values) {
+            dense[row * nlp.variables() + column] = *value;
+        }
+        dense
+    }
+
     #[test]
     fn the_exact_derivatives_agree_with_central_differences() {
-        for scheme in [Scheme::BackwardEuler, Scheme::Midpoint] {
-            let (nlp, z) = transcription(scheme);
-            let mut dense = vec![0.0; nlp.constraints() * nlp.variables()];
-            let mut values = vec![0.0; nlp.jacobian_structure().len()];
-            assert!(nlp.jacobian_values(&z, &mut values));
-            for (&(row, column), value) in nlp.jacobian_structure().iter().zip(&values) {
-                dense[row * nlp.variables() + column] = *value;
-            }
+        let schemes = [
+            Scheme::BackwardEuler,
+            Scheme::Midpoint,
+            Scheme::HermiteSimpson,
+        ];
+        for (scheme, free_duration) in schemes.into_iter().flat_map(|s| [(s, false), (s, true)]) {
+            let (nlp, z) = transcription(scheme, free_duration);
+            let dense = dense_jacobian(&nlp, &z);
             let mut gradient = vec![0.0; nlp.variables()];
             assert!(nlp.gradient(&z, &mut gradient));
             let residuals = |z: &[f64]| {
@@ -453,13 +757,13 @@ mod tests {
                     let exact = dense[row * nlp.variables() + j];
                     assert!(
                         (exact - numeric).abs() < 1e-6,
-                        "{scheme:?} ({row}, {j}): {exact} vs {numeric}"
+                        "{scheme:?} free {free_duration} ({row}, {j}): {exact} vs {numeric}"
                     );
                 }
                 let numeric = central(&z, j, &objective)[0];
                 assert!(
                     (gradient[j] - numeric).abs() < 1e-6,
-                    "{scheme:?} {j}: {} vs {numeric}",
+                    "{scheme:?} free {free_duration} {j}: {} vs {numeric}",
                     gradient[j]
                 );
             }

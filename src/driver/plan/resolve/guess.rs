@@ -1,0 +1,142 @@
+//! `--guess FILE.csv`: a table with `t` and any of `plan.csv`'s columns,
+//! each interpolated linearly at the nodes' times and held at its end
+//! values outside the table's range.
+
+use super::RequestError;
+use std::path::Path;
+
+/// A guess as read: its times, increasing, and its columns of the nodes'
+/// variables, by their index among a node's.
+pub(super) struct Guess {
+    t: Vec<f64>,
+    columns: Vec<(usize, Vec<f64>)>,
+}
+
+impl Guess {
+    /// The table at `path`, its columns among `variables` (a node's) or
+    /// `derived` (`plan.csv`'s others, read and ignored).
+    pub(super) fn read(
+        path: &Path,
+        variables: &[String],
+        derived: &[&str],
+    ) -> Result<Self, RequestError> {
+        let failed = |reason: String| RequestError::GuessFile {
+            path: path.display().to_string(),
+            reason,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| failed(e.to_string()))?;
+        let mut lines = text.lines().filter(|line| !line.trim().is_empty());
+        let header: Vec<String> = lines
+            .next()
+            .ok_or_else(|| failed("it is empty".into()))?
+            .split(',')
+            .map(|name| name.trim().trim_matches('"').to_string())
+            .collect();
+        let unknown: Vec<&str> = header
+            .iter()
+            .map(String::as_str)
+            .filter(|name| *name != "t" && !variables.iter().any(|v| v == name))
+            .filter(|name| !derived.contains(name))
+            .collect();
+        if !unknown.is_empty() {
+            return Err(RequestError::GuessColumns {
+                path: path.display().to_string(),
+                unknown: unknown.join(", "),
+                known: variables.join(", "),
+            });
+        }
+        let rows = lines
+            .enumerate()
+            .map(|(row, line)| {
+                numbers(line, header.len()).map_err(|e| failed(format!("row {}: {e}", row + 1)))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let column = |c: usize| rows.iter().map(|row| row[c]).collect::<Vec<f64>>();
+        let time = header
+            .iter()
+            .position(|name| name == "t")
+            .ok_or_else(|| failed("it has no column `t`".into()))?;
+        let t = column(time);
+        if t.is_empty() || t.windows(2).any(|pair| pair[1] <= pair[0]) {
+            return Err(failed(
+                "its `t` must have rows and increase strictly".into(),
+            ));
+        }
+        let columns = header
+            .iter()
+            .enumerate()
+            .filter_map(|(c, name)| {
+                let index = variables.iter().position(|v| v == name)?;
+                Some((index, column(c)))
+            })
+            .collect();
+        Ok(Self { t, columns })
+    }
+
+    /// Each column read, by its index among a node's variables, with its
+    /// value at `t`.
+    pub(super) fn at(&self, t: f64) -> impl Iterator<Item = (usize, f64)> + '_ {
+        let after = self.t.partition_point(|s| *s <= t);
+        self.columns.iter().map(move |(index, values)| {
+            let value = match after {
+                0 => values[0],
+                k if k == self.t.len() => values[k - 1],
+                k => {
+                    let s = (t - self.t[k - 1]) / (self.t[k] - self.t[k - 1]);
+                    values[k - 1] + s * (values[k] - values[k - 1])
+                }
+            };
+            (*index, value)
+        })
+    }
+}
+
+/// A row's `width` numbers.
+fn numbers(line: &str, width: usize) -> Result<Vec<f64>, String> {
+    let values = line
+        .split(',')
+        .map(|cell| {
+            let cell = cell.trim();
+            cell.parse::<f64>()
+                .map_err(|_| format!("`{cell}` is not a number"))
+        })
+        .collect::<Result<Vec<f64>, String>>()?;
+    if values.len() != width {
+        return Err(format!("{} values under {width} columns", values.len()));
+    }
+    Ok(values)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Guess, RequestError};
+
+    /// The guess of `text` over the variables `x` and `push`.
+    fn read(text: &str) -> Result<Guess, RequestError> {
+        let dir = tempfile::tempdir().expect("a directory");
+        let path = dir.path().join("guess.csv");
+        std::fs::write(&path, text).expect("written");
+        let variables = ["x", "dot(x)", "push"].map(String::from);
+        Guess::read(&path, &variables, &["energy"])
+    }
+
+    #[test]
+    fn columns_are_interpolated_and_held_beyond_the_ends() {
+        let guess = read("push,t,energy,x\n1,0,9,0\n3,2,9,4\n").expect("a guess");
+        let at = |t: f64| guess.at(t).collect::<Vec<_>>();
+        assert_eq!(at(-1.0), [(2, 1.0), (0, 0.0)]);
+        assert_eq!(at(0.5), [(2, 1.5), (0, 1.0)]);
+        assert_eq!(at(2.0), [(2, 3.0), (0, 4.0)]);
+        assert_eq!(at(7.0), [(2, 3.0), (0, 4.0)]);
+    }
+
+    #[test]
+    fn bad_tables_are_one_line_errors() {
+        let line = |text: &str| read(text).err().expect("an error").to_string();
+        assert!(line("t,x,q\n0,1,2\n").contains("unknown columns q ("));
+        assert!(line("x\n1\n").contains("no column `t`"));
+        assert!(line("t,x\n0,1\n0,2\n").contains("increase strictly"));
+        assert!(line("t,x\n0,a\n").contains("row 1: `a` is not a number"));
+        assert!(line("t,x\n0\n").contains("row 1: 1 values under 2 columns"));
+    }
+}
