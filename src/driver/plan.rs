@@ -133,6 +133,15 @@ pub enum PlanError {
         /// Its iterations.
         iterations: usize,
     },
+    /// A free duration at its lower bound: the optimum may lie below it.
+    #[error(
+        "the free duration stopped at its lower bound {shortest}, a tenth of --duration: \
+         guess a shorter --duration"
+    )]
+    ShortestDuration {
+        /// The lower bound.
+        shortest: f64,
+    },
 }
 
 /// What `plan.json` reports.
@@ -217,9 +226,14 @@ pub fn plan(loaded: Loaded, request: &Request, solver: &dyn Solver) -> Result<Pl
         }
         .into());
     }
+    let duration = transcription.duration(&solution.z);
+    let shortest = Request::SHORTEST * request.duration;
+    if request.free_duration && duration <= shortest * (1.0 + Request::VERIFIED * request.tol) {
+        return Err(PlanError::ShortestDuration { shortest }.into());
+    }
     let report = Report {
         objective,
-        duration: transcription.duration(&solution.z),
+        duration,
         nodes: request.nodes,
         scheme: request.scheme,
         solver: solver.name(),

@@ -273,6 +273,14 @@ fn bad_requests_are_one_line_errors() {
     let mut guess = base();
     guess.guess = Some(path);
     assert!(error_of(guess).contains("guess.csv: unknown columns z, speed"));
+    let mut long_guess = unit_rest_to_rest(Scheme::HermiteSimpson, 5);
+    (long_guess.free_duration, long_guess.duration) = (true, 30.0);
+    long_guess.final_cost = Some("t".into());
+    let line = error_of(long_guess);
+    assert!(
+        line.contains("lower bound 3, a tenth of --duration"),
+        "{line}"
+    );
     let mut partial = parking(5);
     partial.start.pop();
     let error = plan(differential_drive(), &partial, &Ripopt).expect_err("a partial start");
