@@ -473,3 +473,40 @@ fn a_coarser_plan_as_the_guess_saves_iterations() {
         "{difference}"
     );
 }
+
+/// Hermite-Simpson parks the differential drive on 11, 21 and 41 nodes,
+/// each plan started from the coarser one: the objectives' differences
+/// shrink by `2^4`, and their extrapolated limit agrees with the midpoint
+/// rule's Richardson extrapolation from 21 and 41 nodes (whose own error
+/// is of higher order than the midpoint rule's `h^2`).
+#[test]
+fn hermite_simpson_parks_the_differential_drive_at_fourth_order() {
+    let dir = tempfile::tempdir().expect("a directory");
+    let mut guess = None;
+    let objectives = [11, 21, 41].map(|nodes| {
+        let mut request = parking(nodes);
+        request.scheme = Scheme::HermiteSimpson;
+        request.guess = guess.take();
+        let plan = plan(differential_drive(), &request, &Ripopt).expect("a plan");
+        let path = dir.path().join(format!("plan-{nodes}.csv"));
+        write_csv(&plan.table, &path);
+        guess = Some(path);
+        plan.report.objective
+    });
+    let ratio = (objectives[0] - objectives[1]) / (objectives[1] - objectives[2]);
+    let limit = objectives[2] - (objectives[1] - objectives[2]) / 15.0;
+    let [coarse, fine] = [21, 41].map(|nodes| {
+        let plan = plan(differential_drive(), &parking(nodes), &Ripopt).expect("a plan");
+        plan.report.objective
+    });
+    let richardson = fine - (coarse - fine) / 3.0;
+    eprintln!(
+        "Hermite-Simpson {objectives:?}: ratio {ratio:.2}, limit {limit:.9e}; \
+         midpoint {coarse:.9e}, {fine:.9e}: limit {richardson:.9e}"
+    );
+    assert!((ratio.log2() - 4.0).abs() < 0.3, "{ratio}");
+    assert!(
+        (limit - richardson).abs() < 2e-5 * limit,
+        "{limit} vs {richardson}"
+    );
+}
