@@ -128,8 +128,8 @@ def observed_order(runs):
 def reference(results):
     """The midpoint rule's estimate (else any scheme's) from the finest
     consistent grids, averaged over the tools that reach them (opty's
-    backends count once, their discrete problems being one), and every
-    estimate."""
+    backends count once, their discrete problems being one; NaN without
+    two grids), and every estimate."""
     estimates, finest = {}, {}
     for tool in sorted({r['tool'] for r in results}):
         for scheme in sorted({r['scheme'] for r in results}):
@@ -141,6 +141,8 @@ def reference(results):
                                            estimates[(tool, scheme)]))
     candidates = [v for (_, scheme), v in finest.items() if scheme == 'midpoint'] or list(
         finest.values())
+    if not candidates:
+        return math.nan, estimates
     top = max(nodes for nodes, _ in candidates)
     chosen = [value for nodes, value in candidates if nodes == top]
     return sum(chosen) / len(chosen), estimates
