@@ -99,6 +99,79 @@ fn the_disks_steady_turns_meet_the_newton_euler_condition() {
     }
 }
 
+/// The eigenvalues of the disk's steady turn at lean `phi`, turning rate
+/// `omega` and spin `spin`, `(re, im)`, from its Newton-Euler equations
+/// linearized in closed form (MATH.md section 6.2): two zeros and
+/// `+-sqrt(lambda^2)`.
+fn disk_eigenvalues(phi: f64, omega: f64, spin: f64) -> [(f64, f64); 4] {
+    let (a, c) = (MASS * RADIUS * RADIUS / 4.0, MASS * RADIUS * RADIUS / 2.0);
+    let (leaning, rolling) = (a + MASS * RADIUS * RADIUS, c + MASS * RADIUS * RADIUS);
+    let (sin, cos) = phi.sin_cos();
+    let axial = spin + omega * sin;
+    let squared = (MASS * GRAVITY * RADIUS * cos
+        - a * omega * omega * (2.0 * phi).cos()
+        - rolling * omega * axial * sin
+        + (rolling * axial - 2.0 * a * omega * sin) * (2.0 * a * omega * sin - c * axial) / a
+        - MASS * RADIUS * RADIUS * omega * omega * cos * cos)
+        / leaning;
+    let root = squared.abs().sqrt();
+    match squared >= 0.0 {
+        true => [(0.0, 0.0), (0.0, 0.0), (root, 0.0), (-root, 0.0)],
+        false => [(0.0, 0.0), (0.0, 0.0), (0.0, root), (0.0, -root)],
+    }
+}
+
+/// The eigenvalues `(re_i, im_i)` of a row of `steady.csv`.
+fn eigenvalues(header: &[String], row: &[f64]) -> Vec<(f64, f64)> {
+    (1..)
+        .map(|i| (format!("re_{i}"), format!("im_{i}")))
+        .take_while(|(re, _)| header.contains(re))
+        .map(|(re, im)| (value(header, row, &re), value(header, row, &im)))
+        .collect()
+}
+
+/// The eigenvalues at stable (imaginary pair) and unstable (real pair)
+/// steady turns equal those of the closed-form linearization, as sets,
+/// to 1e-6: each expected one has its own computed one that near.
+#[test]
+fn the_disks_eigenvalues_meet_the_closed_form_linearization() {
+    for (phi, omega) in [(0.3, 1.5), (0.6, -2.0), (0.05, 3.0), (-0.3, 3.0)] {
+        let (lean, turning) = (format!("phi={phi}"), format!("dot(psi)={omega}"));
+        let (stdout, header, row) = steady(
+            "steady-disk-eigenvalues",
+            "rolling-disk-3d",
+            &[
+                "--at",
+                &lean,
+                "--at",
+                &turning,
+                "--at",
+                "dot(phi)=0",
+                "--at",
+                "dot(theta)=s",
+                "--solve",
+                "s",
+                "--guess",
+                "s=1",
+            ],
+        );
+        let mut computed = eigenvalues(&header, &row);
+        let expected = disk_eigenvalues(phi, omega, value(&header, &row, "s"));
+        assert_eq!(computed.len(), expected.len(), "{stdout}");
+        for (re, im) in expected {
+            let distance = |e: &(f64, f64)| (e.0 - re).hypot(e.1 - im);
+            let nearest = (0..computed.len())
+                .min_by(|&i, &j| distance(&computed[i]).total_cmp(&distance(&computed[j])))
+                .expect("an eigenvalue left");
+            let found = computed.remove(nearest);
+            assert!(
+                distance(&found) <= 1e-6,
+                "lean {phi}, turning {omega}: {found:?} vs ({re}, {im})\n{stdout}"
+            );
+        }
+    }
+}
+
 /// The turning rate solved from the spin, a root of the condition's
 /// quadratic in `dot(psi)`, meets it to 1e-9.
 #[test]
@@ -232,6 +305,213 @@ fn a_found_turn_simulated_stays_steady() {
     assert!(
         (track - radius).abs() < 1e-6 * radius,
         "{track} vs {radius}"
+    );
+}
+
+/// The spread (largest less smallest) of a column over `t` in `[a, b]`.
+fn spread(header: &[String], rows: &[Vec<f64>], name: &str, (a, b): (f64, f64)) -> f64 {
+    let time = column(header, rows, "t");
+    let values: Vec<f64> = (time.iter().zip(column(header, rows, name)))
+        .filter(|(t, _)| (a..=b).contains(*t))
+        .map(|(_, v)| v)
+        .collect();
+    let high = values.iter().copied().fold(f64::MIN, f64::max);
+    let low = values.iter().copied().fold(f64::MAX, f64::min);
+    high - low
+}
+
+/// The bicycle's hands-free turn at lean `lean` near the guess of speed
+/// and steer: its verdict, its weave (the eigenvalue of largest real part,
+/// `(re, im)`, `im > 0`), and the rate at which the lean's oscillation
+/// grows in a simulation of 15 s from it with `dot(phi)` kicked by 1e-5
+/// rad/s. The rate compares the lean's spread over a weave period from
+/// second 5 with that over the period `n` periods later (as late as 15 s):
+/// with the other modes decayed the oscillation repeats scaled by
+/// `exp(re n T)`, and the family's zero only shifts it.
+fn kicked_turn(lean: f64, guess: (f64, f64)) -> (bool, (f64, f64), f64) {
+    let (phi, v, delta) = (
+        format!("phi={lean}"),
+        format!("v={}", guess.0),
+        format!("delta={}", guess.1),
+    );
+    let (stdout, header, row) = steady(
+        "steady-bicycle-kicked",
+        "bicycle",
+        &[
+            "--at",
+            &phi,
+            "--at",
+            "dot(theta_r)=-v/rR",
+            "--at",
+            "dot(phi)=0",
+            "--at",
+            "dot(delta)=0",
+            "--solve",
+            "delta,v",
+            "--guess",
+            &v,
+            "--guess",
+            &delta,
+        ],
+    );
+    assert!(
+        (value(&header, &row, "v") - guess.0).abs() < 0.1,
+        "not the turn meant:\n{stdout}"
+    );
+    let weave = (eigenvalues(&header, &row).into_iter())
+        .filter(|(_, im)| *im > 0.0)
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .expect("a weave");
+    let mut initial: Vec<String> = ["phi", "delta", "theta_b", "dot(theta_r)", "dot(delta)"]
+        .iter()
+        .map(|name| format!("{name}={}", value(&header, &row, name)))
+        .collect();
+    initial.push("dot(phi)=1e-5".into());
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("steady-bicycle-kicked-run");
+    let mut arguments = vec!["simulate", "bicycle", "--t-end", "15", "--out"];
+    arguments.push(out.to_str().expect("UTF-8"));
+    for assignment in &initial {
+        arguments.extend(["--initial", assignment]);
+    }
+    let output = chaplygin(&arguments);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let (run_header, rows) = read_csv(&out.join("trajectory.csv"));
+    let period = std::f64::consts::TAU / weave.1;
+    let periods = (9.0 / period).floor();
+    let (first, last) = (5.0, 5.0 + periods * period);
+    let (early, late) = (
+        spread(&run_header, &rows, "phi", (first, first + period)),
+        spread(&run_header, &rows, "phi", (last, last + period)),
+    );
+    let stable = value(&header, &row, "stable") == 1.0;
+    (stable, weave, (late / early).ln() / (periods * period))
+}
+
+/// The verdicts on the handlebar-reversed family of hands-free turns
+/// (docs/guide/stability.md), checked by simulation: at lean 0.72 on its
+/// slow branch (marked stable) a kick in lean rate dies out, and at lean
+/// 0.9 (marked unstable) it grows, each at the rate of the weave's real
+/// part to 1%: the weave is the mode of largest real part at both.
+#[test]
+fn the_reversed_handlebars_turns_are_stable_where_marked() {
+    for (lean, guess, marked) in [(0.72, (5.3, 3.45), true), (0.9, (6.9, 3.36), false)] {
+        let (stable, weave, measured) = kicked_turn(lean, guess);
+        assert_eq!(stable, marked, "lean {lean}");
+        assert_eq!(measured < 0.0, marked, "lean {lean}: rate {measured}");
+        assert!(
+            (measured - weave.0).abs() < 0.01 * weave.0.abs(),
+            "lean {lean}: simulated rate {measured} vs eigenvalue {weave:?}"
+        );
+    }
+}
+
+/// The handlebar-reversed family (docs/guide/stability.md), traced over
+/// lean 0.55 to 0.91 from its fast branch, folds twice;
+/// it becomes stable at its second fold, where the capsize mode's real
+/// eigenvalue passes through zero, so the change is printed at the fold's
+/// lean; the rows marked stable are those between it and the weave's
+/// crossing, in the family's order.
+#[test]
+fn the_reversed_handlebars_family_is_stable_from_its_second_fold() {
+    let (stdout, header, rows) = traced(
+        "steady-bicycle-reversed",
+        "bicycle",
+        &[
+            "--at",
+            "phi=lean",
+            "--at",
+            "dot(theta_r)=-v/rR",
+            "--at",
+            "dot(phi)=0",
+            "--at",
+            "dot(delta)=0",
+            "--input",
+            "steer_torque=0",
+            "--solve",
+            "delta,v",
+            "--guess",
+            "v=7.9",
+            "--guess",
+            "delta=3.23",
+            "--trace",
+            "lean=0.55:0.91:0.02",
+        ],
+    );
+    let folds: Vec<f64> = (stdout.lines())
+        .filter_map(|line| line.strip_prefix("fold at lean = "))
+        .filter_map(|rest| rest.split_whitespace().next()?.parse().ok())
+        .collect();
+    assert_eq!(folds.len(), 2, "{stdout}");
+    let stable_from = printed_value(&stdout, "stable from lean = ");
+    let unstable_from = printed_value(&stdout, "unstable from lean = ");
+    assert!((stable_from - folds[1]).abs() < 1e-9, "{stdout}");
+    let (lean, stable) = (
+        column(&header, &rows, "lean"),
+        column(&header, &rows, "stable"),
+    );
+    let second_fold = (lean.windows(3))
+        .rposition(|w| w[1] < w[0] && w[1] <= w[2])
+        .expect("the second fold's row")
+        + 1;
+    for (i, (phi, marked)) in lean.iter().zip(&stable).enumerate() {
+        let between = i > second_fold && *phi < unstable_from;
+        assert_eq!(*marked == 1.0, between, "row {i}, lean {phi}\n{stdout}");
+    }
+}
+
+/// The rolling disk's turns at turning rate 1.5 over its lean, traced
+/// from 0.1: each row's spin meets the Newton-Euler condition to 1e-9, and
+/// the family ends short of lean `pi/2` (by less than 0.01), where the
+/// disk lies flat and the spin the condition asks, `-m g r / ((C + m r^2)
+/// W cos(phi))` to leading order, grows without bound: the spin printed
+/// there is the condition's at the lean printed.
+#[test]
+fn the_disks_family_ends_where_it_lies_flat() {
+    let (stdout, header, rows) = traced(
+        "steady-disk-flat",
+        "rolling-disk-3d",
+        &[
+            "--at",
+            "phi=lean",
+            "--at",
+            "dot(psi)=1.5",
+            "--at",
+            "dot(phi)=0",
+            "--at",
+            "dot(theta)=s",
+            "--solve",
+            "s",
+            "--guess",
+            "s=-1",
+            "--trace",
+            "lean=0.1:2:0.1",
+        ],
+    );
+    let (lean, spin) = (column(&header, &rows, "lean"), column(&header, &rows, "s"));
+    assert_eq!(lean.len(), 15, "{stdout}");
+    for (phi, s) in lean.iter().zip(&spin) {
+        let expected = disk_spin(*phi, 1.5);
+        assert!(
+            (s - expected).abs() <= 1e-9 * expected.abs().max(1.0),
+            "{phi}: {s} vs {expected}"
+        );
+    }
+    let end = printed_value(&stdout, "the family ends near lean = ");
+    let short = std::f64::consts::FRAC_PI_2 - end;
+    assert!((0.0..1e-2).contains(&short), "{stdout}");
+    let last: f64 = (stdout.split("s grows without bound (s = ").nth(1))
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|text| text.parse().ok())
+        .unwrap_or_else(|| panic!("the spin reached in\n{stdout}"));
+    let expected = disk_spin(end, 1.5);
+    assert!(
+        (last - expected).abs() < 1e-3 * expected.abs(),
+        "{last} vs {expected}: the lean printed to 1e-6, the spin's relative slope tan(lean) = {}",
+        end.tan()
     );
 }
 
@@ -370,6 +650,50 @@ fn bad_requests_fail_in_one_line() {
         assert!(!output.status.success(), "{arguments:?} succeeds");
         assert_eq!(stderr.lines().count(), 1, "{arguments:?}: {stderr}");
         assert!(stderr.contains(says), "{arguments:?}: {stderr}");
+    }
+}
+
+/// A disk leaning 0.3 rad but not turning has no steady motion at any
+/// spin: its lean accelerates at `m g r sin(phi) / (A + m r^2)` whatever
+/// the spin (MATH.md section 6.2, `W = 0`). Solving for the spin, alone and
+/// as the first point of a trace over the turning rate from 0, fails in
+/// one line naming that condition, the residual reached (the closed form,
+/// to 1e-9) and every unknown by its name, the traced one too.
+#[test]
+fn no_steady_motion_names_the_condition_and_its_residual() {
+    let lean_acceleration =
+        MASS * GRAVITY * RADIUS * 0.3f64.sin() / (MASS * RADIUS * RADIUS * (0.25 + 1.0));
+    let alone: &[&str] = &["--at", "dot(psi)=0"];
+    let traced: &[&str] = &["--at", "dot(psi)=w", "--trace", "w=0:1:0.5"];
+    for (turning, names) in [(alone, "(at s="), (traced, ", w=0)")] {
+        let mut all = vec![
+            "steady",
+            "rolling-disk-3d",
+            "--at",
+            "phi=0.3",
+            "--at",
+            "dot(phi)=0",
+            "--at",
+            "dot(theta)=s",
+            "--solve",
+            "s",
+        ];
+        all.extend(turning.iter());
+        let output = chaplygin(&all);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success(), "{stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(stderr.contains(names), "{stderr}");
+        let residual: f64 = (stderr
+            .split("the condition d/dt dot(phi) = 0 still fails by ")
+            .nth(1))
+        .and_then(|rest| rest.split(',').next())
+        .and_then(|text| text.parse().ok())
+        .unwrap_or_else(|| panic!("the condition and its residual in {stderr}"));
+        assert!(
+            (residual.abs() - lean_acceleration).abs() < 1e-9 * lean_acceleration,
+            "{residual} vs {lean_acceleration}"
+        );
     }
 }
 

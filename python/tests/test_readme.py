@@ -52,6 +52,20 @@ def test_the_design_map_example_runs(root, in_scratch):
     assert namespace["here"].shape == (2, 2)
 
 
+def test_the_reversed_handlebars_example_runs(root):
+    """The guide's hands-free turns with the handlebar reversed: stable
+    from lean 0.63 (the grid value past the fold at 0.624) to 0.81, the
+    change of stability at the fold, as the guide says."""
+    namespace = run(
+        example(root / "docs/guide/stability.md", "## Hands-free turns with the handlebar reversed"),
+        "docs/guide/stability.md",
+    )
+    turns, stable = namespace["reversed_turns"], namespace["stable"]
+    assert turns["lean"][stable].min() == pytest.approx(0.63, abs=1e-12)
+    assert turns["lean"][stable].max() == pytest.approx(0.81, abs=1e-12)
+    assert "stable from lean = 0.624183" in turns.report
+
+
 def test_the_package_s_metadata_is_the_readme_the_licences_and_classifiers(root):
     """The installed wheel's METADATA (pyproject.toml's `readme`,
     `license-files` and `classifiers`): the README as the long description,

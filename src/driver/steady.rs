@@ -101,6 +101,9 @@ pub struct Problem {
     pub setup: Setup,
     /// The unknowns' names, as `--solve` orders them.
     pub names: Vec<String>,
+    /// The names of all the unknowns `y`: `names`, and with `--trace` its
+    /// variable last.
+    all_names: Vec<String>,
     unknowns: Vec<Unknown>,
     variables: usize,
     guess: Vec<f64>,
@@ -186,9 +189,14 @@ pub fn problem(
         unknowns.push(Unknown::Variable(variables.len() - 1));
     }
     let guess = guesses(request)?;
+    let all_names = (request.solve.iter().map(String::as_str))
+        .chain(request.trace)
+        .map(String::from)
+        .collect();
     Ok(Problem {
         setup,
         names: request.solve.to_vec(),
+        all_names,
         unknowns,
         variables: variables.len(),
         guess,
@@ -352,8 +360,12 @@ impl Problem {
             (self.given(&map.at(z)).map(|given| map.pulled_back(given)))
                 .unwrap_or_else(|_| not_finite(&first))
         };
-        let names = &self.names[..start.len().min(self.names.len())];
-        let found = find::find(model, &given, names, start)?;
+        let values = |z: &[f64]| map.at(z);
+        let named = find::Named {
+            names: &self.all_names,
+            values: &values,
+        };
+        let found = find::find(model, &given, &named, start)?;
         let linear = runtime_linearize::linearize(model, &found.point, &found.u, &[])?;
         let y = map.at(&found.x);
         let motion = SteadyMotion {
@@ -380,7 +392,7 @@ impl Problem {
     ) -> Result<(DVector<f64>, DMatrix<f64>), SteadyMotionError> {
         let given = self.given(y)?;
         find::conditions(&self.setup.model, &given).map_err(|source| {
-            let at: Vec<String> = (self.names.iter().zip(y))
+            let at: Vec<String> = (self.all_names.iter().zip(y))
                 .map(|(name, value)| format!("{name}={value}"))
                 .collect();
             let at = at.join(", ");

@@ -100,7 +100,7 @@ pub enum FindError {
     NonFinite,
     /// Gauss-Newton came no closer than this.
     #[error(
-        "no steady motion near the guess: Gauss-Newton comes no closer than d/dt {quantity} = {residual:e} in {steps} steps (at {at})"
+        "no steady motion near the guess: after {steps} Gauss-Newton steps the condition d/dt {quantity} = 0 still fails by {residual:e}, the largest residual (at {at})"
     )]
     NotConverged {
         /// The reduced state entry whose rate stays largest.
@@ -112,6 +112,36 @@ pub enum FindError {
         /// The unknowns reached, `NAME=VALUE`.
         at: String,
     },
+}
+
+/// The unknowns as the user names them: their names, and their values
+/// `y(x)` at the unknowns `x` Gauss-Newton moves (an affine map: `x`
+/// may be coordinates on a hyperplane of `y`).
+pub struct Named<'a> {
+    /// The names of `y`.
+    pub names: &'a [String],
+    /// `y(x)`.
+    pub values: &'a dyn Fn(&[f64]) -> Vec<f64>,
+}
+
+impl Named<'_> {
+    /// `NAME=VALUE, ...` of `y(x)`.
+    fn assignments(&self, x: &[f64]) -> String {
+        let pairs: Vec<String> = (self.names.iter().zip((self.values)(x)))
+            .map(|(name, value)| format!("{name}={value}"))
+            .collect();
+        pairs.join(", ")
+    }
+
+    /// The names of `y` that move along the direction `dx` of `x`.
+    fn moving(&self, dx: &[f64]) -> Vec<String> {
+        let zero = vec![0.0; dx.len()];
+        let (from, to) = ((self.values)(&zero), (self.values)(dx));
+        (self.names.iter().zip(from.iter().zip(&to)))
+            .filter(|(_, (a, b))| (*b - *a).abs() > 1e-6)
+            .map(|(name, _)| name.clone())
+            .collect()
+    }
 }
 
 /// The Gauss-Newton steps allowed.
@@ -134,8 +164,9 @@ struct Iterate {
     rate: DVector<f64>,
 }
 
-/// A steady motion near `guess` of the unknowns `names`, the point at `x`
-/// being `given(x)` completed (see the module documentation).
+/// A steady motion near `guess` of the unknowns `x`, named by `named`,
+/// the point at `x` being `given(x)` completed (see the module
+/// documentation).
 ///
 /// # Errors
 /// [`FindError`]: more unknowns than conditions, a point that cannot be
@@ -143,19 +174,22 @@ struct Iterate {
 pub fn find(
     model: &dyn Dynamics,
     given: &dyn Fn(&[f64]) -> Given,
-    names: &[String],
+    named: &Named<'_>,
     guess: &[f64],
 ) -> Result<Found, FindError> {
     let layout = Layout::of(model);
     let conditions = layout.nr() + model.coordinates().len();
-    if names.len() > conditions {
+    if guess.len() > conditions {
         return Err(FindError::TooManyUnknowns {
-            unknowns: names.len(),
+            unknowns: guess.len(),
             conditions,
         });
     }
     let mut x = guess.to_vec();
-    let mut now = iterate(model, &layout, &given(&x)).map_err(|e| at_point(names, &x, e))?;
+    let mut now = iterate(model, &layout, &given(&x)).map_err(|source| FindError::Point {
+        at: named.assignments(&x),
+        source,
+    })?;
     if now.rate.iter().any(|r| !r.is_finite()) {
         return Err(FindError::NonFinite);
     }
@@ -177,17 +211,16 @@ pub fn find(
         quantity, residual, ..
     }) = check_steady(&layout, &now.rate, &w)
     {
-        let at = assignments(names, &x);
         return Err(FindError::NotConverged {
             quantity,
             residual,
             steps,
-            at,
+            at: named.assignments(&x),
         });
     }
     isolated(
         &conditions_jacobian(model, &layout, &now, &given(&x)),
-        names,
+        named,
     )?;
     let residual = largest(now.rate.as_slice()).map_or(0.0, |(_, r)| r.abs());
     Ok(Found {
@@ -212,22 +245,6 @@ pub fn conditions(
     let now = iterate(model, &layout, given)?;
     let jacobian = conditions_jacobian(model, &layout, &now, given);
     Ok((now.rate, jacobian))
-}
-
-/// `NAME=VALUE, ...` of the unknowns.
-fn assignments(names: &[String], x: &[f64]) -> String {
-    let pairs: Vec<String> = (names.iter().zip(x))
-        .map(|(name, value)| format!("{name}={value}"))
-        .collect();
-    pairs.join(", ")
-}
-
-/// A [`FindError::Point`] at `x`.
-fn at_point(names: &[String], x: &[f64], source: PointError) -> FindError {
-    FindError::Point {
-        at: assignments(names, x),
-        source,
-    }
 }
 
 /// The point of `given` completed, and the flow's rates there.
@@ -296,7 +313,7 @@ fn least_squares(jacobian: &DMatrix<f64>, rate: &DVector<f64>) -> DVector<f64> {
 
 /// [`FindError::Underdetermined`] where `jacobian` has a null direction,
 /// naming the unknowns along it.
-fn isolated(jacobian: &DMatrix<f64>, names: &[String]) -> Result<(), FindError> {
+fn isolated(jacobian: &DMatrix<f64>, named: &Named<'_>) -> Result<(), FindError> {
     let k = jacobian.ncols();
     let rows = jacobian.nrows().max(k);
     let padded = DMatrix::from_fn(rows, k, |i, j| {
@@ -313,13 +330,15 @@ fn isolated(jacobian: &DMatrix<f64>, names: &[String]) -> Result<(), FindError> 
         return Ok(());
     };
     let tolerance = RANK * svd.singular_values.amax().max(f64::MIN_POSITIVE);
-    let free: Vec<String> = (0..k)
-        .filter(|&j| {
-            (0..svd.singular_values.len())
-                .any(|i| svd.singular_values[i] <= tolerance && v_t[(i, j)].abs() > 1e-6)
-        })
-        .map(|j| names[j].clone())
-        .collect();
+    let mut free: Vec<String> = Vec::new();
+    for i in (0..svd.singular_values.len()).filter(|&i| svd.singular_values[i] <= tolerance) {
+        let direction: Vec<f64> = v_t.row(i).iter().copied().collect();
+        for name in named.moving(&direction) {
+            if !free.contains(&name) {
+                free.push(name);
+            }
+        }
+    }
     match free.is_empty() {
         true => Ok(()),
         false => Err(FindError::Underdetermined { unknowns: free }),

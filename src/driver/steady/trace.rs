@@ -13,9 +13,12 @@
 //! is solved with VAR fixed from the interpolated point. A fold is where
 //! the tangent's VAR component changes sign, located by bisection on the
 //! step's length. Where stability changes
-//! between rows, the change is located by bisection on VAR (to 1e-9). The
-//! trace ends where VAR leaves the grid's range, or where steps shrink to
-//! nothing (the family ends: a singular configuration).
+//! between rows, the change is located by bisection on VAR (to 1e-9), or
+//! is the fold's where one lies between them. The trace ends where VAR
+//! leaves the grid's range, or where the family ends (a singular
+//! configuration): steps shrink to nothing, or STEPS_PER_POINT steps in a
+//! row reach no grid value and no fold (VAR stalls while an unknown grows
+//! without bound).
 
 use super::{Affine, Problem, SteadyMotion, SteadyMotionError};
 use crate::runtime::linearize::FindError;
@@ -91,7 +94,7 @@ impl Family {
             }
             End::Ended(value, reason) => writeln!(
                 text,
-                "the family ends near {variable} = {value:.6} (a singular configuration?): {reason}"
+                "the family ends near {variable} = {value:.6} (a singular configuration): {reason}"
             ),
             End::Steps(steps) => writeln!(text, "stopped after {steps} continuation steps"),
         };
@@ -225,6 +228,7 @@ impl Walk<'_> {
     /// and the folds, until it leaves the range or ends.
     fn run(&mut self, grid: &[f64], rows: &mut Vec<Row>, events: &mut Vec<(usize, Event)>) -> End {
         let mut h = self.step;
+        let mut idle = 0;
         for _ in 0..STEPS_PER_POINT * grid.len() {
             let tangent = self.tangent.clone();
             let cap = self.step / tangent[tangent.len() - 1].abs().max(1e-3);
@@ -244,13 +248,22 @@ impl Walk<'_> {
             };
             let last = tangent.len() - 1;
             let to = y[last];
-            if tangent[last] * t[last] < 0.0 {
+            let (before, folds) = (rows.len(), tangent[last] * t[last] < 0.0);
+            if folds {
                 events.push((rows.len(), Event::Fold(self.fold(h))));
             }
             if let Err(error) = self.rows_between(grid, (&self.y.clone(), &y), rows) {
                 return self.ended(error.to_string());
             }
+            idle = if folds || rows.len() > before {
+                0
+            } else {
+                idle + 1
+            };
             (self.y, self.tangent) = (y, t);
+            if idle == STEPS_PER_POINT {
+                return self.ended(self.unbounded());
+            }
             if to > self.range.1 || to < self.range.0 {
                 let edge = if to > self.range.1 {
                     self.range.1
@@ -292,6 +305,20 @@ impl Walk<'_> {
         value
     }
 
+    /// Why a family ends where VAR stalls: the unknown largest there,
+    /// growing without bound.
+    fn unbounded(&self) -> String {
+        let last = self.y.len() - 1;
+        let names = &self.problem.names;
+        let largest = (0..last.min(names.len()))
+            .max_by(|&a, &b| self.y[a].abs().total_cmp(&self.y[b].abs()))
+            .expect("one unknown at least");
+        format!(
+            "{} grows without bound ({} = {:e} after {STEPS_PER_POINT} steps that reach no grid value)",
+            names[largest], names[largest], self.y[largest]
+        )
+    }
+
     /// [`End::Ended`] at the current point.
     fn ended(&self, reason: String) -> End {
         End::Ended(self.y[self.y.len() - 1], reason)
@@ -323,7 +350,11 @@ impl Walk<'_> {
 }
 
 /// `events` with the changes of stability between consecutive rows,
-/// located by bisection on VAR, in the family's order.
+/// located by bisection on VAR, in the family's order. Between rows on
+/// either side of a fold the change is the fold's: there the conditions'
+/// Jacobian in the unknowns is singular, and a real eigenvalue passes
+/// through zero (VAR does not order the rows, so bisection on it cannot
+/// bracket the change).
 fn with_stability(
     problem: &Problem,
     rows: &[Row],
@@ -336,7 +367,11 @@ fn with_stability(
     for (i, pair) in rows.windows(2).enumerate() {
         let (a, b) = (&pair[0], &pair[1]);
         if a.motion.stable() != b.motion.stable() {
-            let value = located(problem, (a, b), conserved);
+            let fold = events.iter().find_map(|(after, event)| match event {
+                Event::Fold(value) if *after == i + 1 => Some(*value),
+                _ => None,
+            });
+            let value = fold.unwrap_or_else(|| located(problem, (a, b), conserved));
             events.push((i + 1, Event::Stability(value, b.motion.stable())));
         }
     }
