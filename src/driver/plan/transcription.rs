@@ -54,6 +54,9 @@ struct Stage {
 }
 
 impl Scheme {
+    /// Every scheme, for a lookup by [`Scheme::name`].
+    pub const ALL: &'static [Self] = &[Self::BackwardEuler, Self::Midpoint];
+
     /// Its name on the command line and in `plan.json`.
     pub fn name(self) -> &'static str {
         match self {
