@@ -19,7 +19,10 @@
 //!   snakeboard under the energy-based controller of MATH.md 3.2: the curve
 //!   `(alpha1, alpha2, xt)(t)` in a 3-D projection on the wireframe of the
 //!   constant-energy ellipsoid
-//!   `alpha1^2/(2m) + alpha2^2/(2Jt) + kt xt^2/2 = E0`.
+//!   `alpha1^2/(2m) + alpha2^2/(2Jt) + kt xt^2/2 = E0`;
+//! - `NAME.png` for each [`Series`]: its columns against `t`, one curve
+//!   each, named in the legend (`chaplygin plan`'s `states.png` and
+//!   `inputs.png`).
 //!
 //! And for `chaplygin linearize --sweep`, [`write_eigenvalue_plot`] writes
 //! `eigenvalues.png`: the real and imaginary parts of the eigenvalues
@@ -55,7 +58,7 @@ pub use design_map::{DesignMapPlot, write_design_map};
 pub use eigenvalues::{EigenvalueSweep, write_eigenvalue_plot};
 pub use error::PlotError;
 pub use gaits::{GaitCurve, write_gait_comparison};
-pub use spec::{Figure4, PlanarPath, PlotSpec, Table, Track};
+pub use spec::{Figure4, PlanarPath, PlotSpec, Series, Table, Track};
 pub use steady::{SteadyFamily, write_steady_plot};
 
 use plotters::style::FontStyle;
@@ -106,6 +109,11 @@ pub fn write_plots(table: &Table, spec: &PlotSpec, dir: &Path) -> Result<Vec<Pat
     if let Some(figure4) = &spec.figure4 {
         let file = dir.join("figure4.png");
         figure4::draw(&file, spec, figure4, &columns)?;
+        written.push(file);
+    }
+    for series in &spec.series {
+        let file = dir.join(format!("{}.png", series.name));
+        series::draw_series(&file, spec, series, time, &columns)?;
         written.push(file);
     }
     Ok(written)

@@ -68,6 +68,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), Failure> {
         finished.tracks.as_ref(),
         &args.out,
         figure4,
+        Vec::new(),
     );
     let report = match finished.outcome {
         Ok(report) => report,
@@ -181,12 +182,14 @@ impl Recorder for CsvOnStart {
 }
 
 /// The plots of what was recorded (`chaplygin::plot`), with the points'
-/// ground tracks from `tracks` and Figure 4 with `figure4`.
-fn write_plots(
+/// ground tracks from `tracks`, Figure 4 with `figure4`, and `series`
+/// against `t`.
+pub fn write_plots(
     table: &Table,
     tracks: Option<&Table>,
     out: &Path,
     figure4: Option<plot::Figure4>,
+    series: Vec<plot::Series>,
 ) -> Result<Vec<PathBuf>, plot::PlotError> {
     if table.rows.is_empty() {
         return Ok(Vec::new());
@@ -216,6 +219,7 @@ fn write_plots(
         Some(figure4) => spec.with_figure4(figure4),
         None => spec,
     };
+    let spec = series.into_iter().fold(spec, plot::PlotSpec::with_series);
     plot::write_plots(&plotted, &spec, out)
 }
 

@@ -221,3 +221,200 @@ fn bad_guesses_and_free_durations_are_refused_in_one_line() {
         "--duration 0: the free duration's first guess must be positive",
     );
 }
+
+/// The differential drive parked 0.3 m ahead and 0.1 m to the side, from
+/// rest, on `nodes` nodes.
+fn parking(nodes: &str) -> Vec<&str> {
+    let mut arguments = vec!["plan", "differential-drive", "--duration", "4"];
+    arguments.extend(["--nodes", nodes]);
+    for start in ["x", "y", "theta", "phi_r", "phi_l"] {
+        arguments.extend(["--start".to_string(), format!("{start}=0")].map(leak));
+        arguments.extend(["--start".to_string(), format!("dot({start})=0")].map(leak));
+    }
+    for goal in ["x=0.3", "y=0.1", "theta=0", "dot(phi_r)=0", "dot(phi_l)=0"] {
+        arguments.extend(["--goal", goal]);
+    }
+    arguments
+}
+
+fn leak(text: String) -> &'static str {
+    Box::leak(text.into_boxed_str())
+}
+
+/// The scene `animation.html` embeds for its page.
+fn scene(page: &Path) -> serde_json::Value {
+    let html = std::fs::read_to_string(page).expect("animation.html");
+    let start = r#"<script type="application/json" id="chaplygin-data">"#;
+    let from = html.find(start).expect("the scene") + start.len();
+    let to = from + html[from..].find("</script>").expect("its end");
+    serde_json::from_str(&html[from..to]).expect("JSON")
+}
+
+/// Beside `plan.csv`: the plots `simulate` draws, the states and inputs
+/// against `t`, and with `--animate` the page of the plan's nodes, whose
+/// frames are rows of `plan.csv` and whose drive sits at their `(x, y)`.
+#[test]
+fn a_plan_is_plotted_and_animated_from_its_nodes() {
+    let dir = scratch("plan-outputs");
+    let out = dir.path().join("parked");
+    let mut arguments = parking("41");
+    arguments.extend([
+        "--animate",
+        "--fps",
+        "5",
+        "--out",
+        leak(out.display().to_string()),
+    ]);
+    let output = chaplygin(&arguments);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    for png in ["path", "energy", "constraint_residual", "states", "inputs"] {
+        let file = out.join(format!("{png}.png"));
+        let bytes = std::fs::read(&file).unwrap_or_else(|_| panic!("{png}.png: {stdout}"));
+        assert_eq!(bytes[..8], *b"\x89PNG\r\n\x1a\n", "{png}.png");
+        assert!(
+            stdout.contains(&format!("wrote {}", file.display())),
+            "{stdout}"
+        );
+    }
+    let (header, rows) = read_csv(&out.join("plan.csv"));
+    let [t, x, y] = ["t", "x", "y"].map(|name| column(&header, &rows, name));
+    let scene = scene(&out.join("animation.html"));
+    let times: Vec<f64> = (scene["times"].as_array().expect("times").iter())
+        .map(|time| time.as_f64().expect("a number"))
+        .collect();
+    // 5 frames a second over 4 s of nodes 0.1 s apart: every second node
+    // (serde_json reads a decimal to within an ulp, not always exactly)
+    let frames: Vec<usize> = (times.iter())
+        .map(|time| {
+            (t.iter().position(|node| (node - time).abs() < 1e-12))
+                .unwrap_or_else(|| panic!("{time} is not a node's time: {t:?}"))
+        })
+        .collect();
+    assert_eq!(frames, (0..41).step_by(2).collect::<Vec<_>>());
+    let body = (scene["items"].as_array().expect("items").iter())
+        .find(|item| item["shape"] == "box")
+        .expect("the drive's body");
+    let centres: Vec<f64> = (body["position"].as_array().expect("positions").iter())
+        .map(|value| value.as_f64().expect("a number"))
+        .collect();
+    for (centre, &row) in centres.chunks(3).zip(&frames) {
+        let off = (centre[0] - x[row]).hypot(centre[1] - y[row]);
+        assert!(off < 1e-12, "frame at t = {}: {centre:?}", t[row]);
+    }
+}
+
+/// On a terminal (a pseudo-terminal from `script`), standard error shows
+/// one line per solver iteration, numbered from 0, the last one's
+/// objective the optimum `plan.json` reports.
+#[test]
+fn a_terminal_shows_each_iteration() {
+    let dir = scratch("plan-terminal");
+    let out = dir.path().join("parked");
+    let mut arguments = parking("21");
+    arguments.extend(["--out", leak(out.display().to_string())]);
+    let command = std::iter::once(env!("CARGO_BIN_EXE_chaplygin"))
+        .chain(arguments)
+        .map(|argument| format!("'{argument}'"))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let output = std::process::Command::new("script")
+        .args(["-qec", &command, "/dev/null"])
+        .output()
+        .expect("script runs");
+    let shown = String::from_utf8_lossy(&output.stdout).replace('\r', "");
+    assert!(output.status.success(), "{shown}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).expect("plan.json"))
+            .expect("JSON");
+    let header = shown.lines().position(|line| {
+        line.split_whitespace()
+            .eq(["iter", "objective", "primal", "dual"])
+    });
+    let lines: Vec<Vec<f64>> = (shown.lines().skip(header.expect("a header") + 1))
+        .map_while(|line| {
+            let fields: Option<Vec<f64>> =
+                line.split_whitespace().map(|f| f.parse().ok()).collect();
+            fields.filter(|fields| fields.len() == 4)
+        })
+        .collect();
+    let iterations = report["iterations"].as_u64().expect("a count") as usize;
+    assert_eq!(lines.len(), iterations + 1, "{shown}");
+    for (number, line) in lines.iter().enumerate() {
+        assert_eq!(line[0], number as f64, "{shown}");
+    }
+    let objective = report["objective"].as_f64().expect("a number");
+    let last = lines.last().expect("a line");
+    assert!(
+        (last[1] - objective).abs() <= 1e-8 * objective.abs(),
+        "{last:?} against {objective}"
+    );
+    assert!(last[2] <= 1e-8, "{last:?}");
+}
+
+/// Ctrl-C (SIGINT) during a long solve: the command writes the last
+/// iterate, `plan.csv` marked as not verified and `plan.json` with the
+/// status `interrupted` and its KKT residuals, and fails in one line.
+#[test]
+fn an_interrupted_plan_keeps_its_last_iterate() {
+    let dir = scratch("plan-interrupted");
+    let out = dir.path().join("parked");
+    let mut arguments = parking("1001");
+    arguments.extend(["--out", leak(out.display().to_string())]);
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_chaplygin"))
+        .args(&arguments)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("starts");
+    // the solve takes a minute; its start, three seconds
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    let signal = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(signal.success());
+    let output = child.wait_with_output().expect("ends");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let said =
+        (stderr.strip_prefix("error: interrupted after ")).unwrap_or_else(|| panic!("{stderr}"));
+    assert!(
+        said.contains("not an optimum")
+            && said.contains(&format!(
+                "the last iterate, not verified, is in {}",
+                out.display()
+            )),
+        "{stderr}"
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).expect("plan.json"))
+            .expect("JSON");
+    assert_eq!(report["status"], "interrupted");
+    let iterations = report["iterations"].as_u64().expect("a count");
+    assert!(
+        said.starts_with(&format!("{iterations} iterations")),
+        "{stderr}"
+    );
+    for residual in ["primal", "dual", "complementarity"] {
+        assert!(report["kkt"][residual].is_number(), "{report}");
+    }
+    let text = std::fs::read_to_string(out.join("plan.csv")).expect("plan.csv");
+    let first = text.lines().next().expect("a first line");
+    assert_eq!(
+        first,
+        format!("# not verified: interrupted after {iterations} iterations (plan.json)")
+    );
+    let marked = out.join("plan.csv");
+    let unmarked = dir.path().join("unmarked.csv");
+    std::fs::write(&unmarked, text.split_once('\n').expect("rows").1).expect("written");
+    let (header, rows) = read_csv(&unmarked);
+    assert_eq!(rows.len(), 1001, "{}", marked.display());
+    // the start is fixed by the bounds, which every iterate meets
+    assert_eq!(column(&header, &rows, "x")[0], 0.0);
+}

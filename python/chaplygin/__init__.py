@@ -8,11 +8,12 @@ port-Hamiltonian form, the momentum equation with a symmetry) and its
 functions compiled to native code at run time. ``Model.simulate`` returns a
 ``Trajectory`` of NumPy columns, ``Model.linearize`` a ``Linearization``
 with eigenvalues and intervals of stability, ``Model.gait`` what a shape
-loop does and ``Model.optimal_gait`` the loop that does most, ``Model.rhs`` a right-hand side
+loop does and ``Model.optimal_gait`` the loop that does most, ``Model.plan`` the
+optimal inputs between two states (a ``Plan``), ``Model.rhs`` a right-hand side
 for ``scipy.integrate.solve_ivp``, and ``Model.sympy`` the derived matrices
 as SymPy expressions; ``design_map`` the self-stable speeds over a grid of
 parameters, on every core or on any ``concurrent.futures.Executor`` (a
-Dask cluster's).
+Dask cluster's), and ``plans`` many plans, here or on such an executor.
 
     >>> import chaplygin
     >>> board = chaplygin.builtin("snakeboard")
@@ -25,6 +26,7 @@ from __future__ import annotations
 
 import functools
 import html
+import json
 import math
 import os
 import warnings
@@ -46,6 +48,7 @@ __all__ = [
     "Model",
     "ModelError",
     "OptimalGait",
+    "Plan",
     "Rhs",
     "SimulationError",
     "Steady",
@@ -55,6 +58,7 @@ __all__ = [
     "builtins",
     "design_map",
     "load",
+    "plans",
 ]
 
 Rhs = _chaplygin.Rhs
@@ -281,6 +285,58 @@ class OptimalGait:
         return f"OptimalGait(efficiency {self.efficiency}, displacement {self.displacement})"
 
 
+class _Drawing:
+    """Draws rows of a model's run at the parameters ``params``: what
+    ``Trajectory.animate`` calls. It pickles as the model's text and the
+    parameters, so a trajectory sent between processes still animates."""
+
+    def __init__(self, model: "Model", params: Optional[Dict[str, float]]) -> None:
+        self.model = model
+        self.params = params
+
+    def __call__(self, columns: List[str], data: numpy.ndarray, fps: float) -> str:
+        return self.model._native.animation(columns, data.tolist(), self.params, fps)
+
+
+class Plan:
+    """An optimal plan, verified (docs/INTERFACE.md section 13).
+
+    ``plan.objective`` is the cost at the optimum, ``plan.duration`` the
+    duration, ``plan.report`` the dict of ``plan.json`` (the grid, scheme,
+    solver, iterations, seconds, status and the KKT residuals ``kkt``
+    computed from the exact derivatives); ``plan.t`` the nodes' times,
+    ``plan["x"]`` any column of ``plan.csv`` by name, ``plan.columns``
+    their names, and ``plan.trajectory`` the rows as a ``Trajectory``, so
+    that ``plan.trajectory.animate()`` draws it. Plans pickle.
+    """
+
+    def __init__(self, trajectory: Trajectory, report: Dict[str, Any]) -> None:
+        self.trajectory = trajectory
+        self.report = report
+
+    objective = property(lambda self: self.report["objective"], doc="The cost at the optimum.")
+    duration = property(lambda self: self.report["duration"], doc="The duration T.")
+    columns = property(lambda self: self.trajectory.columns, doc="The columns of plan.csv.")
+
+    @property
+    def t(self) -> numpy.ndarray:
+        """The nodes' times."""
+        return self.trajectory.t
+
+    def __getitem__(self, name: str) -> numpy.ndarray:
+        return self.trajectory[name]
+
+    def __len__(self) -> int:
+        return len(self.trajectory)
+
+    def __repr__(self) -> str:
+        report = self.report
+        return (
+            f"Plan(objective {report['objective']:.9g} over {report['duration']:g} s, "
+            f"{report['nodes']} nodes, {report['scheme']})"
+        )
+
+
 class Model:
     """A model read from its text, derived exactly, its functions compiled.
 
@@ -398,6 +454,63 @@ class Model:
         for warning in run["summary"]["warnings"]:
             warnings.warn(warning.removeprefix("warning: "), RuntimeWarning, stacklevel=2)
         return trajectory
+
+    def plan(
+        self,
+        duration: float,
+        nodes: int,
+        start: Optional[Mapping[str, Value]] = None,
+        goal: Optional[Mapping[str, Value]] = None,
+        minimize: Optional[str] = None,
+        bounds: Optional[Mapping[str, Tuple[Optional[Value], Optional[Value]]]] = None,
+        scheme: str = "midpoint",
+        params: Optional[Mapping[str, float]] = None,
+        tol: float = 1e-8,
+        final_cost: Optional[str] = None,
+        free_duration: bool = False,
+        guess: Optional[Union[str, "os.PathLike[str]"]] = None,
+    ) -> Plan:
+        """The inputs and trajectory over ``[0, duration]`` that minimize
+        ``minimize`` (an expression of ``t``, the coordinates, velocities
+        ``dot(q)``, inputs and parameters integrated over time; by default
+        the sum of the inputs squared), by direct collocation on ``nodes``
+        nodes with ``scheme`` (``"backward-euler"``, ``"midpoint"`` or
+        ``"hermite-simpson"``), as ``chaplygin plan`` finds them.
+
+        ``start`` and ``goal`` fix coordinates and velocities at ``t = 0``
+        and ``t = duration`` (numbers or expressions of the parameters);
+        what they do not name is free. ``bounds`` maps an input, coordinate
+        or velocity to ``(lo, hi)`` at every node (``None`` for no bound on
+        that side). ``params`` overrides parameters. ``tol`` is the solver's
+        tolerance; the KKT residuals are verified to 100 times it.
+        ``final_cost`` adds a cost at the end (an expression of ``t``, the
+        final coordinates and velocities, and the parameters).
+        ``free_duration=True`` makes the duration an unknown, ``duration``
+        its first guess. ``guess`` is a CSV file with ``t`` and any of
+        ``plan.csv``'s columns to start from.
+
+        Raises ``ValueError`` for bad input (an unknown name, a bound with
+        lo > hi, a start off the constraints) and for an answer that is not
+        a verified optimum (the message says why, with the residuals);
+        ``KeyboardInterrupt`` where Ctrl-C stops the solve.
+        """
+        given = _dict(params)
+        planned = self._native.plan(
+            float(duration),
+            int(nodes),
+            scheme,
+            _dict(start),
+            _dict(goal),
+            minimize,
+            None if bounds is None else {name: _bound(name, ends) for name, ends in bounds.items()},
+            given,
+            float(tol),
+            final_cost,
+            bool(free_duration),
+            None if guess is None else os.fspath(guess),
+        )
+        trajectory = Trajectory(planned["columns"], planned["data"], None, None, _Drawing(self, given))
+        return Plan(trajectory, json.loads(planned["report"]))
 
     def linearize(
         self,
@@ -537,6 +650,22 @@ def _dict(values: Optional[Mapping[str, Any]]) -> Optional[Dict[str, Any]]:
     return None if values is None else dict(values)
 
 
+def _bound(name: str, ends: Tuple[Optional[Value], Optional[Value]]) -> str:
+    """``(lo, hi)`` as ``chaplygin plan --bound``'s ``LO:HI``, a ``None``
+    end left empty, a number written so that it reads back exactly."""
+    try:
+        lo, hi = ends
+    except (TypeError, ValueError):
+        raise ValueError(f"bounds[{name!r}]: give (lo, hi), None for an open end; got {ends!r}") from None
+
+    def end(value: Optional[Value]) -> str:
+        if value is None:
+            return ""
+        return value if isinstance(value, str) else repr(float(value))
+
+    return f"{end(lo)}:{end(hi)}"
+
+
 @functools.lru_cache(maxsize=8)
 def _rebuilt(builtin_name: Optional[str], text: str, engine: str) -> Model:
     """The model of a pickled state, derived and compiled once per process."""
@@ -621,6 +750,34 @@ def design_map(
         tasks = [executor.submit(_design_points, model._state(), request, part) for part in parts]
         points = [point for task in tasks for point in task.result()]
     return DesignMap(varied, list(points))
+
+
+def plans(
+    model: Model,
+    requests: Sequence[Mapping[str, Any]],
+    executor: Optional[Executor] = None,
+) -> List[Plan]:
+    """The plans ``requests`` ask of ``model``, each a dict of
+    ``Model.plan``'s keyword arguments (a grid of durations, parameters or
+    goals), in their order.
+
+    With ``executor=None`` they are solved here, one after the other. With
+    any ``concurrent.futures.Executor`` (``dask.distributed.Client(...)
+    .get_executor()``, a ``ProcessPoolExecutor``) each is one task, the
+    model rebuilt from its pickled text once per worker process, as
+    ``design_map`` runs; the plans come back pickled, and are the same.
+    A request that fails raises its error here."""
+    requests = [dict(request) for request in requests]
+    if executor is None:
+        return [model.plan(**request) for request in requests]
+    tasks = [executor.submit(_plan, model._state(), request) for request in requests]
+    return [task.result() for task in tasks]
+
+
+def _plan(state: Tuple[Optional[str], str, str], request: Dict[str, Any]) -> Plan:
+    """One executor task: a plan of the model rebuilt from ``state`` (once
+    per process)."""
+    return _rebuilt(*state).plan(**request)
 
 
 def _design_points(state: Tuple[Optional[str], str, str], request: Any, points: numpy.ndarray) -> List[Dict[str, Any]]:

@@ -100,6 +100,21 @@ class Model:
         points: ArrayLike,
         jobs: Optional[int],
     ) -> List[Dict[str, Any]]: ...
+    def plan(
+        self,
+        duration: float,
+        nodes: int,
+        scheme: str,
+        start: Optional[Dict[str, Any]],
+        goal: Optional[Dict[str, Any]],
+        minimize: Optional[str],
+        bounds: Optional[Dict[str, str]],
+        params: Optional[Dict[str, float]],
+        tol: float,
+        final_cost: Optional[str],
+        free_duration: bool,
+        guess: Optional[str],
+    ) -> Dict[str, Any]: ...
     def document(self, format: str = "text") -> str: ...
 
 class Rhs:

@@ -13,6 +13,7 @@ mod convert;
 mod design;
 mod linearization;
 mod model;
+mod plan;
 mod rhs;
 
 use chaplygin::driver::catalog::{self, BUILT_IN, Source};

@@ -1,6 +1,6 @@
 //! `chaplygin.Model` (native part): a model read from its text, its names
 //! and parameters, and what it does: simulate, linearize, find steady
-//! motions, accelerate,
+//! motions, plan inputs, accelerate,
 //! evaluate its right-hand sides, document its derivation.
 
 use crate::convert::{
@@ -8,6 +8,7 @@ use crate::convert::{
 };
 use crate::design;
 use crate::linearization;
+use crate::plan;
 use crate::rhs::Rhs;
 use chaplygin::driver::animation;
 use chaplygin::driver::catalog::Source;
@@ -15,6 +16,7 @@ use chaplygin::driver::design_map::Motion;
 use chaplygin::driver::document::{self, Format};
 use chaplygin::driver::engine::{self, EngineChoice, Loaded};
 use chaplygin::driver::gait::{self, GaitRequest, OptimalGaitRequest};
+use chaplygin::driver::plan::Request as PlanRequest;
 use chaplygin::driver::setup::{self, Asked, with_parameters};
 use chaplygin::driver::simulate::{self, Controller, FormulationChoice, Integrator, Request};
 use chaplygin::driver::steady::Request as SteadyRequest;
@@ -321,6 +323,49 @@ impl Model {
             }
         }
         Ok(run)
+    }
+
+    /// The optimal plan over `[0, duration]` on `nodes` nodes
+    /// (docs/INTERFACE.md section 13): `start` and `goal` fix coordinates
+    /// and velocities at the ends, `minimize` is the running cost (the sum
+    /// of the inputs squared by default), `bounds` maps names to `LO:HI`;
+    /// `final_cost` is a cost at the end, `free_duration` makes the
+    /// duration an unknown (`duration` its first guess), `guess` is a CSV
+    /// to start from; returns a dict of `columns`, `data` and `report`
+    /// (`plan.json`'s text).
+    #[pyo3(signature = (duration, nodes, scheme, start, goal, minimize, bounds, params, tol, final_cost, free_duration, guess))]
+    #[allow(clippy::too_many_arguments)]
+    fn plan<'py>(
+        &self,
+        py: Python<'py>,
+        duration: f64,
+        nodes: usize,
+        scheme: &str,
+        start: Option<&Bound<'py, PyDict>>,
+        goal: Option<&Bound<'py, PyDict>>,
+        minimize: Option<String>,
+        bounds: Option<&Bound<'py, PyDict>>,
+        params: Option<&Bound<'py, PyDict>>,
+        tol: f64,
+        final_cost: Option<String>,
+        free_duration: bool,
+        guess: Option<std::path::PathBuf>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let request = PlanRequest {
+            duration,
+            nodes,
+            scheme: plan::scheme_named(scheme)?,
+            start: assignments(start)?,
+            goal: assignments(goal)?,
+            minimize,
+            bounds: assignments(bounds)?,
+            params: numbers(params)?,
+            tol,
+            final_cost,
+            free_duration,
+            guess,
+        };
+        plan::plan(py, self.fresh(), &request)
     }
 
     /// Linearizes about the steady motion `at` (`{name: value or

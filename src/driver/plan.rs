@@ -16,6 +16,10 @@
 //! - [`kkt`]: the solver's answer verified by the KKT conditions from the
 //!   exact derivatives: an answer that fails them is an error.
 //!
+//! [`plan_watched`] tells an observer of each of the solver's iterations;
+//! an observer that stops the solve gets the last iterate back, with its
+//! KKT residuals, as [`PlanError::Interrupted`].
+//!
 //! The dynamics are the Lagrange-d'Alembert equations in `x = (q, qdot)`
 //! (`simulate --formulation lagrange`), whose variables are the columns of
 //! `trajectory.csv`. The velocity constraints `A(q) qdot = 0` and the
@@ -33,7 +37,8 @@ use super::Failure;
 use super::engine::Loaded;
 use crate::runtime::record::Table;
 use kkt::Residuals;
-use nlp::{Nlp, Solver};
+use nlp::{Nlp, Observer, Solution, Solver};
+use std::ops::ControlFlow;
 use std::time::Instant;
 pub use transcription::Scheme;
 
@@ -122,6 +127,17 @@ pub enum PlanError {
         /// What they may reach.
         allowed: f64,
     },
+    /// The observer stopped the solve: the last iterate, not an optimum,
+    /// its report's status `interrupted`.
+    #[error(
+        "interrupted after {iterations} iterations, at an iterate that is not an optimum (KKT \
+         residuals primal {primal:.1e}, dual {dual:.1e}, complementarity {complementarity:.1e})",
+        iterations = .0.report.iterations,
+        primal = .0.report.kkt.primal,
+        dual = .0.report.kkt.dual,
+        complementarity = .0.report.kkt.complementarity
+    )]
+    Interrupted(Box<Plan>),
     /// The model's functions are not finite at the solver's answer.
     #[error(
         "no verified optimum: the solver says {status} after {iterations} iterations, at a point \
@@ -168,6 +184,9 @@ pub struct Report {
 }
 
 impl Report {
+    /// The status of a solve its observer stopped.
+    pub const INTERRUPTED: &'static str = "interrupted";
+
     /// As `plan.json` holds it.
     pub fn to_json(&self) -> serde_json::Value {
         serde_json::json!({
@@ -206,10 +225,46 @@ pub struct Plan {
 /// conditions violate, a start off the constraints), or an answer that is
 /// not a verified optimum.
 pub fn plan(loaded: Loaded, request: &Request, solver: &dyn Solver) -> Result<Plan, Failure> {
+    plan_watched(loaded, request, solver, &mut |_| ControlFlow::Continue(()))
+}
+
+/// [`plan`], telling `observer` of each of the solver's iterations.
+///
+/// # Errors
+/// As [`plan`], and [`PlanError::Interrupted`] with the last iterate where
+/// `observer` stops the solve.
+pub fn plan_watched(
+    loaded: Loaded,
+    request: &Request,
+    solver: &dyn Solver,
+    observer: &mut Observer<'_>,
+) -> Result<Plan, Failure> {
     let transcription = resolve::transcribe(loaded, request)?;
     let started = Instant::now();
-    let solution = solver.solve(&transcription, request.tol, Request::MAX_ITERATIONS);
+    let mut stopped = false;
+    let solution = solver.solve(
+        &transcription,
+        request.tol,
+        Request::MAX_ITERATIONS,
+        &mut |iteration| {
+            let flow = observer(iteration);
+            stopped = flow.is_break();
+            flow
+        },
+    );
     let seconds = started.elapsed().as_secs_f64();
+    if stopped {
+        return Err(PlanError::Interrupted(Box::new(last_iterate(
+            &transcription,
+            &solution,
+            Answer {
+                request,
+                solver: solver.name(),
+                seconds,
+            },
+        )?))
+        .into());
+    }
     let (status, iterations) = (solution.status.clone(), solution.iterations);
     let objective = transcription.objective(&solution.z);
     let (Some(residuals), Some(objective)) = (kkt::residuals(&transcription, &solution), objective)
@@ -231,20 +286,71 @@ pub fn plan(loaded: Loaded, request: &Request, solver: &dyn Solver) -> Result<Pl
     if request.free_duration && duration <= shortest * (1.0 + Request::VERIFIED * request.tol) {
         return Err(PlanError::ShortestDuration { shortest }.into());
     }
-    let report = Report {
-        objective,
-        duration,
-        nodes: request.nodes,
-        scheme: request.scheme,
+    let answer = Answer {
+        request,
         solver: solver.name(),
-        iterations,
         seconds,
-        status,
-        kkt: residuals,
     };
     Ok(Plan {
         table: resolve::table(&transcription, &solution.z)?,
-        report,
+        report: answer.report(&transcription, &solution, status, objective, residuals),
+    })
+}
+
+/// What every report of a solve says besides its outcome.
+struct Answer<'a> {
+    request: &'a Request,
+    solver: &'static str,
+    seconds: f64,
+}
+
+impl Answer<'_> {
+    /// The report of `solution`.
+    fn report(
+        &self,
+        transcription: &transcription::Transcription,
+        solution: &Solution,
+        status: String,
+        objective: f64,
+        kkt: Residuals,
+    ) -> Report {
+        Report {
+            objective,
+            duration: transcription.duration(&solution.z),
+            nodes: self.request.nodes,
+            scheme: self.request.scheme,
+            solver: self.solver,
+            iterations: solution.iterations,
+            seconds: self.seconds,
+            status,
+            kkt,
+        }
+    }
+}
+
+/// The last iterate of a stopped solve as a plan whose status is
+/// `interrupted`; its objective and residuals NaN where the model's
+/// functions are not finite there.
+fn last_iterate(
+    transcription: &transcription::Transcription,
+    solution: &Solution,
+    answer: Answer<'_>,
+) -> Result<Plan, Failure> {
+    let objective = transcription.objective(&solution.z).unwrap_or(f64::NAN);
+    let residuals = kkt::residuals(transcription, solution).unwrap_or(Residuals {
+        primal: f64::NAN,
+        dual: f64::NAN,
+        complementarity: f64::NAN,
+    });
+    Ok(Plan {
+        table: resolve::table(transcription, &solution.z)?,
+        report: answer.report(
+            transcription,
+            solution,
+            Report::INTERRUPTED.into(),
+            objective,
+            residuals,
+        ),
     })
 }
 

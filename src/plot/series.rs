@@ -1,5 +1,7 @@
 //! `energy.png` and `constraint_residual.png`: quantities that a correct
-//! simulation keeps constant or zero, drawn against time.
+//! simulation keeps constant or zero, drawn against time; and a
+//! [`Series`]' columns together against time, each curve in its colour
+//! and named in the legend (a plan's `states.png` and `inputs.png`).
 //!
 //! The energy error is relative, `(E(t) - E(0)) / |E(0)|`, with `E(0)` the
 //! first finite sample, unless `E(0) = 0`, where it is the absolute error
@@ -7,10 +9,12 @@
 //! values below [`RESIDUAL_FLOOR`] raised to it.
 
 use super::style::{
-    Axis, Drawn, draw_axes, finite_bounds, finite_runs, padded_range, png, tick_labels, title_style,
+    Axis, Drawn, draw_axes, draw_legend, emptiest_corner, finite_bounds, finite_runs, padded_range,
+    png, tick_labels, title_style,
 };
-use super::{PlotError, PlotSpec, RESIDUAL_FLOOR};
+use super::{PlotError, PlotSpec, RESIDUAL_FLOOR, Series};
 use plotters::prelude::*;
+use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::Path;
 
@@ -94,7 +98,7 @@ pub(super) fn draw_energy(
     let panel = Panel {
         caption,
         y_desc,
-        values: &scaled,
+        curves: vec![(None, &scaled)],
         y_format: &format,
     };
     draw_against_time(file, spec, time, panel, y_range)
@@ -128,7 +132,7 @@ pub(super) fn draw_residual(
     let panel = Panel {
         caption: format!("Constraint residual: max {worst:.2e}"),
         y_desc,
-        values: &decades,
+        curves: vec![(None, &decades)],
         y_format: &|decade: &f64| format!("{:.0e}", 10f64.powf(*decade)),
     };
     draw_against_time(file, spec, time, panel, whole_decades(&decades))
@@ -141,14 +145,38 @@ fn whole_decades(decades: &[f64]) -> Range<f64> {
     padded_range([low.floor(), high.ceil().max(low.floor() + 1.0)], 0.05)
 }
 
+/// Draws `series` from the table's `columns`, one curve per column named
+/// in the legend.
+pub(super) fn draw_series(
+    file: &Path,
+    spec: &PlotSpec,
+    series: &Series,
+    time: &[f64],
+    columns: &BTreeMap<String, Vec<f64>>,
+) -> Result<(), PlotError> {
+    let curves: Vec<(Option<String>, &[f64])> = (series.columns.iter())
+        .map(|name| (Some(spec.label(name)), &columns[name][..]))
+        .collect();
+    let y_range = padded_range(curves.iter().flat_map(|(_, v)| v.iter().copied()), 0.05);
+    let format = tick_labels(&y_range);
+    let panel = Panel {
+        caption: series.title.clone(),
+        y_desc: series.y_desc.clone(),
+        curves,
+        y_format: &format,
+    };
+    draw_against_time(file, spec, time, panel, y_range)
+}
+
 /// What one plot against time shows.
 struct Panel<'a> {
     /// The title.
     caption: String,
     /// The y axis description.
     y_desc: String,
-    /// One value per time sample.
-    values: &'a [f64],
+    /// The curves, each one value per time sample, with its name in the
+    /// legend (no legend where none is named).
+    curves: Vec<(Option<String>, &'a [f64])>,
     /// The y tick labels.
     y_format: &'a dyn Fn(&f64) -> String,
 }
@@ -161,14 +189,24 @@ fn draw_against_time(
     panel: Panel<'_>,
     y_range: Range<f64>,
 ) -> Result<(), PlotError> {
-    let points: Vec<(f64, f64)> = time
-        .iter()
-        .copied()
-        .zip(panel.values.iter().copied())
+    let curves: Vec<_> = (panel.curves.into_iter())
+        .map(|(name, values)| {
+            let points: Vec<(f64, f64)> =
+                time.iter().copied().zip(values.iter().copied()).collect();
+            (name, points)
+        })
         .collect();
     png(file, spec.size, |root| {
         let area = root.titled(&panel.caption, title_style()).drawn(file)?;
         let time_range = padded_range(time.iter().copied(), 0.0);
+        let corner = emptiest_corner(
+            &curves
+                .iter()
+                .flat_map(|(_, points)| points.clone())
+                .collect::<Vec<_>>(),
+            &time_range,
+            &y_range,
+        );
         let time_labels = tick_labels(&time_range);
         let mut chart = ChartBuilder::on(&area)
             .margin(20)
@@ -187,11 +225,28 @@ fn draw_against_time(
         };
         draw_axes(&mut chart, x, y, true).drawn(file)?;
         let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
-        chart
-            .draw_series(
-                finite_runs(&points, finite).map(|run| PathElement::new(run, BLUE.stroke_width(1))),
-            )
-            .drawn(file)?;
+        let named = curves.iter().any(|(name, _)| name.is_some());
+        for (index, (name, points)) in curves.iter().enumerate() {
+            let colour = if named {
+                Palette99::pick(index).to_rgba()
+            } else {
+                BLUE.to_rgba()
+            };
+            let drawn =
+                chart
+                    .draw_series(finite_runs(points, finite).map(|run| {
+                        PathElement::new(run, colour.stroke_width(1 + u32::from(named)))
+                    }))
+                    .drawn(file)?;
+            if let Some(name) = name {
+                drawn.label(name.as_str()).legend(move |(x, y)| {
+                    PathElement::new([(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+            }
+        }
+        if named {
+            draw_legend(&mut chart, corner).drawn(file)?;
+        }
         Ok(())
     })
 }

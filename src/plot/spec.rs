@@ -1,5 +1,5 @@
 //! What is plotted: the trajectory ([`Table`]) and which of its columns
-//! each plot reads ([`PlotSpec`], [`PlanarPath`], [`Figure4`]).
+//! each plot reads ([`PlotSpec`], [`PlanarPath`], [`Figure4`], [`Series`]).
 
 use super::{EDGES, PlotError};
 use std::collections::BTreeMap;
@@ -111,6 +111,19 @@ pub struct Figure4 {
     pub kt: f64,
 }
 
+/// Columns drawn together against time into `NAME.png`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Series {
+    /// The file's name without `.png`.
+    pub name: String,
+    /// The title.
+    pub title: String,
+    /// The y axis description.
+    pub y_desc: String,
+    /// The columns, one curve each.
+    pub columns: Vec<String>,
+}
+
 /// Which columns [`crate::plot::write_plots`] draws, their units, and the image size.
 ///
 /// A plot whose field is `None` is not written; a named column missing from
@@ -127,6 +140,8 @@ pub struct PlotSpec {
     pub constraint_residual: Option<String>,
     /// Figure 4's data, for `figure4.png`.
     pub figure4: Option<Figure4>,
+    /// Columns against time, each series into its own file.
+    pub series: Vec<Series>,
     /// Units by column name, shown in axis labels as `name [unit]`.
     pub units: BTreeMap<String, String>,
     /// Image width and height in pixels, each from 200 to 8192.
@@ -148,6 +163,7 @@ impl Default for PlotSpec {
             energy: Some("energy".into()),
             constraint_residual: Some("constraint_residual".into()),
             figure4: None,
+            series: Vec::new(),
             units: BTreeMap::new(),
             size: (1024, 768),
         }
@@ -183,6 +199,15 @@ impl PlotSpec {
             figure4: Some(figure4),
             ..self
         }
+    }
+
+    /// This spec with `series` drawn too (one left out where it has no
+    /// column).
+    pub fn with_series(mut self, series: Series) -> Self {
+        if !series.columns.is_empty() {
+            self.series.push(series);
+        }
+        self
     }
 
     /// This spec with `tracks` drawn along the path (none without a path).
@@ -221,6 +246,13 @@ impl PlotSpec {
         names.extend(self.constraint_residual.as_deref());
         if let Some(figure4) = &self.figure4 {
             names.extend([&figure4.alpha1, &figure4.alpha2, &figure4.xt].map(String::as_str));
+        }
+        for series in &self.series {
+            for name in &series.columns {
+                if !names.contains(&name.as_str()) {
+                    names.push(name);
+                }
+            }
         }
         names
     }

@@ -11,6 +11,13 @@
 //! implementation of an interior-point filter line-search algorithm",
 //! Math. Program. 106, 2006, eq. 4): the Lagrangian's gradient is
 //! `grad J + Jc^T lambda - z_lo + z_hi`, with `z_lo, z_hi >= 0`.
+//!
+//! A solver reports each iteration to an [`Observer`] (its objective and
+//! its primal and dual infeasibility, as Ipopt's iteration log shows
+//! them), which may stop it there: the answer is then the last iterate.
+
+use std::ffi::{c_int, c_void};
+use std::ops::ControlFlow;
 
 /// A nonlinear program: every constraint is an equality `c_i(z) = 0`.
 pub trait Nlp {
@@ -52,12 +59,37 @@ pub struct Solution {
     pub status: String,
 }
 
+/// One iteration of a solver, as its log shows it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Iteration {
+    /// The iteration's number (0 for the starting point).
+    pub number: usize,
+    /// The objective `J(z)`.
+    pub objective: f64,
+    /// The primal infeasibility (the largest constraint violation).
+    pub primal: f64,
+    /// The dual infeasibility (the largest entry of the Lagrangian's
+    /// gradient).
+    pub dual: f64,
+}
+
+/// What watches a solve: told of each iteration, it says whether the
+/// solver goes on (`Continue`) or stops at that iterate (`Break`).
+pub type Observer<'a> = dyn FnMut(&Iteration) -> ControlFlow<()> + 'a;
+
 /// A solver of [`Nlp`]s.
 pub trait Solver {
     /// Its name, as `plan.json` reports it.
     fn name(&self) -> &'static str;
-    /// Solves `nlp` to the tolerance `tol` in at most `max_iterations`.
-    fn solve(&self, nlp: &dyn Nlp, tol: f64, max_iterations: usize) -> Solution;
+    /// Solves `nlp` to the tolerance `tol` in at most `max_iterations`,
+    /// telling `observer` of each iteration.
+    fn solve(
+        &self,
+        nlp: &dyn Nlp,
+        tol: f64,
+        max_iterations: usize,
+        observer: &mut Observer<'_>,
+    ) -> Solution;
 }
 
 /// `ripopt`, a pure-Rust primal-dual interior point method after Ipopt,
@@ -69,7 +101,13 @@ impl Solver for Ripopt {
         "ripopt (L-BFGS Hessian)"
     }
 
-    fn solve(&self, nlp: &dyn Nlp, tol: f64, max_iterations: usize) -> Solution {
+    fn solve(
+        &self,
+        nlp: &dyn Nlp,
+        tol: f64,
+        max_iterations: usize,
+        observer: &mut Observer<'_>,
+    ) -> Solution {
         let options = ripopt::SolverOptions {
             tol,
             max_iter: max_iterations,
@@ -77,7 +115,11 @@ impl Solver for Ripopt {
             hessian_approximation_lbfgs: true,
             ..ripopt::SolverOptions::default()
         };
-        let result = ripopt::solve(&Problem(nlp), &options);
+        let result = {
+            let mut observer = observer;
+            let _watched = Watched::install(&mut observer);
+            ripopt::solve(&Problem(nlp), &options)
+        };
         Solution {
             z: result.x,
             multipliers: result.constraint_multipliers,
@@ -87,6 +129,59 @@ impl Solver for Ripopt {
             status: format!("{:?}", result.status),
         }
     }
+}
+
+/// ripopt's intermediate callback (Ipopt's `Intermediate_CB`), installed
+/// for this thread while a solve runs and removed when it ends, even by a
+/// panic.
+struct Watched<'a> {
+    /// The observer the callback's `user_data` points to, borrowed.
+    observer: std::marker::PhantomData<&'a mut ()>,
+}
+
+impl<'a> Watched<'a> {
+    fn install(observer: &'a mut &mut Observer<'_>) -> Self {
+        let user_data = std::ptr::from_mut(observer).cast::<c_void>();
+        ripopt::intermediate::set_intermediate_callback(Some((on_iteration, user_data)));
+        Self {
+            observer: std::marker::PhantomData,
+        }
+    }
+}
+
+impl Drop for Watched<'_> {
+    fn drop(&mut self) {
+        ripopt::intermediate::set_intermediate_callback(None);
+    }
+}
+
+/// Tells the observer behind `user_data` of an iteration; 1 goes on, 0
+/// stops the solve (ripopt's `UserRequestedStop`, at this iterate).
+#[allow(clippy::too_many_arguments)]
+unsafe extern "C" fn on_iteration(
+    _mode: c_int,
+    number: c_int,
+    objective: f64,
+    primal: f64,
+    dual: f64,
+    _barrier: f64,
+    _step: f64,
+    _regularization: f64,
+    _dual_step_length: f64,
+    _primal_step_length: f64,
+    _line_search_trials: c_int,
+    user_data: *mut c_void,
+) -> c_int {
+    // SAFETY: `user_data` is the `&mut Observer` that `Watched::install`
+    // borrowed for the solve, the only one running on this thread.
+    let observer = unsafe { &mut *user_data.cast::<&mut Observer<'_>>() };
+    let iteration = Iteration {
+        number: usize::try_from(number).unwrap_or(0),
+        objective,
+        primal,
+        dual,
+    };
+    c_int::from(observer(&iteration).is_continue())
 }
 
 /// An [`Nlp`] as ripopt's problem.

@@ -510,3 +510,43 @@ fn hermite_simpson_parks_the_differential_drive_at_fourth_order() {
         "{limit} vs {richardson}"
     );
 }
+
+/// The observer is told of every iteration, numbered from 0, the last one
+/// at the optimum the report gives. One that stops the solve at once gets
+/// the first guess back as `PlanError::Interrupted`: the start and goal
+/// interpolated, at rest, whose position defects are the step, `1/20`,
+/// its primal residual.
+#[test]
+fn an_observer_sees_every_iteration_and_may_stop_the_solve() {
+    let request = rest_to_rest(Scheme::Midpoint, 21);
+    let mut seen = Vec::new();
+    let planned = super::plan_watched(point_mass(), &request, &Ripopt, &mut |iteration| {
+        seen.push(*iteration);
+        std::ops::ControlFlow::Continue(())
+    })
+    .expect("a plan");
+    let numbers: Vec<usize> = seen.iter().map(|iteration| iteration.number).collect();
+    assert_eq!(numbers, (0..=planned.report.iterations).collect::<Vec<_>>());
+    let last = seen.last().expect("an iteration");
+    let objective = planned.report.objective;
+    assert!(
+        (last.objective - objective).abs() <= 1e-10 * objective,
+        "{last:?}"
+    );
+    let error = super::plan_watched(point_mass(), &request, &Ripopt, &mut |_| {
+        std::ops::ControlFlow::Break(())
+    })
+    .expect_err("interrupted");
+    let Ok(super::PlanError::Interrupted(stopped)) =
+        error.downcast::<super::PlanError>().map(|e| *e)
+    else {
+        panic!("not an interruption");
+    };
+    assert_eq!(stopped.report.status, super::Report::INTERRUPTED);
+    assert_eq!(stopped.report.iterations, 0);
+    assert_eq!(stopped.report.objective, 0.0);
+    let primal = stopped.report.kkt.primal;
+    assert!((primal - 0.05).abs() < 1e-12, "{primal}");
+    let x = stopped.table.column("x").expect("x");
+    assert_eq!((x.len(), x[0], x[20]), (21, 0.0, 1.0));
+}

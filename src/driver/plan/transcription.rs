@@ -95,6 +95,9 @@ fn share(j: usize, at: f64) -> f64 {
 }
 
 impl Scheme {
+    /// Every scheme, for a lookup by [`Scheme::name`].
+    pub const ALL: &'static [Self] = &[Self::BackwardEuler, Self::Midpoint, Self::HermiteSimpson];
+
     /// Its name on the command line and in `plan.json`.
     pub fn name(self) -> &'static str {
         match self {

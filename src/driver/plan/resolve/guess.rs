@@ -1,6 +1,7 @@
 //! `--guess FILE.csv`: a table with `t` and any of `plan.csv`'s columns,
 //! each interpolated linearly at the nodes' times and held at its end
-//! values outside the table's range.
+//! values outside the table's range. Lines starting with `#` are skipped:
+//! an interrupted plan's `plan.csv`, marked so, resumes the solve.
 
 use super::RequestError;
 use std::path::Path;
@@ -25,7 +26,9 @@ impl Guess {
             reason,
         };
         let text = std::fs::read_to_string(path).map_err(|e| failed(e.to_string()))?;
-        let mut lines = text.lines().filter(|line| !line.trim().is_empty());
+        let mut lines = text
+            .lines()
+            .filter(|line| !line.trim().is_empty() && !line.starts_with('#'));
         let header: Vec<String> = lines
             .next()
             .ok_or_else(|| failed("it is empty".into()))?

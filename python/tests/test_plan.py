@@ -1,0 +1,131 @@
+"""``Model.plan`` (docs/INTERFACE.md section 13): a point mass moved between
+rests against its closed-form optimum ``12 m^2 d^2 / T^3``; a plan's
+trajectory animated from its nodes; plans pickled; a grid of plans on a
+process pool, the same as here; bad requests refused."""
+
+import json
+import pickle
+import re
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy
+import pytest
+
+import chaplygin
+
+#: ``m xddot = push``.
+POINT_MASS = """pub struct PointMass {
+    coordinates: [x],
+    parameters: [m = 2.0],
+    kinetic_energy: m/2*dot(x)^2,
+    inputs: [push = x],
+}"""
+
+
+def rest_to_rest(duration: float, distance: float, nodes: int, m: float) -> dict:
+    """The point mass moved from rest at 0 to rest at ``distance``."""
+    return dict(
+        duration=duration,
+        nodes=nodes,
+        start={"x": 0, "dot(x)": 0},
+        goal={"x": distance, "dot(x)": 0},
+        params={"m": m},
+    )
+
+
+def closed_form(duration: float, distance: float, m: float) -> float:
+    """``min int push^2 dt`` under ``m xddot = push`` between rests: the
+    Euler-Lagrange equations give ``push`` linear in t, and the cost
+    ``12 m^2 d^2 / T^3``."""
+    return 12 * m**2 * distance**2 / duration**3
+
+
+@pytest.fixture(scope="module")
+def point_mass():
+    return chaplygin.load(POINT_MASS)
+
+
+def test_the_point_mass_plan_meets_the_closed_form(point_mass):
+    duration, distance, m = 1.5, 0.5, 3.0
+    coarse, fine = (point_mass.plan(**rest_to_rest(duration, distance, nodes, m)) for nodes in (21, 41))
+    exact = closed_form(duration, distance, m)
+    assert exact == pytest.approx(8.0)
+    # the midpoint rule's error is O(h^2): halving h quarters it, and the
+    # Richardson extrapolation of the two grids leaves the O(h^4) term
+    # (1.6e-6 relative here, against 6e-4 on 41 nodes alone)
+    errors = [plan.objective - exact for plan in (coarse, fine)]
+    assert errors[0] / errors[1] == pytest.approx(4.0, rel=0.01)
+    assert (4 * fine.objective - coarse.objective) / 3 == pytest.approx(exact, rel=1e-5)
+    assert fine.duration == duration
+    assert fine.report["nodes"] == 41 and fine.report["scheme"] == "midpoint"
+    assert max(fine.report["kkt"].values()) <= 1e-6
+    numpy.testing.assert_allclose(fine.t, numpy.linspace(0, duration, 41), rtol=0, atol=1e-15)
+    assert (fine["x"][0], fine["x"][-1]) == (0.0, distance)
+    assert fine.columns[:4] == ["t", "x", "dot(x)", "push"]
+    assert "Plan(objective" in repr(fine)
+
+
+def scene(page: str) -> dict:
+    """The scene embedded in a page."""
+    found = re.search(r'<script type="application/json" id="chaplygin-data">(.*?)</script>', page, re.S)
+    assert found is not None
+    return json.loads(found.group(1))
+
+
+def parking(nodes: int) -> dict:
+    """The differential drive parked 0.3 m ahead and 0.1 m aside, from rest."""
+    start = {name: 0 for q in ("x", "y", "theta", "phi_r", "phi_l") for name in (q, f"dot({q})")}
+    goal = {"x": 0.3, "y": 0.1, "theta": 0, "dot(phi_r)": 0, "dot(phi_l)": 0}
+    return dict(duration=4.0, nodes=nodes, start=start, goal=goal)
+
+
+@pytest.fixture(scope="module")
+def parked():
+    return chaplygin.builtin("differential-drive").plan(**parking(21))
+
+
+def test_a_plan_s_trajectory_animates_from_its_nodes(parked, tmp_path):
+    path = tmp_path / "animation.html"
+    page = parked.trajectory.animate(path, fps=5)
+    assert path.read_text(encoding="utf-8") == page
+    data = scene(page)
+    # 5 frames a second of nodes 0.2 s apart: every node
+    rows = [list(parked.t).index(t) for t in data["times"]]
+    assert rows == list(range(len(parked)))
+    chassis = next(item for item in data["items"] if item["shape"] == "box")
+    centre = numpy.array(chassis["position"]).reshape(-1, 3)
+    numpy.testing.assert_allclose(centre[:, 0], parked["x"], rtol=0, atol=1e-12)
+    numpy.testing.assert_allclose(centre[:, 1], parked["y"], rtol=0, atol=1e-12)
+
+
+def test_plans_pickle(parked):
+    copy = pickle.loads(pickle.dumps(parked))
+    assert copy.report == parked.report
+    assert copy.columns == parked.columns
+    numpy.testing.assert_array_equal(copy.trajectory.data, parked.trajectory.data)
+    assert copy.trajectory.animate(fps=5) == parked.trajectory.animate(fps=5)
+
+
+def test_a_grid_of_plans_on_a_process_pool_is_the_same_as_here(point_mass):
+    grid = [rest_to_rest(duration, 1.0, 21, m) for duration in (1.0, 2.0) for m in (1.0, 2.0)]
+    here = chaplygin.plans(point_mass, grid)
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        there = chaplygin.plans(point_mass, grid, executor=pool)
+    for request, local, remote in zip(grid, here, there):
+        assert remote.objective == local.objective
+        numpy.testing.assert_array_equal(remote.trajectory.data, local.trajectory.data)
+        exact = closed_form(request["duration"], 1.0, request["params"]["m"])
+        # the midpoint rule's relative error on 21 nodes is under 1 %
+        assert local.objective == pytest.approx(exact, rel=0.01)
+
+
+def test_bad_plans_are_refused_with_their_reason(point_mass):
+    request = rest_to_rest(2.0, 1.0, 11, 2.0)
+    with pytest.raises(ValueError, match="unknown scheme `trapezoid`"):
+        point_mass.plan(**request, scheme="trapezoid")
+    with pytest.raises(ValueError, match=r"bounds\['push'\]: give \(lo, hi\)"):
+        point_mass.plan(**request, bounds={"push": 2.5})
+    with pytest.raises(ValueError, match="no verified optimum"):
+        point_mass.plan(**request, bounds={"push": (-0.1, 0.1)})
+    with pytest.raises(ValueError, match="unknown name `y`"):
+        point_mass.plan(**dict(request, goal={"y": 1}))
