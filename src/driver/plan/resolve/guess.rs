@@ -133,6 +133,14 @@ mod tests {
         assert_eq!(at(7.0), [(2, 3.0), (0, 4.0)]);
     }
 
+    /// An interrupted plan's `plan.csv` starts with a `#` line.
+    #[test]
+    fn a_marked_table_is_read_past_its_mark() {
+        let marked = "# not verified: interrupted after 3 iterations (plan.json)\nt,x\n0,1\n2,5\n";
+        let guess = read(marked).expect("a guess");
+        assert_eq!(guess.at(1.0).collect::<Vec<_>>(), [(0, 3.0)]);
+    }
+
     #[test]
     fn bad_tables_are_one_line_errors() {
         let line = |text: &str| read(text).err().expect("an error").to_string();
