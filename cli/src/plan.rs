@@ -1,7 +1,7 @@
 //! `chaplygin plan MODEL --duration T --nodes N [--scheme
 //! backward-euler|midpoint] [--start NAME=EXPR]... [--goal NAME=EXPR]...
 //! [--minimize EXPR] [--bound NAME=LO:HI]... [--param NAME=VALUE]...
-//! [--tol TOL] --out DIR` (docs/INTERFACE.md section 13), over
+//! [--tol TOL] [--hessian exact|lbfgs] --out DIR` (docs/INTERFACE.md section 13), over
 //! `chaplygin::driver::plan`: optimal inputs and trajectory by direct
 //! collocation, verified by the KKT conditions from the exact derivatives.
 //! It writes `DIR/plan.csv` (the columns of `trajectory.csv`, one row per
@@ -12,7 +12,7 @@
 use crate::model_args::{ModelArgs, loaded};
 use crate::output::write_table;
 use chaplygin::driver::Failure;
-use chaplygin::driver::plan::nlp::Ripopt;
+use chaplygin::driver::plan::nlp::{Hessian, Ripopt};
 use chaplygin::driver::plan::{self, Request};
 use std::path::PathBuf;
 
@@ -23,6 +23,10 @@ pub struct PlanArgs {
     model: ModelArgs,
     #[command(flatten)]
     request: Request,
+    /// The Hessian of the Lagrangian the solver works with: the exact one
+    /// from the model's second derivatives, or an L-BFGS approximation.
+    #[arg(long, value_enum, default_value = "exact")]
+    hessian: Hessian,
     /// The directory for `plan.csv` and `plan.json`.
     #[arg(long, default_value = "out")]
     out: PathBuf,
@@ -33,7 +37,10 @@ pub struct PlanArgs {
 /// # Errors
 /// Bad input, an answer that is not a verified optimum, or an I/O error.
 pub fn run(args: &PlanArgs) -> Result<(), Failure> {
-    let plan = plan::plan(loaded(&args.model)?, &args.request, &Ripopt)?;
+    let solver = Ripopt {
+        hessian: args.hessian,
+    };
+    let plan = plan::plan(loaded(&args.model)?, &args.request, &solver)?;
     let (csv, json) = (args.out.join("plan.csv"), args.out.join("plan.json"));
     write_table(&plan.table, &csv)?;
     let report = &plan.report;

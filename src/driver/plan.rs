@@ -22,6 +22,7 @@
 //! coordinate and velocity given), and the scheme keeps them to its order
 //! (`plan.csv`'s `constraint_residual` and `holonomic_residual`).
 
+mod hessian;
 pub mod kkt;
 pub mod nlp;
 mod resolve;

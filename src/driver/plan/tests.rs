@@ -2,7 +2,7 @@
 //! mass moved between rests, the differential drive's plan simulated, and
 //! the one-line errors of bad requests.
 
-use super::nlp::Ripopt;
+use super::nlp::{Hessian, Ripopt};
 use super::{Plan, Request, Scheme, plan};
 use crate::driver::catalog::{Source, lookup};
 use crate::driver::engine::{EngineChoice, Loaded, load};
@@ -74,9 +74,12 @@ fn errors(plan: &Plan, scheme: Scheme) -> (f64, f64) {
 
 #[test]
 fn the_point_mass_plan_converges_to_the_closed_form_at_the_schemes_order() {
-    for (scheme, order) in [(Scheme::BackwardEuler, 1.0), (Scheme::Midpoint, 2.0)] {
+    let schemes = [(Scheme::BackwardEuler, 1.0), (Scheme::Midpoint, 2.0)];
+    let hessians = [Hessian::Exact, Hessian::Lbfgs];
+    for ((scheme, order), hessian) in schemes.into_iter().flat_map(|s| hessians.map(|h| (s, h))) {
+        let solver = Ripopt { hessian };
         let [coarse, fine] = [21, 41].map(|nodes| {
-            let plan = plan(point_mass(), &rest_to_rest(scheme, nodes), &Ripopt).expect("a plan");
+            let plan = plan(point_mass(), &rest_to_rest(scheme, nodes), &solver).expect("a plan");
             assert!(plan.report.kkt.within(1e-6), "{:?}", plan.report.kkt);
             errors(&plan, scheme)
         });
@@ -85,10 +88,10 @@ fn the_point_mass_plan_converges_to_the_closed_form_at_the_schemes_order() {
             ("objective", (coarse.1, fine.1)),
         ] {
             let rate = (c / f).log2();
-            eprintln!("{scheme:?} {which}: {c:.3e} -> {f:.3e}, rate {rate:.2}");
+            eprintln!("{scheme:?} {hessian:?} {which}: {c:.3e} -> {f:.3e}, rate {rate:.2}");
             assert!(
                 c < 0.5 && rate > order - 0.3,
-                "{scheme:?} {which}: {c:e} -> {f:e}"
+                "{scheme:?} {hessian:?} {which}: {c:e} -> {f:e}"
             );
         }
     }
@@ -104,7 +107,7 @@ fn a_saturated_point_mass_plan_meets_its_closed_form() {
     let exact = 12.5 * (1.0 - 2.0 * 0.6_f64.sqrt() / 3.0);
     let mut request = rest_to_rest(Scheme::Midpoint, 41);
     request.bounds.push(("push".into(), "-2.5:2.5".into()));
-    let plan = plan(point_mass(), &request, &Ripopt).expect("a plan");
+    let plan = plan(point_mass(), &request, &Ripopt::default()).expect("a plan");
     let push = plan.table.column("push").expect("push");
     let largest = push.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
     let saturated = push.iter().filter(|u| u.abs() > 2.5 - 1e-6).count();
@@ -191,7 +194,7 @@ fn simulated_pose(plan: &Plan) -> [f64; 3] {
 #[test]
 fn the_differential_drive_plan_simulates_to_its_goal_at_the_schemes_order() {
     let [coarse, fine] = [21, 41].map(|nodes| {
-        let plan = plan(differential_drive(), &parking(nodes), &Ripopt).expect("a plan");
+        let plan = plan(differential_drive(), &parking(nodes), &Ripopt::default()).expect("a plan");
         eprintln!(
             "{nodes} nodes: {} iterations, {:.2} s, {:?}",
             plan.report.iterations, plan.report.seconds, plan.report.kkt
@@ -216,7 +219,7 @@ fn the_differential_drive_plan_simulates_to_its_goal_at_the_schemes_order() {
 
 /// The one-line error of `request` on the point mass.
 fn error_of(request: Request) -> String {
-    let error = plan(point_mass(), &request, &Ripopt).expect_err("a bad request");
+    let error = plan(point_mass(), &request, &Ripopt::default()).expect_err("a bad request");
     let line = error.to_string();
     assert!(!line.contains('\n'), "{line}");
     line
@@ -251,7 +254,8 @@ fn bad_requests_are_one_line_errors() {
     assert!(error_of(cost).contains("--minimize"));
     let mut partial = parking(5);
     partial.start.pop();
-    let error = plan(differential_drive(), &partial, &Ripopt).expect_err("a partial start");
+    let error =
+        plan(differential_drive(), &partial, &Ripopt::default()).expect_err("a partial start");
     assert!(error.to_string().contains("missing: dot(phi_l)"), "{error}");
 }
 
@@ -261,7 +265,7 @@ fn bad_requests_are_one_line_errors() {
 fn an_infeasible_plan_is_an_error() {
     let mut request = rest_to_rest(Scheme::Midpoint, 11);
     request.bounds.push(("push".into(), "-0.1:0.1".into()));
-    let error = plan(point_mass(), &request, &Ripopt).expect_err("infeasible");
+    let error = plan(point_mass(), &request, &Ripopt::default()).expect_err("infeasible");
     assert!(
         error.to_string().starts_with("no verified optimum"),
         "{error}"
