@@ -168,3 +168,71 @@ fn partials(op: &Op, at: impl Fn(super::Value) -> f64) -> (f64, Partials, usize)
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::ir::lower;
+    use crate::sym::{Function, Rational, Store, SymbolKind};
+
+    /// Every operation's chain rule against central differences of the
+    /// program's own values: outputs reading `x`, `y` through each
+    /// elementary function, powers, quotients and `atan2`.
+    #[test]
+    fn the_tangents_agree_with_central_differences() {
+        let mut s = Store::new();
+        let symbols = [
+            s.declare("x", SymbolKind::Coordinate),
+            s.declare("y", SymbolKind::Coordinate),
+        ];
+        let [x, y] = symbols.map(|symbol| s.symbol(symbol));
+        let product = s.mul2(x, y);
+        let mut outputs: Vec<_> = [
+            Function::Sin,
+            Function::Cos,
+            Function::Tan,
+            Function::Exp,
+            Function::Ln,
+            Function::Asin,
+            Function::Acos,
+            Function::Atan,
+        ]
+        .into_iter()
+        .map(|function| s.apply(function, product).expect("applies"))
+        .collect();
+        let exponents = [(5, 1), (1, 2), (-1, 2), (2, 3), (-3, 1)];
+        for (numerator, denominator) in exponents {
+            let exponent = Rational::new(numerator, denominator).expect("a rational");
+            outputs.push(s.pow(product, exponent).expect("a power"));
+        }
+        outputs.push(s.div(x, y).expect("a quotient"));
+        outputs.push(s.atan2(y, x).expect("an angle"));
+        let sum = s.add2(x, y);
+        let sine = s.apply(Function::Sin, sum).expect("applies");
+        let cosine = s.apply(Function::Cos, sum).expect("applies");
+        outputs.push(s.mul2(sine, cosine));
+        let program = lower(&s, &symbols, &outputs).expect("lowers");
+        let point = [0.7, 0.4];
+        let tangents = program.tangents(&point, &[0, 1]).expect("evaluates");
+        assert_eq!(
+            tangents.values,
+            program.evaluate_vec(&point).expect("evaluates")
+        );
+        for seed in 0..2 {
+            let step = 1e-6;
+            let shifted = |by: f64| {
+                let mut at = point;
+                at[seed] += by;
+                program.evaluate_vec(&at).expect("evaluates")
+            };
+            let (plus, minus) = (shifted(step), shifted(-step));
+            for (i, (a, b)) in plus.iter().zip(&minus).enumerate() {
+                let numeric = (a - b) / (2.0 * step);
+                let exact = tangents.derivatives[2 * i + seed];
+                assert!(
+                    (exact - numeric).abs() <= 1e-7 * (1.0 + numeric.abs()),
+                    "output {i} by {seed}: {exact} vs {numeric}"
+                );
+            }
+        }
+    }
+}
