@@ -10,6 +10,8 @@
 //!
 //! - [`transcription`]: the plan as a nonlinear program on the nodes'
 //!   states and inputs, its derivatives exact;
+//! - `hessian`: the exact Hessian of that program's Lagrangian, from the
+//!   cost's and the model's second derivatives;
 //! - [`nlp`]: that program, and the solvers behind one trait;
 //! - [`kkt`]: the solver's answer verified by the KKT conditions from the
 //!   exact derivatives: an answer that fails them is an error.
