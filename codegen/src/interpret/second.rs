@@ -27,8 +27,10 @@ use super::{CallError, Interpreted, InterpretedModel, check_arguments, function_
 use crate::ir::Tangents;
 
 impl InterpretedModel {
-    /// `d qddot / d parameters`, n x P row-major, exact (see the module
-    /// documentation), at the current parameter values.
+    /// `d qddot / d parameters`, n x P row-major, at the current parameter
+    /// values: the `acceleration` program differentiated forward along its
+    /// parameter inputs ([`crate::ir::Program::tangents`]), exact to
+    /// round-off.
     pub fn acceleration_parameter_jacobian(
         &self,
         q: &[f64],
@@ -43,7 +45,10 @@ impl InterpretedModel {
     }
 
     /// The Hessian of `w^T qddot` by `y = (q, qdot, u)`, m x m row-major
-    /// (`m = 2n + p`), symmetric, exact (see the module documentation).
+    /// (`m = 2n + p`): the exact `acceleration_jacobian` program
+    /// differentiated forward along `y` ([`crate::ir::Program::tangents`]),
+    /// its rows contracted with `w`, and symmetrized, `(H + H^T)/2`;
+    /// exact to round-off.
     ///
     /// # Errors
     /// As [`InterpretedModel::call`], and [`CallError::ArgumentLength`]
