@@ -1,8 +1,9 @@
-//! `chaplygin plan MODEL --duration T --nodes N [--scheme
-//! backward-euler|midpoint] [--start NAME=EXPR]... [--goal NAME=EXPR]...
-//! [--minimize EXPR] [--bound NAME=LO:HI]... [--param NAME=VALUE]...
-//! [--tol TOL] [--animate [--fps F]] --out DIR` (docs/INTERFACE.md section
-//! 13), over `chaplygin::driver::plan`: optimal inputs and trajectory by
+//! `chaplygin plan MODEL --duration T [--free-duration] --nodes N
+//! [--scheme backward-euler|midpoint|hermite-simpson] [--start
+//! NAME=EXPR]... [--goal NAME=EXPR]... [--minimize EXPR] [--final-cost
+//! EXPR] [--bound NAME=LO:HI]... [--param NAME=VALUE]... [--guess
+//! FILE.csv] [--tol TOL] [--hessian exact|lbfgs] [--animate [--fps F]]
+//! --out DIR` (docs/INTERFACE.md section 13), over `chaplygin::driver::plan`: optimal inputs and trajectory by
 //! direct collocation, verified by the KKT conditions from the exact
 //! derivatives.
 //!
@@ -29,7 +30,7 @@ use crate::model_args::{ModelArgs, loaded};
 use crate::output::{write_marked_table, write_table};
 use crate::simulate::write_plots;
 use chaplygin::driver::Failure;
-use chaplygin::driver::plan::nlp::{Iteration, Ripopt};
+use chaplygin::driver::plan::nlp::{Hessian, Iteration, Ripopt};
 use chaplygin::driver::plan::{self, Plan, PlanError, Request};
 use chaplygin::plot;
 use chaplygin::runtime::linearize::point::velocity_names;
@@ -45,6 +46,10 @@ pub struct PlanArgs {
     model: ModelArgs,
     #[command(flatten)]
     request: Request,
+    /// The Hessian of the Lagrangian the solver works with: the exact one
+    /// from the model's second derivatives, or an L-BFGS approximation.
+    #[arg(long, value_enum, default_value = "exact")]
+    hessian: Hessian,
     /// The directory for `plan.csv`, `plan.json` and the plots.
     #[arg(long, default_value = "out")]
     out: PathBuf,
@@ -91,6 +96,9 @@ pub fn run(args: &PlanArgs) -> Result<(), Failure> {
         states,
         inputs: names.inputs.clone(),
     };
+    let solver = Ripopt {
+        hessian: args.hessian,
+    };
     let terminal = std::io::stderr().is_terminal();
     let mut observer = |iteration: &Iteration| {
         if terminal {
@@ -104,7 +112,7 @@ pub fn run(args: &PlanArgs) -> Result<(), Failure> {
     if terminal {
         eprintln!("{}", iteration_header());
     }
-    match plan::plan_watched(loaded, &args.request, &Ripopt, &mut observer) {
+    match plan::plan_watched(loaded, &args.request, &solver, &mut observer) {
         Ok(plan) => write(args, &plan, &drawings, drawn),
         Err(failure) => match failure.downcast::<PlanError>() {
             Ok(error) => match *error {

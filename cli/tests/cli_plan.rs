@@ -83,6 +83,34 @@ fn a_point_mass_plan_meets_its_closed_form_cost() {
     assert_eq!(header, trajectory_header);
 }
 
+/// Both Hessians reach the closed-form cost, and `plan.json` names the one
+/// used: the exact one by default.
+#[test]
+fn each_hessian_reaches_the_closed_form_cost_and_is_named() {
+    let dir = scratch("plan-hessians");
+    for (choice, solver) in [
+        (None, "ripopt (exact Hessian)"),
+        (Some("lbfgs"), "ripopt (L-BFGS Hessian)"),
+    ] {
+        let mut arguments = REST_TO_REST.to_vec();
+        arguments.extend(["--nodes", "21"]);
+        arguments.extend(choice.map(|h| ["--hessian", h]).into_iter().flatten());
+        let output = run(dir.path(), "plan", &arguments);
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let json = std::fs::read_to_string(dir.path().join("plan/plan.json")).expect("plan.json");
+        let report: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+        // 12 m^2 / T^3 = 6; the midpoint rule's error on 21 nodes is
+        // 0.015 (h^2 / 4 of it, h = 0.1).
+        let objective = report["objective"].as_f64().expect("a number");
+        assert!((objective - 6.0).abs() < 2e-2, "{objective}");
+        assert_eq!(report["solver"], solver);
+    }
+}
+
 /// The standard error of a refused plan: one line, `error: ` and `says`.
 fn refused(arguments: &[&str], says: &str) {
     let dir = scratch("plan-refused");

@@ -36,6 +36,7 @@ mod charts;
 mod drawing;
 mod dynamics;
 mod fixed;
+mod second;
 
 pub use crate::ir::{Backend, Engine, Interpreter};
 pub use crate::model::drawing::{DISC_THICKNESS, DrawnItem, Figure, Orientation};

@@ -44,7 +44,8 @@ pub fn plan<'py>(
             ControlFlow::Break(())
         }
     };
-    let planned = py.detach(|| plan::plan_watched(loaded, request, &Ripopt, &mut observer));
+    let planned =
+        py.detach(|| plan::plan_watched(loaded, request, &Ripopt::default(), &mut observer));
     if let Some(signal) = signal {
         return Err(signal);
     }

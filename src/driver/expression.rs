@@ -404,6 +404,42 @@ impl Expression {
         (self.at(point), gradient)
     }
 
+    /// The Hessian by `y = (q, qdot, u)`, each as long as `point`'s,
+    /// row-major: the second derivatives along each `e_j` and each
+    /// `e_j + e_k`, polarized, `H_jk = (D^2_{e_j + e_k} - D^2_{e_j} -
+    /// D^2_{e_k}) / 2` (forward differentiation to second order, exact to
+    /// round-off).
+    #[cfg(feature = "plan")]
+    pub(crate) fn hessian(&self, point: &Point<'_>) -> Vec<f64> {
+        let (nq, nv) = (point.q.len(), point.qdot.len());
+        let m = nq + nv + point.u.len();
+        let position = |leaf: &Self| match *leaf {
+            Self::Coordinate(i) => Some(i),
+            Self::Velocity(i) => Some(nq + i),
+            Self::Input(i) => Some(nq + nv + i),
+            _ => None,
+        };
+        let curvature = |along: &[usize]| {
+            let leaf = |leaf: &Self| Jet {
+                value: leaf.at(point),
+                slope: position(leaf)
+                    .map_or(0.0, |j| along.iter().filter(|&&a| a == j).count() as f64),
+                curvature: 0.0,
+            };
+            self.jet_along(&leaf).curvature
+        };
+        let pure: Vec<f64> = (0..m).map(|j| curvature(&[j])).collect();
+        let mut hessian = vec![0.0; m * m];
+        for j in 0..m {
+            hessian[j * m + j] = pure[j];
+            for k in 0..j {
+                let mixed = 0.5 * (curvature(&[j, k]) - pure[j] - pure[k]);
+                (hessian[j * m + k], hessian[k * m + j]) = (mixed, mixed);
+            }
+        }
+        hessian
+    }
+
     /// The value at `point` and its derivative in the variable of index
     /// `variable` (forward differentiation, exact to round-off); a name
     /// `point` does not give reads as NaN.

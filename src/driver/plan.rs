@@ -12,6 +12,8 @@
 //!
 //! - [`transcription`]: the plan as a nonlinear program on the nodes'
 //!   states and inputs, its derivatives exact;
+//! - `hessian`: the exact Hessian of that program's Lagrangian, from the
+//!   cost's and the model's second derivatives;
 //! - [`nlp`]: that program, and the solvers behind one trait;
 //! - [`kkt`]: the solver's answer verified by the KKT conditions from the
 //!   exact derivatives: an answer that fails them is an error.
@@ -28,6 +30,7 @@
 //! coordinate and velocity given), and the scheme keeps them to its order
 //! (`plan.csv`'s `constraint_residual` and `holonomic_residual`).
 
+mod hessian;
 pub mod kkt;
 pub mod nlp;
 mod resolve;
@@ -259,7 +262,7 @@ pub fn plan_watched(
             &solution,
             Answer {
                 request,
-                solver: solver.name(),
+                solver: solver.name(&transcription),
                 seconds,
             },
         )?))
@@ -288,7 +291,7 @@ pub fn plan_watched(
     }
     let answer = Answer {
         request,
-        solver: solver.name(),
+        solver: solver.name(&transcription),
         seconds,
     };
     Ok(Plan {

@@ -5,7 +5,8 @@
 //! fresh [`Value`] (printed `t<n>`) from earlier values, except
 //! [`Op::SinCos`], which defines two. [`lower()`] builds a program from
 //! expressions of a [`Store`](crate::sym::Store); the program can then be
-//! interpreted ([`Program::evaluate`]) or emitted as Rust statements
+//! interpreted ([`Program::evaluate`]), differentiated forward
+//! ([`Program::tangents`]) or emitted as Rust statements
 //! ([`Program::emit`]).
 //!
 //! # Common subexpressions
@@ -80,6 +81,7 @@ mod interpret;
 mod lower;
 #[cfg(test)]
 mod properties;
+mod tangent;
 #[cfg(test)]
 mod tests;
 
@@ -88,6 +90,7 @@ pub use cost::{before_cse, estimated_weight};
 pub use emit::{BLOCK_OPERATIONS, RustProgram, RustVariants, WIDTH};
 pub use engine::{Backend, Engine, Interpreter};
 pub use lower::lower;
+pub use tangent::Tangents;
 
 use crate::sym::Rational;
 use std::fmt;

@@ -40,6 +40,24 @@ pub trait Nlp {
     /// The entries of `dc/dz` in the order of
     /// [`Nlp::jacobian_structure`]; whether they are finite.
     fn jacobian_values(&self, z: &[f64], values: &mut [f64]) -> bool;
+    /// The (row, column), row >= column, of each entry of the lower
+    /// triangle of the Lagrangian's Hessian that may be nonzero; none when
+    /// the program has no exact Hessian.
+    fn hessian_structure(&self) -> Vec<(usize, usize)> {
+        Vec::new()
+    }
+    /// The entries of the Lagrangian's Hessian `objective_factor hess J +
+    /// sum_i lambda_i hess c_i` in the order of [`Nlp::hessian_structure`];
+    /// whether they are finite.
+    fn hessian_values(
+        &self,
+        _z: &[f64],
+        _objective_factor: f64,
+        _multipliers: &[f64],
+        _values: &mut [f64],
+    ) -> bool {
+        false
+    }
 }
 
 /// What a solver returns: a candidate optimum and its multipliers.
@@ -79,8 +97,8 @@ pub type Observer<'a> = dyn FnMut(&Iteration) -> ControlFlow<()> + 'a;
 
 /// A solver of [`Nlp`]s.
 pub trait Solver {
-    /// Its name, as `plan.json` reports it.
-    fn name(&self) -> &'static str;
+    /// Its name, as `plan.json` reports it, when it solves `nlp`.
+    fn name(&self, nlp: &dyn Nlp) -> &'static str;
     /// Solves `nlp` to the tolerance `tol` in at most `max_iterations`,
     /// telling `observer` of each iteration.
     fn solve(
@@ -92,13 +110,33 @@ pub trait Solver {
     ) -> Solution;
 }
 
+/// The Hessian of the Lagrangian a solver works with.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Hessian {
+    /// The program's own, [`Nlp::hessian_values`].
+    #[default]
+    Exact,
+    /// Approximated by limited-memory BFGS from the gradients (Nocedal and
+    /// Wright, "Numerical Optimization", 2nd ed., section 7.2).
+    Lbfgs,
+}
+
 /// `ripopt`, a pure-Rust primal-dual interior point method after Ipopt,
-/// its Hessian of the Lagrangian approximated by limited-memory BFGS.
-pub struct Ripopt;
+/// with the program's exact Hessian of the Lagrangian, or its L-BFGS
+/// approximation where asked or where the program has none.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Ripopt {
+    /// The Hessian it works with.
+    pub hessian: Hessian,
+}
 
 impl Solver for Ripopt {
-    fn name(&self) -> &'static str {
-        "ripopt (L-BFGS Hessian)"
+    fn name(&self, nlp: &dyn Nlp) -> &'static str {
+        match self.hessian {
+            Hessian::Exact if !nlp.hessian_structure().is_empty() => "ripopt (exact Hessian)",
+            _ => "ripopt (L-BFGS Hessian)",
+        }
     }
 
     fn solve(
@@ -108,17 +146,22 @@ impl Solver for Ripopt {
         max_iterations: usize,
         observer: &mut Observer<'_>,
     ) -> Solution {
+        let structure = match self.hessian {
+            Hessian::Exact => nlp.hessian_structure(),
+            Hessian::Lbfgs => Vec::new(),
+        };
+        let lbfgs = structure.is_empty();
         let options = ripopt::SolverOptions {
             tol,
             max_iter: max_iterations,
             print_level: 0,
-            hessian_approximation_lbfgs: true,
+            hessian_approximation_lbfgs: lbfgs,
             ..ripopt::SolverOptions::default()
         };
         let result = {
             let mut observer = observer;
             let _watched = Watched::install(&mut observer);
-            ripopt::solve(&Problem(nlp), &options)
+            ripopt::solve(&Problem { nlp, structure }, &options)
         };
         Solution {
             z: result.x,
@@ -184,20 +227,24 @@ unsafe extern "C" fn on_iteration(
     c_int::from(observer(&iteration).is_continue())
 }
 
-/// An [`Nlp`] as ripopt's problem.
-struct Problem<'a>(&'a dyn Nlp);
+/// An [`Nlp`] as ripopt's problem, with the structure of its Hessian
+/// (empty when approximated).
+struct Problem<'a> {
+    nlp: &'a dyn Nlp,
+    structure: Vec<(usize, usize)>,
+}
 
 impl ripopt::NlpProblem for Problem<'_> {
     fn num_variables(&self) -> usize {
-        self.0.variables()
+        self.nlp.variables()
     }
 
     fn num_constraints(&self) -> usize {
-        self.0.constraints()
+        self.nlp.constraints()
     }
 
     fn bounds(&self, x_l: &mut [f64], x_u: &mut [f64]) {
-        let (lo, hi) = self.0.bounds();
+        let (lo, hi) = self.nlp.bounds();
         x_l.copy_from_slice(lo);
         x_u.copy_from_slice(hi);
     }
@@ -208,43 +255,41 @@ impl ripopt::NlpProblem for Problem<'_> {
     }
 
     fn initial_point(&self, x0: &mut [f64]) {
-        x0.copy_from_slice(&self.0.guess());
+        x0.copy_from_slice(&self.nlp.guess());
     }
 
     fn objective(&self, x: &[f64], _new_x: bool, obj: &mut f64) -> bool {
-        self.0.objective(x).map(|value| *obj = value).is_some()
+        self.nlp.objective(x).map(|value| *obj = value).is_some()
     }
 
     fn gradient(&self, x: &[f64], _new_x: bool, grad: &mut [f64]) -> bool {
-        self.0.gradient(x, grad)
+        self.nlp.gradient(x, grad)
     }
 
     fn constraints(&self, x: &[f64], _new_x: bool, g: &mut [f64]) -> bool {
-        self.0.residuals(x, g)
+        self.nlp.residuals(x, g)
     }
 
     fn jacobian_structure(&self) -> (Vec<usize>, Vec<usize>) {
-        self.0.jacobian_structure().iter().copied().unzip()
+        self.nlp.jacobian_structure().iter().copied().unzip()
     }
 
     fn jacobian_values(&self, x: &[f64], _new_x: bool, vals: &mut [f64]) -> bool {
-        self.0.jacobian_values(x, vals)
+        self.nlp.jacobian_values(x, vals)
     }
 
-    /// Not called: the Hessian is approximated by L-BFGS.
     fn hessian_structure(&self) -> (Vec<usize>, Vec<usize>) {
-        (Vec::new(), Vec::new())
+        self.structure.iter().copied().unzip()
     }
 
-    /// Not called: the Hessian is approximated by L-BFGS.
     fn hessian_values(
         &self,
-        _x: &[f64],
+        x: &[f64],
         _new_x: bool,
-        _obj_factor: f64,
-        _lambda: &[f64],
-        _vals: &mut [f64],
+        obj_factor: f64,
+        lambda: &[f64],
+        vals: &mut [f64],
     ) -> bool {
-        false
+        self.nlp.hessian_values(x, obj_factor, lambda, vals)
     }
 }

@@ -5,7 +5,7 @@
 //! simulated and restarted from a coarser plan, and the one-line errors
 //! of bad requests.
 
-use super::nlp::Ripopt;
+use super::nlp::{Hessian, Ripopt};
 use super::{Plan, Request, Scheme, plan};
 use crate::driver::catalog::{Source, lookup};
 use crate::driver::engine::{EngineChoice, Loaded, load};
@@ -82,9 +82,12 @@ fn errors(plan: &Plan, scheme: Scheme) -> (f64, f64) {
 
 #[test]
 fn the_point_mass_plan_converges_to_the_closed_form_at_the_schemes_order() {
-    for (scheme, order) in [(Scheme::BackwardEuler, 1.0), (Scheme::Midpoint, 2.0)] {
+    let schemes = [(Scheme::BackwardEuler, 1.0), (Scheme::Midpoint, 2.0)];
+    let hessians = [Hessian::Exact, Hessian::Lbfgs];
+    for ((scheme, order), hessian) in schemes.into_iter().flat_map(|s| hessians.map(|h| (s, h))) {
+        let solver = Ripopt { hessian };
         let [coarse, fine] = [21, 41].map(|nodes| {
-            let plan = plan(point_mass(), &rest_to_rest(scheme, nodes), &Ripopt).expect("a plan");
+            let plan = plan(point_mass(), &rest_to_rest(scheme, nodes), &solver).expect("a plan");
             assert!(plan.report.kkt.within(1e-6), "{:?}", plan.report.kkt);
             errors(&plan, scheme)
         });
@@ -93,10 +96,10 @@ fn the_point_mass_plan_converges_to_the_closed_form_at_the_schemes_order() {
             ("objective", (coarse.1, fine.1)),
         ] {
             let rate = (c / f).log2();
-            eprintln!("{scheme:?} {which}: {c:.3e} -> {f:.3e}, rate {rate:.2}");
+            eprintln!("{scheme:?} {hessian:?} {which}: {c:.3e} -> {f:.3e}, rate {rate:.2}");
             assert!(
                 c < 0.5 && rate > order - 0.3,
-                "{scheme:?} {which}: {c:e} -> {f:e}"
+                "{scheme:?} {hessian:?} {which}: {c:e} -> {f:e}"
             );
         }
     }
@@ -112,7 +115,7 @@ fn a_saturated_point_mass_plan_meets_its_closed_form() {
     let exact = 12.5 * (1.0 - 2.0 * 0.6_f64.sqrt() / 3.0);
     let mut request = rest_to_rest(Scheme::Midpoint, 41);
     request.bounds.push(("push".into(), "-2.5:2.5".into()));
-    let plan = plan(point_mass(), &request, &Ripopt).expect("a plan");
+    let plan = plan(point_mass(), &request, &Ripopt::default()).expect("a plan");
     let push = plan.table.column("push").expect("push");
     let largest = push.iter().fold(0.0_f64, |m, u| m.max(u.abs()));
     let saturated = push.iter().filter(|u| u.abs() > 2.5 - 1e-6).count();
@@ -202,7 +205,7 @@ fn simulated_pose(plan: &Plan) -> [f64; 3] {
 #[test]
 fn the_differential_drive_plan_simulates_to_its_goal_at_the_schemes_order() {
     let [coarse, fine] = [21, 41].map(|nodes| {
-        let plan = plan(differential_drive(), &parking(nodes), &Ripopt).expect("a plan");
+        let plan = plan(differential_drive(), &parking(nodes), &Ripopt::default()).expect("a plan");
         eprintln!(
             "{nodes} nodes: {} iterations, {:.2} s, {:?}",
             plan.report.iterations, plan.report.seconds, plan.report.kkt
@@ -227,7 +230,7 @@ fn the_differential_drive_plan_simulates_to_its_goal_at_the_schemes_order() {
 
 /// The one-line error of `request` on the point mass.
 fn error_of(request: Request) -> String {
-    let error = plan(point_mass(), &request, &Ripopt).expect_err("a bad request");
+    let error = plan(point_mass(), &request, &Ripopt::default()).expect_err("a bad request");
     let line = error.to_string();
     assert!(!line.contains('\n'), "{line}");
     line
@@ -283,7 +286,8 @@ fn bad_requests_are_one_line_errors() {
     );
     let mut partial = parking(5);
     partial.start.pop();
-    let error = plan(differential_drive(), &partial, &Ripopt).expect_err("a partial start");
+    let error =
+        plan(differential_drive(), &partial, &Ripopt::default()).expect_err("a partial start");
     assert!(error.to_string().contains("missing: dot(phi_l)"), "{error}");
 }
 
@@ -293,7 +297,7 @@ fn bad_requests_are_one_line_errors() {
 fn an_infeasible_plan_is_an_error() {
     let mut request = rest_to_rest(Scheme::Midpoint, 11);
     request.bounds.push(("push".into(), "-0.1:0.1".into()));
-    let error = plan(point_mass(), &request, &Ripopt).expect_err("infeasible");
+    let error = plan(point_mass(), &request, &Ripopt::default()).expect_err("infeasible");
     assert!(
         error.to_string().starts_with("no verified optimum"),
         "{error}"
@@ -315,7 +319,7 @@ fn the_hermite_simpson_point_mass_plan_costs_12() {
     let plan = plan(
         point_mass(),
         &unit_rest_to_rest(Scheme::HermiteSimpson, 51),
-        &Ripopt,
+        &Ripopt::default(),
     )
     .expect("a plan");
     eprintln!(
@@ -388,7 +392,7 @@ fn the_schemes_converge_at_orders_1_2_and_4() {
                 let mut request = rest_to_rest(scheme, nodes);
                 request.params.push(("m".into(), 1.0));
                 request.minimize = Some("push^2 + x^2".into());
-                let plan = plan(point_mass(), &request, &Ripopt).expect("a plan");
+                let plan = plan(point_mass(), &request, &Ripopt::default()).expect("a plan");
                 let h = 2.0 / (nodes - 1) as f64;
                 (h, (plan.report.objective - exact).abs())
             })
@@ -411,7 +415,7 @@ fn a_free_duration_meets_its_closed_form_optimum() {
         request.free_duration = true;
         request.minimize = minimize.map(String::from);
         request.final_cost = final_cost.map(String::from);
-        let plan = plan(point_mass(), &request, &Ripopt).expect("a plan");
+        let plan = plan(point_mass(), &request, &Ripopt::default()).expect("a plan");
         let report = &plan.report;
         eprintln!(
             "free duration: T {:.12} vs {best:.12}, J {:.12} vs {least:.12}, {} iterations",
@@ -432,7 +436,7 @@ fn a_final_cost_meets_its_closed_form_optimum() {
     let mut request = unit_rest_to_rest(Scheme::HermiteSimpson, 21);
     request.goal.retain(|(name, _)| name != "x");
     request.final_cost = Some("12*m*(x - 1)^2".into());
-    let plan = plan(point_mass(), &request, &Ripopt).expect("a plan");
+    let plan = plan(point_mass(), &request, &Ripopt::default()).expect("a plan");
     let x = plan.table.column("x").expect("x");
     eprintln!(
         "soft goal: x(T) {:.12}, J {:.12}",
@@ -454,14 +458,14 @@ fn write_csv(table: &Table, path: &std::path::Path) {
 
 #[test]
 fn a_coarser_plan_as_the_guess_saves_iterations() {
-    let coarse = plan(differential_drive(), &parking(21), &Ripopt).expect("a plan");
+    let coarse = plan(differential_drive(), &parking(21), &Ripopt::default()).expect("a plan");
     let dir = tempfile::tempdir().expect("a directory");
     let path = dir.path().join("plan.csv");
     write_csv(&coarse.table, &path);
-    let cold = plan(differential_drive(), &parking(41), &Ripopt).expect("a plan");
+    let cold = plan(differential_drive(), &parking(41), &Ripopt::default()).expect("a plan");
     let mut request = parking(41);
     request.guess = Some(path);
-    let warm = plan(differential_drive(), &request, &Ripopt).expect("a plan");
+    let warm = plan(differential_drive(), &request, &Ripopt::default()).expect("a plan");
     eprintln!(
         "41 nodes: {} iterations from the default guess, {} from the 21-node plan",
         cold.report.iterations, warm.report.iterations
@@ -487,7 +491,7 @@ fn hermite_simpson_parks_the_differential_drive_at_fourth_order() {
         let mut request = parking(nodes);
         request.scheme = Scheme::HermiteSimpson;
         request.guess = guess.take();
-        let plan = plan(differential_drive(), &request, &Ripopt).expect("a plan");
+        let plan = plan(differential_drive(), &request, &Ripopt::default()).expect("a plan");
         let path = dir.path().join(format!("plan-{nodes}.csv"));
         write_csv(&plan.table, &path);
         guess = Some(path);
@@ -496,7 +500,7 @@ fn hermite_simpson_parks_the_differential_drive_at_fourth_order() {
     let ratio = (objectives[0] - objectives[1]) / (objectives[1] - objectives[2]);
     let limit = objectives[2] - (objectives[1] - objectives[2]) / 15.0;
     let [coarse, fine] = [21, 41].map(|nodes| {
-        let plan = plan(differential_drive(), &parking(nodes), &Ripopt).expect("a plan");
+        let plan = plan(differential_drive(), &parking(nodes), &Ripopt::default()).expect("a plan");
         plan.report.objective
     });
     let richardson = fine - (coarse - fine) / 3.0;
@@ -520,10 +524,15 @@ fn hermite_simpson_parks_the_differential_drive_at_fourth_order() {
 fn an_observer_sees_every_iteration_and_may_stop_the_solve() {
     let request = rest_to_rest(Scheme::Midpoint, 21);
     let mut seen = Vec::new();
-    let planned = super::plan_watched(point_mass(), &request, &Ripopt, &mut |iteration| {
-        seen.push(*iteration);
-        std::ops::ControlFlow::Continue(())
-    })
+    let planned = super::plan_watched(
+        point_mass(),
+        &request,
+        &Ripopt::default(),
+        &mut |iteration| {
+            seen.push(*iteration);
+            std::ops::ControlFlow::Continue(())
+        },
+    )
     .expect("a plan");
     let numbers: Vec<usize> = seen.iter().map(|iteration| iteration.number).collect();
     assert_eq!(numbers, (0..=planned.report.iterations).collect::<Vec<_>>());
@@ -533,7 +542,7 @@ fn an_observer_sees_every_iteration_and_may_stop_the_solve() {
         (last.objective - objective).abs() <= 1e-10 * objective,
         "{last:?}"
     );
-    let error = super::plan_watched(point_mass(), &request, &Ripopt, &mut |_| {
+    let error = super::plan_watched(point_mass(), &request, &Ripopt::default(), &mut |_| {
         std::ops::ControlFlow::Break(())
     })
     .expect_err("interrupted");

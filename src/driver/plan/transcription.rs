@@ -69,11 +69,11 @@ pub enum Scheme {
 /// One stage of a scheme: its weight, where between the nodes it takes
 /// the state and the inputs, and the weight `c` of the nodes' slopes in
 /// its state, `c h (f_i - f_{i+1})`.
-struct Stage {
-    weight: f64,
-    at: f64,
-    inputs_at: f64,
-    slopes: f64,
+pub(super) struct Stage {
+    pub(super) weight: f64,
+    pub(super) at: f64,
+    pub(super) inputs_at: f64,
+    pub(super) slopes: f64,
 }
 
 impl Stage {
@@ -107,7 +107,7 @@ impl Scheme {
         }
     }
 
-    fn stages(self) -> &'static [Stage] {
+    pub(super) fn stages(self) -> &'static [Stage] {
         const BACKWARD_EULER: [Stage; 1] = [Stage::linear(1.0, 1.0, 1.0)];
         const MIDPOINT: [Stage; 1] = [Stage::linear(1.0, 0.5, 0.0)];
         const HERMITE_SIMPSON: [Stage; 3] = [
@@ -154,13 +154,13 @@ pub(crate) struct Costs {
 /// The problem's data: the model, the grid, the costs and the bounds.
 pub struct Transcription {
     model: InterpretedModel,
-    scheme: Scheme,
-    nodes: usize,
+    pub(super) scheme: Scheme,
+    pub(super) nodes: usize,
     /// `T`, or its first guess where it is a variable.
     duration: f64,
     /// The variables after the nodes', in order.
     globals: Vec<Global>,
-    costs: Costs,
+    pub(super) costs: Costs,
     lo: Vec<f64>,
     hi: Vec<f64>,
     guess: Vec<f64>,
@@ -171,10 +171,10 @@ pub struct Transcription {
 }
 
 /// A stage's time, state and inputs.
-struct StagePoint {
+pub(super) struct StagePoint {
     t: f64,
-    x: Vec<f64>,
-    u: Vec<f64>,
+    pub(super) x: Vec<f64>,
+    pub(super) u: Vec<f64>,
 }
 
 /// How a stage's state moves with the interval's variables: `dX/dz_j`
@@ -277,7 +277,7 @@ impl Transcription {
     }
 
     /// The state's size, `2n`.
-    fn state(&self) -> usize {
+    pub(super) fn state(&self) -> usize {
         2 * self.model.sizes().n
     }
 
@@ -338,7 +338,7 @@ impl Transcription {
     }
 
     /// The stage `stage` of interval `i` at `z`.
-    fn stage_point(&self, z: &[f64], i: usize, stage: &Stage) -> StagePoint {
+    pub(super) fn stage_point(&self, z: &[f64], i: usize, stage: &Stage) -> StagePoint {
         let (s, w, h) = (self.state(), self.width(), self.step(z));
         let (first, last) = (&z[i * w..(i + 1) * w], &z[(i + 1) * w..(i + 2) * w]);
         let mix = |range: std::ops::Range<usize>, at: f64| -> Vec<f64> {
@@ -426,7 +426,7 @@ impl Transcription {
     }
 
     /// Where a cost is evaluated at a stage.
-    fn cost_point<'a>(&self, point: &'a StagePoint) -> Point<'a> {
+    pub(super) fn cost_point<'a>(&self, point: &'a StagePoint) -> Point<'a> {
         let (q, qdot) = point.x.split_at(self.model.sizes().n);
         Point {
             t: point.t,
@@ -556,7 +556,7 @@ impl Transcription {
 
     /// Where the final cost is evaluated: `t = T` and the last node's
     /// state.
-    fn final_point<'a>(&self, z: &'a [f64]) -> Point<'a> {
+    pub(super) fn final_point<'a>(&self, z: &'a [f64]) -> Point<'a> {
         let (n, w) = (self.model.sizes().n, self.width());
         let last = (self.nodes - 1) * w;
         Point {
@@ -569,7 +569,7 @@ impl Transcription {
 }
 
 /// Whether every value is finite.
-fn finite(values: &[f64]) -> bool {
+pub(super) fn finite(values: &[f64]) -> bool {
     values.iter().all(|v| v.is_finite())
 }
 
@@ -657,6 +657,24 @@ impl Nlp for Transcription {
             values[intervals..].copy_from_slice(&by_duration);
         }
         finite(values)
+    }
+
+    fn hessian_structure(&self) -> Vec<(usize, usize)> {
+        if self.has_hessian() {
+            self.lagrangian_hessian_structure()
+        } else {
+            Vec::new()
+        }
+    }
+
+    fn hessian_values(
+        &self,
+        z: &[f64],
+        objective_factor: f64,
+        multipliers: &[f64],
+        values: &mut [f64],
+    ) -> bool {
+        self.lagrangian_hessian(z, objective_factor, multipliers, values)
     }
 }
 
@@ -769,6 +787,60 @@ mod tests {
                     "{scheme:?} free {free_duration} {j}: {} vs {numeric}",
                     gradient[j]
                 );
+            }
+        }
+    }
+
+    /// `sigma grad J + Jc^T lambda` at `z`, from the exact gradient and
+    /// Jacobian.
+    fn lagrangian_gradient(nlp: &Transcription, z: &[f64], sigma: f64, lambda: &[f64]) -> Vec<f64> {
+        let mut gradient = vec![0.0; nlp.variables()];
+        assert!(nlp.gradient(z, &mut gradient));
+        let mut values = vec![0.0; nlp.jacobian_structure().len()];
+        assert!(nlp.jacobian_values(z, &mut values));
+        for g in &mut gradient {
+            *g *= sigma;
+        }
+        for (&(row, column), value) in nlp.jacobian_structure().iter().zip(&values) {
+            gradient[column] += lambda[row] * value;
+        }
+        gradient
+    }
+
+    #[test]
+    fn the_lagrangians_hessian_agrees_with_central_differences_of_its_gradient() {
+        for (scheme, free_duration) in [(Scheme::HermiteSimpson, false), (Scheme::Midpoint, true)] {
+            let (nlp, _) = transcription(scheme, free_duration);
+            assert!(nlp.hessian_structure().is_empty(), "{scheme:?}");
+        }
+        for scheme in [Scheme::BackwardEuler, Scheme::Midpoint] {
+            let (nlp, z) = transcription(scheme, false);
+            let sigma = 0.7;
+            let lambda: Vec<f64> = (0..nlp.constraints())
+                .map(|i| (1.3 * i as f64).cos() - 0.2)
+                .collect();
+            let structure = nlp.hessian_structure();
+            let mut values = vec![0.0; structure.len()];
+            assert!(nlp.hessian_values(&z, sigma, &lambda, &mut values));
+            let size = nlp.variables();
+            let mut dense = vec![0.0; size * size];
+            for (&(row, column), value) in structure.iter().zip(&values) {
+                assert!(row >= column, "({row}, {column}) is above the diagonal");
+                dense[row * size + column] += value;
+                if row != column {
+                    dense[column * size + row] += value;
+                }
+            }
+            let gradient = |z: &[f64]| lagrangian_gradient(&nlp, z, sigma, &lambda);
+            for j in 0..size {
+                let by_j = central(&z, j, &gradient);
+                for (row, numeric) in by_j.iter().enumerate() {
+                    let exact = dense[row * size + j];
+                    assert!(
+                        (exact - numeric).abs() < 1e-6,
+                        "{scheme:?} ({row}, {j}): {exact} vs {numeric}"
+                    );
+                }
             }
         }
     }

@@ -1,0 +1,222 @@
+//! The accelerations' derivatives beyond `acceleration_jacobian`, for
+//! optimal control and identification (MATH.md section 6), by forward
+//! differentiation of the programs at run time ([`crate::ir::Program::tangents`]):
+//!
+//! ```text
+//! acceleration_parameter_jacobian(q, qdot, u)   d qddot / d parameters   (n x P)
+//! acceleration_hessian(q, qdot, u, w)           d^2 (w^T qddot) / dy^2   (m x m)
+//! ```
+//!
+//! with `y = (q, qdot, u)`, `m = 2n + p`. The parameters are inputs of
+//! every program, so the first is the `acceleration` program differentiated
+//! along them. The second is the exact Jacobian `acceleration_jacobian`
+//! (the derivation's symbolic derivative, MATH.md section 6) differentiated
+//! along `y`, its rows contracted with `w`,
+//!
+//! ```text
+//! H_jk = sum_i w_i d/dy_k (d qddot_i / dy_j),
+//! ```
+//!
+//! and symmetrized, `(H + H^T)/2`: the two orders of differentiation agree
+//! to round-off, and the mean is the symmetric matrix nearest both.
+//! Nothing is derived or emitted for them: the cost is paid per call,
+//! `m` derivatives carried by each of the Jacobian program's values
+//! (BENCHMARKS.md, "Exact second derivatives").
+
+use super::{CallError, Interpreted, InterpretedModel, check_arguments, function_among};
+use crate::ir::Tangents;
+
+impl InterpretedModel {
+    /// `d qddot / d parameters`, n x P row-major, at the current parameter
+    /// values: the `acceleration` program differentiated forward along its
+    /// parameter inputs ([`crate::ir::Program::tangents`]), exact to
+    /// round-off.
+    pub fn acceleration_parameter_jacobian(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        u: &[f64],
+    ) -> Result<Vec<f64>, CallError> {
+        let (n, arguments) = (self.sizes.n, 2 * self.sizes.n + self.sizes.p);
+        let seeds: Vec<usize> = (arguments..arguments + self.parameters.len()).collect();
+        let function = function_among(&self.functions, "acceleration")?;
+        let tangents = self.tangents(function, &[q, qdot, u], &seeds)?;
+        Ok(tangents.derivatives[..n * seeds.len()].to_vec())
+    }
+
+    /// The Hessian of `w^T qddot` by `y = (q, qdot, u)`, m x m row-major
+    /// (`m = 2n + p`): the exact `acceleration_jacobian` program
+    /// differentiated forward along `y` ([`crate::ir::Program::tangents`]),
+    /// its rows contracted with `w`, and symmetrized, `(H + H^T)/2`;
+    /// exact to round-off.
+    ///
+    /// # Errors
+    /// As [`InterpretedModel::call`], and [`CallError::ArgumentLength`]
+    /// when `w` does not have n entries.
+    pub fn acceleration_hessian(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        u: &[f64],
+        w: &[f64],
+    ) -> Result<Vec<f64>, CallError> {
+        let (n, p) = (self.sizes.n, self.sizes.p);
+        check_arguments("acceleration_hessian", &[("w", n)], &[w])?;
+        let m = 2 * n + p;
+        let seeds: Vec<usize> = (0..m).collect();
+        let function = function_among(&self.functions, "acceleration_jacobian")?;
+        let Tangents { derivatives, .. } = self.tangents(function, &[q, qdot, u], &seeds)?;
+        let entry = |i: usize, j: usize| match j {
+            j if j < n => i * n + j,
+            j if j < 2 * n => n * n + i * n + (j - n),
+            j => 2 * n * n + i * p + (j - 2 * n),
+        };
+        let mut hessian = vec![0.0; m * m];
+        for (j, row) in hessian.chunks_exact_mut(m).enumerate() {
+            for (i, weight) in w.iter().enumerate() {
+                let slopes = &derivatives[entry(i, j) * m..(entry(i, j) + 1) * m];
+                for (h, slope) in row.iter_mut().zip(slopes) {
+                    *h += weight * slope;
+                }
+            }
+        }
+        for j in 0..m {
+            for k in 0..j {
+                let mean = 0.5 * (hessian[j * m + k] + hessian[k * m + j]);
+                (hessian[j * m + k], hessian[k * m + j]) = (mean, mean);
+            }
+        }
+        Ok(hessian)
+    }
+
+    /// `function`'s outputs at `arguments` and the current parameters, and
+    /// their derivatives by the input slots `seeds`.
+    fn tangents(
+        &self,
+        function: &Interpreted,
+        arguments: &[&[f64]],
+        seeds: &[usize],
+    ) -> Result<Tangents, CallError> {
+        let lowered = &function.lowered;
+        check_arguments(function.name, &lowered.arguments, arguments)?;
+        let inputs: Vec<f64> = arguments
+            .iter()
+            .flat_map(|values| values.iter())
+            .chain(&self.parameters)
+            .copied()
+            .collect();
+        lowered
+            .program
+            .tangents(&inputs, seeds)
+            .map_err(|source| CallError::Program {
+                function: function.name.to_string(),
+                source,
+            })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::InterpretedModel;
+    use crate::fixtures::SNAKEBOARD;
+
+    /// The snakeboard, the differential drive and the benchmark bicycle,
+    /// each with a state and inputs where every entry is nonzero.
+    fn models() -> Vec<(InterpretedModel, Vec<f64>)> {
+        let sources = [
+            SNAKEBOARD,
+            include_str!("../../../models/differential_drive.model"),
+            include_str!("../../../models/bicycle.model"),
+        ];
+        sources
+            .into_iter()
+            .map(|source| {
+                let model = InterpretedModel::from_source(source).expect("derives");
+                let m = 2 * model.sizes().n + model.sizes().p;
+                let y = (0..m)
+                    .map(|j| 0.2 * (0.9 * j as f64).sin() + 0.05)
+                    .collect();
+                (model, y)
+            })
+            .collect()
+    }
+
+    /// `(q, qdot, u)` of `y`.
+    fn split(model: &InterpretedModel, y: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let n = model.sizes().n;
+        (y[..n].to_vec(), y[n..2 * n].to_vec(), y[2 * n..].to_vec())
+    }
+
+    /// `|found - expected| <= 1e-6 (1 + |expected|)`, with a message.
+    fn assert_close(found: f64, expected: f64, what: &str) {
+        assert!(
+            (found - expected).abs() <= 1e-6 * (1.0 + expected.abs()),
+            "{what}: {found} vs {expected}"
+        );
+    }
+
+    #[test]
+    fn the_parameter_jacobian_agrees_with_central_differences_of_acceleration() {
+        for (model, y) in models() {
+            let (q, qdot, u) = split(&model, &y);
+            let exact = model
+                .acceleration_parameter_jacobian(&q, &qdot, &u)
+                .expect("evaluates");
+            let parameters = model.parameter_values().len();
+            for (l, name) in model.names().parameters.iter().enumerate() {
+                let value = model.parameter_values()[l];
+                let step = 1e-6 * value.abs().max(1.0);
+                let at = |shifted: f64| {
+                    let mut moved = model.clone();
+                    moved.set_parameter(name, shifted).expect("declared");
+                    moved.acceleration(&q, &qdot, &u).expect("evaluates").0
+                };
+                let (plus, minus) = (at(value + step), at(value - step));
+                for i in 0..model.sizes().n {
+                    let numeric = (plus[i] - minus[i]) / (2.0 * step);
+                    assert_close(exact[i * parameters + l], numeric, name);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_hessian_agrees_with_central_differences_of_the_jacobian() {
+        for (model, y) in models() {
+            let (n, m) = (model.sizes().n, y.len());
+            let w: Vec<f64> = (0..n).map(|i| 0.7 - 0.3 * i as f64).collect();
+            let (q, qdot, u) = split(&model, &y);
+            let hessian = model
+                .acceleration_hessian(&q, &qdot, &u, &w)
+                .expect("evaluates");
+            let gradient = |y: &[f64]| -> Vec<f64> {
+                let (q, qdot, u) = split(&model, y);
+                let (by_q, by_qdot, by_u) = model
+                    .acceleration_jacobian(&q, &qdot, &u)
+                    .expect("evaluates");
+                let p = u.len();
+                (0..m)
+                    .map(|j| {
+                        let entry = |i: usize| match j {
+                            j if j < n => by_q[i * n + j],
+                            j if j < 2 * n => by_qdot[i * n + j - n],
+                            j => by_u[i * p + j - 2 * n],
+                        };
+                        (0..n).map(|i| w[i] * entry(i)).sum()
+                    })
+                    .collect()
+            };
+            for k in 0..m {
+                let step = 1e-6;
+                let (mut plus, mut minus) = (y.clone(), y.clone());
+                plus[k] += step;
+                minus[k] -= step;
+                let (above, below) = (gradient(&plus), gradient(&minus));
+                for j in 0..m {
+                    let numeric = (above[j] - below[j]) / (2.0 * step);
+                    assert_close(hessian[j * m + k], numeric, &format!("({j}, {k})"));
+                }
+            }
+        }
+    }
+}
