@@ -45,6 +45,25 @@ def point_mass():
     return chaplygin.load(POINT_MASS)
 
 
+def test_a_free_duration_by_hermite_simpson_meets_its_closed_form(point_mass, tmp_path):
+    # min T + int push^2 dt with m = d = 1: over a given T the cost is
+    # T + 12/T^3, least where 1 = 36/T^4, T = sqrt 6, where it is
+    # 8/sqrt 6; Hermite-Simpson is exact on the cubic optimum
+    request = rest_to_rest(2.0, 1.0, 21, 1.0)
+    plan = point_mass.plan(**request, scheme="hermite-simpson", final_cost="t", free_duration=True)
+    assert plan.duration == pytest.approx(6**0.5, abs=1e-6)
+    assert plan.objective == pytest.approx(8 / 6**0.5, abs=1e-8)
+    assert plan.t[-1] == pytest.approx(plan.duration, abs=1e-12)
+    # the plan's own table is a guess that the solver starts from
+    path = tmp_path / "plan.csv"
+    numpy.savetxt(path, numpy.column_stack([plan.t, plan["x"], plan["push"]]), delimiter=",",
+                  header="t,x,push", comments="")
+    again = point_mass.plan(**request, scheme="hermite-simpson", final_cost="t", free_duration=True,
+                            guess=path)
+    assert again.objective == pytest.approx(plan.objective, abs=1e-8)
+    assert again.report["iterations"] <= plan.report["iterations"]
+
+
 def test_the_point_mass_plan_meets_the_closed_form(point_mass):
     duration, distance, m = 1.5, 0.5, 3.0
     coarse, fine = (point_mass.plan(**rest_to_rest(duration, distance, nodes, m)) for nodes in (21, 41))
