@@ -4,6 +4,7 @@
 //! soft goal, and restarted from its own `plan.csv`; `plan.csv` with
 //! `trajectory.csv`'s columns; and bad requests refused in one line.
 
+use crate::support::browser::screenshot;
 use crate::support::{chaplygin, column, read_csv, scratch};
 use std::path::Path;
 use std::process::Output;
@@ -447,4 +448,62 @@ fn an_interrupted_plan_keeps_its_last_iterate() {
     assert_eq!(rows.len(), 1001, "{}", marked.display());
     // the start is fixed by the bounds, which every iterate meets
     assert_eq!(column(&header, &rows, "x")[0], 0.0);
+}
+
+/// The guide's lane change: the benchmark bicycle from its upright
+/// straight run at 5 m/s to `y_p = 1` in 3 s, upright, steer and heading
+/// straight, the lean torque bounded to 0 (the library's
+/// `catalog_tests` replays its steer torque to the goal).
+fn lane_change(out: &Path) -> Vec<&'static str> {
+    let mut arguments = vec!["plan", "bicycle", "--duration", "3", "--nodes", "31"];
+    for q in [
+        "x_p", "y_p", "psi", "phi", "theta_b", "delta", "theta_r", "theta_f",
+    ] {
+        arguments.extend(["--start".to_string(), format!("{q}=0")].map(leak));
+    }
+    for velocity in ["dot(y_p)=0", "dot(psi)=0", "dot(phi)=0", "dot(theta_b)=0"] {
+        arguments.extend(["--start", velocity]);
+    }
+    for velocity in [
+        "dot(delta)=0",
+        "dot(x_p)=5",
+        "dot(theta_r)=-5/rR",
+        "dot(theta_f)=-5/rF",
+    ] {
+        arguments.extend(["--start", velocity]);
+    }
+    for goal in [
+        "y_p=1",
+        "psi=0",
+        "phi=0",
+        "delta=0",
+        "dot(phi)=0",
+        "dot(delta)=0",
+    ] {
+        arguments.extend(["--goal", goal]);
+    }
+    arguments.extend(["--bound", "lean_torque=0:0", "--animate", "--fps", "20"]);
+    arguments.extend(["--out", leak(out.display().to_string())]);
+    arguments
+}
+
+/// The lane change is a verified optimum whose last node is the goal, with
+/// no lean torque; its page is the guide's screenshot, the bicycle
+/// halfway across.
+#[test]
+fn the_bicycle_changes_lane() {
+    let dir = scratch("plan-lane-change");
+    let out = dir.path().join("lane");
+    let output = chaplygin(&lane_change(&out));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let (header, rows) = read_csv(&out.join("plan.csv"));
+    let [y, phi, lean] = ["y_p", "phi", "lean_torque"].map(|name| column(&header, &rows, name));
+    assert_eq!((y[0], y[30], phi[30]), (0.0, 1.0, 0.0));
+    assert!(lean.iter().all(|u| u.abs() <= 1e-6), "{lean:?}");
+    let page = std::fs::read_to_string(out.join("animation.html")).expect("animation.html");
+    screenshot(&page, 1.6, "bicycle-lane-change", dir.path());
 }

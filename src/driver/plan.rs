@@ -358,4 +358,6 @@ fn last_iterate(
 }
 
 #[cfg(test)]
+mod catalog_tests;
+#[cfg(test)]
 mod tests;

@@ -5,17 +5,13 @@
 //! simulated and restarted from a coarser plan, and the one-line errors
 //! of bad requests.
 
+use super::catalog_tests::replayed;
 use super::nlp::{Hessian, Ripopt};
 use super::{Plan, Request, Scheme, plan};
 use crate::driver::catalog::{Source, lookup};
 use crate::driver::engine::{EngineChoice, Loaded, load};
-use crate::driver::formulation::RunTimeSized;
-use crate::driver::interpreted::{InputLaw, InterpretedDalembert};
-use crate::runtime::integrate::{Rk4, integrate_fixed};
 use crate::runtime::linalg::solve;
 use crate::runtime::record::{CsvRecorder, Recorder, Table};
-use std::cell::Cell;
-use std::rc::Rc;
 
 /// `m xddot = push`.
 const POINT_MASS: &str = "pub struct PointMass {
@@ -171,35 +167,10 @@ fn differential_drive() -> Loaded {
     .expect("derives")
 }
 
-/// The plan's inputs, held from the left as the midpoint rule applies
-/// them, simulated by `simulate`'s Lagrange-d'Alembert formulation under
-/// RK4, 20 steps per interval: the pose reached at T.
+/// The pose the plan's inputs reach, replayed from its start.
 fn simulated_pose(plan: &Plan) -> [f64; 3] {
-    let t = plan.table.column("t").expect("t");
-    let inputs = ["u_right", "u_left"].map(|u| plan.table.column(u).expect("an input"));
-    let interval = Rc::new(Cell::new(0));
-    let held = Rc::clone(&interval);
-    let law = move |_: f64, _: &[f64], _: &[f64], u: &mut [f64]| {
-        for (u, column) in u.iter_mut().zip(&inputs) {
-            *u = column[held.get()];
-        }
-    };
-    let formulation = InterpretedDalembert {
-        model: differential_drive().model,
-        inputs: InputLaw {
-            law: Box::new(law),
-            reads_state: false,
-        },
-    };
-    let h = t[1] - t[0];
-    let mut x = vec![0.0; 10];
-    for (i, start) in t[..t.len() - 1].iter().enumerate() {
-        interval.set(i);
-        let system = RunTimeSized(&formulation);
-        x = integrate_fixed(&Rk4, &system, (*start, x), h / 20.0, 20, |_, _| {})
-            .expect("the simulation runs");
-    }
-    [x[0], x[1], x[2]]
+    let end = replayed("differential-drive", plan);
+    [end[0], end[1], end[2]]
 }
 
 #[test]

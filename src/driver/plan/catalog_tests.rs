@@ -1,0 +1,283 @@
+//! A plan on every built-in model with inputs, each verified by its KKT
+//! residuals and checked by replaying its inputs: the plan's start
+//! integrated by `simulate`'s Lagrange-d'Alembert formulation under RK4,
+//! with the inputs applied between nodes as the scheme applies them
+//! (midpoint rule: node `i`'s over interval `i`), must reach the goal. The
+//! miss is the scheme's error, so it shrinks by about `2^2` when the
+//! midpoint rule's step halves; that rate is the independent check.
+
+use super::nlp::Ripopt;
+use super::{Plan, Request, Scheme, plan};
+use crate::driver::catalog::lookup;
+use crate::driver::engine::{EngineChoice, Loaded, load};
+use crate::driver::formulation::RunTimeSized;
+use crate::driver::interpreted::{InputLaw, InterpretedDalembert};
+use crate::runtime::integrate::{Rk4, integrate_fixed};
+use std::cell::Cell;
+use std::rc::Rc;
+
+/// RK4 steps per interval of the plan: its own error is far below the
+/// scheme's.
+const SUBSTEPS: usize = 40;
+
+fn built_in(name: &str) -> Loaded {
+    load(&lookup(name).expect("built in"), EngineChoice::Jit).expect("derives")
+}
+
+/// `NAME=VALUE` pairs as a request's start, goal or bounds.
+fn assigned(pairs: &[(&str, impl ToString)]) -> Vec<(String, String)> {
+    (pairs.iter())
+        .map(|(name, value)| (name.to_string(), value.to_string()))
+        .collect()
+}
+
+/// A midpoint-rule plan of `duration` on `nodes` nodes.
+fn request(duration: f64, nodes: usize, start: &[(&str, f64)], goal: &[(&str, f64)]) -> Request {
+    Request {
+        duration,
+        nodes,
+        scheme: Scheme::Midpoint,
+        start: assigned(start),
+        goal: assigned(goal),
+        free_duration: false,
+        minimize: None,
+        final_cost: None,
+        bounds: Vec::new(),
+        params: Vec::new(),
+        guess: None,
+        tol: Request::TOL,
+    }
+}
+
+/// The plan's first row replayed under its inputs, node `i`'s held over
+/// interval `i`: the state `(q, dot(q))` reached at its last node.
+pub(super) fn replayed(name: &str, plan: &Plan) -> Vec<f64> {
+    let model = built_in(name).model;
+    let n = model.sizes().n;
+    let p = model.sizes().p;
+    let t = plan.table.column("t").expect("t");
+    let interval = Rc::new(Cell::new(0));
+    let held = Rc::clone(&interval);
+    let rows = plan.table.rows.clone();
+    let law = move |_: f64, _: &[f64], _: &[f64], u: &mut [f64]| {
+        u.copy_from_slice(&rows[held.get()][1 + 2 * n..1 + 2 * n + p]);
+    };
+    let formulation = InterpretedDalembert {
+        model,
+        inputs: InputLaw {
+            law: Box::new(law),
+            reads_state: false,
+        },
+    };
+    let h = t[1] - t[0];
+    let mut x = plan.table.rows[0][1..1 + 2 * n].to_vec();
+    for (i, start) in t[..t.len() - 1].iter().enumerate() {
+        interval.set(i);
+        let system = RunTimeSized(&formulation);
+        x = integrate_fixed(
+            &Rk4,
+            &system,
+            (*start, x),
+            h / SUBSTEPS as f64,
+            SUBSTEPS,
+            |_, _| {},
+        )
+        .expect("the simulation runs");
+    }
+    x
+}
+
+/// The largest distance of the replayed end from `goal`.
+fn miss(name: &str, plan: &Plan, goal: &[(&str, f64)]) -> f64 {
+    let end = replayed(name, plan);
+    let columns = &plan.table.columns[1..];
+    (goal.iter())
+        .map(|(goal, value)| {
+            let index = columns.iter().position(|c| c == goal).expect("a state");
+            (end[index] - value).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// `name`'s plan on `nodes` and `2 nodes - 1` nodes: each verified, each
+/// replayed to within `coarse_miss` of the goal, the miss shrinking at the
+/// midpoint rule's second order.
+fn plans_reach_their_goal(
+    name: &str,
+    duration: f64,
+    nodes: usize,
+    start: &[(&str, f64)],
+    goal: &[(&str, f64)],
+    bounds: &[(&str, &str)],
+    coarse_miss: f64,
+) -> [f64; 2] {
+    let misses = [nodes, 2 * nodes - 1].map(|nodes| {
+        let mut request = request(duration, nodes, start, goal);
+        request.bounds = assigned(bounds);
+        let plan = plan(built_in(name), &request, &Ripopt::default()).expect("a plan");
+        assert!(plan.report.kkt.within(1e-6), "{:?}", plan.report.kkt);
+        miss(name, &plan, goal)
+    });
+    let rate = (misses[0] / misses[1]).log2();
+    eprintln!(
+        "{name}: replayed miss {:.3e} -> {:.3e}, rate {rate:.2}",
+        misses[0], misses[1]
+    );
+    assert!(misses[0] < coarse_miss, "{name}: {misses:?}");
+    assert!(rate > 1.7, "{name}: {misses:?}");
+    misses
+}
+
+/// Every coordinate and velocity at rest at 0 but those in `except`.
+fn at_rest(
+    coordinates: &[&'static str],
+    except: &[(&'static str, f64)],
+) -> Vec<(&'static str, f64)> {
+    let mut state: Vec<(&str, f64)> = Vec::new();
+    for q in coordinates {
+        let value = except
+            .iter()
+            .find(|(name, _)| name == q)
+            .map_or(0.0, |e| e.1);
+        state.push((q, value));
+    }
+    for q in coordinates {
+        state.push((Box::leak(format!("dot({q})").into_boxed_str()), 0.0));
+    }
+    state
+}
+
+#[test]
+fn the_caster_robot_plan_replays_to_its_goal() {
+    let coordinates = ["x", "y", "theta", "phi_l", "phi_r", "beta", "phi_c"];
+    let goal = [
+        ("x", 0.2),
+        ("y", 0.05),
+        ("theta", 0.0),
+        ("dot(phi_l)", 0.0),
+        ("dot(phi_r)", 0.0),
+    ];
+    plans_reach_their_goal(
+        "caster-robot",
+        4.0,
+        21,
+        &at_rest(&coordinates, &[]),
+        &goal,
+        &[],
+        1e-2,
+    );
+}
+
+#[test]
+fn the_rolling_disk_plan_replays_to_its_goal() {
+    let coordinates = ["x", "y", "theta", "phi"];
+    let goal = [
+        ("x", 0.3),
+        ("y", 0.1),
+        ("theta", 0.0),
+        ("dot(theta)", 0.0),
+        ("dot(phi)", 0.0),
+    ];
+    plans_reach_their_goal(
+        "rolling-disk",
+        4.0,
+        21,
+        &at_rest(&coordinates, &[]),
+        &goal,
+        &[],
+        1e-2,
+    );
+}
+
+/// Rolled 0.1 ahead and 0.02 to the side, upright at both ends: its
+/// lean, unstable at rest, is balanced by steering alone.
+#[test]
+fn the_upright_rolling_disk_plan_replays_to_its_goal() {
+    let coordinates = ["x", "y", "psi", "phi", "theta"];
+    let goal = [
+        ("x", 0.1),
+        ("y", 0.02),
+        ("psi", 0.0),
+        ("phi", 0.0),
+        ("dot(phi)", 0.0),
+        ("dot(theta)", 0.0),
+    ];
+    plans_reach_their_goal(
+        "rolling-disk-3d",
+        2.0,
+        41,
+        &at_rest(&coordinates, &[]),
+        &goal,
+        &[],
+        2e-2,
+    );
+}
+
+/// The joints from `(0.6, -0.6)` to `(0.3, -0.3)`, rest to rest.
+#[test]
+fn the_three_link_snake_plan_replays_to_its_goal() {
+    let coordinates = ["x", "y", "theta", "a1", "a2"];
+    let start = at_rest(&coordinates, &[("a1", 0.6), ("a2", -0.6)]);
+    let goal = [
+        ("a1", 0.3),
+        ("a2", -0.3),
+        ("dot(a1)", 0.0),
+        ("dot(a2)", 0.0),
+    ];
+    plans_reach_their_goal("three-link-snake", 2.0, 21, &start, &goal, &[], 1e-2);
+}
+
+/// Parked sideways: `y` from 0 to 0.2 at rest, the heading and the
+/// wheels' angle as they were. The wheels stay within 1.2 rad of straight:
+/// at `phi = pi/2` their axles lie along the board, the constraints'
+/// rank drops, and a plan crossing there slides the board sideways
+/// within one interval, a jump no simulation reproduces.
+fn sideways(name: &str) {
+    let coordinates = ["x", "y", "theta", "psi", "phi"];
+    let start = at_rest(&coordinates, &[("phi", 0.3)]);
+    let mut goal = at_rest(&coordinates, &[("y", 0.2), ("phi", 0.3)]);
+    goal.retain(|(name, _)| *name != "psi");
+    let bounds = [("phi", "-1.2:1.2")];
+    plans_reach_their_goal(name, 6.0, 41, &start, &goal, &bounds, 3e-2);
+}
+
+#[test]
+fn the_snakeboard_parks_sideways() {
+    sideways("snakeboard");
+}
+
+#[test]
+fn the_snakeboard_of_bodies_parks_sideways() {
+    sideways("snakeboard-bodies");
+}
+
+/// The benchmark bicycle's lane change at 5 m/s: from the upright straight
+/// run (`dot(theta_r) = -v/rR`, `dot(theta_f) = -v/rF`, on the front
+/// contact's height at zero pitch) to `y_p = 1` in 3 s, upright with the
+/// steer straight and the heading back to 0, by the steer torque alone.
+#[test]
+fn the_bicycle_changes_lane_by_its_steer_torque() {
+    let coordinates = [
+        "x_p", "y_p", "psi", "phi", "theta_b", "delta", "theta_r", "theta_f",
+    ];
+    let (v, r_rear, r_front) = (5.0, 0.3, 0.35);
+    let start = at_rest(&coordinates, &[])
+        .into_iter()
+        .map(|(name, value)| match name {
+            "dot(x_p)" => (name, v),
+            "dot(theta_r)" => (name, -v / r_rear),
+            "dot(theta_f)" => (name, -v / r_front),
+            _ => (name, value),
+        })
+        .collect::<Vec<_>>();
+    let goal = [
+        ("y_p", 1.0),
+        ("psi", 0.0),
+        ("phi", 0.0),
+        ("delta", 0.0),
+        ("dot(phi)", 0.0),
+        ("dot(delta)", 0.0),
+    ];
+    let bounds = [("lean_torque", "0:0")];
+    plans_reach_their_goal("bicycle", 3.0, 31, &start, &goal, &bounds, 0.02);
+}
