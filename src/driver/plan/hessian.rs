@@ -26,11 +26,15 @@
 //!
 //! `D = d(t, X, U)/dv` (the stage's motion, `dt/dT = t/T`), `G` the
 //! Hessian of `g` by `(t, x, u)`, `dg/dv = (g_t, g_X, g_U) D` and `dh/dv =
-//! (h/T) e_T`. With `mu = g_X`, the last term is `c h/T (e_T m^T + m e_T^T)
-//! + c h (hess_{z_i} (mu^T f_i) - hess_{z_{i+1}} (mu^T f_{i+1}))`, `m =
-//! (mu^T df_i/dz_i, -mu^T df_{i+1}/dz_{i+1}, 0)`. Since `f = (qdot,
-//! qddot)`, `hess (mu^T f) = hess (mu_qdot^T qddot)`, the model's
-//! `acceleration_hessian`; `sigma hess L` comes from the running cost's
+//! (h/T) e_T`. With `mu = g_X`, the last term is `h w` times
+//!
+//! ```text
+//! c h/T (e_T m^T + m e_T^T) + c h (hess_{z_i} (mu^T f_i) - hess_{z_{i+1}} (mu^T f_{i+1})),
+//! m = (mu^T df_i/dz_i, -mu^T df_{i+1}/dz_{i+1}, 0).
+//! ```
+//!
+//! Since `f = (qdot, qddot)`, `hess (mu^T f) = hess (mu_qdot^T qddot)`,
+//! the model's `acceleration_hessian`; `sigma hess L` comes from the running cost's
 //! expression ([`crate::driver::expression::Expression::hessian`]), both
 //! exact. The final cost adds `sigma hess Phi(T, x_{N-1})`. Over a given
 //! duration the rows and columns of `T` are dropped.
