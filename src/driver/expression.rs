@@ -404,7 +404,7 @@ impl Expression {
         (self.at(point), gradient)
     }
 
-    /// The Hessian by `y = (q, qdot, u)`, each as long as `point`'s,
+    /// The Hessian by `y = (t, q, qdot, u)`, each as long as `point`'s,
     /// row-major: the second derivatives along each `e_j` and each
     /// `e_j + e_k`, polarized, `H_jk = (D^2_{e_j + e_k} - D^2_{e_j} -
     /// D^2_{e_k}) / 2` (forward differentiation to second order, exact to
@@ -412,11 +412,12 @@ impl Expression {
     #[cfg(feature = "plan")]
     pub(crate) fn hessian(&self, point: &Point<'_>) -> Vec<f64> {
         let (nq, nv) = (point.q.len(), point.qdot.len());
-        let m = nq + nv + point.u.len();
+        let m = 1 + nq + nv + point.u.len();
         let position = |leaf: &Self| match *leaf {
-            Self::Coordinate(i) => Some(i),
-            Self::Velocity(i) => Some(nq + i),
-            Self::Input(i) => Some(nq + nv + i),
+            Self::Time => Some(0),
+            Self::Coordinate(i) => Some(1 + i),
+            Self::Velocity(i) => Some(1 + nq + i),
+            Self::Input(i) => Some(1 + nq + nv + i),
             _ => None,
         };
         let curvature = |along: &[usize]| {
