@@ -237,6 +237,11 @@ impl Transcription {
         &self.model
     }
 
+    /// The model, to set its parameters.
+    pub(super) fn model_mut(&mut self) -> &mut InterpretedModel {
+        &mut self.model
+    }
+
     /// The number of nodes `N`.
     pub fn nodes(&self) -> usize {
         self.nodes
@@ -328,7 +333,7 @@ impl Transcription {
     }
 
     /// Node `i` of `z` as a point.
-    fn node_point(&self, z: &[f64], i: usize) -> StagePoint {
+    pub(super) fn node_point(&self, z: &[f64], i: usize) -> StagePoint {
         let (s, w) = (self.state(), self.width());
         StagePoint {
             t: i as f64 * self.step(z),
@@ -408,7 +413,7 @@ impl Transcription {
     }
 
     /// `df/dx` (2n x 2n) and `df/du` (2n x p), row-major.
-    fn rhs_jacobian(&self, point: &StagePoint) -> (Vec<f64>, Vec<f64>) {
+    pub(super) fn rhs_jacobian(&self, point: &StagePoint) -> (Vec<f64>, Vec<f64>) {
         let (n, p) = (self.model.sizes().n, self.model.sizes().p);
         let s = 2 * n;
         let (q, qdot) = point.x.split_at(n);
