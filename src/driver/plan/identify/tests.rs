@@ -4,7 +4,9 @@
 //! and under seeded Gaussian noise the estimate lands within 4 standard
 //! errors of the truth, the standard error agreeing with the Gauss-Newton
 //! one of the closed form: the sensitivities `dx/dx_0 = cos(w t)`,
-//! `dx/dv_0 = sin(w t) / w`, `dx/dk = -t sin(w t) / (2 m w)`.
+//! `dx/dv_0 = sin(w t) / w`, `dx/dk = -t sin(w t) / (2 m w)`. The
+//! defects' exact derivatives, by the states and the parameters, agree
+//! with central differences under each scheme.
 
 use super::{Estimate, IdentifyError, Request, identify};
 use crate::driver::catalog::Source;
@@ -184,5 +186,49 @@ fn bad_requests_fail_in_one_line() {
             "{message}"
         );
         assert!(message.starts_with("--data"), "{message}");
+    }
+}
+
+#[test]
+fn the_defects_derivatives_agree_with_central_differences() {
+    use crate::driver::plan::nlp::Nlp;
+    let dir = tempfile::tempdir().expect("a directory");
+    let data = dir.path().join("data.csv");
+    std::fs::write(
+        &data,
+        "t,x,push\n0,1,0.5\n0.3,0.7,-0.2\n0.6,0.2,0.9\n0.9,-0.4,0.1\n1.2,-0.8,0.3\n",
+    )
+    .expect("written");
+    for scheme in [
+        Scheme::BackwardEuler,
+        Scheme::Midpoint,
+        Scheme::HermiteSimpson,
+    ] {
+        let mut asked = request(&data, scheme);
+        asked.estimate = vec![("k".into(), Some(2.5)), ("m".into(), Some(0.7))];
+        let fit = super::Fit::new(spring_mass(), &asked).expect("a program");
+        let y: Vec<f64> = fit
+            .guess()
+            .iter()
+            .enumerate()
+            .map(|(j, v)| v + 0.3 * (0.9 * j as f64).sin())
+            .collect();
+        let mut values = vec![0.0; fit.jacobian_structure().len()];
+        assert!(fit.jacobian_values(&y, &mut values));
+        let step = 1e-6;
+        for (&(row, column), exact) in fit.jacobian_structure().iter().zip(&values) {
+            let at = |shift: f64| {
+                let mut moved = y.clone();
+                moved[column] += shift;
+                let mut c = vec![0.0; fit.constraints()];
+                assert!(fit.residuals(&moved, &mut c));
+                c[row]
+            };
+            let numeric = (at(step) - at(-step)) / (2.0 * step);
+            assert!(
+                (exact - numeric).abs() < 1e-6,
+                "{scheme:?} ({row}, {column}): {exact} vs {numeric}"
+            );
+        }
     }
 }
