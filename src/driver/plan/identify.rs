@@ -7,8 +7,9 @@
 //! subject to  the collocation defects of d(q, qdot)/dt = (qdot, qddot(q, qdot, u; theta)),
 //! ```
 //!
-//! the inputs `u` held at the table's values (interpolated at the nodes,
-//! not variables). The defects are the plan's ([`super::transcription`]),
+//! the inputs `u` held at the table's values, not variables: interpolated
+//! where the scheme applies them (the midpoint rule's node `i` at `t_i +
+//! h/2`, the other schemes' at their nodes). The defects are the plan's ([`super::transcription`]),
 //! their derivatives by `theta` exact: at each stage `X_k`,
 //!
 //! ```text
@@ -42,7 +43,7 @@
 use super::kkt::{self, Residuals};
 use super::nlp::{Nlp, Solver};
 use super::resolve::guess::{Guess, Table as TableKind};
-use super::resolve::{RequestError, node_columns};
+use super::resolve::{DERIVED_COLUMNS, RequestError, node_columns};
 use super::transcription::{Costs, Grid, Scheme, StagePoint, Transcription};
 use super::{PlanError, Request as PlanRequest};
 use crate::driver::Failure;
@@ -61,7 +62,8 @@ use std::path::PathBuf;
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct Request {
     /// A CSV with `t`, any coordinates or velocities `dot(q)` by name
-    /// (measured) and the inputs applied, by name (0 where not given).
+    /// (measured) and the inputs applied, by name (0 where not given);
+    /// `trajectory.csv`'s `energy` and residual columns are ignored.
     #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.csv"))]
     pub data: PathBuf,
     /// `NAME[=GUESS]`: a parameter to estimate, from GUESS or its value
@@ -272,8 +274,8 @@ impl Fit {
         let columns = node_columns(&model);
         let table = TableKind {
             flag: "--data",
-            ignored: &[],
-            others: "",
+            ignored: &DERIVED_COLUMNS,
+            others: " and trajectory.csv's others",
         };
         let read = Guess::read(table, &request.data, &columns)?;
         let path = request.data.display().to_string();
@@ -302,14 +304,17 @@ impl Fit {
         let mut guess = vec![0.0; nodes * s];
         let mut inputs = vec![vec![0.0; columns.len() - s]; nodes];
         let mut data = vec![Vec::new(); nodes];
+        let stage = &request.scheme.stages()[0];
+        let applied = (stage.at - stage.inputs_at) * step;
         for (i, t) in times.iter().enumerate() {
             for (column, value) in read.at(*t) {
                 if column < s {
                     guess[i * s + column] = value;
                     data[i].push(value);
-                } else {
-                    inputs[i][column - s] = value;
                 }
+            }
+            for (column, value) in read.at(t + applied).filter(|(c, _)| *c >= s) {
+                inputs[i][column - s] = value;
             }
         }
         let full_guess = interleave(&guess, &inputs, s);

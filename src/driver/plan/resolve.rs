@@ -136,7 +136,8 @@ const ON_CONSTRAINTS: f64 = 1e-10;
 
 /// `plan.csv`'s columns after the nodes' variables (the last only with
 /// configuration constraints).
-const DERIVED_COLUMNS: [&str; 3] = ["energy", "constraint_residual", "holonomic_residual"];
+pub(super) const DERIVED_COLUMNS: [&str; 3] =
+    ["energy", "constraint_residual", "holonomic_residual"];
 
 /// `--guess`: a table of `plan.csv`'s columns, its derived ones ignored.
 const GUESS_TABLE: guess::Table = guess::Table {
