@@ -21,6 +21,8 @@
 //!                      [--start NAME=EXPR]... [--goal NAME=EXPR]... [--minimize EXPR] [--final-cost EXPR]
 //!                      [--bound NAME=LO:HI]... [--param NAME=VALUE]... [--guess FILE.csv]
 //!                      [--tol TOL] [--engine jit|interpret] [--out DIR]
+//! chaplygin identify MODEL --data FILE.csv --estimate NAME[=GUESS]... [--nodes N] [--scheme ...]
+//!                          [--param NAME=VALUE]... [--tol TOL] [--engine jit|interpret] [--out DIR]
 //! ```
 //!
 //! MODEL is a built-in model's name or the path of a `.model` file. Either
@@ -36,6 +38,7 @@
 
 mod animate_args;
 mod gait;
+mod identify;
 mod linearize;
 mod map;
 mod model_args;

@@ -1,8 +1,9 @@
 //! The command line: its commands, and what each does with its arguments
-//! (those of `simulate`, `linearize`, `steady`, `map`, `gait` and `plan` are
+//! (those of `simulate`, `linearize`, `steady`, `map`, `gait`, `plan` and `identify` are
 //! defined with them).
 
 use crate::gait::{self, GaitArgs};
+use crate::identify::{self, IdentifyArgs};
 use crate::linearize::{self, LinearizeArgs};
 use crate::map::{self, MapArgs};
 use crate::plan::{self, PlanArgs};
@@ -54,6 +55,9 @@ enum Action {
     /// collocation, verified by the KKT conditions, writing `plan.csv` and
     /// `plan.json`.
     Plan(Box<PlanArgs>),
+    /// Estimate parameters from measured data by collocation, verified by
+    /// the KKT conditions, writing `estimate.json` and `fit.csv`.
+    Identify(Box<IdentifyArgs>),
 }
 
 impl Command {
@@ -73,6 +77,7 @@ impl Command {
             Action::Map(args) => map::run(&args),
             Action::Gait(args) => gait::run(&args),
             Action::Plan(args) => plan::run(&args),
+            Action::Identify(args) => identify::run(&args),
         }
     }
 }

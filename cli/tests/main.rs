@@ -15,6 +15,7 @@ mod cli;
 mod cli_charts;
 mod cli_engine;
 mod cli_gait;
+mod cli_identify;
 mod cli_mechanisms;
 mod cli_plan;
 mod cli_racers;

@@ -31,6 +31,7 @@
 //! (`plan.csv`'s `constraint_residual` and `holonomic_residual`).
 
 mod hessian;
+pub mod identify;
 pub mod kkt;
 pub mod nlp;
 mod resolve;

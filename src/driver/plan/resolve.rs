@@ -7,7 +7,7 @@
 //! bounded below by [`Request::SHORTEST`] times it (near `T = 0` the
 //! defects cannot move the state, and the solver would not return).
 
-mod guess;
+pub(super) mod guess;
 
 use super::Request;
 use super::transcription::{Costs, Grid, Transcription};
@@ -31,17 +31,23 @@ pub enum RequestError {
     /// A first guess of a free duration that is not positive and finite.
     #[error("--duration {0}: the free duration's first guess must be positive and finite")]
     FirstDuration(f64),
-    /// A guess that cannot be read.
-    #[error("--guess {path}: {reason}")]
+    /// A table (`--guess`, `--data`) that cannot be read.
+    #[error("{flag} {path}: {reason}")]
     GuessFile {
+        /// The flag it came with.
+        flag: &'static str,
         /// The file.
         path: String,
         /// Why.
         reason: String,
     },
-    /// A guess with columns that are not `plan.csv`'s.
-    #[error("--guess {path}: unknown columns {unknown} (t, {known} and plan.csv's others)")]
+    /// A table with columns that are not the model's.
+    #[error("{flag} {path}: unknown columns {unknown} (t, {known}{others})")]
     GuessColumns {
+        /// The flag it came with.
+        flag: &'static str,
+        /// The other columns read and ignored, as a phrase.
+        others: &'static str,
         /// The file.
         path: String,
         /// The columns unknown.
@@ -130,11 +136,19 @@ const ON_CONSTRAINTS: f64 = 1e-10;
 
 /// `plan.csv`'s columns after the nodes' variables (the last only with
 /// configuration constraints).
-const DERIVED_COLUMNS: [&str; 3] = ["energy", "constraint_residual", "holonomic_residual"];
+pub(super) const DERIVED_COLUMNS: [&str; 3] =
+    ["energy", "constraint_residual", "holonomic_residual"];
+
+/// `--guess`: a table of `plan.csv`'s columns, its derived ones ignored.
+const GUESS_TABLE: guess::Table = guess::Table {
+    flag: "--guess",
+    ignored: &DERIVED_COLUMNS,
+    others: " and plan.csv's others",
+};
 
 /// The names of a node's variables: the coordinates, `dot(q)`, the
 /// inputs.
-fn node_columns(model: &InterpretedModel) -> Vec<String> {
+pub(super) fn node_columns(model: &InterpretedModel) -> Vec<String> {
     let names = model.names();
     let velocities = names.coordinates.iter().map(|q| format!("dot({q})"));
     let mut columns: Vec<String> = names
@@ -354,7 +368,7 @@ pub(super) fn transcribe(
     let read = request
         .guess
         .as_deref()
-        .map(|path| Guess::read(path, &resolver.columns, &DERIVED_COLUMNS))
+        .map(|path| Guess::read(GUESS_TABLE, path, &resolver.columns))
         .transpose()?;
     let step = request.duration / (request.nodes - 1) as f64;
     let mut guess = resolver.guess(read.as_ref(), step);

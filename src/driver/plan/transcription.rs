@@ -237,6 +237,11 @@ impl Transcription {
         &self.model
     }
 
+    /// The model, to set its parameters.
+    pub(super) fn model_mut(&mut self) -> &mut InterpretedModel {
+        &mut self.model
+    }
+
     /// The number of nodes `N`.
     pub fn nodes(&self) -> usize {
         self.nodes

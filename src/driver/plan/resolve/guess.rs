@@ -8,20 +8,31 @@ use std::path::Path;
 
 /// A guess as read: its times, increasing, and its columns of the nodes'
 /// variables, by their index among a node's.
-pub(super) struct Guess {
+pub(in crate::driver::plan) struct Guess {
     t: Vec<f64>,
     columns: Vec<(usize, Vec<f64>)>,
 }
 
+/// What a table is read as: the flag it comes with, the columns read and
+/// ignored, and how its messages name them.
+#[derive(Clone, Copy)]
+pub(in crate::driver::plan) struct Table {
+    pub flag: &'static str,
+    pub ignored: &'static [&'static str],
+    pub others: &'static str,
+}
+
 impl Guess {
     /// The table at `path`, its columns among `variables` (a node's) or
-    /// `derived` (`plan.csv`'s others, read and ignored).
-    pub(super) fn read(
+    /// `table.ignored` (read and ignored).
+    pub(in crate::driver::plan) fn read(
+        table: Table,
         path: &Path,
         variables: &[String],
-        derived: &[&str],
     ) -> Result<Self, RequestError> {
+        let derived = table.ignored;
         let failed = |reason: String| RequestError::GuessFile {
+            flag: table.flag,
             path: path.display().to_string(),
             reason,
         };
@@ -43,6 +54,8 @@ impl Guess {
             .collect();
         if !unknown.is_empty() {
             return Err(RequestError::GuessColumns {
+                flag: table.flag,
+                others: table.others,
                 path: path.display().to_string(),
                 unknown: unknown.join(", "),
                 known: variables.join(", "),
@@ -76,9 +89,24 @@ impl Guess {
         Ok(Self { t, columns })
     }
 
+    /// The number of rows.
+    pub(in crate::driver::plan) fn rows(&self) -> usize {
+        self.t.len()
+    }
+
+    /// The first and last `t`.
+    pub(in crate::driver::plan) fn span(&self) -> (f64, f64) {
+        (self.t[0], self.t[self.t.len() - 1])
+    }
+
+    /// The indices, among a node's variables, of the columns read.
+    pub(in crate::driver::plan) fn columns(&self) -> impl Iterator<Item = usize> + '_ {
+        self.columns.iter().map(|(index, _)| *index)
+    }
+
     /// Each column read, by its index among a node's variables, with its
     /// value at `t`.
-    pub(super) fn at(&self, t: f64) -> impl Iterator<Item = (usize, f64)> + '_ {
+    pub(in crate::driver::plan) fn at(&self, t: f64) -> impl Iterator<Item = (usize, f64)> + '_ {
         let after = self.t.partition_point(|s| *s <= t);
         self.columns.iter().map(move |(index, values)| {
             let value = match after {
@@ -120,7 +148,12 @@ mod tests {
         let path = dir.path().join("guess.csv");
         std::fs::write(&path, text).expect("written");
         let variables = ["x", "dot(x)", "push"].map(String::from);
-        Guess::read(&path, &variables, &["energy"])
+        let table = super::Table {
+            flag: "--guess",
+            ignored: &["energy"],
+            others: "",
+        };
+        Guess::read(table, &path, &variables)
     }
 
     #[test]

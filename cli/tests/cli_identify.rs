@@ -1,0 +1,106 @@
+//! `chaplygin identify` (docs/INTERFACE.md section 13) run as a command: a
+//! point mass pushed from rest by a constant force `F` moves as `x = F t^2
+//! / (2 m)`, a motion the midpoint rule follows exactly, so its mass is
+//! recovered from that motion to round-off; `estimate.json`, `fit.csv`
+//! and the printed estimates; and bad data refused in one line.
+
+use crate::support::{chaplygin, column, read_csv, scratch};
+use std::path::Path;
+use std::process::Output;
+
+/// `m xddot = push`, its default mass not the truth `m = 2`.
+const POINT_MASS: &str = "pub struct PointMass {
+    coordinates: [x],
+    parameters: [m = 1.0],
+    kinetic_energy: m/2*dot(x)^2,
+    inputs: [push = x],
+}";
+
+/// `chaplygin identify` on the point mass with `data` as `--data`.
+fn identify(dir: &Path, data: &str, arguments: &[&str]) -> Output {
+    let model = dir.join("point_mass.model");
+    std::fs::write(&model, POINT_MASS).expect("the model is written");
+    let file = dir.join("data.csv");
+    std::fs::write(&file, data).expect("the data are written");
+    let out = dir.join("identify");
+    let mut all = vec![
+        "identify",
+        model.to_str().expect("UTF-8"),
+        "--data",
+        file.to_str().expect("UTF-8"),
+        "--out",
+        out.to_str().expect("UTF-8"),
+    ];
+    all.extend(arguments);
+    chaplygin(&all)
+}
+
+/// `x = 3 t^2 / 4` under `push = 3`, `m = 2`, on 21 rows over 2 s.
+fn pushed_from_rest() -> String {
+    let mut text = String::from("t,x,push\n");
+    for i in 0..21 {
+        let t = 0.1 * i as f64;
+        text.push_str(&format!("{t},{},3\n", 0.75 * t * t));
+    }
+    text
+}
+
+#[test]
+fn the_mass_is_recovered_from_a_pushed_motion() {
+    let dir = scratch("identify_point_mass");
+    let output = identify(dir.path(), &pushed_from_rest(), &["--estimate", "m=1.5"]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let out = dir.path().join("identify");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("estimate.json")).expect("written"))
+            .expect("JSON");
+    let mass = json["parameters"]["m"].as_f64().expect("m");
+    assert!((mass - 2.0).abs() < 1e-6, "m = {mass}");
+    assert!(json["standard_errors"]["m"].as_f64().is_some(), "{json}");
+    assert!(json["residual_rms"].as_f64().expect("rms") < 1e-6, "{json}");
+    assert!(stdout.contains("m = 2.0000"), "{stdout}");
+    let (header, rows) = read_csv(&out.join("fit.csv"));
+    let (t, x) = (column(&header, &rows, "t"), column(&header, &rows, "x"));
+    let data = column(&header, &rows, "data(x)");
+    for ((t, x), d) in t.iter().zip(&x).zip(&data) {
+        assert!((x - 0.75 * t * t).abs() < 1e-6 && (d - 0.75 * t * t).abs() < 1e-12);
+    }
+    assert!(out.join("fit.png").exists());
+}
+
+#[test]
+fn bad_data_fail_in_one_line() {
+    let dir = scratch("identify_bad_data");
+    let cases: [(&str, &[&str], &str); 4] = [
+        (
+            &pushed_from_rest(),
+            &["--estimate", "k"],
+            "--estimate k: unknown parameter",
+        ),
+        (
+            "t,x,lean\n0,0,0\n1,1,0\n",
+            &["--estimate", "m"],
+            "unknown columns lean",
+        ),
+        ("t,x\n0,0\n1,1\n", &["--estimate", "m"], "too few rows"),
+        (
+            "t,x\n0,0\n2,1\n1,1\n3,2\n",
+            &["--estimate", "m"],
+            "increase strictly",
+        ),
+    ];
+    for (data, arguments, said) in cases {
+        let output = identify(dir.path(), data, arguments);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success(), "{said}");
+        assert!(
+            stderr.contains(said) && stderr.trim().lines().count() == 1,
+            "{stderr}"
+        );
+    }
+}

@@ -1,0 +1,618 @@
+//! Parameter estimation by collocation (docs/INTERFACE.md section 13):
+//! the parameters `theta` named by `--estimate` and every node's state
+//! `x_i` (the initial one too) that fit the measured columns of a table,
+//!
+//! ```text
+//! minimize  sum over measured (i, k) of (x_{i,k} - d_{i,k})^2
+//! subject to  the collocation defects of d(q, qdot)/dt = (qdot, qddot(q, qdot, u; theta)),
+//! ```
+//!
+//! the inputs `u` held at the table's values, not variables: interpolated
+//! where the scheme applies them (the midpoint rule's node `i` at `t_i +
+//! h/2`, the other schemes' at their nodes). The defects are the plan's ([`super::transcription`]),
+//! their derivatives by `theta` exact: at each stage `X_k`,
+//!
+//! ```text
+//! d defect / d theta = - h sum_k w_k (f_theta(X_k) + f_x(X_k) dX_k/d theta),
+//! dX_k/d theta = c_k h (f_theta(x_i) - f_theta(x_{i+1})),
+//! ```
+//!
+//! with `f_theta = (0, d qddot / d theta)` the model's
+//! `acceleration_parameter_jacobian`; `c_k` is nonzero only at
+//! Hermite-Simpson's midpoint. The solver works on the L-BFGS Hessian.
+//!
+//! The standard errors are the Gauss-Newton ones of a least-squares fit
+//! under equality constraints (Bard, "Nonlinear Parameter Estimation",
+//! Academic Press 1974, sections 7-5 and 7-22; Seber and Wild, "Nonlinear
+//! Regression", Wiley 1989, section 2.1): with `r` the `m` residuals,
+//! `J_r` their Jacobian by all variables and `Z` a basis of the null space
+//! of the constraints' Jacobian `C` at the optimum,
+//!
+//! ```text
+//! Cov = s^2 Z (Z^T J_r^T J_r Z)^+ Z^T,   s^2 = RSS / (m - rank(J_r Z)).
+//! ```
+//!
+//! The defects fix each node's state from the one before, so `Z` is the
+//! sensitivity of the states to `xi = (x_0, theta)`: `S_0 = (I, 0)`,
+//! `S_{i+1} = -B_i^{-1} (A_i S_i + P_i (0, I))` with `A_i`, `B_i`, `P_i`
+//! the defect's derivatives by `x_i`, `x_{i+1}` and `theta`. Initial
+//! states that no measured column sees leave `J_r Z` rank deficient: the
+//! pseudo-inverse and the rank leave them out of the parameters'
+//! covariance and of the degrees of freedom.
+
+use super::kkt::{self, Residuals};
+use super::nlp::{Nlp, Solver};
+use super::resolve::guess::{Guess, Table as TableKind};
+use super::resolve::{DERIVED_COLUMNS, RequestError, node_columns};
+use super::transcription::{Costs, Grid, Scheme, StagePoint, Transcription};
+use super::{PlanError, Request as PlanRequest};
+use crate::driver::Failure;
+use crate::driver::engine::Loaded;
+use crate::driver::expression::{Expression, Scope};
+use crate::driver::setup::with_parameters;
+use crate::runtime::nalgebra::DMatrix;
+use crate::runtime::record::{Recorder, Table};
+use chaplygin_codegen::interpret::evaluated;
+use std::cell::RefCell;
+use std::ops::ControlFlow;
+use std::path::PathBuf;
+
+/// What to estimate, from which data, on which grid.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+pub struct Request {
+    /// A CSV with `t`, any coordinates or velocities `dot(q)` by name
+    /// (measured) and the inputs applied, by name (0 where not given);
+    /// `trajectory.csv`'s `energy` and residual columns are ignored.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.csv"))]
+    pub data: PathBuf,
+    /// `NAME[=GUESS]`: a parameter to estimate, from GUESS or its value
+    /// (repeatable).
+    #[cfg_attr(feature = "cli", arg(long = "estimate", required = true, value_parser = estimate_assignment))]
+    pub estimate: Vec<(String, Option<f64>)>,
+    /// The number of nodes, evenly spread over the data's time span, the
+    /// data interpolated at them [default: one per row].
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub nodes: Option<usize>,
+    /// The collocation scheme.
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = Scheme::Midpoint))]
+    pub scheme: Scheme,
+    /// A model parameter, `NAME=VALUE` (repeatable).
+    #[cfg_attr(feature = "cli", arg(long = "param", value_parser = crate::driver::simulate::assignment))]
+    pub params: Vec<(String, f64)>,
+    /// The solver's tolerance; the KKT conditions are verified to 100
+    /// times it.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = PlanRequest::TOL))]
+    pub tol: f64,
+}
+
+/// `NAME` or `NAME=GUESS`.
+///
+/// # Errors
+/// A GUESS that is not a number.
+pub fn estimate_assignment(text: &str) -> Result<(String, Option<f64>), String> {
+    match text.split_once('=') {
+        None => Ok((text.trim().to_string(), None)),
+        Some((name, value)) => value
+            .trim()
+            .parse()
+            .map(|value| (name.trim().to_string(), Some(value)))
+            .map_err(|_| format!("`{value}` is not a number")),
+    }
+}
+
+/// Why an estimate was not made, beyond the plan's reasons.
+#[derive(Debug, PartialEq, thiserror::Error)]
+pub enum IdentifyError {
+    /// A name that is no parameter of the model.
+    #[error("--estimate {name}: unknown parameter (the model's: {known})")]
+    UnknownEstimate {
+        /// What was given.
+        name: String,
+        /// The parameters there are.
+        known: String,
+    },
+    /// Fewer measured values than unknowns the data can fix.
+    #[error(
+        "--data {path}: too few rows: {measured} measured values for {unknowns} unknowns (the \
+         initial state and the estimates)"
+    )]
+    TooFewRows {
+        /// The file.
+        path: String,
+        /// The measured values.
+        measured: usize,
+        /// The initial state's size and the estimates'.
+        unknowns: usize,
+    },
+    /// Data that measure no coordinate or velocity.
+    #[error("--data {0}: it measures no coordinate or velocity")]
+    NothingMeasured(String),
+    /// Fewer than two nodes.
+    #[error("--nodes {0}: an estimate needs at least 2 nodes")]
+    Nodes(usize),
+}
+
+/// A verified estimate.
+#[derive(Clone, Debug)]
+pub struct Estimate {
+    /// Each estimated parameter's name and value.
+    pub parameters: Vec<(String, f64)>,
+    /// Their standard errors, in the same order.
+    pub standard_errors: Vec<f64>,
+    /// `sqrt(RSS / m)` over the `m` measured values.
+    pub residual_rms: f64,
+    /// The solver's iterations.
+    pub iterations: usize,
+    /// The KKT residuals, computed from the exact derivatives.
+    pub kkt: Residuals,
+    /// `t`, the fitted coordinates and velocities, and each measured
+    /// column's data as `data(NAME)`, one row per node.
+    pub fit: Table,
+}
+
+impl Estimate {
+    /// As `estimate.json` holds it.
+    pub fn to_json(&self) -> serde_json::Value {
+        let by_name = |values: Vec<(&String, f64)>| {
+            values
+                .into_iter()
+                .map(|(name, value)| (name.clone(), serde_json::json!(value)))
+                .collect::<serde_json::Map<_, _>>()
+        };
+        let names = self.parameters.iter().map(|(name, _)| name);
+        serde_json::json!({
+            "parameters": by_name(self.parameters.iter().map(|(n, v)| (n, *v)).collect()),
+            "standard_errors": by_name(names.zip(self.standard_errors.iter().copied()).collect()),
+            "residual_rms": self.residual_rms,
+            "iterations": self.iterations,
+            "kkt": {
+                "primal": self.kkt.primal,
+                "dual": self.kkt.dual,
+                "complementarity": self.kkt.complementarity,
+            },
+        })
+    }
+}
+
+/// The parameters `request` names, estimated from its data on `loaded`,
+/// solved by `solver` and verified by the KKT conditions.
+///
+/// # Errors
+/// Bad input (an unknown name, data columns that are not the model's,
+/// too few rows, a `t` that does not increase), or an answer that is not a
+/// verified optimum.
+pub fn identify(
+    loaded: Loaded,
+    request: &Request,
+    solver: &dyn Solver,
+) -> Result<Estimate, Failure> {
+    let fit = Fit::new(loaded, request)?;
+    let solution = solver.solve(&fit, request.tol, PlanRequest::MAX_ITERATIONS, &mut |_| {
+        ControlFlow::Continue(())
+    });
+    let (status, iterations) = (solution.status.clone(), solution.iterations);
+    let (Some(kkt), Some(rss)) = (kkt::residuals(&fit, &solution), fit.objective(&solution.z))
+    else {
+        return Err(PlanError::NotFinite { status, iterations }.into());
+    };
+    let allowed = PlanRequest::VERIFIED * request.tol;
+    if !kkt.within(allowed) {
+        let residuals = kkt;
+        return Err(PlanError::NotVerified {
+            status,
+            iterations,
+            residuals,
+            allowed,
+        }
+        .into());
+    }
+    let measured = fit.measured.len() * fit.data.len();
+    Ok(Estimate {
+        parameters: fit
+            .names
+            .iter()
+            .zip(&solution.z[fit.states()..])
+            .map(|(name, value)| (name.clone(), *value))
+            .collect(),
+        standard_errors: fit.standard_errors(&solution.z, rss),
+        residual_rms: (rss / measured as f64).sqrt(),
+        iterations,
+        kkt,
+        fit: fit.table(&solution.z)?,
+    })
+}
+
+/// The estimation as a nonlinear program: each node's state, then the
+/// estimated parameters.
+struct Fit {
+    /// The defects, its model's parameters set to the variables' before
+    /// each evaluation.
+    transcription: RefCell<Transcription>,
+    /// The estimated parameters' names, and their indices among the
+    /// model's.
+    names: Vec<String>,
+    indices: Vec<usize>,
+    /// The nodes' times.
+    times: Vec<f64>,
+    /// Each node's inputs.
+    inputs: Vec<Vec<f64>>,
+    /// The measured columns among a node's state, and each node's data in
+    /// them.
+    measured: Vec<usize>,
+    data: Vec<Vec<f64>>,
+    /// The state's column names.
+    columns: Vec<String>,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    guess: Vec<f64>,
+    /// The transcription's Jacobian entries kept (those by states), by
+    /// their index among its entries.
+    kept: Vec<usize>,
+    structure: Vec<(usize, usize)>,
+}
+
+impl Fit {
+    /// The program `request` asks of `loaded`.
+    fn new(loaded: Loaded, request: &Request) -> Result<Self, Failure> {
+        let mut model = loaded.model;
+        with_parameters(&mut model, &request.params)?;
+        let known = model.names().parameters.clone();
+        let mut indices = Vec::new();
+        for (name, guess) in &request.estimate {
+            let index = known.iter().position(|p| p == name).ok_or_else(|| {
+                IdentifyError::UnknownEstimate {
+                    name: name.clone(),
+                    known: known.join(", "),
+                }
+            })?;
+            if let Some(value) = guess {
+                model.set_parameter(name, *value)?;
+            }
+            indices.push(index);
+        }
+        let columns = node_columns(&model);
+        let table = TableKind {
+            flag: "--data",
+            ignored: &DERIVED_COLUMNS,
+            others: " and trajectory.csv's others",
+        };
+        let read = Guess::read(table, &request.data, &columns)?;
+        let path = request.data.display().to_string();
+        let nodes = request.nodes.unwrap_or(read.rows());
+        if nodes < 2 {
+            return Err(IdentifyError::Nodes(nodes).into());
+        }
+        let (first, last) = read.span();
+        let step = (last - first) / (nodes - 1) as f64;
+        let times: Vec<f64> = (0..nodes).map(|i| first + i as f64 * step).collect();
+        let s = 2 * model.sizes().n;
+        let measured: Vec<usize> = read.columns().filter(|c| *c < s).collect();
+        if measured.is_empty() {
+            return Err(IdentifyError::NothingMeasured(path).into());
+        }
+        let unknowns = s + indices.len();
+        if nodes * measured.len() <= unknowns {
+            let measured = nodes * measured.len();
+            return Err(IdentifyError::TooFewRows {
+                path,
+                measured,
+                unknowns,
+            }
+            .into());
+        }
+        let mut guess = vec![0.0; nodes * s];
+        let mut inputs = vec![vec![0.0; columns.len() - s]; nodes];
+        let mut data = vec![Vec::new(); nodes];
+        let stage = &request.scheme.stages()[0];
+        let applied = (stage.at - stage.inputs_at) * step;
+        for (i, t) in times.iter().enumerate() {
+            for (column, value) in read.at(*t) {
+                if column < s {
+                    guess[i * s + column] = value;
+                    data[i].push(value);
+                }
+            }
+            for (column, value) in read.at(t + applied).filter(|(c, _)| *c >= s) {
+                inputs[i][column - s] = value;
+            }
+        }
+        let full_guess = interleave(&guess, &inputs, s);
+        guess.extend(indices.iter().map(|&k| model.parameter_values()[k]));
+        let names = indices.iter().map(|&k| known[k].clone()).collect();
+        let zero =
+            Expression::parse("0", &Scope::default()).map_err(|source| RequestError::Value {
+                flag: "--estimate",
+                name: "0".into(),
+                source,
+            })?;
+        let grid = Grid {
+            nodes,
+            duration: last - first,
+            free_duration: false,
+        };
+        let costs = Costs {
+            running: zero,
+            terminal: None,
+        };
+        let free = vec![f64::NEG_INFINITY; full_guess.len()];
+        let bounds = (free.clone(), free.iter().map(|v| -v).collect(), full_guess);
+        let transcription = Transcription::new(model, request.scheme, grid, costs, bounds);
+        let size = guess.len();
+        let mut fit = Self {
+            transcription: RefCell::new(transcription),
+            names,
+            indices,
+            times,
+            inputs,
+            measured,
+            data,
+            columns: columns[..s].to_vec(),
+            lo: vec![f64::NEG_INFINITY; size],
+            hi: vec![f64::INFINITY; size],
+            guess,
+            kept: Vec::new(),
+            structure: Vec::new(),
+        };
+        fit.build_structure();
+        Ok(fit)
+    }
+
+    /// The transcription's entries by states, renumbered, then each
+    /// interval's dense block by the estimates.
+    fn build_structure(&mut self) {
+        let (s, w) = (self.state(), self.transcription.borrow().width());
+        let transcription = self.transcription.borrow();
+        for (index, &(row, column)) in transcription.jacobian_structure().iter().enumerate() {
+            if column % w < s {
+                self.kept.push(index);
+                self.structure.push((row, column / w * s + column % w));
+            }
+        }
+        let first = self.states();
+        for row in 0..transcription.constraints() {
+            self.structure
+                .extend((0..self.names.len()).map(|j| (row, first + j)));
+        }
+    }
+
+    /// A node's state's size, `2n`.
+    fn state(&self) -> usize {
+        self.columns.len()
+    }
+
+    /// The number of state variables, `N 2n`.
+    fn states(&self) -> usize {
+        self.times.len() * self.state()
+    }
+
+    /// The transcription's variables at `y`, its model's estimated
+    /// parameters set to `y`'s.
+    fn transcribed(&self, y: &[f64]) -> Vec<f64> {
+        let mut transcription = self.transcription.borrow_mut();
+        let model = transcription.model_mut();
+        for (name, value) in self.names.iter().zip(&y[self.states()..]) {
+            model
+                .set_parameter(name, *value)
+                .expect("an estimated parameter is the model's");
+        }
+        interleave(&y[..self.states()], &self.inputs, self.state())
+    }
+
+    /// `d f / d theta` at `point` (2n x P, row-major), its `q` rows 0.
+    fn rhs_by_parameters(&self, transcription: &Transcription, point: &StagePoint) -> Vec<f64> {
+        let model = transcription.model();
+        let (n, all) = (model.sizes().n, model.parameter_values().len());
+        let (q, qdot) = point.x.split_at(n);
+        let by_all = evaluated(model.acceleration_parameter_jacobian(q, qdot, &point.u));
+        let estimated = self.indices.len();
+        let mut by = vec![0.0; 2 * n * estimated];
+        for k in 0..n {
+            for (j, &index) in self.indices.iter().enumerate() {
+                by[(n + k) * estimated + j] = by_all[k * all + index];
+            }
+        }
+        by
+    }
+
+    /// Interval `i`'s defect's derivative by the estimates (2n x P,
+    /// row-major), at the transcription's variables `z`.
+    fn defect_by_parameters(&self, transcription: &Transcription, z: &[f64], i: usize) -> Vec<f64> {
+        let (s, estimated, h) = (self.state(), self.indices.len(), transcription.step(z));
+        let ends = [i, i + 1]
+            .map(|j| self.rhs_by_parameters(transcription, &transcription.node_point(z, j)));
+        let mut defect = vec![0.0; s * estimated];
+        for stage in transcription.scheme.stages() {
+            let point = transcription.stage_point(z, i, stage);
+            let mut by = self.rhs_by_parameters(transcription, &point);
+            if stage.slopes != 0.0 {
+                let (fx, _) = transcription.rhs_jacobian(&point);
+                let fx = DMatrix::from_row_slice(s, s, &fx);
+                let moved = DMatrix::from_fn(s, estimated, |r, c| {
+                    let k = r * estimated + c;
+                    stage.slopes * h * (ends[0][k] - ends[1][k])
+                });
+                let through = fx * moved;
+                for (k, b) in by.iter_mut().enumerate() {
+                    *b += through[(k / estimated, k % estimated)];
+                }
+            }
+            for (d, b) in defect.iter_mut().zip(&by) {
+                *d -= h * stage.weight * b;
+            }
+        }
+        defect
+    }
+
+    /// The standard errors of the estimates at `y`, with `rss` the
+    /// residual sum of squares there.
+    fn standard_errors(&self, y: &[f64], rss: f64) -> Vec<f64> {
+        let sensitivity = self.sensitivities(y);
+        let (s, estimated) = (self.state(), self.indices.len());
+        let rows: Vec<f64> = sensitivity
+            .iter()
+            .flat_map(|block| {
+                self.measured
+                    .iter()
+                    .flat_map(move |&k| block.row(k).iter().copied().collect::<Vec<_>>())
+            })
+            .collect();
+        let m = rows.len() / (s + estimated);
+        let jz = DMatrix::from_row_slice(m, s + estimated, &rows);
+        let svd = jz.svd(false, true);
+        let largest = svd.singular_values.max();
+        let kept = |sigma: f64| sigma > largest * 1e-10;
+        let rank = svd.singular_values.iter().filter(|v| kept(**v)).count();
+        let variance = rss / (m - rank) as f64;
+        let v_t = svd.v_t.expect("asked for");
+        (0..estimated)
+            .map(|j| {
+                let column = s + j;
+                let sum: f64 = svd
+                    .singular_values
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, sigma)| kept(**sigma))
+                    .map(|(r, sigma)| (v_t[(r, column)] / sigma).powi(2))
+                    .sum();
+                (variance * sum).sqrt()
+            })
+            .collect()
+    }
+
+    /// Each node's state's derivative by `(x_0, theta)` along the defects
+    /// (2n x (2n + P) each).
+    fn sensitivities(&self, y: &[f64]) -> Vec<DMatrix<f64>> {
+        let (s, estimated) = (self.state(), self.indices.len());
+        let dim = s + estimated;
+        let mut values = vec![0.0; self.structure.len()];
+        self.jacobian_values(y, &mut values);
+        let intervals = self.times.len() - 1;
+        let mut previous = vec![DMatrix::zeros(s, s); intervals];
+        let mut next = previous.clone();
+        let mut by_parameters = vec![DMatrix::zeros(s, dim); intervals];
+        for (&(row, column), value) in self.structure.iter().zip(&values) {
+            let (i, r) = (row / s, row % s);
+            match column {
+                c if c >= self.states() => by_parameters[i][(r, s + c - self.states())] += value,
+                c if c / s == i => previous[i][(r, c % s)] += value,
+                c => next[i][(r, c % s)] += value,
+            }
+        }
+        let mut sensitivity = vec![DMatrix::identity(s, dim)];
+        for i in 0..intervals {
+            let pushed = &previous[i] * &sensitivity[i] + &by_parameters[i];
+            let moved = next[i]
+                .clone()
+                .lu()
+                .solve(&(-pushed))
+                .unwrap_or_else(|| DMatrix::from_element(s, dim, f64::NAN));
+            sensitivity.push(moved);
+        }
+        sensitivity
+    }
+
+    /// `fit.csv`'s rows at `y`.
+    fn table(&self, y: &[f64]) -> Result<Table, Failure> {
+        let s = self.state();
+        let mut header = vec!["t".to_string()];
+        header.extend(self.columns.iter().cloned());
+        header.extend(
+            self.measured
+                .iter()
+                .map(|&k| format!("data({})", self.columns[k])),
+        );
+        let mut table = Table::new();
+        Recorder::start(&mut table, &header)?;
+        for (i, t) in self.times.iter().enumerate() {
+            let mut row = vec![*t];
+            row.extend_from_slice(&y[i * s..(i + 1) * s]);
+            row.extend_from_slice(&self.data[i]);
+            Recorder::record(&mut table, &row)?;
+        }
+        Ok(table)
+    }
+}
+
+/// The nodes' states and inputs, node by node.
+fn interleave(states: &[f64], inputs: &[Vec<f64>], s: usize) -> Vec<f64> {
+    states
+        .chunks(s)
+        .zip(inputs)
+        .flat_map(|(x, u)| x.iter().chain(u).copied())
+        .collect()
+}
+
+impl Nlp for Fit {
+    fn variables(&self) -> usize {
+        self.guess.len()
+    }
+
+    fn constraints(&self) -> usize {
+        (self.times.len() - 1) * self.state()
+    }
+
+    fn bounds(&self) -> (&[f64], &[f64]) {
+        (&self.lo, &self.hi)
+    }
+
+    fn guess(&self) -> Vec<f64> {
+        self.guess.clone()
+    }
+
+    fn objective(&self, y: &[f64]) -> Option<f64> {
+        let s = self.state();
+        let rss: f64 = self
+            .data
+            .iter()
+            .enumerate()
+            .flat_map(|(i, row)| {
+                self.measured
+                    .iter()
+                    .zip(row)
+                    .map(move |(&k, d)| (y[i * s + k] - d).powi(2))
+            })
+            .sum();
+        rss.is_finite().then_some(rss)
+    }
+
+    fn gradient(&self, y: &[f64], gradient: &mut [f64]) -> bool {
+        let s = self.state();
+        gradient.fill(0.0);
+        for (i, row) in self.data.iter().enumerate() {
+            for (&k, d) in self.measured.iter().zip(row) {
+                gradient[i * s + k] = 2.0 * (y[i * s + k] - d);
+            }
+        }
+        super::transcription::finite(gradient)
+    }
+
+    fn residuals(&self, y: &[f64], residuals: &mut [f64]) -> bool {
+        let z = self.transcribed(y);
+        self.transcription.borrow().residuals(&z, residuals)
+    }
+
+    fn jacobian_structure(&self) -> &[(usize, usize)] {
+        &self.structure
+    }
+
+    fn jacobian_values(&self, y: &[f64], values: &mut [f64]) -> bool {
+        let z = self.transcribed(y);
+        let transcription = self.transcription.borrow();
+        let mut all = vec![0.0; transcription.jacobian_structure().len()];
+        let finite = transcription.jacobian_values(&z, &mut all);
+        for (value, &index) in values.iter_mut().zip(&self.kept) {
+            *value = all[index];
+        }
+        let mut at = self.kept.len();
+        for i in 0..self.times.len() - 1 {
+            let block = self.defect_by_parameters(&transcription, &z, i);
+            values[at..at + block.len()].copy_from_slice(&block);
+            at += block.len();
+        }
+        finite && super::transcription::finite(values)
+    }
+}
+
+#[cfg(test)]
+mod tests;
