@@ -384,7 +384,10 @@ fn a_terminal_shows_each_iteration() {
         "{last:?} against {objective}"
     );
     let primal = report["kkt"]["primal"].as_f64().expect("a number");
-    assert!(primal <= 1e-6 && last[2] <= 1e-6, "{last:?}, KKT primal {primal}");
+    assert!(
+        primal <= 1e-6 && last[2] <= 1e-6,
+        "{last:?}, KKT primal {primal}"
+    );
 }
 
 /// Ctrl-C (SIGINT) during a long solve: the command writes the last
