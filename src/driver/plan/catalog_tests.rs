@@ -32,7 +32,12 @@ fn assigned(pairs: &[(&str, impl ToString)]) -> Vec<(String, String)> {
 }
 
 /// A midpoint-rule plan of `duration` on `nodes` nodes.
-fn request(duration: f64, nodes: usize, start: &[(&str, f64)], goal: &[(&str, f64)]) -> Request {
+pub(super) fn request(
+    duration: f64,
+    nodes: usize,
+    start: &[(&str, f64)],
+    goal: &[(&str, f64)],
+) -> Request {
     Request {
         duration,
         nodes,

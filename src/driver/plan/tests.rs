@@ -5,7 +5,7 @@
 //! simulated and restarted from a coarser plan, and the one-line errors
 //! of bad requests.
 
-use super::catalog_tests::replayed;
+use super::catalog_tests::{replayed, request};
 use super::nlp::{Hessian, Ripopt};
 use super::{Plan, Request, Scheme, plan};
 use crate::driver::catalog::{Source, lookup};
@@ -29,28 +29,12 @@ fn point_mass() -> Loaded {
     load(&source, EngineChoice::Jit).expect("the model derives")
 }
 
-fn assigned(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
-    pairs
-        .iter()
-        .map(|(n, v)| (n.to_string(), v.to_string()))
-        .collect()
-}
-
 /// The point mass (m = 2) from rest at 0 to rest at 1 in T = 2.
 fn rest_to_rest(scheme: Scheme, nodes: usize) -> Request {
+    let at_rest = |x: f64| [("x", x), ("dot(x)", 0.0)];
     Request {
-        duration: 2.0,
-        nodes,
         scheme,
-        start: assigned(&[("x", "0"), ("dot(x)", "0")]),
-        goal: assigned(&[("x", "1"), ("dot(x)", "0")]),
-        free_duration: false,
-        minimize: None,
-        final_cost: None,
-        bounds: Vec::new(),
-        params: Vec::new(),
-        guess: None,
-        tol: Request::TOL,
+        ..request(2.0, nodes, &at_rest(0.0), &at_rest(1.0))
     }
 }
 
@@ -126,37 +110,21 @@ fn a_saturated_point_mass_plan_meets_its_closed_form() {
 /// The differential drive from rest at the origin to the pose (0.3, 0.1,
 /// 0) at rest in 4 s, by the midpoint rule on `nodes` nodes.
 fn parking(nodes: usize) -> Request {
-    Request {
-        duration: 4.0,
-        nodes,
-        scheme: Scheme::Midpoint,
-        start: assigned(&[
-            ("x", "0"),
-            ("y", "0"),
-            ("theta", "0"),
-            ("phi_r", "0"),
-            ("phi_l", "0"),
-            ("dot(x)", "0"),
-            ("dot(y)", "0"),
-            ("dot(theta)", "0"),
-            ("dot(phi_r)", "0"),
-            ("dot(phi_l)", "0"),
-        ]),
-        goal: assigned(&[
-            ("x", "0.3"),
-            ("y", "0.1"),
-            ("theta", "0"),
-            ("dot(phi_r)", "0"),
-            ("dot(phi_l)", "0"),
-        ]),
-        free_duration: false,
-        minimize: None,
-        final_cost: None,
-        bounds: Vec::new(),
-        params: Vec::new(),
-        guess: None,
-        tol: Request::TOL,
-    }
+    let mut start: Vec<(&str, f64)> = ["x", "y", "theta", "phi_r", "phi_l"]
+        .into_iter()
+        .map(|name| (name, 0.0))
+        .collect();
+    start.extend(
+        ["dot(x)", "dot(y)", "dot(theta)", "dot(phi_r)", "dot(phi_l)"].map(|name| (name, 0.0)),
+    );
+    let goal = [
+        ("x", 0.3),
+        ("y", 0.1),
+        ("theta", 0.0),
+        ("dot(phi_r)", 0.0),
+        ("dot(phi_l)", 0.0),
+    ];
+    request(4.0, nodes, &start, &goal)
 }
 
 fn differential_drive() -> Loaded {
