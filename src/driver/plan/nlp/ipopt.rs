@@ -54,7 +54,9 @@ impl Solver for Ipopt {
             observer,
             iterations: 0,
         };
-        let _serial = ONE_AT_A_TIME.lock().unwrap_or_else(|poison| poison.into_inner());
+        let _serial = ONE_AT_A_TIME
+            .lock()
+            .unwrap_or_else(|poison| poison.into_inner());
         match Problem::create(nlp, context.structure.len(), &options) {
             Some(problem) => problem.solve(&mut context),
             None => unsolved(nlp, "Invalid_Problem_Definition"),
@@ -151,8 +153,11 @@ impl Problem {
         // NUL-terminated and Ipopt copies them.
         unsafe {
             AddIpoptIntOption(self.0, c"print_level".as_ptr().cast_mut(), 0) != 0
-                && AddIpoptStrOption(self.0, c"sb".as_ptr().cast_mut(), c"yes".as_ptr().cast_mut())
-                    != 0
+                && AddIpoptStrOption(
+                    self.0,
+                    c"sb".as_ptr().cast_mut(),
+                    c"yes".as_ptr().cast_mut(),
+                ) != 0
                 && AddIpoptNumOption(self.0, c"tol".as_ptr().cast_mut(), options.tol) != 0
                 && AddIpoptIntOption(self.0, c"max_iter".as_ptr().cast_mut(), max_iterations) != 0
                 && AddIpoptStrOption(
@@ -293,8 +298,13 @@ unsafe extern "C" fn eval_grad_f(
     user_data: *mut c_void,
 ) -> c_int {
     // SAFETY: Ipopt passes `n` variables and `n` entries to write.
-    let (nlp, x, gradient) =
-        unsafe { (context(user_data).nlp, entries(x, n), entries_mut(gradient, n)) };
+    let (nlp, x, gradient) = unsafe {
+        (
+            context(user_data).nlp,
+            entries(x, n),
+            entries_mut(gradient, n),
+        )
+    };
     nlp.gradient(x, gradient).into()
 }
 
@@ -335,7 +345,10 @@ unsafe extern "C" fn eval_jac_g(
     unsafe {
         let nlp = context(user_data).nlp;
         if values.is_null() {
-            let (rows, columns) = (entries_mut(rows, entries_count), entries_mut(columns, entries_count));
+            let (rows, columns) = (
+                entries_mut(rows, entries_count),
+                entries_mut(columns, entries_count),
+            );
             write_structure(nlp.jacobian_structure(), rows, columns);
             return 1;
         }
@@ -363,7 +376,10 @@ unsafe extern "C" fn eval_h(
     unsafe {
         let context = context(user_data);
         if values.is_null() {
-            let (rows, columns) = (entries_mut(rows, entries_count), entries_mut(columns, entries_count));
+            let (rows, columns) = (
+                entries_mut(rows, entries_count),
+                entries_mut(columns, entries_count),
+            );
             write_structure(&context.structure, rows, columns);
             return 1;
         }
