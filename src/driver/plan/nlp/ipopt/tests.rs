@@ -188,3 +188,17 @@ fn solvers_on_the_issue_problems() {
     }
     assert!(failures.is_empty(), "{failures:?}");
 }
+
+/// `|push| <= 0.1` moves the point mass (m = 2) at most `0.05 (T/2)^2 =
+/// 0.05` in T = 2, not the goal's 1: Ipopt detects the infeasibility, and
+/// the plan is a one-line error with its word.
+#[test]
+fn ipopt_on_an_infeasible_plan_is_a_one_line_error() {
+    let mut request = rest_to_rest(Scheme::Midpoint, 11);
+    request.bounds.push(("push".into(), "-0.1:0.1".into()));
+    let error = plan(point_mass(), &request, &Ipopt::default()).expect_err("infeasible");
+    let message = error.to_string();
+    assert!(message.starts_with("no verified optimum"), "{message}");
+    assert!(message.contains("Infeasible_Problem_Detected"), "{message}");
+    assert!(!message.contains('\n'), "{message}");
+}
