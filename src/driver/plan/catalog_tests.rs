@@ -25,7 +25,7 @@ pub(super) fn built_in(name: &str) -> Loaded {
 }
 
 /// `NAME=VALUE` pairs as a request's start, goal or bounds.
-fn assigned(pairs: &[(&str, impl ToString)]) -> Vec<(String, String)> {
+pub(super) fn assigned(pairs: &[(&str, impl ToString)]) -> Vec<(String, String)> {
     (pairs.iter())
         .map(|(name, value)| (name.to_string(), value.to_string()))
         .collect()
@@ -38,14 +38,6 @@ pub(super) type Problem = (
     Vec<(&'static str, f64)>,
     Vec<(&'static str, &'static str)>,
 );
-
-/// `problem`'s midpoint-rule request on `nodes` nodes.
-pub(super) fn problem_request((duration, start, goal, bounds): &Problem, nodes: usize) -> Request {
-    Request {
-        bounds: assigned(bounds),
-        ..request(*duration, nodes, start, goal)
-    }
-}
 
 /// A midpoint-rule plan of `duration` on `nodes` nodes.
 pub(super) fn request(

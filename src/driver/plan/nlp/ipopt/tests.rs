@@ -9,7 +9,9 @@ use std::ops::ControlFlow;
 use super::super::{Hessian, Ripopt, Solver};
 use super::Ipopt;
 use crate::driver::engine::Loaded;
-use crate::driver::plan::catalog_tests::{built_in, lane_change, problem_request, sideways};
+use crate::driver::plan::catalog_tests::{
+    Problem, assigned, built_in, lane_change, request, sideways,
+};
 use crate::driver::plan::tests::{differential_drive, parking, point_mass, rest_to_rest};
 use crate::driver::plan::{Plan, PlanError, Report, Request, Scheme, plan, plan_watched};
 
@@ -90,6 +92,14 @@ fn ipopt_reports_each_iteration_and_stops_where_its_observer_says() {
     };
     assert_eq!(stopped.report.status, Report::INTERRUPTED);
     assert_eq!(stopped.report.iterations, 2);
+}
+
+/// `problem`'s midpoint-rule request on `nodes` nodes.
+fn problem_request((duration, start, goal, bounds): &Problem, nodes: usize) -> Request {
+    Request {
+        bounds: assigned(bounds),
+        ..request(*duration, nodes, start, goal)
+    }
 }
 
 /// The CPU time this thread has run (`/proc/thread-self/schedstat`, in
