@@ -249,8 +249,8 @@ unsafe fn context<'c>(user_data: *mut c_void) -> &'c mut Context<'c, 'c> {
     unsafe { &mut *user_data.cast() }
 }
 
-/// `len` entries at `pointer` (Ipopt's arrays are never empty-and-null
-/// together with a positive length).
+/// The `len` entries at `pointer`; none where `len` is not positive (the
+/// pointer may then be null).
 ///
 /// # Safety
 /// `pointer` points to `len` initialized entries when `len > 0`.
