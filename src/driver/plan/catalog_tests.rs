@@ -20,16 +20,24 @@ use std::rc::Rc;
 /// scheme's.
 const SUBSTEPS: usize = 40;
 
-fn built_in(name: &str) -> Loaded {
+pub(super) fn built_in(name: &str) -> Loaded {
     load(&lookup(name).expect("built in"), EngineChoice::Jit).expect("derives")
 }
 
 /// `NAME=VALUE` pairs as a request's start, goal or bounds.
-fn assigned(pairs: &[(&str, impl ToString)]) -> Vec<(String, String)> {
+pub(super) fn assigned(pairs: &[(&str, impl ToString)]) -> Vec<(String, String)> {
     (pairs.iter())
         .map(|(name, value)| (name.to_string(), value.to_string()))
         .collect()
 }
+
+/// A plan's problem: its duration, start, goal and bounds.
+pub(super) type Problem = (
+    f64,
+    Vec<(&'static str, f64)>,
+    Vec<(&'static str, f64)>,
+    Vec<(&'static str, &'static str)>,
+);
 
 /// A midpoint-rule plan of `duration` on `nodes` nodes.
 pub(super) fn request(
@@ -237,31 +245,35 @@ fn the_three_link_snake_plan_replays_to_its_goal() {
 /// at `phi = pi/2` their axles lie along the board, the constraints'
 /// rank drops, and a plan crossing there slides the board sideways
 /// within one interval, a jump no simulation reproduces.
-fn sideways(name: &str) {
+pub(super) fn sideways() -> Problem {
     let coordinates = ["x", "y", "theta", "psi", "phi"];
     let start = at_rest(&coordinates, &[("phi", 0.3)]);
     let mut goal = at_rest(&coordinates, &[("y", 0.2), ("phi", 0.3)]);
     goal.retain(|(name, _)| *name != "psi");
-    let bounds = [("phi", "-1.2:1.2")];
-    plans_reach_their_goal(name, 6.0, 41, &start, &goal, &bounds, 3e-2);
+    let bounds = vec![("phi", "-1.2:1.2")];
+    (6.0, start, goal, bounds)
+}
+
+fn parks_sideways(name: &str) {
+    let (duration, start, goal, bounds) = sideways();
+    plans_reach_their_goal(name, duration, 41, &start, &goal, &bounds, 3e-2);
 }
 
 #[test]
 fn the_snakeboard_parks_sideways() {
-    sideways("snakeboard");
+    parks_sideways("snakeboard");
 }
 
 #[test]
 fn the_snakeboard_of_bodies_parks_sideways() {
-    sideways("snakeboard-bodies");
+    parks_sideways("snakeboard-bodies");
 }
 
 /// The benchmark bicycle's lane change at 5 m/s: from the upright straight
 /// run (`dot(theta_r) = -v/rR`, `dot(theta_f) = -v/rF`, on the front
 /// contact's height at zero pitch) to `y_p = 1` in 3 s, upright with the
 /// steer straight and the heading back to 0, by the steer torque alone.
-#[test]
-fn the_bicycle_changes_lane_by_its_steer_torque() {
+pub(super) fn lane_change() -> Problem {
     let coordinates = [
         "x_p", "y_p", "psi", "phi", "theta_b", "delta", "theta_r", "theta_f",
     ];
@@ -283,6 +295,12 @@ fn the_bicycle_changes_lane_by_its_steer_torque() {
         ("dot(phi)", 0.0),
         ("dot(delta)", 0.0),
     ];
-    let bounds = [("lean_torque", "0:0")];
-    plans_reach_their_goal("bicycle", 3.0, 31, &start, &goal, &bounds, 0.02);
+    let bounds = vec![("lean_torque", "0:0")];
+    (3.0, start, goal.to_vec(), bounds)
+}
+
+#[test]
+fn the_bicycle_changes_lane_by_its_steer_torque() {
+    let (duration, start, goal, bounds) = lane_change();
+    plans_reach_their_goal("bicycle", duration, 31, &start, &goal, &bounds, 0.02);
 }

@@ -19,6 +19,9 @@
 use std::ffi::{c_int, c_void};
 use std::ops::ControlFlow;
 
+#[cfg(feature = "ipopt")]
+pub mod ipopt;
+
 /// A nonlinear program: every constraint is an equality `c_i(z) = 0`.
 pub trait Nlp {
     /// The number of variables.

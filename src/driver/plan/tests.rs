@@ -21,7 +21,7 @@ const POINT_MASS: &str = "pub struct PointMass {
     inputs: [push = x],
 }";
 
-fn point_mass() -> Loaded {
+pub(super) fn point_mass() -> Loaded {
     let source = Source::File {
         path: "point_mass.model".into(),
         text: POINT_MASS.into(),
@@ -30,7 +30,7 @@ fn point_mass() -> Loaded {
 }
 
 /// The point mass (m = 2) from rest at 0 to rest at 1 in T = 2.
-fn rest_to_rest(scheme: Scheme, nodes: usize) -> Request {
+pub(super) fn rest_to_rest(scheme: Scheme, nodes: usize) -> Request {
     let at_rest = |x: f64| [("x", x), ("dot(x)", 0.0)];
     Request {
         scheme,
@@ -109,7 +109,7 @@ fn a_saturated_point_mass_plan_meets_its_closed_form() {
 
 /// The differential drive from rest at the origin to the pose (0.3, 0.1,
 /// 0) at rest in 4 s, by the midpoint rule on `nodes` nodes.
-fn parking(nodes: usize) -> Request {
+pub(super) fn parking(nodes: usize) -> Request {
     let mut start: Vec<(&str, f64)> = ["x", "y", "theta", "phi_r", "phi_l"]
         .into_iter()
         .map(|name| (name, 0.0))
@@ -127,7 +127,7 @@ fn parking(nodes: usize) -> Request {
     request(4.0, nodes, &start, &goal)
 }
 
-fn differential_drive() -> Loaded {
+pub(super) fn differential_drive() -> Loaded {
     load(
         &lookup("differential-drive").expect("built in"),
         EngineChoice::Jit,
