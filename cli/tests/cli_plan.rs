@@ -152,6 +152,10 @@ fn bad_plans_are_refused_in_one_line() {
     );
     refused(&with(&["--bound", "push=-0.1:0.1"]), "no verified optimum");
     refused(
+        &with(&["--replay-tol", "0"]),
+        "--replay-tol 0: the replay's tolerance must be positive and finite",
+    );
+    refused(
         &with(&["--formulation", "reduced"]),
         "plans use the Lagrange-d'Alembert formulation (--formulation lagrange), not the reduced",
     );

@@ -307,8 +307,8 @@ pub fn plan_watched(
 /// of each variable's scale (`replay`'s docs).
 ///
 /// # Errors
-/// As [`plan_watched`], and [`PlanError::Departs`] with the plan where its
-/// replay departs by more.
+/// As [`plan_watched`], a tolerance that is not positive and finite, and
+/// [`PlanError::Departs`] with the plan where its replay departs by more.
 pub fn plan_within(
     loaded: Loaded,
     request: &Request,
@@ -316,6 +316,9 @@ pub fn plan_within(
     replay_tolerance: f64,
     observer: &mut Observer<'_>,
 ) -> Result<Plan, Failure> {
+    if !(replay_tolerance.is_finite() && replay_tolerance > 0.0) {
+        return Err(resolve::RequestError::ReplayTolerance(replay_tolerance).into());
+    }
     let transcription = resolve::transcribe(loaded, request)?;
     let started = Instant::now();
     let mut stopped = false;
