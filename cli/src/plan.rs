@@ -2,10 +2,11 @@
 //! [--scheme backward-euler|midpoint|hermite-simpson] [--start
 //! NAME=EXPR]... [--goal NAME=EXPR]... [--minimize EXPR] [--final-cost
 //! EXPR] [--bound NAME=LO:HI]... [--param NAME=VALUE]... [--guess
-//! FILE.csv] [--tol TOL] [--hessian exact|lbfgs] [--animate [--fps F]]
-//! --out DIR` (docs/INTERFACE.md section 13), over `chaplygin::driver::plan`: optimal inputs and trajectory by
-//! direct collocation, verified by the KKT conditions from the exact
-//! derivatives.
+//! FILE.csv] [--tol TOL] [--hessian exact|lbfgs] [--formulation lagrange]
+//! [--replay-tol R] [--animate [--fps F]] --out DIR` (docs/INTERFACE.md
+//! section 13), over `chaplygin::driver::plan`: optimal inputs and
+//! trajectory by direct collocation, verified by the KKT conditions from
+//! the exact derivatives and by its replay.
 //!
 //! It writes `DIR/plan.csv` (the columns of `trajectory.csv`, one row per
 //! node), `DIR/plan.json` (the objective, grid, solver, iterations, time,
@@ -14,7 +15,10 @@
 //! coordinates and velocities against `t`) and `inputs.png`, with
 //! `--animate` `animation.html` of the nodes (`crate::animate_args`), and
 //! prints a summary line. An answer that is not a verified optimum is an
-//! error, and nothing is written.
+//! error, and nothing is written. A verified optimum whose replay departs
+//! from it by more than `--replay-tol` is written with `plan.csv`'s first
+//! line `# not a motion of the model: ...`, and the command fails saying
+//! where it departs most.
 //!
 //! On a terminal, standard error shows one line per solver iteration: its
 //! number, objective, and primal and dual infeasibility. Ctrl-C stops the
