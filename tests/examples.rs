@@ -4,13 +4,16 @@
 //! from elsewhere: the sleigh's closed-form motion, the benchmark
 //! bicycle's published self-stable speeds and closed-form eigenvalues, the
 //! snakeboard's hand-derived momentum equation (MATH.md 4.1), the energy a
-//! conservative motion keeps. The build-script door's example is checked
+//! conservative motion keeps, a plan's goal reached by its replayed inputs. The build-script door's example is checked
 //! by its own package's tests (`examples/build-script-door/tests`), where
 //! its build script's output is.
 
 #[allow(dead_code)]
 #[path = "../examples/bicycle_stability.rs"]
 mod bicycle_stability;
+#[allow(dead_code)]
+#[path = "../examples/plan_differential_drive.rs"]
+mod plan_differential_drive;
 #[allow(dead_code)]
 #[path = "../examples/sleigh.rs"]
 mod sleigh;
@@ -135,6 +138,32 @@ fn the_bicycle_balances_itself_between_the_published_speeds() {
     let speeds = numbers_after(&text, "self-stable");
     near(speeds[0], 4.292382536341, 1e-9, "weave speed");
     near(speeds[1], 6.024262015388, 1e-9, "capsize speed");
+}
+
+/// The differential drive's plan: its printed KKT residuals within the
+/// library's check (100 times the tolerance), its torques replayed from
+/// rest to within the midpoint rule's error of the goal (below 1e-3 on 21
+/// nodes, shrinking as `h^2`: the library's tests), the replay's largest
+/// departure within its tolerance.
+#[test]
+fn the_differential_drive_plan_reaches_its_goal_replayed() {
+    let text = printed(plan_differential_drive::report);
+    let objective = numbers_after(&text, "objective")[0];
+    assert!(objective > 0.0, "{text}");
+    for residual in numbers_after(&text, "KKT residuals") {
+        assert!(residual.abs() <= 1e-6, "{text}");
+    }
+    for (name, goal) in plan_differential_drive::GOAL {
+        let row = numbers_after(&text, name);
+        near(row[0], goal, 1e-3, name);
+        near(row[1], goal, 0.0, name);
+    }
+    let departure = numbers_after(&text, "replay departs most");
+    let (relative, allowed) = (
+        departure[departure.len() - 2],
+        departure[departure.len() - 1],
+    );
+    assert!(relative <= allowed, "{text}");
 }
 
 /// Each loop's net and geometric displacement equal those of the

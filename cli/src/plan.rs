@@ -2,10 +2,11 @@
 //! [--scheme backward-euler|midpoint|hermite-simpson] [--start
 //! NAME=EXPR]... [--goal NAME=EXPR]... [--minimize EXPR] [--final-cost
 //! EXPR] [--bound NAME=LO:HI]... [--param NAME=VALUE]... [--guess
-//! FILE.csv] [--tol TOL] [--hessian exact|lbfgs] [--animate [--fps F]]
-//! --out DIR` (docs/INTERFACE.md section 13), over `chaplygin::driver::plan`: optimal inputs and trajectory by
-//! direct collocation, verified by the KKT conditions from the exact
-//! derivatives.
+//! FILE.csv] [--tol TOL] [--hessian exact|lbfgs] [--formulation lagrange]
+//! [--replay-tol R] [--animate [--fps F]] --out DIR` (docs/INTERFACE.md
+//! section 13), over `chaplygin::driver::plan`: optimal inputs and
+//! trajectory by direct collocation, verified by the KKT conditions from
+//! the exact derivatives and by its replay.
 //!
 //! It writes `DIR/plan.csv` (the columns of `trajectory.csv`, one row per
 //! node), `DIR/plan.json` (the objective, grid, solver, iterations, time,
@@ -14,7 +15,10 @@
 //! coordinates and velocities against `t`) and `inputs.png`, with
 //! `--animate` `animation.html` of the nodes (`crate::animate_args`), and
 //! prints a summary line. An answer that is not a verified optimum is an
-//! error, and nothing is written.
+//! error, and nothing is written. A verified optimum whose replay departs
+//! from it by more than `--replay-tol` is written with `plan.csv`'s first
+//! line `# not a motion of the model: ...`, and the command fails saying
+//! where it departs most.
 //!
 //! On a terminal, standard error shows one line per solver iteration: its
 //! number, objective, and primal and dual infeasibility. Ctrl-C stops the
@@ -31,7 +35,9 @@ use crate::output::{write_marked_table, write_table};
 use crate::simulate::write_plots;
 use chaplygin::driver::Failure;
 use chaplygin::driver::plan::nlp::{Hessian, Iteration, Ripopt};
+use chaplygin::driver::plan::replay::Replay;
 use chaplygin::driver::plan::{self, Plan, PlanError, Request};
+use chaplygin::driver::simulate::FormulationChoice;
 use chaplygin::plot;
 use chaplygin::runtime::linearize::point::velocity_names;
 use std::io::IsTerminal;
@@ -50,6 +56,16 @@ pub struct PlanArgs {
     /// from the model's second derivatives, or an L-BFGS approximation.
     #[arg(long, value_enum, default_value = "exact")]
     hessian: Hessian,
+    /// The formulation of the dynamics: plans use the Lagrange-d'Alembert
+    /// form in `(q, dot(q))`, whose variables the start, goal and bounds
+    /// name.
+    #[arg(long, value_enum, default_value = "lagrange")]
+    formulation: FormulationChoice,
+    /// How far the plan's inputs, replayed from its start, may leave its
+    /// nodes: a fraction of each coordinate's and velocity's scale, its
+    /// range over the plan (at least a tenth of the largest of its kind).
+    #[arg(long, default_value_t = Replay::TOLERANCE)]
+    replay_tol: f64,
     /// The directory for `plan.csv`, `plan.json` and the plots.
     #[arg(long, default_value = "out")]
     out: PathBuf,
@@ -61,11 +77,13 @@ pub struct PlanArgs {
 /// (before it gets there) ends the command at once.
 static STOP: AtomicBool = AtomicBool::new(false);
 
-/// A solve stopped by Ctrl-C, its last iterate written.
+/// A plan not kept (stopped by Ctrl-C, or departing from its replay),
+/// written for inspection.
 #[derive(Debug, thiserror::Error)]
-#[error("{reason}; the last iterate, not verified, is in {}", out.display())]
-struct Interrupted {
+#[error("{reason}; {what} is in {}", out.display())]
+struct Written {
     reason: PlanError,
+    what: &'static str,
     out: PathBuf,
 }
 
@@ -87,6 +105,7 @@ pub fn run(args: &PlanArgs) -> Result<(), Failure> {
             std::process::exit(130);
         }
     })?;
+    plan::formulation(args.formulation)?;
     let loaded = loaded(&args.model)?;
     let drawn = args.animate.drawn(&loaded)?;
     let names = loaded.model.names();
@@ -112,23 +131,54 @@ pub fn run(args: &PlanArgs) -> Result<(), Failure> {
     if terminal {
         eprintln!("{}", iteration_header());
     }
-    match plan::plan_watched(loaded, &args.request, &solver, &mut observer) {
-        Ok(plan) => write(args, &plan, &drawings, drawn),
+    let planned = plan::plan_within(
+        loaded,
+        &args.request,
+        &solver,
+        args.replay_tol,
+        &mut observer,
+    );
+    match planned {
+        Ok(plan) => write(args, &plan, None, &drawings, drawn),
         Err(failure) => match failure.downcast::<PlanError>() {
-            Ok(error) => match *error {
-                PlanError::Interrupted(last) => {
-                    write(args, &last, &drawings, drawn)?;
-                    Err(Interrupted {
-                        reason: PlanError::Interrupted(last),
-                        out: args.out.clone(),
-                    }
-                    .into())
-                }
-                other => Err(other.into()),
-            },
+            Ok(error) => written(args, *error, &drawings, drawn),
             Err(failure) => Err(failure),
         },
     }
+}
+
+/// Writes the plan of an interrupted solve, or of one whose replay
+/// departs from it, marked as not kept, and fails with `error`; fails
+/// with any other error at once.
+fn written(
+    args: &PlanArgs,
+    error: PlanError,
+    drawings: &Drawings,
+    drawn: Option<Drawn>,
+) -> Result<(), Failure> {
+    let (plan, mark, what) = match &error {
+        PlanError::Interrupted(last) => (
+            last,
+            format!(
+                "not verified: interrupted after {} iterations (plan.json)",
+                last.report.iterations
+            ),
+            "the last iterate, not verified,",
+        ),
+        PlanError::Departs(departed) => (
+            departed,
+            "not a motion of the model: its replay departs from it (plan.json's replay)".into(),
+            "the plan, marked,",
+        ),
+        _ => return Err(error.into()),
+    };
+    write(args, plan, Some(&mark), drawings, drawn)?;
+    Err(Written {
+        reason: error,
+        what,
+        out: args.out.clone(),
+    }
+    .into())
 }
 
 /// The columns of the iterations' lines.
@@ -147,31 +197,27 @@ fn iteration_line(iteration: &Iteration) -> String {
     )
 }
 
-/// Writes `plan.csv` (marked as not verified for an interrupted solve),
+/// Writes `plan.csv` (its first line `# MARK` for a plan not kept),
 /// `plan.json`, the plots and the animation, and says so.
 fn write(
     args: &PlanArgs,
     plan: &Plan,
+    mark: Option<&str>,
     drawings: &Drawings,
     drawn: Option<Drawn>,
 ) -> Result<(), Failure> {
     let (csv, json) = (args.out.join("plan.csv"), args.out.join("plan.json"));
     let report = &plan.report;
-    let verified = report.status != plan::Report::INTERRUPTED;
-    if verified {
-        write_table(&plan.table, &csv)?;
-    } else {
-        let mark = format!(
-            "not verified: interrupted after {} iterations (plan.json)",
-            report.iterations
-        );
-        write_marked_table(&plan.table, &csv, &mark)?;
+    match mark {
+        None => write_table(&plan.table, &csv)?,
+        Some(mark) => write_marked_table(&plan.table, &csv, mark)?,
     }
     std::fs::write(&json, format!("{:#}\n", report.to_json()))?;
-    if verified {
+    if mark.is_none() {
         crate::say(&format!(
             "objective {:.9e}: a verified optimum ({}, {} nodes, {}) after {} iterations in \
-             {:.2} s; KKT residuals primal {:.1e}, dual {:.1e}, complementarity {:.1e}\n",
+             {:.2} s; KKT residuals primal {:.1e}, dual {:.1e}, complementarity {:.1e}; \
+             replayed within {:.1e} of its variables' scales\n",
             report.objective,
             report.scheme.name(),
             report.nodes,
@@ -181,6 +227,7 @@ fn write(
             report.kkt.primal,
             report.kkt.dual,
             report.kkt.complementarity,
+            report.replay.largest.relative,
         ))?;
     }
     crate::say(&format!(

@@ -70,6 +70,14 @@ fn a_point_mass_plan_meets_its_closed_form_cost() {
         let value = report["kkt"][residual].as_f64().expect("a number");
         assert!(value <= 1e-6, "{residual} {value}");
     }
+    // The midpoint rule's step is exact for a constant force: the replay
+    // meets the nodes to round-off.
+    let replay = &report["replay"];
+    assert_eq!(replay["within"], true, "{replay}");
+    assert_eq!(replay["tolerance"], 0.25, "{replay}");
+    assert_eq!(replay["end"]["node"], 40, "{replay}");
+    let departure = replay["largest"]["relative"].as_f64().expect("a number");
+    assert!(departure < 1e-9, "{replay}");
     let (header, rows) = read_csv(&dir.path().join("plan/plan.csv"));
     assert_eq!(rows.len(), 41);
     let x = column(&header, &rows, "x");
@@ -143,6 +151,65 @@ fn bad_plans_are_refused_in_one_line() {
         "lies outside --bound x=-inf:0.5",
     );
     refused(&with(&["--bound", "push=-0.1:0.1"]), "no verified optimum");
+    refused(
+        &with(&["--replay-tol", "0"]),
+        "--replay-tol 0: the replay's tolerance must be positive and finite",
+    );
+    refused(
+        &with(&["--formulation", "reduced"]),
+        "plans use the Lagrange-d'Alembert formulation (--formulation lagrange), not the reduced",
+    );
+}
+
+/// The snakeboard parked sideways without `--bound phi=-1.2:1.2`
+/// (docs/guide/planning.md) on 21 nodes: a verified optimum that steers
+/// its wheels across `phi = pi/2` and jumps there, its replay departing
+/// by more than its tolerance. The command fails in one line naming the
+/// variable, and writes the plan marked.
+#[test]
+fn a_plan_its_replay_departs_from_fails_and_is_written_marked() {
+    let dir = scratch("plan-departs");
+    let out = dir.path().join("plan");
+    let mut arguments = vec!["plan", "snakeboard", "--duration", "6", "--nodes", "21"];
+    for (name, value) in [
+        ("x", 0.0),
+        ("y", 0.0),
+        ("theta", 0.0),
+        ("psi", 0.0),
+        ("phi", 0.3),
+    ] {
+        arguments.extend(["--start", leak(format!("{name}={value}"))]);
+        arguments.extend(["--start", leak(format!("dot({name})=0"))]);
+        arguments.extend(["--goal", leak(format!("dot({name})=0"))]);
+    }
+    for goal in ["x=0", "y=0.2", "theta=0", "phi=0.3"] {
+        arguments.extend(["--goal", goal]);
+    }
+    arguments.extend(["--out", out.to_str().expect("UTF-8")]);
+    let output = chaplygin(&arguments);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let json = std::fs::read_to_string(out.join("plan.json")).expect("plan.json");
+    let report: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+    let replay = &report["replay"];
+    let variable = replay["largest"]["variable"].as_str().expect("a name");
+    assert!(
+        stderr.contains("the plan is not a motion of the model")
+            && stderr.contains(&format!("`{variable}`"))
+            && stderr.contains("the plan, marked, is in"),
+        "{stderr}"
+    );
+    assert_eq!(replay["within"], false, "{replay}");
+    let relative = replay["largest"]["relative"]
+        .as_f64()
+        .unwrap_or(f64::INFINITY);
+    assert!(relative > 0.25, "{replay}");
+    let csv = std::fs::read_to_string(out.join("plan.csv")).expect("plan.csv");
+    assert!(
+        csv.starts_with("# not a motion of the model: its replay departs from it"),
+        "{csv}"
+    );
 }
 
 /// `plan.json` of a successful run in `dir`'s `plan`.

@@ -16,7 +16,10 @@
 //!   cost's and the model's second derivatives;
 //! - [`nlp`]: that program, and the solvers behind one trait;
 //! - [`kkt`]: the solver's answer verified by the KKT conditions from the
-//!   exact derivatives: an answer that fails them is an error.
+//!   exact derivatives: an answer that fails them is an error;
+//! - [`replay`]: the plan's inputs integrated from its start and compared
+//!   with its nodes: a plan the model does not follow is an error too
+//!   ([`PlanError::Departs`], the plan kept for inspection).
 //!
 //! [`plan_watched`] tells an observer of each of the solver's iterations;
 //! an observer that stops the solve gets the last iterate back, with its
@@ -34,14 +37,17 @@ mod hessian;
 pub mod identify;
 pub mod kkt;
 pub mod nlp;
+pub mod replay;
 mod resolve;
 pub mod transcription;
 
 use super::Failure;
 use super::engine::Loaded;
+use super::simulate::FormulationChoice;
 use crate::runtime::record::Table;
 use kkt::Residuals;
 use nlp::{Nlp, Observer, Solution, Solver};
+use replay::Replay;
 use std::ops::ControlFlow;
 use std::time::Instant;
 pub use transcription::Scheme;
@@ -153,6 +159,34 @@ pub enum PlanError {
         /// Its iterations.
         iterations: usize,
     },
+    /// A verified optimum of the discrete problem whose inputs, replayed,
+    /// do not move the model along it: the plan, its report's replay
+    /// saying where it departs most.
+    #[error(
+        "the plan is not a motion of the model: its inputs, replayed from its start, are off \
+         the plan at node {node} (t = {t:.4}) by {size:.3e} in `{variable}`, {relative:.2} of \
+         its scale (allowed {tolerance}); bound the coordinates away from where the \
+         constraints lose rank, or take more nodes",
+        variable = .0.report.replay.largest.variable,
+        size = .0.report.replay.largest.size,
+        node = .0.report.replay.largest.node,
+        t = .0.report.replay.largest.t,
+        relative = .0.report.replay.largest.relative,
+        tolerance = .0.report.replay.tolerance
+    )]
+    Departs(Box<Plan>),
+    /// A formulation other than the one plans use.
+    #[error(
+        "plans use the Lagrange-d'Alembert formulation (--formulation lagrange), not the \
+         {asked} one: the start, goal and bound names are the coordinates and velocities \
+         dot(q), the state of every node, where the {asked} form's state is {state}"
+    )]
+    Formulation {
+        /// The formulation asked for.
+        asked: &'static str,
+        /// Its state.
+        state: &'static str,
+    },
     /// A free duration at its lower bound: the optimum may lie below it.
     #[error(
         "the free duration stopped at its lower bound {shortest}, a tenth of --duration: \
@@ -185,6 +219,8 @@ pub struct Report {
     pub status: String,
     /// The KKT residuals, computed from the exact derivatives.
     pub kkt: Residuals,
+    /// The plan's inputs replayed from its start.
+    pub replay: Replay,
 }
 
 impl Report {
@@ -207,6 +243,7 @@ impl Report {
                 "dual": self.kkt.dual,
                 "complementarity": self.kkt.complementarity,
             },
+            "replay": self.replay.to_json(),
         })
     }
 }
@@ -222,12 +259,32 @@ pub struct Plan {
     pub report: Report,
 }
 
-/// The plan `request` asks of `loaded`, solved by `solver` and verified.
+/// Checks that `choice` is the formulation plans use: the
+/// Lagrange-d'Alembert equations in `(q, qdot)`, whose state is named by
+/// the start, the goal and the bounds, and whose nodes are `plan.csv`'s
+/// rows. It needs no chart of the constraints' distribution: a model with
+/// several (the bicycle) is planned in all its coordinates and velocities
+/// at once, regular wherever the constraint rows are independent.
+///
+/// # Errors
+/// [`PlanError::Formulation`] for the reduced and the momentum form.
+pub fn formulation(choice: FormulationChoice) -> Result<(), PlanError> {
+    let (asked, state) = match choice {
+        FormulationChoice::Lagrange => return Ok(()),
+        FormulationChoice::Reduced => ("reduced", "(q, alpha)"),
+        FormulationChoice::Momentum => ("momentum", "(q, rdot, p)"),
+    };
+    Err(PlanError::Formulation { asked, state })
+}
+
+/// The plan `request` asks of `loaded`, solved by `solver`, verified and
+/// replayed.
 ///
 /// # Errors
 /// Bad input (an unknown name, fewer than two nodes, a bound the
-/// conditions violate, a start off the constraints), or an answer that is
-/// not a verified optimum.
+/// conditions violate, a start off the constraints), an answer that is
+/// not a verified optimum, or one whose replay departs from it by more
+/// than [`Replay::TOLERANCE`].
 pub fn plan(loaded: Loaded, request: &Request, solver: &dyn Solver) -> Result<Plan, Failure> {
     plan_watched(loaded, request, solver, &mut |_| ControlFlow::Continue(()))
 }
@@ -243,6 +300,25 @@ pub fn plan_watched(
     solver: &dyn Solver,
     observer: &mut Observer<'_>,
 ) -> Result<Plan, Failure> {
+    plan_within(loaded, request, solver, Replay::TOLERANCE, observer)
+}
+
+/// [`plan_watched`], its replay allowed to depart by `replay_tolerance`
+/// of each variable's scale (`replay`'s docs).
+///
+/// # Errors
+/// As [`plan_watched`], a tolerance that is not positive and finite, and
+/// [`PlanError::Departs`] with the plan where its replay departs by more.
+pub fn plan_within(
+    loaded: Loaded,
+    request: &Request,
+    solver: &dyn Solver,
+    replay_tolerance: f64,
+    observer: &mut Observer<'_>,
+) -> Result<Plan, Failure> {
+    if !(replay_tolerance.is_finite() && replay_tolerance > 0.0) {
+        return Err(resolve::RequestError::ReplayTolerance(replay_tolerance).into());
+    }
     let transcription = resolve::transcribe(loaded, request)?;
     let started = Instant::now();
     let mut stopped = false;
@@ -256,16 +332,17 @@ pub fn plan_watched(
             flow
         },
     );
-    let seconds = started.elapsed().as_secs_f64();
+    let answer = Answer {
+        request,
+        solver: solver.name(&transcription),
+        seconds: started.elapsed().as_secs_f64(),
+        replay_tolerance,
+    };
     if stopped {
         return Err(PlanError::Interrupted(Box::new(last_iterate(
             &transcription,
             &solution,
-            Answer {
-                request,
-                solver: solver.name(&transcription),
-                seconds,
-            },
+            answer,
         )?))
         .into());
     }
@@ -290,15 +367,20 @@ pub fn plan_watched(
     if request.free_duration && duration <= shortest * (1.0 + Request::VERIFIED * request.tol) {
         return Err(PlanError::ShortestDuration { shortest }.into());
     }
-    let answer = Answer {
-        request,
-        solver: solver.name(&transcription),
-        seconds,
-    };
-    Ok(Plan {
-        table: resolve::table(&transcription, &solution.z)?,
-        report: answer.report(&transcription, &solution, status, objective, residuals),
-    })
+    let table = resolve::table(&transcription, &solution.z)?;
+    let report = answer.report(
+        &transcription,
+        &solution,
+        &table,
+        status,
+        objective,
+        residuals,
+    );
+    let plan = Plan { table, report };
+    if !plan.report.replay.within() {
+        return Err(PlanError::Departs(Box::new(plan)).into());
+    }
+    Ok(plan)
 }
 
 /// What every report of a solve says besides its outcome.
@@ -306,14 +388,16 @@ struct Answer<'a> {
     request: &'a Request,
     solver: &'static str,
     seconds: f64,
+    replay_tolerance: f64,
 }
 
 impl Answer<'_> {
-    /// The report of `solution`.
+    /// The report of `solution`, whose nodes are `table`'s rows.
     fn report(
         &self,
         transcription: &transcription::Transcription,
         solution: &Solution,
+        table: &Table,
         status: String,
         objective: f64,
         kkt: Residuals,
@@ -328,6 +412,12 @@ impl Answer<'_> {
             seconds: self.seconds,
             status,
             kkt,
+            replay: replay::replay(
+                transcription.model(),
+                self.request.scheme,
+                table,
+                self.replay_tolerance,
+            ),
         }
     }
 }
@@ -346,16 +436,16 @@ fn last_iterate(
         dual: f64::NAN,
         complementarity: f64::NAN,
     });
-    Ok(Plan {
-        table: resolve::table(transcription, &solution.z)?,
-        report: answer.report(
-            transcription,
-            solution,
-            Report::INTERRUPTED.into(),
-            objective,
-            residuals,
-        ),
-    })
+    let table = resolve::table(transcription, &solution.z)?;
+    let report = answer.report(
+        transcription,
+        solution,
+        &table,
+        Report::INTERRUPTED.into(),
+        objective,
+        residuals,
+    );
+    Ok(Plan { table, report })
 }
 
 #[cfg(test)]

@@ -1,24 +1,16 @@
 //! A plan on every built-in model with inputs, each verified by its KKT
-//! residuals and checked by replaying its inputs: the plan's start
-//! integrated by `simulate`'s Lagrange-d'Alembert formulation under RK4,
-//! with the inputs applied between nodes as the scheme applies them
-//! (midpoint rule: node `i`'s over interval `i`), must reach the goal. The
+//! residuals and checked by replaying its inputs (`super::replay`: the
+//! plan's start integrated by `simulate`'s Lagrange-d'Alembert formulation
+//! under RK4, node `i`'s inputs held over interval `i` as the midpoint rule
+//! holds them), must reach the goal. The
 //! miss is the scheme's error, so it shrinks by about `2^2` when the
 //! midpoint rule's step halves; that rate is the independent check.
 
 use super::nlp::Ripopt;
-use super::{Plan, Request, Scheme, plan};
+use super::replay::{Replay, replayed_states};
+use super::{Plan, PlanError, Request, Scheme, plan};
 use crate::driver::catalog::lookup;
 use crate::driver::engine::{EngineChoice, Loaded, load};
-use crate::driver::formulation::RunTimeSized;
-use crate::driver::interpreted::{InputLaw, InterpretedDalembert};
-use crate::runtime::integrate::{Rk4, integrate_fixed};
-use std::cell::Cell;
-use std::rc::Rc;
-
-/// RK4 steps per interval of the plan: its own error is far below the
-/// scheme's.
-const SUBSTEPS: usize = 40;
 
 pub(super) fn built_in(name: &str) -> Loaded {
     load(&lookup(name).expect("built in"), EngineChoice::Jit).expect("derives")
@@ -31,11 +23,14 @@ pub(super) fn assigned(pairs: &[(&str, impl ToString)]) -> Vec<(String, String)>
         .collect()
 }
 
+/// Coordinates and velocities `NAME=VALUE`, a start or a goal.
+type Conditions = Vec<(&'static str, f64)>;
+
 /// A plan's problem: its duration, start, goal and bounds.
 pub(super) type Problem = (
     f64,
-    Vec<(&'static str, f64)>,
-    Vec<(&'static str, f64)>,
+    Conditions,
+    Conditions,
     Vec<(&'static str, &'static str)>,
 );
 
@@ -62,42 +57,12 @@ pub(super) fn request(
     }
 }
 
-/// The plan's first row replayed under its inputs, node `i`'s held over
-/// interval `i`: the state `(q, dot(q))` reached at its last node.
+/// The plan's first row replayed under its inputs as the midpoint rule
+/// applies them: the state `(q, dot(q))` reached at its last node.
 pub(super) fn replayed(name: &str, plan: &Plan) -> Vec<f64> {
     let model = built_in(name).model;
-    let n = model.sizes().n;
-    let p = model.sizes().p;
-    let t = plan.table.column("t").expect("t");
-    let interval = Rc::new(Cell::new(0));
-    let held = Rc::clone(&interval);
-    let rows = plan.table.rows.clone();
-    let law = move |_: f64, _: &[f64], _: &[f64], u: &mut [f64]| {
-        u.copy_from_slice(&rows[held.get()][1 + 2 * n..1 + 2 * n + p]);
-    };
-    let formulation = InterpretedDalembert {
-        model,
-        inputs: InputLaw {
-            law: Box::new(law),
-            reads_state: false,
-        },
-    };
-    let h = t[1] - t[0];
-    let mut x = plan.table.rows[0][1..1 + 2 * n].to_vec();
-    for (i, start) in t[..t.len() - 1].iter().enumerate() {
-        interval.set(i);
-        let system = RunTimeSized(&formulation);
-        x = integrate_fixed(
-            &Rk4,
-            &system,
-            (*start, x),
-            h / SUBSTEPS as f64,
-            SUBSTEPS,
-            |_, _| {},
-        )
-        .expect("the simulation runs");
-    }
-    x
+    let states = replayed_states(&model, Scheme::Midpoint, &plan.table);
+    states[states.len() - 1].clone()
 }
 
 /// The largest distance of the replayed end from `goal`.
@@ -129,6 +94,7 @@ fn plans_reach_their_goal(
         request.bounds = assigned(bounds);
         let plan = plan(built_in(name), &request, &Ripopt::default()).expect("a plan");
         assert!(plan.report.kkt.within(1e-6), "{:?}", plan.report.kkt);
+        eprintln!("{name}, {nodes} nodes: {:?}", plan.report.replay);
         miss(name, &plan, goal)
     });
     let rate = (misses[0] / misses[1]).log2();
@@ -246,17 +212,75 @@ fn the_three_link_snake_plan_replays_to_its_goal() {
 /// rank drops, and a plan crossing there slides the board sideways
 /// within one interval, a jump no simulation reproduces.
 pub(super) fn sideways() -> Problem {
-    let coordinates = ["x", "y", "theta", "psi", "phi"];
-    let start = at_rest(&coordinates, &[("phi", 0.3)]);
-    let mut goal = at_rest(&coordinates, &[("y", 0.2), ("phi", 0.3)]);
-    goal.retain(|(name, _)| *name != "psi");
-    let bounds = vec![("phi", "-1.2:1.2")];
-    (6.0, start, goal, bounds)
+    let (start, goal) = parked_sideways();
+    (6.0, start, goal, vec![("phi", "-1.2:1.2")])
 }
 
 fn parks_sideways(name: &str) {
     let (duration, start, goal, bounds) = sideways();
     plans_reach_their_goal(name, duration, 41, &start, &goal, &bounds, 3e-2);
+}
+
+/// The nodes of the unbounded sideways plan: few, the jump across `phi =
+/// pi/2` as it is on 41.
+const NODES: usize = 21;
+
+/// The snakeboard's start at rest with its wheels at 0.3, and its goal
+/// 0.2 to the side, at rest, heading and wheels as before.
+fn parked_sideways() -> (Conditions, Conditions) {
+    let coordinates = ["x", "y", "theta", "psi", "phi"];
+    let start = at_rest(&coordinates, &[("phi", 0.3)]);
+    let mut goal = at_rest(&coordinates, &[("y", 0.2), ("phi", 0.3)]);
+    goal.retain(|(name, _)| *name != "psi");
+    (start, goal)
+}
+
+/// Without the bound on `phi` the sideways plan is an optimum of the
+/// discrete problem (its KKT residuals pass) whose wheels cross `phi =
+/// pi/2`, where the constraints lose rank; replayed, its inputs leave the
+/// board short of its goal, and the plan fails in one line naming the
+/// variable that departs most.
+#[test]
+fn the_unbounded_sideways_snakeboard_plan_fails_its_replay() {
+    let (start, goal) = parked_sideways();
+    let request = request(6.0, NODES, &start, &goal);
+    let failure =
+        plan(built_in("snakeboard"), &request, &Ripopt::default()).expect_err("not a motion");
+    let message = failure.to_string();
+    let Ok(error) = failure.downcast::<PlanError>() else {
+        panic!("{message}")
+    };
+    let PlanError::Departs(departed) = *error else {
+        panic!("{message}")
+    };
+    eprintln!("{message}\n{:?}", departed.report.replay);
+    let phi = departed.table.column("phi").expect("phi");
+    let crossed = phi
+        .iter()
+        .any(|phi| phi.abs() > std::f64::consts::FRAC_PI_2);
+    assert!(crossed, "{phi:?}");
+    assert!(
+        departed.report.kkt.within(1e-6),
+        "{:?}",
+        departed.report.kkt
+    );
+    let end = replayed("snakeboard", &departed);
+    let y = departed.table.columns[1..]
+        .iter()
+        .position(|c| c == "y")
+        .expect("y");
+    assert!(
+        (end[y] - 0.2).abs() > 0.1,
+        "the replay reaches y = {}",
+        end[y]
+    );
+    let largest = &departed.report.replay.largest;
+    assert!(!message.contains('\n'), "{message}");
+    assert!(
+        message.contains(&format!("`{}`", largest.variable)),
+        "{message}"
+    );
+    assert!(largest.relative > Replay::TOLERANCE, "{largest:?}");
 }
 
 #[test]

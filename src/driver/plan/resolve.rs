@@ -58,6 +58,9 @@ pub enum RequestError {
     /// A tolerance that is not positive and finite.
     #[error("--tol {0}: the tolerance must be positive and finite")]
     Tolerance(f64),
+    /// A replay's tolerance that is not positive and finite.
+    #[error("--replay-tol {0}: the replay's tolerance must be positive and finite")]
+    ReplayTolerance(f64),
     /// A name that is no coordinate, velocity or input.
     #[error("{flag}: unknown name `{name}` (coordinates, `dot(q)` velocities, inputs: {known})")]
     UnknownName {

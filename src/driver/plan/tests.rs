@@ -7,6 +7,7 @@
 
 use super::catalog_tests::{replayed, request};
 use super::nlp::{Hessian, Ripopt};
+use super::replay::{Replay, replayed_states};
 use super::{Plan, Request, Scheme, plan};
 use crate::driver::catalog::{Source, lookup};
 use crate::driver::engine::{EngineChoice, Loaded, load};
@@ -83,6 +84,41 @@ fn the_point_mass_plan_converges_to_the_closed_form_at_the_schemes_order() {
             );
         }
     }
+}
+
+/// Hermite-Simpson's inputs are linear between nodes, as the optimal
+/// `u* = 3 - 3t` is: replayed from rest at 0, they move the point mass as
+/// the closed form `x = 3 s^2 - 2 s^3`, `dot(x) = 3 (s - s^2)` (`s = t/2`)
+/// does, at every node, and the report's replay says it departs by
+/// round-off only.
+#[test]
+fn the_point_mass_replay_follows_the_closed_form() {
+    let plan = plan(
+        point_mass(),
+        &rest_to_rest(Scheme::HermiteSimpson, 11),
+        &Ripopt::default(),
+    )
+    .expect("a plan");
+    let states = replayed_states(&point_mass().model, Scheme::HermiteSimpson, &plan.table);
+    let t = plan.table.column("t").expect("t");
+    for (t, state) in t.iter().zip(&states) {
+        let s = t / 2.0;
+        let exact = [3.0 * s * s - 2.0 * s * s * s, 3.0 * (s - s * s)];
+        for (replayed, exact) in state.iter().zip(exact) {
+            assert!((replayed - exact).abs() < 1e-7, "t = {t}: {state:?}");
+        }
+    }
+    let replay = &plan.report.replay;
+    assert!(
+        replay.within() && replay.largest.relative < 1e-7,
+        "{replay:?}"
+    );
+    let json = plan.report.to_json();
+    let reported = &json["replay"];
+    assert_eq!(reported["tolerance"], Replay::TOLERANCE);
+    assert_eq!(reported["within"], true);
+    assert_eq!(reported["end"]["node"], 10);
+    assert!(reported["largest"]["departure"].as_f64().expect("a number") < 1e-7);
 }
 
 /// With `|push| <= 2.5` the optimal input saturates: `u = clip(k (1 - t))`
