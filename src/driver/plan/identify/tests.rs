@@ -206,7 +206,7 @@ fn the_defects_derivatives_agree_with_central_differences() {
     ] {
         let mut asked = request(&data, scheme);
         asked.estimate = vec![("k".into(), Some(2.5)), ("m".into(), Some(0.7))];
-        let fit = super::Fit::new(spring_mass(), &asked).expect("a program");
+        let fit = super::Fit::new(spring_mass(), &asked, None).expect("a program");
         let y: Vec<f64> = fit
             .guess()
             .iter()
