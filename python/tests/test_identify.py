@@ -3,10 +3,14 @@ drive's mass, 5 in the run that made ``tests/data/drive_mass_5.csv``,
 recovered from that run given as a CSV path, a dict, a DataFrame and a
 ``Trajectory`` simulated again here, each the same estimate as ``chaplygin
 identify`` writes; bad data refused in one line; estimates pickled; a grid
-of estimates on a process pool, the same as here."""
+of estimates on a process pool, the same as here; Ctrl-C ending a long
+solve."""
 
 import json
+import os
 import pickle
+import signal
+import threading
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy
@@ -103,3 +107,13 @@ def test_a_grid_of_estimates_on_a_process_pool_is_the_same_as_here(drive, data_p
         numpy.testing.assert_array_equal(remote.fit.data, local.fit.data)
         # from either side the solve ends at the one optimum
         assert local.parameters["m"] == pytest.approx(from_csv.parameters["m"], rel=1e-6)
+
+
+def test_ctrl_c_stops_the_solve(drive, data_path):
+    # on 2001 nodes the solve takes half a minute, its setup seconds;
+    # Ctrl-C a second in ends it at its next iteration
+    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        drive.identify(data_path, estimate={"m": 4.0}, nodes=2001)
+    timer.join()
