@@ -46,6 +46,7 @@ mod options;
 mod output;
 mod plan;
 mod simulate;
+mod solve_watch;
 mod steady;
 
 use clap::Parser;

@@ -20,30 +20,25 @@
 //! line `# not a motion of the model: ...`, and the command fails saying
 //! where it departs most.
 //!
-//! On a terminal, standard error shows one line per solver iteration: its
-//! number, objective, and primal and dual infeasibility. Ctrl-C stops the
-//! solve at its current iterate, which is written as above with
-//! `plan.csv`'s first line `# not verified: ...` and `plan.json`'s status
-//! `interrupted`, its KKT residuals computed there; the command then fails
-//! saying so. The solver is told at its next iteration, and before its
-//! first one (its setup, long on many nodes) a second Ctrl-C ends the
-//! command at once, writing nothing.
+//! On a terminal, standard error shows one line per solver iteration
+//! (`crate::solve_watch`). Ctrl-C stops the solve at its current iterate,
+//! which is written as above with `plan.csv`'s first line `# not
+//! verified: ...` and `plan.json`'s status `interrupted`, its KKT
+//! residuals computed there; the command then fails saying so.
 
 use crate::animate_args::{AnimateArgs, Drawn};
 use crate::model_args::{ModelArgs, loaded};
 use crate::output::{write_marked_table, write_table};
 use crate::simulate::write_plots;
+use crate::solve_watch::{self, Written};
 use chaplygin::driver::Failure;
-use chaplygin::driver::plan::nlp::{Hessian, Iteration, Ripopt};
+use chaplygin::driver::plan::nlp::{Hessian, Ripopt};
 use chaplygin::driver::plan::replay::Replay;
 use chaplygin::driver::plan::{self, Plan, PlanError, Request};
 use chaplygin::driver::simulate::FormulationChoice;
 use chaplygin::plot;
 use chaplygin::runtime::linearize::point::velocity_names;
-use std::io::IsTerminal;
-use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The arguments of `chaplygin plan`.
 #[derive(Debug, clap::Args)]
@@ -73,20 +68,6 @@ pub struct PlanArgs {
     animate: AnimateArgs,
 }
 
-/// Set by Ctrl-C: the solve stops at its next iteration; a second Ctrl-C
-/// (before it gets there) ends the command at once.
-static STOP: AtomicBool = AtomicBool::new(false);
-
-/// A plan not kept (stopped by Ctrl-C, or departing from its replay),
-/// written for inspection.
-#[derive(Debug, thiserror::Error)]
-#[error("{reason}; {what} is in {}", out.display())]
-struct Written {
-    reason: PlanError,
-    what: &'static str,
-    out: PathBuf,
-}
-
 /// The plan's columns drawn against `t`: the states (coordinates and
 /// velocities) and the inputs.
 struct Drawings {
@@ -100,11 +81,7 @@ struct Drawings {
 /// Bad input, an answer that is not a verified optimum, Ctrl-C (after
 /// writing the last iterate), or an I/O error.
 pub fn run(args: &PlanArgs) -> Result<(), Failure> {
-    ctrlc::set_handler(|| {
-        if STOP.swap(true, Ordering::Relaxed) {
-            std::process::exit(130);
-        }
-    })?;
+    solve_watch::stop_on_ctrl_c()?;
     plan::formulation(args.formulation)?;
     let loaded = loaded(&args.model)?;
     let drawn = args.animate.drawn(&loaded)?;
@@ -118,19 +95,7 @@ pub fn run(args: &PlanArgs) -> Result<(), Failure> {
     let solver = Ripopt {
         hessian: args.hessian,
     };
-    let terminal = std::io::stderr().is_terminal();
-    let mut observer = |iteration: &Iteration| {
-        if terminal {
-            eprintln!("{}", iteration_line(iteration));
-        }
-        match STOP.load(Ordering::Relaxed) {
-            true => ControlFlow::Break(()),
-            false => ControlFlow::Continue(()),
-        }
-    };
-    if terminal {
-        eprintln!("{}", iteration_header());
-    }
+    let mut observer = solve_watch::observer();
     let planned = plan::plan_within(
         loaded,
         &args.request,
@@ -163,7 +128,7 @@ fn written(
                 "not verified: interrupted after {} iterations (plan.json)",
                 last.report.iterations
             ),
-            "the last iterate, not verified,",
+            solve_watch::LAST_ITERATE,
         ),
         PlanError::Departs(departed) => (
             departed,
@@ -174,27 +139,11 @@ fn written(
     };
     write(args, plan, Some(&mark), drawings, drawn)?;
     Err(Written {
-        reason: error,
+        reason: error.into(),
         what,
         out: args.out.clone(),
     }
     .into())
-}
-
-/// The columns of the iterations' lines.
-fn iteration_header() -> String {
-    format!(
-        "{:>5} {:>17} {:>9} {:>9}",
-        "iter", "objective", "primal", "dual"
-    )
-}
-
-/// One iteration as a line under [`iteration_header`].
-fn iteration_line(iteration: &Iteration) -> String {
-    format!(
-        "{:>5} {:>17.9e} {:>9.2e} {:>9.2e}",
-        iteration.number, iteration.objective, iteration.primal, iteration.dual
-    )
 }
 
 /// Writes `plan.csv` (its first line `# MARK` for a plan not kept),

@@ -2,7 +2,8 @@
 //! point mass pushed from rest by a constant force `F` moves as `x = F t^2
 //! / (2 m)`, a motion the midpoint rule follows exactly, so its mass is
 //! recovered from that motion to round-off; `estimate.json`, `fit.csv`
-//! and the printed estimates; and bad data refused in one line.
+//! and the printed estimates; bad data refused in one line; Ctrl-C ends
+//! the solve with its last iterate written.
 
 use crate::support::{chaplygin, column, read_csv, scratch};
 use std::path::Path;
@@ -103,4 +104,66 @@ fn bad_data_fail_in_one_line() {
             "{stderr}"
         );
     }
+}
+
+/// Ctrl-C (SIGINT) during a long solve: the command writes the last
+/// iterate, `fit.csv` marked as not verified and `estimate.json` with the
+/// status `interrupted` and its KKT residuals, and fails in one line.
+#[test]
+fn an_interrupted_estimate_keeps_its_last_iterate() {
+    let dir = scratch("identify_interrupted");
+    let out = dir.path().join("fit");
+    let data = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/drive_mass_5.csv"
+    );
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_chaplygin"))
+        .args(["identify", "differential-drive", "--data", data])
+        .args(["--estimate", "m=4", "--nodes", "2001", "--out"])
+        .arg(&out)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("starts");
+    // the solve takes half a minute; its start, three seconds
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    let signal = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(signal.success());
+    let output = child.wait_with_output().expect("ends");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let said =
+        (stderr.strip_prefix("error: interrupted after ")).unwrap_or_else(|| panic!("{stderr}"));
+    let report: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(out.join("estimate.json")).expect("estimate.json"),
+    )
+    .expect("JSON");
+    assert_eq!(report["status"], "interrupted");
+    let iterations = report["iterations"].as_u64().expect("a count");
+    assert!(
+        said.starts_with(&format!("{iterations} iterations"))
+            && said.ends_with(&format!(
+                "the last iterate, not verified, is in {}\n",
+                out.display()
+            )),
+        "{stderr}"
+    );
+    for residual in ["primal", "dual", "complementarity"] {
+        assert!(report["kkt"][residual].is_number(), "{report}");
+    }
+    let text = std::fs::read_to_string(out.join("fit.csv")).expect("fit.csv");
+    let (first, rest) = text.split_once('\n').expect("rows");
+    assert_eq!(
+        first,
+        format!("# not verified: interrupted after {iterations} iterations (estimate.json)")
+    );
+    let unmarked = dir.path().join("unmarked.csv");
+    std::fs::write(&unmarked, rest).expect("written");
+    let (header, rows) = read_csv(&unmarked);
+    assert_eq!(rows.len(), 2001);
+    assert_eq!(column(&header, &rows, "data(x)")[0], 0.0);
 }

@@ -9,11 +9,13 @@ functions compiled to native code at run time. ``Model.simulate`` returns a
 ``Trajectory`` of NumPy columns, ``Model.linearize`` a ``Linearization``
 with eigenvalues and intervals of stability, ``Model.gait`` what a shape
 loop does and ``Model.optimal_gait`` the loop that does most, ``Model.plan`` the
-optimal inputs between two states (a ``Plan``), ``Model.rhs`` a right-hand side
+optimal inputs between two states (a ``Plan``), ``Model.identify`` the
+parameters that fit measured data (an ``Estimate``), ``Model.rhs`` a right-hand side
 for ``scipy.integrate.solve_ivp``, and ``Model.sympy`` the derived matrices
 as SymPy expressions; ``design_map`` the self-stable speeds over a grid of
 parameters, on every core or on any ``concurrent.futures.Executor`` (a
-Dask cluster's), and ``plans`` many plans, here or on such an executor.
+Dask cluster's), and ``plans`` and ``estimates`` many plans or estimates, here or
+on such an executor.
 
     >>> import chaplygin
     >>> board = chaplygin.builtin("snakeboard")
@@ -43,6 +45,7 @@ from ._sympy import derived_expressions
 __all__ = [
     "ChaplyginError",
     "DesignMap",
+    "Estimate",
     "Gait",
     "Linearization",
     "Model",
@@ -57,6 +60,7 @@ __all__ = [
     "builtin",
     "builtins",
     "design_map",
+    "estimates",
     "load",
     "plans",
 ]
@@ -337,6 +341,36 @@ class Plan:
         )
 
 
+class Estimate:
+    """Parameters fitted to data, verified (docs/INTERFACE.md section 13).
+
+    ``est.parameters`` maps each estimated parameter to its value,
+    ``est.standard_errors`` to its Gauss-Newton standard error;
+    ``est.residual_rms`` is the RMS of the fit's residuals over the measured
+    values, ``est.iterations`` the solver's, ``est.report`` the dict of
+    ``estimate.json`` (with the KKT residuals ``kkt`` computed from the exact
+    derivatives). ``est.fit`` is ``fit.csv`` as a ``Trajectory`` (no
+    drawing): one row per node, ``t``, every fitted coordinate and velocity
+    by name, and each measured column's data as ``data(NAME)``, so
+    ``est.fit["x"]`` and ``est.fit["data(x)"]`` compare. Estimates pickle.
+    """
+
+    def __init__(self, fit: Trajectory, report: Dict[str, Any]) -> None:
+        self.fit = fit
+        self.report = report
+
+    parameters = property(lambda self: dict(self.report["parameters"]), doc="The estimates by name.")
+    standard_errors = property(lambda self: dict(self.report["standard_errors"]), doc="Their standard errors.")
+    residual_rms = property(lambda self: self.report["residual_rms"], doc="The residuals' RMS.")
+    iterations = property(lambda self: self.report["iterations"], doc="The solver's iterations.")
+
+    def __repr__(self) -> str:
+        values = ", ".join(
+            f"{name} = {value:.9g} +- {self.standard_errors[name]:.3g}" for name, value in self.parameters.items()
+        )
+        return f"Estimate({values}; residual RMS {self.residual_rms:.3g})"
+
+
 class Model:
     """A model read from its text, derived exactly, its functions compiled.
 
@@ -436,17 +470,12 @@ class Model:
             _dict(prescribe),
         )
         tracks = run["tracks"]
-        native, given = self._native, _dict(params)
-
-        def draw(columns: List[str], data: numpy.ndarray, fps: float) -> str:
-            return native.animation(columns, data.tolist(), given, fps)
-
         trajectory = Trajectory(
             run["columns"],
             run["data"],
             run["summary"],
             Trajectory(tracks[0], tracks[1], None) if tracks is not None else None,
-            draw,
+            _Drawing(self, _dict(params)),
         )
         failure = run["failure"]
         if failure is not None:
@@ -511,6 +540,43 @@ class Model:
         )
         trajectory = Trajectory(planned["columns"], planned["data"], None, None, _Drawing(self, given))
         return Plan(trajectory, json.loads(planned["report"]))
+
+    def identify(
+        self,
+        data: Any,
+        estimate: Union[Mapping[str, Optional[float]], Sequence[str]],
+        nodes: Optional[int] = None,
+        scheme: str = "midpoint",
+        params: Optional[Mapping[str, float]] = None,
+        tol: float = 1e-8,
+    ) -> Estimate:
+        """The parameters ``estimate`` names that fit the model's motion to
+        ``data``, as ``chaplygin identify`` finds them: least squares over
+        the measured values, the model's equations as collocation
+        constraints by ``scheme`` on ``nodes`` nodes evenly spread over the
+        data's time span (by default one per row).
+
+        ``data`` is a table with ``t``, any coordinates and velocities
+        ``dot(q)`` by name (measured) and the inputs applied, by name: a
+        dict of equally long arrays, a pandas ``DataFrame``, a
+        ``Trajectory`` (``simulate``'s; its ``energy`` and residual columns
+        are ignored) or the path of a CSV file. ``estimate`` maps each
+        parameter to estimate to its first guess (``None``: its value), or
+        lists their names. ``params`` sets other parameters. ``tol`` is the
+        solver's tolerance; the KKT residuals are verified to 100 times it.
+
+        Raises ``ValueError`` for bad input (an unknown parameter, a column
+        that is not the model's, too few rows) and for an answer that is
+        not a verified optimum; ``KeyboardInterrupt`` where Ctrl-C stops
+        the solve.
+        """
+        guesses = dict(estimate) if isinstance(estimate, Mapping) else dict.fromkeys(estimate)
+        named = [(str(name), None if guess is None else float(guess)) for name, guess in guesses.items()]
+        source, table = _measured(data)
+        found = self._native.identify(
+            source, table, named, None if nodes is None else int(nodes), scheme, _dict(params), float(tol)
+        )
+        return Estimate(Trajectory(found["columns"], found["data"], None), json.loads(found["report"]))
 
     def linearize(
         self,
@@ -650,6 +716,30 @@ def _dict(values: Optional[Mapping[str, Any]]) -> Optional[Dict[str, Any]]:
     return None if values is None else dict(values)
 
 
+def _measured(data: Any) -> Tuple[str, Optional[Tuple[List[str], List[List[float]]]]]:
+    """``Model.identify``'s ``data`` as the native call takes it: the name
+    messages give it (a CSV's path), and its ``(columns, rows)`` unless it
+    is a file."""
+    if isinstance(data, (str, os.PathLike)):
+        return os.fspath(data), None
+    if isinstance(data, Trajectory):
+        return "<Trajectory>", (list(data.columns), numpy.asarray(data.data, dtype=float).tolist())
+    if isinstance(data, Mapping):
+        columns = [str(name) for name in data]
+        values = [numpy.asarray(column, dtype=float).ravel() for column in data.values()]
+        lengths = {len(column) for column in values}
+        if len(lengths) > 1:
+            raise ValueError(f"data: its columns differ in length ({', '.join(map(str, sorted(lengths)))} rows)")
+        rows = numpy.column_stack(values).tolist() if values else []
+        return "<dict>", (columns, rows)
+    if hasattr(data, "columns") and hasattr(data, "to_numpy"):
+        rows = numpy.asarray(data.to_numpy(dtype=float)).tolist()
+        return "<DataFrame>", ([str(name) for name in data.columns], rows)
+    raise ValueError(
+        f"data: give a dict of arrays, a pandas DataFrame, a Trajectory or a CSV file's path, not {type(data).__name__}"
+    )
+
+
 def _bound(name: str, ends: Tuple[Optional[Value], Optional[Value]]) -> str:
     """``(lo, hi)`` as ``chaplygin plan --bound``'s ``LO:HI``, a ``None``
     end left empty, a number written so that it reads back exactly."""
@@ -767,17 +857,35 @@ def plans(
     model rebuilt from its pickled text once per worker process, as
     ``design_map`` runs; the plans come back pickled, and are the same.
     A request that fails raises its error here."""
+    return _solved_all(model, "plan", requests, executor)
+
+
+def estimates(
+    model: Model,
+    requests: Sequence[Mapping[str, Any]],
+    executor: Optional[Executor] = None,
+) -> List[Estimate]:
+    """The estimates ``requests`` ask of ``model``, each a dict of
+    ``Model.identify``'s keyword arguments (data sets, first guesses or
+    grids), in their order, here or on ``executor`` as ``plans`` solves
+    plans. The data go to the workers pickled (a path is read there)."""
+    return _solved_all(model, "identify", requests, executor)
+
+
+def _solved_all(model: Model, method: str, requests: Sequence[Mapping[str, Any]], executor: Optional[Executor]) -> List[Any]:
+    """``model.method(**request)`` for each request, in their order: here,
+    or each a task on ``executor``."""
     requests = [dict(request) for request in requests]
     if executor is None:
-        return [model.plan(**request) for request in requests]
-    tasks = [executor.submit(_plan, model._state(), request) for request in requests]
+        return [getattr(model, method)(**request) for request in requests]
+    tasks = [executor.submit(_solved, model._state(), method, request) for request in requests]
     return [task.result() for task in tasks]
 
 
-def _plan(state: Tuple[Optional[str], str, str], request: Dict[str, Any]) -> Plan:
-    """One executor task: a plan of the model rebuilt from ``state`` (once
-    per process)."""
-    return _rebuilt(*state).plan(**request)
+def _solved(state: Tuple[Optional[str], str, str], method: str, request: Dict[str, Any]) -> Any:
+    """One executor task: a plan or estimate of the model rebuilt from
+    ``state`` (once per process)."""
+    return getattr(_rebuilt(*state), method)(**request)
 
 
 def _design_points(state: Tuple[Optional[str], str, str], request: Any, points: numpy.ndarray) -> List[Dict[str, Any]]:

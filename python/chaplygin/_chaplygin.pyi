@@ -115,6 +115,16 @@ class Model:
         free_duration: bool,
         guess: Optional[str],
     ) -> Dict[str, Any]: ...
+    def identify(
+        self,
+        data: str,
+        table: Optional[Tuple[List[str], List[List[float]]]],
+        estimate: List[Tuple[str, Optional[float]]],
+        nodes: Optional[int],
+        scheme: str,
+        params: Optional[Dict[str, float]],
+        tol: float,
+    ) -> Dict[str, Any]: ...
     def document(self, format: str = "text") -> str: ...
 
 class Rhs:

@@ -1,6 +1,6 @@
 //! `chaplygin.Model` (native part): a model read from its text, its names
 //! and parameters, and what it does: simulate, linearize, find steady
-//! motions, plan inputs, accelerate,
+//! motions, plan inputs, estimate parameters, accelerate,
 //! evaluate its right-hand sides, document its derivation.
 
 use crate::convert::{
@@ -17,6 +17,7 @@ use chaplygin::driver::document::{self, Format};
 use chaplygin::driver::engine::{self, EngineChoice, Loaded};
 use chaplygin::driver::gait::{self, GaitRequest, OptimalGaitRequest};
 use chaplygin::driver::plan::Request as PlanRequest;
+use chaplygin::driver::plan::identify::Request as IdentifyRequest;
 use chaplygin::driver::setup::{self, Asked, with_parameters};
 use chaplygin::driver::simulate::{self, Controller, FormulationChoice, Integrator, Request};
 use chaplygin::driver::steady::Request as SteadyRequest;
@@ -366,6 +367,37 @@ impl Model {
             guess,
         };
         plan::plan(py, self.fresh(), &request)
+    }
+
+    /// The parameters `estimate` names (`(name, guess or None)`), fitted
+    /// to data by collocation on `nodes` nodes (one per row by default)
+    /// with `scheme` (docs/INTERFACE.md section 13): the table
+    /// `(columns, rows)` where given, `data` naming it in messages, else
+    /// the CSV at `data`; returns a dict of the fit's `columns`, `data` and
+    /// `report` (`estimate.json`'s text).
+    #[pyo3(signature = (data, table, estimate, nodes, scheme, params, tol))]
+    #[allow(clippy::too_many_arguments)]
+    fn identify<'py>(
+        &self,
+        py: Python<'py>,
+        data: std::path::PathBuf,
+        table: Option<(Vec<String>, Vec<Vec<f64>>)>,
+        estimate: Vec<(String, Option<f64>)>,
+        nodes: Option<usize>,
+        scheme: &str,
+        params: Option<&Bound<'py, PyDict>>,
+        tol: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let request = IdentifyRequest {
+            data,
+            estimate,
+            nodes,
+            scheme: plan::scheme_named(scheme)?,
+            params: numbers(params)?,
+            tol,
+        };
+        let table = table.map(|(columns, rows)| Table { columns, rows });
+        plan::identify(py, self.fresh(), &request, table.as_ref())
     }
 
     /// Linearizes about the steady motion `at` (`{name: value or

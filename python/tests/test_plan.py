@@ -1,7 +1,9 @@
 """``Model.plan`` (docs/INTERFACE.md section 13): a point mass moved between
 rests against its closed-form optimum ``12 m^2 d^2 / T^3``; a plan's
 trajectory animated from its nodes; plans pickled; a grid of plans on a
-process pool, the same as here; bad requests refused."""
+process pool, the same as here; bad requests refused; and a plan on every
+built-in model with inputs whose inputs, simulated, reach its goal with the
+midpoint rule's error, of order 2."""
 
 import json
 import pickle
@@ -148,3 +150,114 @@ def test_bad_plans_are_refused_with_their_reason(point_mass):
         point_mass.plan(**request, bounds={"push": (-0.1, 0.1)})
     with pytest.raises(ValueError, match="unknown name `y`"):
         point_mass.plan(**dict(request, goal={"y": 1}))
+
+
+def at_rest(coordinates, **values) -> dict:
+    """Every coordinate at 0 but those given, every velocity 0."""
+    state = {q: values.get(q, 0.0) for q in coordinates}
+    state.update({f"dot({q})": 0.0 for q in coordinates})
+    return state
+
+
+def sideways() -> dict:
+    """The snakeboard parked 0.2 aside at rest, its wheels within 1.2 rad
+    of straight (where their axles lie along the board the constraints
+    lose rank)."""
+    coordinates = ["x", "y", "theta", "psi", "phi"]
+    goal = at_rest(coordinates, y=0.2, phi=0.3)
+    del goal["psi"]
+    return dict(duration=6.0, nodes=41, start=at_rest(coordinates, phi=0.3), goal=goal, bounds={"phi": (-1.2, 1.2)})
+
+
+def lane_change() -> dict:
+    """The benchmark bicycle from its straight run at 5 m/s to y_p = 1 in
+    3 s, upright, steer straight, by its steer torque alone."""
+    coordinates = ["x_p", "y_p", "psi", "phi", "theta_b", "delta", "theta_r", "theta_f"]
+    start = at_rest(coordinates)
+    start.update({"dot(x_p)": 5.0, "dot(theta_r)": -5.0 / 0.3, "dot(theta_f)": -5.0 / 0.35})
+    goal = {"y_p": 1.0, "psi": 0.0, "phi": 0.0, "delta": 0.0, "dot(phi)": 0.0, "dot(delta)": 0.0}
+    return dict(duration=3.0, nodes=31, start=start, goal=goal, bounds={"lean_torque": (0, 0)})
+
+
+#: A midpoint-rule plan per built-in model with inputs, the library's
+#: catalog tests' (src/driver/plan/catalog_tests.rs), and the miss of its
+#: re-simulated end from the goal that its grid allows: the catalog's,
+#: but the upright disk's (2.4e-2 measured with inputs interpolated
+#: linearly, where the catalog holds them over each interval).
+CATALOG = {
+    "caster-robot": (
+        dict(duration=4.0, nodes=21, start=at_rest(["x", "y", "theta", "phi_l", "phi_r", "beta", "phi_c"]),
+             goal={"x": 0.2, "y": 0.05, "theta": 0.0, "dot(phi_l)": 0.0, "dot(phi_r)": 0.0}),
+        1e-2,
+    ),
+    "differential-drive": (parking(21), 1e-2),
+    "rolling-disk": (
+        dict(duration=4.0, nodes=21, start=at_rest(["x", "y", "theta", "phi"]),
+             goal={"x": 0.3, "y": 0.1, "theta": 0.0, "dot(theta)": 0.0, "dot(phi)": 0.0}),
+        1e-2,
+    ),
+    "rolling-disk-3d": (
+        dict(duration=2.0, nodes=41, start=at_rest(["x", "y", "psi", "phi", "theta"]),
+             goal={"x": 0.1, "y": 0.02, "psi": 0.0, "phi": 0.0, "dot(phi)": 0.0, "dot(theta)": 0.0}),
+        3e-2,
+    ),
+    "three-link-snake": (
+        dict(duration=2.0, nodes=21, start=at_rest(["x", "y", "theta", "a1", "a2"], a1=0.6, a2=-0.6),
+             goal={"a1": 0.3, "a2": -0.3, "dot(a1)": 0.0, "dot(a2)": 0.0}),
+        1e-2,
+    ),
+    "snakeboard": (sideways(), 3e-2),
+    "snakeboard-bodies": (sideways(), 3e-2),
+    "bicycle": (lane_change(), 2e-2),
+}
+
+
+def piecewise_linear(times: numpy.ndarray, values: numpy.ndarray) -> str:
+    """The input law through ``(times, values)``, linear between them and
+    held beyond their ends, as an expression of ``t``: the first value
+    plus a ramp ``(s + abs(s)) / 2``, ``s = t - times[k]``, per change of
+    slope."""
+    slopes = numpy.concatenate([[0.0], numpy.diff(values) / numpy.diff(times), [0.0]])
+    terms = [repr(float(values[0]))]
+    for knot, change in zip(times, numpy.diff(slopes)):
+        terms.append(f"({float(change)!r})*(t-({float(knot)!r})+abs(t-({float(knot)!r})))/2")
+    return "+".join(terms)
+
+
+def test_every_built_in_model_with_inputs_has_a_case():
+    with_inputs = {name for name in chaplygin.builtins() if chaplygin.builtin(name, "interpret").inputs}
+    assert with_inputs == set(CATALOG)
+
+
+#: Plans that take seconds each in a debug build: only their coarse grid.
+COARSE_ONLY = {"snakeboard", "snakeboard-bodies", "bicycle"}
+
+
+def resimulated_miss(model, request: dict) -> float:
+    """The largest distance from the goal of the plan's inputs simulated
+    from its first row (Lagrange-d'Alembert, Dormand-Prince to 1e-10). The
+    midpoint rule applies node i's inputs at the middle of interval i: the
+    law is the line through those points."""
+    plan = model.plan(**request)
+    assert max(plan.report["kkt"].values()) <= 1e-6
+    middles = (plan.t[:-1] + plan.t[1:]) / 2
+    laws = {u: piecewise_linear(middles, plan[u][:-1]) for u in model.inputs}
+    initial = {q: plan[q][0] for q in model.coordinates + model.velocities}
+    step = plan.t[1] - plan.t[0]
+    run = model.simulate(t_end=plan.duration, dt=step, initial=initial, inputs=laws, formulation="lagrange",
+                         integrator="dopri5", rtol=1e-10, atol=1e-10)
+    assert run.t[-1] == pytest.approx(plan.duration, abs=1e-9)
+    return max(abs(run[goal][-1] - value) for goal, value in request["goal"].items())
+
+
+@pytest.mark.parametrize("name", sorted(CATALOG))
+def test_a_plan_s_inputs_resimulated_reach_its_goal(name):
+    # the miss is the scheme's error: within the catalog's bound on the
+    # coarse grid, and quartered (order 2) as the step halves
+    request, allowed = CATALOG[name]
+    model = chaplygin.builtin(name)
+    coarse = resimulated_miss(model, request)
+    assert coarse < allowed, f"{name}: the re-simulated end misses the goal by {coarse:.3e}"
+    if name not in COARSE_ONLY:
+        fine = resimulated_miss(model, dict(request, nodes=2 * request["nodes"] - 1))
+        assert numpy.log2(coarse / fine) > 1.7, f"{name}: misses {coarse:.3e} and {fine:.3e}"

@@ -139,14 +139,7 @@ pub enum PlanError {
     },
     /// The observer stopped the solve: the last iterate, not an optimum,
     /// its report's status `interrupted`.
-    #[error(
-        "interrupted after {iterations} iterations, at an iterate that is not an optimum (KKT \
-         residuals primal {primal:.1e}, dual {dual:.1e}, complementarity {complementarity:.1e})",
-        iterations = .0.report.iterations,
-        primal = .0.report.kkt.primal,
-        dual = .0.report.kkt.dual,
-        complementarity = .0.report.kkt.complementarity
-    )]
+    #[error("{}", interrupted(.0.report.iterations, &.0.report.kkt))]
     Interrupted(Box<Plan>),
     /// The model's functions are not finite at the solver's answer.
     #[error(
@@ -320,22 +313,15 @@ pub fn plan_within(
         return Err(resolve::RequestError::ReplayTolerance(replay_tolerance).into());
     }
     let transcription = resolve::transcribe(loaded, request)?;
-    let started = Instant::now();
-    let mut stopped = false;
-    let solution = solver.solve(
-        &transcription,
-        request.tol,
-        Request::MAX_ITERATIONS,
-        &mut |iteration| {
-            let flow = observer(iteration);
-            stopped = flow.is_break();
-            flow
-        },
-    );
+    let Watched {
+        solution,
+        stopped,
+        seconds,
+    } = solve_watched(solver, &transcription, request.tol, observer);
     let answer = Answer {
         request,
         solver: solver.name(&transcription),
-        seconds: started.elapsed().as_secs_f64(),
+        seconds,
         replay_tolerance,
     };
     if stopped {
@@ -346,22 +332,8 @@ pub fn plan_within(
         )?))
         .into());
     }
-    let (status, iterations) = (solution.status.clone(), solution.iterations);
-    let objective = transcription.objective(&solution.z);
-    let (Some(residuals), Some(objective)) = (kkt::residuals(&transcription, &solution), objective)
-    else {
-        return Err(PlanError::NotFinite { status, iterations }.into());
-    };
-    let allowed = Request::VERIFIED * request.tol;
-    if !residuals.within(allowed) {
-        return Err(PlanError::NotVerified {
-            status,
-            iterations,
-            residuals,
-            allowed,
-        }
-        .into());
-    }
+    let (residuals, objective) = verified(&transcription, &solution, request.tol)?;
+    let status = solution.status.clone();
     let duration = transcription.duration(&solution.z);
     let shortest = Request::SHORTEST * request.duration;
     if request.free_duration && duration <= shortest * (1.0 + Request::VERIFIED * request.tol) {
@@ -381,6 +353,79 @@ pub fn plan_within(
         return Err(PlanError::Departs(Box::new(plan)).into());
     }
     Ok(plan)
+}
+
+/// A watched solve's outcome.
+struct Watched {
+    /// The solver's answer, or its last iterate.
+    solution: Solution,
+    /// Whether the observer stopped the solve.
+    stopped: bool,
+    /// The time the solve took.
+    seconds: f64,
+}
+
+/// `nlp` solved by `solver` to `tol`, `observer` told of each iteration.
+fn solve_watched(
+    solver: &dyn Solver,
+    nlp: &dyn Nlp,
+    tol: f64,
+    observer: &mut Observer<'_>,
+) -> Watched {
+    let started = Instant::now();
+    let mut stopped = false;
+    let solution = solver.solve(nlp, tol, Request::MAX_ITERATIONS, &mut |iteration| {
+        let flow = observer(iteration);
+        stopped = flow.is_break();
+        flow
+    });
+    Watched {
+        solution,
+        stopped,
+        seconds: started.elapsed().as_secs_f64(),
+    }
+}
+
+/// The KKT residuals and the objective of `solution`, where it is a
+/// verified optimum of `nlp`: its residuals within
+/// [`Request::VERIFIED`] times `tol`.
+fn verified(nlp: &dyn Nlp, solution: &Solution, tol: f64) -> Result<(Residuals, f64), PlanError> {
+    let (status, iterations) = (solution.status.clone(), solution.iterations);
+    let (Some(residuals), Some(objective)) =
+        (kkt::residuals(nlp, solution), nlp.objective(&solution.z))
+    else {
+        return Err(PlanError::NotFinite { status, iterations });
+    };
+    let allowed = Request::VERIFIED * tol;
+    if !residuals.within(allowed) {
+        return Err(PlanError::NotVerified {
+            status,
+            iterations,
+            residuals,
+            allowed,
+        });
+    }
+    Ok((residuals, objective))
+}
+
+/// The KKT residuals at a stopped solve's last iterate, NaN where the
+/// program's functions are not finite there.
+fn last_residuals(nlp: &dyn Nlp, solution: &Solution) -> Residuals {
+    kkt::residuals(nlp, solution).unwrap_or(Residuals {
+        primal: f64::NAN,
+        dual: f64::NAN,
+        complementarity: f64::NAN,
+    })
+}
+
+/// What a solve its observer stopped says: after how many iterations,
+/// and the KKT residuals there.
+fn interrupted(iterations: usize, kkt: &Residuals) -> String {
+    format!(
+        "interrupted after {iterations} iterations, at an iterate that is not an optimum (KKT \
+         residuals primal {:.1e}, dual {:.1e}, complementarity {:.1e})",
+        kkt.primal, kkt.dual, kkt.complementarity
+    )
 }
 
 /// What every report of a solve says besides its outcome.
@@ -431,11 +476,7 @@ fn last_iterate(
     answer: Answer<'_>,
 ) -> Result<Plan, Failure> {
     let objective = transcription.objective(&solution.z).unwrap_or(f64::NAN);
-    let residuals = kkt::residuals(transcription, solution).unwrap_or(Residuals {
-        primal: f64::NAN,
-        dual: f64::NAN,
-        complementarity: f64::NAN,
-    });
+    let residuals = last_residuals(transcription, solution);
     let table = resolve::table(transcription, &solution.z)?;
     let report = answer.report(
         transcription,

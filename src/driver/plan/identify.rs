@@ -39,13 +39,19 @@
 //! states that no measured column sees leave `J_r Z` rank deficient: the
 //! pseudo-inverse and the rank leave them out of the parameters'
 //! covariance and of the degrees of freedom.
+//!
+//! [`identify_watched`] tells an observer of each of the solver's
+//! iterations, as [`super::plan_watched`] does; an observer that stops the
+//! solve gets the last iterate back as [`Interrupted`].
+//! [`identify_table`] reads the data from a table in memory instead of
+//! `--data`'s file.
 
-use super::kkt::{self, Residuals};
-use super::nlp::{Nlp, Solver};
+use super::kkt::Residuals;
+use super::nlp::{Nlp, Observer, Solution, Solver};
 use super::resolve::guess::{Guess, Table as TableKind};
 use super::resolve::{DERIVED_COLUMNS, RequestError, node_columns};
 use super::transcription::{Costs, Grid, Scheme, StagePoint, Transcription};
-use super::{PlanError, Request as PlanRequest};
+use super::{Watched, interrupted, last_residuals, solve_watched, verified};
 use crate::driver::Failure;
 use crate::driver::engine::Loaded;
 use crate::driver::expression::{Expression, Scope};
@@ -56,6 +62,13 @@ use chaplygin_codegen::interpret::evaluated;
 use std::cell::RefCell;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
+
+/// How `--data` is read: `trajectory.csv`'s derived columns ignored.
+const DATA: TableKind = TableKind {
+    flag: "--data",
+    ignored: &DERIVED_COLUMNS,
+    others: " and trajectory.csv's others",
+};
 
 /// What to estimate, from which data, on which grid.
 #[derive(Clone, Debug, PartialEq)]
@@ -82,7 +95,7 @@ pub struct Request {
     pub params: Vec<(String, f64)>,
     /// The solver's tolerance; the KKT conditions are verified to 100
     /// times it.
-    #[cfg_attr(feature = "cli", arg(long, default_value_t = PlanRequest::TOL))]
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = super::Request::TOL))]
     pub tol: f64,
 }
 
@@ -132,6 +145,11 @@ pub enum IdentifyError {
     #[error("--nodes {0}: an estimate needs at least 2 nodes")]
     Nodes(usize),
 }
+
+/// The observer stopped the solve: the last iterate, not an estimate.
+#[derive(Debug, thiserror::Error)]
+#[error("{}", interrupted(.0.iterations, &.0.kkt))]
+pub struct Interrupted(pub Box<Estimate>);
 
 /// A verified estimate.
 #[derive(Clone, Debug)]
@@ -187,40 +205,58 @@ pub fn identify(
     request: &Request,
     solver: &dyn Solver,
 ) -> Result<Estimate, Failure> {
-    let fit = Fit::new(loaded, request)?;
-    let solution = solver.solve(&fit, request.tol, PlanRequest::MAX_ITERATIONS, &mut |_| {
-        ControlFlow::Continue(())
-    });
-    let (status, iterations) = (solution.status.clone(), solution.iterations);
-    let (Some(kkt), Some(rss)) = (kkt::residuals(&fit, &solution), fit.objective(&solution.z))
-    else {
-        return Err(PlanError::NotFinite { status, iterations }.into());
-    };
-    let allowed = PlanRequest::VERIFIED * request.tol;
-    if !kkt.within(allowed) {
-        let residuals = kkt;
-        return Err(PlanError::NotVerified {
-            status,
-            iterations,
-            residuals,
-            allowed,
-        }
-        .into());
+    identify_watched(loaded, request, solver, &mut |_| ControlFlow::Continue(()))
+}
+
+/// [`identify`], telling `observer` of each of the solver's iterations.
+///
+/// # Errors
+/// As [`identify`], and [`Interrupted`] with the last iterate where
+/// `observer` stops the solve.
+pub fn identify_watched(
+    loaded: Loaded,
+    request: &Request,
+    solver: &dyn Solver,
+    observer: &mut Observer<'_>,
+) -> Result<Estimate, Failure> {
+    let fit = Fit::new(loaded, request, None)?;
+    estimate(&fit, request, solver, observer)
+}
+
+/// [`identify_watched`] on data in memory: `table`'s columns as the
+/// CSV's; `request.data` names it in messages, and no file is read.
+///
+/// # Errors
+/// As [`identify_watched`].
+pub fn identify_table(
+    loaded: Loaded,
+    request: &Request,
+    table: &Table,
+    solver: &dyn Solver,
+    observer: &mut Observer<'_>,
+) -> Result<Estimate, Failure> {
+    let fit = Fit::new(loaded, request, Some(table))?;
+    estimate(&fit, request, solver, observer)
+}
+
+/// The estimate `fit` finds, solved by `solver` and verified, or the last
+/// iterate where `observer` stops the solve.
+fn estimate(
+    fit: &Fit,
+    request: &Request,
+    solver: &dyn Solver,
+    observer: &mut Observer<'_>,
+) -> Result<Estimate, Failure> {
+    let Watched {
+        solution, stopped, ..
+    } = solve_watched(solver, fit, request.tol, observer);
+    if stopped {
+        let kkt = last_residuals(fit, &solution);
+        let rss = fit.objective(&solution.z).unwrap_or(f64::NAN);
+        return Err(Interrupted(Box::new(fit.estimate(&solution, kkt, rss)?)).into());
     }
-    let measured = fit.measured.len() * fit.data.len();
-    Ok(Estimate {
-        parameters: fit
-            .names
-            .iter()
-            .zip(&solution.z[fit.states()..])
-            .map(|(name, value)| (name.clone(), *value))
-            .collect(),
-        standard_errors: fit.standard_errors(&solution.z, rss),
-        residual_rms: (rss / measured as f64).sqrt(),
-        iterations,
-        kkt,
-        fit: fit.table(&solution.z)?,
-    })
+    let (kkt, rss) = verified(fit, &solution, request.tol)?;
+    fit.estimate(&solution, kkt, rss)
 }
 
 /// The estimation as a nonlinear program: each node's state, then the
@@ -253,8 +289,9 @@ struct Fit {
 }
 
 impl Fit {
-    /// The program `request` asks of `loaded`.
-    fn new(loaded: Loaded, request: &Request) -> Result<Self, Failure> {
+    /// The program `request` asks of `loaded`, on the data in `table`, or
+    /// without it in `request.data`'s file.
+    fn new(loaded: Loaded, request: &Request, table: Option<&Table>) -> Result<Self, Failure> {
         let mut model = loaded.model;
         with_parameters(&mut model, &request.params)?;
         let known = model.names().parameters.clone();
@@ -272,13 +309,11 @@ impl Fit {
             indices.push(index);
         }
         let columns = node_columns(&model);
-        let table = TableKind {
-            flag: "--data",
-            ignored: &DERIVED_COLUMNS,
-            others: " and trajectory.csv's others",
-        };
-        let read = Guess::read(table, &request.data, &columns)?;
         let path = request.data.display().to_string();
+        let read = match table {
+            None => Guess::read(DATA, &request.data, &columns)?,
+            Some(table) => Guess::from_table(DATA, &path, table, &columns)?,
+        };
         let nodes = request.nodes.unwrap_or(read.rows());
         if nodes < 2 {
             return Err(IdentifyError::Nodes(nodes).into());
@@ -356,6 +391,25 @@ impl Fit {
         };
         fit.build_structure();
         Ok(fit)
+    }
+
+    /// The estimate at `solution`, with its KKT residuals `kkt` and
+    /// residual sum of squares `rss`.
+    fn estimate(&self, solution: &Solution, kkt: Residuals, rss: f64) -> Result<Estimate, Failure> {
+        let measured = self.measured.len() * self.data.len();
+        Ok(Estimate {
+            parameters: self
+                .names
+                .iter()
+                .zip(&solution.z[self.states()..])
+                .map(|(name, value)| (name.clone(), *value))
+                .collect(),
+            standard_errors: self.standard_errors(&solution.z, rss),
+            residual_rms: (rss / measured as f64).sqrt(),
+            iterations: solution.iterations,
+            kkt,
+            fit: self.table(&solution.z)?,
+        })
     }
 
     /// The transcription's entries by states, renumbered, then each

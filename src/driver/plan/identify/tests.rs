@@ -206,7 +206,7 @@ fn the_defects_derivatives_agree_with_central_differences() {
     ] {
         let mut asked = request(&data, scheme);
         asked.estimate = vec![("k".into(), Some(2.5)), ("m".into(), Some(0.7))];
-        let fit = super::Fit::new(spring_mass(), &asked).expect("a program");
+        let fit = super::Fit::new(spring_mass(), &asked, None).expect("a program");
         let y: Vec<f64> = fit
             .guess()
             .iter()
@@ -231,4 +231,62 @@ fn the_defects_derivatives_agree_with_central_differences() {
             );
         }
     }
+}
+
+/// The same rows in memory give the file's estimate, bit for bit.
+#[test]
+fn a_table_in_memory_gives_the_file_s_estimate() {
+    let dir = tempfile::tempdir().expect("a directory");
+    let data = dir.path().join("data.csv");
+    write_data(&data, 41, 4.0, &[]);
+    let text = std::fs::read_to_string(&data).expect("read");
+    let mut lines = text.lines();
+    let columns = lines.next().expect("a header").split(',').map(String::from);
+    let rows = lines.map(|line| line.split(',').map(|v| v.parse().expect("a number")));
+    let table = crate::runtime::record::Table {
+        columns: columns.collect(),
+        rows: rows.map(Iterator::collect).collect(),
+    };
+    let request = request(&data, Scheme::Midpoint);
+    let from_file = estimated(&request);
+    let in_memory = super::identify_table(
+        spring_mass(),
+        &request,
+        &table,
+        &Ripopt::default(),
+        &mut |_| std::ops::ControlFlow::Continue(()),
+    )
+    .expect("a verified estimate");
+    assert_eq!(in_memory.to_json(), from_file.to_json());
+    assert_eq!(in_memory.fit, from_file.fit);
+}
+
+/// An observer that stops the solve at once gets the first guess back as
+/// `Interrupted`: the default `k = 3`, every node's state the data, so
+/// no residual but round-off, and the defects of `x = cos(2 t)` under `k = 3` its
+/// primal residual.
+#[test]
+fn an_observer_may_stop_the_estimate() {
+    let dir = tempfile::tempdir().expect("a directory");
+    let data = dir.path().join("data.csv");
+    write_data(&data, 41, 4.0, &[]);
+    let error = super::identify_watched(
+        spring_mass(),
+        &request(&data, Scheme::Midpoint),
+        &Ripopt::default(),
+        &mut |_| std::ops::ControlFlow::Break(()),
+    )
+    .expect_err("interrupted");
+    let message = error.to_string();
+    let Ok(stopped) = error.downcast::<super::Interrupted>() else {
+        panic!("not an interruption: {message}");
+    };
+    assert!(
+        message.starts_with("interrupted after 0 iterations, at an iterate that is not an optimum"),
+        "{message}"
+    );
+    assert_eq!(stopped.0.parameters, [("k".to_string(), 3.0)]);
+    assert_eq!(stopped.0.iterations, 0);
+    assert!(stopped.0.residual_rms < 1e-12, "{}", stopped.0.residual_rms);
+    assert!(stopped.0.kkt.primal > 1e-3, "{:?}", stopped.0.kkt);
 }

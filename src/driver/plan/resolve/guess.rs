@@ -4,6 +4,7 @@
 //! an interrupted plan's `plan.csv`, marked so, resumes the solve.
 
 use super::RequestError;
+use crate::runtime::record;
 use std::path::Path;
 
 /// A guess as read: its times, increasing, and its columns of the nodes'
@@ -30,10 +31,10 @@ impl Guess {
         path: &Path,
         variables: &[String],
     ) -> Result<Self, RequestError> {
-        let derived = table.ignored;
+        let source = path.display().to_string();
         let failed = |reason: String| RequestError::GuessFile {
             flag: table.flag,
-            path: path.display().to_string(),
+            path: source.clone(),
             reason,
         };
         let text = std::fs::read_to_string(path).map_err(|e| failed(e.to_string()))?;
@@ -46,28 +47,57 @@ impl Guess {
             .split(',')
             .map(|name| name.trim().trim_matches('"').to_string())
             .collect();
-        let unknown: Vec<&str> = header
-            .iter()
-            .map(String::as_str)
-            .filter(|name| *name != "t" && !variables.iter().any(|v| v == name))
-            .filter(|name| !derived.contains(name))
-            .collect();
-        if !unknown.is_empty() {
-            return Err(RequestError::GuessColumns {
-                flag: table.flag,
-                others: table.others,
-                path: path.display().to_string(),
-                unknown: unknown.join(", "),
-                known: variables.join(", "),
-            });
-        }
         let rows = lines
             .enumerate()
             .map(|(row, line)| {
                 numbers(line, header.len()).map_err(|e| failed(format!("row {}: {e}", row + 1)))
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let column = |c: usize| rows.iter().map(|row| row[c]).collect::<Vec<f64>>();
+        let read = record::Table {
+            columns: header,
+            rows,
+        };
+        Self::from_table(table, &source, &read, variables)
+    }
+
+    /// The table `read`, in memory, which messages call `source`; its
+    /// columns among `variables` (a node's) or `table.ignored`.
+    pub(in crate::driver::plan) fn from_table(
+        table: Table,
+        source: &str,
+        read: &record::Table,
+        variables: &[String],
+    ) -> Result<Self, RequestError> {
+        let failed = |reason: String| RequestError::GuessFile {
+            flag: table.flag,
+            path: source.to_string(),
+            reason,
+        };
+        let header = &read.columns;
+        let unknown: Vec<&str> = header
+            .iter()
+            .map(String::as_str)
+            .filter(|name| *name != "t" && !variables.iter().any(|v| v == name))
+            .filter(|name| !table.ignored.contains(name))
+            .collect();
+        if !unknown.is_empty() {
+            return Err(RequestError::GuessColumns {
+                flag: table.flag,
+                others: table.others,
+                path: source.to_string(),
+                unknown: unknown.join(", "),
+                known: variables.join(", "),
+            });
+        }
+        if let Some(row) = read.rows.iter().position(|row| row.len() != header.len()) {
+            let width = read.rows[row].len();
+            return Err(failed(format!(
+                "row {}: {width} values under {} columns",
+                row + 1,
+                header.len()
+            )));
+        }
+        let column = |c: usize| read.rows.iter().map(|row| row[c]).collect::<Vec<f64>>();
         let time = header
             .iter()
             .position(|name| name == "t")
@@ -140,7 +170,7 @@ fn numbers(line: &str, width: usize) -> Result<Vec<f64>, String> {
 
 #[cfg(test)]
 mod tests {
-    use super::{Guess, RequestError};
+    use super::{Guess, RequestError, record};
 
     /// The guess of `text` over the variables `x` and `push`.
     fn read(text: &str) -> Result<Guess, RequestError> {
@@ -172,6 +202,41 @@ mod tests {
         let marked = "# not verified: interrupted after 3 iterations (plan.json)\nt,x\n0,1\n2,5\n";
         let guess = read(marked).expect("a guess");
         assert_eq!(guess.at(1.0).collect::<Vec<_>>(), [(0, 3.0)]);
+    }
+
+    /// A table in memory reads as its CSV does.
+    #[test]
+    fn a_table_in_memory_reads_as_its_csv() {
+        let variables = ["x", "dot(x)", "push"].map(String::from);
+        let kind = super::Table {
+            flag: "--data",
+            ignored: &[],
+            others: "",
+        };
+        let rows = record::Table {
+            columns: ["push", "t", "x"].map(String::from).to_vec(),
+            rows: vec![vec![1.0, 0.0, 0.0], vec![3.0, 2.0, 4.0]],
+        };
+        let guess = Guess::from_table(kind, "rows", &rows, &variables).expect("a guess");
+        let csv = read("push,t,x\n1,0,0\n3,2,4\n").expect("a guess");
+        for t in [-1.0, 0.5, 2.0] {
+            assert_eq!(
+                guess.at(t).collect::<Vec<_>>(),
+                csv.at(t).collect::<Vec<_>>()
+            );
+        }
+        let unknown = record::Table {
+            columns: ["t", "q"].map(String::from).to_vec(),
+            rows: vec![vec![0.0, 1.0]],
+        };
+        let message = Guess::from_table(kind, "rows", &unknown, &variables)
+            .err()
+            .expect("an error")
+            .to_string();
+        assert_eq!(
+            message,
+            "--data rows: unknown columns q (t, x, dot(x), push)"
+        );
     }
 
     #[test]
