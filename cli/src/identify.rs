@@ -1,6 +1,6 @@
 //! `chaplygin identify MODEL --data FILE.csv --estimate NAME[=GUESS]...
 //! [--nodes N] [--scheme backward-euler|midpoint|hermite-simpson] [--param
-//! NAME=VALUE]... [--tol TOL] --out DIR` (docs/INTERFACE.md section 13),
+//! NAME=VALUE]... [--tol TOL] [--hessian exact|lbfgs] --out DIR` (docs/INTERFACE.md section 13),
 //! over `chaplygin::driver::plan::identify`: the parameters that fit the
 //! measured columns by collocation, verified by the KKT conditions from
 //! the exact derivatives.
@@ -18,7 +18,7 @@ use crate::output::write_table;
 use crate::simulate::write_plots;
 use chaplygin::driver::Failure;
 use chaplygin::driver::plan::identify::{self, Estimate, Request};
-use chaplygin::driver::plan::nlp::Ripopt;
+use chaplygin::driver::plan::nlp::{Hessian, Ripopt};
 use chaplygin::plot;
 use std::path::PathBuf;
 
@@ -28,13 +28,23 @@ pub struct IdentifyArgs {
     model: ModelArgs,
     #[command(flatten)]
     request: Request,
+    /// The Hessian of the Lagrangian the solver works with: the exact one
+    /// from the model's second derivatives, or an L-BFGS approximation.
+    #[arg(long, value_enum, default_value = "exact")]
+    hessian: Hessian,
     #[arg(long, default_value = "out")]
     out: PathBuf,
 }
 
 pub fn run(args: &IdentifyArgs) -> Result<(), Failure> {
     let loaded = loaded(&args.model)?;
-    let estimate = identify::identify(loaded, &args.request, &Ripopt::default())?;
+    let estimate = identify::identify(
+        loaded,
+        &args.request,
+        &Ripopt {
+            hessian: args.hessian,
+        },
+    )?;
     write(args, &estimate)
 }
 
