@@ -12,11 +12,12 @@
 //! matrix's.
 
 use super::{Estimate, IdentifyError, Request, identify};
-use crate::driver::catalog::Source;
+use crate::driver::catalog::{Source, lookup};
 use crate::driver::engine::{EngineChoice, Loaded, load};
 use crate::driver::plan::Scheme;
 use crate::driver::plan::nlp::Ripopt;
 use crate::runtime::nalgebra::DMatrix;
+use crate::runtime::record::Table;
 use std::path::Path;
 
 /// `m xddot = -k x + push`, its defaults away from the truth `k = 4`.
@@ -393,4 +394,83 @@ fn the_initial_state_meets_the_constraints_and_the_errors_see_them() {
         (found - expected).abs() < 1e-6 * expected,
         "{found} vs {expected}"
     );
+}
+
+/// The benchmark bicycle's true trail (Meijaard et al. 2007, table 1).
+const TRAIL: f64 = 0.08;
+
+/// 3 s of the benchmark bicycle at 5 m/s after a lean-rate kick of 0.5
+/// rad/s, steer torque zero, simulated by the Lagrange formulation: `t`,
+/// the lean and steer, their rates and the rear wheel's rate, each
+/// plus `noise` times a seeded standard normal deviate (rad, rad/s).
+fn write_bicycle_run(path: &Path, noise: f64) {
+    use crate::driver::simulate::{FormulationChoice, Request as Simulation, simulate};
+    let loaded = load(&lookup("bicycle").expect("built in"), EngineChoice::Jit).expect("derives");
+    let asked = Simulation {
+        formulation: FormulationChoice::Lagrange,
+        t_end: 3.0,
+        dt: 0.01,
+        rtol: 1e-11,
+        atol: 1e-11,
+        initial: [
+            ("dot(theta_r)", "-5/rR"),
+            ("dot(phi)", "0.5"),
+            ("dot(delta)", "0"),
+        ]
+        .map(|(name, value)| (name.to_string(), value.to_string()))
+        .to_vec(),
+        ..Simulation::default()
+    };
+    let run = simulate(loaded, &asked, &mut Table::new(), &mut |_| {}).expect("runs");
+    assert!(run.outcome.is_ok(), "{:?}", run.outcome.err());
+    let columns = ["phi", "delta", "dot(phi)", "dot(delta)", "dot(theta_r)"];
+    let read: Vec<Vec<f64>> = columns
+        .iter()
+        .map(|name| run.table.column(name).expect("recorded"))
+        .collect();
+    let times = run.table.column("t").expect("recorded");
+    let deviates = normal_deviates(times.len() * columns.len(), 2007);
+    let mut text = format!("t,{}\n", columns.join(","));
+    for (i, t) in times.iter().enumerate() {
+        let row: Vec<String> = read
+            .iter()
+            .enumerate()
+            .map(|(k, values)| (values[i] + noise * deviates[i * columns.len() + k]).to_string())
+            .collect();
+        text.push_str(&format!("{t},{}\n", row.join(",")));
+    }
+    std::fs::write(path, text).expect("written");
+}
+
+/// The trail estimated from the bicycle's run, from `c = 0.09`, on 61
+/// Hermite-Simpson nodes.
+fn estimated_trail(noise: f64) -> Estimate {
+    let dir = tempfile::tempdir().expect("a directory");
+    let data = dir.path().join("run.csv");
+    write_bicycle_run(&data, noise);
+    let mut asked = request(&data, Scheme::HermiteSimpson);
+    asked.estimate = vec![("c".into(), Some(0.09))];
+    asked.nodes = Some(61);
+    let loaded = load(&lookup("bicycle").expect("built in"), EngineChoice::Jit).expect("derives");
+    let started = std::time::Instant::now();
+    let estimate = identify(loaded, &asked, &Ripopt::default()).expect("a verified estimate");
+    eprintln!(
+        "noise {noise}: c = {} +- {} after {} iterations, {:.1} s",
+        estimate.parameters[0].1,
+        estimate.standard_errors[0],
+        estimate.iterations,
+        started.elapsed().as_secs_f64()
+    );
+    estimate
+}
+
+#[test]
+#[ignore = "400 s in a debug build; cargo test --release -p chaplygin --features cli,plan --lib trail -- --ignored"]
+fn the_bicycles_trail_is_identified_from_a_run() {
+    let exact = estimated_trail(0.0);
+    let c = exact.parameters[0].1;
+    assert!((c - TRAIL).abs() < 1e-3 * TRAIL, "c = {c}");
+    let noisy = estimated_trail(1e-3);
+    let (c, error) = (noisy.parameters[0].1, noisy.standard_errors[0]);
+    assert!((c - TRAIL).abs() < 4.0 * error, "c = {c} +- {error}");
 }
