@@ -5,6 +5,7 @@
 //! ```text
 //! minimize  sum over measured (i, k) of (x_{i,k} - d_{i,k})^2
 //! subject to  the collocation defects of d(q, qdot)/dt = (qdot, qddot(q, qdot, u; theta)),
+//!             the model's constraints at the first node (`initial`),
 //! ```
 //!
 //! the inputs `u` held at the table's values, not variables: interpolated
@@ -36,7 +37,8 @@
 //! The defects fix each node's state from the one before, so `Z` is the
 //! sensitivity of the states to `xi = (x_0, theta)`: `S_0 = (I, 0)`,
 //! `S_{i+1} = -B_i^{-1} (A_i S_i + P_i (0, I))` with `A_i`, `B_i`, `P_i`
-//! the defect's derivatives by `x_i`, `x_{i+1}` and `theta`. Initial
+//! the defect's derivatives by `x_i`, `x_{i+1}` and `theta`, times a basis
+//! `Z_0` of the directions of `xi` the initial constraints leave free. Initial
 //! states that no measured column sees leave `J_r Z` rank deficient: the
 //! pseudo-inverse and the rank leave them out of the parameters'
 //! covariance and of the degrees of freedom.
