@@ -1,6 +1,6 @@
 //! `chaplygin identify MODEL --data FILE.csv --estimate NAME[=GUESS]...
 //! [--nodes N] [--scheme backward-euler|midpoint|hermite-simpson] [--param
-//! NAME=VALUE]... [--tol TOL] --out DIR` (docs/INTERFACE.md section 13),
+//! NAME=VALUE]... [--tol TOL] [--hessian exact|lbfgs] --out DIR` (docs/INTERFACE.md section 13),
 //! over `chaplygin::driver::plan::identify`: the parameters that fit the
 //! measured columns by collocation, verified by the KKT conditions from
 //! the exact derivatives.
@@ -26,7 +26,7 @@ use crate::solve_watch::{self, Written};
 use chaplygin::driver::Failure;
 use chaplygin::driver::plan::Report;
 use chaplygin::driver::plan::identify::{self, Estimate, Request};
-use chaplygin::driver::plan::nlp::Ripopt;
+use chaplygin::driver::plan::nlp::{Hessian, Ripopt};
 use chaplygin::plot;
 use std::path::PathBuf;
 
@@ -36,6 +36,10 @@ pub struct IdentifyArgs {
     model: ModelArgs,
     #[command(flatten)]
     request: Request,
+    /// The Hessian of the Lagrangian the solver works with: the exact one
+    /// from the model's second derivatives, or an L-BFGS approximation.
+    #[arg(long, value_enum, default_value = "exact")]
+    hessian: Hessian,
     #[arg(long, default_value = "out")]
     out: PathBuf,
 }
@@ -49,7 +53,9 @@ pub fn run(args: &IdentifyArgs) -> Result<(), Failure> {
     solve_watch::stop_on_ctrl_c()?;
     let loaded = loaded(&args.model)?;
     let mut observer = solve_watch::observer();
-    let solver = Ripopt::default();
+    let solver = Ripopt {
+        hessian: args.hessian,
+    };
     match identify::identify_watched(loaded, &args.request, &solver, &mut observer) {
         Ok(estimate) => write(args, &estimate, true),
         Err(failure) => match failure.downcast::<identify::Interrupted>() {

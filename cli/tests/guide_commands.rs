@@ -29,7 +29,7 @@ use std::process::{Command, Output};
 
 /// The commands of the guide no test runs, as written (continuations
 /// joined, comments dropped, words single-spaced), and why.
-const NOT_RUN: [(&str, &str); 6] = [
+const NOT_RUN: [(&str, &str); 7] = [
     ("cargo test --workspace", "the tests themselves"),
     (
         "bash .ci/run",
@@ -54,6 +54,12 @@ const NOT_RUN: [(&str, &str); 6] = [
          --param w=0.8:1.4:0.05 --out out/map",
         "221 designs at 201 speeds, two minutes in the test build; `cli/tests/design_map.rs` \
          checks maps of fewer",
+    ),
+    (
+        "chaplygin identify bicycle --data out/ride/trajectory.csv --estimate c=0.09 --nodes 61 \
+         --scheme hermite-simpson --out out/trail",
+        "36 s in the test build; the library's ignored test \
+         `the_bicycles_trail_is_identified_from_a_run` identifies the trail",
     ),
 ];
 

@@ -5,6 +5,8 @@
 //! ```text
 //! acceleration_parameter_jacobian(q, qdot, u)   d qddot / d parameters   (n x P)
 //! acceleration_hessian(q, qdot, u, w)           d^2 (w^T qddot) / dy^2   (m x m)
+//! acceleration_parameter_hessian(q, qdot, u, w, theta)
+//!     d^2 (w^T qddot) / dy dtheta (m x P'),  d^2 (w^T qddot) / dtheta^2 (P' x P')
 //! ```
 //!
 //! with `y = (q, qdot, u)`, `m = 2n + p`. The parameters are inputs of
@@ -18,7 +20,10 @@
 //! ```
 //!
 //! and symmetrized, `(H + H^T)/2`: the two orders of differentiation agree
-//! to round-off, and the mean is the symmetric matrix nearest both.
+//! to round-off, and the mean is the symmetric matrix nearest both. The
+//! blocks by the `P'` parameters `theta` chosen among them are the same
+//! Jacobian differentiated along `theta`, and the `acceleration` program's
+//! second derivatives along `theta` ([`crate::ir::Program::curvatures`]).
 //! Nothing is derived or emitted for them: the cost is paid per call,
 //! `m` derivatives carried by each of the Jacobian program's values
 //! (BENCHMARKS.md, "Exact second derivatives").
@@ -66,11 +71,7 @@ impl InterpretedModel {
         let seeds: Vec<usize> = (0..m).collect();
         let function = function_among(&self.functions, "acceleration_jacobian")?;
         let Tangents { derivatives, .. } = self.tangents(function, &[q, qdot, u], &seeds)?;
-        let entry = |i: usize, j: usize| match j {
-            j if j < n => i * n + j,
-            j if j < 2 * n => n * n + i * n + (j - n),
-            j => 2 * n * n + i * p + (j - 2 * n),
-        };
+        let entry = |i: usize, j: usize| jacobian_entry(n, p, i, j);
         let mut hessian = vec![0.0; m * m];
         for (j, row) in hessian.chunks_exact_mut(m).enumerate() {
             for (i, weight) in w.iter().enumerate() {
@@ -89,6 +90,58 @@ impl InterpretedModel {
         Ok(hessian)
     }
 
+    /// The blocks of the Hessian of `w^T qddot` by the parameters
+    /// `theta` (indices among the model's, `P'` of them): by `y = (q, qdot,
+    /// u)` and `theta` (m x P', row-major), the exact
+    /// `acceleration_jacobian` differentiated along `theta`; and by
+    /// `theta` twice (P' x P'), the `acceleration` program's second
+    /// derivatives along them ([`crate::ir::Program::curvatures`]).
+    ///
+    /// # Errors
+    /// As [`InterpretedModel::acceleration_hessian`], and
+    /// [`CallError::Program`] for an index that is no parameter's.
+    pub fn acceleration_parameter_hessian(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        u: &[f64],
+        w: &[f64],
+        theta: &[usize],
+    ) -> Result<ParameterBlocks, CallError> {
+        let (n, p) = (self.sizes.n, self.sizes.p);
+        check_arguments("acceleration_parameter_hessian", &[("w", n)], &[w])?;
+        let (m, count) = (2 * n + p, theta.len());
+        let seeds: Vec<usize> = theta.iter().map(|&k| m + k).collect();
+        let jacobian = function_among(&self.functions, "acceleration_jacobian")?;
+        let Tangents { derivatives, .. } = self.tangents(jacobian, &[q, qdot, u], &seeds)?;
+        let entry = |i: usize, j: usize| jacobian_entry(n, p, i, j);
+        let mut mixed = vec![0.0; m * count];
+        for (j, row) in mixed.chunks_exact_mut(count).enumerate() {
+            for (i, weight) in w.iter().enumerate() {
+                let slopes = &derivatives[entry(i, j) * count..(entry(i, j) + 1) * count];
+                for (h, slope) in row.iter_mut().zip(slopes) {
+                    *h += weight * slope;
+                }
+            }
+        }
+        let acceleration = function_among(&self.functions, "acceleration")?;
+        let second = self.curvatures(acceleration, &[q, qdot, u], &seeds)?;
+        let block = count * count;
+        let mut by_parameters = vec![0.0; block];
+        for (i, weight) in w.iter().enumerate() {
+            for (h, d) in by_parameters
+                .iter_mut()
+                .zip(&second[i * block..(i + 1) * block])
+            {
+                *h += weight * d;
+            }
+        }
+        Ok(ParameterBlocks {
+            mixed,
+            by_parameters,
+        })
+    }
+
     /// `function`'s outputs at `arguments` and the current parameters, and
     /// their derivatives by the input slots `seeds`.
     fn tangents(
@@ -99,12 +152,7 @@ impl InterpretedModel {
     ) -> Result<Tangents, CallError> {
         let lowered = &function.lowered;
         check_arguments(function.name, &lowered.arguments, arguments)?;
-        let inputs: Vec<f64> = arguments
-            .iter()
-            .flat_map(|values| values.iter())
-            .chain(&self.parameters)
-            .copied()
-            .collect();
+        let inputs = self.program_inputs(arguments);
         lowered
             .program
             .tangents(&inputs, seeds)
@@ -113,6 +161,57 @@ impl InterpretedModel {
                 source,
             })
     }
+
+    /// `function`'s second derivatives by the input slots `seeds` at
+    /// `arguments` and the current parameters, as
+    /// [`crate::ir::Curvatures::second`] lays them out.
+    fn curvatures(
+        &self,
+        function: &Interpreted,
+        arguments: &[&[f64]],
+        seeds: &[usize],
+    ) -> Result<Vec<f64>, CallError> {
+        let lowered = &function.lowered;
+        check_arguments(function.name, &lowered.arguments, arguments)?;
+        let inputs = self.program_inputs(arguments);
+        lowered
+            .program
+            .curvatures(&inputs, seeds)
+            .map(|curvatures| curvatures.second)
+            .map_err(|source| CallError::Program {
+                function: function.name.to_string(),
+                source,
+            })
+    }
+
+    /// A program's inputs: `arguments`, then the parameters.
+    fn program_inputs(&self, arguments: &[&[f64]]) -> Vec<f64> {
+        arguments
+            .iter()
+            .flat_map(|values| values.iter())
+            .chain(&self.parameters)
+            .copied()
+            .collect()
+    }
+}
+
+/// Where `d qddot_i / dy_j` is among `acceleration_jacobian`'s outputs
+/// (by `q`, then `qdot`, then `u`, each n x . row-major).
+fn jacobian_entry(n: usize, p: usize, i: usize, j: usize) -> usize {
+    match j {
+        j if j < n => i * n + j,
+        j if j < 2 * n => n * n + i * n + (j - n),
+        j => 2 * n * n + i * p + (j - 2 * n),
+    }
+}
+
+/// The Hessian blocks of [`InterpretedModel::acceleration_parameter_hessian`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParameterBlocks {
+    /// By `y = (q, qdot, u)` and the parameters, m x P' row-major.
+    pub mixed: Vec<f64>,
+    /// By the parameters twice, P' x P' row-major.
+    pub by_parameters: Vec<f64>,
 }
 
 #[cfg(test)]
@@ -215,6 +314,64 @@ mod tests {
                 for j in 0..m {
                     let numeric = (above[j] - below[j]) / (2.0 * step);
                     assert_close(hessian[j * m + k], numeric, &format!("({j}, {k})"));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_parameter_blocks_agree_with_central_differences_of_the_jacobians() {
+        for (model, y) in models() {
+            let (n, m) = (model.sizes().n, y.len());
+            let w: Vec<f64> = (0..n).map(|i| 0.7 - 0.3 * i as f64).collect();
+            let (q, qdot, u) = split(&model, &y);
+            let all = model.parameter_values().len();
+            let theta: Vec<usize> = [0, all / 2, all - 1].to_vec();
+            let blocks = model
+                .acceleration_parameter_hessian(&q, &qdot, &u, &w, &theta)
+                .expect("evaluates");
+            let contracted = |moved: &InterpretedModel| -> (Vec<f64>, Vec<f64>) {
+                let (by_q, by_qdot, by_u) = moved
+                    .acceleration_jacobian(&q, &qdot, &u)
+                    .expect("evaluates");
+                let by_y = (0..m)
+                    .map(|j| {
+                        let entry = |i: usize| match j {
+                            j if j < n => by_q[i * n + j],
+                            j if j < 2 * n => by_qdot[i * n + j - n],
+                            j => by_u[i * u.len() + j - 2 * n],
+                        };
+                        (0..n).map(|i| w[i] * entry(i)).sum()
+                    })
+                    .collect();
+                let by_all = moved
+                    .acceleration_parameter_jacobian(&q, &qdot, &u)
+                    .expect("evaluates");
+                let by_theta = theta
+                    .iter()
+                    .map(|&k| (0..n).map(|i| w[i] * by_all[i * all + k]).sum())
+                    .collect();
+                (by_y, by_theta)
+            };
+            let count = theta.len();
+            for (l, &k) in theta.iter().enumerate() {
+                let name = &model.names().parameters[k];
+                let value = model.parameter_values()[k];
+                let step = 1e-6 * value.abs().max(1.0);
+                let at = |shifted: f64| {
+                    let mut moved = model.clone();
+                    moved.set_parameter(name, shifted).expect("declared");
+                    contracted(&moved)
+                };
+                let (plus, minus) = (at(value + step), at(value - step));
+                for j in 0..m {
+                    let numeric = (plus.0[j] - minus.0[j]) / (2.0 * step);
+                    assert_close(blocks.mixed[j * count + l], numeric, &format!("{name} {j}"));
+                }
+                for r in 0..count {
+                    let numeric = (plus.1[r] - minus.1[r]) / (2.0 * step);
+                    let exact = blocks.by_parameters[r * count + l];
+                    assert_close(exact, numeric, &format!("{name} {r}"));
                 }
             }
         }

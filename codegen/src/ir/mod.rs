@@ -90,7 +90,7 @@ pub use cost::{before_cse, estimated_weight};
 pub use emit::{BLOCK_OPERATIONS, RustProgram, RustVariants, WIDTH};
 pub use engine::{Backend, Engine, Interpreter};
 pub use lower::lower;
-pub use tangent::Tangents;
+pub use tangent::{Curvatures, Tangents};
 
 use crate::sym::Rational;
 use std::fmt;

@@ -8,6 +8,14 @@
 //! (`d sin a = cos a da`, `d(a/b) = (da - (a/b) db)/b`, ...). The outputs'
 //! derivatives are exact to round-off: the derivatives of the very
 //! operations the program runs, a numeric solve included.
+//!
+//! [`Program::curvatures`] carries second derivatives too (Griewank and
+//! Walther, section 13.2): with `p_a` and `p_ab` an operation's first and
+//! second partial derivatives by its operands,
+//!
+//! ```text
+//! d2 v / ds_j ds_l = sum_a p_a d2a/ds_j ds_l + sum_(a, b) p_ab (da/ds_j) (db/ds_l).
+//! ```
 
 use super::{Instruction, IrError, Op, Program};
 
@@ -51,6 +59,170 @@ impl Program {
             values,
             derivatives,
         })
+    }
+}
+
+/// A program's outputs with their first and second derivatives along
+/// seeded input slots.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curvatures {
+    /// The outputs and their first derivatives, as [`Program::tangents`]
+    /// computes them.
+    pub tangents: Tangents,
+    /// `d2 output_i / d input_{seeds[j]} d input_{seeds[l]}` at `(i d + j)
+    /// d + l`, `d` the number of seeds.
+    pub second: Vec<f64>,
+}
+
+impl Program {
+    /// The outputs at `inputs` and their first and second derivatives by
+    /// the input slots `seeds` (see the module documentation).
+    ///
+    /// # Errors
+    /// As [`Program::tangents`].
+    pub fn curvatures(&self, inputs: &[f64], seeds: &[usize]) -> Result<Curvatures, IrError> {
+        let tangents = self.tangents(inputs, seeds)?;
+        let d = seeds.len();
+        let mut values = vec![0.0; self.value_count];
+        let mut slopes = vec![0.0; self.value_count * d];
+        let mut second = vec![0.0; self.value_count * d * d];
+        for instruction in &self.instructions {
+            propagate(instruction, inputs, seeds, &mut values, &mut slopes);
+            propagate_second(instruction, &values, &slopes, d, &mut second);
+        }
+        let second = self
+            .outputs
+            .iter()
+            .flat_map(|value| &second[value.index() * d * d..(value.index() + 1) * d * d])
+            .copied()
+            .collect();
+        Ok(Curvatures { tangents, second })
+    }
+}
+
+/// One instruction's second-order chain rule (see the module
+/// documentation), its operands' and its own values and slopes computed.
+fn propagate_second(
+    instruction: &Instruction,
+    values: &[f64],
+    slopes: &[f64],
+    d: usize,
+    second: &mut [f64],
+) {
+    let at = |value: super::Value| values[value.index()];
+    let result = instruction.result.index();
+    match instruction.op {
+        Op::Input(_) | Op::Constant(_) => {}
+        Op::SinCos { angle, cosine } => {
+            let (sine, cos) = at(angle).sin_cos();
+            let a = angle.index();
+            compose(second, slopes, d, result, &[(a, cos)], &[(a, a, -sine)]);
+            compose(
+                second,
+                slopes,
+                d,
+                cosine.index(),
+                &[(a, -sine)],
+                &[(a, a, -cos)],
+            );
+        }
+        ref op => {
+            let (_, partials, count) = partials(op, at);
+            let curvature = second_partials(op, at);
+            compose(second, slopes, d, result, &partials[..count], &curvature);
+        }
+    }
+}
+
+/// `second[result] = sum_a p_a second[a] + sum_(a, b, p_ab) p_ab
+/// slope_a slope_b^T` over ordered pairs of operands.
+fn compose(
+    second: &mut [f64],
+    slopes: &[f64],
+    d: usize,
+    result: usize,
+    partials: &[(usize, f64)],
+    curvature: &[(usize, usize, f64)],
+) {
+    let block = d * d;
+    for j in 0..d {
+        for l in 0..d {
+            let linear: f64 = partials
+                .iter()
+                .map(|&(a, p)| p * second[a * block + j * d + l])
+                .sum();
+            let quadratic: f64 = curvature
+                .iter()
+                .map(|&(a, b, p)| p * slopes[a * d + j] * slopes[b * d + l])
+                .sum();
+            second[result * block + j * d + l] = linear + quadratic;
+        }
+    }
+}
+
+/// An operation's nonzero second partial derivatives by its operands,
+/// `(a, b, d2 op / da db)` over ordered pairs of operand positions (so
+/// `a * a` counts its mixed term twice); inputs, constants and
+/// [`Op::SinCos`] have none here.
+fn second_partials(op: &Op, at: impl Fn(super::Value) -> f64) -> Vec<(usize, usize, f64)> {
+    let unary = |a: super::Value, curvature: f64| vec![(a.index(), a.index(), curvature)];
+    match *op {
+        Op::Input(_)
+        | Op::Constant(_)
+        | Op::SinCos { .. }
+        | Op::Add(..)
+        | Op::Sub(..)
+        | Op::Neg(_) => Vec::new(),
+        Op::Mul(a, b) => vec![(a.index(), b.index(), 1.0), (b.index(), a.index(), 1.0)],
+        Op::Div(a, b) => {
+            let reciprocal = 1.0 / at(b);
+            let quotient = at(a) * reciprocal;
+            let mixed = -reciprocal * reciprocal;
+            vec![
+                (a.index(), b.index(), mixed),
+                (b.index(), a.index(), mixed),
+                (
+                    b.index(),
+                    b.index(),
+                    2.0 * quotient * reciprocal * reciprocal,
+                ),
+            ]
+        }
+        Op::Powi(a, n) => {
+            let curvature = if n == 0 || n == 1 {
+                0.0
+            } else {
+                f64::from(n) * f64::from(n - 1) * at(a).powi(n - 2)
+            };
+            unary(a, curvature)
+        }
+        Op::Sqrt(a) => unary(a, -0.25 / (at(a) * at(a).sqrt())),
+        Op::Powf(a, ref e) => {
+            let exponent = e.value();
+            unary(a, exponent * (exponent - 1.0) * at(a).powf(exponent - 2.0))
+        }
+        Op::Sin(a) => unary(a, -at(a).sin()),
+        Op::Cos(a) => unary(a, -at(a).cos()),
+        Op::Tan(a) => {
+            let tangent = at(a).tan();
+            unary(a, 2.0 * tangent * (1.0 + tangent * tangent))
+        }
+        Op::Exp(a) => unary(a, at(a).exp()),
+        Op::Ln(a) => unary(a, -1.0 / (at(a) * at(a))),
+        Op::Asin(a) => unary(a, at(a) / (1.0 - at(a) * at(a)).powf(1.5)),
+        Op::Acos(a) => unary(a, -at(a) / (1.0 - at(a) * at(a)).powf(1.5)),
+        Op::Atan(a) => unary(a, -2.0 * at(a) / (1.0 + at(a) * at(a)).powi(2)),
+        Op::Atan2(y, x) => {
+            let (yv, xv) = (at(y), at(x));
+            let squared = (xv * xv + yv * yv).powi(2);
+            let mixed = (yv * yv - xv * xv) / squared;
+            vec![
+                (y.index(), y.index(), -2.0 * xv * yv / squared),
+                (y.index(), x.index(), mixed),
+                (x.index(), y.index(), mixed),
+                (x.index(), x.index(), 2.0 * xv * yv / squared),
+            ]
+        }
     }
 }
 
@@ -171,14 +343,12 @@ fn partials(op: &Op, at: impl Fn(super::Value) -> f64) -> (f64, Partials, usize)
 
 #[cfg(test)]
 mod tests {
-    use crate::ir::lower;
+    use crate::ir::{Program, lower};
     use crate::sym::{Function, Rational, Store, SymbolKind};
 
-    /// Every operation's chain rule against central differences of the
-    /// program's own values: outputs reading `x`, `y` through each
+    /// A program of `x`, `y` whose outputs read them through each
     /// elementary function, powers, quotients and `atan2`.
-    #[test]
-    fn the_tangents_agree_with_central_differences() {
+    fn every_operation() -> Program {
         let mut s = Store::new();
         let symbols = [
             s.declare("x", SymbolKind::Coordinate),
@@ -210,7 +380,14 @@ mod tests {
         let sine = s.apply(Function::Sin, sum).expect("applies");
         let cosine = s.apply(Function::Cos, sum).expect("applies");
         outputs.push(s.mul2(sine, cosine));
-        let program = lower(&s, &symbols, &outputs).expect("lowers");
+        lower(&s, &symbols, &outputs).expect("lowers")
+    }
+
+    /// Every operation's chain rule against central differences of the
+    /// program's own values.
+    #[test]
+    fn the_tangents_agree_with_central_differences() {
+        let program = every_operation();
         let point = [0.7, 0.4];
         let tangents = program.tangents(&point, &[0, 1]).expect("evaluates");
         assert_eq!(
@@ -231,6 +408,41 @@ mod tests {
                 assert!(
                     (exact - numeric).abs() <= 1e-7 * (1.0 + numeric.abs()),
                     "output {i} by {seed}: {exact} vs {numeric}"
+                );
+            }
+        }
+    }
+
+    /// Every operation's second-order chain rule against central
+    /// differences of the exact first derivatives.
+    #[test]
+    fn the_curvatures_agree_with_central_differences_of_the_tangents() {
+        let program = every_operation();
+        let point = [0.7, 0.4];
+        let curvatures = program.curvatures(&point, &[0, 1]).expect("evaluates");
+        assert_eq!(
+            curvatures.tangents,
+            program.tangents(&point, &[0, 1]).expect("evaluates")
+        );
+        for seed in 0..2 {
+            let step = 1e-6;
+            let shifted = |by: f64| {
+                let mut at = point;
+                at[seed] += by;
+                program
+                    .tangents(&at, &[0, 1])
+                    .expect("evaluates")
+                    .derivatives
+            };
+            let (plus, minus) = (shifted(step), shifted(-step));
+            for (k, (a, b)) in plus.iter().zip(&minus).enumerate() {
+                let numeric = (a - b) / (2.0 * step);
+                let exact = curvatures.second[2 * k + seed];
+                assert!(
+                    (exact - numeric).abs() <= 1e-6 * (1.0 + numeric.abs()),
+                    "output {} by ({}, {seed}): {exact} vs {numeric}",
+                    k / 2,
+                    k % 2
                 );
             }
         }

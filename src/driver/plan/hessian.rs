@@ -267,7 +267,7 @@ impl Transcription {
 
     /// The gradient (1 + w) and Hessian ((1 + w)^2) of `g = sigma L -
     /// lambda^T f` by `(t, x, u)` at a stage.
-    fn stage_terms(
+    pub(super) fn stage_terms(
         &self,
         point: &StagePoint,
         objective_factor: f64,
@@ -311,7 +311,12 @@ impl Transcription {
 
     /// For `mu` by the state, the row `(mu^T df_i/dz_i, -mu^T
     /// df_{i+1}/dz_{i+1}, 0)` and the nodes' `hess (mu^T f)` (w x w each).
-    fn slopes_terms(&self, z: &[f64], i: usize, mu: &[f64]) -> (Vec<f64>, [Vec<f64>; 2]) {
+    pub(super) fn slopes_terms(
+        &self,
+        z: &[f64],
+        i: usize,
+        mu: &[f64],
+    ) -> (Vec<f64>, [Vec<f64>; 2]) {
         let (n, s, w) = (self.model().sizes().n, self.state(), self.width());
         let mut row = vec![0.0; 2 * w + 1];
         let blocks = [0, 1].map(|j| {

@@ -5,6 +5,7 @@
 //! ```text
 //! minimize  sum over measured (i, k) of (x_{i,k} - d_{i,k})^2
 //! subject to  the collocation defects of d(q, qdot)/dt = (qdot, qddot(q, qdot, u; theta)),
+//!             the model's constraints at the first node (`initial`),
 //! ```
 //!
 //! the inputs `u` held at the table's values, not variables: interpolated
@@ -19,7 +20,8 @@
 //!
 //! with `f_theta = (0, d qddot / d theta)` the model's
 //! `acceleration_parameter_jacobian`; `c_k` is nonzero only at
-//! Hermite-Simpson's midpoint. The solver works on the L-BFGS Hessian.
+//! Hermite-Simpson's midpoint. The solver works on the exact Hessian of
+//! the Lagrangian (`hessian`), or on its L-BFGS approximation where asked.
 //!
 //! The standard errors are the Gauss-Newton ones of a least-squares fit
 //! under equality constraints (Bard, "Nonlinear Parameter Estimation",
@@ -35,7 +37,8 @@
 //! The defects fix each node's state from the one before, so `Z` is the
 //! sensitivity of the states to `xi = (x_0, theta)`: `S_0 = (I, 0)`,
 //! `S_{i+1} = -B_i^{-1} (A_i S_i + P_i (0, I))` with `A_i`, `B_i`, `P_i`
-//! the defect's derivatives by `x_i`, `x_{i+1}` and `theta`. Initial
+//! the defect's derivatives by `x_i`, `x_{i+1}` and `theta`, times a basis
+//! `Z_0` of the directions of `xi` the initial constraints leave free. Initial
 //! states that no measured column sees leave `J_r Z` rank deficient: the
 //! pseudo-inverse and the rank leave them out of the parameters'
 //! covariance and of the degrees of freedom.
@@ -59,6 +62,7 @@ use crate::driver::setup::with_parameters;
 use crate::runtime::nalgebra::DMatrix;
 use crate::runtime::record::{Recorder, Table};
 use chaplygin_codegen::interpret::evaluated;
+use initial::initial_rows;
 use std::cell::RefCell;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
@@ -413,7 +417,8 @@ impl Fit {
     }
 
     /// The transcription's entries by states, renumbered, then each
-    /// interval's dense block by the estimates.
+    /// interval's dense block by the estimates; then the initial
+    /// constraints' dense rows by `(x_0, theta)`.
     fn build_structure(&mut self) {
         let (s, w) = (self.state(), self.transcription.borrow().width());
         let transcription = self.transcription.borrow();
@@ -427,6 +432,12 @@ impl Fit {
         for row in 0..transcription.constraints() {
             self.structure
                 .extend((0..self.names.len()).map(|j| (row, first + j)));
+        }
+        let defects = self.defects();
+        for row in defects..defects + initial_rows(transcription.model()) {
+            let estimates = (0..self.names.len()).map(|j| first + j);
+            self.structure
+                .extend((0..s).chain(estimates).map(|c| (row, c)));
         }
     }
 
@@ -469,12 +480,30 @@ impl Fit {
         by
     }
 
+    /// `dX/d theta` of a stage with slope coefficient `slopes` in interval
+    /// `i` (2n x P, row-major): `c h (f_theta(x_i) - f_theta(x_{i+1}))`,
+    /// zero where `c` is.
+    fn stage_motion_by_parameters(
+        &self,
+        transcription: &Transcription,
+        z: &[f64],
+        i: usize,
+        slopes: f64,
+    ) -> Vec<f64> {
+        let size = self.state() * self.indices.len();
+        if slopes == 0.0 {
+            return vec![0.0; size];
+        }
+        let c = slopes * transcription.step(z);
+        let [first, last] = [i, i + 1]
+            .map(|j| self.rhs_by_parameters(transcription, &transcription.node_point(z, j)));
+        first.iter().zip(&last).map(|(a, b)| c * (a - b)).collect()
+    }
+
     /// Interval `i`'s defect's derivative by the estimates (2n x P,
     /// row-major), at the transcription's variables `z`.
     fn defect_by_parameters(&self, transcription: &Transcription, z: &[f64], i: usize) -> Vec<f64> {
         let (s, estimated, h) = (self.state(), self.indices.len(), transcription.step(z));
-        let ends = [i, i + 1]
-            .map(|j| self.rhs_by_parameters(transcription, &transcription.node_point(z, j)));
         let mut defect = vec![0.0; s * estimated];
         for stage in transcription.scheme.stages() {
             let point = transcription.stage_point(z, i, stage);
@@ -482,11 +511,8 @@ impl Fit {
             if stage.slopes != 0.0 {
                 let (fx, _) = transcription.rhs_jacobian(&point);
                 let fx = DMatrix::from_row_slice(s, s, &fx);
-                let moved = DMatrix::from_fn(s, estimated, |r, c| {
-                    let k = r * estimated + c;
-                    stage.slopes * h * (ends[0][k] - ends[1][k])
-                });
-                let through = fx * moved;
+                let moved = self.stage_motion_by_parameters(transcription, z, i, stage.slopes);
+                let through = fx * DMatrix::from_row_slice(s, estimated, &moved);
                 for (k, b) in by.iter_mut().enumerate() {
                     *b += through[(k / estimated, k % estimated)];
                 }
@@ -503,6 +529,7 @@ impl Fit {
     fn standard_errors(&self, y: &[f64], rss: f64) -> Vec<f64> {
         let sensitivity = self.sensitivities(y);
         let (s, estimated) = (self.state(), self.indices.len());
+        let tangent = self.initial_tangent(y);
         let rows: Vec<f64> = sensitivity
             .iter()
             .flat_map(|block| {
@@ -512,7 +539,7 @@ impl Fit {
             })
             .collect();
         let m = rows.len() / (s + estimated);
-        let jz = DMatrix::from_row_slice(m, s + estimated, &rows);
+        let jz = DMatrix::from_row_slice(m, s + estimated, &rows) * &tangent;
         let svd = jz.svd(false, true);
         let largest = svd.singular_values.max();
         let kept = |sigma: f64| sigma > largest * 1e-10;
@@ -521,13 +548,13 @@ impl Fit {
         let v_t = svd.v_t.expect("asked for");
         (0..estimated)
             .map(|j| {
-                let column = s + j;
+                let along = tangent.row(s + j);
                 let sum: f64 = svd
                     .singular_values
                     .iter()
                     .enumerate()
                     .filter(|(_, sigma)| kept(**sigma))
-                    .map(|(r, sigma)| (v_t[(r, column)] / sigma).powi(2))
+                    .map(|(r, sigma)| (v_t.row(r).dot(&along) / sigma).powi(2))
                     .sum();
                 (variance * sum).sqrt()
             })
@@ -545,7 +572,11 @@ impl Fit {
         let mut previous = vec![DMatrix::zeros(s, s); intervals];
         let mut next = previous.clone();
         let mut by_parameters = vec![DMatrix::zeros(s, dim); intervals];
+        let defects = self.defects();
         for (&(row, column), value) in self.structure.iter().zip(&values) {
+            if row >= defects {
+                continue;
+            }
             let (i, r) = (row / s, row % s);
             match column {
                 c if c >= self.states() => by_parameters[i][(r, s + c - self.states())] += value,
@@ -603,7 +634,7 @@ impl Nlp for Fit {
     }
 
     fn constraints(&self) -> usize {
-        (self.times.len() - 1) * self.state()
+        self.defects() + initial_rows(self.transcription.borrow().model())
     }
 
     fn bounds(&self) -> (&[f64], &[f64]) {
@@ -643,7 +674,12 @@ impl Nlp for Fit {
 
     fn residuals(&self, y: &[f64], residuals: &mut [f64]) -> bool {
         let z = self.transcribed(y);
-        self.transcription.borrow().residuals(&z, residuals)
+        let transcription = self.transcription.borrow();
+        let defects = self.defects();
+        let finite = transcription.residuals(&z, &mut residuals[..defects]);
+        let initial = self.initial_terms(transcription.model(), &z[..self.state()]);
+        residuals[defects..].copy_from_slice(&initial.values);
+        finite && super::transcription::finite(residuals)
     }
 
     fn jacobian_structure(&self) -> &[(usize, usize)] {
@@ -664,9 +700,32 @@ impl Nlp for Fit {
             values[at..at + block.len()].copy_from_slice(&block);
             at += block.len();
         }
+        let initial = self.initial_terms(transcription.model(), &z[..self.state()]);
+        for (value, entry) in values[at..]
+            .iter_mut()
+            .zip(initial.jacobian.transpose().iter())
+        {
+            *value = *entry;
+        }
         finite && super::transcription::finite(values)
+    }
+
+    fn hessian_structure(&self) -> Vec<(usize, usize)> {
+        self.lagrangian_hessian_structure()
+    }
+
+    fn hessian_values(
+        &self,
+        y: &[f64],
+        objective_factor: f64,
+        multipliers: &[f64],
+        values: &mut [f64],
+    ) -> bool {
+        self.lagrangian_hessian(y, objective_factor, multipliers, values)
     }
 }
 
+mod hessian;
+mod initial;
 #[cfg(test)]
 mod tests;
