@@ -5,7 +5,7 @@
 //! and the printed estimates; bad data refused in one line; Ctrl-C ends
 //! the solve with its last iterate written.
 
-use crate::support::{chaplygin, column, read_csv, scratch};
+use crate::support::{chaplygin, column, interrupted, read_csv, scratch};
 use std::path::Path;
 use std::process::Output;
 
@@ -117,24 +117,21 @@ fn an_interrupted_estimate_keeps_its_last_iterate() {
         env!("CARGO_MANIFEST_DIR"),
         "/../tests/data/drive_mass_5.csv"
     );
-    let child = std::process::Command::new(env!("CARGO_BIN_EXE_chaplygin"))
-        .args(["identify", "differential-drive", "--data", data])
-        .args(["--estimate", "m=4", "--nodes", "2001", "--out"])
-        .arg(&out)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("starts");
     // the solve takes half a minute; its start, three seconds
-    std::thread::sleep(std::time::Duration::from_secs(3));
-    let signal = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .expect("kill runs");
-    assert!(signal.success());
-    let output = child.wait_with_output().expect("ends");
+    let out_text = out.display().to_string();
+    let output = interrupted(&[
+        "identify",
+        "differential-drive",
+        "--data",
+        data,
+        "--estimate",
+        "m=4",
+        "--nodes",
+        "2001",
+        "--out",
+        &out_text,
+    ]);
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(!output.status.success(), "{stderr}");
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     let said =
         (stderr.strip_prefix("error: interrupted after ")).unwrap_or_else(|| panic!("{stderr}"));

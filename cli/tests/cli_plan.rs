@@ -5,7 +5,7 @@
 //! `trajectory.csv`'s columns; and bad requests refused in one line.
 
 use crate::support::browser::screenshot;
-use crate::support::{chaplygin, column, read_csv, scratch};
+use crate::support::{chaplygin, column, interrupted, read_csv, scratch};
 use std::path::Path;
 use std::process::Output;
 
@@ -466,22 +466,9 @@ fn an_interrupted_plan_keeps_its_last_iterate() {
     let out = dir.path().join("parked");
     let mut arguments = parking("1001");
     arguments.extend(["--out", leak(out.display().to_string())]);
-    let child = std::process::Command::new(env!("CARGO_BIN_EXE_chaplygin"))
-        .args(&arguments)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("starts");
     // the solve takes a minute; its start, three seconds
-    std::thread::sleep(std::time::Duration::from_secs(3));
-    let signal = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .expect("kill runs");
-    assert!(signal.success());
-    let output = child.wait_with_output().expect("ends");
+    let output = interrupted(&arguments);
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(!output.status.success(), "{stderr}");
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     let said =
         (stderr.strip_prefix("error: interrupted after ")).unwrap_or_else(|| panic!("{stderr}"));

@@ -14,7 +14,7 @@
 //!   same trail `c` and wheelbase `w`.
 
 use crate::support::benchmark_bicycle::BenchmarkParameters;
-use crate::support::chaplygin;
+use crate::support::{chaplygin, interrupted};
 use ::chaplygin::driver::catalog::lookup;
 use ::chaplygin::driver::design_map::{self, Axis, Motion, Run};
 use ::chaplygin::driver::engine::{EngineChoice, load};
@@ -293,21 +293,8 @@ fn an_interrupted_map_keeps_the_points_done() {
         "--out",
         leak(out.display().to_string()),
     ]);
-    let child = std::process::Command::new(env!("CARGO_BIN_EXE_chaplygin"))
-        .args(&arguments)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("starts");
-    std::thread::sleep(std::time::Duration::from_secs(3));
-    let signal = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .expect("kill runs");
-    assert!(signal.success());
-    let output = child.wait_with_output().expect("ends");
+    let output = interrupted(&arguments);
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(!output.status.success(), "{stderr}");
     let said = stderr
         .lines()
         .find_map(|line| line.strip_prefix("error: interrupted: "))

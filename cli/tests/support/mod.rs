@@ -42,6 +42,27 @@ pub fn chaplygin(arguments: &[&str]) -> Output {
         .expect("the binary runs")
 }
 
+/// The `chaplygin` binary run with `arguments`, sent Ctrl-C (`SIGINT`)
+/// three seconds after it starts: its output, once it has failed.
+pub fn interrupted(arguments: &[&str]) -> Output {
+    let child = Command::new(env!("CARGO_BIN_EXE_chaplygin"))
+        .args(arguments)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("starts");
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    let signal = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(signal.success());
+    let output = child.wait_with_output().expect("ends");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "{stderr}");
+    output
+}
+
 /// The values of the column `name` of `rows` under `header`.
 pub fn column(header: &[String], rows: &[Vec<f64>], name: &str) -> Vec<f64> {
     let at = (header.iter())

@@ -45,17 +45,10 @@ pub fn residuals(nlp: &dyn Nlp, solution: &Solution) -> Option<Residuals> {
     let z = &solution.z;
     let (lo, hi) = nlp.bounds();
     let mut c = vec![0.0; nlp.constraints()];
-    let mut gradient = vec![0.0; nlp.variables()];
-    let mut jacobian = vec![0.0; nlp.jacobian_structure().len()];
-    let finite = nlp.residuals(z, &mut c)
-        && nlp.gradient(z, &mut gradient)
-        && nlp.jacobian_values(z, &mut jacobian);
-    if !finite {
+    if !nlp.residuals(z, &mut c) {
         return None;
     }
-    for (&(row, column), value) in nlp.jacobian_structure().iter().zip(&jacobian) {
-        gradient[column] += value * solution.multipliers[row];
-    }
+    let mut gradient = lagrangian_gradient(nlp, z, 1.0, &solution.multipliers)?;
     let bounds = |j: usize| (lo[j], hi[j], solution.lower[j], solution.upper[j]);
     let mut primal = largest(c.iter().map(|r| r.abs()));
     let (mut dual, mut complementarity) = (0.0_f64, 0.0_f64);
@@ -79,6 +72,28 @@ pub fn residuals(nlp: &dyn Nlp, solution: &Solution) -> Option<Residuals> {
         dual,
         complementarity,
     })
+}
+
+/// `sigma grad J(z) + Jc(z)^T lambda`, from the exact gradient and
+/// Jacobian; `None` where they are not finite.
+pub(super) fn lagrangian_gradient(
+    nlp: &dyn Nlp,
+    z: &[f64],
+    sigma: f64,
+    lambda: &[f64],
+) -> Option<Vec<f64>> {
+    let mut gradient = vec![0.0; nlp.variables()];
+    let mut jacobian = vec![0.0; nlp.jacobian_structure().len()];
+    if !(nlp.gradient(z, &mut gradient) && nlp.jacobian_values(z, &mut jacobian)) {
+        return None;
+    }
+    for g in &mut gradient {
+        *g *= sigma;
+    }
+    for (&(row, column), value) in nlp.jacobian_structure().iter().zip(&jacobian) {
+        gradient[column] += lambda[row] * value;
+    }
+    Some(gradient)
 }
 
 /// `|multiplier * slack|`, the multiplier itself where the bound is

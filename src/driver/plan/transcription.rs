@@ -683,6 +683,7 @@ impl Nlp for Transcription {
 mod tests {
     use super::{Costs, Grid, Nlp, Scheme, Transcription};
     use crate::driver::expression::{Expression, Scope};
+    use crate::driver::plan::kkt::lagrangian_gradient;
     use chaplygin_codegen::interpret::InterpretedModel;
 
     /// The differential drive on 3 nodes at a point with every variable
@@ -792,22 +793,6 @@ mod tests {
         }
     }
 
-    /// `sigma grad J + Jc^T lambda` at `z`, from the exact gradient and
-    /// Jacobian.
-    fn lagrangian_gradient(nlp: &Transcription, z: &[f64], sigma: f64, lambda: &[f64]) -> Vec<f64> {
-        let mut gradient = vec![0.0; nlp.variables()];
-        assert!(nlp.gradient(z, &mut gradient));
-        let mut values = vec![0.0; nlp.jacobian_structure().len()];
-        assert!(nlp.jacobian_values(z, &mut values));
-        for g in &mut gradient {
-            *g *= sigma;
-        }
-        for (&(row, column), value) in nlp.jacobian_structure().iter().zip(&values) {
-            gradient[column] += lambda[row] * value;
-        }
-        gradient
-    }
-
     #[test]
     fn the_lagrangians_hessian_agrees_with_central_differences_of_its_gradient() {
         for (scheme, free_duration) in Scheme::ALL.iter().flat_map(|&s| [(s, false), (s, true)]) {
@@ -828,7 +813,8 @@ mod tests {
                     dense[column * size + row] += value;
                 }
             }
-            let gradient = |z: &[f64]| lagrangian_gradient(&nlp, z, sigma, &lambda);
+            let gradient =
+                |z: &[f64]| lagrangian_gradient(&nlp, z, sigma, &lambda).expect("finite");
             for j in 0..size {
                 let by_j = central(&z, j, &gradient);
                 for (row, numeric) in by_j.iter().enumerate() {

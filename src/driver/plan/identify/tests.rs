@@ -16,6 +16,7 @@ use super::{Estimate, IdentifyError, Request, identify};
 use crate::driver::catalog::{Source, lookup};
 use crate::driver::engine::{EngineChoice, Loaded, load};
 use crate::driver::plan::Scheme;
+use crate::driver::plan::kkt::lagrangian_gradient;
 use crate::driver::plan::nlp::Ripopt;
 use crate::runtime::nalgebra::DMatrix;
 use crate::runtime::record::Table;
@@ -330,23 +331,6 @@ fn an_observer_may_stop_the_estimate() {
     assert!(stopped.0.kkt.primal > 1e-3, "{:?}", stopped.0.kkt);
 }
 
-/// `sigma grad RSS + Jc^T lambda` at `y`, from the exact gradient and
-/// Jacobian.
-fn lagrangian_gradient(fit: &super::Fit, y: &[f64], sigma: f64, lambda: &[f64]) -> Vec<f64> {
-    use crate::driver::plan::nlp::Nlp;
-    let mut gradient = vec![0.0; fit.variables()];
-    assert!(fit.gradient(y, &mut gradient));
-    let mut values = vec![0.0; fit.jacobian_structure().len()];
-    assert!(fit.jacobian_values(y, &mut values));
-    for g in &mut gradient {
-        *g *= sigma;
-    }
-    for (&(row, column), value) in fit.jacobian_structure().iter().zip(&values) {
-        gradient[column] += lambda[row] * value;
-    }
-    gradient
-}
-
 #[test]
 fn the_lagrangians_hessian_agrees_with_central_differences_of_its_gradient() {
     use crate::driver::plan::nlp::Nlp;
@@ -377,7 +361,7 @@ fn the_lagrangians_hessian_agrees_with_central_differences_of_its_gradient() {
             let at = |shift: f64| {
                 let mut moved = y.clone();
                 moved[j] += shift;
-                lagrangian_gradient(&fit, &moved, sigma, &lambda)
+                lagrangian_gradient(&fit, &moved, sigma, &lambda).expect("finite")
             };
             let (plus, minus) = (at(step), at(-step));
             for row in 0..size {
