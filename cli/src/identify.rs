@@ -22,11 +22,10 @@
 use crate::model_args::{ModelArgs, loaded};
 use crate::output::{write_marked_table, write_table};
 use crate::simulate::write_plots;
-use crate::solve_watch::{self, Written};
+use crate::solve_watch::{self, SolverArgs, Written};
 use chaplygin::driver::Failure;
 use chaplygin::driver::plan::Report;
 use chaplygin::driver::plan::identify::{self, Estimate, Request};
-use chaplygin::driver::plan::nlp::{Hessian, Ripopt};
 use chaplygin::plot;
 use std::path::PathBuf;
 
@@ -36,10 +35,8 @@ pub struct IdentifyArgs {
     model: ModelArgs,
     #[command(flatten)]
     request: Request,
-    /// The Hessian of the Lagrangian the solver works with: the exact one
-    /// from the model's second derivatives, or an L-BFGS approximation.
-    #[arg(long, value_enum, default_value = "exact")]
-    hessian: Hessian,
+    #[command(flatten)]
+    solver: SolverArgs,
     #[arg(long, default_value = "out")]
     out: PathBuf,
 }
@@ -53,9 +50,7 @@ pub fn run(args: &IdentifyArgs) -> Result<(), Failure> {
     solve_watch::stop_on_ctrl_c()?;
     let loaded = loaded(&args.model)?;
     let mut observer = solve_watch::observer();
-    let solver = Ripopt {
-        hessian: args.hessian,
-    };
+    let solver = args.solver.solver();
     match identify::identify_watched(loaded, &args.request, &solver, &mut observer) {
         Ok(estimate) => write(args, &estimate, true),
         Err(failure) => match failure.downcast::<identify::Interrupted>() {

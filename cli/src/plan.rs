@@ -30,9 +30,8 @@ use crate::animate_args::{AnimateArgs, Drawn};
 use crate::model_args::{ModelArgs, loaded};
 use crate::output::{write_marked_table, write_table};
 use crate::simulate::write_plots;
-use crate::solve_watch::{self, Written};
+use crate::solve_watch::{self, SolverArgs, Written};
 use chaplygin::driver::Failure;
-use chaplygin::driver::plan::nlp::{Hessian, Ripopt};
 use chaplygin::driver::plan::replay::Replay;
 use chaplygin::driver::plan::{self, Plan, PlanError, Request};
 use chaplygin::driver::simulate::FormulationChoice;
@@ -47,10 +46,8 @@ pub struct PlanArgs {
     model: ModelArgs,
     #[command(flatten)]
     request: Request,
-    /// The Hessian of the Lagrangian the solver works with: the exact one
-    /// from the model's second derivatives, or an L-BFGS approximation.
-    #[arg(long, value_enum, default_value = "exact")]
-    hessian: Hessian,
+    #[command(flatten)]
+    solver: SolverArgs,
     /// The formulation of the dynamics: plans use the Lagrange-d'Alembert
     /// form in `(q, dot(q))`, whose variables the start, goal and bounds
     /// name.
@@ -92,9 +89,7 @@ pub fn run(args: &PlanArgs) -> Result<(), Failure> {
         states,
         inputs: names.inputs.clone(),
     };
-    let solver = Ripopt {
-        hessian: args.hessian,
-    };
+    let solver = args.solver.solver();
     let mut observer = solve_watch::observer();
     let planned = plan::plan_within(
         loaded,

@@ -5,11 +5,29 @@
 //! the command at once, writing nothing.
 
 use chaplygin::driver::Failure;
-use chaplygin::driver::plan::nlp::Iteration;
+use chaplygin::driver::plan::nlp::{Hessian, Iteration, Ripopt};
 use std::io::IsTerminal;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The solver `plan` and `identify` run: ripopt, on the Hessian asked for.
+#[derive(Debug, clap::Args)]
+pub struct SolverArgs {
+    /// The Hessian of the Lagrangian the solver works with: the exact one
+    /// from the model's second derivatives, or an L-BFGS approximation.
+    #[arg(long, value_enum, default_value = "exact")]
+    hessian: Hessian,
+}
+
+impl SolverArgs {
+    /// The solver asked for.
+    pub fn solver(&self) -> Ripopt {
+        Ripopt {
+            hessian: self.hessian,
+        }
+    }
+}
 
 /// Set by Ctrl-C: the solve stops at its next iteration.
 static STOP: AtomicBool = AtomicBool::new(false);
