@@ -22,7 +22,7 @@
 
 use chaplygin::runtime::arrays::matrix_from_rows;
 use chaplygin::runtime::linalg::Square;
-use chaplygin::runtime::linearize::Linearization;
+use chaplygin::runtime::linearize::{GroupFactor, Linearization};
 use chaplygin::runtime::monitor::gram_ratio;
 use chaplygin::runtime::nalgebra::Const;
 use chaplygin::runtime::system::ReducedPortHamiltonian;
@@ -144,6 +144,87 @@ covered! {
     the_snakeboard_of_bodies_has_a_chart_wherever_its_rows_are_independent: SnakeboardBodies, 5, 2, 2, 8, |_, q| Some(q);
     the_caster_robot_has_a_chart_everywhere: CasterRobot, 7, 5, 2, 9, |_, q| Some(q);
     the_bicycle_has_a_chart_everywhere_on_the_ground: Bicycle, 8, 5, 2, 11, on_the_ground;
+}
+
+/// A basis chosen in the body frame was eliminated on the body rows, which
+/// the group leaves alone: each chart fits alike at `q` and at `q` moved
+/// by the group (`moved` gives the group coordinates' new values, the
+/// heading and the wheels' angles), to rounding.
+fn fits_alike_across_the_group<M, const N: usize, const C: usize, const P: usize, const S: usize>(
+    q: [f64; N],
+    moved: [f64; N],
+) -> Result<(), TestCaseError>
+where
+    M: ReducedPortHamiltonian<S, P> + Linearization<N, C, P> + Default,
+{
+    let model = M::default();
+    let mut elsewhere = q;
+    for factor in model.symmetry() {
+        let group = match *factor {
+            GroupFactor::Se2 { x, y, theta } => vec![x, y, theta],
+            GroupFactor::Translation(i) | GroupFactor::Rotation(i) => vec![i],
+        };
+        for i in group {
+            elsewhere[i] = moved[i];
+        }
+    }
+    let state =
+        |q: [f64; N]| -> [f64; S] { core::array::from_fn(|i| if i < N { q[i] } else { 0.0 }) };
+    for chart in 0..model.charts() {
+        let (here, there) = (
+            model.chart_fit(chart, &state(q)),
+            model.chart_fit(chart, &state(elsewhere)),
+        );
+        prop_assert!(
+            (here - there).abs() <= 1e-12 * here.max(1e-3),
+            "chart {chart} fits {here:e} at {q:?} and {there:e} at {elsewhere:?}"
+        );
+    }
+    Ok(())
+}
+
+macro_rules! alike {
+    ($($test:ident: $model:ty, $n:literal, $c:literal, $p:literal, $s:literal;)*) => {$(
+        proptest! {
+            #![proptest_config(ProptestConfig::with_cases(64))]
+            #[test]
+            fn $test(q in configurations::<$n>(), moved in configurations::<$n>()) {
+                fits_alike_across_the_group::<$model, $n, $c, $p, $s>(q, moved)?;
+            }
+        }
+    )*};
+}
+
+alike! {
+    the_sleighs_chart_fits_alike_at_every_heading: Sleigh, 3, 1, 0, 5;
+    the_rolling_disks_chart_fits_alike_at_every_heading: RollingDisk, 4, 2, 2, 6;
+    the_differential_drives_chart_fits_alike_at_every_heading: DifferentialDrive, 5, 3, 2, 7;
+    the_leaning_disks_chart_fits_alike_at_every_heading: RollingDisk3d, 5, 2, 2, 8;
+    the_caster_robots_charts_fit_alike_at_every_heading: CasterRobot, 7, 5, 2, 9;
+    the_bicycles_charts_fit_alike_at_every_heading: Bicycle, 8, 5, 2, 11;
+}
+
+/// The upright bicycle heading along the y axis (either way), where the
+/// ground components of its no-slip rows trade places: its own basis fits
+/// there as at a heading of 0.
+#[test]
+fn the_upright_bicycle_keeps_its_chart_across_the_y_axis() {
+    let bicycle = Bicycle::default();
+    let fit = |heading: f64| {
+        let q =
+            on_the_ground(&bicycle, [0.0, 0.0, heading, 0.0, 0.0, 0.0, 0.0, 0.0]).expect("upright");
+        let x: [f64; 11] = core::array::from_fn(|i| if i < 8 { q[i] } else { 0.0 });
+        bicycle.chart_fit(0, &x)
+    };
+    let ahead = fit(0.0);
+    assert!(ahead > 0.1, "fits {ahead:e} heading along x");
+    for heading in [PI / 2.0, -PI / 2.0, -1.5704727510230576] {
+        let fit = fit(heading);
+        assert!(
+            (fit - ahead).abs() <= 1e-12 * ahead,
+            "fits {fit:e} heading {heading}"
+        );
+    }
 }
 
 /// Two configurations a random search once recorded, leaning 1.71 and

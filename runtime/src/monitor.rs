@@ -38,7 +38,7 @@ use crate::arrays::matrix_from_rows;
 use crate::linalg::{Square, cholesky};
 use crate::system::GroupFactor;
 use nalgebra::allocator::Allocator;
-use nalgebra::storage::{Storage, StorageMut};
+use nalgebra::storage::Storage;
 use nalgebra::{Const, DMatrix, DefaultAllocator, Dim, Matrix, OMatrix};
 
 /// `det[A; V^T] / (prod |A_i| prod |V_j|)` (see the module documentation);
@@ -220,39 +220,34 @@ where
     OMatrix::<f64, C, C>::from_fn_generic(rows, rows, |i, k| a[(i, dependent[k])])
 }
 
-/// The constraint rows as they act on the body velocity, `A(q) L(q)`
-/// (MATH.md 4: `qdot = L(q) (xi, rdot)`, `L` the rotation `R(theta)` on each
-/// `se2` factor's `(x, y)` and the identity elsewhere): the rows a basis
-/// chosen in the body frame is eliminated on, up to a rotation of the rows
-/// that leaves their minors' determinants unchanged. `a` is `c x n`
-/// (fixed or dynamic), `q` the configuration.
+/// The configuration `q` carried to the group identity, every group
+/// coordinate 0 (MATH.md 4): the rows `A(e, r)` there are the body rows a
+/// basis chosen in the body frame is eliminated on, row for row. The rows
+/// `A(q) L(q)` at `q` itself are the same only up to a rotation of the rows
+/// (the no-slip rows' ground components turn with the heading), which
+/// keeps `det A_r` but not the leading minors that elimination in order
+/// divides by: at a heading of 90 degrees the bicycle's first leading
+/// minor vanishes there and not on the body rows.
 ///
 /// ```
 /// use chaplygin_runtime::linearize::GroupFactor;
-/// use chaplygin_runtime::monitor::in_body_frame;
-/// use chaplygin_runtime::nalgebra::DMatrix;
-/// // The blade (-sin theta, cos theta, 0): its body row is (0, 1, 0).
-/// let theta: f64 = 0.7;
-/// let mut rows = DMatrix::from_row_slice(1, 3, &[-theta.sin(), theta.cos(), 0.0]);
-/// in_body_frame(&mut rows, &[GroupFactor::Se2 { x: 0, y: 1, theta: 2 }], &[0.0, 0.0, theta]);
-/// assert!(rows[(0, 0)].abs() < 1e-15 && (rows[(0, 1)] - 1.0).abs() < 1e-15);
+/// use chaplygin_runtime::monitor::at_group_identity;
+/// let q = at_group_identity(&[GroupFactor::Se2 { x: 0, y: 1, theta: 2 }], [1.0, 2.0, 0.7, 0.3]);
+/// assert_eq!(q, [0.0, 0.0, 0.0, 0.3]);
 /// ```
-pub fn in_body_frame<C, N, S>(a: &mut Matrix<f64, C, N, S>, factors: &[GroupFactor], q: &[f64])
-where
-    C: Dim,
-    N: Dim,
-    S: StorageMut<f64, C, N>,
-{
+pub fn at_group_identity<Q: AsMut<[f64]>>(factors: &[GroupFactor], mut q: Q) -> Q {
+    let coordinates = q.as_mut();
     for factor in factors {
-        if let GroupFactor::Se2 { x, y, theta } = *factor {
-            let (sin, cos) = q[theta].sin_cos();
-            for i in 0..a.nrows() {
-                let (ax, ay) = (a[(i, x)], a[(i, y)]);
-                a[(i, x)] = ax * cos + ay * sin;
-                a[(i, y)] = -ax * sin + ay * cos;
+        match *factor {
+            GroupFactor::Se2 { x, y, theta } => {
+                for i in [x, y, theta] {
+                    coordinates[i] = 0.0;
+                }
             }
+            GroupFactor::Translation(i) | GroupFactor::Rotation(i) => coordinates[i] = 0.0,
         }
     }
+    q
 }
 
 /// How well a declared momentum basis fits, in `[0, 1]`: the smaller of

@@ -102,7 +102,7 @@ pub trait ReducedPortHamiltonian<const S: usize, const P: usize> {
     /// How well `chart` fits at the configuration of `x`, in `[0, 1]`: its
     /// pivot ratio `|det A_r(q)| / prod_i |A_i(q)|`
     /// (`monitor::pivot_ratio`; for a basis chosen in the body frame, on
-    /// the rows `monitor::in_body_frame`), or for a
+    /// the body rows at `monitor::at_group_identity`), or for a
     /// declared momentum basis `|regularity|`; 0 where its basis
     /// degenerates.
     fn chart_fit(&self, _chart: usize, _x: &[f64; S]) -> f64 {

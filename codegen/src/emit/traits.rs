@@ -116,13 +116,12 @@ fn fit_of(model: &Model, fit: &ChartFit) -> TokenStream {
                 Elimination::InOrder => quote!(#monitor::elimination_ratio(&rows, &#dependent)),
             };
             quote! {{
-                let mut rows = ::chaplygin::runtime::arrays::matrix_from_rows(
-                    &#name::constraint_matrix(self, &q),
-                );
-                #monitor::in_body_frame(
-                    &mut rows,
+                let identity = #monitor::at_group_identity(
                     <#name as ::chaplygin::runtime::linearize::Linearization<#n, #c, #p>>::symmetry(self),
-                    &q,
+                    q,
+                );
+                let rows = ::chaplygin::runtime::arrays::matrix_from_rows(
+                    &#name::constraint_matrix(self, &identity),
                 );
                 #ratio
             }}

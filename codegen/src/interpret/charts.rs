@@ -7,7 +7,7 @@ use super::{CallError, Interpreted, InterpretedModel, check_arguments, function_
 use crate::derive::constraints::{ChartFit, Elimination};
 use crate::ir::IrError;
 use chaplygin_runtime::monitor::{
-    declared_basis_fit, elimination_ratio, hadamard_ratio, in_body_frame, signed_pivot_ratio,
+    at_group_identity, declared_basis_fit, elimination_ratio, hadamard_ratio, signed_pivot_ratio,
 };
 use chaplygin_runtime::nalgebra::{DMatrix, DVector, Dyn};
 use chaplygin_runtime::partition::{self, Constrained, RuntimeChart};
@@ -64,14 +64,15 @@ impl InterpretedModel {
     /// `chart_fit`): a pivot ratio, or for a declared momentum basis
     /// `|det[A; V^T]|` over its rows' norms; 0 past the last chart.
     pub fn chart_fit(&self, chart: usize, q: &[f64]) -> Result<f64, CallError> {
-        let rows = Constrained::constraint_matrix(self, q);
         Ok(match self.charts.get(chart) {
-            Some(ChartFit::Coordinates(dependent, elimination)) => {
-                fit_of(&rows, dependent, *elimination)
-            }
+            Some(ChartFit::Coordinates(dependent, elimination)) => fit_of(
+                &Constrained::constraint_matrix(self, q),
+                dependent,
+                *elimination,
+            ),
             Some(ChartFit::Body(dependent, elimination)) => {
-                let mut rows = rows;
-                in_body_frame(&mut rows, &self.symmetry, q);
+                let identity = at_group_identity(&self.symmetry, q.to_vec());
+                let rows = Constrained::constraint_matrix(self, &identity);
                 fit_of(&rows, dependent, *elimination)
             }
             Some(ChartFit::Declared) => declared_basis_fit(

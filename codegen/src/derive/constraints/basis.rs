@@ -96,8 +96,9 @@ pub enum ChartFit {
     /// The pivot ratio of these dependent speeds on the coordinates' rows
     /// `A(q)`.
     Coordinates(Vec<usize>, Elimination),
-    /// The pivot ratio of these dependent body speeds on the rows acting on
-    /// the body velocity, `A(q) L(q)` (the body frame of MATH.md 4).
+    /// The pivot ratio of these dependent body speeds on the body rows
+    /// `A(e, r)`, the rows at the group identity the basis was eliminated
+    /// on (the body frame of MATH.md 4).
     Body(Vec<usize>, Elimination),
     /// A declared momentum basis: `|det[A; V^T]|` over its rows' norms.
     Declared,
