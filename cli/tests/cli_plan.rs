@@ -124,6 +124,11 @@ fn a_reduced_plan_has_the_reduced_trajectorys_columns() {
     let report: serde_json::Value = serde_json::from_str(&json).expect("JSON");
     assert_eq!(report["formulation"], "reduced");
     assert_eq!(report["chart"], 0);
+    let reason = report["chart_reason"].as_str().expect("a reason");
+    assert!(
+        reason.starts_with("chart 0, the one simulate starts in"),
+        "{reason}"
+    );
     assert_eq!(report["solver"], "ripopt (L-BFGS Hessian)");
     let (header, rows) = read_csv(&dir.path().join("plan/plan.csv"));
     let last = rows.len() - 1;

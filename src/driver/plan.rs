@@ -255,6 +255,7 @@ impl Report {
             "scheme": self.scheme.name(),
             "formulation": self.formulation.name(),
             "chart": self.chart,
+            "chart_reason": self.chart.map(|_| reduced::CHART_REASON),
             "solver": self.solver,
             "iterations": self.iterations,
             "seconds": self.seconds,

@@ -27,12 +27,20 @@
 //! starts in where it fits: a plan one of whose nodes `simulate` would
 //! move to another chart (`next_chart`) is refused, pointing to the
 //! Lagrange form, which needs no chart.
+//!
+//! The configuration constraints `f(q) = 0` are invariants of the reduced
+//! flow as of the Lagrange one (`X(q) alpha` is tangent to them): the
+//! scheme keeps them to its order, `plan.csv`'s `holonomic_residual`.
 
 use super::resolve::RequestError;
 use super::transcription::StagePoint;
 use crate::runtime::nalgebra::DMatrix;
 use crate::runtime::system::next_chart;
 use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
+
+/// Why a reduced plan is written in chart 0, as `plan.json` says.
+pub const CHART_REASON: &str = "chart 0, the one simulate starts in where it fits; every node \
+     lies where simulate would keep it (else the plan fails)";
 
 /// The formulation whose state a plan's nodes hold.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -186,8 +194,8 @@ fn determines_momenta(model: &InterpretedModel, q: &[f64], given: &[Option<f64>]
     by_alpha.rank(RANK_TOLERANCE) == k
 }
 
-/// The singular value below which `X(q)`'s given rows lose rank, relative
-/// to none: `X` is of order one in the catalog's models.
+/// The singular value below which `X(q)`'s given rows lose rank, an
+/// absolute one: `X`'s entries are of order one in the catalog's models.
 const RANK_TOLERANCE: f64 = 1e-9;
 
 /// The first node of `states` (rows of `q` first) that `simulate` would

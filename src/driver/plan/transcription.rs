@@ -3,7 +3,8 @@
 //! Programming", 2nd ed., SIAM 2010, sections 4.5 and 4.6).
 //!
 //! The state is the Lagrange-d'Alembert one, `x = (q, qdot)`, moving by
-//! `f(x, u) = (qdot, qddot(q, qdot, u))`. The variables are each node's
+//! `f(x, u) = (qdot, qddot(q, qdot, u))`, or the reduced one, `x = (q,
+//! alpha)` ([`super::reduced`]). The variables are each node's
 //! state and inputs, then the plan's globals (with `--free-duration`, the
 //! duration `T`): `z = (x_0, u_0, ..., x_{N-1}, u_{N-1}, T)`, at `t_i =
 //! i h`, `h = T / (N - 1)`. Each interval's defect is a one-step scheme

@@ -1,8 +1,9 @@
 //! Reduced plans against independent truths: the transcription's exact
 //! derivatives against central differences, the point mass's closed-form
 //! optimum, the differential drive's reduced plan converging to its
-//! Lagrange plan as the nodes double and replayed to its goal, and the
-//! one-line refusals.
+//! Lagrange plan as the nodes double and replayed to its goal, the
+//! bicycle's chart 0 left where it degenerates, and the one-line
+//! refusals.
 
 use super::Form;
 use crate::driver::expression::{Expression, Scope};
@@ -237,4 +238,33 @@ fn what_the_reduced_form_cannot_hold_is_refused_in_one_line() {
     let mut momentum = rest_to_rest(Scheme::Midpoint, 5);
     momentum.formulation = FormulationChoice::Momentum;
     assert!(error_of(momentum).contains("not the momentum one"));
+}
+
+/// The bicycle's chart 0 of the allowed velocities degenerates where the
+/// steer turns a quarter (its fit, `chart_fit`, vanishes at `delta = pi/2`):
+/// nodes steering up to 0.5 rad stay in it, and a sweep to `pi/2` leaves
+/// it at a node before the quarter turn, where chart 1 fits better.
+#[test]
+fn a_bicycle_steered_a_quarter_turn_leaves_chart_0() {
+    let model = built_in("bicycle").model;
+    let steered = |delta: f64| [0.0, 0.0, 0.0, 0.0, 0.0, delta, 0.0, 0.0];
+    let sweep = |last: f64| -> Vec<[f64; 8]> {
+        (0..=10)
+            .map(|k| steered(last * f64::from(k) / 10.0))
+            .collect()
+    };
+    let quarter = std::f64::consts::FRAC_PI_2;
+    let vanishing = model.chart_fit(0, &steered(quarter)).expect("evaluates");
+    assert!(vanishing.abs() < 1e-3, "{vanishing}");
+    let gentle = sweep(0.5);
+    assert_eq!(
+        super::leaves_chart(&model, gentle.iter().map(|q| &q[..])),
+        None
+    );
+    let turned = sweep(quarter);
+    let node = super::leaves_chart(&model, turned.iter().map(|q| &q[..])).expect("leaves");
+    let q = &turned[node];
+    assert!(0 < node && node < 10, "{node}");
+    let fits = [0, 1].map(|chart| model.chart_fit(chart, q).expect("evaluates"));
+    assert!(fits[1] > fits[0], "{fits:?}");
 }
