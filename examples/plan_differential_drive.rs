@@ -20,6 +20,7 @@ use chaplygin::driver::engine::{EngineChoice, load};
 use chaplygin::driver::plan::nlp::Ripopt;
 use chaplygin::driver::plan::replay::replayed_states;
 use chaplygin::driver::plan::{Request, Scheme, plan};
+use chaplygin::driver::simulate::FormulationChoice;
 use std::io::Write;
 
 /// The coordinates, each at rest at 0 at the start.
@@ -54,6 +55,7 @@ pub fn request() -> Request {
         free_duration: false,
         nodes: 21,
         scheme: Scheme::Midpoint,
+        formulation: FormulationChoice::Lagrange,
         start: assigned(positions.chain(velocities)),
         goal: assigned(GOAL.iter().map(|(name, value)| (name.to_string(), *value))),
         minimize: None,
@@ -86,7 +88,7 @@ pub fn report(out: &mut impl Write) -> Result<(), Failure> {
         "KKT residuals: primal {:.3e} dual {:.3e} complementarity {:.3e}",
         report.kkt.primal, report.kkt.dual, report.kkt.complementarity
     )?;
-    let states = replayed_states(&model, report.scheme, &planned.table);
+    let states = replayed_states((&model, report.formulation), report.scheme, &planned.table);
     let end = &states[states.len() - 1];
     let columns = &planned.table.columns[1..];
     writeln!(out, "replayed end against the goal:")?;

@@ -2,14 +2,14 @@
 //! [--scheme backward-euler|midpoint|hermite-simpson] [--start
 //! NAME=EXPR]... [--goal NAME=EXPR]... [--minimize EXPR] [--final-cost
 //! EXPR] [--bound NAME=LO:HI]... [--param NAME=VALUE]... [--guess
-//! FILE.csv] [--tol TOL] [--hessian exact|lbfgs] [--formulation lagrange]
+//! FILE.csv] [--tol TOL] [--hessian exact|lbfgs] [--formulation lagrange|reduced]
 //! [--replay-tol R] [--animate [--fps F]] --out DIR` (docs/INTERFACE.md
 //! section 13), over `chaplygin::driver::plan`: optimal inputs and
 //! trajectory by direct collocation, verified by the KKT conditions from
 //! the exact derivatives and by its replay.
 //!
-//! It writes `DIR/plan.csv` (the columns of `trajectory.csv`, one row per
-//! node), `DIR/plan.json` (the objective, grid, solver, iterations, time,
+//! It writes `DIR/plan.csv` (the columns of `trajectory.csv` in the
+//! plan's formulation, one row per node), `DIR/plan.json` (the objective, grid, solver, iterations, time,
 //! status and KKT residuals), the plots `simulate` draws (`path.png`,
 //! `energy.png`, `constraint_residual.png`) with `states.png` (the
 //! coordinates and velocities against `t`) and `inputs.png`, with
@@ -34,9 +34,7 @@ use crate::solve_watch::{self, SolverArgs, Written};
 use chaplygin::driver::Failure;
 use chaplygin::driver::plan::replay::Replay;
 use chaplygin::driver::plan::{self, Plan, PlanError, Request};
-use chaplygin::driver::simulate::FormulationChoice;
 use chaplygin::plot;
-use chaplygin::runtime::linearize::point::velocity_names;
 use std::path::{Path, PathBuf};
 
 /// The arguments of `chaplygin plan`.
@@ -48,11 +46,6 @@ pub struct PlanArgs {
     request: Request,
     #[command(flatten)]
     solver: SolverArgs,
-    /// The formulation of the dynamics: plans use the Lagrange-d'Alembert
-    /// form in `(q, dot(q))`, whose variables the start, goal and bounds
-    /// name.
-    #[arg(long, value_enum, default_value = "lagrange")]
-    formulation: FormulationChoice,
     /// How far the plan's inputs, replayed from its start, may leave its
     /// nodes: a fraction of each coordinate's and velocity's scale, its
     /// range over the plan (at least a tenth of the largest of its kind).
@@ -66,7 +59,7 @@ pub struct PlanArgs {
 }
 
 /// The plan's columns drawn against `t`: the states (coordinates and
-/// velocities) and the inputs.
+/// velocities, or momenta) and the inputs.
 struct Drawings {
     states: Vec<String>,
     inputs: Vec<String>,
@@ -79,15 +72,12 @@ struct Drawings {
 /// writing the last iterate), or an I/O error.
 pub fn run(args: &PlanArgs) -> Result<(), Failure> {
     solve_watch::stop_on_ctrl_c()?;
-    plan::formulation(args.formulation)?;
+    let form = plan::formulation(args.request.formulation)?;
     let loaded = loaded(&args.model)?;
     let drawn = args.animate.drawn(&loaded)?;
-    let names = loaded.model.names();
-    let mut states = names.coordinates.clone();
-    states.extend(velocity_names(&names.coordinates));
     let drawings = Drawings {
-        states,
-        inputs: names.inputs.clone(),
+        states: form.state_names(&loaded.model),
+        inputs: loaded.model.names().inputs.clone(),
     };
     let solver = args.solver.solver();
     let mut observer = solve_watch::observer();

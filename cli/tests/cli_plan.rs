@@ -2,7 +2,8 @@
 //! point mass moved between rests, whose optimal cost `12 m^2 / T^3` is
 //! known in closed form, over a given or a free duration, to a hard or a
 //! soft goal, and restarted from its own `plan.csv`; `plan.csv` with
-//! `trajectory.csv`'s columns; and bad requests refused in one line.
+//! `trajectory.csv`'s columns, in the Lagrange and the reduced form; and
+//! bad requests refused in one line.
 
 use crate::support::browser::screenshot;
 use crate::support::{chaplygin, column, interrupted, read_csv, scratch};
@@ -92,6 +93,62 @@ fn a_point_mass_plan_meets_its_closed_form_cost() {
     assert_eq!(header, trajectory_header);
 }
 
+/// The differential drive parked in the reduced form: `plan.csv` has the
+/// columns of `simulate`'s reduced `trajectory.csv` (the momenta, `chart`),
+/// `plan.json` names the formulation, chart 0 and the L-BFGS Hessian, and
+/// the goal's pose is met.
+#[test]
+fn a_reduced_plan_has_the_reduced_trajectorys_columns() {
+    let dir = scratch("plan-reduced");
+    let out = |name: &str| dir.path().join(name).to_str().expect("UTF-8").to_string();
+    let (plan_out, simulate_out) = (out("plan"), out("simulate"));
+    let mut arguments: Vec<String> = ["plan", "differential-drive", "--formulation", "reduced"]
+        .into_iter()
+        .chain(["--duration", "4", "--nodes", "21", "--out", &plan_out])
+        .map(String::from)
+        .collect();
+    for q in ["x", "y", "theta", "phi_r", "phi_l"] {
+        arguments.extend(["--start".into(), format!("{q}=0")]);
+        arguments.extend(["--start".into(), format!("dot({q})=0")]);
+    }
+    for goal in ["x=0.3", "y=0.1", "theta=0", "dot(phi_r)=0", "dot(phi_l)=0"] {
+        arguments.extend(["--goal".into(), goal.into()]);
+    }
+    let output = chaplygin(&arguments.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let json = std::fs::read_to_string(dir.path().join("plan/plan.json")).expect("plan.json");
+    let report: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+    assert_eq!(report["formulation"], "reduced");
+    assert_eq!(report["chart"], 0);
+    let reason = report["chart_reason"].as_str().expect("a reason");
+    assert!(
+        reason.starts_with("chart 0, the one simulate starts in"),
+        "{reason}"
+    );
+    assert_eq!(report["solver"], "ripopt (L-BFGS Hessian)");
+    let (header, rows) = read_csv(&dir.path().join("plan/plan.csv"));
+    let last = rows.len() - 1;
+    for (name, goal) in [("x", 0.3), ("y", 0.1), ("theta", 0.0)] {
+        let value = column(&header, &rows, name)[last];
+        assert!((value - goal).abs() < 1e-9, "{name} {value}");
+    }
+    let simulated = chaplygin(&[
+        "simulate",
+        "differential-drive",
+        "--t-end",
+        "0.01",
+        "--out",
+        &simulate_out,
+    ]);
+    assert!(simulated.status.success());
+    let (trajectory_header, _) = read_csv(&dir.path().join("simulate/trajectory.csv"));
+    assert_eq!(header, trajectory_header);
+}
+
 /// Both Hessians reach the closed-form cost, and `plan.json` names the one
 /// used: the exact one by default.
 #[test]
@@ -156,8 +213,12 @@ fn bad_plans_are_refused_in_one_line() {
         "--replay-tol 0: the replay's tolerance must be positive and finite",
     );
     refused(
-        &with(&["--formulation", "reduced"]),
-        "plans use the Lagrange-d'Alembert formulation (--formulation lagrange), not the reduced",
+        &with(&["--formulation", "momentum"]),
+        "not the momentum one",
+    );
+    refused(
+        &with(&["--formulation", "reduced", "--bound", "dot(x)=-1:1"]),
+        "--bound dot(x): the reduced form's state (q, alpha) holds no velocity to bound",
     );
 }
 

@@ -356,6 +356,7 @@ impl Model {
             duration,
             nodes,
             scheme: plan::scheme_named(scheme)?,
+            formulation: FormulationChoice::Lagrange,
             start: assignments(start)?,
             goal: assignments(goal)?,
             minimize,

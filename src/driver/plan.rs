@@ -26,8 +26,10 @@
 //! KKT residuals, as [`PlanError::Interrupted`].
 //!
 //! The dynamics are the Lagrange-d'Alembert equations in `x = (q, qdot)`
-//! (`simulate --formulation lagrange`), whose variables are the columns of
-//! `trajectory.csv`. The velocity constraints `A(q) qdot = 0` and the
+//! (`simulate --formulation lagrange`), or with `--formulation reduced`
+//! the reduced port-Hamiltonian form in `x = (q, alpha)` ([`reduced`]),
+//! whose variables are the columns of `trajectory.csv`. The velocity
+//! constraints `A(q) qdot = 0` and the
 //! configuration constraints `f(q) = 0` are invariants of that flow: a
 //! model with either starts from a state that meets them (every
 //! coordinate and velocity given), and the scheme keeps them to its order
@@ -37,6 +39,7 @@ mod hessian;
 pub mod identify;
 pub mod kkt;
 pub mod nlp;
+pub mod reduced;
 pub mod replay;
 mod resolve;
 pub mod transcription;
@@ -47,6 +50,7 @@ use super::simulate::FormulationChoice;
 use crate::runtime::record::Table;
 use kkt::Residuals;
 use nlp::{Nlp, Observer, Solution, Solver};
+use reduced::Form;
 use replay::Replay;
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -69,6 +73,11 @@ pub struct Request {
     /// The collocation scheme.
     #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = Scheme::Midpoint))]
     pub scheme: Scheme,
+    /// The dynamics' formulation: the Lagrange-d'Alembert form in `(q,
+    /// dot(q))`, or the reduced form in `(q, alpha)` (chart 0); the start,
+    /// goal and bounds name `q` and `dot(q)` in both.
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = FormulationChoice::Lagrange))]
+    pub formulation: FormulationChoice,
     /// A coordinate `q=EXPR` or velocity `dot(q)=EXPR` at `t = 0`, an
     /// expression of the parameters (repeatable); what is not given is
     /// free.
@@ -168,17 +177,29 @@ pub enum PlanError {
         tolerance = .0.report.replay.tolerance
     )]
     Departs(Box<Plan>),
-    /// A formulation other than the one plans use.
+    /// A formulation plans do not transcribe.
     #[error(
-        "plans use the Lagrange-d'Alembert formulation (--formulation lagrange), not the \
-         {asked} one: the start, goal and bound names are the coordinates and velocities \
-         dot(q), the state of every node, where the {asked} form's state is {state}"
+        "plans use the Lagrange-d'Alembert or the reduced formulation (--formulation lagrange \
+         or reduced), not the {asked} one: its state {state} holds the shape's velocities and \
+         the momentum only, so a start, goal or bound on another velocity dot(q) has no \
+         variable"
     )]
     Formulation {
         /// The formulation asked for.
         asked: &'static str,
         /// Its state.
         state: &'static str,
+    },
+    /// A reduced plan with a node where chart 0 does not fit.
+    #[error(
+        "the reduced plan leaves chart 0 of the constraints at node {node} (t = {t:.4}), where \
+         simulate would change charts: plan with --formulation lagrange, which needs no chart"
+    )]
+    LeavesChart {
+        /// The node.
+        node: usize,
+        /// Its time.
+        t: f64,
     },
     /// A free duration at its lower bound: the optimum may lie below it.
     #[error(
@@ -202,6 +223,11 @@ pub struct Report {
     pub nodes: usize,
     /// The scheme.
     pub scheme: Scheme,
+    /// The formulation the nodes' states are in.
+    pub formulation: Form,
+    /// The chart of the reduced form's state, for a model with
+    /// constraints.
+    pub chart: Option<usize>,
     /// The solver's name.
     pub solver: &'static str,
     /// Its iterations.
@@ -227,6 +253,9 @@ impl Report {
             "duration": self.duration,
             "nodes": self.nodes,
             "scheme": self.scheme.name(),
+            "formulation": self.formulation.name(),
+            "chart": self.chart,
+            "chart_reason": self.chart.map(|_| reduced::CHART_REASON),
             "solver": self.solver,
             "iterations": self.iterations,
             "seconds": self.seconds,
@@ -252,22 +281,24 @@ pub struct Plan {
     pub report: Report,
 }
 
-/// Checks that `choice` is the formulation plans use: the
-/// Lagrange-d'Alembert equations in `(q, qdot)`, whose state is named by
-/// the start, the goal and the bounds, and whose nodes are `plan.csv`'s
-/// rows. It needs no chart of the constraints' distribution: a model with
-/// several (the bicycle) is planned in all its coordinates and velocities
-/// at once, regular wherever the constraint rows are independent.
+/// The formulation `choice` as plans transcribe it: the
+/// Lagrange-d'Alembert equations in `(q, qdot)`, which need no chart (a
+/// model with several, the bicycle, is planned in all its coordinates and
+/// velocities at once, regular wherever the constraint rows are
+/// independent), or the reduced form in `(q, alpha)`, in chart 0.
 ///
 /// # Errors
-/// [`PlanError::Formulation`] for the reduced and the momentum form.
-pub fn formulation(choice: FormulationChoice) -> Result<(), PlanError> {
-    let (asked, state) = match choice {
-        FormulationChoice::Lagrange => return Ok(()),
-        FormulationChoice::Reduced => ("reduced", "(q, alpha)"),
-        FormulationChoice::Momentum => ("momentum", "(q, rdot, p)"),
-    };
-    Err(PlanError::Formulation { asked, state })
+/// [`PlanError::Formulation`] for the momentum form, whose state names
+/// no velocity but the shape's.
+pub fn formulation(choice: FormulationChoice) -> Result<Form, PlanError> {
+    match choice {
+        FormulationChoice::Lagrange => Ok(Form::Lagrange),
+        FormulationChoice::Reduced => Ok(Form::Reduced),
+        FormulationChoice::Momentum => Err(PlanError::Formulation {
+            asked: "momentum",
+            state: "(q, rdot, p)",
+        }),
+    }
 }
 
 /// The plan `request` asks of `loaded`, solved by `solver`, verified and
@@ -340,6 +371,7 @@ pub fn plan_within(
         return Err(PlanError::ShortestDuration { shortest }.into());
     }
     let table = resolve::table(&transcription, &solution.z)?;
+    within_chart(&transcription, &solution.z)?;
     let report = answer.report(
         &transcription,
         &solution,
@@ -353,6 +385,24 @@ pub fn plan_within(
         return Err(PlanError::Departs(Box::new(plan)).into());
     }
     Ok(plan)
+}
+
+/// Checks that every node of a reduced plan at `z` lies where chart 0
+/// fits.
+fn within_chart(transcription: &transcription::Transcription, z: &[f64]) -> Result<(), PlanError> {
+    let model = transcription.model();
+    if transcription.form().chart(model).is_none() {
+        return Ok(());
+    }
+    let width = transcription.width();
+    let states = z[..transcription.nodes() * width].chunks(width);
+    match reduced::leaves_chart(model, states) {
+        Some(node) => Err(PlanError::LeavesChart {
+            node,
+            t: node as f64 * transcription.step(z),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// A watched solve's outcome.
@@ -452,13 +502,15 @@ impl Answer<'_> {
             duration: transcription.duration(&solution.z),
             nodes: self.request.nodes,
             scheme: self.request.scheme,
+            formulation: transcription.form(),
+            chart: transcription.form().chart(transcription.model()),
             solver: self.solver,
             iterations: solution.iterations,
             seconds: self.seconds,
             status,
             kkt,
             replay: replay::replay(
-                transcription.model(),
+                (transcription.model(), transcription.form()),
                 self.request.scheme,
                 table,
                 self.replay_tolerance,

@@ -7,10 +7,12 @@
 //! midpoint rule's step halves; that rate is the independent check.
 
 use super::nlp::Ripopt;
+use super::reduced::Form;
 use super::replay::{Replay, replayed_states};
 use super::{Plan, PlanError, Request, Scheme, plan};
 use crate::driver::catalog::lookup;
 use crate::driver::engine::{EngineChoice, Loaded, load};
+use crate::driver::simulate::FormulationChoice;
 
 pub(super) fn built_in(name: &str) -> Loaded {
     load(&lookup(name).expect("built in"), EngineChoice::Jit).expect("derives")
@@ -45,6 +47,7 @@ pub(super) fn request(
         duration,
         nodes,
         scheme: Scheme::Midpoint,
+        formulation: FormulationChoice::Lagrange,
         start: assigned(start),
         goal: assigned(goal),
         free_duration: false,
@@ -61,7 +64,7 @@ pub(super) fn request(
 /// applies them: the state `(q, dot(q))` reached at its last node.
 pub(super) fn replayed(name: &str, plan: &Plan) -> Vec<f64> {
     let model = built_in(name).model;
-    let states = replayed_states(&model, Scheme::Midpoint, &plan.table);
+    let states = replayed_states((&model, Form::Lagrange), Scheme::Midpoint, &plan.table);
     states[states.len() - 1].clone()
 }
 

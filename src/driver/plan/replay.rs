@@ -17,13 +17,14 @@
 //!
 //! on `t_i <= t <= t_{i+1}` (see [`super::transcription`]), by RK4 with
 //! [`SUBSTEPS`] steps an interval: its error, `O((h / SUBSTEPS)^4)`, lies
-//! far below the schemes' own.
+//! far below the schemes' own. A plan in the reduced form is replayed in
+//! it, `d(q, alpha)/dt = f(q, alpha, u(t))` in chart 0.
 //!
 //! Each state variable's departure from the plan, `|x_j(t_i) - x_{i,j}|`,
 //! is measured against its scale: its range over the plan's nodes,
 //! `r_j = max_i x_{i,j} - min_i x_{i,j}`, but at least
 //! [`Replay::SHARE_OF_KIND`] of the largest range among the variables of
-//! its kind (the coordinates, or the velocities), so that a variable that
+//! its kind (the coordinates, or the velocities or momenta), so that a variable that
 //! barely moves (the upright disk's lean rate) is not judged by its own
 //! tiny range alone. A plan whose largest relative departure exceeds the
 //! tolerance is not a motion of the model. The scheme's own error shrinks
@@ -32,9 +33,11 @@
 //! stays where it was, a whole range away.
 
 use super::Scheme;
+use super::reduced::Form;
 use super::transcription::share;
+use crate::driver::formulation::Formulation;
 use crate::driver::formulation::RunTimeSized;
-use crate::driver::interpreted::{InputLaw, InterpretedDalembert};
+use crate::driver::interpreted::{InputLaw, InterpretedDalembert, InterpretedReduced};
 use crate::runtime::integrate::{Rk4, integrate_fixed};
 use crate::runtime::record::Table;
 use chaplygin_codegen::interpret::InterpretedModel;
@@ -131,14 +134,18 @@ fn input_share(scheme: Scheme, j: usize, s: f64) -> f64 {
     }
 }
 
-/// The state `(q, qdot)` at each of `table`'s nodes, integrated from its
-/// first under its inputs as `scheme` applies them; NaN from the interval
-/// where the integration fails on.
-pub fn replayed_states(model: &InterpretedModel, scheme: Scheme, table: &Table) -> Vec<Vec<f64>> {
-    let (n, p) = (model.sizes().n, model.sizes().p);
+/// The state (`(q, qdot)`, or `(q, alpha)`) at each of `table`'s nodes,
+/// integrated in `form` from its first under its inputs as `scheme`
+/// applies them; NaN from the interval where the integration fails on.
+pub fn replayed_states(
+    (model, form): (&InterpretedModel, Form),
+    scheme: Scheme,
+    table: &Table,
+) -> Vec<Vec<f64>> {
+    let (s, p) = (form.state(model), model.sizes().p);
     let t = table.column("t").unwrap_or_default();
     let inputs: Vec<Vec<f64>> = (table.rows.iter())
-        .map(|row| row[1 + 2 * n..1 + 2 * n + p].to_vec())
+        .map(|row| row[1 + s..1 + s + p].to_vec())
         .collect();
     let interval = Rc::new(Cell::new((0, 0.0, 1.0)));
     let current = Rc::clone(&interval);
@@ -150,34 +157,43 @@ pub fn replayed_states(model: &InterpretedModel, scheme: Scheme, table: &Table) 
                 + input_share(scheme, 1, s) * inputs[i + 1][k];
         }
     };
-    let formulation = InterpretedDalembert {
-        model: model.clone(),
-        inputs: InputLaw {
-            law: Box::new(law),
-            reads_state: false,
-        },
+    let inputs = InputLaw {
+        law: Box::new(law),
+        reads_state: false,
     };
-    let system = RunTimeSized(&formulation);
-    let mut states = vec![table.rows[0][1..1 + 2 * n].to_vec()];
+    let formulation: Box<dyn Formulation> = match form {
+        Form::Lagrange => Box::new(InterpretedDalembert {
+            model: model.clone(),
+            inputs,
+        }),
+        Form::Reduced => Box::new(InterpretedReduced::new(model.clone(), inputs)),
+    };
+    let system = RunTimeSized(&*formulation);
+    let mut states = vec![table.rows[0][1..1 + s].to_vec()];
     for (i, window) in t.windows(2).enumerate() {
         let h = window[1] - window[0];
         interval.set((i, window[0], h));
         let from = states[i].clone();
         let step = h / SUBSTEPS as f64;
         let reached = integrate_fixed(&Rk4, &system, (window[0], from), step, SUBSTEPS, |_, _| {})
-            .unwrap_or_else(|_| vec![f64::NAN; 2 * n]);
+            .unwrap_or_else(|_| vec![f64::NAN; s]);
         states.push(reached);
     }
     states
 }
 
-/// The replay of `table`, a plan of `model` by `scheme`, allowed to
-/// depart by `tolerance` of each variable's range.
-pub fn replay(model: &InterpretedModel, scheme: Scheme, table: &Table, tolerance: f64) -> Replay {
+/// The replay of `table`, a plan of `model` in `form` by `scheme`,
+/// allowed to depart by `tolerance` of each variable's range.
+pub fn replay(
+    (model, form): (&InterpretedModel, Form),
+    scheme: Scheme,
+    table: &Table,
+    tolerance: f64,
+) -> Replay {
     let started = Instant::now();
-    let states = replayed_states(model, scheme, table);
+    let states = replayed_states((model, form), scheme, table);
     let width = states[0].len();
-    let scales = scales(table, width);
+    let scales = scales(table, width, model.sizes().n);
     let departure = |node: usize| {
         (0..width)
             .map(|j| {
@@ -209,8 +225,8 @@ pub fn replay(model: &InterpretedModel, scheme: Scheme, table: &Table, tolerance
 
 /// Each of the first `width` variables' scale over `table`'s nodes: its
 /// range, at least [`Replay::SHARE_OF_KIND`] of the largest range of its
-/// half of the state (coordinates, velocities).
-fn scales(table: &Table, width: usize) -> Vec<f64> {
+/// kind (the first `n`, the coordinates; the rest).
+fn scales(table: &Table, width: usize, n: usize) -> Vec<f64> {
     let ranges: Vec<f64> = (0..width)
         .map(|j| {
             let column = table.rows.iter().map(|row| row[1 + j]);
@@ -220,12 +236,11 @@ fn scales(table: &Table, width: usize) -> Vec<f64> {
             hi - lo
         })
         .collect();
-    let kinds: Vec<f64> = (ranges.chunks(width / 2))
-        .map(|kind| kind.iter().copied().fold(0.0, f64::max))
-        .collect();
+    let largest = |kind: &[f64]| kind.iter().copied().fold(0.0, f64::max);
+    let kinds = [largest(&ranges[..n]), largest(&ranges[n..])];
     (ranges.iter().enumerate())
         .map(|(j, range)| {
-            let kind = kinds[j / (width / 2)];
+            let kind = kinds[usize::from(j >= n)];
             range
                 .max(Replay::SHARE_OF_KIND * kind)
                 .max(Replay::SMALLEST_SCALE)

@@ -2,7 +2,9 @@
 //! conditions and bounds turned into the variables' bounds, the first
 //! guess (`--guess`'s columns interpolated, else the start and goal
 //! interpolated, else 0, inside the bounds), the costs read; and the
-//! solution written as `plan.csv`'s rows. With `--free-duration` the
+//! solution written as `plan.csv`'s rows. In the reduced form the
+//! conditions and the guess, resolved on `(q, qdot, u)`, become the
+//! variables `(q, alpha, u)` (`reduced`'s docs). With `--free-duration` the
 //! duration follows the nodes' variables, started at `--duration` and
 //! bounded below by [`Request::SHORTEST`] times it (near `T = 0` the
 //! defects cannot move the state, and the solver would not return).
@@ -10,6 +12,7 @@
 pub(super) mod guess;
 
 use super::Request;
+use super::reduced::{self, Form};
 use super::transcription::{Costs, Grid, Transcription};
 use crate::driver::engine::Loaded;
 use crate::driver::expression::{Expression, ExpressionError, Scope, constant};
@@ -128,6 +131,27 @@ pub enum RequestError {
         "the model has constraints: --start must give every coordinate and velocity (missing: {0})"
     )]
     PartialStart(String),
+    /// A bound on a velocity in the reduced form.
+    #[error(
+        "--bound {name}: the reduced form's state (q, alpha) holds no velocity to bound; bound it \
+         with --formulation lagrange"
+    )]
+    ReducedVelocityBound {
+        /// The velocity.
+        name: String,
+    },
+    /// An end with some velocities given in the reduced form.
+    #[error(
+        "{flag}: the reduced form fixes an end's momenta alpha from all its velocities and \
+         coordinates (or all velocities 0), but {missing} are not given; give them, or use \
+         --formulation lagrange"
+    )]
+    ReducedVelocities {
+        /// The flag of the end.
+        flag: &'static str,
+        /// The names not given.
+        missing: String,
+    },
     /// A start off the model's constraints.
     #[error("the start is off the model's constraints: residual {0:.1e}")]
     StartOffConstraints(f64),
@@ -137,10 +161,15 @@ pub enum RequestError {
 /// to this.
 const ON_CONSTRAINTS: f64 = 1e-10;
 
-/// `plan.csv`'s columns after the nodes' variables (the last only with
-/// configuration constraints).
-pub(super) const DERIVED_COLUMNS: [&str; 3] =
-    ["energy", "constraint_residual", "holonomic_residual"];
+/// `plan.csv`'s columns after the nodes' variables (`holonomic_residual`
+/// only with configuration constraints, `chart` only in the reduced form
+/// of a model with constraints).
+pub(super) const DERIVED_COLUMNS: [&str; 4] = [
+    "energy",
+    "constraint_residual",
+    "holonomic_residual",
+    "chart",
+];
 
 /// `--guess`: a table of `plan.csv`'s columns, its derived ones ignored.
 const GUESS_TABLE: guess::Table = guess::Table {
@@ -279,6 +308,45 @@ impl Resolver<'_> {
         guess
     }
 
+    /// The bounds and guess of the reduced form's variables `(q, alpha,
+    /// u)` from the ones of `(q, qdot, u)`: `alpha` fixed at an end whose
+    /// velocities are given, else free, guessed as `momenta(q, qdot)`.
+    fn reduced(
+        &self,
+        model: &InterpretedModel,
+        (lo, hi, guess): (&[f64], &[f64], &[f64]),
+    ) -> Result<[Vec<f64>; 3], RequestError> {
+        let (n, width) = (self.n, self.columns.len());
+        let [start, goal] = [0, 1].map(|end| {
+            let flag = ["--start", "--goal"][end];
+            let (given, at) = (&self.ends[end], end * (self.nodes - 1) * width);
+            let q = &guess[at..at + n];
+            reduced::end_momenta(model, (flag, q), (&given[..n], &given[n..2 * n]))
+        });
+        let fixed = [start?, goal?];
+        let mut variables: [Vec<f64>; 3] = Default::default();
+        for node in 0..self.nodes {
+            let at = node * width;
+            let (q, qdot) = (&guess[at..at + n], &guess[at + n..at + 2 * n]);
+            let ends = [node == 0, node == self.nodes - 1];
+            let given = (0..2).filter(|&e| ends[e]).find_map(|e| fixed[e].clone());
+            let alpha = given
+                .clone()
+                .unwrap_or_else(|| reduced::momenta(model, q, qdot));
+            let free = |value: f64| vec![value; alpha.len()];
+            let middles = match given {
+                Some(alpha) => [alpha.clone(), alpha.clone(), alpha],
+                None => [free(f64::NEG_INFINITY), free(f64::INFINITY), alpha],
+            };
+            for ((out, values), middle) in variables.iter_mut().zip([lo, hi, guess]).zip(middles) {
+                out.extend_from_slice(&values[at..at + n]);
+                out.extend(middle);
+                out.extend_from_slice(&values[at + 2 * n..at + width]);
+            }
+        }
+        Ok(variables)
+    }
+
     /// With constraints, the start is given whole and meets them.
     fn check_start(&self, model: &InterpretedModel) -> Result<(), RequestError> {
         let n = self.n;
@@ -338,6 +406,7 @@ pub(super) fn transcribe(
     request: &Request,
 ) -> Result<Transcription, crate::driver::Failure> {
     check_numbers(request)?;
+    let form = super::formulation(request.formulation)?;
     let mut model = loaded.model;
     let parameters = with_parameters(&mut model, &request.params)?;
     let columns = node_columns(&model);
@@ -353,6 +422,11 @@ pub(super) fn transcribe(
     };
     for (name, text) in &request.bounds {
         resolver.bound(name, text)?;
+        let velocity = (resolver.n..2 * resolver.n).contains(&resolver.column("--bound", name)?);
+        if form == Form::Reduced && velocity {
+            let name = name.clone();
+            return Err(RequestError::ReducedVelocityBound { name }.into());
+        }
     }
     for (end, conditions) in [&request.start, &request.goal].into_iter().enumerate() {
         for (name, text) in conditions {
@@ -374,8 +448,11 @@ pub(super) fn transcribe(
         .map(|path| Guess::read(GUESS_TABLE, path, &resolver.columns))
         .transpose()?;
     let step = request.duration / (request.nodes - 1) as f64;
-    let mut guess = resolver.guess(read.as_ref(), step);
-    let (mut lo, mut hi) = (resolver.lo, resolver.hi);
+    let guess = resolver.guess(read.as_ref(), step);
+    let [mut lo, mut hi, mut guess] = match form {
+        Form::Lagrange => [resolver.lo, resolver.hi, guess],
+        Form::Reduced => resolver.reduced(&model, (&resolver.lo, &resolver.hi, &guess))?,
+    };
     if request.free_duration {
         lo.push(Request::SHORTEST * request.duration);
         hi.push(f64::INFINITY);
@@ -386,13 +463,7 @@ pub(super) fn transcribe(
         duration: request.duration,
         free_duration: request.free_duration,
     };
-    Ok(Transcription::new(
-        model,
-        request.scheme,
-        grid,
-        costs,
-        (lo, hi, guess),
-    ))
+    Ok(Transcription::new(model, request.scheme, grid, costs, (lo, hi, guess)).in_form(form))
 }
 
 /// The coordinates' and inputs' names of `model`.
@@ -450,31 +521,45 @@ fn running_cost(
     })
 }
 
-/// `plan.csv`'s rows: `t`, the node's variables, `energy`,
-/// `constraint_residual` and, with configuration constraints,
-/// `holonomic_residual`.
+/// `plan.csv`'s rows, as `trajectory.csv`'s in the plan's formulation:
+/// `t`, the node's state and inputs, `energy`, `constraint_residual`,
+/// with configuration constraints `holonomic_residual`, and in the
+/// reduced form of a model with constraints its `chart`.
 pub(super) fn table(
     transcription: &Transcription,
     z: &[f64],
 ) -> Result<Table, crate::driver::Failure> {
-    let model = transcription.model();
-    let n = model.sizes().n;
+    let (model, form) = (transcription.model(), transcription.form());
+    let (n, s) = (model.sizes().n, form.state(model));
     let holonomic = !model.names().holonomic.is_empty();
+    let chart = form.chart(model);
     let mut columns = vec!["t".to_string()];
-    columns.extend(node_columns(model));
-    let derived = &DERIVED_COLUMNS[..2 + usize::from(holonomic)];
-    columns.extend(derived.iter().map(|c| c.to_string()));
+    columns.extend(form.state_names(model));
+    columns.extend(model.names().inputs.iter().cloned());
+    let derived = DERIVED_COLUMNS
+        .iter()
+        .zip([true, true, holonomic, chart.is_some()]);
+    columns.extend(
+        derived
+            .filter(|(_, kept)| *kept)
+            .map(|(c, _)| c.to_string()),
+    );
     let mut table = Table::new();
     crate::runtime::record::Recorder::start(&mut table, &columns)?;
     let (width, step) = (transcription.width(), transcription.step(z));
     for (i, node) in z[..transcription.nodes() * width].chunks(width).enumerate() {
-        let (q, qdot) = (&node[..n], &node[n..2 * n]);
+        let q = &node[..n];
+        let qdot = match form {
+            Form::Lagrange => node[n..s].to_vec(),
+            Form::Reduced => reduced::velocities(model, &node[..s]),
+        };
         let mut row = vec![i as f64 * step];
-        row.extend_from_slice(&node[..2 * n]);
+        row.extend_from_slice(&node[..s]);
         row.extend_from_slice(&transcription.held_inputs(z, i));
-        row.push(evaluated(model.energy(q, qdot)));
-        row.push(constraint_residual(model, q, qdot));
+        row.push(evaluated(model.energy(q, &qdot)));
+        row.push(constraint_residual(model, q, &qdot));
         row.extend(holonomic_residual(model, q));
+        row.extend(chart.map(|c| c as f64));
         crate::runtime::record::Recorder::record(&mut table, &row)?;
     }
     Ok(table)

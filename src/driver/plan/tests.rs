@@ -7,6 +7,7 @@
 
 use super::catalog_tests::{replayed, request};
 use super::nlp::{Hessian, Ripopt};
+use super::reduced::Form;
 use super::replay::{Replay, replayed_states};
 use super::{Plan, Request, Scheme, plan};
 use crate::driver::catalog::{Source, lookup};
@@ -99,7 +100,11 @@ fn the_point_mass_replay_follows_the_closed_form() {
         &Ripopt::default(),
     )
     .expect("a plan");
-    let states = replayed_states(&point_mass().model, Scheme::HermiteSimpson, &plan.table);
+    let states = replayed_states(
+        (&point_mass().model, Form::Lagrange),
+        Scheme::HermiteSimpson,
+        &plan.table,
+    );
     let t = plan.table.column("t").expect("t");
     for (t, state) in t.iter().zip(&states) {
         let s = t / 2.0;
@@ -422,7 +427,7 @@ fn a_final_cost_meets_its_closed_form_optimum() {
 }
 
 /// `table` as CSV at `path`.
-fn write_csv(table: &Table, path: &std::path::Path) {
+pub(super) fn write_csv(table: &Table, path: &std::path::Path) {
     let mut recorder = CsvRecorder::create(path).expect("created");
     recorder.start(&table.columns).expect("header");
     for row in &table.rows {

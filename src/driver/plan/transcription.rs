@@ -3,7 +3,8 @@
 //! Programming", 2nd ed., SIAM 2010, sections 4.5 and 4.6).
 //!
 //! The state is the Lagrange-d'Alembert one, `x = (q, qdot)`, moving by
-//! `f(x, u) = (qdot, qddot(q, qdot, u))`. The variables are each node's
+//! `f(x, u) = (qdot, qddot(q, qdot, u))`, or the reduced one, `x = (q,
+//! alpha)` ([`super::reduced`]). The variables are each node's
 //! state and inputs, then the plan's globals (with `--free-duration`, the
 //! duration `T`): `z = (x_0, u_0, ..., x_{N-1}, u_{N-1}, T)`, at `t_i =
 //! i h`, `h = T / (N - 1)`. Each interval's defect is a one-step scheme
@@ -49,6 +50,7 @@
 //! duration, `dh/dT = h/T` and a stage's time `t` moves as `t/T`.
 
 use super::nlp::Nlp;
+use super::reduced::{self, Form};
 use crate::driver::expression::{Expression, Point};
 use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
 use std::collections::BTreeSet;
@@ -154,6 +156,8 @@ pub(crate) struct Costs {
 /// The problem's data: the model, the grid, the costs and the bounds.
 pub struct Transcription {
     model: InterpretedModel,
+    /// The formulation whose state the nodes hold.
+    form: Form,
     pub(super) scheme: Scheme,
     pub(super) nodes: usize,
     /// `T`, or its first guess where it is a variable.
@@ -170,11 +174,12 @@ pub struct Transcription {
     structure: Vec<(usize, usize)>,
 }
 
-/// A stage's time, state and inputs.
+/// A stage's time, state, inputs and velocities `qdot`.
 pub(super) struct StagePoint {
     pub(super) t: f64,
     pub(super) x: Vec<f64>,
     pub(super) u: Vec<f64>,
+    pub(super) qdot: Vec<f64>,
 }
 
 /// How a stage's state moves with the interval's variables: `dX/dz_j`
@@ -204,6 +209,7 @@ impl Transcription {
         };
         let mut transcription = Self {
             model,
+            form: Form::Lagrange,
             scheme,
             nodes: grid.nodes,
             duration: grid.duration,
@@ -218,6 +224,20 @@ impl Transcription {
         transcription.local = transcription.local_structure();
         transcription.structure = transcription.global_structure();
         transcription
+    }
+
+    /// The same plan with its nodes' states in `form` (its bounds and
+    /// guess already in that form's variables).
+    pub(crate) fn in_form(mut self, form: Form) -> Self {
+        self.form = form;
+        self.local = self.local_structure();
+        self.structure = self.global_structure();
+        self
+    }
+
+    /// The formulation whose state the nodes hold.
+    pub fn form(&self) -> Form {
+        self.form
     }
 
     /// The intervals' structure, then the duration's column.
@@ -281,12 +301,12 @@ impl Transcription {
         z[node * w + s..(node + 1) * w].to_vec()
     }
 
-    /// The state's size, `2n`.
+    /// The state's size, `2n` (`n + k` in the reduced form).
     pub(super) fn state(&self) -> usize {
-        2 * self.model.sizes().n
+        self.form.state(&self.model)
     }
 
-    /// A node's variables, `2n + p`.
+    /// A node's variables, `2n + p` (`n + k + p`).
     pub fn width(&self) -> usize {
         self.state() + self.model.sizes().p
     }
@@ -305,10 +325,12 @@ impl Transcription {
     /// One interval's structure: each defect row reads its own entry at
     /// both nodes; a `q` row reads `qdot`'s same entry, a `qdot` row every
     /// state entry and input, of each node a stage reads. A stage that
-    /// reads the nodes' slopes makes every row read every variable.
+    /// reads the nodes' slopes, or the reduced form, makes every row read
+    /// every variable.
     fn local_structure(&self) -> Vec<(usize, usize)> {
         let (n, s, w) = (self.model.sizes().n, self.state(), self.width());
-        if self.scheme.stages().iter().any(|stage| stage.slopes != 0.0) {
+        let slopes = self.scheme.stages().iter().any(|stage| stage.slopes != 0.0);
+        if slopes || self.form == Form::Reduced {
             return (0..s)
                 .flat_map(|k| (0..2 * w).map(move |c| (k, c)))
                 .collect();
@@ -335,11 +357,22 @@ impl Transcription {
     /// Node `i` of `z` as a point.
     pub(super) fn node_point(&self, z: &[f64], i: usize) -> StagePoint {
         let (s, w) = (self.state(), self.width());
-        StagePoint {
-            t: i as f64 * self.step(z),
-            x: z[i * w..i * w + s].to_vec(),
-            u: z[i * w + s..(i + 1) * w].to_vec(),
-        }
+        let x = z[i * w..i * w + s].to_vec();
+        self.point(
+            i as f64 * self.step(z),
+            x,
+            z[i * w + s..(i + 1) * w].to_vec(),
+        )
+    }
+
+    /// The point of time `t`, state `x` and inputs `u`, its velocities
+    /// read from `x`.
+    fn point(&self, t: f64, x: Vec<f64>, u: Vec<f64>) -> StagePoint {
+        let qdot = match self.form {
+            Form::Lagrange => x[self.model.sizes().n..].to_vec(),
+            Form::Reduced => reduced::velocities(&self.model, &x),
+        };
+        StagePoint { t, x, u, qdot }
     }
 
     /// The stage `stage` of interval `i` at `z`.
@@ -360,11 +393,7 @@ impl Transcription {
                 *x += stage.slopes * h * (f_first[k] - f_last[k]);
             }
         }
-        StagePoint {
-            t: (i as f64 + stage.at) * h,
-            x,
-            u: mix(s..w, stage.inputs_at),
-        }
+        self.point((i as f64 + stage.at) * h, x, mix(s..w, stage.inputs_at))
     }
 
     /// How the stage `stage` of interval `i` moves with the interval's
@@ -404,16 +433,23 @@ impl Transcription {
         }
     }
 
-    /// `f(x, u) = (qdot, qddot)`.
+    /// `f(x, u) = (qdot, qddot)`, or the reduced form's.
     fn rhs(&self, point: &StagePoint) -> Vec<f64> {
+        if self.form == Form::Reduced {
+            return reduced::rhs(&self.model, &point.x, &point.u);
+        }
         let n = self.model.sizes().n;
         let (q, qdot) = point.x.split_at(n);
         let (qddot, _) = evaluated(self.model.acceleration(q, qdot, &point.u));
         qdot.iter().chain(&qddot).copied().collect()
     }
 
-    /// `df/dx` (2n x 2n) and `df/du` (2n x p), row-major.
+    /// `df/dx` (2n x 2n) and `df/du` (2n x p), row-major, or the reduced
+    /// form's.
     pub(super) fn rhs_jacobian(&self, point: &StagePoint) -> (Vec<f64>, Vec<f64>) {
+        if self.form == Form::Reduced {
+            return reduced::rhs_jacobian(&self.model, &point.x, &point.u);
+        }
         let (n, p) = (self.model.sizes().n, self.model.sizes().p);
         let s = 2 * n;
         let (q, qdot) = point.x.split_at(n);
@@ -432,21 +468,39 @@ impl Transcription {
 
     /// Where a cost is evaluated at a stage.
     pub(super) fn cost_point<'a>(&self, point: &'a StagePoint) -> Point<'a> {
-        let (q, qdot) = point.x.split_at(self.model.sizes().n);
         Point {
             t: point.t,
-            q,
-            qdot,
+            q: &point.x[..self.model.sizes().n],
+            qdot: &point.qdot,
             u: &point.u,
             ..Point::default()
         }
     }
 
-    /// The running cost's gradient by `(q, qdot, u)` at a stage, and its
-    /// derivative by `t`.
+    /// The running cost's gradient by the state and `u` at a stage, and
+    /// its derivative by `t`.
     pub(super) fn cost_gradient(&self, point: &StagePoint) -> (Vec<f64>, f64) {
         let (_, gradient) = self.costs.running.gradient(&self.cost_point(point));
-        ([gradient.q, gradient.qdot, gradient.u].concat(), gradient.t)
+        let mut by_variables = self.state_gradient(point, (&gradient.q, &gradient.qdot));
+        by_variables.extend(gradient.u);
+        (by_variables, gradient.t)
+    }
+
+    /// A function's gradient by the state at `point` from its gradients
+    /// by `q` and `qdot`.
+    fn state_gradient(&self, point: &StagePoint, (by_q, by_qdot): (&[f64], &[f64])) -> Vec<f64> {
+        match self.form {
+            Form::Lagrange => [by_q, by_qdot].concat(),
+            Form::Reduced => reduced::state_gradient(&self.model, point, (by_q, by_qdot)),
+        }
+    }
+
+    /// Where the final cost is evaluated, as a stage: `t = T`, the last
+    /// node's state.
+    fn final_stage(&self, z: &[f64]) -> StagePoint {
+        let mut last = self.node_point(z, self.nodes - 1);
+        last.t = self.duration(z);
+        last
     }
 
     /// Adds `scale (G_x dX/dz_j + G_u dU/dz_j)` to node `j`'s columns of
@@ -601,7 +655,7 @@ impl Nlp for Transcription {
             .costs
             .terminal
             .as_ref()
-            .map_or(0.0, |phi| phi.at(&self.final_point(z)));
+            .map_or(0.0, |phi| phi.at(&self.cost_point(&self.final_stage(z))));
         let total = running + terminal;
         total.is_finite().then_some(total)
     }
@@ -620,10 +674,11 @@ impl Nlp for Transcription {
             }
         }
         if let Some(phi) = &self.costs.terminal {
-            let (_, by) = phi.gradient(&self.final_point(z));
+            let stage = self.final_stage(z);
+            let (_, by) = phi.gradient(&self.cost_point(&stage));
             let last = (self.nodes - 1) * w;
-            let by_state = by.q.iter().chain(&by.qdot);
-            for (g, d) in gradient[last..last + s].iter_mut().zip(by_state) {
+            let by_state = self.state_gradient(&stage, (&by.q, &by.qdot));
+            for (g, d) in gradient[last..last + s].iter_mut().zip(&by_state) {
                 *g += d;
             }
             if let Some(j) = duration {
@@ -665,7 +720,10 @@ impl Nlp for Transcription {
     }
 
     fn hessian_structure(&self) -> Vec<(usize, usize)> {
-        self.lagrangian_hessian_structure()
+        match self.form {
+            Form::Lagrange => self.lagrangian_hessian_structure(),
+            Form::Reduced => Vec::new(),
+        }
     }
 
     fn hessian_values(
@@ -675,7 +733,8 @@ impl Nlp for Transcription {
         multipliers: &[f64],
         values: &mut [f64],
     ) -> bool {
-        self.lagrangian_hessian(z, objective_factor, multipliers, values)
+        self.form == Form::Lagrange
+            && self.lagrangian_hessian(z, objective_factor, multipliers, values)
     }
 }
 
