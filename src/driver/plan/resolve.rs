@@ -385,6 +385,7 @@ pub(super) fn transcribe(
         nodes: request.nodes,
         duration: request.duration,
         free_duration: request.free_duration,
+        fractions: None,
     };
     Ok(Transcription::new(
         model,
@@ -466,10 +467,10 @@ pub(super) fn table(
     columns.extend(derived.iter().map(|c| c.to_string()));
     let mut table = Table::new();
     crate::runtime::record::Recorder::start(&mut table, &columns)?;
-    let (width, step) = (transcription.width(), transcription.step(z));
+    let width = transcription.width();
     for (i, node) in z[..transcription.nodes() * width].chunks(width).enumerate() {
         let (q, qdot) = (&node[..n], &node[n..2 * n]);
-        let mut row = vec![i as f64 * step];
+        let mut row = vec![transcription.node_time(z, i)];
         row.extend_from_slice(&node[..2 * n]);
         row.extend_from_slice(&transcription.held_inputs(z, i));
         row.push(evaluated(model.energy(q, qdot)));
