@@ -25,7 +25,9 @@
 //! with `f_theta = (0, d qddot / d theta)` the model's
 //! `acceleration_parameter_jacobian`; `c_k` is nonzero only at
 //! Hermite-Simpson's midpoint. The solver works on the exact Hessian of
-//! the Lagrangian (`hessian`), or on its L-BFGS approximation where asked.
+//! the Lagrangian (`hessian`), or on its L-BFGS approximation where asked,
+//! from the data where they measure and elsewhere from the model's motion
+//! from the first row (`guess`).
 //!
 //! The standard errors are the Gauss-Newton ones of a least-squares fit
 //! under equality constraints (Bard, "Nonlinear Parameter Estimation",
@@ -398,6 +400,9 @@ impl Fit {
             structure: Vec::new(),
         };
         fit.build_structure();
+        if let Some(states) = fit.simulated_states() {
+            fit.guess[..states.len()].copy_from_slice(&states);
+        }
         Ok(fit)
     }
 
@@ -744,6 +749,7 @@ impl Nlp for Fit {
     }
 }
 
+mod guess;
 mod hessian;
 mod initial;
 #[cfg(test)]
