@@ -498,6 +498,7 @@ class Model:
         final_cost: Optional[str] = None,
         free_duration: bool = False,
         guess: Optional[Union[str, "os.PathLike[str]"]] = None,
+        formulation: str = "lagrange",
     ) -> Plan:
         """The inputs and trajectory over ``[0, duration]`` that minimize
         ``minimize`` (an expression of ``t``, the coordinates, velocities
@@ -516,7 +517,10 @@ class Model:
         final coordinates and velocities, and the parameters).
         ``free_duration=True`` makes the duration an unknown, ``duration``
         its first guess. ``guess`` is a CSV file with ``t`` and any of
-        ``plan.csv``'s columns to start from.
+        ``plan.csv``'s columns to start from. ``formulation`` is
+        ``"lagrange"`` (the nodes hold ``q`` and ``dot(q)``) or
+        ``"reduced"`` (they hold ``q`` and the reduced momenta, in chart 0,
+        with the L-BFGS Hessian), as ``--formulation`` says.
 
         Raises ``ValueError`` for bad input (an unknown name, a bound with
         lo > hi, a start off the constraints) and for an answer that is not
@@ -537,6 +541,7 @@ class Model:
             final_cost,
             bool(free_duration),
             None if guess is None else os.fspath(guess),
+            formulation,
         )
         trajectory = Trajectory(planned["columns"], planned["data"], None, None, _Drawing(self, given))
         return Plan(trajectory, json.loads(planned["report"]))
@@ -553,8 +558,9 @@ class Model:
         """The parameters ``estimate`` names that fit the model's motion to
         ``data``, as ``chaplygin identify`` finds them: least squares over
         the measured values, the model's equations as collocation
-        constraints by ``scheme`` on ``nodes`` nodes evenly spread over the
-        data's time span (by default one per row).
+        constraints by ``scheme`` at the data rows' own times, evenly
+        spaced or not, or with ``nodes`` on that many nodes evenly spread
+        over the data's time span, the data interpolated.
 
         ``data`` is a table with ``t``, any coordinates and velocities
         ``dot(q)`` by name (measured) and the inputs applied, by name: a

@@ -332,9 +332,9 @@ impl Model {
     /// of the inputs squared by default), `bounds` maps names to `LO:HI`;
     /// `final_cost` is a cost at the end, `free_duration` makes the
     /// duration an unknown (`duration` its first guess), `guess` is a CSV
-    /// to start from; returns a dict of `columns`, `data` and `report`
-    /// (`plan.json`'s text).
-    #[pyo3(signature = (duration, nodes, scheme, start, goal, minimize, bounds, params, tol, final_cost, free_duration, guess))]
+    /// to start from, `formulation` the form the nodes hold; returns a
+    /// dict of `columns`, `data` and `report` (`plan.json`'s text).
+    #[pyo3(signature = (duration, nodes, scheme, start, goal, minimize, bounds, params, tol, final_cost, free_duration, guess, formulation))]
     #[allow(clippy::too_many_arguments)]
     fn plan<'py>(
         &self,
@@ -351,12 +351,13 @@ impl Model {
         final_cost: Option<String>,
         free_duration: bool,
         guess: Option<std::path::PathBuf>,
+        formulation: &str,
     ) -> PyResult<Bound<'py, PyDict>> {
         let request = PlanRequest {
             duration,
             nodes,
             scheme: plan::scheme_named(scheme)?,
-            formulation: FormulationChoice::Lagrange,
+            formulation: formulation_named(formulation)?,
             start: assignments(start)?,
             goal: assignments(goal)?,
             minimize,
@@ -371,8 +372,8 @@ impl Model {
     }
 
     /// The parameters `estimate` names (`(name, guess or None)`), fitted
-    /// to data by collocation on `nodes` nodes (one per row by default)
-    /// with `scheme` (docs/INTERFACE.md section 13): the table
+    /// to data by collocation at the rows' own times (or on `nodes` nodes
+    /// evenly spread) with `scheme` (docs/INTERFACE.md section 13): the table
     /// `(columns, rows)` where given, `data` naming it in messages, else
     /// the CSV at `data`; returns a dict of the fit's `columns`, `data` and
     /// `report` (`estimate.json`'s text).

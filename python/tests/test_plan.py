@@ -119,6 +119,25 @@ def test_a_plan_s_trajectory_animates_from_its_nodes(parked, tmp_path):
     numpy.testing.assert_allclose(centre[:, 1], parked["y"], rtol=0, atol=1e-12)
 
 
+def test_a_reduced_plan_nears_the_lagrange_plan_as_the_nodes_double(parked):
+    # the two forms' discrete problems differ by the scheme's error: their
+    # optima approach each other at its order (2.5 % on 11 nodes)
+    drive = chaplygin.builtin("differential-drive")
+    reduced = drive.plan(**parking(21), formulation="reduced")
+    assert reduced.report["formulation"] == "reduced" and reduced.report["chart"] == 0
+    assert reduced.columns[1:8] == ["x", "y", "theta", "phi_r", "phi_l", "alpha1", "alpha2"]
+    coarse = drive.plan(**parking(11))
+    coarse_reduced = drive.plan(**parking(11), formulation="reduced")
+    gap = abs(reduced.objective - parked.objective) / parked.objective
+    coarse_gap = abs(coarse_reduced.objective - coarse.objective) / coarse.objective
+    assert gap < coarse_gap / 3
+    numpy.testing.assert_allclose(reduced["x"][-1], 0.3, atol=1e-8)
+    with pytest.raises(ValueError, match="unknown formulation `hamilton`"):
+        drive.plan(**parking(11), formulation="hamilton")
+    with pytest.raises(ValueError, match="momentum"):
+        drive.plan(**parking(11), formulation="momentum")
+
+
 def test_plans_pickle(parked):
     copy = pickle.loads(pickle.dumps(parked))
     assert copy.report == parked.report

@@ -399,7 +399,7 @@ fn within_chart(transcription: &transcription::Transcription, z: &[f64]) -> Resu
     match reduced::leaves_chart(model, states) {
         Some(node) => Err(PlanError::LeavesChart {
             node,
-            t: node as f64 * transcription.step(z),
+            t: transcription.node_time(z, node),
         }),
         None => Ok(()),
     }

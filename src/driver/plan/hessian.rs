@@ -214,7 +214,7 @@ impl Transcription {
         defect: &[f64],
     ) -> IntervalHessian {
         let (n, w) = (self.model().sizes().n, self.width());
-        let (h, duration) = (self.step(z), self.duration(z));
+        let (h, duration) = (self.step(z, i), self.duration(z));
         let mut hessian = IntervalHessian::new(w);
         for stage in self.scheme.stages() {
             let point = self.stage_point(z, i, stage);

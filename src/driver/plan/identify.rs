@@ -8,9 +8,13 @@
 //!             the model's constraints at the first node (`initial`),
 //! ```
 //!
-//! the inputs `u` held at the table's values, not variables: interpolated
-//! where the scheme applies them (the midpoint rule's node `i` at `t_i +
-//! h/2`, the other schemes' at their nodes). The defects are the plan's ([`super::transcription`]),
+//! the nodes at the table's own times, however unevenly spaced (or, with
+//! `--nodes`, evenly spread over its span, the data interpolated there),
+//! and the inputs `u` held at the table's values, not variables:
+//! interpolated where the scheme applies them (the midpoint rule's node
+//! `i` at `t_i + h_i/2`, the other schemes' at their nodes). The defects
+//! are the plan's ([`super::transcription`]), each interval `i` on its own
+//! step `h_i = t_{i+1} - t_i`,
 //! their derivatives by `theta` exact: at each stage `X_k`,
 //!
 //! ```text
@@ -21,7 +25,9 @@
 //! with `f_theta = (0, d qddot / d theta)` the model's
 //! `acceleration_parameter_jacobian`; `c_k` is nonzero only at
 //! Hermite-Simpson's midpoint. The solver works on the exact Hessian of
-//! the Lagrangian (`hessian`), or on its L-BFGS approximation where asked.
+//! the Lagrangian (`hessian`), or on its L-BFGS approximation where asked,
+//! from the data where they measure and elsewhere from the model's motion
+//! from the first row (`guess`).
 //!
 //! The standard errors are the Gauss-Newton ones of a least-squares fit
 //! under equality constraints (Bard, "Nonlinear Parameter Estimation",
@@ -88,7 +94,8 @@ pub struct Request {
     #[cfg_attr(feature = "cli", arg(long = "estimate", required = true, value_parser = estimate_assignment))]
     pub estimate: Vec<(String, Option<f64>)>,
     /// The number of nodes, evenly spread over the data's time span, the
-    /// data interpolated at them [default: one per row].
+    /// data interpolated at them [default: the data's own times, one node
+    /// per row].
     #[cfg_attr(feature = "cli", arg(long))]
     pub nodes: Option<usize>,
     /// The collocation scheme.
@@ -318,13 +325,8 @@ impl Fit {
             None => Guess::read(DATA, &request.data, &columns)?,
             Some(table) => Guess::from_table(DATA, &path, table, &columns)?,
         };
-        let nodes = request.nodes.unwrap_or(read.rows());
-        if nodes < 2 {
-            return Err(IdentifyError::Nodes(nodes).into());
-        }
-        let (first, last) = read.span();
-        let step = (last - first) / (nodes - 1) as f64;
-        let times: Vec<f64> = (0..nodes).map(|i| first + i as f64 * step).collect();
+        let times = node_times(&read, request.nodes)?;
+        let nodes = times.len();
         let s = 2 * model.sizes().n;
         let measured: Vec<usize> = read.columns().filter(|c| *c < s).collect();
         if measured.is_empty() {
@@ -344,7 +346,6 @@ impl Fit {
         let mut inputs = vec![vec![0.0; columns.len() - s]; nodes];
         let mut data = vec![Vec::new(); nodes];
         let stage = &request.scheme.stages()[0];
-        let applied = (stage.at - stage.inputs_at) * step;
         for (i, t) in times.iter().enumerate() {
             for (column, value) in read.at(*t) {
                 if column < s {
@@ -352,6 +353,9 @@ impl Fit {
                     data[i].push(value);
                 }
             }
+            let interval = i.min(nodes - 2);
+            let step = times[interval + 1] - times[interval];
+            let applied = (stage.at - stage.inputs_at) * step;
             for (column, value) in read.at(t + applied).filter(|(c, _)| *c >= s) {
                 inputs[i][column - s] = value;
             }
@@ -365,10 +369,12 @@ impl Fit {
                 name: "0".into(),
                 source,
             })?;
+        let (first, last) = (times[0], times[nodes - 1]);
         let grid = Grid {
             nodes,
             duration: last - first,
             free_duration: false,
+            fractions: Some(times.iter().map(|t| (t - first) / (last - first)).collect()),
         };
         let costs = Costs {
             running: zero,
@@ -394,6 +400,9 @@ impl Fit {
             structure: Vec::new(),
         };
         fit.build_structure();
+        if let Some(states) = fit.simulated_states() {
+            fit.guess[..states.len()].copy_from_slice(&states);
+        }
         Ok(fit)
     }
 
@@ -494,7 +503,7 @@ impl Fit {
         if slopes == 0.0 {
             return vec![0.0; size];
         }
-        let c = slopes * transcription.step(z);
+        let c = slopes * transcription.step(z, i);
         let [first, last] = [i, i + 1]
             .map(|j| self.rhs_by_parameters(transcription, &transcription.node_point(z, j)));
         first.iter().zip(&last).map(|(a, b)| c * (a - b)).collect()
@@ -503,7 +512,7 @@ impl Fit {
     /// Interval `i`'s defect's derivative by the estimates (2n x P,
     /// row-major), at the transcription's variables `z`.
     fn defect_by_parameters(&self, transcription: &Transcription, z: &[f64], i: usize) -> Vec<f64> {
-        let (s, estimated, h) = (self.state(), self.indices.len(), transcription.step(z));
+        let (s, estimated, h) = (self.state(), self.indices.len(), transcription.step(z, i));
         let mut defect = vec![0.0; s * estimated];
         for stage in transcription.scheme.stages() {
             let point = transcription.stage_point(z, i, stage);
@@ -619,6 +628,21 @@ impl Fit {
     }
 }
 
+/// The nodes' times: the data's own, or `nodes` of them evenly spread
+/// over its span.
+fn node_times(read: &Guess, nodes: Option<usize>) -> Result<Vec<f64>, IdentifyError> {
+    let count = nodes.unwrap_or(read.rows());
+    if count < 2 {
+        return Err(IdentifyError::Nodes(count));
+    }
+    if nodes.is_none() {
+        return Ok(read.times().to_vec());
+    }
+    let (first, last) = read.span();
+    let step = (last - first) / (count - 1) as f64;
+    Ok((0..count).map(|i| first + i as f64 * step).collect())
+}
+
 /// The nodes' states and inputs, node by node.
 fn interleave(states: &[f64], inputs: &[Vec<f64>], s: usize) -> Vec<f64> {
     states
@@ -725,6 +749,7 @@ impl Nlp for Fit {
     }
 }
 
+mod guess;
 mod hessian;
 mod initial;
 #[cfg(test)]

@@ -462,6 +462,7 @@ pub(super) fn transcribe(
         nodes: request.nodes,
         duration: request.duration,
         free_duration: request.free_duration,
+        fractions: None,
     };
     Ok(Transcription::new(model, request.scheme, grid, costs, (lo, hi, guess)).in_form(form))
 }
@@ -546,14 +547,14 @@ pub(super) fn table(
     );
     let mut table = Table::new();
     crate::runtime::record::Recorder::start(&mut table, &columns)?;
-    let (width, step) = (transcription.width(), transcription.step(z));
+    let width = transcription.width();
     for (i, node) in z[..transcription.nodes() * width].chunks(width).enumerate() {
         let q = &node[..n];
         let qdot = match form {
             Form::Lagrange => node[n..s].to_vec(),
             Form::Reduced => reduced::velocities(model, &node[..s]),
         };
-        let mut row = vec![i as f64 * step];
+        let mut row = vec![transcription.node_time(z, i)];
         row.extend_from_slice(&node[..s]);
         row.extend_from_slice(&transcription.held_inputs(z, i));
         row.push(evaluated(model.energy(q, &qdot)));

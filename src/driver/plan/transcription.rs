@@ -7,9 +7,12 @@
 //! alpha)` ([`super::reduced`]). The variables are each node's
 //! state and inputs, then the plan's globals (with `--free-duration`, the
 //! duration `T`): `z = (x_0, u_0, ..., x_{N-1}, u_{N-1}, T)`, at `t_i =
-//! i h`, `h = T / (N - 1)`. Each interval's defect is a one-step scheme
-//! written by its stages, a weight `w` at a point `a` of the way from node
-//! `i` to node `i + 1` for the state, `b` for the inputs:
+//! T s_i` for fractions `0 = s_0 < s_1 < ... < s_{N-1} = 1` of the
+//! duration (evenly spaced, `s_i = i / (N - 1)`, unless the grid gives
+//! them), interval `i` stepping `h = h_i = T (s_{i+1} - s_i)`. Each
+//! interval's defect is a one-step scheme written by its stages, a weight
+//! `w` at a point `a` of the way from node `i` to node `i + 1` for the
+//! state, `b` for the inputs:
 //!
 //! ```text
 //! x_{i+1} - x_i - h sum_k w_k f(X_k, U_k) = 0,
@@ -36,8 +39,8 @@
 //! `x_m` being the cubic Hermite interpolant of the nodes' states and
 //! slopes at the midpoint; fourth order, the inputs linear between nodes.
 //!
-//! The running cost is integrated by the same stages, `J = sum_i h sum_k
-//! w_k L(t_i + a_k h, X_k, U_k)`, and the final cost `Phi(T, x_{N-1})`
+//! The running cost is integrated by the same stages, `J = sum_i h_i sum_k
+//! w_k L(t_i + a_k h_i, X_k, U_k)`, and the final cost `Phi(T, x_{N-1})`
 //! added. A node's inputs the scheme does not read (backward Euler's
 //! first, the midpoint rule's last) are reported as their neighbour's.
 //!
@@ -47,7 +50,8 @@
 //! Jacobian `acceleration_jacobian` by the chain rule through the stages'
 //! `X_k` (through `f_i` and `f_{i+1}` for Hermite-Simpson's midpoint), and
 //! the costs' gradients the expressions' exact derivatives. By the
-//! duration, `dh/dT = h/T` and a stage's time `t` moves as `t/T`.
+//! duration, every step and time scales with `T`: `dh_i/dT = h_i/T`, and a
+//! stage's time `t` moves as `t/T`.
 
 use super::nlp::Nlp;
 use super::reduced::{self, Form};
@@ -138,12 +142,14 @@ pub enum Global {
 }
 
 /// The grid: the number of nodes, the duration (its first guess where it
-/// is free), and whether it is free.
-#[derive(Clone, Copy, Debug)]
+/// is free), whether it is free, and the nodes' times as fractions of the
+/// duration, increasing from 0 to 1 (`None`: evenly spaced).
+#[derive(Clone, Debug)]
 pub(crate) struct Grid {
     pub nodes: usize,
     pub duration: f64,
     pub free_duration: bool,
+    pub fractions: Option<Vec<f64>>,
 }
 
 /// The objective's terms: the running cost `L(t, q, qdot, u)` and the
@@ -162,6 +168,8 @@ pub struct Transcription {
     pub(super) nodes: usize,
     /// `T`, or its first guess where it is a variable.
     duration: f64,
+    /// Each node's time as a fraction of `T`, `s_i`.
+    fractions: Vec<f64>,
     /// The variables after the nodes', in order.
     globals: Vec<Global>,
     pub(super) costs: Costs,
@@ -207,12 +215,17 @@ impl Transcription {
         } else {
             Vec::new()
         };
+        let last = (grid.nodes - 1) as f64;
+        let fractions = grid
+            .fractions
+            .unwrap_or_else(|| (0..grid.nodes).map(|i| i as f64 / last).collect());
         let mut transcription = Self {
             model,
             form: Form::Lagrange,
             scheme,
             nodes: grid.nodes,
             duration: grid.duration,
+            fractions,
             globals,
             costs,
             lo,
@@ -282,9 +295,14 @@ impl Transcription {
             .map_or(self.duration, |j| z[j])
     }
 
-    /// The time step `h` at `z`.
-    pub fn step(&self, z: &[f64]) -> f64 {
-        self.duration(z) / (self.nodes - 1) as f64
+    /// Interval `i`'s time step at `z`, `h_i = T (s_{i+1} - s_i)`.
+    pub fn step(&self, z: &[f64], i: usize) -> f64 {
+        self.duration(z) * (self.fractions[i + 1] - self.fractions[i])
+    }
+
+    /// Node `i`'s time at `z`, `t_i = T s_i`.
+    pub fn node_time(&self, z: &[f64], i: usize) -> f64 {
+        self.duration(z) * self.fractions[i]
     }
 
     /// The inputs at node `i` of `z` as the scheme applies them: with
@@ -358,11 +376,7 @@ impl Transcription {
     pub(super) fn node_point(&self, z: &[f64], i: usize) -> StagePoint {
         let (s, w) = (self.state(), self.width());
         let x = z[i * w..i * w + s].to_vec();
-        self.point(
-            i as f64 * self.step(z),
-            x,
-            z[i * w + s..(i + 1) * w].to_vec(),
-        )
+        self.point(self.node_time(z, i), x, z[i * w + s..(i + 1) * w].to_vec())
     }
 
     /// The point of time `t`, state `x` and inputs `u`, its velocities
@@ -377,7 +391,7 @@ impl Transcription {
 
     /// The stage `stage` of interval `i` at `z`.
     pub(super) fn stage_point(&self, z: &[f64], i: usize, stage: &Stage) -> StagePoint {
-        let (s, w, h) = (self.state(), self.width(), self.step(z));
+        let (s, w, h) = (self.state(), self.width(), self.step(z, i));
         let (first, last) = (&z[i * w..(i + 1) * w], &z[(i + 1) * w..(i + 2) * w]);
         let mix = |range: std::ops::Range<usize>, at: f64| -> Vec<f64> {
             first[range.clone()]
@@ -393,14 +407,18 @@ impl Transcription {
                 *x += stage.slopes * h * (f_first[k] - f_last[k]);
             }
         }
-        self.point((i as f64 + stage.at) * h, x, mix(s..w, stage.inputs_at))
+        self.point(
+            self.node_time(z, i) + stage.at * h,
+            x,
+            mix(s..w, stage.inputs_at),
+        )
     }
 
     /// How the stage `stage` of interval `i` moves with the interval's
     /// variables and `T`: `dX/dz_j = share_j I + (+-) c h df_j/dz_j`,
     /// `dX/dT = c (h/T) (f_i - f_{i+1})`.
     pub(super) fn stage_motion(&self, z: &[f64], i: usize, stage: &Stage) -> Motion {
-        let (s, w, h) = (self.state(), self.width(), self.step(z));
+        let (s, w, h) = (self.state(), self.width(), self.step(z, i));
         let p = w - s;
         let mut by_node = [0, 1].map(|j| {
             let mut block = vec![0.0; s * w];
@@ -545,7 +563,7 @@ impl Transcription {
 
     /// Interval `i`'s defect.
     fn defect(&self, z: &[f64], i: usize) -> Vec<f64> {
-        let (s, w, h) = (self.state(), self.width(), self.step(z));
+        let (s, w, h) = (self.state(), self.width(), self.step(z, i));
         let mut defect: Vec<f64> = (0..s).map(|k| z[(i + 1) * w + k] - z[i * w + k]).collect();
         for stage in self.scheme.stages() {
             let f = self.rhs(&self.stage_point(z, i, stage));
@@ -559,7 +577,7 @@ impl Transcription {
     /// One interval's defect Jacobian, dense over its two nodes' variables
     /// (2n x 2(2n + p), row-major), and its derivative by `T` (2n).
     fn interval_jacobian(&self, z: &[f64], i: usize) -> (Vec<f64>, Vec<f64>) {
-        let (s, w, h) = (self.state(), self.width(), self.step(z));
+        let (s, w, h) = (self.state(), self.width(), self.step(z, i));
         let columns = 2 * w;
         let mut block = vec![0.0; s * columns];
         for k in 0..s {
@@ -582,7 +600,7 @@ impl Transcription {
 
     /// Interval `i`'s running cost.
     fn interval_cost(&self, z: &[f64], i: usize) -> f64 {
-        let h = self.step(z);
+        let h = self.step(z, i);
         self.scheme
             .stages()
             .iter()
@@ -596,7 +614,7 @@ impl Transcription {
     /// Interval `i`'s running cost's gradient by its two nodes' variables
     /// (2(2n + p)), and its derivative by `T`.
     fn interval_cost_gradient(&self, z: &[f64], i: usize) -> (Vec<f64>, f64) {
-        let (s, w, h) = (self.state(), self.width(), self.step(z));
+        let (s, w, h) = (self.state(), self.width(), self.step(z, i));
         let duration = self.duration(z);
         let mut block = vec![0.0; 2 * w];
         let mut by_duration = 0.0;
@@ -745,8 +763,8 @@ mod tests {
     use crate::driver::plan::kkt::lagrangian_gradient;
     use chaplygin_codegen::interpret::InterpretedModel;
 
-    /// The differential drive on 3 nodes at a point with every variable
-    /// nonzero, its running cost reading the time, coordinates, velocities
+    /// The differential drive on 3 unevenly spaced nodes (at 0, 0.3 and 1
+    /// of the duration) at a point with every variable nonzero, its running cost reading the time, coordinates, velocities
     /// and inputs, its final cost the time and the state; with
     /// `free_duration`, `T = 0.8` a variable.
     fn transcription(scheme: Scheme, free_duration: bool) -> (Transcription, Vec<f64>) {
@@ -782,6 +800,7 @@ mod tests {
             nodes: 3,
             duration: 0.8,
             free_duration,
+            fractions: Some(vec![0.0, 0.3, 1.0]),
         };
         let costs = Costs {
             running,

@@ -115,7 +115,7 @@ impl Fit {
     ) -> DMatrix<f64> {
         let (n, s, w) = (self.state() / 2, self.state(), transcription.width());
         let estimated = self.indices.len();
-        let h = transcription.step(z);
+        let h = transcription.step(z, i);
         let mut hessian = DMatrix::zeros(2 * s + estimated, 2 * s + estimated);
         for stage in transcription.scheme.stages() {
             let point = transcription.stage_point(z, i, stage);

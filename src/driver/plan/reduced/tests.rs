@@ -58,6 +58,7 @@ fn snakeboard_transcription(scheme: Scheme, free_duration: bool) -> (Transcripti
         nodes: 3,
         duration: 0.8,
         free_duration,
+        fractions: None,
     };
     let costs = Costs {
         running,

@@ -103,10 +103,16 @@ impl Guess {
             .position(|name| name == "t")
             .ok_or_else(|| failed("it has no column `t`".into()))?;
         let t = column(time);
-        if t.is_empty() || t.windows(2).any(|pair| pair[1] <= pair[0]) {
-            return Err(failed(
-                "its `t` must have rows and increase strictly".into(),
-            ));
+        if t.is_empty() {
+            return Err(failed("it has no rows".into()));
+        }
+        if let Some(row) = t.windows(2).position(|pair| pair[1] <= pair[0]) {
+            return Err(failed(format!(
+                "row {}: `t` = {} does not increase strictly from {}",
+                row + 2,
+                t[row + 1],
+                t[row]
+            )));
         }
         let columns = header
             .iter()
@@ -122,6 +128,11 @@ impl Guess {
     /// The number of rows.
     pub(in crate::driver::plan) fn rows(&self) -> usize {
         self.t.len()
+    }
+
+    /// The times, increasing strictly.
+    pub(in crate::driver::plan) fn times(&self) -> &[f64] {
+        &self.t
     }
 
     /// The first and last `t`.
@@ -244,7 +255,14 @@ mod tests {
         let line = |text: &str| read(text).err().expect("an error").to_string();
         assert!(line("t,x,q\n0,1,2\n").contains("unknown columns q ("));
         assert!(line("x\n1\n").contains("no column `t`"));
-        assert!(line("t,x\n0,1\n0,2\n").contains("increase strictly"));
+        assert!(
+            line("t,x\n0,1\n0,2\n").ends_with("row 2: `t` = 0 does not increase strictly from 0")
+        );
+        assert!(
+            line("t,x\n0,1\n2,2\n1,3\n")
+                .ends_with("row 3: `t` = 1 does not increase strictly from 2")
+        );
+        assert!(line("t,x\n").contains("it has no rows"));
         assert!(line("t,x\n0,a\n").contains("row 1: `a` is not a number"));
         assert!(line("t,x\n0\n").contains("row 1: 1 values under 2 columns"));
     }
