@@ -46,6 +46,12 @@ fn pushed_from_rest() -> String {
     text
 }
 
+/// `estimate.json` in `out`.
+fn estimate(out: &std::path::Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(out.join("estimate.json")).expect("written");
+    serde_json::from_str(&text).expect("JSON")
+}
+
 #[test]
 fn the_mass_is_recovered_from_a_pushed_motion() {
     let dir = scratch("identify_point_mass");
@@ -57,9 +63,7 @@ fn the_mass_is_recovered_from_a_pushed_motion() {
         String::from_utf8_lossy(&output.stderr)
     );
     let out = dir.path().join("identify");
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("estimate.json")).expect("written"))
-            .expect("JSON");
+    let json = estimate(&out);
     let mass = json["parameters"]["m"].as_f64().expect("m");
     assert!((mass - 2.0).abs() < 1e-6, "m = {mass}");
     assert!(json["standard_errors"]["m"].as_f64().is_some(), "{json}");
@@ -95,9 +99,7 @@ fn the_mass_is_recovered_from_unevenly_sampled_data() {
         String::from_utf8_lossy(&output.stderr)
     );
     let out = dir.path().join("identify");
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("estimate.json")).expect("written"))
-            .expect("JSON");
+    let json = estimate(&out);
     let mass = json["parameters"]["m"].as_f64().expect("m");
     assert!((mass - 2.0).abs() < 1e-6, "m = {mass}");
     let (header, rows) = read_csv(&out.join("fit.csv"));
@@ -169,10 +171,7 @@ fn an_interrupted_estimate_keeps_its_last_iterate() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     let said =
         (stderr.strip_prefix("error: interrupted after ")).unwrap_or_else(|| panic!("{stderr}"));
-    let report: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(out.join("estimate.json")).expect("estimate.json"),
-    )
-    .expect("JSON");
+    let report = estimate(&out);
     assert_eq!(report["status"], "interrupted");
     let iterations = report["iterations"].as_u64().expect("a count");
     assert!(

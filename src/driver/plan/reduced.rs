@@ -32,9 +32,6 @@
 //! flow as of the Lagrange one (`X(q) alpha` is tangent to them): the
 //! scheme keeps them to its order, `plan.csv`'s `holonomic_residual`.
 
-use super::resolve::RequestError;
-use super::transcription::StagePoint;
-use crate::runtime::nalgebra::DMatrix;
 use crate::runtime::system::next_chart;
 use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
 
@@ -110,23 +107,25 @@ pub(super) fn velocities(model: &InterpretedModel, x: &[f64]) -> Vec<f64> {
     evaluated(model.velocities(&x[..n], &x[n..]))
 }
 
-/// `d qdot / dx` (n x s, row-major): the velocities' rows of `df/dx`.
-fn velocities_jacobian(model: &InterpretedModel, point: &StagePoint) -> Vec<f64> {
+/// `d qdot / dx` (n x s, row-major) at `(x, u)`: the velocities' rows of
+/// `df/dx`.
+fn velocities_jacobian(model: &InterpretedModel, (x, u): (&[f64], &[f64])) -> Vec<f64> {
     let (n, s) = (model.sizes().n, model.sizes().s);
-    let (mut by_x, _) = rhs_jacobian(model, &point.x, &point.u);
+    let (mut by_x, _) = rhs_jacobian(model, x, u);
     by_x.truncate(n * s);
     by_x
 }
 
 /// A function's gradient by `x = (q, alpha)` from its gradients by `q`
-/// and `qdot` at `point`: `(g_q, 0) + g_qdot^T d qdot/dx`.
+/// and `qdot` at the state `x` and inputs `u`: `(g_q, 0) + g_qdot^T d
+/// qdot/dx`.
 pub(super) fn state_gradient(
     model: &InterpretedModel,
-    point: &StagePoint,
+    (x, u): (&[f64], &[f64]),
     (by_q, by_qdot): (&[f64], &[f64]),
 ) -> Vec<f64> {
     let s = model.sizes().s;
-    let by_x = velocities_jacobian(model, point);
+    let by_x = velocities_jacobian(model, (x, u));
     let mut gradient = by_q.to_vec();
     gradient.resize(s, 0.0);
     for (g, row) in by_qdot.iter().zip(by_x.chunks(s)) {
@@ -141,62 +140,6 @@ pub(super) fn state_gradient(
 pub(super) fn momenta(model: &InterpretedModel, q: &[f64], qdot: &[f64]) -> Vec<f64> {
     evaluated(model.call_in_chart(0, "momenta", &[q, qdot]))
 }
-
-/// The momenta an end's conditions fix, from its coordinates `q` (its
-/// first guess) and its given coordinates and velocities (`None` where
-/// not given): none where no velocity is given; 0 where the given ones
-/// are 0 and determine `alpha` (their rows of `X(q)` have rank `k`);
-/// `momenta(q, qdot)` where every coordinate and velocity is given.
-///
-/// # Errors
-/// [`RequestError::ReducedVelocities`] for any other end.
-pub(super) fn end_momenta(
-    model: &InterpretedModel,
-    (flag, q): (&'static str, &[f64]),
-    (given_q, given_qdot): (&[Option<f64>], &[Option<f64>]),
-) -> Result<Option<Vec<f64>>, RequestError> {
-    if given_qdot.iter().all(Option::is_none) {
-        return Ok(None);
-    }
-    let at_rest = given_qdot.iter().flatten().all(|v| *v == 0.0);
-    if at_rest && determines_momenta(model, q, given_qdot) {
-        return Ok(Some(vec![0.0; model.sizes().k]));
-    }
-    let (coordinates, velocities): (Vec<f64>, Vec<f64>) = (
-        given_q.iter().flatten().copied().collect(),
-        given_qdot.iter().flatten().copied().collect(),
-    );
-    let n = model.sizes().n;
-    if coordinates.len() == n && velocities.len() == n {
-        return Ok(Some(momenta(model, &coordinates, &velocities)));
-    }
-    let names = Form::Lagrange.state_names(model);
-    let given = given_q.iter().chain(given_qdot);
-    let missing: Vec<String> = (given.zip(names))
-        .filter(|(v, _)| v.is_none())
-        .map(|(_, name)| name)
-        .collect();
-    let missing = missing.join(", ");
-    Err(RequestError::ReducedVelocities { flag, missing })
-}
-
-/// Whether the `given` velocities' rows of `X(q)` have rank `k`.
-fn determines_momenta(model: &InterpretedModel, q: &[f64], given: &[Option<f64>]) -> bool {
-    let k = model.sizes().k;
-    let rows: Vec<usize> = (0..given.len()).filter(|&i| given[i].is_some()).collect();
-    let columns: Vec<Vec<f64>> = (0..k)
-        .map(|j| {
-            let unit: Vec<f64> = (0..k).map(|i| f64::from(u8::from(i == j))).collect();
-            evaluated(model.velocities(q, &unit))
-        })
-        .collect();
-    let by_alpha = DMatrix::from_fn(rows.len(), k, |r, j| columns[j][rows[r]]);
-    by_alpha.rank(RANK_TOLERANCE) == k
-}
-
-/// The singular value below which `X(q)`'s given rows lose rank, an
-/// absolute one: `X`'s entries are of order one in the catalog's models.
-const RANK_TOLERANCE: f64 = 1e-9;
 
 /// The first node of `states` (rows of `q` first) that `simulate` would
 /// move out of chart 0.

@@ -9,6 +9,7 @@
 //! bounded below by [`Request::SHORTEST`] times it (near `T = 0` the
 //! defects cannot move the state, and the solver would not return).
 
+mod ends;
 pub(super) mod guess;
 
 use super::Request;
@@ -321,7 +322,7 @@ impl Resolver<'_> {
             let flag = ["--start", "--goal"][end];
             let (given, at) = (&self.ends[end], end * (self.nodes - 1) * width);
             let q = &guess[at..at + n];
-            reduced::end_momenta(model, (flag, q), (&given[..n], &given[n..2 * n]))
+            ends::end_momenta(model, (flag, q), (&given[..n], &given[n..2 * n]))
         });
         let fixed = [start?, goal?];
         let mut variables: [Vec<f64>; 3] = Default::default();

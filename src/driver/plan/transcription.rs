@@ -509,7 +509,9 @@ impl Transcription {
     fn state_gradient(&self, point: &StagePoint, (by_q, by_qdot): (&[f64], &[f64])) -> Vec<f64> {
         match self.form {
             Form::Lagrange => [by_q, by_qdot].concat(),
-            Form::Reduced => reduced::state_gradient(&self.model, point, (by_q, by_qdot)),
+            Form::Reduced => {
+                reduced::state_gradient(&self.model, (&point.x, &point.u), (by_q, by_qdot))
+            }
         }
     }
 
@@ -757,37 +759,63 @@ impl Nlp for Transcription {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::{Costs, Grid, Nlp, Scheme, Transcription};
     use crate::driver::expression::{Expression, Scope};
     use crate::driver::plan::kkt::lagrangian_gradient;
     use chaplygin_codegen::interpret::InterpretedModel;
 
     /// The differential drive on 3 unevenly spaced nodes (at 0, 0.3 and 1
-    /// of the duration) at a point with every variable nonzero, its running cost reading the time, coordinates, velocities
-    /// and inputs, its final cost the time and the state; with
-    /// `free_duration`, `T = 0.8` a variable.
+    /// of the duration) at a point with every variable nonzero, its
+    /// running cost reading the time, coordinates, velocities and inputs,
+    /// its final cost the time and the state; with `free_duration`, `T =
+    /// 0.8` a variable.
     fn transcription(scheme: Scheme, free_duration: bool) -> (Transcription, Vec<f64>) {
         let model =
             InterpretedModel::from_source(include_str!("../catalog/differential_drive.model"))
                 .expect("the model derives");
-        let coordinates = ["x", "y", "theta", "phi_r", "phi_l"];
-        let scope = Scope {
-            coordinates: &coordinates,
-            inputs: &["u_right", "u_left"],
-            ..Scope::default()
-        };
-        let running = Expression::parse(
+        let names = (
+            &["x", "y", "theta", "phi_r", "phi_l"][..],
+            &["u_right", "u_left"][..],
+        );
+        let costs = (
             "u_right^2 + x*dot(theta)^2 + sin(theta)*u_left + t*dot(x)",
-            &scope,
+            "x^2*dot(y) + t^2*theta",
+        );
+        let fractions = Some(vec![0.0, 0.3, 1.0]);
+        three_nodes(
+            model,
+            names,
+            costs,
+            (12, fractions),
+            (scheme, free_duration),
         )
-        .expect("parses");
-        let final_scope = Scope {
-            coordinates: &coordinates,
+    }
+
+    /// `model`'s plan on 3 nodes at `fractions` of the duration (evenly
+    /// spaced for `None`), each node `width` variables, at a point with
+    /// every variable nonzero: the running and final `costs` read the
+    /// coordinates and inputs `names`; with `free_duration`, `T = 0.8` a
+    /// variable.
+    pub(in crate::driver::plan) fn three_nodes(
+        model: InterpretedModel,
+        (coordinates, inputs): (&[&str], &[&str]),
+        (running, terminal): (&str, &str),
+        (width, fractions): (usize, Option<Vec<f64>>),
+        (scheme, free_duration): (Scheme, bool),
+    ) -> (Transcription, Vec<f64>) {
+        let scope = Scope {
+            coordinates,
+            inputs,
             ..Scope::default()
         };
-        let terminal = Expression::parse("x^2*dot(y) + t^2*theta", &final_scope).expect("parses");
-        let size = 3 * 12 + usize::from(free_duration);
+        let running = Expression::parse(running, &scope).expect("parses");
+        let final_scope = Scope {
+            coordinates,
+            ..Scope::default()
+        };
+        let terminal = Expression::parse(terminal, &final_scope).expect("parses");
+        let size = 3 * width + usize::from(free_duration);
         let mut z: Vec<f64> = (0..size)
             .map(|j| 0.3 * ((j as f64) * 0.77).sin() + 0.1)
             .collect();
@@ -800,7 +828,7 @@ mod tests {
             nodes: 3,
             duration: 0.8,
             free_duration,
-            fractions: Some(vec![0.0, 0.3, 1.0]),
+            fractions,
         };
         let costs = Costs {
             running,
@@ -834,40 +862,45 @@ mod tests {
         dense
     }
 
-    #[test]
-    fn the_exact_derivatives_agree_with_central_differences() {
-        let schemes = [
-            Scheme::BackwardEuler,
-            Scheme::Midpoint,
-            Scheme::HermiteSimpson,
-        ];
-        for (scheme, free_duration) in schemes.into_iter().flat_map(|s| [(s, false), (s, true)]) {
-            let (nlp, z) = transcription(scheme, free_duration);
-            let dense = dense_jacobian(&nlp, &z);
-            let mut gradient = vec![0.0; nlp.variables()];
-            assert!(nlp.gradient(&z, &mut gradient));
-            let residuals = |z: &[f64]| {
-                let mut c = vec![0.0; nlp.constraints()];
-                assert!(nlp.residuals(z, &mut c));
-                c
-            };
-            let objective = |z: &[f64]| vec![nlp.objective(z).expect("finite")];
-            for j in 0..nlp.variables() {
-                let by_j = central(&z, j, &residuals);
-                for (row, numeric) in by_j.iter().enumerate() {
-                    let exact = dense[row * nlp.variables() + j];
-                    assert!(
-                        (exact - numeric).abs() < 1e-6,
-                        "{scheme:?} free {free_duration} ({row}, {j}): {exact} vs {numeric}"
-                    );
-                }
-                let numeric = central(&z, j, &objective)[0];
+    /// Asserts that the exact Jacobian and gradient of `nlp` at `z` agree
+    /// with central differences to 1e-6; `label` names the case.
+    pub(in crate::driver::plan) fn assert_derivatives_agree(
+        nlp: &Transcription,
+        z: &[f64],
+        label: &str,
+    ) {
+        let dense = dense_jacobian(nlp, z);
+        let mut gradient = vec![0.0; nlp.variables()];
+        assert!(nlp.gradient(z, &mut gradient));
+        let residuals = |z: &[f64]| {
+            let mut c = vec![0.0; nlp.constraints()];
+            assert!(nlp.residuals(z, &mut c));
+            c
+        };
+        let objective = |z: &[f64]| vec![nlp.objective(z).expect("finite")];
+        for j in 0..nlp.variables() {
+            let by_j = central(z, j, &residuals);
+            for (row, numeric) in by_j.iter().enumerate() {
+                let exact = dense[row * nlp.variables() + j];
                 assert!(
-                    (gradient[j] - numeric).abs() < 1e-6,
-                    "{scheme:?} free {free_duration} {j}: {} vs {numeric}",
-                    gradient[j]
+                    (exact - numeric).abs() < 1e-6,
+                    "{label} ({row}, {j}): {exact} vs {numeric}"
                 );
             }
+            let numeric = central(z, j, &objective)[0];
+            assert!(
+                (gradient[j] - numeric).abs() < 1e-6,
+                "{label} {j}: {} vs {numeric}",
+                gradient[j]
+            );
+        }
+    }
+
+    #[test]
+    fn the_exact_derivatives_agree_with_central_differences() {
+        for (scheme, free_duration) in Scheme::ALL.iter().flat_map(|&s| [(s, false), (s, true)]) {
+            let (nlp, z) = transcription(scheme, free_duration);
+            assert_derivatives_agree(&nlp, &z, &format!("{scheme:?} free {free_duration}"));
         }
     }
 

@@ -6,14 +6,14 @@
 //! refusals.
 
 use super::Form;
-use crate::driver::expression::{Expression, Scope};
 use crate::driver::plan::catalog_tests::{assigned, built_in, request, sideways};
-use crate::driver::plan::nlp::{Nlp, Ripopt};
+use crate::driver::plan::nlp::Ripopt;
 use crate::driver::plan::replay::replayed_states;
 use crate::driver::plan::tests::{
     differential_drive, parking, point_mass, rest_to_rest, write_csv,
 };
-use crate::driver::plan::transcription::{Costs, Grid, Transcription};
+use crate::driver::plan::transcription::Transcription;
+use crate::driver::plan::transcription::tests::{assert_derivatives_agree, three_nodes};
 use crate::driver::plan::{Request, Scheme, plan};
 use crate::driver::simulate::FormulationChoice;
 
@@ -27,95 +27,30 @@ fn reduced(mut request: Request) -> Request {
 /// variable nonzero, its running cost reading the time, coordinates,
 /// velocities and inputs, its final cost the time and the velocities.
 fn snakeboard_transcription(scheme: Scheme, free_duration: bool) -> (Transcription, Vec<f64>) {
-    let model = built_in("snakeboard").model;
-    let coordinates = ["x", "y", "theta", "psi", "phi"];
-    let scope = Scope {
-        coordinates: &coordinates,
-        inputs: &["u_torso", "u_wheels"],
-        ..Scope::default()
-    };
-    let running = Expression::parse(
+    let names = (
+        &["x", "y", "theta", "psi", "phi"][..],
+        &["u_torso", "u_wheels"][..],
+    );
+    let costs = (
         "u_torso^2 + x*dot(theta)^2 + sin(phi)*u_wheels + t*dot(x) + dot(psi)*dot(y)",
-        &scope,
-    )
-    .expect("parses");
-    let final_scope = Scope {
-        coordinates: &coordinates,
-        ..Scope::default()
-    };
-    let terminal = Expression::parse("x^2*dot(y) + t^2*dot(phi)", &final_scope).expect("parses");
+        "x^2*dot(y) + t^2*dot(phi)",
+    );
     let width = 5 + 3 + 2;
-    let size = 3 * width + usize::from(free_duration);
-    let mut z: Vec<f64> = (0..size)
-        .map(|j| 0.3 * ((j as f64) * 0.77).sin() + 0.1)
-        .collect();
-    if free_duration {
-        z[size - 1] = 0.8;
-    }
-    let free = vec![f64::NEG_INFINITY; size];
-    let bounds = (free.clone(), free.iter().map(|v| -v).collect(), z.clone());
-    let grid = Grid {
-        nodes: 3,
-        duration: 0.8,
-        free_duration,
-        fractions: None,
-    };
-    let costs = Costs {
-        running,
-        terminal: Some(terminal),
-    };
-    let transcription =
-        Transcription::new(model, scheme, grid, costs, bounds).in_form(Form::Reduced);
-    (transcription, z)
-}
-
-/// Central differences of `f` at `z` by variable `j`.
-fn central(z: &[f64], j: usize, f: &dyn Fn(&[f64]) -> Vec<f64>) -> Vec<f64> {
-    let step = 1e-6;
-    let (mut plus, mut minus) = (z.to_vec(), z.to_vec());
-    plus[j] += step;
-    minus[j] -= step;
-    let (a, b) = (f(&plus), f(&minus));
-    a.iter()
-        .zip(&b)
-        .map(|(a, b)| (a - b) / (2.0 * step))
-        .collect()
+    let (transcription, z) = three_nodes(
+        built_in("snakeboard").model,
+        names,
+        costs,
+        (width, None),
+        (scheme, free_duration),
+    );
+    (transcription.in_form(Form::Reduced), z)
 }
 
 #[test]
 fn the_reduced_derivatives_agree_with_central_differences() {
     for (scheme, free_duration) in Scheme::ALL.iter().flat_map(|&s| [(s, false), (s, true)]) {
         let (nlp, z) = snakeboard_transcription(scheme, free_duration);
-        let size = nlp.variables();
-        let mut values = vec![0.0; nlp.jacobian_structure().len()];
-        assert!(nlp.jacobian_values(&z, &mut values));
-        let mut dense = vec![0.0; nlp.constraints() * size];
-        for (&(row, column), value) in nlp.jacobian_structure().iter().zip(&values) {
-            dense[row * size + column] = *value;
-        }
-        let mut gradient = vec![0.0; size];
-        assert!(nlp.gradient(&z, &mut gradient));
-        let residuals = |z: &[f64]| {
-            let mut c = vec![0.0; nlp.constraints()];
-            assert!(nlp.residuals(z, &mut c));
-            c
-        };
-        let objective = |z: &[f64]| vec![nlp.objective(z).expect("finite")];
-        for j in 0..size {
-            for (row, numeric) in central(&z, j, &residuals).iter().enumerate() {
-                let exact = dense[row * size + j];
-                assert!(
-                    (exact - numeric).abs() < 1e-6,
-                    "{scheme:?} free {free_duration} ({row}, {j}): {exact} vs {numeric}"
-                );
-            }
-            let numeric = central(&z, j, &objective)[0];
-            assert!(
-                (gradient[j] - numeric).abs() < 1e-6,
-                "{scheme:?} free {free_duration} {j}: {} vs {numeric}",
-                gradient[j]
-            );
-        }
+        assert_derivatives_agree(&nlp, &z, &format!("{scheme:?} free {free_duration}"));
     }
 }
 
