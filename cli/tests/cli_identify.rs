@@ -6,7 +6,7 @@
 //! the solve with its last iterate written.
 
 use crate::support::{chaplygin, column, interrupted, read_csv, scratch};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Output;
 
 /// `m xddot = push`, its default mass not the truth `m = 2`.
@@ -47,25 +47,33 @@ fn pushed_from_rest() -> String {
 }
 
 /// `estimate.json` in `out`.
-fn estimate(out: &std::path::Path) -> serde_json::Value {
+fn estimate(out: &Path) -> serde_json::Value {
     let text = std::fs::read_to_string(out.join("estimate.json")).expect("written");
     serde_json::from_str(&text).expect("JSON")
 }
 
-#[test]
-fn the_mass_is_recovered_from_a_pushed_motion() {
-    let dir = scratch("identify_point_mass");
-    let output = identify(dir.path(), &pushed_from_rest(), &["--estimate", "m=1.5"]);
-    let stdout = String::from_utf8_lossy(&output.stdout);
+/// `identify` of the mass from `data` (from m = 1.5) in `dir`, asserted to
+/// succeed with m = 2 to 1e-6: its output, its directory and
+/// `estimate.json`.
+fn identified_mass(dir: &Path, data: &str) -> (Output, PathBuf, serde_json::Value) {
+    let output = identify(dir, data, &["--estimate", "m=1.5"]);
     assert!(
         output.status.success(),
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    let out = dir.path().join("identify");
+    let out = dir.join("identify");
     let json = estimate(&out);
     let mass = json["parameters"]["m"].as_f64().expect("m");
     assert!((mass - 2.0).abs() < 1e-6, "m = {mass}");
+    (output, out, json)
+}
+
+#[test]
+fn the_mass_is_recovered_from_a_pushed_motion() {
+    let dir = scratch("identify_point_mass");
+    let (output, out, json) = identified_mass(dir.path(), &pushed_from_rest());
+    let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(json["standard_errors"]["m"].as_f64().is_some(), "{json}");
     assert!(json["residual_rms"].as_f64().expect("rms") < 1e-6, "{json}");
     assert!(stdout.contains("m = 2.0000"), "{stdout}");
@@ -92,16 +100,7 @@ fn the_mass_is_recovered_from_unevenly_sampled_data() {
     for t in &times {
         data.push_str(&format!("{t},{},3\n", 0.75 * t * t));
     }
-    let output = identify(dir.path(), &data, &["--estimate", "m=1.5"]);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let out = dir.path().join("identify");
-    let json = estimate(&out);
-    let mass = json["parameters"]["m"].as_f64().expect("m");
-    assert!((mass - 2.0).abs() < 1e-6, "m = {mass}");
+    let (_, out, _) = identified_mass(dir.path(), &data);
     let (header, rows) = read_csv(&out.join("fit.csv"));
     let fitted = column(&header, &rows, "t");
     assert_eq!(fitted.len(), times.len());

@@ -904,6 +904,30 @@ pub(super) mod tests {
         }
     }
 
+    /// The Hessian of the Lagrangian of `nlp` at `z` (objective factor
+    /// `sigma`, multipliers `lambda`), dense and row-major, from its lower
+    /// triangle (asserted to hold every entry).
+    pub(in crate::driver::plan) fn dense_hessian(
+        nlp: &dyn Nlp,
+        z: &[f64],
+        sigma: f64,
+        lambda: &[f64],
+    ) -> Vec<f64> {
+        let structure = nlp.hessian_structure();
+        let mut values = vec![0.0; structure.len()];
+        assert!(nlp.hessian_values(z, sigma, lambda, &mut values));
+        let size = nlp.variables();
+        let mut dense = vec![0.0; size * size];
+        for (&(row, column), value) in structure.iter().zip(&values) {
+            assert!(row >= column, "({row}, {column}) is above the diagonal");
+            dense[row * size + column] += value;
+            if row != column {
+                dense[column * size + row] += value;
+            }
+        }
+        dense
+    }
+
     #[test]
     fn the_lagrangians_hessian_agrees_with_central_differences_of_its_gradient() {
         for (scheme, free_duration) in Scheme::ALL.iter().flat_map(|&s| [(s, false), (s, true)]) {
@@ -912,18 +936,8 @@ pub(super) mod tests {
             let lambda: Vec<f64> = (0..nlp.constraints())
                 .map(|i| (1.3 * i as f64).cos() - 0.2)
                 .collect();
-            let structure = nlp.hessian_structure();
-            let mut values = vec![0.0; structure.len()];
-            assert!(nlp.hessian_values(&z, sigma, &lambda, &mut values));
             let size = nlp.variables();
-            let mut dense = vec![0.0; size * size];
-            for (&(row, column), value) in structure.iter().zip(&values) {
-                assert!(row >= column, "({row}, {column}) is above the diagonal");
-                dense[row * size + column] += value;
-                if row != column {
-                    dense[column * size + row] += value;
-                }
-            }
+            let dense = dense_hessian(&nlp, &z, sigma, &lambda);
             let gradient =
                 |z: &[f64]| lagrangian_gradient(&nlp, z, sigma, &lambda).expect("finite");
             for j in 0..size {

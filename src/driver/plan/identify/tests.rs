@@ -19,6 +19,7 @@ use crate::driver::engine::{EngineChoice, Loaded, load};
 use crate::driver::plan::Scheme;
 use crate::driver::plan::kkt::lagrangian_gradient;
 use crate::driver::plan::nlp::Ripopt;
+use crate::driver::plan::transcription::tests::dense_hessian;
 use crate::runtime::nalgebra::DMatrix;
 use crate::runtime::record::Table;
 use std::path::Path;
@@ -447,17 +448,7 @@ fn the_lagrangians_hessian_agrees_with_central_differences_of_its_gradient() {
         let lambda: Vec<f64> = (0..fit.constraints())
             .map(|i| (1.3 * i as f64).cos() - 0.2)
             .collect();
-        let structure = fit.hessian_structure();
-        let mut values = vec![0.0; structure.len()];
-        assert!(fit.hessian_values(&y, sigma, &lambda, &mut values));
-        let mut dense = vec![0.0; size * size];
-        for (&(row, column), value) in structure.iter().zip(&values) {
-            assert!(row >= column, "({row}, {column}) is above the diagonal");
-            dense[row * size + column] += value;
-            if row != column {
-                dense[column * size + row] += value;
-            }
-        }
+        let dense = dense_hessian(&fit, &y, sigma, &lambda);
         let step = 1e-6;
         for j in 0..size {
             let at = |shift: f64| {
