@@ -101,6 +101,15 @@ pub(super) fn rhs_jacobian(model: &InterpretedModel, x: &[f64], u: &[f64]) -> (V
     )
 }
 
+/// The Hessian of `weights^T f` by `(x, u)` ((s + p)^2, row-major).
+pub(super) fn rhs_hessian(
+    model: &InterpretedModel,
+    (x, u): (&[f64], &[f64]),
+    weights: &[f64],
+) -> Vec<f64> {
+    evaluated(model.reduced_rhs_hessian(x, u, weights))
+}
+
 /// `qdot = X(q) alpha` at `x = (q, alpha)`.
 pub(super) fn velocities(model: &InterpretedModel, x: &[f64]) -> Vec<f64> {
     let n = model.sizes().n;
