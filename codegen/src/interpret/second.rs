@@ -383,6 +383,10 @@ mod tests {
             .collect()
     }
 
+    /// `reduced_rhs_hessian` against central differences of `w^T
+    /// reduced_rhs_jacobian` and `w^T input_matrix`, the exact gradient of
+    /// `w^T f` by `(x, u)`; the snakeboard's and the bicycle's `B(x)` vary
+    /// with `x`, so the `(x, u)` block is not zero.
     #[test]
     fn the_reduced_hessian_agrees_with_central_differences_of_the_jacobian() {
         let mut curved = 0.0_f64;

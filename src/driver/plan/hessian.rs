@@ -33,11 +33,29 @@
 //! m = (mu^T df_i/dz_i, -mu^T df_{i+1}/dz_{i+1}, 0).
 //! ```
 //!
-//! Since `f = (qdot, qddot)`, `hess (mu^T f) = hess (mu_qdot^T qddot)`,
-//! the model's `acceleration_hessian`; `sigma hess L` comes from the running cost's
-//! expression ([`crate::driver::expression::Expression::hessian`]), both
-//! exact. The final cost adds `sigma hess Phi(T, x_{N-1})`. Over a given
-//! duration the rows and columns of `T` are dropped.
+//! `hess (mu^T f)` is the model's: in the Lagrange form `f = (qdot,
+//! qddot)`, whose first rows are linear, so `hess (mu^T f) = hess
+//! (mu_qdot^T qddot)`, its `acceleration_hessian`; in the reduced form
+//! (`x = (q, alpha)`, [`super::reduced`]) `f = (X(q) alpha, alphadot)`,
+//! whose every row curves, its `reduced_rhs_hessian` with all of `mu`.
+//!
+//! The costs read `L(t, q, qdot, u)`, and `qdot = f_{1..n}(x)`, the first
+//! `n` rows of `f`, in both forms (the state itself in the Lagrange one).
+//! With `E = d(t, q, qdot, u)/d(t, x, u)`, the identity but for the
+//! velocities' rows `df_{1..n}/dx`, the second-order chain rule gives
+//!
+//! ```text
+//! hess_(t, x, u) L = E^T (hess L) E + sum_r (L_qdot)_r hess f_r,
+//! G = sigma E^T (hess L) E + hess (nu^T f),   nu = sigma (L_qdot, 0) - lambda,
+//! ```
+//!
+//! the cost's curvature through the velocities joining the model's, one
+//! `hess (nu^T f)` a stage (zero in the Lagrange form, where `qdot` is
+//! the state). `hess L` comes from the running cost's expression
+//! ([`crate::driver::expression::Expression::hessian`]), all exact. The
+//! final cost adds `sigma (E^T (hess Phi) E + hess ((Phi_qdot, 0)^T f))`
+//! by `(T, x_{N-1})`. Over a given duration the rows and columns of `T`
+//! are dropped.
 //!
 //! The structure is that of a Lagrangian coupling neighbouring nodes
 //! only: each node's lower triangle, then the block of the next node's
