@@ -95,7 +95,7 @@ fn a_point_mass_plan_meets_its_closed_form_cost() {
 
 /// The differential drive parked in the reduced form: `plan.csv` has the
 /// columns of `simulate`'s reduced `trajectory.csv` (the momenta, `chart`),
-/// `plan.json` names the formulation, chart 0 and the L-BFGS Hessian, and
+/// `plan.json` names the formulation, chart 0 and the exact Hessian, and
 /// the goal's pose is met.
 #[test]
 fn a_reduced_plan_has_the_reduced_trajectorys_columns() {
@@ -129,7 +129,7 @@ fn a_reduced_plan_has_the_reduced_trajectorys_columns() {
         reason.starts_with("chart 0, the one simulate starts in"),
         "{reason}"
     );
-    assert_eq!(report["solver"], "ripopt (L-BFGS Hessian)");
+    assert_eq!(report["solver"], "ripopt (exact Hessian)");
     let (header, rows) = read_csv(&dir.path().join("plan/plan.csv"));
     let last = rows.len() - 1;
     for (name, goal) in [("x", 0.3), ("y", 0.1), ("theta", 0.0)] {

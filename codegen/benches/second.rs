@@ -1,10 +1,12 @@
 //! The accelerations' second derivatives differentiated at run time
 //! (`chaplygin_codegen::interpret`'s `acceleration_hessian` and
-//! `acceleration_parameter_jacobian`) on the differential drive, the
-//! snakeboard and the benchmark bicycle: the operation counts of the
-//! programs they differentiate (`acceleration`, `acceleration_jacobian`),
-//! the load time, and the time of a call of each function on the IR
-//! interpreter, the mean over enough calls to last 0.2 s.
+//! `acceleration_parameter_jacobian`), and the reduced equations'
+//! (`reduced_rhs_hessian`), on the differential drive, the snakeboard and
+//! the benchmark bicycle: the operation counts of the programs they
+//! differentiate (`acceleration`, `acceleration_jacobian`,
+//! `reduced_rhs_jacobian`), the load time, and the time of a call of each
+//! function on the IR interpreter, the mean over enough calls to last 0.2
+//! s.
 //!
 //! Run with `cargo bench -p chaplygin-codegen --bench second`; it prints
 //! one markdown row per model (BENCHMARKS.md, "Exact second derivatives").
@@ -43,9 +45,10 @@ fn main() {
     ];
     println!(
         "| model | n, p, P | ops acceleration | ops jacobian | load ms | acceleration us | \
-         jacobian us | parameter jacobian us | hessian us |"
+         jacobian us | parameter jacobian us | hessian us | ops reduced jacobian | \
+         reduced jacobian us | reduced hessian us |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (name, source) in models {
         let start = Instant::now();
         let model = InterpretedModel::from_source(source).expect("the model derives");
@@ -70,12 +73,24 @@ fn main() {
         let hessian = microseconds(|| {
             black_box(evaluated(model.acceleration_hessian(q, qdot, u, &w)));
         });
+        let x: Vec<f64> = (0..sizes.s)
+            .map(|j| 0.2 * (0.9 * j as f64).sin() + 0.05)
+            .collect();
+        let v: Vec<f64> = (0..sizes.s).map(|i| 0.7 - 0.3 * i as f64).collect();
+        let reduced_jacobian = microseconds(|| {
+            black_box(evaluated(model.reduced_rhs_jacobian(&x, u)));
+        });
+        let reduced_hessian = microseconds(|| {
+            black_box(evaluated(model.reduced_rhs_hessian(&x, u, &v)));
+        });
         println!(
             "| {name} | {n}, {p}, {} | {} | {} | {load:.0} | {acceleration:.2} | {jacobian:.2} | \
-             {parameter_jacobian:.1} | {hessian:.1} |",
+             {parameter_jacobian:.1} | {hessian:.1} | {} | {reduced_jacobian:.2} | \
+             {reduced_hessian:.1} |",
             model.parameter_values().len(),
             operations(&model, "acceleration"),
             operations(&model, "acceleration_jacobian"),
+            operations(&model, "reduced_rhs_jacobian"),
         );
     }
 }

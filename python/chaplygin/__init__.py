@@ -519,8 +519,8 @@ class Model:
         its first guess. ``guess`` is a CSV file with ``t`` and any of
         ``plan.csv``'s columns to start from. ``formulation`` is
         ``"lagrange"`` (the nodes hold ``q`` and ``dot(q)``) or
-        ``"reduced"`` (they hold ``q`` and the reduced momenta, in chart 0,
-        with the L-BFGS Hessian), as ``--formulation`` says.
+        ``"reduced"`` (they hold ``q`` and the reduced momenta, in chart 0),
+        as ``--formulation`` says.
 
         Raises ``ValueError`` for bad input (an unknown name, a bound with
         lo > hi, a start off the constraints) and for an answer that is not

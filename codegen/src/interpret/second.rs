@@ -5,11 +5,13 @@
 //! ```text
 //! acceleration_parameter_jacobian(q, qdot, u)   d qddot / d parameters   (n x P)
 //! acceleration_hessian(q, qdot, u, w)           d^2 (w^T qddot) / dy^2   (m x m)
+//! reduced_rhs_hessian(x, u, w)                  d^2 (w^T f) / dy'^2      (m' x m')
 //! acceleration_parameter_hessian(q, qdot, u, w, theta)
 //!     d^2 (w^T qddot) / dy dtheta (m x P'),  d^2 (w^T qddot) / dtheta^2 (P' x P')
 //! ```
 //!
-//! with `y = (q, qdot, u)`, `m = 2n + p`. The parameters are inputs of
+//! with `y = (q, qdot, u)`, `m = 2n + p`, and for the reduced equations
+//! `xdot = f(x, u)` (MATH.md section 3) `y' = (x, u)`, `m' = s + p`. The parameters are inputs of
 //! every program, so the first is the `acceleration` program differentiated
 //! along them. The second is the exact Jacobian `acceleration_jacobian`
 //! (the derivation's symbolic derivative, MATH.md section 6) differentiated
@@ -21,6 +23,9 @@
 //!
 //! and symmetrized, `(H + H^T)/2`: the two orders of differentiation agree
 //! to round-off, and the mean is the symmetric matrix nearest both. The
+//! third is the same for the exact `reduced_rhs_jacobian` (`df/dx`)
+//! differentiated along `y'`; `f` is affine in `u`, so its `(u, u)` block
+//! is zero and its `(u, x)` block the transpose of the `(x, u)` one. The
 //! blocks by the `P'` parameters `theta` chosen among them are the same
 //! Jacobian differentiated along `theta`, and the `acceleration` program's
 //! second derivatives along `theta` ([`crate::ir::Program::curvatures`]).
@@ -71,22 +76,45 @@ impl InterpretedModel {
         let seeds: Vec<usize> = (0..m).collect();
         let function = function_among(&self.functions, "acceleration_jacobian")?;
         let Tangents { derivatives, .. } = self.tangents(function, &[q, qdot, u], &seeds)?;
-        let entry = |i: usize, j: usize| jacobian_entry(n, p, i, j);
+        let mut hessian = contracted(&derivatives, w, (m, m), |i, j| jacobian_entry(n, p, i, j));
+        symmetrize(&mut hessian, m, m);
+        Ok(hessian)
+    }
+
+    /// The Hessian of `w^T f` by `y = (x, u)`, m x m row-major (`m = s +
+    /// p`), for the reduced equations `f(x, u) = (J - R) dH/dx + B(x) u`:
+    /// the exact `reduced_rhs_jacobian` program (`df/dx`) differentiated
+    /// forward along `y` ([`crate::ir::Program::tangents`]), its rows
+    /// contracted with `w`. Its `(x, x)` block is symmetrized, `(H +
+    /// H^T)/2`; its `(x, u)` block is `sum_i w_i dB_i./dx`, the Jacobian's
+    /// tangents along `u`, and the `(u, x)` block its transpose; the `(u,
+    /// u)` block is zero, `f` being affine in `u` (`B` depends on `q`
+    /// only, MATH.md section 3). Exact to round-off.
+    ///
+    /// # Errors
+    /// As [`InterpretedModel::call`], and [`CallError::ArgumentLength`]
+    /// when `w` does not have s entries.
+    pub fn reduced_rhs_hessian(
+        &self,
+        x: &[f64],
+        u: &[f64],
+        w: &[f64],
+    ) -> Result<Vec<f64>, CallError> {
+        let (s, p) = (self.sizes.s, self.sizes.p);
+        check_arguments("reduced_rhs_hessian", &[("w", s)], &[w])?;
+        let m = s + p;
+        let seeds: Vec<usize> = (0..m).collect();
+        let function = function_among(&self.functions, "reduced_rhs_jacobian")?;
+        let Tangents { derivatives, .. } = self.tangents(function, &[x, u], &seeds)?;
+        let by_x = contracted(&derivatives, w, (s, m), |i, j| i * s + j);
         let mut hessian = vec![0.0; m * m];
-        for (j, row) in hessian.chunks_exact_mut(m).enumerate() {
-            for (i, weight) in w.iter().enumerate() {
-                let slopes = &derivatives[entry(i, j) * m..(entry(i, j) + 1) * m];
-                for (h, slope) in row.iter_mut().zip(slopes) {
-                    *h += weight * slope;
-                }
+        hessian[..s * m].copy_from_slice(&by_x);
+        for l in s..m {
+            for j in 0..s {
+                hessian[l * m + j] = hessian[j * m + l];
             }
         }
-        for j in 0..m {
-            for k in 0..j {
-                let mean = 0.5 * (hessian[j * m + k] + hessian[k * m + j]);
-                (hessian[j * m + k], hessian[k * m + j]) = (mean, mean);
-            }
-        }
+        symmetrize(&mut hessian, m, s);
         Ok(hessian)
     }
 
@@ -114,16 +142,9 @@ impl InterpretedModel {
         let seeds: Vec<usize> = theta.iter().map(|&k| m + k).collect();
         let jacobian = function_among(&self.functions, "acceleration_jacobian")?;
         let Tangents { derivatives, .. } = self.tangents(jacobian, &[q, qdot, u], &seeds)?;
-        let entry = |i: usize, j: usize| jacobian_entry(n, p, i, j);
-        let mut mixed = vec![0.0; m * count];
-        for (j, row) in mixed.chunks_exact_mut(count).enumerate() {
-            for (i, weight) in w.iter().enumerate() {
-                let slopes = &derivatives[entry(i, j) * count..(entry(i, j) + 1) * count];
-                for (h, slope) in row.iter_mut().zip(slopes) {
-                    *h += weight * slope;
-                }
-            }
-        }
+        let mixed = contracted(&derivatives, w, (m, count), |i, j| {
+            jacobian_entry(n, p, i, j)
+        });
         let acceleration = function_among(&self.functions, "acceleration")?;
         let second = self.curvatures(acceleration, &[q, qdot, u], &seeds)?;
         let block = count * count;
@@ -192,6 +213,40 @@ impl InterpretedModel {
             .chain(&self.parameters)
             .copied()
             .collect()
+    }
+}
+
+/// `R_jk = sum_i w_i d out_{entry(i, j)} / d seed_k` for `rows` j and
+/// `seeds` k (rows x seeds, row-major), from the tangents `derivatives`
+/// (each output's derivatives by the seeds in a row).
+fn contracted(
+    derivatives: &[f64],
+    w: &[f64],
+    (rows, seeds): (usize, usize),
+    entry: impl Fn(usize, usize) -> usize,
+) -> Vec<f64> {
+    let mut result = vec![0.0; rows * seeds];
+    for (j, row) in result.chunks_exact_mut(seeds).enumerate() {
+        for (i, weight) in w.iter().enumerate() {
+            let slopes = &derivatives[entry(i, j) * seeds..(entry(i, j) + 1) * seeds];
+            for (h, slope) in row.iter_mut().zip(slopes) {
+                *h += weight * slope;
+            }
+        }
+    }
+    result
+}
+
+/// Replaces the leading `block` x `block` of `hessian` (m x m, row-major)
+/// by its symmetric part, `(H + H^T)/2`: the two orders of
+/// differentiation agree to round-off, and the mean is the symmetric
+/// matrix nearest both.
+fn symmetrize(hessian: &mut [f64], m: usize, block: usize) {
+    for j in 0..block {
+        for k in 0..j {
+            let mean = 0.5 * (hessian[j * m + k] + hessian[k * m + j]);
+            (hessian[j * m + k], hessian[k * m + j]) = (mean, mean);
+        }
     }
 }
 
@@ -317,6 +372,59 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The reduced state and inputs `(x, u)` of a model, every entry
+    /// nonzero.
+    fn reduced_point(model: &InterpretedModel) -> Vec<f64> {
+        let m = model.sizes().s + model.sizes().p;
+        (0..m)
+            .map(|j| 0.3 * (1.1 * j as f64).cos() + 0.07)
+            .collect()
+    }
+
+    /// `reduced_rhs_hessian` against central differences of `w^T
+    /// reduced_rhs_jacobian` and `w^T input_matrix`, the exact gradient of
+    /// `w^T f` by `(x, u)`; the snakeboard's and the bicycle's `B(x)` vary
+    /// with `x`, so the `(x, u)` block is not zero.
+    #[test]
+    fn the_reduced_hessian_agrees_with_central_differences_of_the_jacobian() {
+        let mut curved = 0.0_f64;
+        for (model, _) in models() {
+            let (s, p) = (model.sizes().s, model.sizes().p);
+            let (m, y) = (s + p, reduced_point(&model));
+            let w: Vec<f64> = (0..s).map(|i| 0.6 - 0.25 * i as f64).collect();
+            let hessian = model
+                .reduced_rhs_hessian(&y[..s], &y[s..], &w)
+                .expect("evaluates");
+            let gradient = |y: &[f64]| -> Vec<f64> {
+                let (x, u) = y.split_at(s);
+                let by_x = model.reduced_rhs_jacobian(x, u).expect("evaluates");
+                let by_u = model.input_matrix(x).expect("evaluates");
+                let contract = |matrix: &[f64], columns: usize, j: usize| -> f64 {
+                    (0..s).map(|i| w[i] * matrix[i * columns + j]).sum()
+                };
+                (0..s)
+                    .map(|j| contract(&by_x, s, j))
+                    .chain((0..p).map(|l| contract(&by_u, p, l)))
+                    .collect()
+            };
+            for k in 0..m {
+                let step = 1e-6;
+                let (mut plus, mut minus) = (y.clone(), y.clone());
+                plus[k] += step;
+                minus[k] -= step;
+                let (above, below) = (gradient(&plus), gradient(&minus));
+                for j in 0..m {
+                    let numeric = (above[j] - below[j]) / (2.0 * step);
+                    assert_close(hessian[j * m + k], numeric, &format!("({j}, {k})"));
+                    if j < s && k >= s {
+                        curved = curved.max(numeric.abs());
+                    }
+                }
+            }
+        }
+        assert!(curved > 1e-3, "some B(x) varies with x: {curved}");
     }
 
     #[test]

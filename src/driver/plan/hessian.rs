@@ -33,11 +33,29 @@
 //! m = (mu^T df_i/dz_i, -mu^T df_{i+1}/dz_{i+1}, 0).
 //! ```
 //!
-//! Since `f = (qdot, qddot)`, `hess (mu^T f) = hess (mu_qdot^T qddot)`,
-//! the model's `acceleration_hessian`; `sigma hess L` comes from the running cost's
-//! expression ([`crate::driver::expression::Expression::hessian`]), both
-//! exact. The final cost adds `sigma hess Phi(T, x_{N-1})`. Over a given
-//! duration the rows and columns of `T` are dropped.
+//! `hess (mu^T f)` is the model's: in the Lagrange form `f = (qdot,
+//! qddot)`, whose first rows are linear, so `hess (mu^T f) = hess
+//! (mu_qdot^T qddot)`, its `acceleration_hessian`; in the reduced form
+//! (`x = (q, alpha)`, [`super::reduced`]) `f = (X(q) alpha, alphadot)`,
+//! whose every row curves, its `reduced_rhs_hessian` with all of `mu`.
+//!
+//! The costs read `L(t, q, qdot, u)`, and `qdot = f_{1..n}(x)`, the first
+//! `n` rows of `f`, in both forms (the state itself in the Lagrange one).
+//! With `E = d(t, q, qdot, u)/d(t, x, u)`, the identity but for the
+//! velocities' rows `df_{1..n}/dx`, the second-order chain rule gives
+//!
+//! ```text
+//! hess_(t, x, u) L = E^T (hess L) E + sum_r (L_qdot)_r hess f_r,
+//! G = sigma E^T (hess L) E + hess (nu^T f),   nu = sigma (L_qdot, 0) - lambda,
+//! ```
+//!
+//! the cost's curvature through the velocities joining the model's, one
+//! `hess (nu^T f)` a stage (zero in the Lagrange form, where `qdot` is
+//! the state). `hess L` comes from the running cost's expression
+//! ([`crate::driver::expression::Expression::hessian`]), all exact. The
+//! final cost adds `sigma (E^T (hess Phi) E + hess ((Phi_qdot, 0)^T f))`
+//! by `(T, x_{N-1})`. Over a given duration the rows and columns of `T`
+//! are dropped.
 //!
 //! The structure is that of a Lagrangian coupling neighbouring nodes
 //! only: each node's lower triangle, then the block of the next node's
@@ -46,18 +64,16 @@
 //! zero).
 
 use super::transcription::{Global, Motion, StagePoint, Transcription, finite, share};
-use chaplygin_codegen::interpret::evaluated;
 
-/// A dense symmetric matrix over one interval's variables `(z_i,
-/// z_{i+1}, T)`, row-major.
-struct IntervalHessian {
+/// A dense symmetric matrix, row-major: over one interval's variables
+/// `(z_i, z_{i+1}, T)`, or a stage's `(t, x, u)`.
+struct Dense {
     size: usize,
     values: Vec<f64>,
 }
 
-impl IntervalHessian {
-    fn new(width: usize) -> Self {
-        let size = 2 * width + 1;
+impl Dense {
+    fn new(size: usize) -> Self {
         Self {
             size,
             values: vec![0.0; size * size],
@@ -77,10 +93,9 @@ impl IntervalHessian {
         }
     }
 
-    /// Adds `scale block` (w x w, row-major) to the variables from
-    /// `first` on.
-    fn add_block(&mut self, first: usize, block: &[f64], scale: f64) {
-        let width = (self.size - 1) / 2;
+    /// Adds `scale block` (width x width, row-major) to the variables
+    /// from `first` on.
+    fn add_block(&mut self, first: usize, width: usize, block: &[f64], scale: f64) {
         for a in 0..width {
             for b in 0..width {
                 self.values[(first + a) * self.size + first + b] += scale * block[a * width + b];
@@ -179,28 +194,35 @@ impl Transcription {
     }
 
     /// `objective_factor hess Phi(T, x_{N-1})` added to the last node's
-    /// state and, with a free duration, to `T`'s row.
+    /// state and, with a free duration, to `T`'s row: `E^T hess Phi E +
+    /// hess (Phi_qdot^T qdot)` by `(T, x)`.
     fn add_final_cost(&self, z: &[f64], objective_factor: f64, values: &mut [f64]) {
         let Some(phi) = &self.costs.terminal else {
             return;
         };
-        let hessian = phi.hessian(&self.final_point(z));
-        let (s, w) = (self.state(), self.width());
-        let m = 1 + s;
+        let (n, s, w) = (self.model().sizes().n, self.state(), self.width());
+        let last = self.final_stage(z);
+        let point = self.cost_point(&last);
+        let (_, by) = phi.gradient(&point);
+        let (fx, _) = self.rhs_jacobian(&last);
+        let mut hessian = Dense::new(1 + w);
+        hessian.values = self.cost_curvature(&phi.hessian(&point), &fx[..n * s]);
+        let mut weights = by.qdot;
+        weights.resize(s, 0.0);
+        hessian.add_block(1, w, &self.rhs_hessian(&last, &weights), 1.0);
         let offset = self.node_offset(self.nodes - 1);
         for a in 0..s {
             for b in 0..=a {
-                values[offset + a * (a + 1) / 2 + b] +=
-                    objective_factor * hessian[(1 + a) * m + 1 + b];
+                values[offset + a * (a + 1) / 2 + b] += objective_factor * hessian.at(1 + a, 1 + b);
             }
         }
         if self.global(Global::Duration).is_some() {
             let row = self.duration_offset();
-            let last = (self.nodes - 1) * w;
+            let first = (self.nodes - 1) * w;
             for a in 0..s {
-                values[row + last + a] += objective_factor * hessian[1 + a];
+                values[row + first + a] += objective_factor * hessian.at(0, 1 + a);
             }
-            values[row + self.nodes * w] += objective_factor * hessian[0];
+            values[row + self.nodes * w] += objective_factor * hessian.at(0, 0);
         }
     }
 
@@ -212,10 +234,10 @@ impl Transcription {
         i: usize,
         objective_factor: f64,
         defect: &[f64],
-    ) -> IntervalHessian {
-        let (n, w) = (self.model().sizes().n, self.width());
+    ) -> Dense {
+        let (s, w) = (self.state(), self.width());
         let (h, duration) = (self.step(z, i), self.duration(z));
-        let mut hessian = IntervalHessian::new(w);
+        let mut hessian = Dense::new(2 * w + 1);
         for stage in self.scheme.stages() {
             let point = self.stage_point(z, i, stage);
             let motion = self.stage_motion(z, i, stage);
@@ -226,12 +248,12 @@ impl Transcription {
             let by_v = row_times(&slope, &along);
             hessian.add_duration_outer(&by_v, stage.weight * h / duration);
             if stage.slopes != 0.0 {
-                let mu = &slope[1..1 + 2 * n];
+                let mu = &slope[1..1 + s];
                 let c = scale * stage.slopes * h;
                 let (by_nodes, blocks) = self.slopes_terms(z, i, mu);
                 hessian.add_duration_outer(&by_nodes, c / duration);
-                hessian.add_block(0, &blocks[0], c);
-                hessian.add_block(w, &blocks[1], -c);
+                hessian.add_block(0, w, &blocks[0], c);
+                hessian.add_block(w, w, &blocks[1], -c);
             }
         }
         hessian
@@ -266,7 +288,9 @@ impl Transcription {
     }
 
     /// The gradient (1 + w) and Hessian ((1 + w)^2) of `g = sigma L -
-    /// lambda^T f` by `(t, x, u)` at a stage.
+    /// lambda^T f` by `(t, x, u)` at a stage: `sigma E^T hess L E` and
+    /// `hess (nu^T f)`, `nu = sigma (L_qdot, 0) - lambda` (see the module
+    /// documentation).
     pub(super) fn stage_terms(
         &self,
         point: &StagePoint,
@@ -285,31 +309,59 @@ impl Transcription {
                 slope[1 + s + c] -= lambda * d;
             }
         }
-        let weights: Vec<f64> = defect[n..].iter().map(|lambda| -lambda).collect();
-        let (q, qdot) = point.x.split_at(n);
-        let model = evaluated(
-            self.model()
-                .acceleration_hessian(q, qdot, &point.u, &weights),
-        );
+        let mut weights: Vec<f64> = defect.iter().map(|lambda| -lambda).collect();
         let mut curvature = vec![0.0; m * m];
-        for a in 0..w {
-            curvature[(1 + a) * m + 1..(2 + a) * m].copy_from_slice(&model[a * w..(a + 1) * w]);
-        }
         if objective_factor != 0.0 {
-            let cost = self.costs.running.hessian(&self.cost_point(point));
-            for (g, l) in curvature.iter_mut().zip(cost) {
-                *g += objective_factor * l;
-            }
-            let (gradient, by_t) = self.cost_gradient(point);
-            slope[0] += objective_factor * by_t;
+            let (gradient, by) = self.cost_gradient(point);
+            slope[0] += objective_factor * by.t;
             for (g, l) in slope[1..].iter_mut().zip(gradient) {
                 *g += objective_factor * l;
+            }
+            for (nu, l) in weights.iter_mut().zip(&by.qdot) {
+                *nu += objective_factor * l;
+            }
+            let cost = self.costs.running.hessian(&self.cost_point(point));
+            let by_state = self.cost_curvature(&cost, &fx[..n * s]);
+            for (g, l) in curvature.iter_mut().zip(by_state) {
+                *g += objective_factor * l;
+            }
+        }
+        let model = self.rhs_hessian(point, &weights);
+        for a in 0..w {
+            for (g, d) in curvature[(1 + a) * m + 1..(2 + a) * m]
+                .iter_mut()
+                .zip(&model[a * w..(a + 1) * w])
+            {
+                *g += d;
             }
         }
         (slope, curvature)
     }
 
-    /// For `mu` by the state, the row `(mu^T df_i/dz_i, -mu^T
+    /// `E^T G E` ((1 + w)^2, row-major) for `G` a cost's Hessian by `(t,
+    /// q, qdot, u)`, `E = d(t, q, qdot, u)/d(t, x, u)`: the identity but
+    /// for the velocities' rows, `velocities` (`d qdot/dx`, n x s, the
+    /// first `n` rows of `df/dx`).
+    fn cost_curvature(&self, cost: &[f64], velocities: &[f64]) -> Vec<f64> {
+        let (n, s, w) = (self.model().sizes().n, self.state(), self.width());
+        let (rows, columns) = (1 + 2 * n + w - s, 1 + w);
+        let mut motion = vec![0.0; rows * columns];
+        for r in 0..rows {
+            let row = &mut motion[r * columns..(r + 1) * columns];
+            match r {
+                r if r <= n => row[r] = 1.0,
+                r if r <= 2 * n => {
+                    row[1..=s].copy_from_slice(&velocities[(r - 1 - n) * s..(r - n) * s]);
+                }
+                r => row[r - 2 * n + s] = 1.0,
+            }
+        }
+        let mut congruent = Dense::new(columns);
+        congruent.add_congruent(&motion, cost, 1.0);
+        congruent.values
+    }
+
+    /// For `mu` by the state (s), the row `(mu^T df_i/dz_i, -mu^T
     /// df_{i+1}/dz_{i+1}, 0)` and the nodes' `hess (mu^T f)` (w x w each).
     pub(super) fn slopes_terms(
         &self,
@@ -317,7 +369,7 @@ impl Transcription {
         i: usize,
         mu: &[f64],
     ) -> (Vec<f64>, [Vec<f64>; 2]) {
-        let (n, s, w) = (self.model().sizes().n, self.state(), self.width());
+        let (s, w) = (self.state(), self.width());
         let mut row = vec![0.0; 2 * w + 1];
         let blocks = [0, 1].map(|j| {
             let node = self.node_point(z, i + j);
@@ -331,18 +383,14 @@ impl Transcription {
                     row[j * w + s + c] += sign * m * d;
                 }
             }
-            let (q, qdot) = node.x.split_at(n);
-            evaluated(
-                self.model()
-                    .acceleration_hessian(q, qdot, &node.u, &mu[n..]),
-            )
+            self.rhs_hessian(&node, mu)
         });
         (row, blocks)
     }
 
     /// Adds interval `i`'s Hessian to the nodes' entries in `values`, and
     /// to the duration's row where it is free.
-    fn scatter(&self, i: usize, hessian: &IntervalHessian, values: &mut [f64]) {
+    fn scatter(&self, i: usize, hessian: &Dense, values: &mut [f64]) {
         let w = self.width();
         for (node, first) in [(i, 0), (i + 1, w)] {
             let offset = self.node_offset(node);

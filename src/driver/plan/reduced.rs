@@ -19,9 +19,11 @@
 //! rows of `X(q)` have rank `k` (the differential drive's wheel rates),
 //! `alpha = momenta(q, qdot)` where every coordinate and velocity is
 //! given; any other condition or bound on a velocity is refused, the
-//! reduced state not holding `dot(q)`. The
-//! reduced form's exact second derivatives are not programs of the model:
-//! its plans use the L-BFGS Hessian.
+//! reduced state not holding `dot(q)`. The Hessian of the Lagrangian is
+//! exact as in the Lagrange form ([`super::hessian`]): the model's
+//! `reduced_rhs_hessian`, `d^2 (w^T f)/d(x, u)^2`, the exact
+//! `reduced_rhs_jacobian` differentiated forward, and the costs' through
+//! `dot(q) = X(q) alpha` by the second-order chain rule.
 //!
 //! A model with several charts is planned in chart 0, the one `simulate`
 //! starts in where it fits: a plan one of whose nodes `simulate` would
@@ -99,6 +101,15 @@ pub(super) fn rhs_jacobian(model: &InterpretedModel, x: &[f64], u: &[f64]) -> (V
         evaluated(model.reduced_rhs_jacobian(x, u)),
         evaluated(model.input_matrix(x)),
     )
+}
+
+/// The Hessian of `weights^T f` by `(x, u)` ((s + p)^2, row-major).
+pub(super) fn rhs_hessian(
+    model: &InterpretedModel,
+    (x, u): (&[f64], &[f64]),
+    weights: &[f64],
+) -> Vec<f64> {
+    evaluated(model.reduced_rhs_hessian(x, u, weights))
 }
 
 /// `qdot = X(q) alpha` at `x = (q, alpha)`.

@@ -55,7 +55,7 @@
 
 use super::nlp::Nlp;
 use super::reduced::{self, Form};
-use crate::driver::expression::{Expression, Point};
+use crate::driver::expression::{Expression, Gradient, Point};
 use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
 use std::collections::BTreeSet;
 
@@ -462,6 +462,22 @@ impl Transcription {
         qdot.iter().chain(&qddot).copied().collect()
     }
 
+    /// The Hessian of `weights^T f` by `(x, u)` (w x w, row-major) at
+    /// `point`: in the Lagrange form the model's `acceleration_hessian`
+    /// with the last `n` weights (the first `n` rows, `qdot`, are linear),
+    /// in the reduced form its `reduced_rhs_hessian` with all `s`.
+    pub(super) fn rhs_hessian(&self, point: &StagePoint, weights: &[f64]) -> Vec<f64> {
+        if self.form == Form::Reduced {
+            return reduced::rhs_hessian(&self.model, (&point.x, &point.u), weights);
+        }
+        let n = self.model.sizes().n;
+        let (q, qdot) = point.x.split_at(n);
+        evaluated(
+            self.model
+                .acceleration_hessian(q, qdot, &point.u, &weights[n..]),
+        )
+    }
+
     /// `df/dx` (2n x 2n) and `df/du` (2n x p), row-major, or the reduced
     /// form's.
     pub(super) fn rhs_jacobian(&self, point: &StagePoint) -> (Vec<f64>, Vec<f64>) {
@@ -496,12 +512,12 @@ impl Transcription {
     }
 
     /// The running cost's gradient by the state and `u` at a stage, and
-    /// its derivative by `t`.
-    pub(super) fn cost_gradient(&self, point: &StagePoint) -> (Vec<f64>, f64) {
+    /// by `(t, q, qdot, u)`.
+    pub(super) fn cost_gradient(&self, point: &StagePoint) -> (Vec<f64>, Gradient) {
         let (_, gradient) = self.costs.running.gradient(&self.cost_point(point));
         let mut by_variables = self.state_gradient(point, (&gradient.q, &gradient.qdot));
-        by_variables.extend(gradient.u);
-        (by_variables, gradient.t)
+        by_variables.extend(&gradient.u);
+        (by_variables, gradient)
     }
 
     /// A function's gradient by the state at `point` from its gradients
@@ -517,7 +533,7 @@ impl Transcription {
 
     /// Where the final cost is evaluated, as a stage: `t = T`, the last
     /// node's state.
-    fn final_stage(&self, z: &[f64]) -> StagePoint {
+    pub(super) fn final_stage(&self, z: &[f64]) -> StagePoint {
         let mut last = self.node_point(z, self.nodes - 1);
         last.t = self.duration(z);
         last
@@ -623,27 +639,14 @@ impl Transcription {
         for stage in self.scheme.stages() {
             let point = self.stage_point(z, i, stage);
             let value = self.costs.running.at(&self.cost_point(&point));
-            let (gradient, by_t) = self.cost_gradient(&point);
+            let (gradient, by) = self.cost_gradient(&point);
             let motion = self.stage_motion(z, i, stage);
             let scale = h * stage.weight;
             let (gx, gu) = gradient.split_at(s);
             let through = self.chain((stage, &motion), (gx, gu), scale, &mut block);
-            by_duration += through[0] + scale * (value + by_t * point.t) / duration;
+            by_duration += through[0] + scale * (value + by.t * point.t) / duration;
         }
         (block, by_duration)
-    }
-
-    /// Where the final cost is evaluated: `t = T` and the last node's
-    /// state.
-    pub(super) fn final_point<'a>(&self, z: &'a [f64]) -> Point<'a> {
-        let (n, w) = (self.model.sizes().n, self.width());
-        let last = (self.nodes - 1) * w;
-        Point {
-            t: self.duration(z),
-            q: &z[last..last + n],
-            qdot: &z[last + n..last + 2 * n],
-            ..Point::default()
-        }
     }
 }
 
@@ -740,10 +743,7 @@ impl Nlp for Transcription {
     }
 
     fn hessian_structure(&self) -> Vec<(usize, usize)> {
-        match self.form {
-            Form::Lagrange => self.lagrangian_hessian_structure(),
-            Form::Reduced => Vec::new(),
-        }
+        self.lagrangian_hessian_structure()
     }
 
     fn hessian_values(
@@ -753,8 +753,7 @@ impl Nlp for Transcription {
         multipliers: &[f64],
         values: &mut [f64],
     ) -> bool {
-        self.form == Form::Lagrange
-            && self.lagrangian_hessian(z, objective_factor, multipliers, values)
+        self.lagrangian_hessian(z, objective_factor, multipliers, values)
     }
 }
 
@@ -928,28 +927,39 @@ pub(super) mod tests {
         dense
     }
 
+    /// Asserts that the exact Hessian of the Lagrangian of `nlp` at `z`
+    /// (objective factor 0.7, multipliers every one different) agrees
+    /// with central differences of its exact gradient to 1e-6; `label`
+    /// names the case.
+    pub(in crate::driver::plan) fn assert_hessian_agrees(
+        nlp: &Transcription,
+        z: &[f64],
+        label: &str,
+    ) {
+        let sigma = 0.7;
+        let lambda: Vec<f64> = (0..nlp.constraints())
+            .map(|i| (1.3 * i as f64).cos() - 0.2)
+            .collect();
+        let size = nlp.variables();
+        let dense = dense_hessian(nlp, z, sigma, &lambda);
+        let gradient = |z: &[f64]| lagrangian_gradient(nlp, z, sigma, &lambda).expect("finite");
+        for j in 0..size {
+            let by_j = central(z, j, &gradient);
+            for (row, numeric) in by_j.iter().enumerate() {
+                let exact = dense[row * size + j];
+                assert!(
+                    (exact - numeric).abs() < 1e-6,
+                    "{label} ({row}, {j}): {exact} vs {numeric}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn the_lagrangians_hessian_agrees_with_central_differences_of_its_gradient() {
         for (scheme, free_duration) in Scheme::ALL.iter().flat_map(|&s| [(s, false), (s, true)]) {
             let (nlp, z) = transcription(scheme, free_duration);
-            let sigma = 0.7;
-            let lambda: Vec<f64> = (0..nlp.constraints())
-                .map(|i| (1.3 * i as f64).cos() - 0.2)
-                .collect();
-            let size = nlp.variables();
-            let dense = dense_hessian(&nlp, &z, sigma, &lambda);
-            let gradient =
-                |z: &[f64]| lagrangian_gradient(&nlp, z, sigma, &lambda).expect("finite");
-            for j in 0..size {
-                let by_j = central(&z, j, &gradient);
-                for (row, numeric) in by_j.iter().enumerate() {
-                    let exact = dense[row * size + j];
-                    assert!(
-                        (exact - numeric).abs() < 1e-6,
-                        "{scheme:?} free {free_duration} ({row}, {j}): {exact} vs {numeric}"
-                    );
-                }
-            }
+            assert_hessian_agrees(&nlp, &z, &format!("{scheme:?} free {free_duration}"));
         }
     }
 }
