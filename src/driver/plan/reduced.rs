@@ -20,8 +20,8 @@
 //! `alpha = momenta(q, qdot)` where every coordinate and velocity is
 //! given; any other condition or bound on a velocity is refused, the
 //! reduced state not holding `dot(q)`. The Hessian of the Lagrangian is
-//! exact as in the Lagrange form ([`super::hessian`]): the model's
-//! `reduced_rhs_hessian`, `d^2 (w^T f)/d(x, u)^2`, the exact
+//! exact as in the Lagrange form (`src/driver/plan/hessian.rs`): the
+//! model's `reduced_rhs_hessian`, `d^2 (w^T f)/d(x, u)^2`, the exact
 //! `reduced_rhs_jacobian` differentiated forward, and the costs' through
 //! `dot(q) = X(q) alpha` by the second-order chain rule.
 //!
