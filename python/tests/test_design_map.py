@@ -115,7 +115,7 @@ LONG_CALLS = {
         UPRIGHT, None, ("v", numpy.arange(0, 11.0)), ["c"], numpy.array([[0.04], [0.06], [0.08]]), 1
     )),
     "simulate": ("bicycle", lambda m: m.simulate(t_end=1.0, dt=0.01, initial={"dot(theta_r)": "-5/rR", "dot(phi)": 0.5, "dot(delta)": 0.0})),
-    "linearize": ("bicycle", lambda m: m.linearize(at=UPRIGHT, sweep=("v", numpy.linspace(0, 10, 41)))),
+    "linearize": ("bicycle", lambda m: m.linearize(at=UPRIGHT, sweep=("v", numpy.linspace(0, 10, 4001)))),
     "document": ("caster-robot", lambda m: m.document("json")),
 }
 
