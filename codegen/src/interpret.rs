@@ -23,7 +23,9 @@
 //! `momentum_input_matrix`, `nonholonomic_connection`, `locked_inertia`,
 //! `body_velocity`), and [`InterpretedModel::shape_acceleration`] and
 //! [`InterpretedModel::reconstructed_velocity`] compose `body_velocity` with
-//! `acceleration` and with the group's action as the emitted code does.
+//! `acceleration` and with the group's action as the emitted code does;
+//! [`InterpretedModel::momentum_form_rhs`] is the whole momentum
+//! formulation's right-hand side, with its exact Jacobian and Hessian.
 //!
 //! A mechanism with bodies, or a model with a `drawing:` section, has, for
 //! the interpreter alone, `drawing(q)`: the gravity field, the bodies'
@@ -36,6 +38,7 @@ mod charts;
 mod drawing;
 mod dynamics;
 mod fixed;
+mod momentum;
 mod second;
 
 pub use crate::ir::{Backend, Engine, Interpreter};
@@ -609,75 +612,6 @@ impl InterpretedModel {
     pub fn shape(&self) -> Option<Vec<usize>> {
         let group = self.group.as_ref()?;
         Some((0..self.sizes.n).filter(|i| !group.contains(i)).collect())
-    }
-
-    /// The velocity `qdot` of the whole configuration from `(q, rdot, p)`,
-    /// as the emitted `reconstructed_velocity`: the body velocity
-    /// `body_velocity(r, rdot, p)` moved to the coordinates' frame factor by
-    /// factor (`R(theta) (v1, v2)` and `omega` for `se2`, the velocity itself
-    /// for a translation or a rotation), `rdot` on the shape.
-    pub fn reconstructed_velocity(
-        &self,
-        q: &[f64],
-        rdot: &[f64],
-        p: &[f64],
-    ) -> Result<Vec<f64>, CallError> {
-        let shape = self.shape().ok_or_else(|| CallError::UnknownFunction {
-            name: "reconstructed_velocity".to_string(),
-        })?;
-        let r: Vec<f64> = shape.iter().map(|&i| q[i]).collect();
-        let xi = self.call("body_velocity", &[&r, rdot, p])?;
-        let mut qdot = vec![0.0; self.sizes.n];
-        let mut offset = 0;
-        for factor in &self.symmetry {
-            match *factor {
-                GroupFactor::Se2 { x, y, theta } => {
-                    let (sin, cos) = q[theta].sin_cos();
-                    let (v1, v2) = (xi[offset], xi[offset + 1]);
-                    (qdot[x], qdot[y]) = (cos * v1 - sin * v2, sin * v1 + cos * v2);
-                    qdot[theta] = xi[offset + 2];
-                    offset += 3;
-                }
-                GroupFactor::Translation(i) | GroupFactor::Rotation(i) => {
-                    qdot[i] = xi[offset];
-                    offset += 1;
-                }
-            }
-        }
-        for (a, &i) in shape.iter().enumerate() {
-            qdot[i] = rdot[a];
-        }
-        Ok(qdot)
-    }
-
-    /// The shape equations (Koon & Marsden 1.3): the shape rows of
-    /// `acceleration` at the group identity (group coordinates 0, shape
-    /// coordinates `r`) with the velocity `rdot` on the shape and
-    /// `body_velocity(r, rdot, p)` on the group coordinates, in coordinate
-    /// order, as the emitted `shape_acceleration` assembles it.
-    pub fn shape_acceleration(
-        &self,
-        r: &[f64],
-        rdot: &[f64],
-        p: &[f64],
-        u: &[f64],
-    ) -> Result<Vec<f64>, CallError> {
-        let shape = self.shape().ok_or_else(|| CallError::UnknownFunction {
-            name: "shape_acceleration".to_string(),
-        })?;
-        let xi = self.call("body_velocity", &[r, rdot, p])?;
-        let n = self.sizes.n;
-        let (mut q, mut qdot) = (vec![0.0; n], vec![0.0; n]);
-        for (a, &i) in shape.iter().enumerate() {
-            q[i] = r[a];
-            qdot[i] = rdot[a];
-        }
-        let group_velocities = (0..n).filter(|i| !shape.contains(i));
-        for (velocity, i) in xi.iter().zip(group_velocities) {
-            qdot[i] = *velocity;
-        }
-        let (qddot, _) = self.acceleration(&q, &qdot, u)?;
-        Ok(shape.iter().map(|&i| qddot[i]).collect())
     }
 }
 

@@ -270,7 +270,7 @@ pub struct ParameterBlocks {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::InterpretedModel;
     use crate::fixtures::SNAKEBOARD;
 
@@ -302,7 +302,7 @@ mod tests {
     }
 
     /// `|found - expected| <= 1e-6 (1 + |expected|)`, with a message.
-    fn assert_close(found: f64, expected: f64, what: &str) {
+    pub(crate) fn assert_close(found: f64, expected: f64, what: &str) {
         assert!(
             (found - expected).abs() <= 1e-6 * (1.0 + expected.abs()),
             "{what}: {found} vs {expected}"

@@ -82,6 +82,7 @@ mod lower;
 #[cfg(test)]
 mod properties;
 mod tangent;
+mod tape;
 #[cfg(test)]
 mod tests;
 
@@ -91,6 +92,7 @@ pub use emit::{BLOCK_OPERATIONS, RustProgram, RustVariants, WIDTH};
 pub use engine::{Backend, Engine, Interpreter};
 pub use lower::lower;
 pub use tangent::{Curvatures, Tangents};
+pub(crate) use tape::Tape;
 
 use crate::sym::Rational;
 use std::fmt;
@@ -331,6 +333,16 @@ pub enum IrError {
     #[error("the program has {expected} inputs, {found} were given")]
     InputCount {
         /// The program's number of inputs.
+        expected: usize,
+        /// The number given.
+        found: usize,
+    },
+    /// Wrong number of the inputs' derivatives given to
+    /// [`Program::tangents_along`] or [`Program::curvatures_along`].
+    #[error("the inputs' derivatives have {expected} entries, {found} were given")]
+    DerivativeCount {
+        /// The inputs times the directions (times the directions again
+        /// for second derivatives).
         expected: usize,
         /// The number given.
         found: usize,

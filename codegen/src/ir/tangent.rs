@@ -16,94 +16,281 @@
 //! ```text
 //! d2 v / ds_j ds_l = sum_a p_a d2a/ds_j ds_l + sum_(a, b) p_ab (da/ds_j) (db/ds_l).
 //! ```
+//!
+//! Programs compose: [`Program::tangents_along`] and
+//! [`Program::curvatures_along`] start the chain rule from the inputs' own
+//! derivatives along `d` directions (an earlier program's outputs', say),
+//! so that the outputs' are those of the composite; [`Program::tangents`]
+//! and [`Program::curvatures`] are the case of unit slopes on the seeded
+//! slots and no second derivatives. Only the directions along which some
+//! input moves are carried (the others' derivatives are zero), and of the
+//! second derivatives the upper triangle is computed, the lower mirrored:
+//! a value costs its operation's chain rule `d` times for the first
+//! derivatives and `d (d + 1) / 2` times more for the second.
 
 use super::{Instruction, IrError, Op, Program};
 
-/// A program's outputs and their derivatives along seeded input slots.
+/// A program's outputs and their derivatives along `d` directions.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tangents {
     /// The outputs, as [`Program::evaluate`] computes them.
     pub values: Vec<f64>,
-    /// `d output_i / d input_{seeds[j]}` at `i * seeds.len() + j`.
+    /// `d output_i / d s_j` at `i * d + j`; for [`Program::tangents`], the
+    /// direction `s_j` is the input slot `seeds[j]`.
     pub derivatives: Vec<f64>,
 }
 
-impl Program {
-    /// The outputs at `inputs` and their derivatives by the input slots
-    /// `seeds` (forward differentiation, see the module documentation).
-    ///
-    /// # Errors
-    /// [`IrError::InputCount`] when `inputs` does not match the input
-    /// slots; [`IrError::UnboundSymbol`] when a seed is not an input slot.
-    pub fn tangents(&self, inputs: &[f64], seeds: &[usize]) -> Result<Tangents, IrError> {
-        self.check_inputs(inputs.len())?;
-        if let Some(&slot) = seeds.iter().find(|&&slot| slot >= inputs.len()) {
-            return Err(IrError::UnboundSymbol {
-                name: format!("in[{slot}]"),
-            });
-        }
-        let d = seeds.len();
-        let mut values = vec![0.0; self.value_count];
-        let mut slopes = vec![0.0; self.value_count * d];
-        for instruction in &self.instructions {
-            propagate(instruction, inputs, seeds, &mut values, &mut slopes);
-        }
-        let derivatives = self
-            .outputs
-            .iter()
-            .flat_map(|value| &slopes[value.index() * d..(value.index() + 1) * d])
-            .copied()
-            .collect();
-        let values = self.outputs.iter().map(|v| values[v.index()]).collect();
-        Ok(Tangents {
-            values,
-            derivatives,
-        })
-    }
-}
-
-/// A program's outputs with their first and second derivatives along
-/// seeded input slots.
+/// A program's outputs with their first and second derivatives along `d`
+/// directions.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curvatures {
     /// The outputs and their first derivatives, as [`Program::tangents`]
     /// computes them.
     pub tangents: Tangents,
-    /// `d2 output_i / d input_{seeds[j]} d input_{seeds[l]}` at `(i d + j)
-    /// d + l`, `d` the number of seeds.
+    /// `d2 output_i / d s_j d s_l` at `(i d + j) d + l`.
     pub second: Vec<f64>,
 }
 
 impl Program {
+    /// The outputs at `inputs` and their derivatives by the input slots
+    /// `seeds` (forward differentiation, see the module documentation):
+    /// [`Program::tangents_along`] with unit slopes on the seeded slots.
+    ///
+    /// # Errors
+    /// [`IrError::InputCount`] when `inputs` does not match the input
+    /// slots; [`IrError::UnboundSymbol`] when a seed is not an input slot.
+    pub fn tangents(&self, inputs: &[f64], seeds: &[usize]) -> Result<Tangents, IrError> {
+        let slopes = unit_slopes(inputs.len(), seeds)?;
+        self.tangents_along(inputs, &slopes, seeds.len())
+    }
+
+    /// The outputs at `inputs` and their derivatives along `d` directions,
+    /// the inputs' own derivatives given, `input_slopes[i * d + j] = d
+    /// input_i / d s_j` (the chain rule of the module documentation, from
+    /// the inputs on).
+    ///
+    /// # Errors
+    /// [`IrError::InputCount`] when `inputs` does not match the input
+    /// slots; [`IrError::DerivativeCount`] when `input_slopes` does not
+    /// hold `inputs.len() * d` entries.
+    pub fn tangents_along(
+        &self,
+        inputs: &[f64],
+        input_slopes: &[f64],
+        d: usize,
+    ) -> Result<Tangents, IrError> {
+        self.along(inputs, input_slopes, None, d)
+            .map(|curvatures| curvatures.tangents)
+    }
+
     /// The outputs at `inputs` and their first and second derivatives by
-    /// the input slots `seeds` (see the module documentation).
+    /// the input slots `seeds` (see the module documentation):
+    /// [`Program::curvatures_along`] with unit slopes on the seeded slots
+    /// and no second derivatives of the inputs.
     ///
     /// # Errors
     /// As [`Program::tangents`].
     pub fn curvatures(&self, inputs: &[f64], seeds: &[usize]) -> Result<Curvatures, IrError> {
-        let tangents = self.tangents(inputs, seeds)?;
-        let d = seeds.len();
+        let slopes = unit_slopes(inputs.len(), seeds)?;
+        let second = vec![0.0; slopes.len() * seeds.len()];
+        self.curvatures_along(inputs, &slopes, &second, seeds.len())
+    }
+
+    /// The outputs at `inputs` and their first and second derivatives along
+    /// `d` directions, the inputs' own given: `input_slopes` as for
+    /// [`Program::tangents_along`], and `input_second[(i d + j) d + l] =
+    /// d2 input_i / d s_j d s_l`, each input's `d x d` block symmetric (of
+    /// which the upper triangle is read).
+    ///
+    /// # Errors
+    /// As [`Program::tangents_along`], and [`IrError::DerivativeCount`]
+    /// when `input_second` does not hold `inputs.len() * d * d` entries.
+    pub fn curvatures_along(
+        &self,
+        inputs: &[f64],
+        input_slopes: &[f64],
+        input_second: &[f64],
+        d: usize,
+    ) -> Result<Curvatures, IrError> {
+        self.along(inputs, input_slopes, Some(input_second), d)
+    }
+
+    /// [`Program::curvatures_along`], the second derivatives carried when
+    /// `input_second` is given (and left empty otherwise), along the
+    /// directions in which some input moves only: the others' derivatives
+    /// are zero.
+    fn along(
+        &self,
+        inputs: &[f64],
+        input_slopes: &[f64],
+        input_second: Option<&[f64]>,
+        d: usize,
+    ) -> Result<Curvatures, IrError> {
+        self.check_inputs(inputs.len())?;
+        check_derivatives(input_slopes.len(), inputs.len() * d)?;
+        if let Some(second) = input_second {
+            check_derivatives(second.len(), inputs.len() * d * d)?;
+        }
+        let moving = moving_directions(input_slopes, input_second, d);
+        if moving.len() == d {
+            return Ok(self.forward(inputs, input_slopes, input_second, d));
+        }
+        let slopes = restricted(input_slopes, d, &moving, 1);
+        let second = input_second.map(|second| restricted(second, d, &moving, 2));
+        let carried = self.forward(inputs, &slopes, second.as_deref(), moving.len());
+        let rows = self.outputs.len();
+        Ok(Curvatures {
+            tangents: Tangents {
+                values: carried.tangents.values,
+                derivatives: expanded(&carried.tangents.derivatives, rows, d, &moving, 1),
+            },
+            second: match second {
+                Some(_) => expanded(&carried.second, rows, d, &moving, 2),
+                None => Vec::new(),
+            },
+        })
+    }
+
+    /// Runs the instructions with their chain rules along `d` directions,
+    /// the inputs' derivatives given (second derivatives when
+    /// `input_second` is), and gathers the outputs'.
+    fn forward(
+        &self,
+        inputs: &[f64],
+        input_slopes: &[f64],
+        input_second: Option<&[f64]>,
+        d: usize,
+    ) -> Curvatures {
         let mut values = vec![0.0; self.value_count];
         let mut slopes = vec![0.0; self.value_count * d];
-        let mut second = vec![0.0; self.value_count * d * d];
+        let mut second = vec![0.0; input_second.map_or(0, |_| self.value_count * d * d)];
         for instruction in &self.instructions {
-            propagate(instruction, inputs, seeds, &mut values, &mut slopes);
-            propagate_second(instruction, &values, &slopes, d, &mut second);
+            propagate(
+                instruction,
+                inputs,
+                input_slopes,
+                d,
+                &mut values,
+                &mut slopes,
+            );
+            if let Some(given) = input_second {
+                propagate_second(instruction, given, &values, &slopes, d, &mut second);
+            }
         }
-        let second = self
-            .outputs
-            .iter()
-            .flat_map(|value| &second[value.index() * d * d..(value.index() + 1) * d * d])
-            .copied()
-            .collect();
-        Ok(Curvatures { tangents, second })
+        let gathered = |per_value: &[f64], width: usize| -> Vec<f64> {
+            self.outputs
+                .iter()
+                .flat_map(|value| &per_value[value.index() * width..(value.index() + 1) * width])
+                .copied()
+                .collect()
+        };
+        let second = if input_second.is_some() {
+            gathered(&second, d * d)
+        } else {
+            Vec::new()
+        };
+        Curvatures {
+            tangents: Tangents {
+                values: self.outputs.iter().map(|v| values[v.index()]).collect(),
+                derivatives: gathered(&slopes, d),
+            },
+            second,
+        }
     }
 }
 
+/// `inputs x seeds` slopes, `1` where the input is the seed's slot.
+fn unit_slopes(inputs: usize, seeds: &[usize]) -> Result<Vec<f64>, IrError> {
+    if let Some(&slot) = seeds.iter().find(|&&slot| slot >= inputs) {
+        return Err(IrError::UnboundSymbol {
+            name: format!("in[{slot}]"),
+        });
+    }
+    Ok((0..inputs)
+        .flat_map(|input| {
+            seeds
+                .iter()
+                .map(move |&seed| f64::from(u8::from(seed == input)))
+        })
+        .collect())
+}
+
+/// `Err` unless `found`, the number of the inputs' derivatives given, is
+/// `expected`.
+fn check_derivatives(found: usize, expected: usize) -> Result<(), IrError> {
+    if found == expected {
+        Ok(())
+    } else {
+        Err(IrError::DerivativeCount { expected, found })
+    }
+}
+
+/// The directions, among `d`, along which some input has a nonzero slope
+/// or second derivative, in order.
+fn moving_directions(slopes: &[f64], second: Option<&[f64]>, d: usize) -> Vec<usize> {
+    let mut moving = vec![false; d];
+    for (k, _) in slopes
+        .iter()
+        .enumerate()
+        .filter(|(_, slope)| **slope != 0.0)
+    {
+        moving[k % d] = true;
+    }
+    for (k, _) in second
+        .unwrap_or_default()
+        .iter()
+        .enumerate()
+        .filter(|(_, entry)| **entry != 0.0)
+    {
+        moving[k % d] = true;
+        moving[k / d % d] = true;
+    }
+    (0..d).filter(|&j| moving[j]).collect()
+}
+
+/// Each row of `per_value` (`d^order` entries: slopes, `order` 1, or
+/// second derivatives, `order` 2) at the directions `moving` only.
+fn restricted(per_value: &[f64], d: usize, moving: &[usize], order: u32) -> Vec<f64> {
+    let width = d.pow(order);
+    per_value
+        .chunks_exact(width)
+        .flat_map(|row| entries(moving, order).map(move |(j, l)| row[j * d.pow(order - 1) + l]))
+        .collect()
+}
+
+/// The inverse of [`restricted`]: `rows` rows along the directions
+/// `moving` spread to all `d`, zero along the others.
+fn expanded(carried: &[f64], rows: usize, d: usize, moving: &[usize], order: u32) -> Vec<f64> {
+    let mut spread = vec![0.0; rows * d.pow(order)];
+    if moving.is_empty() {
+        return spread;
+    }
+    let width = moving.len().pow(order);
+    for (row, target) in carried
+        .chunks_exact(width)
+        .zip(spread.chunks_exact_mut(d.pow(order)))
+    {
+        for (&entry, (j, l)) in row.iter().zip(entries(moving, order)) {
+            target[j * d.pow(order - 1) + l] = entry;
+        }
+    }
+    spread
+}
+
+/// The positions `(j, l)` of a row's entries along `moving`: `(0, j)` for
+/// slopes (`order` 1), every pair for second derivatives (`order` 2).
+fn entries(moving: &[usize], order: u32) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let rows: &[usize] = if order == 2 { moving } else { &[0] };
+    rows.iter()
+        .flat_map(move |&j| moving.iter().map(move |&l| (j, l)))
+}
+
 /// One instruction's second-order chain rule (see the module
-/// documentation), its operands' and its own values and slopes computed.
+/// documentation), its operands' and its own values and slopes computed;
+/// an input's second derivatives are `given`'s.
 fn propagate_second(
     instruction: &Instruction,
+    given: &[f64],
     values: &[f64],
     slopes: &[f64],
     d: usize,
@@ -111,13 +298,16 @@ fn propagate_second(
 ) {
     let at = |value: super::Value| values[value.index()];
     let result = instruction.result.index();
+    let block = d * d;
     match instruction.op {
-        Op::Input(_) | Op::Constant(_) => {}
+        Op::Input(slot) => second[result * block..(result + 1) * block]
+            .copy_from_slice(&given[slot * block..(slot + 1) * block]),
+        Op::Constant(_) => {}
         Op::SinCos { angle, cosine } => {
             let (sine, cos) = at(angle).sin_cos();
             let a = angle.index();
-            compose(second, slopes, d, result, &[(a, cos)], &[(a, a, -sine)]);
-            compose(
+            chain_second(second, slopes, d, result, &[(a, cos)], &[(a, a, -sine)]);
+            chain_second(
                 second,
                 slopes,
                 d,
@@ -128,15 +318,23 @@ fn propagate_second(
         }
         ref op => {
             let (_, partials, count) = partials(op, at);
-            let curvature = second_partials(op, at);
-            compose(second, slopes, d, result, &partials[..count], &curvature);
+            let (curvature, pairs) = second_partials(op, at);
+            chain_second(
+                second,
+                slopes,
+                d,
+                result,
+                &partials[..count],
+                &curvature[..pairs],
+            );
         }
     }
 }
 
 /// `second[result] = sum_a p_a second[a] + sum_(a, b, p_ab) p_ab
-/// slope_a slope_b^T` over ordered pairs of operands.
-fn compose(
+/// slope_a slope_b^T` over ordered pairs of operands: the upper triangle
+/// computed, the lower its mirror.
+pub(super) fn chain_second(
     second: &mut [f64],
     slopes: &[f64],
     d: usize,
@@ -146,7 +344,7 @@ fn compose(
 ) {
     let block = d * d;
     for j in 0..d {
-        for l in 0..d {
+        for l in j..d {
             let linear: f64 = partials
                 .iter()
                 .map(|&(a, p)| p * second[a * block + j * d + l])
@@ -156,37 +354,54 @@ fn compose(
                 .map(|&(a, b, p)| p * slopes[a * d + j] * slopes[b * d + l])
                 .sum();
             second[result * block + j * d + l] = linear + quadratic;
+            second[result * block + l * d + j] = linear + quadratic;
         }
     }
 }
 
 /// An operation's nonzero second partial derivatives by its operands,
 /// `(a, b, d2 op / da db)` over ordered pairs of operand positions (so
-/// `a * a` counts its mixed term twice); inputs, constants and
-/// [`Op::SinCos`] have none here.
-fn second_partials(op: &Op, at: impl Fn(super::Value) -> f64) -> Vec<(usize, usize, f64)> {
-    let unary = |a: super::Value, curvature: f64| vec![(a.index(), a.index(), curvature)];
+/// `a * a` counts its mixed term twice), the first `count` of
+/// [`SecondPartials`]'s; inputs, constants and [`Op::SinCos`] have none
+/// here.
+fn second_partials(op: &Op, at: impl Fn(super::Value) -> f64) -> (SecondPartials, usize) {
+    let none = (0, 0, 0.0);
+    let unary = |a: super::Value, curvature: f64| {
+        ([(a.index(), a.index(), curvature), none, none, none], 1)
+    };
     match *op {
         Op::Input(_)
         | Op::Constant(_)
         | Op::SinCos { .. }
         | Op::Add(..)
         | Op::Sub(..)
-        | Op::Neg(_) => Vec::new(),
-        Op::Mul(a, b) => vec![(a.index(), b.index(), 1.0), (b.index(), a.index(), 1.0)],
+        | Op::Neg(_) => ([none; 4], 0),
+        Op::Mul(a, b) => (
+            [
+                (a.index(), b.index(), 1.0),
+                (b.index(), a.index(), 1.0),
+                none,
+                none,
+            ],
+            2,
+        ),
         Op::Div(a, b) => {
             let reciprocal = 1.0 / at(b);
             let quotient = at(a) * reciprocal;
             let mixed = -reciprocal * reciprocal;
-            vec![
-                (a.index(), b.index(), mixed),
-                (b.index(), a.index(), mixed),
-                (
-                    b.index(),
-                    b.index(),
-                    2.0 * quotient * reciprocal * reciprocal,
-                ),
-            ]
+            (
+                [
+                    (a.index(), b.index(), mixed),
+                    (b.index(), a.index(), mixed),
+                    (
+                        b.index(),
+                        b.index(),
+                        2.0 * quotient * reciprocal * reciprocal,
+                    ),
+                    none,
+                ],
+                3,
+            )
         }
         Op::Powi(a, n) => {
             let curvature = if n == 0 || n == 1 {
@@ -216,50 +431,56 @@ fn second_partials(op: &Op, at: impl Fn(super::Value) -> f64) -> Vec<(usize, usi
             let (yv, xv) = (at(y), at(x));
             let squared = (xv * xv + yv * yv).powi(2);
             let mixed = (yv * yv - xv * xv) / squared;
-            vec![
-                (y.index(), y.index(), -2.0 * xv * yv / squared),
-                (y.index(), x.index(), mixed),
-                (x.index(), y.index(), mixed),
-                (x.index(), x.index(), 2.0 * xv * yv / squared),
-            ]
+            (
+                [
+                    (y.index(), y.index(), -2.0 * xv * yv / squared),
+                    (y.index(), x.index(), mixed),
+                    (x.index(), y.index(), mixed),
+                    (x.index(), x.index(), 2.0 * xv * yv / squared),
+                ],
+                4,
+            )
         }
     }
 }
 
+/// An operation's second partial derivatives by ordered pairs of its
+/// operands, `(a, b, d2 op / da db)`; see [`second_partials`].
+type SecondPartials = [(usize, usize, f64); 4];
+
 /// Runs one instruction and its chain rule: `values` and `slopes` (`d` per
-/// value) hold its operands'.
+/// value) hold its operands'; an input's slopes are `input_slopes`'.
 fn propagate(
     instruction: &Instruction,
     inputs: &[f64],
-    seeds: &[usize],
+    input_slopes: &[f64],
+    d: usize,
     values: &mut [f64],
     slopes: &mut [f64],
 ) {
-    let d = seeds.len();
     let result = instruction.result.index();
     let at = |value: super::Value| values[value.index()];
     if let Op::Input(slot) = instruction.op {
         values[result] = inputs[slot];
-        for (j, &seed) in seeds.iter().enumerate() {
-            slopes[result * d + j] = f64::from(u8::from(seed == slot));
-        }
+        slopes[result * d..(result + 1) * d]
+            .copy_from_slice(&input_slopes[slot * d..(slot + 1) * d]);
         return;
     }
     if let Op::SinCos { angle, cosine } = instruction.op {
         let (sine, cos) = at(angle).sin_cos();
         values[result] = sine;
         values[cosine.index()] = cos;
-        combine(slopes, d, result, &[(angle.index(), cos)]);
-        combine(slopes, d, cosine.index(), &[(angle.index(), -sine)]);
+        chain_slopes(slopes, d, result, &[(angle.index(), cos)]);
+        chain_slopes(slopes, d, cosine.index(), &[(angle.index(), -sine)]);
         return;
     }
     let (value, partials, count) = partials(&instruction.op, at);
     values[result] = value;
-    combine(slopes, d, result, &partials[..count]);
+    chain_slopes(slopes, d, result, &partials[..count]);
 }
 
 /// `slopes[result] = sum_k partial_k slopes[operand_k]`.
-fn combine(slopes: &mut [f64], d: usize, result: usize, partials: &[(usize, f64)]) {
+pub(super) fn chain_slopes(slopes: &mut [f64], d: usize, result: usize, partials: &[(usize, f64)]) {
     for j in 0..d {
         slopes[result * d + j] = partials
             .iter()
@@ -446,5 +667,75 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `inner(x, y) = (x y, sin x + y)` then `outer(a, b) = (a / b,
+    /// atan2(a, b), exp(a) b)`, composed through the `*_along` forms, against
+    /// the composite lowered as one program; a third direction along which
+    /// no input moves keeps zero derivatives.
+    #[test]
+    fn programs_composed_along_their_derivatives_are_the_composite() {
+        let mut s = Store::new();
+        let [x, y, a, b] = ["x", "y", "a", "b"].map(|name| s.declare(name, SymbolKind::Coordinate));
+        let [xv, yv, av, bv] = [x, y, a, b].map(|symbol| s.symbol(symbol));
+        let product = s.mul2(xv, yv);
+        let sine = s.apply(Function::Sin, xv).expect("applies");
+        let sum = s.add2(sine, yv);
+        let inner = lower(&s, &[x, y], &[product, sum]).expect("lowers");
+        let outer_of = |s: &mut Store, a, b| {
+            let quotient = s.div(a, b).expect("a quotient");
+            let angle = s.atan2(a, b).expect("an angle");
+            let exponential = s.apply(Function::Exp, a).expect("applies");
+            [quotient, angle, s.mul2(exponential, b)]
+        };
+        let outer = outer_of(&mut s, av, bv);
+        let outer = lower(&s, &[a, b], &outer).expect("lowers");
+        let composite = outer_of(&mut s, product, sum);
+        let composite = lower(&s, &[x, y], &composite).expect("lowers");
+        let point = [0.7, -0.4];
+        let expected = composite.curvatures(&point, &[0, 1]).expect("evaluates");
+        let slopes = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+        let first = inner
+            .curvatures_along(&point, &slopes, &[0.0; 18], 3)
+            .expect("evaluates");
+        let found = outer
+            .curvatures_along(
+                &first.tangents.values,
+                &first.tangents.derivatives,
+                &first.second,
+                3,
+            )
+            .expect("evaluates");
+        let close = |found: f64, expected: f64| {
+            assert!(
+                (found - expected).abs() <= 1e-13 * (1.0 + expected.abs()),
+                "{found} vs {expected}"
+            );
+        };
+        for i in 0..3 {
+            close(found.tangents.values[i], expected.tangents.values[i]);
+            for j in 0..3 {
+                let slope = found.tangents.derivatives[3 * i + j];
+                close(
+                    slope,
+                    if j < 2 {
+                        expected.tangents.derivatives[2 * i + j]
+                    } else {
+                        0.0
+                    },
+                );
+                for l in 0..3 {
+                    let second = found.second[9 * i + 3 * j + l];
+                    let exact = if j < 2 && l < 2 {
+                        expected.second[4 * i + 2 * j + l]
+                    } else {
+                        0.0
+                    };
+                    close(second, exact);
+                }
+            }
+        }
+        let along = inner.tangents_along(&point, &slopes, 3).expect("evaluates");
+        assert_eq!(along, first.tangents);
     }
 }
