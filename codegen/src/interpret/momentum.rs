@@ -32,6 +32,16 @@ use super::{CallError, InterpretedModel, check_arguments, function_among};
 use crate::ir::Tape;
 use crate::model::GroupFactor;
 
+/// Where the momentum formulation's state `x = (q, rdot, p)` keeps what.
+struct Layout {
+    /// The indices of the shape coordinates `r` in `q`, R of them.
+    shape: Vec<usize>,
+    /// The number K of momenta.
+    momenta: usize,
+    /// The state's size, s = n + R + K.
+    size: usize,
+}
+
 /// The tape entries of a state `x = (q, rdot, p)` and inputs `u`, with
 /// the shape coordinates `r` among `q`'s.
 struct Entries {
@@ -44,17 +54,20 @@ struct Entries {
 
 impl InterpretedModel {
     /// The size s = n + R + K of the momentum formulation's state `(q,
-    /// rdot, p)`; `None` without a symmetry.
+    /// rdot, p)`; `None` without a momentum equation (without a symmetry,
+    /// or where the holonomic constraints restrict the shape, as the
+    /// benchmark bicycle's do).
     pub fn momentum_form_size(&self) -> Option<usize> {
-        let (shape, momenta) = self.momentum_layout("momentum_form_size").ok()?;
-        Some(self.sizes.n + shape.len() + momenta)
+        self.momentum_layout("momentum_form_size")
+            .ok()
+            .map(|layout| layout.size)
     }
 
     /// The momentum formulation's right-hand side `f(x, u) = (qdot, rddot,
     /// pdot)` at `x = (q, rdot, p)` (see the module documentation).
     ///
     /// # Errors
-    /// [`CallError::UnknownFunction`] without a symmetry;
+    /// [`CallError::UnknownFunction`] without a momentum equation;
     /// [`CallError::ArgumentLength`] when `x` does not have s entries or `u`
     /// p.
     pub fn momentum_form_rhs(&self, x: &[f64], u: &[f64]) -> Result<Vec<f64>, CallError> {
@@ -101,12 +114,11 @@ impl InterpretedModel {
         w: &[f64],
     ) -> Result<Vec<f64>, CallError> {
         let name = "momentum_form_hessian";
-        let (shape, momenta) = self.momentum_layout(name)?;
-        let s = self.sizes.n + shape.len() + momenta;
-        check_arguments(name, &[("w", s)], &[w])?;
+        let size = self.momentum_layout(name)?.size;
+        check_arguments(name, &[("w", size)], &[w])?;
         let m = x.len() + u.len();
         let mut tape = Tape::new(m, true);
-        let f = self.momentum_form_on(&mut tape, "momentum_form_hessian", x, u)?;
+        let f = self.momentum_form_on(&mut tape, name, x, u)?;
         let mut hessian = vec![0.0; m * m];
         for (&entry, weight) in f.iter().zip(w) {
             for (h, second) in hessian.iter_mut().zip(tape.second(entry)) {
@@ -123,7 +135,7 @@ impl InterpretedModel {
     /// for a translation or a rotation), `rdot` on the shape.
     ///
     /// # Errors
-    /// [`CallError::UnknownFunction`] without a symmetry;
+    /// [`CallError::UnknownFunction`] without a momentum equation;
     /// [`CallError::ArgumentLength`] for an argument of the wrong length.
     pub fn reconstructed_velocity(
         &self,
@@ -132,9 +144,9 @@ impl InterpretedModel {
         p: &[f64],
     ) -> Result<Vec<f64>, CallError> {
         let name = "reconstructed_velocity";
-        let (shape, momenta) = self.momentum_layout(name)?;
-        let layout = [("q", self.sizes.n), ("rdot", shape.len()), ("p", momenta)];
-        check_arguments(name, &layout, &[q, rdot, p])?;
+        let Layout { shape, momenta, .. } = self.momentum_layout(name)?;
+        let lengths = [("q", self.sizes.n), ("rdot", shape.len()), ("p", momenta)];
+        check_arguments(name, &lengths, &[q, rdot, p])?;
         let mut tape = Tape::new(0, false);
         let at = Entries::on(&mut tape, &shape, q, rdot, p, &[]);
         let xi = self.call_on(&mut tape, "body_velocity", &[&at.r, &at.rdot, &at.p])?;
@@ -158,14 +170,14 @@ impl InterpretedModel {
         u: &[f64],
     ) -> Result<Vec<f64>, CallError> {
         let name = "shape_acceleration";
-        let (shape, momenta) = self.momentum_layout(name)?;
-        let layout = [
+        let Layout { shape, momenta, .. } = self.momentum_layout(name)?;
+        let lengths = [
             ("r", shape.len()),
             ("rdot", shape.len()),
             ("p", momenta),
             ("u", self.sizes.p),
         ];
-        check_arguments(name, &layout, &[r, rdot, p, u])?;
+        check_arguments(name, &lengths, &[r, rdot, p, u])?;
         let mut tape = Tape::new(0, false);
         let mut q = vec![0.0; self.sizes.n];
         for (a, &i) in shape.iter().enumerate() {
@@ -177,11 +189,11 @@ impl InterpretedModel {
         Ok(tape.values(&rddot))
     }
 
-    /// The shape coordinates' indices and the number of momenta K; for a
-    /// model without a momentum equation (no symmetry, or one whose
-    /// holonomic constraints restrict the shape), [`CallError::UnknownFunction`]
-    /// naming `function`.
-    fn momentum_layout(&self, function: &str) -> Result<(Vec<usize>, usize), CallError> {
+    /// The layout of the momentum formulation's state; for a model without
+    /// a momentum equation (no symmetry, or one whose holonomic constraints
+    /// restrict the shape), [`CallError::UnknownFunction`] naming
+    /// `function`.
+    fn momentum_layout(&self, function: &str) -> Result<Layout, CallError> {
         let unknown = || CallError::UnknownFunction {
             name: function.to_string(),
         };
@@ -191,7 +203,11 @@ impl InterpretedModel {
             .and_then(|body_velocity| body_velocity.lowered.arguments.get(2))
             .ok_or_else(unknown)?
             .1;
-        Ok((shape, momenta))
+        Ok(Layout {
+            size: self.sizes.n + shape.len() + momenta,
+            shape,
+            momenta,
+        })
     }
 
     /// The entries of `f(x, u)` on `tape`, `x` and `u` moving along the
@@ -204,12 +220,10 @@ impl InterpretedModel {
         x: &[f64],
         u: &[f64],
     ) -> Result<Vec<usize>, CallError> {
-        let (shape, momenta) = self.momentum_layout(function)?;
-        let (n, rates) = (self.sizes.n, shape.len());
-        let s = n + rates + momenta;
-        check_arguments(function, &[("x", s), ("u", self.sizes.p)], &[x, u])?;
-        let (q, rest) = x.split_at(n);
-        let (rdot, p) = rest.split_at(rates);
+        let Layout { shape, size, .. } = self.momentum_layout(function)?;
+        check_arguments(function, &[("x", size), ("u", self.sizes.p)], &[x, u])?;
+        let (q, rest) = x.split_at(self.sizes.n);
+        let (rdot, p) = rest.split_at(shape.len());
         let at = Entries::on(tape, &shape, q, rdot, p, u);
         let xi = self.call_on(tape, "body_velocity", &[&at.r, &at.rdot, &at.p])?;
         let mut f = self.reconstruction_on(tape, &shape, &at, &xi);
