@@ -72,8 +72,8 @@ struct Drawings {
 /// writing the last iterate), or an I/O error.
 pub fn run(args: &PlanArgs) -> Result<(), Failure> {
     solve_watch::stop_on_ctrl_c()?;
-    let form = plan::formulation(args.request.formulation)?;
     let loaded = loaded(&args.model)?;
+    let form = plan::formulation(args.request.formulation, &loaded.model)?;
     let drawn = args.animate.drawn(&loaded)?;
     let drawings = Drawings {
         states: form.state_names(&loaded.model),

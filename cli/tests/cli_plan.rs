@@ -214,11 +214,11 @@ fn bad_plans_are_refused_in_one_line() {
     );
     refused(
         &with(&["--formulation", "momentum"]),
-        "not the momentum one",
+        "--formulation momentum: the model declares no symmetry",
     );
     refused(
         &with(&["--formulation", "reduced", "--bound", "dot(x)=-1:1"]),
-        "--bound dot(x): the reduced form's state (q, alpha) holds no velocity to bound",
+        "--bound dot(x): the reduced form's state does not hold this velocity",
     );
 }
 

@@ -518,8 +518,9 @@ class Model:
         ``free_duration=True`` makes the duration an unknown, ``duration``
         its first guess. ``guess`` is a CSV file with ``t`` and any of
         ``plan.csv``'s columns to start from. ``formulation`` is
-        ``"lagrange"`` (the nodes hold ``q`` and ``dot(q)``) or
-        ``"reduced"`` (they hold ``q`` and the reduced momenta, in chart 0),
+        ``"lagrange"`` (the nodes hold ``q`` and ``dot(q)``), ``"reduced"``
+        (they hold ``q`` and the reduced momenta, in chart 0) or
+        ``"momentum"`` (``q``, the shape velocities and the momenta ``p``),
         as ``--formulation`` says.
 
         Raises ``ValueError`` for bad input (an unknown name, a bound with

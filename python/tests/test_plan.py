@@ -134,8 +134,21 @@ def test_a_reduced_plan_nears_the_lagrange_plan_as_the_nodes_double(parked):
     numpy.testing.assert_allclose(reduced["x"][-1], 0.3, atol=1e-8)
     with pytest.raises(ValueError, match="unknown formulation `hamilton`"):
         drive.plan(**parking(11), formulation="hamilton")
-    with pytest.raises(ValueError, match="momentum"):
-        drive.plan(**parking(11), formulation="momentum")
+
+
+def test_the_drive_s_momentum_plan_is_its_reduced_plan():
+    # its momentum state (q, dot(phi_r), dot(phi_l)) holds no momentum, and
+    # chart 0's reduced momenta are the same wheel rates: one plan, reached
+    # through two derivations
+    drive = chaplygin.builtin("differential-drive")
+    momentum = drive.plan(**parking(11), formulation="momentum")
+    reduced = drive.plan(**parking(11), formulation="reduced")
+    assert momentum.report["formulation"] == "momentum" and momentum.report["chart"] is None
+    assert momentum.columns[6:8] == ["dot(phi_r)", "dot(phi_l)"]
+    numpy.testing.assert_allclose(momentum["dot(phi_r)"], reduced["alpha1"], rtol=1e-9, atol=1e-12)
+    numpy.testing.assert_allclose(momentum.objective, reduced.objective, rtol=1e-9)
+    with pytest.raises(ValueError, match="the model declares no symmetry"):
+        chaplygin.builtin("caster-robot").plan(**parking(11), formulation="momentum")
 
 
 def test_plans_pickle(parked):

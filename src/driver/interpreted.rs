@@ -18,6 +18,7 @@ use crate::runtime::nalgebra::DMatrix;
 use crate::runtime::projection::ProjectionError;
 use crate::runtime::simulate::{GuardedValue, Regularity};
 use crate::runtime::system::next_chart;
+use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
 pub(crate) use chaplygin_codegen::interpret::evaluated;
 use chaplygin_codegen::interpret::{CallError, InterpretedModel};
 use std::cell::Cell;
@@ -500,6 +501,19 @@ fn rhs_jacobian(formulation: &dyn Formulation, t: f64, x: &[f64]) -> Vec<f64> {
     central_differences(x, x.len(), |x, xdot| formulation.rhs(t, x, xdot))
 }
 
+/// Why `model` has no momentum formulation, if it has none: no symmetry,
+/// or holonomic constraints (its momentum equation is
+/// [`MOMENTUM_WITH_HOLONOMIC`]).
+pub fn momentum_unsupported(model: &InterpretedModel) -> Option<String> {
+    if model.shape().is_none() {
+        return Some("the model declares no symmetry: the momentum formulation needs one".into());
+    }
+    model
+        .arguments("momentum_rhs")
+        .is_none()
+        .then(|| format!("the momentum formulation is {MOMENTUM_WITH_HOLONOMIC}"))
+}
+
 /// The momentum equation `x = (q, rdot, p)` of an interpreted model with a
 /// symmetry (MATH.md section 4), as the compiled `system::Momentum`:
 ///
@@ -518,10 +532,16 @@ pub struct InterpretedMomentum {
 }
 
 impl InterpretedMomentum {
-    /// The momentum formulation of `model`, `None` without a symmetry.
-    pub fn new(model: InterpretedModel, inputs: InputLaw) -> Option<Self> {
-        let shape = model.shape()?;
-        Some(Self {
+    /// The momentum formulation of `model`.
+    ///
+    /// # Errors
+    /// Why the model has none ([`momentum_unsupported`]).
+    pub fn new(model: InterpretedModel, inputs: InputLaw) -> Result<Self, String> {
+        if let Some(reason) = momentum_unsupported(&model) {
+            return Err(reason);
+        }
+        let shape = model.shape().unwrap_or_default();
+        Ok(Self {
             model,
             shape,
             inputs,
@@ -612,27 +632,10 @@ impl Formulation for InterpretedMomentum {
         Ok(self.initial_state(q, qdot)?)
     }
 
+    /// The model's `momentum_form_rhs` at the inputs applied.
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
-        let (q, rdot, p) = self.split(x);
         let u = inputs_at(self, &self.model, t, x);
-        let r: Vec<f64> = self.shape.iter().map(|&i| q[i]).collect();
-        let qdot = evaluated(self.model.reconstructed_velocity(q, rdot, p));
-        let rddot = evaluated(self.model.shape_acceleration(&r, rdot, p, &u));
-        let unforced = evaluated(self.model.call("momentum_rhs", &[&r, rdot, p]));
-        let input_matrix = evaluated(self.model.call("momentum_input_matrix", &[q]));
-        let pdot = unforced.iter().enumerate().map(|(i, f)| {
-            f + u
-                .iter()
-                .enumerate()
-                .map(|(l, ul)| input_matrix[i * u.len() + l] * ul)
-                .sum::<f64>()
-        });
-        for (slot, value) in xdot
-            .iter_mut()
-            .zip(qdot.into_iter().chain(rddot).chain(pdot))
-        {
-            *slot = value;
-        }
+        xdot.copy_from_slice(&evaluated(self.model.momentum_form_rhs(x, &u)));
     }
 
     /// Central differences, as the compiled momentum adapter.

@@ -26,20 +26,22 @@
 //! KKT residuals, as [`PlanError::Interrupted`].
 //!
 //! The dynamics are the Lagrange-d'Alembert equations in `x = (q, qdot)`
-//! (`simulate --formulation lagrange`), or with `--formulation reduced`
-//! the reduced port-Hamiltonian form in `x = (q, alpha)` ([`reduced`]),
-//! whose variables are the columns of `trajectory.csv`. The velocity
+//! (`simulate --formulation lagrange`), with `--formulation reduced` the
+//! reduced port-Hamiltonian form in `x = (q, alpha)`, or with
+//! `--formulation momentum` the nonholonomic momentum equation in `x =
+//! (q, rdot, p)` ([`form`]), whose variables are the columns of
+//! `trajectory.csv`. The velocity
 //! constraints `A(q) qdot = 0` and the
 //! configuration constraints `f(q) = 0` are invariants of that flow: a
 //! model with either starts from a state that meets them (every
 //! coordinate and velocity given), and the scheme keeps them to its order
 //! (`plan.csv`'s `constraint_residual` and `holonomic_residual`).
 
+pub mod form;
 mod hessian;
 pub mod identify;
 pub mod kkt;
 pub mod nlp;
-pub mod reduced;
 pub mod replay;
 mod resolve;
 pub mod transcription;
@@ -48,9 +50,9 @@ use super::Failure;
 use super::engine::Loaded;
 use super::simulate::FormulationChoice;
 use crate::runtime::record::Table;
+use form::Form;
 use kkt::Residuals;
 use nlp::{Nlp, Observer, Solution, Solver};
-use reduced::Form;
 use replay::Replay;
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -74,8 +76,9 @@ pub struct Request {
     #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = Scheme::Midpoint))]
     pub scheme: Scheme,
     /// The dynamics' formulation: the Lagrange-d'Alembert form in `(q,
-    /// dot(q))`, or the reduced form in `(q, alpha)` (chart 0); the start,
-    /// goal and bounds name `q` and `dot(q)` in both.
+    /// dot(q))`, the reduced form in `(q, alpha)` (chart 0), or the
+    /// momentum equation in `(q, dot(r), p)`; the start, goal and bounds
+    /// name `q` and `dot(q)` in each.
     #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = FormulationChoice::Lagrange))]
     pub formulation: FormulationChoice,
     /// A coordinate `q=EXPR` or velocity `dot(q)=EXPR` at `t = 0`, an
@@ -177,18 +180,13 @@ pub enum PlanError {
         tolerance = .0.report.replay.tolerance
     )]
     Departs(Box<Plan>),
-    /// A formulation plans do not transcribe.
-    #[error(
-        "plans use the Lagrange-d'Alembert or the reduced formulation (--formulation lagrange \
-         or reduced), not the {asked} one: its state {state} holds the shape's velocities and \
-         the momentum only, so a start, goal or bound on another velocity dot(q) has no \
-         variable"
-    )]
+    /// A formulation the model does not have.
+    #[error("--formulation {asked}: {reason}")]
     Formulation {
         /// The formulation asked for.
         asked: &'static str,
-        /// Its state.
-        state: &'static str,
+        /// Why the model does not have it.
+        reason: String,
     },
     /// A reduced plan with a node where chart 0 does not fit.
     #[error(
@@ -255,7 +253,7 @@ impl Report {
             "scheme": self.scheme.name(),
             "formulation": self.formulation.name(),
             "chart": self.chart,
-            "chart_reason": self.chart.map(|_| reduced::CHART_REASON),
+            "chart_reason": self.chart.map(|_| form::CHART_REASON),
             "solver": self.solver,
             "iterations": self.iterations,
             "seconds": self.seconds,
@@ -281,23 +279,31 @@ pub struct Plan {
     pub report: Report,
 }
 
-/// The formulation `choice` as plans transcribe it: the
+/// The formulation `choice` as plans transcribe it, for `model`: the
 /// Lagrange-d'Alembert equations in `(q, qdot)`, which need no chart (a
 /// model with several, the bicycle, is planned in all its coordinates and
 /// velocities at once, regular wherever the constraint rows are
-/// independent), or the reduced form in `(q, alpha)`, in chart 0.
+/// independent), the reduced form in `(q, alpha)`, in chart 0, or the
+/// momentum equation in `(q, rdot, p)`.
 ///
 /// # Errors
-/// [`PlanError::Formulation`] for the momentum form, whose state names
-/// no velocity but the shape's.
-pub fn formulation(choice: FormulationChoice) -> Result<Form, PlanError> {
-    match choice {
-        FormulationChoice::Lagrange => Ok(Form::Lagrange),
-        FormulationChoice::Reduced => Ok(Form::Reduced),
-        FormulationChoice::Momentum => Err(PlanError::Formulation {
-            asked: "momentum",
-            state: "(q, rdot, p)",
+/// [`PlanError::Formulation`] for the momentum form of a model without
+/// one.
+pub fn formulation(
+    choice: FormulationChoice,
+    model: &chaplygin_codegen::interpret::InterpretedModel,
+) -> Result<Form, PlanError> {
+    let form = match choice {
+        FormulationChoice::Lagrange => Form::Lagrange,
+        FormulationChoice::Reduced => Form::Reduced,
+        FormulationChoice::Momentum => Form::Momentum,
+    };
+    match form.unsupported(model) {
+        Some(reason) => Err(PlanError::Formulation {
+            asked: form.name(),
+            reason,
         }),
+        None => Ok(form),
     }
 }
 
@@ -396,7 +402,7 @@ fn within_chart(transcription: &transcription::Transcription, z: &[f64]) -> Resu
     }
     let width = transcription.width();
     let states = z[..transcription.nodes() * width].chunks(width);
-    match reduced::leaves_chart(model, states) {
+    match form::leaves_chart(model, states) {
         Some(node) => Err(PlanError::LeavesChart {
             node,
             t: transcription.node_time(z, node),

@@ -32,7 +32,6 @@ use super::interpreted::{InputLaw, InterpretedDalembert, InterpretedMomentum, In
 use super::setup::{self, Asked, Controls, InputError, InputSchedule, Origin, Setup, Start};
 use crate::driver::Failure;
 use crate::runtime::record::{Recorder, Table};
-use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
 use chaplygin_codegen::interpret::InterpretedModel;
 use prescribe::{Forces, Prescribed};
 use run::Settings;
@@ -269,15 +268,9 @@ fn closed(
             (Box::new(InterpretedDalembert { model, inputs }), x0)
         }
         FormulationChoice::Momentum => {
-            if model.shape().is_some() && model.arguments("momentum_rhs").is_none() {
-                return Err(InputError::Unsupported(format!(
-                    "`{label}`: the momentum formulation is {MOMENTUM_WITH_HOLONOMIC}: use --formulation reduced or lagrange"
-                ))
-                .into());
-            }
-            let momentum = InterpretedMomentum::new(model, inputs).ok_or_else(|| {
+            let momentum = InterpretedMomentum::new(model, inputs).map_err(|reason| {
                 InputError::Unsupported(format!(
-                    "`{label}` declares no symmetry: the momentum formulation needs one"
+                    "`{label}`: {reason}: use --formulation reduced or lagrange"
                 ))
             })?;
             let x0 = momentum.initial_state(&start.q, &start.qdot)?;

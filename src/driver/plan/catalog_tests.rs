@@ -6,8 +6,8 @@
 //! miss is the scheme's error, so it shrinks by about `2^2` when the
 //! midpoint rule's step halves; that rate is the independent check.
 
+use super::form::Form;
 use super::nlp::Ripopt;
-use super::reduced::Form;
 use super::replay::{Replay, replayed_states};
 use super::{Plan, PlanError, Request, Scheme, plan};
 use crate::driver::catalog::lookup;

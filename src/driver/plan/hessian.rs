@@ -36,11 +36,12 @@
 //! `hess (mu^T f)` is the model's: in the Lagrange form `f = (qdot,
 //! qddot)`, whose first rows are linear, so `hess (mu^T f) = hess
 //! (mu_qdot^T qddot)`, its `acceleration_hessian`; in the reduced form
-//! (`x = (q, alpha)`, [`super::reduced`]) `f = (X(q) alpha, alphadot)`,
-//! whose every row curves, its `reduced_rhs_hessian` with all of `mu`.
+//! (`x = (q, alpha)`, [`super::form`]) `f = (X(q) alpha, alphadot)`,
+//! whose every row curves, its `reduced_rhs_hessian` with all of `mu`;
+//! in the momentum form (`x = (q, rdot, p)`) its `momentum_form_hessian`.
 //!
 //! The costs read `L(t, q, qdot, u)`, and `qdot = f_{1..n}(x)`, the first
-//! `n` rows of `f`, in both forms (the state itself in the Lagrange one).
+//! `n` rows of `f`, in every form (the state itself in the Lagrange one).
 //! With `E = d(t, q, qdot, u)/d(t, x, u)`, the identity but for the
 //! velocities' rows `df_{1..n}/dx`, the second-order chain rule gives
 //!

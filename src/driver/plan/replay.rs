@@ -18,7 +18,8 @@
 //! on `t_i <= t <= t_{i+1}` (see [`super::transcription`]), by RK4 with
 //! [`SUBSTEPS`] steps an interval: its error, `O((h / SUBSTEPS)^4)`, lies
 //! far below the schemes' own. A plan in the reduced form is replayed in
-//! it, `d(q, alpha)/dt = f(q, alpha, u(t))` in chart 0.
+//! it, `d(q, alpha)/dt = f(q, alpha, u(t))` in chart 0, and one in the
+//! momentum form in its `(q, rdot, p)`.
 //!
 //! Each state variable's departure from the plan, `|x_j(t_i) - x_{i,j}|`,
 //! is measured against its scale: its range over the plan's nodes,
@@ -33,11 +34,13 @@
 //! stays where it was, a whole range away.
 
 use super::Scheme;
-use super::reduced::Form;
+use super::form::Form;
 use super::transcription::share;
 use crate::driver::formulation::Formulation;
 use crate::driver::formulation::RunTimeSized;
-use crate::driver::interpreted::{InputLaw, InterpretedDalembert, InterpretedReduced};
+use crate::driver::interpreted::{
+    InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced,
+};
 use crate::runtime::integrate::{Rk4, integrate_fixed};
 use crate::runtime::record::Table;
 use chaplygin_codegen::interpret::InterpretedModel;
@@ -134,9 +137,10 @@ fn input_share(scheme: Scheme, j: usize, s: f64) -> f64 {
     }
 }
 
-/// The state (`(q, qdot)`, or `(q, alpha)`) at each of `table`'s nodes,
-/// integrated in `form` from its first under its inputs as `scheme`
-/// applies them; NaN from the interval where the integration fails on.
+/// The state (`(q, qdot)`, `(q, alpha)` or `(q, rdot, p)`) at each of
+/// `table`'s nodes, integrated in `form` from its first under its inputs
+/// as `scheme` applies them; NaN from the interval where the integration
+/// fails on (everywhere, for a model without the form).
 pub fn replayed_states(
     (model, form): (&InterpretedModel, Form),
     scheme: Scheme,
@@ -167,6 +171,10 @@ pub fn replayed_states(
             inputs,
         }),
         Form::Reduced => Box::new(InterpretedReduced::new(model.clone(), inputs)),
+        Form::Momentum => match InterpretedMomentum::new(model.clone(), inputs) {
+            Ok(momentum) => Box::new(momentum),
+            Err(_) => return vec![vec![f64::NAN; s]; t.len()],
+        },
     };
     let system = RunTimeSized(&*formulation);
     let mut states = vec![table.rows[0][1..1 + s].to_vec()];

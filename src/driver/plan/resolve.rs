@@ -2,9 +2,9 @@
 //! conditions and bounds turned into the variables' bounds, the first
 //! guess (`--guess`'s columns interpolated, else the start and goal
 //! interpolated, else 0, inside the bounds), the costs read; and the
-//! solution written as `plan.csv`'s rows. In the reduced form the
-//! conditions and the guess, resolved on `(q, qdot, u)`, become the
-//! variables `(q, alpha, u)` (`reduced`'s docs). With `--free-duration` the
+//! solution written as `plan.csv`'s rows. In the reduced and momentum
+//! forms the conditions and the guess, resolved on `(q, qdot, u)`, become
+//! the variables `(q, alpha, u)` or `(q, rdot, p, u)` (`form`'s docs). With `--free-duration` the
 //! duration follows the nodes' variables, started at `--duration` and
 //! bounded below by [`Request::SHORTEST`] times it (near `T = 0` the
 //! defects cannot move the state, and the solver would not return).
@@ -13,7 +13,7 @@ mod ends;
 pub(super) mod guess;
 
 use super::Request;
-use super::reduced::{self, Form};
+use super::form::Form;
 use super::transcription::{Costs, Grid, Transcription};
 use crate::driver::engine::Loaded;
 use crate::driver::expression::{Expression, ExpressionError, Scope, constant};
@@ -132,24 +132,29 @@ pub enum RequestError {
         "the model has constraints: --start must give every coordinate and velocity (missing: {0})"
     )]
     PartialStart(String),
-    /// A bound on a velocity in the reduced form.
+    /// A bound on a velocity the form's state does not hold.
     #[error(
-        "--bound {name}: the reduced form's state (q, alpha) holds no velocity to bound; bound it \
-         with --formulation lagrange"
-    )]
-    ReducedVelocityBound {
-        /// The velocity.
-        name: String,
-    },
-    /// An end with some velocities given in the reduced form.
-    #[error(
-        "{flag}: the reduced form fixes an end's momenta alpha from all its velocities and \
-         coordinates (or all velocities 0), but {missing} are not given; give them, or use \
+        "--bound {name}: the {form} form's state does not hold this velocity; bound it with \
          --formulation lagrange"
     )]
-    ReducedVelocities {
+    UnheldVelocityBound {
+        /// The velocity.
+        name: String,
+        /// The form.
+        form: &'static str,
+    },
+    /// An end with some velocities given in a form whose state does not
+    /// hold them.
+    #[error(
+        "{flag}: the {form} form fixes an end's state from all its velocities and coordinates \
+         (or all velocities 0), but {missing} are not given; give them, or use --formulation \
+         lagrange"
+    )]
+    PartialVelocities {
         /// The flag of the end.
         flag: &'static str,
+        /// The form.
+        form: &'static str,
         /// The names not given.
         missing: String,
     },
@@ -309,12 +314,14 @@ impl Resolver<'_> {
         guess
     }
 
-    /// The bounds and guess of the reduced form's variables `(q, alpha,
-    /// u)` from the ones of `(q, qdot, u)`: `alpha` fixed at an end whose
-    /// velocities are given, else free, guessed as `momenta(q, qdot)`.
-    fn reduced(
+    /// The bounds and guess of `form`'s variables `(q, x2, u)` from the
+    /// ones of `(q, qdot, u)`: the state's second part `x2` (`alpha`, or
+    /// `(rdot, p)`) fixed at an end whose velocities are given, else
+    /// guessed as the state of `(q, qdot)`, free but for the bounds of the
+    /// velocities it holds.
+    fn in_form(
         &self,
-        model: &InterpretedModel,
+        (form, model): (Form, &InterpretedModel),
         (lo, hi, guess): (&[f64], &[f64], &[f64]),
     ) -> Result<[Vec<f64>; 3], RequestError> {
         let (n, width) = (self.n, self.columns.len());
@@ -322,23 +329,32 @@ impl Resolver<'_> {
             let flag = ["--start", "--goal"][end];
             let (given, at) = (&self.ends[end], end * (self.nodes - 1) * width);
             let q = &guess[at..at + n];
-            ends::end_momenta(model, (flag, q), (&given[..n], &given[n..2 * n]))
+            ends::end_state(form, model, (flag, q), (&given[..n], &given[n..2 * n]))
         });
         let fixed = [start?, goal?];
+        let second = form.state(model) - n;
+        let held: Vec<Option<usize>> = (0..n).map(|i| form.velocity_column(model, i)).collect();
         let mut variables: [Vec<f64>; 3] = Default::default();
         for node in 0..self.nodes {
             let at = node * width;
             let (q, qdot) = (&guess[at..at + n], &guess[at + n..at + 2 * n]);
             let ends = [node == 0, node == self.nodes - 1];
             let given = (0..2).filter(|&e| ends[e]).find_map(|e| fixed[e].clone());
-            let alpha = given
-                .clone()
-                .unwrap_or_else(|| reduced::momenta(model, q, qdot));
-            let free = |value: f64| vec![value; alpha.len()];
-            let middles = match given {
-                Some(alpha) => [alpha.clone(), alpha.clone(), alpha],
-                None => [free(f64::NEG_INFINITY), free(f64::INFINITY), alpha],
-            };
+            let middles = given.map_or_else(
+                || {
+                    let mut middles =
+                        [vec![f64::NEG_INFINITY; second], vec![f64::INFINITY; second]];
+                    for (i, column) in held.iter().enumerate() {
+                        if let Some(column) = column {
+                            middles[0][column - n] = lo[at + n + i];
+                            middles[1][column - n] = hi[at + n + i];
+                        }
+                    }
+                    let [lo, hi] = middles;
+                    [lo, hi, form.state_of(model, q, qdot).split_off(n)]
+                },
+                |x2| [x2.clone(), x2.clone(), x2],
+            );
             for ((out, values), middle) in variables.iter_mut().zip([lo, hi, guess]).zip(middles) {
                 out.extend_from_slice(&values[at..at + n]);
                 out.extend(middle);
@@ -407,8 +423,8 @@ pub(super) fn transcribe(
     request: &Request,
 ) -> Result<Transcription, crate::driver::Failure> {
     check_numbers(request)?;
-    let form = super::formulation(request.formulation)?;
     let mut model = loaded.model;
+    let form = super::formulation(request.formulation, &model)?;
     let parameters = with_parameters(&mut model, &request.params)?;
     let columns = node_columns(&model);
     let size = request.nodes * columns.len();
@@ -423,10 +439,11 @@ pub(super) fn transcribe(
     };
     for (name, text) in &request.bounds {
         resolver.bound(name, text)?;
-        let velocity = (resolver.n..2 * resolver.n).contains(&resolver.column("--bound", name)?);
-        if form == Form::Reduced && velocity {
-            let name = name.clone();
-            return Err(RequestError::ReducedVelocityBound { name }.into());
+        let column = resolver.column("--bound", name)?;
+        let velocity = column.checked_sub(resolver.n).filter(|&i| i < resolver.n);
+        if velocity.is_some_and(|i| form.velocity_column(&model, i).is_none()) {
+            let (name, form) = (name.clone(), form.name());
+            return Err(RequestError::UnheldVelocityBound { name, form }.into());
         }
     }
     for (end, conditions) in [&request.start, &request.goal].into_iter().enumerate() {
@@ -452,7 +469,7 @@ pub(super) fn transcribe(
     let guess = resolver.guess(read.as_ref(), step);
     let [mut lo, mut hi, mut guess] = match form {
         Form::Lagrange => [resolver.lo, resolver.hi, guess],
-        Form::Reduced => resolver.reduced(&model, (&resolver.lo, &resolver.hi, &guess))?,
+        _ => resolver.in_form((form, &model), (&resolver.lo, &resolver.hi, &guess))?,
     };
     if request.free_duration {
         lo.push(Request::SHORTEST * request.duration);
@@ -551,10 +568,7 @@ pub(super) fn table(
     let width = transcription.width();
     for (i, node) in z[..transcription.nodes() * width].chunks(width).enumerate() {
         let q = &node[..n];
-        let qdot = match form {
-            Form::Lagrange => node[n..s].to_vec(),
-            Form::Reduced => reduced::velocities(model, &node[..s]),
-        };
+        let qdot = form.velocities(model, &node[..s]);
         let mut row = vec![transcription.node_time(z, i)];
         row.extend_from_slice(&node[..s]);
         row.extend_from_slice(&transcription.held_inputs(z, i));

@@ -6,8 +6,8 @@
 //! of bad requests.
 
 use super::catalog_tests::{replayed, request};
+use super::form::Form;
 use super::nlp::{Hessian, Ripopt};
-use super::reduced::Form;
 use super::replay::{Replay, replayed_states};
 use super::{Plan, Request, Scheme, plan};
 use crate::driver::catalog::{Source, lookup};

@@ -3,8 +3,8 @@
 //! Programming", 2nd ed., SIAM 2010, sections 4.5 and 4.6).
 //!
 //! The state is the Lagrange-d'Alembert one, `x = (q, qdot)`, moving by
-//! `f(x, u) = (qdot, qddot(q, qdot, u))`, or the reduced one, `x = (q,
-//! alpha)` ([`super::reduced`]). The variables are each node's
+//! `f(x, u) = (qdot, qddot(q, qdot, u))`, the reduced one, `x = (q,
+//! alpha)`, or the momentum equation's, `x = (q, rdot, p)` ([`super::form`]). The variables are each node's
 //! state and inputs, then the plan's globals (with `--free-duration`, the
 //! duration `T`): `z = (x_0, u_0, ..., x_{N-1}, u_{N-1}, T)`, at `t_i =
 //! T s_i` for fractions `0 = s_0 < s_1 < ... < s_{N-1} = 1` of the
@@ -53,10 +53,10 @@
 //! duration, every step and time scales with `T`: `dh_i/dT = h_i/T`, and a
 //! stage's time `t` moves as `t/T`.
 
+use super::form::Form;
 use super::nlp::Nlp;
-use super::reduced::{self, Form};
 use crate::driver::expression::{Expression, Gradient, Point};
-use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
+use chaplygin_codegen::interpret::InterpretedModel;
 use std::collections::BTreeSet;
 
 /// A one-step collocation scheme.
@@ -319,7 +319,8 @@ impl Transcription {
         z[node * w + s..(node + 1) * w].to_vec()
     }
 
-    /// The state's size, `2n` (`n + k` in the reduced form).
+    /// The state's size, `2n` (`n + k` in the reduced form, `n + R + K` in
+    /// the momentum form).
     pub(super) fn state(&self) -> usize {
         self.form.state(&self.model)
     }
@@ -343,12 +344,12 @@ impl Transcription {
     /// One interval's structure: each defect row reads its own entry at
     /// both nodes; a `q` row reads `qdot`'s same entry, a `qdot` row every
     /// state entry and input, of each node a stage reads. A stage that
-    /// reads the nodes' slopes, or the reduced form, makes every row read
+    /// reads the nodes' slopes, or a form other than Lagrange's, makes every row read
     /// every variable.
     fn local_structure(&self) -> Vec<(usize, usize)> {
         let (n, s, w) = (self.model.sizes().n, self.state(), self.width());
         let slopes = self.scheme.stages().iter().any(|stage| stage.slopes != 0.0);
-        if slopes || self.form == Form::Reduced {
+        if slopes || self.form != Form::Lagrange {
             return (0..s)
                 .flat_map(|k| (0..2 * w).map(move |c| (k, c)))
                 .collect();
@@ -382,10 +383,7 @@ impl Transcription {
     /// The point of time `t`, state `x` and inputs `u`, its velocities
     /// read from `x`.
     fn point(&self, t: f64, x: Vec<f64>, u: Vec<f64>) -> StagePoint {
-        let qdot = match self.form {
-            Form::Lagrange => x[self.model.sizes().n..].to_vec(),
-            Form::Reduced => reduced::velocities(&self.model, &x),
-        };
+        let qdot = self.form.velocities(&self.model, &x);
         StagePoint { t, x, u, qdot }
     }
 
@@ -451,53 +449,21 @@ impl Transcription {
         }
     }
 
-    /// `f(x, u) = (qdot, qddot)`, or the reduced form's.
+    /// `f(x, u)` of the plan's form.
     fn rhs(&self, point: &StagePoint) -> Vec<f64> {
-        if self.form == Form::Reduced {
-            return reduced::rhs(&self.model, &point.x, &point.u);
-        }
-        let n = self.model.sizes().n;
-        let (q, qdot) = point.x.split_at(n);
-        let (qddot, _) = evaluated(self.model.acceleration(q, qdot, &point.u));
-        qdot.iter().chain(&qddot).copied().collect()
+        self.form.rhs(&self.model, &point.x, &point.u)
     }
 
     /// The Hessian of `weights^T f` by `(x, u)` (w x w, row-major) at
-    /// `point`: in the Lagrange form the model's `acceleration_hessian`
-    /// with the last `n` weights (the first `n` rows, `qdot`, are linear),
-    /// in the reduced form its `reduced_rhs_hessian` with all `s`.
+    /// `point` ([`Form::rhs_hessian`]).
     pub(super) fn rhs_hessian(&self, point: &StagePoint, weights: &[f64]) -> Vec<f64> {
-        if self.form == Form::Reduced {
-            return reduced::rhs_hessian(&self.model, (&point.x, &point.u), weights);
-        }
-        let n = self.model.sizes().n;
-        let (q, qdot) = point.x.split_at(n);
-        evaluated(
-            self.model
-                .acceleration_hessian(q, qdot, &point.u, &weights[n..]),
-        )
+        self.form
+            .rhs_hessian(&self.model, (&point.x, &point.u), weights)
     }
 
-    /// `df/dx` (2n x 2n) and `df/du` (2n x p), row-major, or the reduced
-    /// form's.
+    /// `df/dx` (s x s) and `df/du` (s x p), row-major, at `point`.
     pub(super) fn rhs_jacobian(&self, point: &StagePoint) -> (Vec<f64>, Vec<f64>) {
-        if self.form == Form::Reduced {
-            return reduced::rhs_jacobian(&self.model, &point.x, &point.u);
-        }
-        let (n, p) = (self.model.sizes().n, self.model.sizes().p);
-        let s = 2 * n;
-        let (q, qdot) = point.x.split_at(n);
-        let (by_q, by_qdot, by_u) = evaluated(self.model.acceleration_jacobian(q, qdot, &point.u));
-        let mut fx = vec![0.0; s * s];
-        let mut fu = vec![0.0; s * p];
-        for k in 0..n {
-            fx[k * s + n + k] = 1.0;
-            let row = (n + k) * s;
-            fx[row..row + n].copy_from_slice(&by_q[k * n..(k + 1) * n]);
-            fx[row + n..row + s].copy_from_slice(&by_qdot[k * n..(k + 1) * n]);
-            fu[(n + k) * p..(n + k + 1) * p].copy_from_slice(&by_u[k * p..(k + 1) * p]);
-        }
-        (fx, fu)
+        self.form.rhs_jacobian(&self.model, &point.x, &point.u)
     }
 
     /// Where a cost is evaluated at a stage.
@@ -523,12 +489,8 @@ impl Transcription {
     /// A function's gradient by the state at `point` from its gradients
     /// by `q` and `qdot`.
     fn state_gradient(&self, point: &StagePoint, (by_q, by_qdot): (&[f64], &[f64])) -> Vec<f64> {
-        match self.form {
-            Form::Lagrange => [by_q, by_qdot].concat(),
-            Form::Reduced => {
-                reduced::state_gradient(&self.model, (&point.x, &point.u), (by_q, by_qdot))
-            }
-        }
+        self.form
+            .state_gradient(&self.model, (&point.x, &point.u), (by_q, by_qdot))
     }
 
     /// Where the final cost is evaluated, as a stage: `t = T`, the last

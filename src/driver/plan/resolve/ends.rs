@@ -1,22 +1,27 @@
-//! The reduced form's momenta at a plan's ends (docs/INTERFACE.md section
-//! 13, `--formulation reduced`): the start and the goal name coordinates
-//! and velocities `dot(q)`, the reduced state `(q, alpha)` holds the
-//! momenta, `dot(q) = X(q) alpha`.
+//! The state's second part at a plan's ends in a form whose state does
+//! not hold the velocities (docs/INTERFACE.md section 13,
+//! `--formulation`): the start and the goal name coordinates and
+//! velocities `dot(q)`; the reduced state `(q, alpha)` holds the momenta,
+//! `dot(q) = X(q) alpha`, the momentum equation's `(q, rdot, p)` the shape
+//! velocities and the momenta, `dot(q) = g(q) xi(r, rdot, p)`. Both
+//! velocities are linear in the state's second part `x2`.
 
 use super::RequestError;
-use crate::driver::plan::reduced::{Form, momenta};
+use crate::driver::plan::form::Form;
 use crate::runtime::nalgebra::DMatrix;
-use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
+use chaplygin_codegen::interpret::InterpretedModel;
 
-/// The momenta an end's conditions fix, from its coordinates `q` (its
-/// first guess) and its given coordinates and velocities (`None` where
-/// not given): none where no velocity is given; 0 where the given ones
-/// are 0 and determine `alpha` (their rows of `X(q)` have rank `k`);
-/// `momenta(q, qdot)` where every coordinate and velocity is given.
+/// The second part `x2` of the state that an end's conditions fix, from
+/// its coordinates `q` (its first guess) and its given coordinates and
+/// velocities (`None` where not given): none where no velocity is given;
+/// 0 where the given ones are 0 and determine `x2` (their rows of `d
+/// qdot / d x2` have full rank); the state of `(q, qdot)` where every
+/// coordinate and velocity is given.
 ///
 /// # Errors
-/// [`RequestError::ReducedVelocities`] for any other end.
-pub(super) fn end_momenta(
+/// [`RequestError::PartialVelocities`] for any other end.
+pub(super) fn end_state(
+    form: Form,
     model: &InterpretedModel,
     (flag, q): (&'static str, &[f64]),
     (given_q, given_qdot): (&[Option<f64>], &[Option<f64>]),
@@ -24,17 +29,20 @@ pub(super) fn end_momenta(
     if given_qdot.iter().all(Option::is_none) {
         return Ok(None);
     }
+    let n = model.sizes().n;
+    let second = form.state(model) - n;
     let at_rest = given_qdot.iter().flatten().all(|v| *v == 0.0);
-    if at_rest && determines_momenta(model, q, given_qdot) {
-        return Ok(Some(vec![0.0; model.sizes().k]));
+    if at_rest && determines_state(form, model, q, given_qdot) {
+        return Ok(Some(vec![0.0; second]));
     }
     let (coordinates, velocities): (Vec<f64>, Vec<f64>) = (
         given_q.iter().flatten().copied().collect(),
         given_qdot.iter().flatten().copied().collect(),
     );
-    let n = model.sizes().n;
     if coordinates.len() == n && velocities.len() == n {
-        return Ok(Some(momenta(model, &coordinates, &velocities)));
+        return Ok(Some(
+            form.state_of(model, &coordinates, &velocities).split_off(n),
+        ));
     }
     let names = Form::Lagrange.state_names(model);
     let given = given_q.iter().chain(given_qdot);
@@ -42,24 +50,36 @@ pub(super) fn end_momenta(
         .filter(|(v, _)| v.is_none())
         .map(|(_, name)| name)
         .collect();
-    let missing = missing.join(", ");
-    Err(RequestError::ReducedVelocities { flag, missing })
+    let (missing, form) = (missing.join(", "), form.name());
+    Err(RequestError::PartialVelocities {
+        flag,
+        form,
+        missing,
+    })
 }
 
-/// Whether the `given` velocities' rows of `X(q)` have rank `k`.
-fn determines_momenta(model: &InterpretedModel, q: &[f64], given: &[Option<f64>]) -> bool {
-    let k = model.sizes().k;
+/// Whether the `given` velocities' rows of `d qdot / d x2` at `q` have
+/// full rank.
+fn determines_state(
+    form: Form,
+    model: &InterpretedModel,
+    q: &[f64],
+    given: &[Option<f64>],
+) -> bool {
+    let second = form.state(model) - q.len();
     let rows: Vec<usize> = (0..given.len()).filter(|&i| given[i].is_some()).collect();
-    let columns: Vec<Vec<f64>> = (0..k)
+    let columns: Vec<Vec<f64>> = (0..second)
         .map(|j| {
-            let unit: Vec<f64> = (0..k).map(|i| f64::from(u8::from(i == j))).collect();
-            evaluated(model.velocities(q, &unit))
+            let unit = (0..second).map(|i| f64::from(u8::from(i == j)));
+            let x: Vec<f64> = q.iter().copied().chain(unit).collect();
+            form.velocities(model, &x)
         })
         .collect();
-    let by_alpha = DMatrix::from_fn(rows.len(), k, |r, j| columns[j][rows[r]]);
-    by_alpha.rank(RANK_TOLERANCE) == k
+    let by_x2 = DMatrix::from_fn(rows.len(), second, |r, j| columns[j][rows[r]]);
+    by_x2.rank(RANK_TOLERANCE) == second
 }
 
-/// The singular value below which `X(q)`'s given rows lose rank, an
-/// absolute one: `X`'s entries are of order one in the catalog's models.
+/// The singular value below which `d qdot / d x2`'s given rows lose
+/// rank, an absolute one: its entries are of order one in the catalog's
+/// models.
 const RANK_TOLERANCE: f64 = 1e-9;

@@ -1,71 +1,24 @@
-//! Reduced plans against independent truths: the transcription's exact
-//! derivatives against central differences, the point mass's closed-form
-//! optimum, the differential drive's reduced plan converging to its
+//! Reduced plans against independent truths: the point mass's
+//! closed-form optimum, the differential drive's plan converging to its
 //! Lagrange plan as the nodes double and replayed to its goal, the
-//! bicycle's chart 0 left where it degenerates, and the one-line
+//! snakeboard's plan against its L-BFGS plan,
+//! the bicycle's chart 0 left where it degenerates, and the one-line
 //! refusals.
 
 use super::Form;
+use super::tests::in_formulation;
 use crate::driver::plan::catalog_tests::{assigned, built_in, request, sideways};
 use crate::driver::plan::nlp::{Hessian, Ripopt};
 use crate::driver::plan::replay::replayed_states;
 use crate::driver::plan::tests::{
     differential_drive, parking, point_mass, rest_to_rest, write_csv,
 };
-use crate::driver::plan::transcription::Transcription;
-use crate::driver::plan::transcription::tests::{
-    assert_derivatives_agree, assert_hessian_agrees, three_nodes,
-};
 use crate::driver::plan::{Request, Scheme, plan};
 use crate::driver::simulate::FormulationChoice;
 
 /// `request` in the reduced form.
-fn reduced(mut request: Request) -> Request {
-    request.formulation = FormulationChoice::Reduced;
-    request
-}
-
-/// The snakeboard's reduced plan on 3 nodes at a point with every
-/// variable nonzero, its running cost reading the time, coordinates,
-/// velocities and inputs, its final cost the time and the velocities.
-fn snakeboard_transcription(scheme: Scheme, free_duration: bool) -> (Transcription, Vec<f64>) {
-    let names = (
-        &["x", "y", "theta", "psi", "phi"][..],
-        &["u_torso", "u_wheels"][..],
-    );
-    let costs = (
-        "u_torso^2 + x*dot(theta)^2 + sin(phi)*u_wheels + t*dot(x) + dot(psi)*dot(y)",
-        "x^2*dot(y) + t^2*dot(phi)",
-    );
-    let width = 5 + 3 + 2;
-    let (transcription, z) = three_nodes(
-        built_in("snakeboard").model,
-        names,
-        costs,
-        (width, None),
-        (scheme, free_duration),
-    );
-    (transcription.in_form(Form::Reduced), z)
-}
-
-#[test]
-fn the_reduced_derivatives_agree_with_central_differences() {
-    for (scheme, free_duration) in Scheme::ALL.iter().flat_map(|&s| [(s, false), (s, true)]) {
-        let (nlp, z) = snakeboard_transcription(scheme, free_duration);
-        assert_derivatives_agree(&nlp, &z, &format!("{scheme:?} free {free_duration}"));
-    }
-}
-
-/// The exact Hessian of the reduced Lagrangian, the snakeboard's
-/// `reduced_rhs_hessian` (its rows `X(q) alpha` and `B(x)` curving in `q`)
-/// and its costs' through `dot(q) = X(q) alpha`, against central
-/// differences of the exact gradient.
-#[test]
-fn the_reduced_lagrangians_hessian_agrees_with_central_differences() {
-    for (scheme, free_duration) in Scheme::ALL.iter().flat_map(|&s| [(s, false), (s, true)]) {
-        let (nlp, z) = snakeboard_transcription(scheme, free_duration);
-        assert_hessian_agrees(&nlp, &z, &format!("{scheme:?} free {free_duration}"));
-    }
+fn reduced(request: Request) -> Request {
+    in_formulation(request, FormulationChoice::Reduced)
 }
 
 /// The point mass's reduced state `(x, alpha)` is a linear change of the
@@ -194,9 +147,6 @@ fn what_the_reduced_form_cannot_hold_is_refused_in_one_line() {
         line.contains("--goal: the reduced form") && line.contains("x are not given"),
         "{line}"
     );
-    let mut momentum = rest_to_rest(Scheme::Midpoint, 5);
-    momentum.formulation = FormulationChoice::Momentum;
-    assert!(error_of(momentum).contains("not the momentum one"));
 }
 
 /// The bicycle's chart 0 of the allowed velocities degenerates where the
