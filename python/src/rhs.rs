@@ -10,8 +10,8 @@ use pyo3::types::PyDict;
 
 /// The right-hand side `f(t, x, u=None)` of one formulation of a model,
 /// the inputs from its input laws unless `u` is given; `jacobian(t, x,
-/// u=None)` is `df/dx` (exact for the reduced form, central differences
-/// for the others, as the simulator's).
+/// u=None)` is `df/dx` (exact in every form, a feedback law's `du/dx` by
+/// central differences, as the simulator's).
 #[pyclass(unsendable, module = "chaplygin._chaplygin")]
 pub struct Rhs {
     prepared: Prepared,

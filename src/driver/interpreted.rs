@@ -249,13 +249,7 @@ impl Formulation for InterpretedReduced {
         jacobian.copy_from_slice(&self.call("reduced_rhs_jacobian", &[x, &u]));
         if self.inputs.reads_state {
             let b = self.call("input_matrix", &[x]);
-            let du = central_differences(x, u.len(), |x, u| self.inputs(t, x, u));
-            let (d, p) = (x.len(), u.len());
-            for (i, row) in jacobian.chunks_mut(d).enumerate() {
-                for (j, entry) in row.iter_mut().enumerate() {
-                    *entry += (0..p).map(|l| b[i * p + l] * du[l * d + j]).sum::<f64>();
-                }
-            }
+            add_feedback(self, (t, x), &b, jacobian);
         }
     }
 
@@ -414,9 +408,15 @@ impl Formulation for InterpretedDalembert {
         xdot[q.len()..].copy_from_slice(&qddot);
     }
 
-    /// Central differences, as the compiled Lagrange-d'Alembert adapter.
+    /// The model's exact Jacobian at fixed `u`
+    /// ([`lagrange_rhs_jacobian`]), and a feedback's `(df/du) du/dx`.
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
-        jacobian.copy_from_slice(&rhs_jacobian(self, t, x));
+        let u = inputs_at(self, &self.model, t, x);
+        let (by_x, by_u) = lagrange_rhs_jacobian(&self.model, x, &u);
+        jacobian.copy_from_slice(&by_x);
+        if self.inputs.reads_state {
+            add_feedback(self, (t, x), &by_u, jacobian);
+        }
     }
 
     fn energy(&self, x: &[f64]) -> f64 {
@@ -475,8 +475,8 @@ impl Formulation for InterpretedDalembert {
 }
 
 /// The derivative of `f: x -> y` (`m` values) at `x` by central
-/// differences, row-major (`m` rows), as the compiled adapters take the
-/// Jacobians they have no symbolic form of.
+/// differences, row-major (`m` rows): a feedback law's `du/dx`, the law
+/// having no symbolic form.
 fn central_differences(x: &[f64], m: usize, f: impl Fn(&[f64], &mut [f64])) -> Vec<f64> {
     let d = x.len();
     let (mut plus, mut minus) = (vec![0.0; m], vec![0.0; m]);
@@ -496,9 +496,46 @@ fn central_differences(x: &[f64], m: usize, f: impl Fn(&[f64], &mut [f64])) -> V
     derivative
 }
 
-/// `df/dx` of `formulation` by central differences.
-fn rhs_jacobian(formulation: &dyn Formulation, t: f64, x: &[f64]) -> Vec<f64> {
-    central_differences(x, x.len(), |x, xdot| formulation.rhs(t, x, xdot))
+/// Adds a feedback law's share `(df/du) du/dx` to `jacobian` (d x d,
+/// row-major) at `(t, x)`, `by_u = df/du` (d x p, row-major) and `du/dx`
+/// by central differences of the law.
+fn add_feedback(
+    formulation: &dyn Formulation,
+    (t, x): (f64, &[f64]),
+    by_u: &[f64],
+    jacobian: &mut [f64],
+) {
+    let (d, p) = (x.len(), by_u.len() / x.len());
+    let du = central_differences(x, p, |x, u| formulation.inputs(t, x, u));
+    for (i, row) in jacobian.chunks_mut(d).enumerate() {
+        for (j, entry) in row.iter_mut().enumerate() {
+            *entry += (0..p).map(|l| by_u[i * p + l] * du[l * d + j]).sum::<f64>();
+        }
+    }
+}
+
+/// `df/dx` (2n x 2n) and `df/du` (2n x p) of the Lagrange-d'Alembert
+/// form `f = (qdot, qddot(q, qdot, u))` at `x = (q, qdot)`, row-major: the
+/// identity's rows `qdot`, then the exact `acceleration_jacobian`.
+pub fn lagrange_rhs_jacobian(
+    model: &InterpretedModel,
+    x: &[f64],
+    u: &[f64],
+) -> (Vec<f64>, Vec<f64>) {
+    let (n, p) = (model.sizes().n, model.sizes().p);
+    let s = 2 * n;
+    let (q, qdot) = x.split_at(n);
+    let (by_q, by_qdot, by_u) = evaluated(model.acceleration_jacobian(q, qdot, u));
+    let mut fx = vec![0.0; s * s];
+    let mut fu = vec![0.0; s * p];
+    for k in 0..n {
+        fx[k * s + n + k] = 1.0;
+        let row = (n + k) * s;
+        fx[row..row + n].copy_from_slice(&by_q[k * n..(k + 1) * n]);
+        fx[row + n..row + s].copy_from_slice(&by_qdot[k * n..(k + 1) * n]);
+        fu[(n + k) * p..(n + k + 1) * p].copy_from_slice(&by_u[k * p..(k + 1) * p]);
+    }
+    (fx, fu)
 }
 
 /// Why `model` has no momentum formulation, if it has none: no symmetry,
@@ -638,9 +675,15 @@ impl Formulation for InterpretedMomentum {
         xdot.copy_from_slice(&evaluated(self.model.momentum_form_rhs(x, &u)));
     }
 
-    /// Central differences, as the compiled momentum adapter.
+    /// The model's exact `momentum_form_jacobian` at fixed `u`, and a
+    /// feedback's `(df/du) du/dx`.
     fn jacobian(&self, t: f64, x: &[f64], jacobian: &mut [f64]) {
-        jacobian.copy_from_slice(&rhs_jacobian(self, t, x));
+        let u = inputs_at(self, &self.model, t, x);
+        let (by_x, by_u) = evaluated(self.model.momentum_form_jacobian(x, &u));
+        jacobian.copy_from_slice(&by_x);
+        if self.inputs.reads_state {
+            add_feedback(self, (t, x), &by_u, jacobian);
+        }
     }
 
     /// The energy at the reconstructed velocity.
@@ -728,5 +771,60 @@ impl Formulation for InterpretedMomentum {
 
     fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
         holonomic_residual(&self.model, &x[..self.model.sizes().n])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::central_differences;
+    use crate::driver::catalog::lookup;
+    use crate::driver::engine::{EngineChoice, load};
+    use crate::driver::simulate::{FormulationChoice, Request, prepare};
+
+    /// The snakeboard's Jacobian `df/dx` in each formulation under a
+    /// feedback law that reads its coordinates and velocities: the exact
+    /// one of the model at fixed `u` (`acceleration_jacobian`,
+    /// `reduced_rhs_jacobian`, `momentum_form_jacobian`) with the law's
+    /// share, against central differences of the closed right-hand side.
+    #[test]
+    fn every_formulations_jacobian_is_the_derivative_of_its_closed_rhs() {
+        let laws = [
+            ("u_torso", "0.4*sin(t) - 2*psi + 0.3*dot(x)*dot(theta)"),
+            ("u_wheels", "-3*phi - dot(phi) + 0.5*dot(y)"),
+        ];
+        let initial = [
+            ("dot(psi)", "0.3"),
+            ("dot(phi)", "-0.2"),
+            ("dot(x)", "0.5"),
+            ("psi", "0.4"),
+        ];
+        for formulation in [
+            FormulationChoice::Lagrange,
+            FormulationChoice::Reduced,
+            FormulationChoice::Momentum,
+        ] {
+            let loaded = load(&lookup("snakeboard").expect("built in"), EngineChoice::Jit);
+            let request = Request {
+                formulation,
+                inputs: laws.map(|(u, law)| (u.into(), law.into())).to_vec(),
+                initial: initial.map(|(v, value)| (v.into(), value.into())).to_vec(),
+                ..Request::default()
+            };
+            let prepared = prepare(loaded.expect("derives"), &request).expect("prepares");
+            let (system, x) = (&*prepared.formulation, &prepared.x0);
+            let d = x.len();
+            let mut exact = vec![0.0; d * d];
+            system.jacobian(0.3, x, &mut exact);
+            let numeric = central_differences(x, d, |x, xdot| system.rhs(0.3, x, xdot));
+            let largest = numeric.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            for (k, (a, b)) in exact.iter().zip(&numeric).enumerate() {
+                assert!(
+                    (a - b).abs() < 1e-6 * largest,
+                    "{formulation:?} ({}, {}): {a} vs {b}",
+                    k / d,
+                    k % d
+                );
+            }
+        }
     }
 }

@@ -40,7 +40,7 @@
 //! (the velocities are tangent to them): the scheme keeps them to its
 //! order, `plan.csv`'s `holonomic_residual`.
 
-use crate::driver::interpreted::momentum_unsupported;
+use crate::driver::interpreted::{lagrange_rhs_jacobian, momentum_unsupported};
 use crate::runtime::system::next_chart;
 use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
 
@@ -160,7 +160,7 @@ impl Form {
         u: &[f64],
     ) -> (Vec<f64>, Vec<f64>) {
         match self {
-            Self::Lagrange => lagrange_jacobian(model, x, u),
+            Self::Lagrange => lagrange_rhs_jacobian(model, x, u),
             Self::Reduced => (
                 evaluated(model.reduced_rhs_jacobian(x, u)),
                 evaluated(model.input_matrix(x)),
@@ -227,25 +227,6 @@ impl Form {
         }
         gradient
     }
-}
-
-/// `df/dx` (2n x 2n) and `df/du` (2n x p) of the Lagrange form,
-/// row-major: the identity's rows `qdot`, then `acceleration_jacobian`.
-fn lagrange_jacobian(model: &InterpretedModel, x: &[f64], u: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let (n, p) = (model.sizes().n, model.sizes().p);
-    let s = 2 * n;
-    let (q, qdot) = x.split_at(n);
-    let (by_q, by_qdot, by_u) = evaluated(model.acceleration_jacobian(q, qdot, u));
-    let mut fx = vec![0.0; s * s];
-    let mut fu = vec![0.0; s * p];
-    for k in 0..n {
-        fx[k * s + n + k] = 1.0;
-        let row = (n + k) * s;
-        fx[row..row + n].copy_from_slice(&by_q[k * n..(k + 1) * n]);
-        fx[row + n..row + s].copy_from_slice(&by_qdot[k * n..(k + 1) * n]);
-        fu[(n + k) * p..(n + k + 1) * p].copy_from_slice(&by_u[k * p..(k + 1) * p]);
-    }
-    (fx, fu)
 }
 
 /// The first node of `states` (rows of `q` first) that `simulate` would
