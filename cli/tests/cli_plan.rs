@@ -53,14 +53,8 @@ fn a_point_mass_plan_meets_its_closed_form_cost() {
     arguments.extend(["--nodes", "41"]);
     let output = run(dir.path(), "plan", &arguments);
     let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    let report = report(dir.path(), &output);
     assert!(stdout.contains("a verified optimum"), "{stdout}");
-    let json = std::fs::read_to_string(dir.path().join("plan/plan.json")).expect("plan.json");
-    let report: serde_json::Value = serde_json::from_str(&json).expect("JSON");
     // 12 m^2 / T^3 with m = 2, T = 2; the midpoint rule's error on 41 nodes
     // is 3.8e-3 (h^2 / 4 of it, from the library's convergence test).
     let objective = report["objective"].as_f64().expect("a number");
@@ -93,60 +87,61 @@ fn a_point_mass_plan_meets_its_closed_form_cost() {
     assert_eq!(header, trajectory_header);
 }
 
-/// The differential drive parked in the reduced form: `plan.csv` has the
-/// columns of `simulate`'s reduced `trajectory.csv` (the momenta, `chart`),
-/// `plan.json` names the formulation, chart 0 and the exact Hessian, and
-/// the goal's pose is met.
+/// The differential drive parked in the reduced and the momentum form:
+/// `plan.csv` has the columns of `simulate`'s `trajectory.csv` in that form
+/// (the reduced momenta and `chart`, or the shape velocities), `plan.json`
+/// names the formulation, its chart (0, or none) and the exact Hessian,
+/// and the goal's pose is met.
 #[test]
-fn a_reduced_plan_has_the_reduced_trajectorys_columns() {
-    let dir = scratch("plan-reduced");
-    let out = |name: &str| dir.path().join(name).to_str().expect("UTF-8").to_string();
-    let (plan_out, simulate_out) = (out("plan"), out("simulate"));
-    let mut arguments: Vec<String> = ["plan", "differential-drive", "--formulation", "reduced"]
-        .into_iter()
-        .chain(["--duration", "4", "--nodes", "21", "--out", &plan_out])
-        .map(String::from)
-        .collect();
-    for q in ["x", "y", "theta", "phi_r", "phi_l"] {
-        arguments.extend(["--start".into(), format!("{q}=0")]);
-        arguments.extend(["--start".into(), format!("dot({q})=0")]);
+fn a_plan_in_another_form_has_that_forms_trajectory_columns() {
+    for (formulation, chart) in [("reduced", Some(0)), ("momentum", None)] {
+        let dir = scratch(&format!("plan-{formulation}"));
+        let out = |name: &str| dir.path().join(name).to_str().expect("UTF-8").to_string();
+        let (plan_out, simulate_out) = (out("plan"), out("simulate"));
+        let mut arguments: Vec<String> = ["plan", "differential-drive", "--formulation"]
+            .into_iter()
+            .chain([formulation, "--duration", "4", "--nodes", "21"])
+            .chain(["--out", &plan_out])
+            .map(String::from)
+            .collect();
+        for q in ["x", "y", "theta", "phi_r", "phi_l"] {
+            arguments.extend(["--start".into(), format!("{q}=0")]);
+            arguments.extend(["--start".into(), format!("dot({q})=0")]);
+        }
+        for goal in ["x=0.3", "y=0.1", "theta=0", "dot(phi_r)=0", "dot(phi_l)=0"] {
+            arguments.extend(["--goal".into(), goal.into()]);
+        }
+        let output = chaplygin(&arguments.iter().map(String::as_str).collect::<Vec<_>>());
+        let report = report(dir.path(), &output);
+        assert_eq!(report["formulation"], formulation);
+        assert_eq!(report["chart"], serde_json::json!(chart));
+        let reason = report["chart_reason"].as_str();
+        assert_eq!(reason.is_some(), chart.is_some(), "{reason:?}");
+        assert!(
+            reason.is_none_or(|reason| reason.starts_with("chart 0, the one simulate starts in")),
+            "{reason:?}"
+        );
+        assert_eq!(report["solver"], "ripopt (exact Hessian)");
+        let (header, rows) = read_csv(&dir.path().join("plan/plan.csv"));
+        let last = rows.len() - 1;
+        for (name, goal) in [("x", 0.3), ("y", 0.1), ("theta", 0.0)] {
+            let value = column(&header, &rows, name)[last];
+            assert!((value - goal).abs() < 1e-9, "{name} {value}");
+        }
+        let simulated = chaplygin(&[
+            "simulate",
+            "differential-drive",
+            "--formulation",
+            formulation,
+            "--t-end",
+            "0.01",
+            "--out",
+            &simulate_out,
+        ]);
+        assert!(simulated.status.success());
+        let (trajectory_header, _) = read_csv(&dir.path().join("simulate/trajectory.csv"));
+        assert_eq!(header, trajectory_header);
     }
-    for goal in ["x=0.3", "y=0.1", "theta=0", "dot(phi_r)=0", "dot(phi_l)=0"] {
-        arguments.extend(["--goal".into(), goal.into()]);
-    }
-    let output = chaplygin(&arguments.iter().map(String::as_str).collect::<Vec<_>>());
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let json = std::fs::read_to_string(dir.path().join("plan/plan.json")).expect("plan.json");
-    let report: serde_json::Value = serde_json::from_str(&json).expect("JSON");
-    assert_eq!(report["formulation"], "reduced");
-    assert_eq!(report["chart"], 0);
-    let reason = report["chart_reason"].as_str().expect("a reason");
-    assert!(
-        reason.starts_with("chart 0, the one simulate starts in"),
-        "{reason}"
-    );
-    assert_eq!(report["solver"], "ripopt (exact Hessian)");
-    let (header, rows) = read_csv(&dir.path().join("plan/plan.csv"));
-    let last = rows.len() - 1;
-    for (name, goal) in [("x", 0.3), ("y", 0.1), ("theta", 0.0)] {
-        let value = column(&header, &rows, name)[last];
-        assert!((value - goal).abs() < 1e-9, "{name} {value}");
-    }
-    let simulated = chaplygin(&[
-        "simulate",
-        "differential-drive",
-        "--t-end",
-        "0.01",
-        "--out",
-        &simulate_out,
-    ]);
-    assert!(simulated.status.success());
-    let (trajectory_header, _) = read_csv(&dir.path().join("simulate/trajectory.csv"));
-    assert_eq!(header, trajectory_header);
 }
 
 /// Both Hessians reach the closed-form cost, and `plan.json` names the one
@@ -162,13 +157,7 @@ fn each_hessian_reaches_the_closed_form_cost_and_is_named() {
         arguments.extend(["--nodes", "21"]);
         arguments.extend(choice.map(|h| ["--hessian", h]).into_iter().flatten());
         let output = run(dir.path(), "plan", &arguments);
-        assert!(
-            output.status.success(),
-            "{}",
-            String::from_utf8_lossy(&output.stderr)
-        );
-        let json = std::fs::read_to_string(dir.path().join("plan/plan.json")).expect("plan.json");
-        let report: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+        let report = report(dir.path(), &output);
         // 12 m^2 / T^3 = 6; the midpoint rule's error on 21 nodes is
         // 0.015 (h^2 / 4 of it, h = 0.1).
         let objective = report["objective"].as_f64().expect("a number");
@@ -251,8 +240,7 @@ fn a_plan_its_replay_departs_from_fails_and_is_written_marked() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success());
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    let json = std::fs::read_to_string(out.join("plan.json")).expect("plan.json");
-    let report: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+    let report = plan_json(&out);
     let replay = &report["replay"];
     let variable = replay["largest"]["variable"].as_str().expect("a name");
     assert!(
@@ -280,7 +268,12 @@ fn report(dir: &Path, output: &Output) -> serde_json::Value {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    let json = std::fs::read_to_string(dir.join("plan/plan.json")).expect("plan.json");
+    plan_json(&dir.join("plan"))
+}
+
+/// `plan.json` in `out`.
+fn plan_json(out: &Path) -> serde_json::Value {
+    let json = std::fs::read_to_string(out.join("plan.json")).expect("plan.json");
     serde_json::from_str(&json).expect("JSON")
 }
 
@@ -486,9 +479,7 @@ fn a_terminal_shows_each_iteration() {
         .expect("script runs");
     let shown = String::from_utf8_lossy(&output.stdout).replace('\r', "");
     assert!(output.status.success(), "{shown}");
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).expect("plan.json"))
-            .expect("JSON");
+    let report = plan_json(&out);
     let header = shown.lines().position(|line| {
         line.split_whitespace()
             .eq(["iter", "objective", "primal", "dual"])
@@ -541,9 +532,7 @@ fn an_interrupted_plan_keeps_its_last_iterate() {
             )),
         "{stderr}"
     );
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).expect("plan.json"))
-            .expect("JSON");
+    let report = plan_json(&out);
     assert_eq!(report["status"], "interrupted");
     let iterations = report["iterations"].as_u64().expect("a count");
     assert!(
