@@ -551,6 +551,22 @@ pub fn momentum_unsupported(model: &InterpretedModel) -> Option<String> {
         .then(|| format!("the momentum formulation is {MOMENTUM_WITH_HOLONOMIC}"))
 }
 
+/// The names of the momentum formulation's state `(q, rdot, p)`: the
+/// coordinates, `dot(r)` for the shape velocities, `p1..pK`.
+pub fn momentum_state_names(model: &InterpretedModel) -> Vec<String> {
+    let coordinates = &model.names().coordinates;
+    let shape = model.shape().unwrap_or_default();
+    let shape_velocities = shape.iter().map(|&i| format!("dot({})", coordinates[i]));
+    let k = model.arguments("momentum_rhs").map_or(0, |a| a[2].1);
+    let momenta = (1..=k).map(|i| format!("p{i}"));
+    coordinates
+        .iter()
+        .cloned()
+        .chain(shape_velocities)
+        .chain(momenta)
+        .collect()
+}
+
 /// The momentum equation `x = (q, rdot, p)` of an interpreted model with a
 /// symmetry (MATH.md section 4), as the compiled `system::Momentum`:
 ///
@@ -640,21 +656,8 @@ impl InterpretedMomentum {
 }
 
 impl Formulation for InterpretedMomentum {
-    /// The coordinates, `dot(r)` for the shape velocities, `p1..pK`.
     fn state_names(&self) -> Vec<String> {
-        let coordinates = &self.model.names().coordinates;
-        let shape_velocities = self
-            .shape
-            .iter()
-            .map(|&i| format!("dot({})", coordinates[i]));
-        let k = self.model.arguments("momentum_rhs").map_or(0, |a| a[2].1);
-        let momenta = (1..=k).map(|i| format!("p{i}"));
-        coordinates
-            .iter()
-            .cloned()
-            .chain(shape_velocities)
-            .chain(momenta)
-            .collect()
+        momentum_state_names(&self.model)
     }
 
     fn input_names(&self) -> Vec<String> {

@@ -40,7 +40,9 @@
 //! (the velocities are tangent to them): the scheme keeps them to its
 //! order, `plan.csv`'s `holonomic_residual`.
 
-use crate::driver::interpreted::{lagrange_rhs_jacobian, momentum_unsupported};
+use crate::driver::interpreted::{
+    lagrange_rhs_jacobian, momentum_state_names, momentum_unsupported,
+};
 use crate::runtime::system::next_chart;
 use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
 
@@ -92,18 +94,14 @@ impl Form {
     pub fn state_names(self, model: &InterpretedModel) -> Vec<String> {
         let names = model.names();
         let coordinates = names.coordinates.iter().cloned();
-        let dotted = |i: usize| format!("dot({})", names.coordinates[i]);
-        let second: Vec<String> = match self {
-            Self::Lagrange => (0..model.sizes().n).map(dotted).collect(),
-            Self::Reduced => names.momenta.clone(),
-            Self::Momentum => {
-                let shape = model.shape().unwrap_or_default();
-                let momenta = self.state(model) - model.sizes().n - shape.len();
-                let momenta = (1..=momenta).map(|i| format!("p{i}"));
-                shape.into_iter().map(dotted).chain(momenta).collect()
+        match self {
+            Self::Lagrange => {
+                let dotted = names.coordinates.iter().map(|q| format!("dot({q})"));
+                coordinates.chain(dotted).collect()
             }
-        };
-        coordinates.chain(second).collect()
+            Self::Reduced => coordinates.chain(names.momenta.iter().cloned()).collect(),
+            Self::Momentum => momentum_state_names(model),
+        }
     }
 
     /// The chart the state is written in: chart 0 for the reduced form of
