@@ -362,7 +362,7 @@ mod tests {
     use super::InterpretedModel;
     use crate::fixtures::SNAKEBOARD;
     use crate::interpret::CallError;
-    use crate::interpret::second::tests::{assert_close, assert_hessian_agrees};
+    use crate::interpret::second::tests::{assert_close, assert_hessian_agrees, models_at};
 
     /// The snakeboard, the differential drive and the rolling disk in
     /// space (`se2(x, y, psi) * rotation(theta)`, under gravity), each with
@@ -374,17 +374,11 @@ mod tests {
             include_str!("../../../models/differential_drive.model"),
             include_str!("../../../models/rolling_disk_3d.model"),
         ];
-        sources
-            .into_iter()
-            .map(|source| {
-                let model = InterpretedModel::from_source(source).expect("derives");
-                let s = model.momentum_form_size().expect("a symmetry");
-                let y = (0..s + model.sizes().p)
-                    .map(|j| 0.3 * (1.3 * j as f64 + 0.4).sin() + 0.05)
-                    .collect();
-                (model, y)
-            })
-            .collect()
+        models_at(
+            &sources,
+            |model| model.momentum_form_size().expect("a symmetry") + model.sizes().p,
+            |j| 0.3 * (1.3 * j + 0.4).sin() + 0.05,
+        )
     }
 
     /// `(q, rdot, p)` of `x`.

@@ -274,6 +274,22 @@ pub(super) mod tests {
     use super::InterpretedModel;
     use crate::fixtures::SNAKEBOARD;
 
+    /// Each model of `sources` derived, with a point of `size(model)`
+    /// entries, the `j`-th `value(j)`.
+    pub(crate) fn models_at(
+        sources: &[&str],
+        size: impl Fn(&InterpretedModel) -> usize,
+        value: impl Fn(f64) -> f64,
+    ) -> Vec<(InterpretedModel, Vec<f64>)> {
+        (sources.iter())
+            .map(|source| {
+                let model = InterpretedModel::from_source(source).expect("derives");
+                let y = (0..size(&model)).map(|j| value(j as f64)).collect();
+                (model, y)
+            })
+            .collect()
+    }
+
     /// The snakeboard, the differential drive and the benchmark bicycle,
     /// each with a state and inputs where every entry is nonzero.
     fn models() -> Vec<(InterpretedModel, Vec<f64>)> {
@@ -282,17 +298,11 @@ pub(super) mod tests {
             include_str!("../../../models/differential_drive.model"),
             include_str!("../../../models/bicycle.model"),
         ];
-        sources
-            .into_iter()
-            .map(|source| {
-                let model = InterpretedModel::from_source(source).expect("derives");
-                let m = 2 * model.sizes().n + model.sizes().p;
-                let y = (0..m)
-                    .map(|j| 0.2 * (0.9 * j as f64).sin() + 0.05)
-                    .collect();
-                (model, y)
-            })
-            .collect()
+        models_at(
+            &sources,
+            |model| 2 * model.sizes().n + model.sizes().p,
+            |j| 0.2 * (0.9 * j).sin() + 0.05,
+        )
     }
 
     /// `(q, qdot, u)` of `y`.
