@@ -273,6 +273,7 @@ pub struct ParameterBlocks {
 pub(super) mod tests {
     use super::InterpretedModel;
     use crate::fixtures::SNAKEBOARD;
+    use std::sync::OnceLock;
 
     /// Each model of `sources` derived, with a point of `size(model)`
     /// entries, the `j`-th `value(j)`.
@@ -291,18 +292,23 @@ pub(super) mod tests {
     }
 
     /// The snakeboard, the differential drive and the benchmark bicycle,
-    /// each with a state and inputs where every entry is nonzero.
+    /// each with a state and inputs where every entry is nonzero: derived
+    /// once for this module's tests (the bicycle takes 5 s unoptimized).
     fn models() -> Vec<(InterpretedModel, Vec<f64>)> {
+        static MODELS: OnceLock<Vec<(InterpretedModel, Vec<f64>)>> = OnceLock::new();
         let sources = [
             SNAKEBOARD,
             include_str!("../../../models/differential_drive.model"),
             include_str!("../../../models/bicycle.model"),
         ];
-        models_at(
-            &sources,
-            |model| 2 * model.sizes().n + model.sizes().p,
-            |j| 0.2 * (0.9 * j).sin() + 0.05,
-        )
+        let derived = MODELS.get_or_init(|| {
+            models_at(
+                &sources,
+                |model| 2 * model.sizes().n + model.sizes().p,
+                |j| 0.2 * (0.9 * j).sin() + 0.05,
+            )
+        });
+        derived.clone()
     }
 
     /// `(q, qdot, u)` of `y`.

@@ -800,7 +800,11 @@ pub(super) mod tests {
     }
 
     /// Central differences of `f` at `z` by variable `j`.
-    fn central(z: &[f64], j: usize, f: &dyn Fn(&[f64]) -> Vec<f64>) -> Vec<f64> {
+    pub(in crate::driver::plan) fn central(
+        z: &[f64],
+        j: usize,
+        f: &dyn Fn(&[f64]) -> Vec<f64>,
+    ) -> Vec<f64> {
         let step = 1e-6;
         let (mut plus, mut minus) = (z.to_vec(), z.to_vec());
         plus[j] += step;
@@ -813,7 +817,7 @@ pub(super) mod tests {
     }
 
     /// The constraints' Jacobian of `nlp` at `z`, dense and row-major.
-    fn dense_jacobian(nlp: &Transcription, z: &[f64]) -> Vec<f64> {
+    pub(in crate::driver::plan) fn dense_jacobian(nlp: &dyn Nlp, z: &[f64]) -> Vec<f64> {
         let mut dense = vec![0.0; nlp.constraints() * nlp.variables()];
         let mut values = vec![0.0; nlp.jacobian_structure().len()];
         assert!(nlp.jacobian_values(z, &mut values));

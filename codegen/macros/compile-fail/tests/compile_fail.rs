@@ -6,7 +6,9 @@
 fn bad_models_are_compile_errors() {
     // trybuild's project has no profile of its own: without debug
     // information the macro and the engine it builds compile and load
-    // faster, and no diagnostic depends on it.
+    // faster, and no diagnostic depends on it. The root package's
+    // `tests/user_crate.rs` builds in trybuild's folder with these
+    // settings, so the macro and the engine are built once for both.
     // SAFETY: set before trybuild starts cargo, which inherits it; this
     // binary's only test, so no other thread reads the environment.
     unsafe { std::env::set_var("CARGO_PROFILE_DEV_DEBUG", "false") };
