@@ -85,10 +85,12 @@ fn energy_drift<M: FixedStep<ClosedLoop<Snakeboard>, [f64; D]>>(
     (worst, alpha1)
 }
 
+/// Over 200 s (20,000 steps) the midpoint rule's error stays at round-off
+/// (3.9e-14) while RK4's grows with time (3.9e-7; 1.9e-6 over 1000 s).
 #[test]
 fn midpoint_keeps_the_closed_loop_energy_where_rk4_drifts() {
     assert_eq!(closed_loop().plant, Snakeboard::default());
-    let (h, steps) = (0.01, 100_000);
+    let (h, steps) = (0.01, 20_000);
     let (midpoint, alpha1) = energy_drift(&Midpoint::default(), h, steps);
     let (rk4, _) = energy_drift(&Rk4, h, steps);
     println!(
