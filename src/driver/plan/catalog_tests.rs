@@ -9,7 +9,7 @@
 use super::form::Form;
 use super::nlp::Ripopt;
 use super::replay::{Replay, replayed_states};
-use super::tests::write_csv;
+use super::tests::WarmStart;
 use super::{Plan, PlanError, Request, Scheme, plan};
 use crate::driver::catalog::lookup;
 use crate::driver::engine::{EngineChoice, Loaded, load};
@@ -95,21 +95,17 @@ fn plans_reach_their_goal(
     bounds: &[(&str, &str)],
     coarse_miss: f64,
 ) -> [f64; 2] {
-    let dir = tempfile::tempdir().expect("a directory");
-    let mut guess = None;
+    let mut warm = WarmStart::new();
     let misses = [nodes, 2 * nodes - 1].map(|nodes| {
-        let mut request = request(duration, nodes, start, goal);
+        let mut request = warm.started(request(duration, nodes, start, goal));
         request.bounds = assigned(bounds);
-        request.guess = guess.take();
         let plan = plan(built_in(name), &request, &Ripopt::default()).expect("a plan");
         assert!(plan.report.kkt.within(1e-6), "{:?}", plan.report.kkt);
         eprintln!(
             "{name}, {nodes} nodes, {} iterations: {:?}",
             plan.report.iterations, plan.report.replay
         );
-        let path = dir.path().join(format!("plan-{nodes}.csv"));
-        write_csv(&plan.table, &path);
-        guess = Some(path);
+        warm.keep(&plan);
         miss(name, &plan, goal)
     });
     let rate = (misses[0] / misses[1]).log2();

@@ -439,6 +439,38 @@ pub(super) fn write_csv(table: &Table, path: &std::path::Path) {
     recorder.finish().expect("flushed");
 }
 
+/// Requests started from the plan kept last, its table written as their
+/// `guess`: a finer grid's from a coarser plan, another form's from the
+/// Lagrange form's plan.
+pub(super) struct WarmStart {
+    dir: tempfile::TempDir,
+    last: Option<std::path::PathBuf>,
+}
+
+impl WarmStart {
+    pub(super) fn new() -> Self {
+        WarmStart {
+            dir: tempfile::tempdir().expect("a directory"),
+            last: None,
+        }
+    }
+
+    /// `request`, started from the plan kept last, if any.
+    pub(super) fn started(&mut self, request: Request) -> Request {
+        Request {
+            guess: self.last.take(),
+            ..request
+        }
+    }
+
+    /// Keeps `plan` as the next request's start.
+    pub(super) fn keep(&mut self, plan: &Plan) {
+        let path = (self.dir.path()).join(format!("plan-{}.csv", plan.table.rows.len()));
+        write_csv(&plan.table, &path);
+        self.last = Some(path);
+    }
+}
+
 #[test]
 fn a_coarser_plan_as_the_guess_saves_iterations() {
     let coarse = plan(differential_drive(), &parking(21), &Ripopt::default()).expect("a plan");
@@ -468,16 +500,12 @@ fn a_coarser_plan_as_the_guess_saves_iterations() {
 /// is of higher order than the midpoint rule's `h^2`).
 #[test]
 fn hermite_simpson_parks_the_differential_drive_at_fourth_order() {
-    let dir = tempfile::tempdir().expect("a directory");
-    let mut guess = None;
+    let mut warm = WarmStart::new();
     let objectives = [11, 21, 41].map(|nodes| {
-        let mut request = parking(nodes);
+        let mut request = warm.started(parking(nodes));
         request.scheme = Scheme::HermiteSimpson;
-        request.guess = guess.take();
         let plan = plan(differential_drive(), &request, &Ripopt::default()).expect("a plan");
-        let path = dir.path().join(format!("plan-{nodes}.csv"));
-        write_csv(&plan.table, &path);
-        guess = Some(path);
+        warm.keep(&plan);
         plan.report.objective
     });
     let ratio = (objectives[0] - objectives[1]) / (objectives[1] - objectives[2]);

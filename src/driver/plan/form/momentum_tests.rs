@@ -9,7 +9,7 @@ use crate::driver::plan::catalog_tests::{assigned, built_in, request, sideways};
 use crate::driver::plan::nlp::Ripopt;
 use crate::driver::plan::replay::replayed_states;
 use crate::driver::plan::tests::{
-    differential_drive, parking, point_mass, rest_to_rest, write_csv,
+    WarmStart, differential_drive, parking, point_mass, rest_to_rest,
 };
 use crate::driver::plan::{Request, Scheme, plan};
 use crate::driver::simulate::FormulationChoice;
@@ -64,15 +64,13 @@ fn the_momentum_differential_drive_plan_is_its_reduced_plan() {
 #[ignore = "11 s in a debug build: cargo test -p chaplygin --features cli,plan --lib momentum_snakeboard -- --ignored"]
 fn the_momentum_snakeboard_plan_parks_it_sideways() {
     let (duration, start, goal, bounds) = sideways();
-    let dir = tempfile::tempdir().expect("a directory");
+    let mut warm = WarmStart::new();
     let misses = [21, 41].map(|nodes| {
         let mut lagrange = request(duration, nodes, &start, &goal);
         lagrange.bounds = assigned(&bounds);
         let first = plan(built_in("snakeboard"), &lagrange, &Ripopt::default()).expect("a plan");
-        let path = dir.path().join(format!("{nodes}.csv"));
-        write_csv(&first.table, &path);
-        let mut request = momentum(lagrange);
-        request.guess = Some(path);
+        warm.keep(&first);
+        let request = warm.started(momentum(lagrange));
         let planned = plan(built_in("snakeboard"), &request, &Ripopt::default()).expect("a plan");
         let model = built_in("snakeboard").model;
         let states = replayed_states((&model, Form::Momentum), Scheme::Midpoint, &planned.table);

@@ -11,7 +11,7 @@ use crate::driver::plan::catalog_tests::{assigned, built_in, request, sideways};
 use crate::driver::plan::nlp::{Hessian, Ripopt};
 use crate::driver::plan::replay::replayed_states;
 use crate::driver::plan::tests::{
-    differential_drive, parking, point_mass, rest_to_rest, write_csv,
+    WarmStart, differential_drive, parking, point_mass, rest_to_rest,
 };
 use crate::driver::plan::{Request, Scheme, plan};
 use crate::driver::simulate::FormulationChoice;
@@ -95,15 +95,13 @@ fn the_reduced_differential_drive_plan_converges_to_the_lagrange_plan() {
 #[ignore = "22 s in a debug build: cargo test -p chaplygin --features cli,plan --lib reduced_snakeboard -- --ignored"]
 fn the_reduced_snakeboard_plan_parks_it_near_the_lagrange_optimum() {
     let (duration, start, goal, bounds) = sideways();
-    let dir = tempfile::tempdir().expect("a directory");
+    let mut warm = WarmStart::new();
     let misses = [21, 41, 81].map(|nodes| {
         let mut lagrange = request(duration, nodes, &start, &goal);
         lagrange.bounds = assigned(&bounds);
         let first = plan(built_in("snakeboard"), &lagrange, &Ripopt::default()).expect("a plan");
-        let path = dir.path().join(format!("{nodes}.csv"));
-        write_csv(&first.table, &path);
-        let mut request = reduced(lagrange);
-        request.guess = Some(path);
+        warm.keep(&first);
+        let request = warm.started(reduced(lagrange));
         let [exact, lbfgs] = [Hessian::Exact, Hessian::Lbfgs].map(|hessian| {
             plan(built_in("snakeboard"), &request, &Ripopt { hessian }).expect("a plan")
         });
