@@ -12,8 +12,8 @@
 //!
 //! Each run of the binary derives and compiles the bicycle again (some 5 s
 //! of CPU in the test build, a fall 0.3 to 1.3 s): the falls run in this
-//! process, each test on the bicycle it loads once ([`Model`]), the reduced
-//! form's fall, which three tests read, once for them all
+//! process, on the bicycle loaded once for all the tests ([`Model`]), the
+//! reduced form's fall, which three tests read, once for them all
 //! ([`reduced_fall`]); the binary runs the first of the runs on to the flat
 //! wheel, its exit status, its one line on standard error and the rows it
 //! wrote.
@@ -43,19 +43,15 @@ fn out(name: &str) -> PathBuf {
 }
 
 /// The bicycle built in, loaded on the JIT.
-fn bicycle() -> Model {
+fn bicycle() -> &'static Model {
     Model::load("bicycle", "jit")
 }
 
 /// The fall of the reduced form with the discrete gradient until the lean
-/// passes 1 rad, run once for the tests that read it: on `bicycle` where
-/// the test has loaded it, else on one loaded here.
-fn reduced_fall(bicycle: Option<&Model>) -> &'static Run {
+/// passes 1 rad, run once for the tests that read it.
+fn reduced_fall() -> &'static Run {
     static FALL: OnceLock<Run> = OnceLock::new();
-    FALL.get_or_init(|| match bicycle {
-        Some(bicycle) => until_it_lies_down(bicycle, "reduced", "discrete-gradient"),
-        None => until_it_lies_down(&self::bicycle(), "reduced", "discrete-gradient"),
-    })
+    FALL.get_or_init(|| until_it_lies_down(bicycle(), "reduced", "discrete-gradient"))
 }
 
 /// The fall of `bicycle` in `formulation` with `integrator` until the lean
@@ -111,7 +107,7 @@ fn assert_fell_through_the_steer_singularity(run: &Run) {
 
 #[test]
 fn the_reduced_form_changes_chart_where_the_steer_passes_90_degrees() {
-    let run = reduced_fall(None);
+    let run = reduced_fall();
     assert_fell_through_the_steer_singularity(run);
     assert!(!run.summary.contains("chart switches 0"), "{}", run.summary);
     let charts = run.column("chart");
@@ -132,9 +128,9 @@ fn the_reduced_form_changes_chart_where_the_steer_passes_90_degrees() {
 #[test]
 fn the_lagrange_dalembert_form_falls_the_same_way() {
     let bicycle = bicycle();
-    let lagrange = until_it_lies_down(&bicycle, "lagrange", "rk4");
+    let lagrange = until_it_lies_down(bicycle, "lagrange", "rk4");
     assert_fell_through_the_steer_singularity(&lagrange);
-    let reduced = reduced_fall(Some(&bicycle));
+    let reduced = reduced_fall();
     let end = |run: &Run| *run.column("t").last().expect("rows");
     assert!((end(&lagrange) - end(reduced)).abs() < 1e-3);
 }
@@ -147,10 +143,10 @@ fn the_lagrange_dalembert_form_falls_the_same_way() {
 #[test]
 fn steps_too_long_for_the_whipping_steer_are_split_not_ended() {
     let bicycle = bicycle();
-    let fine = reduced_fall(Some(&bicycle));
+    let fine = reduced_fall();
     // the fall without its `--dt`: fixed steps of the default length, the
     // default integrator
-    let coarse = until_the_lean_passes_1_rad(&bicycle, "default-step", &FALL[..7]);
+    let coarse = until_the_lean_passes_1_rad(bicycle, "default-step", &FALL[..7]);
     let summary = &coarse.summary;
     assert!(summary.contains("of discrete-gradient"), "{summary}");
     assert!(summary.contains("; steps split "), "{summary}");

@@ -13,9 +13,14 @@
 //! obeys `phi[k] = a1 phi[k-1] + a2 phi[k-2] + a3 phi[k-3]`; the `a` fitted
 //! by least squares over the run are the coefficients of the polynomial
 //! whose roots are `exp(s h)`, `s` the three eigenvalues.
+//!
+//! The runs are made in this process as the binary makes them, on the
+//! bicycle loaded once (`support::in_process`); the refusals are the
+//! binary's, one line on standard error.
 
 use crate::support::benchmark_bicycle::{BenchmarkParameters, Modes};
-use crate::support::{chaplygin, read_csv};
+use crate::support::chaplygin;
+use crate::support::in_process::Model;
 use nalgebra::{Complex, DMatrix, DVector, Matrix3};
 use std::path::PathBuf;
 
@@ -42,42 +47,40 @@ impl Run {
     }
 }
 
-/// `chaplygin simulate bicycle` with `arguments`, its trajectory read back.
-fn simulate(name: &str, arguments: &[&str]) -> Run {
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&out);
-    let out_arg = out.to_str().expect("a UTF-8 path");
+/// `chaplygin simulate bicycle` with `arguments` and steps of [`STEP`],
+/// run in this process on the bicycle loaded once for all the tests
+/// ([`Model::load`]): its rows, those the binary writes to
+/// `trajectory.csv`.
+fn simulate(arguments: &[&str]) -> Run {
     let dt = STEP.to_string();
-    let mut all = vec!["simulate", "bicycle", "--dt", &dt, "--out", out_arg];
+    let mut all = vec!["--dt", &dt];
     all.extend_from_slice(arguments);
-    let output = chaplygin(&all);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let (header, rows) = read_csv(&out.join("trajectory.csv"));
-    Run { header, rows }
+    let run = (Model::load("bicycle", "jit").simulate(&all))
+        .unwrap_or_else(|error| panic!("{arguments:?}: {error}"));
+    if let Err(error) = &run.outcome {
+        panic!("{arguments:?}: {error}");
+    }
+    Run {
+        header: run.header,
+        rows: run.rows,
+    }
 }
 
 /// Upright at `speed` m/s (`dot(theta_r) = -v/rR`), lean rate `lean_rate`,
 /// steer rate zero, for `seconds`.
-fn pushed(name: &str, speed: &str, lean_rate: &str, seconds: &str) -> Run {
+fn pushed(speed: &str, lean_rate: &str, seconds: &str) -> Run {
     let forward = format!("dot(theta_r)=-{speed}/rR");
     let lean = format!("dot(phi)={lean_rate}");
-    simulate(
-        name,
-        &[
-            "--initial",
-            &forward,
-            "--initial",
-            &lean,
-            "--initial",
-            "dot(delta)=0",
-            "--t-end",
-            seconds,
-        ],
-    )
+    simulate(&[
+        "--initial",
+        &forward,
+        "--initial",
+        &lean,
+        "--initial",
+        "dot(delta)=0",
+        "--t-end",
+        seconds,
+    ])
 }
 
 /// The three eigenvalues of a sum of three exponential modes sampled every
@@ -185,7 +188,7 @@ fn at_5_m_s_the_lean_oscillation_decays_at_the_weave_rate() {
     // A push of 0.1 rad/s leans the bicycle by under 0.03 rad: the
     // nonlinear terms, of relative size phi^2 ~ 1e-3, move the modes by
     // about that much.
-    let run = pushed("bicycle-5", "5", "0.1", "6");
+    let run = pushed("5", "0.1", "6");
     let first = envelope(&run, 0.0, 1.0);
     let last = envelope(&run, 5.0, 6.0);
     assert!(last < 0.2 * first, "|phi| from {first} to {last}");
@@ -205,7 +208,7 @@ fn at_3_m_s_the_weave_grows() {
     // Below the weave speed (4.29 m/s) the weave pair's real part is
     // positive, 1.7/s at 3 m/s: a push of 0.002 rad/s grows to about
     // 0.01 rad in 2.5 s, where the nonlinear terms are still ~ phi^2.
-    let run = pushed("bicycle-3", "3", "0.002", "2.5");
+    let run = pushed("3", "0.002", "2.5");
     let first = envelope(&run, 0.0, 0.5);
     let last = envelope(&run, 2.0, 2.5);
     assert!(last > 5.0 * first, "|phi| from {first} to {last}");
@@ -221,28 +224,25 @@ fn at_3_m_s_the_weave_grows() {
 #[test]
 fn the_discrete_gradient_keeps_the_energy_and_the_default_motion_is_the_documented_push() {
     // The default motion: upright at 5 m/s, pushed at 0.5 rad/s in lean.
-    let reduced = simulate("bicycle-default", &["--t-end", "1"]);
+    let reduced = simulate(&["--t-end", "1"]);
     let lean_rate = reduced.column("alpha1")[0];
     assert!((lean_rate - 0.5).abs() < 1e-12, "{lean_rate}");
     assert_conservative_run(&reduced);
     // The Lagrange-d'Alembert equations from the same start, by the
     // implicit midpoint rule: the same motion to the integrators' order-2
     // error, (h |s|)^2 ~ 2e-3 of the lean's size (0.1 rad) after a second.
-    let lagrange = simulate(
-        "bicycle-lagrange",
-        &[
-            "--formulation",
-            "lagrange",
-            "--initial",
-            "dot(theta_r)=-5/rR",
-            "--initial",
-            "dot(phi)=0.5",
-            "--initial",
-            "dot(delta)=0",
-            "--t-end",
-            "1",
-        ],
-    );
+    let lagrange = simulate(&[
+        "--formulation",
+        "lagrange",
+        "--initial",
+        "dot(theta_r)=-5/rR",
+        "--initial",
+        "dot(phi)=0.5",
+        "--initial",
+        "dot(delta)=0",
+        "--t-end",
+        "1",
+    ]);
     assert_constraints_kept(&lagrange);
     for (a, b) in reduced.column("phi").iter().zip(lagrange.column("phi")) {
         assert!(

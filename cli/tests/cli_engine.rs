@@ -62,8 +62,8 @@ fn the_jit_runs_the_bicycle_file_as_the_interpreter_does() {
             let summary = run.outcome.expect("the run ends");
             (summary, run.header, run.rows)
         };
-        let (jit_summary, header, rows) = on(&jit);
-        let (interpreted_summary, interpreted_header, interpreted_rows) = on(&interpreter);
+        let (jit_summary, header, rows) = on(jit);
+        let (interpreted_summary, interpreted_header, interpreted_rows) = on(interpreter);
         assert!(jit_summary.contains("engine jit"), "{jit_summary}");
         assert!(
             interpreted_summary.contains("engine interpret"),

@@ -269,7 +269,7 @@ fn the_roller_racer_gait_swings_the_joint_and_balances_its_energy() {
     let rate = |t: f64| -0.4 * (2.0 * t).sin();
     let model = Model::load(RACER, "jit");
     for pairing in PAIRINGS {
-        let run = |dt: &str| simulated(&model, pairing, dt, &gait);
+        let run = |dt: &str| simulated(model, pairing, dt, &gait);
         let standard = run("0.01");
         let phi = standard.column("phi");
         let swing = phi.iter().fold(0.0_f64, |m, p| m.max(p.abs()));
@@ -310,7 +310,7 @@ fn the_roller_racer_circling_runs_40_s_in_every_form() {
     ];
     let model = Model::load(RACER, "jit");
     for pairing in PAIRINGS {
-        let run = |dt: &str| simulated(&model, pairing, dt, &circling);
+        let run = |dt: &str| simulated(model, pairing, dt, &circling);
         let standard = run("0.01");
         let phi = standard.column("phi");
         assert!(phi.iter().all(|p| (0.3..=1.4).contains(p)), "{pairing:?}");
@@ -372,7 +372,7 @@ fn the_trailing_racer_turns_through_its_basis_singularity_in_every_form() {
     let torque = ["--input", "u1=0.1", "--t-end", "40"];
     let model = Model::load(TRAILING, "jit");
     for pairing in PAIRINGS {
-        let run = |dt: &str| simulated(&model, pairing, dt, &torque);
+        let run = |dt: &str| simulated(model, pairing, dt, &torque);
         let standard = run("0.01");
         let phi = standard.column("phi");
         let crossings = phi

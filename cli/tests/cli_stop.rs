@@ -128,7 +128,7 @@ fn the_sleigh_stops_where_its_heading_crosses_1() {
         for (formulation, integrator) in RUNS {
             let context = format!("{model} {formulation} {integrator}");
             let run = simulated(
-                &loaded,
+                loaded,
                 &[
                     "--formulation",
                     formulation,
@@ -278,7 +278,7 @@ fn feedback_laws_close_every_formulation_as_their_closed_form_says() {
         for (formulation, integrator) in RUNS {
             let context = format!("{model} {formulation} {integrator}");
             let arguments = disk_arguments(model, formulation, integrator);
-            let run = simulated(&loaded, &arguments[1..]);
+            let run = simulated(loaded, &arguments[1..]);
             let tolerance = match integrator {
                 "dopri5" => 1e-12,
                 "rk4" => 1e-8,
@@ -335,7 +335,7 @@ fn a_condition_on_an_input_stops_where_its_closed_form_crosses() {
             if *integrator == "discrete-gradient" {
                 arguments.extend(["--dt", "0.001"]);
             }
-            let run = simulated(&loaded, &arguments[1..]);
+            let run = simulated(loaded, &arguments[1..]);
             let (t, condition) = run.stopped();
             assert_eq!(condition, "u_steer < 0", "{context}");
             assert!((t - crossing).abs() < 1e-9, "{context}: {t}");
@@ -378,7 +378,7 @@ fn steering_into_the_fall_keeps_the_bicycle_upright_below_its_weave_speed() {
     for formulation in ["lagrange", "reduced"] {
         let mut arguments = BICYCLE_AT_2.to_vec();
         arguments.extend([formulation, "--stop-when", "abs(phi) > 0.5"]);
-        let falls = simulated(&bicycle, &arguments[1..]);
+        let falls = simulated(bicycle, &arguments[1..]);
         let (t, _) = falls.stopped();
         assert!(t < 3.0, "{formulation}: falls at {t}");
         assert!(
@@ -388,7 +388,7 @@ fn steering_into_the_fall_keeps_the_bicycle_upright_below_its_weave_speed() {
 
         let mut arguments = BICYCLE_AT_2.to_vec();
         arguments.extend([formulation, "--input", "steer_torque=50*phi+50*dot(phi)"]);
-        let upright = simulated(&bicycle, &arguments[1..]);
+        let upright = simulated(bicycle, &arguments[1..]);
         assert_eq!(upright.last("t"), 10.0, "{formulation}");
         let lean: Vec<(f64, f64)> = upright
             .column("t")

@@ -242,7 +242,7 @@ fn the_ball_keeps_its_integrals_and_follows_chaplygins_equations() {
         ],
     ]
     .concat();
-    let run = run(&ball, &options);
+    let run = run(ball, &options);
     let (e, omega, gamma) = body_state(&run, 0);
     let first = integrals(omega, gamma);
     for row in 0..run.rows.len() {
@@ -295,10 +295,10 @@ fn the_quaternion_ball_moves_as_the_euler_angle_ball() {
         "--t-end",
         "3",
     ];
-    let quaternion = run(&Model::load(BALL, "jit"), &[&START[..], &options].concat());
+    let quaternion = run(Model::load(BALL, "jit"), &[&START[..], &options].concat());
     let turning = ["--initial", "omega(ball)=[1, 1.6, 2.2]"];
     let euler = run(
-        &Model::load(BALL_ZXZ, "interpret"),
+        Model::load(BALL_ZXZ, "interpret"),
         &[&ZXZ_ANGLES[..], &turning, &options].concat(),
     );
     assert_eq!(quaternion.rows.len(), euler.rows.len());
@@ -336,7 +336,7 @@ fn every_integrator_runs_through_the_euler_angles_singular_orientation() {
             "--t-end",
             "0.5",
         ];
-        let run = run(&ball, &options);
+        let run = run(ball, &options);
         let residual = run.column("holonomic_residual");
         assert!(
             residual.iter().all(|r| r.abs() < 1e-10),
@@ -395,7 +395,7 @@ fn omega_and_angles_set_the_frames_state() {
         ("zyz", [2, 1, 2]),
     ] {
         let given = format!("angles(ball, {sequence})=[0.4, -1.1, 2.3]");
-        let run = run(&ball, &[&["--initial", &given][..], &TURNING].concat());
+        let run = run(ball, &[&["--initial", &given][..], &TURNING].concat());
         let (e, omega, _) = body_state(&run, 0);
         let composed = (0..3).fold(elementary(0, 0.0), |r, k| {
             matrix_product(r, elementary(axes[k], angles[k]))
@@ -412,7 +412,7 @@ fn omega_and_angles_set_the_frames_state() {
         }
     }
     let euler = Model::load(BALL_ZXZ, "interpret");
-    let run = run(&euler, &[&ZXZ_ANGLES[..], &TURNING].concat());
+    let run = run(euler, &[&ZXZ_ANGLES[..], &TURNING].concat());
     let [psi, theta, phi] = ["dot(psi)", "dot(theta)", "dot(phi)"].map(|name| run.column(name)[0]);
     let (st, ct, sp, cp) = (0.5f64.sin(), 0.5f64.cos(), 0.7f64.sin(), 0.7f64.cos());
     let omega = [
@@ -502,9 +502,9 @@ fn the_quaternion_disk_rolls_as_the_euler_angle_disk() {
         "--initial",
         "y=0",
     ];
-    let quaternion = run(&Model::load(DISK, "jit"), &[&start[..], &options].concat());
+    let quaternion = run(Model::load(DISK, "jit"), &[&start[..], &options].concat());
     let angles = run(
-        &Model::load(DISK_ANGLES, "jit"),
+        Model::load(DISK_ANGLES, "jit"),
         &[&["--initial", "phi=0.3"][..], &options].concat(),
     );
     let residual = quaternion.column("holonomic_residual");

@@ -1,8 +1,8 @@
 //! `chaplygin simulate` run in this process: the model read from its text,
-//! derived and compiled once ([`Model::load`]), then run as often as a test
-//! needs through `chaplygin::driver::simulate`, which the binary calls, its
-//! options read by the binary's own definitions (`Request`'s clap
-//! arguments). For tests whose subject is the numbers of many runs rather
+//! derived and compiled once for all the tests here ([`Model::load`]), then
+//! run as often as they need through `chaplygin::driver::simulate`, which
+//! the binary calls, its options read by the binary's own definitions
+//! (`Request`'s clap arguments). For tests whose subject is the numbers of many runs rather
 //! than the command line itself: a run of the binary derives and compiles
 //! its model again each time (some 6 s of CPU for the benchmark bicycle in
 //! the test build) and draws its plots. What a run here returns is what the
@@ -14,6 +14,7 @@ use chaplygin::driver::engine::{EngineChoice, Loaded, load};
 use chaplygin::driver::simulate::{Request, prepare, simulate};
 use chaplygin::runtime::record::{Recorder, Table};
 use clap::Parser;
+use std::sync::{Mutex, OnceLock, PoisonError};
 
 /// `chaplygin simulate`'s options but the model, the engine and `--out`.
 #[derive(Parser)]
@@ -42,8 +43,30 @@ pub struct Simulated {
 
 impl Model {
     /// `model` (a built-in's name or a file's path) loaded on `engine`
-    /// (`jit` or `interpret`).
-    pub fn load(model: &str, engine: &str) -> Self {
+    /// (`jit` or `interpret`) once for all the tests of this binary that
+    /// run it: the first to ask loads it (the benchmark bicycle takes about
+    /// a second of CPU in the test build), the others wait for it and share
+    /// it.
+    pub fn load(model: &str, engine: &str) -> &'static Self {
+        type Cell = &'static OnceLock<Model>;
+        static LOADED: Mutex<Vec<(String, String, Cell)>> = Mutex::new(Vec::new());
+        let cell = {
+            let mut loaded = LOADED.lock().unwrap_or_else(PoisonError::into_inner);
+            let found = (loaded.iter()).find(|(name, on, _)| name == model && on == engine);
+            match found {
+                Some(&(_, _, cell)) => cell,
+                None => {
+                    let cell: Cell = Box::leak(Box::new(OnceLock::new()));
+                    loaded.push((model.to_string(), engine.to_string(), cell));
+                    cell
+                }
+            }
+        };
+        cell.get_or_init(|| Self::loaded_now(model, engine))
+    }
+
+    /// `model` loaded on `engine` by this call.
+    fn loaded_now(model: &str, engine: &str) -> Self {
         let engine = match engine {
             "jit" => EngineChoice::Jit,
             "interpret" => EngineChoice::Interpret,
