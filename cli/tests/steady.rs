@@ -5,12 +5,14 @@
 //! |dot(psi)|` of its contact's circle; the benchmark bicycle's hands-free
 //! turn at a small lean against the capsize speed of the linear benchmark
 //! (Meijaard et al. 2007, closed form in `tests/support/benchmark_bicycle.rs`);
-//! a turn simulated from the point found keeps its lean and steer, and its
-//! rear contact follows a circle of the radius printed; the sleigh's
+//! a turn simulated from the point found (in this process, as `simulate`
+//! runs it) keeps its lean and steer, and its rear contact follows a
+//! circle of the radius printed; the sleigh's
 //! straight motions and their eigenvalue `-m a v / (I + m a^2)`; and bad
 //! input, failing in one line.
 
 use crate::support::benchmark_bicycle::BenchmarkParameters;
+use crate::support::in_process::Model;
 use crate::support::{chaplygin, column, read_csv};
 use std::path::PathBuf;
 
@@ -31,6 +33,23 @@ fn steady(name: &str, model: &str, arguments: &[&str]) -> (String, Vec<String>, 
     assert_eq!(rows.len(), 1);
     let stdout = String::from_utf8(output.stdout).expect("UTF-8");
     (stdout, header, rows.remove(0))
+}
+
+/// The benchmark bicycle simulated for `t_end` seconds from `initial`
+/// (`NAME=VALUE` each), in this process as `chaplygin simulate bicycle`
+/// runs it, on the bicycle loaded once for all the tests
+/// (`support::in_process`): the header and rows of its trajectory.
+fn bicycle_run(t_end: &str, initial: &[String]) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut options = vec!["--t-end", t_end];
+    for assignment in initial {
+        options.extend(["--initial", assignment.as_str()]);
+    }
+    let run = (Model::load("bicycle", "jit").simulate(&options))
+        .unwrap_or_else(|error| panic!("{options:?}: {error}"));
+    if let Err(error) = &run.outcome {
+        panic!("{options:?}: {error}");
+    }
+    (run.header, run.rows)
 }
 
 /// The value of the column `name` of a row.
@@ -275,19 +294,7 @@ fn a_found_turn_simulated_stays_steady() {
     .iter()
     .map(|name| format!("{name}={}", value(&header, &row, name)))
     .collect();
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("steady-bicycle-run");
-    let mut arguments = vec!["simulate", "bicycle", "--t-end", "3", "--out"];
-    arguments.push(out.to_str().expect("UTF-8"));
-    for assignment in &initial {
-        arguments.extend(["--initial", assignment]);
-    }
-    let output = chaplygin(&arguments);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let (run_header, rows) = read_csv(&out.join("trajectory.csv"));
+    let (run_header, rows) = bicycle_run("3", &initial);
     for shape in ["phi", "delta"] {
         let start = value(&header, &row, shape);
         let drift = (column(&run_header, &rows, shape).iter())
@@ -367,19 +374,7 @@ fn kicked_turn(lean: f64, guess: (f64, f64)) -> (bool, (f64, f64), f64) {
         .map(|name| format!("{name}={}", value(&header, &row, name)))
         .collect();
     initial.push("dot(phi)=1e-5".into());
-    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("steady-bicycle-kicked-run");
-    let mut arguments = vec!["simulate", "bicycle", "--t-end", "15", "--out"];
-    arguments.push(out.to_str().expect("UTF-8"));
-    for assignment in &initial {
-        arguments.extend(["--initial", assignment]);
-    }
-    let output = chaplygin(&arguments);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let (run_header, rows) = read_csv(&out.join("trajectory.csv"));
+    let (run_header, rows) = bicycle_run("15", &initial);
     let period = std::f64::consts::TAU / weave.1;
     let periods = (9.0 / period).floor();
     let (first, last) = (5.0, 5.0 + periods * period);

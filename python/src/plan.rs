@@ -2,7 +2,8 @@
 //! the plan or estimate a request asks of a model
 //! (`chaplygin::driver::plan`, the one library API the command line also
 //! runs), solved with the GIL released; Ctrl-C (a pending
-//! `KeyboardInterrupt`) stops the solve at its next iteration and raises.
+//! `KeyboardInterrupt`) stops the solve at its next iteration and raises,
+//! and raises as the call returns where it came after the last iteration.
 
 use crate::convert::{matrix, to_python};
 use chaplygin::driver::Failure;
@@ -33,8 +34,8 @@ pub fn scheme_named(name: &str) -> PyResult<Scheme> {
 /// stops it where Ctrl-C is pending.
 ///
 /// # Errors
-/// `KeyboardInterrupt` where Ctrl-C stops the solve; `ValueError` for the
-/// solve's own failure.
+/// `KeyboardInterrupt` where Ctrl-C came during the call; `ValueError` for
+/// the solve's own failure.
 fn interruptible<T: Send>(
     py: Python<'_>,
     solve: impl FnOnce(&mut Observer<'_>) -> Result<T, Failure> + Send,
@@ -51,6 +52,9 @@ fn interruptible<T: Send>(
     if let Some(signal) = signal {
         return Err(signal);
     }
+    // Ctrl-C after the solve's last iteration (while the answer is
+    // verified) raises too, as the call returns.
+    py.check_signals()?;
     solved.map_err(|error| to_python(py, error))
 }
 
