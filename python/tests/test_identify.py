@@ -113,8 +113,14 @@ def test_ctrl_c_stops_the_solve(drive, data_path):
     # on 2001 nodes the call takes seconds, most of them its setup and the
     # verification of the answer: Ctrl-C a second in stops the solve at its
     # next iteration, or, coming after the last, raises as the call returns
+    # under Python's own handler of Ctrl-C, whatever this process had
+    handler = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()
-    with pytest.raises(KeyboardInterrupt):
-        drive.identify(data_path, estimate={"m": 4.0}, nodes=2001)
-    timer.join()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            drive.identify(data_path, estimate={"m": 4.0}, nodes=2001)
+    finally:
+        timer.cancel()
+        timer.join()
+        signal.signal(signal.SIGINT, handler)
