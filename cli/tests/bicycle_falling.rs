@@ -18,7 +18,7 @@
 //! wheel, its exit status, its one line on standard error and the rows it
 //! wrote.
 
-use crate::support::in_process::Model;
+use crate::support::in_process::{Finished, Model};
 use crate::support::{FALL, chaplygin, read_csv};
 use std::path::PathBuf;
 use std::sync::OnceLock;
@@ -58,24 +58,23 @@ fn reduced_fall() -> &'static Run {
 /// passes 1 rad.
 fn until_it_lies_down(bicycle: &Model, formulation: &str, integrator: &str) -> Run {
     let options = ["--formulation", formulation, "--integrator", integrator];
-    let name = format!("{formulation}-{integrator}");
-    until_the_lean_passes_1_rad(bicycle, &name, &[&options[..], &FALL[..]].concat())
+    until_the_lean_passes_1_rad(bicycle, &[&options[..], &FALL[..]].concat())
 }
 
 /// `simulate bicycle` with `options` until the lean passes 1 rad (at most
-/// 4 s), on the loaded `bicycle`; `name` in the messages.
-fn until_the_lean_passes_1_rad(bicycle: &Model, name: &str, options: &[&str]) -> Run {
+/// 4 s), on the loaded `bicycle`.
+fn until_the_lean_passes_1_rad(bicycle: &Model, options: &[&str]) -> Run {
     let mut arguments = vec!["--t-end", "4", "--stop-when", "abs(phi) > 1"];
     arguments.extend(options);
-    let run = bicycle
-        .simulate(&arguments)
-        .unwrap_or_else(|error| panic!("{name}: {error}"));
+    let Finished {
+        summary,
+        header,
+        rows,
+    } = bicycle.finished(&arguments);
     Run {
-        summary: run
-            .outcome
-            .unwrap_or_else(|error| panic!("{name}: {error}")),
-        header: run.header,
-        rows: run.rows,
+        summary,
+        header,
+        rows,
     }
 }
 
@@ -146,7 +145,7 @@ fn steps_too_long_for_the_whipping_steer_are_split_not_ended() {
     let fine = reduced_fall();
     // the fall without its `--dt`: fixed steps of the default length, the
     // default integrator
-    let coarse = until_the_lean_passes_1_rad(bicycle, "default-step", &FALL[..7]);
+    let coarse = until_the_lean_passes_1_rad(bicycle, &FALL[..7]);
     let summary = &coarse.summary;
     assert!(summary.contains("of discrete-gradient"), "{summary}");
     assert!(summary.contains("; steps split "), "{summary}");

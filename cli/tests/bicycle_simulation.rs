@@ -55,11 +55,7 @@ fn simulate(arguments: &[&str]) -> Run {
     let dt = STEP.to_string();
     let mut all = vec!["--dt", &dt];
     all.extend_from_slice(arguments);
-    let run = (Model::load("bicycle", "jit").simulate(&all))
-        .unwrap_or_else(|error| panic!("{arguments:?}: {error}"));
-    if let Err(error) = &run.outcome {
-        panic!("{arguments:?}: {error}");
-    }
+    let run = Model::load("bicycle", "jit").finished(&all);
     Run {
         header: run.header,
         rows: run.rows,

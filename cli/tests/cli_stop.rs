@@ -13,7 +13,7 @@
 //! the stops at the start and at equality, the refused conditions and the
 //! recorded inputs run the binary.
 
-use crate::support::in_process::Model;
+use crate::support::in_process::{Finished, Model};
 use crate::support::{chaplygin, read_csv, scratch};
 use std::f64::consts::PI;
 use std::process::Output;
@@ -87,15 +87,15 @@ fn simulate(name: &str, arguments: &[&str]) -> Run {
 /// process: the closed-form checks below take some 60 runs, each of which
 /// the binary would derive and compile its model for again.
 fn simulated(model: &Model, options: &[&str]) -> Run {
-    let run = model
-        .simulate(options)
-        .unwrap_or_else(|error| panic!("{options:?}: {error}"));
+    let Finished {
+        summary,
+        header,
+        rows,
+    } = model.finished(options);
     Run {
-        summary: run
-            .outcome
-            .unwrap_or_else(|error| panic!("{options:?}: {error}")),
-        header: run.header,
-        rows: run.rows,
+        summary,
+        header,
+        rows,
     }
 }
 

@@ -112,8 +112,9 @@ def test_a_grid_of_estimates_on_a_process_pool_is_the_same_as_here(drive, data_p
 def test_ctrl_c_stops_the_solve(drive, data_path):
     # on 2001 nodes the call takes seconds, most of them its setup and the
     # verification of the answer: Ctrl-C a second in stops the solve at its
-    # next iteration, or, coming after the last, raises as the call returns
-    # under Python's own handler of Ctrl-C, whatever this process had
+    # next iteration, or, coming after the last, raises as the call returns.
+    # The test runs under Python's own handler of Ctrl-C, whatever this
+    # process had.
     handler = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()

@@ -2,8 +2,8 @@
 //! derived and compiled once for all the tests here ([`Model::load`]), then
 //! run as often as they need through `chaplygin::driver::simulate`, which
 //! the binary calls, its options read by the binary's own definitions
-//! (`Request`'s clap arguments). For tests whose subject is the numbers of many runs rather
-//! than the command line itself: a run of the binary derives and compiles
+//! (`Request`'s clap arguments). For tests whose subject is the numbers of
+//! many runs rather than the command line itself: a run of the binary derives and compiles
 //! its model again each time (some 6 s of CPU for the benchmark bicycle in
 //! the test build) and draws its plots. What a run here returns is what the
 //! binary prints and writes: the summary line, or the error after
@@ -38,6 +38,13 @@ pub struct Simulated {
     /// The columns of the trajectory.
     pub header: Vec<String>,
     /// Its rows, as far as the run got.
+    pub rows: Vec<Vec<f64>>,
+}
+
+/// A run that finished: its summary line and what it recorded.
+pub struct Finished {
+    pub summary: String,
+    pub header: Vec<String>,
     pub rows: Vec<Vec<f64>>,
 }
 
@@ -128,6 +135,17 @@ impl Model {
             header: columns,
             rows,
         })
+    }
+
+    /// `chaplygin simulate MODEL` with `options`, a run that must finish:
+    /// a refusal or a failure panics, with the options in the message.
+    pub fn finished(&self, options: &[&str]) -> Finished {
+        let run = (self.simulate(options)).unwrap_or_else(|error| panic!("{options:?}: {error}"));
+        Finished {
+            summary: (run.outcome).unwrap_or_else(|error| panic!("{options:?}: {error}")),
+            header: run.header,
+            rows: run.rows,
+        }
     }
 }
 
