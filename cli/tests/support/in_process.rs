@@ -3,11 +3,11 @@
 //! run as often as they need through `chaplygin::driver::simulate`, which
 //! the binary calls, its options read by the binary's own definitions
 //! (`Request`'s clap arguments). For tests whose subject is the numbers of
-//! many runs rather than the command line itself: a run of the binary derives and compiles
-//! its model again each time (some 6 s of CPU for the benchmark bicycle in
-//! the test build) and draws its plots. What a run here returns is what the
-//! binary prints and writes: the summary line, or the error after
-//! `error: `, and the rows of `trajectory.csv`.
+//! many runs rather than the command line itself: a run of the binary
+//! derives and compiles its model again each time (about a second of CPU
+//! for the benchmark bicycle in the test build) and draws its plots. What a
+//! run here returns is what the binary prints and writes: the summary line,
+//! or the error after `error: `, and the rows of `trajectory.csv`.
 
 use chaplygin::driver::catalog::lookup;
 use chaplygin::driver::engine::{EngineChoice, Loaded, load};
