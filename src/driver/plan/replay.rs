@@ -139,12 +139,23 @@ fn input_share(scheme: Scheme, j: usize, s: f64) -> f64 {
 
 /// The state (`(q, qdot)`, `(q, alpha)` or `(q, rdot, p)`) at each of
 /// `table`'s nodes, integrated in `form` from its first under its inputs
-/// as `scheme` applies them; NaN from the interval where the integration
-/// fails on (everywhere, for a model without the form).
+/// as `scheme` applies them, by [`SUBSTEPS`] RK4 steps an interval; NaN
+/// from the interval where the integration fails on (everywhere, for a
+/// model without the form).
 pub fn replayed_states(
     (model, form): (&InterpretedModel, Form),
     scheme: Scheme,
     table: &Table,
+) -> Vec<Vec<f64>> {
+    replayed_states_by((model, form), scheme, table, SUBSTEPS)
+}
+
+/// [`replayed_states`] by `substeps` RK4 steps an interval.
+pub fn replayed_states_by(
+    (model, form): (&InterpretedModel, Form),
+    scheme: Scheme,
+    table: &Table,
+    substeps: usize,
 ) -> Vec<Vec<f64>> {
     let (s, p) = (form.state(model), model.sizes().p);
     let t = table.column("t").unwrap_or_default();
@@ -182,8 +193,8 @@ pub fn replayed_states(
         let h = window[1] - window[0];
         interval.set((i, window[0], h));
         let from = states[i].clone();
-        let step = h / SUBSTEPS as f64;
-        let reached = integrate_fixed(&Rk4, &system, (window[0], from), step, SUBSTEPS, |_, _| {})
+        let step = h / substeps as f64;
+        let reached = integrate_fixed(&Rk4, &system, (window[0], from), step, substeps, |_, _| {})
             .unwrap_or_else(|_| vec![f64::NAN; s]);
         states.push(reached);
     }
