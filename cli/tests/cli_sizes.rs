@@ -6,9 +6,12 @@
 //! Lagrange-d'Alembert form and 33 in the reduced form; its motion is known
 //! in closed form: at speed `v` and turning rate `w` from the origin the
 //! blade runs on the circle `x = (v/w) sin(w t)`, `y = (v/w) (1 - cos(w t))`,
-//! `theta = w t`, and each cart moves at its own constant speed.
+//! `theta = w t`, and each cart moves at its own constant speed. Both
+//! forms run in this process, on the model loaded once ([`Model`]), as
+//! `chaplygin simulate` runs them.
 
-use crate::support::{chaplygin, read_csv, scratch};
+use crate::support::in_process::Model;
+use crate::support::scratch;
 
 const CARTS: usize = 14;
 const SPEED: f64 = 1.0;
@@ -38,20 +41,14 @@ fn cart_speed(i: usize) -> f64 {
 }
 
 /// The final row of a run of `formulation` with RK4, by column name.
-fn final_state(formulation: &str) -> (Vec<String>, Vec<f64>) {
-    let dir = scratch(&format!("sizes-{formulation}"));
-    let model = dir.path().join("knife_and_carts.model");
-    std::fs::write(&model, knife_and_carts()).expect("the model file");
+fn final_state(model: &Model, formulation: &str) -> (Vec<String>, Vec<f64>) {
     let initial: Vec<String> = [format!("dot(x)={SPEED}"), format!("dot(theta)={TURN}")]
         .into_iter()
         .chain((1..=CARTS).map(|i| format!("dot(z{i})={}", cart_speed(i))))
         .flat_map(|value| ["--initial".to_string(), value])
         .collect();
-    let out = dir.path().join("out");
     let t_end = T_END.to_string();
-    let mut arguments = vec![
-        "simulate",
-        model.to_str().expect("path"),
+    let mut options = vec![
         "--formulation",
         formulation,
         "--integrator",
@@ -60,18 +57,10 @@ fn final_state(formulation: &str) -> (Vec<String>, Vec<f64>) {
         &t_end,
         "--dt",
         "0.01",
-        "--out",
-        out.to_str().expect("path"),
     ];
-    arguments.extend(initial.iter().map(String::as_str));
-    let output = chaplygin(&arguments);
-    assert!(
-        output.status.success(),
-        "{formulation}: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let (header, rows) = read_csv(&out.join("trajectory.csv"));
-    (header, rows.last().expect("rows").clone())
+    options.extend(initial.iter().map(String::as_str));
+    let run = model.finished(&options);
+    (run.header, run.rows.last().expect("rows").clone())
 }
 
 #[test]
@@ -86,8 +75,12 @@ fn a_model_of_more_than_32_states_runs_as_its_closed_form_says() {
     .map(|(name, value)| (name.to_string(), value))
     .chain((1..=CARTS).map(|i| (format!("z{i}"), cart_speed(i) * T_END)))
     .collect::<Vec<_>>();
+    let dir = scratch("sizes");
+    let file = dir.path().join("knife_and_carts.model");
+    std::fs::write(&file, knife_and_carts()).expect("the model file");
+    let model = Model::load(file.to_str().expect("a UTF-8 path"), "jit");
     for (formulation, states) in [("lagrange", 2 * (CARTS + 3)), ("reduced", 2 * CARTS + 5)] {
-        let (header, last) = final_state(formulation);
+        let (header, last) = final_state(model, formulation);
         let first_output = header
             .iter()
             .position(|name| name == "energy")
