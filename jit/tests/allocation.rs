@@ -44,7 +44,7 @@ static GLOBAL: Counting = Counting;
 
 #[test]
 fn evaluation_allocates_nothing() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../models/snakeboard.model");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/snakeboard.model");
     let source = std::fs::read_to_string(path).expect("the model reads");
     let model = InterpretedModel::from_source(&source).expect("the model loads");
     let programs: Vec<&Program> = model.programs().map(|(_, program)| program).collect();

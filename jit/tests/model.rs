@@ -9,7 +9,7 @@ use chaplygin_codegen::ir::Program;
 use chaplygin_jit::{JitModel, LoadError, Native, OnDemand};
 use std::cell::RefCell;
 
-const SNAKEBOARD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../models/snakeboard.model");
+const SNAKEBOARD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/snakeboard.model");
 
 /// MATH.md 3.1 at a state: `alpha1dot = -(sin phi / r) u1`, `alpha2dot = u1`,
 /// `alpha3dot = u2`, `phidot = alpha3 / Jw`; and every function's values

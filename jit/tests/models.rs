@@ -17,7 +17,7 @@ const TOLERANCE: f64 = 1e-12;
 /// The `.model` files of a directory of the workspace, sorted.
 fn model_files(directory: &str) -> Vec<PathBuf> {
     let directory = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
+        .join("..")
         .join(directory);
     let mut files: Vec<PathBuf> = std::fs::read_dir(&directory)
         .unwrap_or_else(|error| panic!("{}: {error}", directory.display()))
