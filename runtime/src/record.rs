@@ -56,6 +56,22 @@ impl Table {
     }
 }
 
+/// A recorder behind a mutable reference (a `&mut dyn Recorder` among
+/// them).
+impl<R: Recorder + ?Sized> Recorder for &mut R {
+    fn start(&mut self, columns: &[String]) -> io::Result<()> {
+        (**self).start(columns)
+    }
+
+    fn record(&mut self, row: &[f64]) -> io::Result<()> {
+        (**self).record(row)
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        (**self).finish()
+    }
+}
+
 impl Recorder for Table {
     fn start(&mut self, columns: &[String]) -> io::Result<()> {
         self.columns = columns.to_vec();

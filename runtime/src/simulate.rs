@@ -36,6 +36,10 @@
 //! ([`Summary::energy_drift`], [`Summary::energy_scale`]), which a constant
 //! added to the potential does not change.
 //!
+//! A system whose state's size is known only at run time runs through
+//! [`Simulation::run_sized`] ([`sized`]), compiled here once for every such
+//! system and integrator.
+//!
 //! A formulation with several charts (the reduced form of a model with
 //! constraints: the charts derived at build time and the run-time charts
 //! of [`crate::partition`]) is then asked to change its chart
@@ -56,6 +60,7 @@ pub mod ends;
 mod observed;
 mod outcome;
 mod run;
+pub mod sized;
 pub mod stop;
 mod work;
 
@@ -63,6 +68,7 @@ pub use advance::Advance;
 pub use observed::{GuardedValue, MULTIPLIERS, Observed, RECONSTRUCTION, REDUCED, Regularity};
 pub use outcome::{SimulationError, Summary};
 pub use run::HALVINGS;
+pub use sized::{RunTimeSized, SizedMethod, SizedStop, SliceSystem};
 pub use stop::{CROSSING_TOLERANCE, Never, Stop, StopCondition};
 
 use crate::record::Recorder;

@@ -16,7 +16,7 @@ use crate::driver::Failure;
 use crate::runtime::monitor::{gram_regularity, hadamard_ratio};
 use crate::runtime::nalgebra::DMatrix;
 use crate::runtime::projection::ProjectionError;
-use crate::runtime::simulate::{GuardedValue, Regularity};
+use crate::runtime::simulate::{GuardedValue, Regularity, SliceSystem};
 use crate::runtime::system::next_chart;
 use chaplygin_codegen::derive::MOMENTUM_WITH_HOLONOMIC;
 pub(crate) use chaplygin_codegen::interpret::evaluated;
@@ -41,7 +41,7 @@ pub type Law = Box<dyn Fn(f64, &[f64], &[f64], &mut [f64])>;
 
 /// The inputs `u(t, q, qdot)` of the time, the configuration and its
 /// velocity, as each formulation reads them off its state
-/// ([`Formulation::configuration_velocity`]).
+/// ([`SliceSystem::configuration_velocity`]).
 pub struct InputLaw {
     /// The law.
     pub law: Law,
@@ -213,7 +213,7 @@ fn multiplier_regularity(model: &InterpretedModel, q: &[f64]) -> Regularity {
     }
 }
 
-impl Formulation for InterpretedReduced {
+impl SliceSystem for InterpretedReduced {
     fn state_names(&self) -> Vec<String> {
         let names = self.model.names();
         names
@@ -226,14 +226,6 @@ impl Formulation for InterpretedReduced {
 
     fn input_names(&self) -> Vec<String> {
         self.model.names().inputs.clone()
-    }
-
-    fn engine(&self) -> &'static str {
-        self.model.engine().name()
-    }
-
-    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Failure> {
-        Ok(self.initial_state(q, qdot)?)
     }
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
@@ -381,7 +373,17 @@ impl Formulation for InterpretedReduced {
     }
 }
 
-impl Formulation for InterpretedDalembert {
+impl Formulation for InterpretedReduced {
+    fn engine(&self) -> &'static str {
+        self.model.engine().name()
+    }
+
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Failure> {
+        Ok(self.initial_state(q, qdot)?)
+    }
+}
+
+impl SliceSystem for InterpretedDalembert {
     fn state_names(&self) -> Vec<String> {
         let coordinates = &self.model.names().coordinates;
         let velocities = coordinates.iter().map(|q| format!("dot({q})"));
@@ -390,14 +392,6 @@ impl Formulation for InterpretedDalembert {
 
     fn input_names(&self) -> Vec<String> {
         self.model.names().inputs.clone()
-    }
-
-    fn engine(&self) -> &'static str {
-        self.model.engine().name()
-    }
-
-    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Failure> {
-        Ok(q.iter().chain(qdot).copied().collect())
     }
 
     fn rhs(&self, t: f64, x: &[f64], xdot: &mut [f64]) {
@@ -471,6 +465,16 @@ impl Formulation for InterpretedDalembert {
 
     fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
         holonomic_residual(&self.model, &x[..self.model.sizes().n])
+    }
+}
+
+impl Formulation for InterpretedDalembert {
+    fn engine(&self) -> &'static str {
+        self.model.engine().name()
+    }
+
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Failure> {
+        Ok(q.iter().chain(qdot).copied().collect())
     }
 }
 
@@ -655,21 +659,13 @@ impl InterpretedMomentum {
     }
 }
 
-impl Formulation for InterpretedMomentum {
+impl SliceSystem for InterpretedMomentum {
     fn state_names(&self) -> Vec<String> {
         momentum_state_names(&self.model)
     }
 
     fn input_names(&self) -> Vec<String> {
         self.model.names().inputs.clone()
-    }
-
-    fn engine(&self) -> &'static str {
-        self.model.engine().name()
-    }
-
-    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Failure> {
-        Ok(self.initial_state(q, qdot)?)
     }
 
     /// The model's `momentum_form_rhs` at the inputs applied.
@@ -774,6 +770,16 @@ impl Formulation for InterpretedMomentum {
 
     fn holonomic_residual(&self, x: &[f64]) -> Option<f64> {
         holonomic_residual(&self.model, &x[..self.model.sizes().n])
+    }
+}
+
+impl Formulation for InterpretedMomentum {
+    fn engine(&self) -> &'static str {
+        self.model.engine().name()
+    }
+
+    fn state_of(&self, q: &[f64], qdot: &[f64]) -> Result<Vec<f64>, Failure> {
+        Ok(self.initial_state(q, qdot)?)
     }
 }
 

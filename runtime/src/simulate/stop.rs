@@ -80,6 +80,17 @@ where
     }
 }
 
+/// A condition behind a reference (a `&dyn StopCondition<X>` among them).
+impl<C: StopCondition<X> + ?Sized, X> StopCondition<X> for &C {
+    fn value(&self, t: f64, x: &X) -> f64 {
+        (**self).value(t, x)
+    }
+
+    fn description(&self) -> &str {
+        (**self).description()
+    }
+}
+
 /// An optional condition: `None` never holds.
 impl<C: StopCondition<X>, X> StopCondition<X> for Option<C> {
     fn value(&self, t: f64, x: &X) -> f64 {

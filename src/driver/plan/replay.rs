@@ -37,12 +37,12 @@ use super::Scheme;
 use super::form::Form;
 use super::transcription::share;
 use crate::driver::formulation::Formulation;
-use crate::driver::formulation::RunTimeSized;
 use crate::driver::interpreted::{
     InputLaw, InterpretedDalembert, InterpretedMomentum, InterpretedReduced,
 };
 use crate::runtime::integrate::{Rk4, integrate_fixed};
 use crate::runtime::record::Table;
+use crate::runtime::simulate::RunTimeSized;
 use chaplygin_codegen::interpret::InterpretedModel;
 use std::cell::Cell;
 use std::rc::Rc;

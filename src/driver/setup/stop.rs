@@ -114,7 +114,7 @@ impl Comparison {
 
 /// The simulation loop's stop condition of `comparison` on the states of
 /// `formulation`: its event function at the time, the configuration and
-/// velocity ([`Formulation::configuration_velocity`]) and the inputs of a
+/// velocity ([`SliceSystem::configuration_velocity`](crate::runtime::simulate::SliceSystem::configuration_velocity)) and the inputs of a
 /// state.
 pub fn stop_condition<'a>(
     formulation: &'a dyn Formulation,

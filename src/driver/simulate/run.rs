@@ -4,14 +4,14 @@
 
 use super::request::{Integrator, Request};
 use crate::driver::Failure;
-use crate::driver::formulation::{Formulation, RunTimeSized};
+use crate::driver::formulation::Formulation;
 use crate::driver::setup::InputError;
 use crate::driver::setup::stop::{Comparison, stop_condition};
 use crate::runtime::integrate::{
-    Controlled, DiscreteGradient, DormandPrince, Effort, FixedStep, Midpoint, Rk4,
+    Controlled, DiscreteGradient, DormandPrince, Effort, Midpoint, Rk4,
 };
 use crate::runtime::record::{Recorder, Table};
-use crate::runtime::simulate::{Advance, Simulation, StopCondition, Summary};
+use crate::runtime::simulate::{Simulation, SizedMethod, StopCondition};
 use std::io;
 use std::time::Instant;
 
@@ -224,7 +224,6 @@ impl Settings {
         recorder: &mut Both<'_>,
         progress: &mut dyn FnMut(f64),
     ) -> Result<Report, Failure> {
-        let system = RunTimeSized(formulation);
         let x0 = x0.to_vec();
         let stop = self
             .stop
@@ -232,24 +231,14 @@ impl Settings {
             .map(|comparison| stop_condition(formulation, comparison));
         let holonomic = formulation.holonomic_residual(&x0).is_some();
         let started = Instant::now();
-        let run = Runner {
-            settings: self,
-            system: &system,
-            x0,
-            stop,
-            recorder,
-            progress,
-        };
-        let summary = match self.integrator {
-            Integrator::Rk4 => run.one_step(Rk4),
-            Integrator::Midpoint => run.one_step(Midpoint::default()),
-            Integrator::DiscreteGradient => run.one_step(DiscreteGradient::default()),
-            Integrator::Dopri5 => run.with(DormandPrince {
-                rtol: self.tolerance.rtol,
-                atol: self.tolerance.atol,
-                ..DormandPrince::default()
-            }),
-        }?;
+        let summary = Simulation::new(self.method())
+            .span(0.0, self.t_end)
+            .step(self.dt)
+            .stop_when(
+                stop.as_ref()
+                    .map(|stop| stop as &dyn StopCondition<Vec<f64>>),
+            )
+            .run_sized(formulation, x0, recorder, progress)?;
         Ok(Report {
             integrator: self.integrator,
             engine: formulation.engine(),
@@ -272,44 +261,28 @@ impl Settings {
             final_scale: summary.state.iter().fold(0.0, |m: f64, v| m.max(v.abs())),
         })
     }
-}
 
-/// A run about to be made with one of the integrators.
-struct Runner<'r, 's, 'b, C> {
-    settings: &'r Settings,
-    system: &'r RunTimeSized<'s>,
-    x0: Vec<f64>,
-    stop: C,
-    recorder: &'r mut Both<'b>,
-    progress: &'r mut dyn FnMut(f64),
-}
-
-impl<C: StopCondition<Vec<f64>>> Runner<'_, '_, '_, C> {
-    /// The run with a one-step `method`, its step following the tolerance
-    /// unless the steps are fixed.
-    fn one_step<M>(self, method: M) -> Result<Summary<Vec<f64>>, Failure>
-    where
-        M: for<'a> FixedStep<RunTimeSized<'a>, Vec<f64>>
-            + for<'a> Advance<RunTimeSized<'a>, Vec<f64>>,
-    {
-        if self.settings.fixed_step {
-            self.with(method)
-        } else {
-            let controlled = self.settings.tolerance.control(method);
-            self.with(controlled)
+    /// The integrator, its step fixed or following the tolerances.
+    fn method(&self) -> SizedMethod {
+        match (self.integrator, self.fixed_step) {
+            (Integrator::Rk4, true) => SizedMethod::Rk4(Rk4),
+            (Integrator::Rk4, false) => SizedMethod::ControlledRk4(self.tolerance.control(Rk4)),
+            (Integrator::Midpoint, true) => SizedMethod::Midpoint(Midpoint::default()),
+            (Integrator::Midpoint, false) => {
+                SizedMethod::ControlledMidpoint(self.tolerance.control(Midpoint::default()))
+            }
+            (Integrator::DiscreteGradient, true) => {
+                SizedMethod::DiscreteGradient(DiscreteGradient::default())
+            }
+            (Integrator::DiscreteGradient, false) => SizedMethod::ControlledDiscreteGradient(
+                self.tolerance.control(DiscreteGradient::default()),
+            ),
+            (Integrator::Dopri5, _) => SizedMethod::DormandPrince(DormandPrince {
+                rtol: self.tolerance.rtol,
+                atol: self.tolerance.atol,
+                ..DormandPrince::default()
+            }),
         }
-    }
-
-    /// The run with `method` until the stop condition holds.
-    fn with<M>(self, method: M) -> Result<Summary<Vec<f64>>, Failure>
-    where
-        M: for<'a> Advance<RunTimeSized<'a>, Vec<f64>>,
-    {
-        Ok(Simulation::new(method)
-            .span(0.0, self.settings.t_end)
-            .step(self.settings.dt)
-            .stop_when(self.stop)
-            .run_with_progress(self.system, self.x0, self.recorder, self.progress)?)
     }
 }
 
