@@ -79,6 +79,7 @@ mod translate;
 
 use chaplygin_codegen::ir::{IrError, Program};
 use cranelift_module::ModuleError;
+use host::Verify;
 pub use model::{JitModel, LoadError, Native, OnDemand, compile};
 use native::Code;
 use std::fmt;
@@ -123,7 +124,23 @@ impl NativePrograms {
     /// programs [`lower`](chaplygin_codegen::ir::lower) builds never do.
     pub fn compile(programs: &[&Program]) -> Result<NativePrograms, JitError> {
         Ok(NativePrograms {
-            code: host::compile(programs)?,
+            code: host::compile(programs, Verify::No)?,
+        })
+    }
+
+    /// [`NativePrograms::compile`], with Cranelift's IR verifier checking
+    /// each translated function before its code is generated: slower, a
+    /// check of the translation itself (a failure is a
+    /// [`JitError::Compile`] naming what the verifier found).
+    ///
+    /// # Errors
+    /// As [`NativePrograms::compile`].
+    ///
+    /// # Panics
+    /// As [`NativePrograms::compile`].
+    pub fn compile_verified(programs: &[&Program]) -> Result<NativePrograms, JitError> {
+        Ok(NativePrograms {
+            code: host::compile(programs, Verify::Yes)?,
         })
     }
 

@@ -59,7 +59,7 @@ fn close(native: f64, interpreted: f64) -> bool {
 fn assert_model_matches(path: &Path, model: &InterpretedModel) {
     let programs: Vec<(&str, &Program)> = model.programs().collect();
     let list: Vec<&Program> = programs.iter().map(|&(_, program)| program).collect();
-    let native = NativePrograms::compile(&list).expect("the programs compile");
+    let native = NativePrograms::compile_verified(&list).expect("the programs compile");
     assert_eq!(native.len(), programs.len());
     let parameters = model.parameter_values();
     let mut draws = Draws(0x5eed);

@@ -41,7 +41,7 @@ fn assert_native_matches(program: &Program, wanted: impl Fn(&Op) -> bool) {
         program.instructions().iter().any(|i| wanted(&i.op)),
         "the program lacks the operation tested:\n{program}"
     );
-    let native = NativePrograms::compile(&[program]).expect("the program compiles");
+    let native = NativePrograms::compile_verified(&[program]).expect("the program compiles");
     for inputs in INPUTS {
         assert_native_matches_at(program, &native, &inputs);
     }
@@ -102,7 +102,7 @@ fn negation() {
 fn square_root_and_its_nan_below_zero() {
     let program = program(|s, x, y| vec![power(s, x, 1, 2), power(s, y, 1, 2)]);
     assert_native_matches(&program, |op| matches!(op, Op::Sqrt(_)));
-    let native = NativePrograms::compile(&[&program]).expect("the program compiles");
+    let native = NativePrograms::compile_verified(&[&program]).expect("the program compiles");
     let mut outputs = [0.0; 2];
     native
         .evaluate(0, &[-4.0, 9.0], &mut outputs)

@@ -47,7 +47,7 @@ pub fn native_matches_interpreter(data: &[u8]) {
     let Ok(program) = lower(&store, &symbols, &outputs) else {
         return;
     };
-    let native = NativePrograms::compile(&[&program]).expect("every IR program compiles");
+    let native = NativePrograms::compile_verified(&[&program]).expect("every IR program compiles");
     let mut points = POINTS.to_vec();
     if let Ok(bits) = <[u8; 24]>::try_from(bits) {
         points.push(std::array::from_fn(|i| {
