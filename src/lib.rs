@@ -144,8 +144,11 @@ pub mod animate;
 #[cfg(feature = "driver")]
 pub mod driver;
 pub mod energy_control;
+/// Gait design: the shape loops of a model with an SE(2) symmetry that move
+/// it furthest per cycle (the package `chaplygin-gait`, optimized in tests
+/// and debug builds too).
 #[cfg(feature = "design")]
-pub mod gait_design;
+pub use chaplygin_gait as gait_design;
 #[cfg(feature = "plot")]
 pub mod plot;
 

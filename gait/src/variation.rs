@@ -18,7 +18,7 @@
 use super::GaitModel;
 use super::fourier::FourierLoop;
 use super::score::{Evaluation, Scoring, body_velocity, path_costs, simpson};
-use crate::runtime::gait::{self, GaitState, ShapeLoop};
+use chaplygin_runtime::gait::{self, GaitState, ShapeLoop};
 
 /// Evaluates `shape_loop` on the principally kinematic `model`; where the
 /// loop meets the singular set, or `model` has no curvature, the values

@@ -37,7 +37,7 @@ pub use search::{Design, DesignError, Optimum, SURVEY, optimize};
 pub use sensitivity::by_sensitivities;
 pub use variation::by_curvature;
 
-use crate::runtime::gait::Locomotion;
+use chaplygin_runtime::gait::Locomotion;
 
 /// The component of the displacement a gait maximizes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

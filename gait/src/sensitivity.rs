@@ -28,7 +28,7 @@
 use super::GaitModel;
 use super::fourier::FourierLoop;
 use super::score::{Evaluation, Scoring, body_velocity, path_costs};
-use crate::runtime::gait;
+use chaplygin_runtime::gait;
 
 /// Evaluates `shape_loop` on `model` from zero momentum; where the loop
 /// meets the singular set the values are not finite, and
