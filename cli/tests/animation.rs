@@ -146,6 +146,22 @@ impl Runs {
 /// rows become dependent (`models/src/lib.rs`).
 const FAILING: &str = "snakeboard";
 
+/// The directory the runs write into, kept after the tests for a look at
+/// the pages. The process holds an exclusive lock on `animation.lock`
+/// beside it until it exits, so that test runners running each test in a
+/// process of its own (`cargo nextest`) take turns with it rather than
+/// remove each other's files.
+fn runs_directory() -> PathBuf {
+    static LOCK: OnceLock<std::fs::File> = OnceLock::new();
+    let parent = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    LOCK.get_or_init(|| {
+        let lock = std::fs::File::create(parent.join("animation.lock")).expect("the lock file");
+        lock.lock().expect("the lock taken");
+        lock
+    });
+    parent.join("animation")
+}
+
 /// The runs, made once for all the tests here: each built-in model's
 /// `simulate` (for 1 s from its default motion, the bicycle falling,
 /// [`FAILING`] until it fails), and the snakeboard's gait, as concurrent
@@ -153,7 +169,7 @@ const FAILING: &str = "snakeboard";
 fn runs() -> &'static Runs {
     static RUNS: OnceLock<Runs> = OnceLock::new();
     RUNS.get_or_init(|| {
-        let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("animation");
+        let root = runs_directory();
         let _ = std::fs::remove_dir_all(&root);
         let mut commands: Vec<(String, Vec<String>, &str)> = (BUILT_IN.iter())
             .map(|model| {
