@@ -67,8 +67,14 @@ fn main() {
         let jacobian = microseconds(|| {
             black_box(evaluated(model.acceleration_jacobian(q, qdot, u)));
         });
+        let every_parameter: Vec<usize> = (0..model.parameter_values().len()).collect();
         let parameter_jacobian = microseconds(|| {
-            black_box(evaluated(model.acceleration_parameter_jacobian(q, qdot, u)));
+            black_box(evaluated(model.acceleration_parameter_jacobian(
+                q,
+                qdot,
+                u,
+                &every_parameter,
+            )));
         });
         let hessian = microseconds(|| {
             black_box(evaluated(model.acceleration_hessian(q, qdot, u, &w)));

@@ -167,17 +167,17 @@ struct Interpreted {
 
 /// A model's emitted functions, interpreted (see the module documentation).
 ///
-/// A clone shares the engine (the native code of [`InterpretedModel::set_engine`])
-/// and has its own parameter values.
+/// A clone shares the programs and the engine (the native code of
+/// [`InterpretedModel::set_engine`]) and has its own parameter values.
 #[derive(Clone)]
 pub struct InterpretedModel {
     names: Names,
     sizes: Sizes,
     defaults: Vec<f64>,
     parameters: Vec<f64>,
-    functions: Vec<Interpreted>,
+    functions: Arc<[Interpreted]>,
     /// The reduced items of each other chart of D (chart 1, 2, ...).
-    chart_functions: Vec<Vec<Interpreted>>,
+    chart_functions: Arc<[Vec<Interpreted>]>,
     /// How each chart derived at build time fits, chart 0 first.
     charts: Vec<ChartFit>,
     /// The guards of the model's own expressions, in the order of the
@@ -265,7 +265,7 @@ impl InterpretedModel {
         over_budget(&model, &cx)?;
         let emitted = emitted?;
         let mut indices = 0..;
-        let functions = interpreted(emitted.functions, &mut indices);
+        let functions = interpreted(emitted.functions, &mut indices).into();
         let chart_functions = emitted
             .chart_functions
             .into_iter()

@@ -142,7 +142,7 @@ impl InterpretedModel {
         name: &str,
     ) -> Result<Option<&Interpreted>, CallError> {
         let functions = match chart.checked_sub(1) {
-            None => &self.functions,
+            None => &self.functions[..],
             Some(other) if other < self.chart_functions.len() => &self.chart_functions[other],
             Some(_) => return Ok(None),
         };

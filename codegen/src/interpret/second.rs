@@ -3,7 +3,7 @@
 //! differentiation of the programs at run time ([`crate::ir::Program::tangents`]):
 //!
 //! ```text
-//! acceleration_parameter_jacobian(q, qdot, u)   d qddot / d parameters   (n x P)
+//! acceleration_parameter_jacobian(q, qdot, u, theta)  d qddot / d theta  (n x P')
 //! acceleration_hessian(q, qdot, u, w)           d^2 (w^T qddot) / dy^2   (m x m)
 //! reduced_rhs_hessian(x, u, w)                  d^2 (w^T f) / dy'^2      (m' x m')
 //! acceleration_parameter_hessian(q, qdot, u, w, theta)
@@ -37,18 +37,24 @@ use super::{CallError, Interpreted, InterpretedModel, check_arguments, function_
 use crate::ir::Tangents;
 
 impl InterpretedModel {
-    /// `d qddot / d parameters`, n x P row-major, at the current parameter
-    /// values: the `acceleration` program differentiated forward along its
-    /// parameter inputs ([`crate::ir::Program::tangents`]), exact to
-    /// round-off.
+    /// `d qddot / d theta`, n x P' row-major, for the parameters `theta`
+    /// (indices among the model's, `P'` of them) at the current parameter
+    /// values: the `acceleration` program differentiated forward along
+    /// those parameter inputs ([`crate::ir::Program::tangents`]), exact to
+    /// round-off. The cost grows with `P'`: name the parameters needed.
+    ///
+    /// # Errors
+    /// As [`InterpretedModel::call`], and [`CallError::Program`] for an
+    /// index that is no parameter's.
     pub fn acceleration_parameter_jacobian(
         &self,
         q: &[f64],
         qdot: &[f64],
         u: &[f64],
+        theta: &[usize],
     ) -> Result<Vec<f64>, CallError> {
         let (n, arguments) = (self.sizes.n, 2 * self.sizes.n + self.sizes.p);
-        let seeds: Vec<usize> = (arguments..arguments + self.parameters.len()).collect();
+        let seeds: Vec<usize> = theta.iter().map(|&k| arguments + k).collect();
         let function = function_among(&self.functions, "acceleration")?;
         let tangents = self.tangents(function, &[q, qdot, u], &seeds)?;
         Ok(tangents.derivatives[..n * seeds.len()].to_vec())
@@ -357,10 +363,11 @@ pub(super) mod tests {
     fn the_parameter_jacobian_agrees_with_central_differences_of_acceleration() {
         for (model, y) in models() {
             let (q, qdot, u) = split(&model, &y);
-            let exact = model
-                .acceleration_parameter_jacobian(&q, &qdot, &u)
-                .expect("evaluates");
             let parameters = model.parameter_values().len();
+            let all: Vec<usize> = (0..parameters).collect();
+            let exact = model
+                .acceleration_parameter_jacobian(&q, &qdot, &u, &all)
+                .expect("evaluates");
             for (l, name) in model.names().parameters.iter().enumerate() {
                 let value = model.parameter_values()[l];
                 let step = 1e-6 * value.abs().max(1.0);
@@ -478,12 +485,11 @@ pub(super) mod tests {
                         (0..n).map(|i| w[i] * entry(i)).sum()
                     })
                     .collect();
-                let by_all = moved
-                    .acceleration_parameter_jacobian(&q, &qdot, &u)
+                let by = moved
+                    .acceleration_parameter_jacobian(&q, &qdot, &u, &theta)
                     .expect("evaluates");
-                let by_theta = theta
-                    .iter()
-                    .map(|&k| (0..n).map(|i| w[i] * by_all[i * all + k]).sum())
+                let by_theta = (0..theta.len())
+                    .map(|l| (0..n).map(|i| w[i] * by[i * theta.len() + l]).sum())
                     .collect();
                 (by_y, by_theta)
             };

@@ -479,13 +479,37 @@ fn propagate(
     chain_slopes(slopes, d, result, &partials[..count]);
 }
 
-/// `slopes[result] = sum_k partial_k slopes[operand_k]`.
+/// `slopes[result] = sum_k partial_k slopes[operand_k]`, the sum taken in
+/// the operands' order from `-0.0`, as `Iterator::sum` takes it. The one
+/// and two operands of an operation are written out, so that the loop
+/// over the `d` directions runs on slices, without bounds checks.
 pub(super) fn chain_slopes(slopes: &mut [f64], d: usize, result: usize, partials: &[(usize, f64)]) {
-    for j in 0..d {
-        slopes[result * d + j] = partials
-            .iter()
-            .map(|&(operand, partial)| partial * slopes[operand * d + j])
-            .sum();
+    let (before, rest) = slopes.split_at_mut(result * d);
+    let (out, after) = rest.split_at_mut(d);
+    // an operand's row: an operand is a value other than the result
+    let row = |operand: usize| match operand < result {
+        true => &before[operand * d..(operand + 1) * d],
+        false => &after[(operand - result - 1) * d..(operand - result) * d],
+    };
+    match *partials {
+        [] => out.fill(-0.0),
+        [(a, pa)] => {
+            for (slope, sa) in out.iter_mut().zip(row(a)) {
+                *slope = pa * sa;
+            }
+        }
+        [(a, pa), (b, pb)] => {
+            for ((slope, sa), sb) in out.iter_mut().zip(row(a)).zip(row(b)) {
+                *slope = pa * sa + pb * sb;
+            }
+        }
+        _ => {
+            for (j, slope) in out.iter_mut().enumerate() {
+                *slope = (partials.iter())
+                    .map(|&(operand, partial)| partial * row(operand)[j])
+                    .sum();
+            }
+        }
     }
 }
 

@@ -476,16 +476,12 @@ impl Fit {
     /// `d f / d theta` at `point` (2n x P, row-major), its `q` rows 0.
     fn rhs_by_parameters(&self, transcription: &Transcription, point: &StagePoint) -> Vec<f64> {
         let model = transcription.model();
-        let (n, all) = (model.sizes().n, model.parameter_values().len());
+        let n = model.sizes().n;
         let (q, qdot) = point.x.split_at(n);
-        let by_all = evaluated(model.acceleration_parameter_jacobian(q, qdot, &point.u));
-        let estimated = self.indices.len();
-        let mut by = vec![0.0; 2 * n * estimated];
-        for k in 0..n {
-            for (j, &index) in self.indices.iter().enumerate() {
-                by[(n + k) * estimated + j] = by_all[k * all + index];
-            }
-        }
+        let by_estimates =
+            evaluated(model.acceleration_parameter_jacobian(q, qdot, &point.u, &self.indices));
+        let mut by = vec![0.0; n * self.indices.len()];
+        by.extend(by_estimates);
         by
     }
 
