@@ -28,6 +28,7 @@
 //! program's inputs do not move along (the group coordinates for the
 //! shape equations, `u` for all but `acceleration`).
 
+use super::second::{RowCurvatures, RowLayout};
 use super::{CallError, InterpretedModel, check_arguments, function_among};
 use crate::ir::Tape;
 use crate::model::GroupFactor;
@@ -101,8 +102,8 @@ impl InterpretedModel {
 
     /// The exact Hessian of `w^T f` by `(x, u)`, `(s + p) x (s + p)`
     /// row-major and symmetric, `f` the right-hand side of
-    /// [`InterpretedModel::momentum_form_rhs`]: its composition's second
-    /// derivatives along `(x, u)`, contracted with `w`.
+    /// [`InterpretedModel::momentum_form_rhs`]:
+    /// [`InterpretedModel::momentum_form_curvatures`] contracted with `w`.
     ///
     /// # Errors
     /// As [`InterpretedModel::momentum_form_rhs`], and
@@ -113,19 +114,34 @@ impl InterpretedModel {
         u: &[f64],
         w: &[f64],
     ) -> Result<Vec<f64>, CallError> {
+        self.momentum_form_curvatures(x, u)?.hessian(w)
+    }
+
+    /// The second derivatives of the rows of
+    /// [`InterpretedModel::momentum_form_rhs`]'s `f` by `(x, u)`, to be
+    /// weighted ([`RowCurvatures::hessian`]): its composition's second
+    /// derivatives along `(x, u)`, each row's exact.
+    ///
+    /// # Errors
+    /// As [`InterpretedModel::momentum_form_rhs`].
+    pub fn momentum_form_curvatures(
+        &self,
+        x: &[f64],
+        u: &[f64],
+    ) -> Result<RowCurvatures, CallError> {
         let name = "momentum_form_hessian";
-        let size = self.momentum_layout(name)?.size;
-        check_arguments(name, &[("w", size)], &[w])?;
         let m = x.len() + u.len();
         let mut tape = Tape::new(m, true);
         let f = self.momentum_form_on(&mut tape, name, x, u)?;
-        let mut hessian = vec![0.0; m * m];
-        for (&entry, weight) in f.iter().zip(w) {
-            for (h, second) in hessian.iter_mut().zip(tape.second(entry)) {
-                *h += weight * second;
-            }
-        }
-        Ok(hessian)
+        Ok(RowCurvatures {
+            function: name,
+            form: RowLayout::Blocks { rows: f.len(), m },
+            values: f
+                .iter()
+                .flat_map(|&entry| tape.second(entry))
+                .copied()
+                .collect(),
+        })
     }
 
     /// The velocity `qdot` of the whole configuration from `(q, rdot, p)`,

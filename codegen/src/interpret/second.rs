@@ -61,10 +61,8 @@ impl InterpretedModel {
     }
 
     /// The Hessian of `w^T qddot` by `y = (q, qdot, u)`, m x m row-major
-    /// (`m = 2n + p`): the exact `acceleration_jacobian` program
-    /// differentiated forward along `y` ([`crate::ir::Program::tangents`]),
-    /// its rows contracted with `w`, and symmetrized, `(H + H^T)/2`;
-    /// exact to round-off.
+    /// (`m = 2n + p`): [`InterpretedModel::acceleration_curvatures`]
+    /// contracted with `w`.
     ///
     /// # Errors
     /// As [`InterpretedModel::call`], and [`CallError::ArgumentLength`]
@@ -76,26 +74,38 @@ impl InterpretedModel {
         u: &[f64],
         w: &[f64],
     ) -> Result<Vec<f64>, CallError> {
+        self.acceleration_curvatures(q, qdot, u)?.hessian(w)
+    }
+
+    /// The second derivatives of the rows of `qddot` by `y = (q, qdot,
+    /// u)`, to be weighted: the exact `acceleration_jacobian` program
+    /// differentiated forward along `y` ([`crate::ir::Program::tangents`]).
+    /// Contracted with `w` ([`RowCurvatures::hessian`]), its rows give the
+    /// Hessian of `w^T qddot`, symmetrized, `(H + H^T)/2`; exact to
+    /// round-off.
+    ///
+    /// # Errors
+    /// As [`InterpretedModel::call`].
+    pub fn acceleration_curvatures(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        u: &[f64],
+    ) -> Result<RowCurvatures, CallError> {
         let (n, p) = (self.sizes.n, self.sizes.p);
-        check_arguments("acceleration_hessian", &[("w", n)], &[w])?;
-        let m = 2 * n + p;
-        let seeds: Vec<usize> = (0..m).collect();
+        let seeds: Vec<usize> = (0..2 * n + p).collect();
         let function = function_among(&self.functions, "acceleration_jacobian")?;
         let Tangents { derivatives, .. } = self.tangents(function, &[q, qdot, u], &seeds)?;
-        let mut hessian = contracted(&derivatives, w, (m, m), |i, j| jacobian_entry(n, p, i, j));
-        symmetrize(&mut hessian, m, m);
-        Ok(hessian)
+        Ok(RowCurvatures {
+            function: "acceleration_hessian",
+            form: RowLayout::Acceleration { n, p },
+            values: derivatives,
+        })
     }
 
     /// The Hessian of `w^T f` by `y = (x, u)`, m x m row-major (`m = s +
     /// p`), for the reduced equations `f(x, u) = (J - R) dH/dx + B(x) u`:
-    /// the exact `reduced_rhs_jacobian` program (`df/dx`) differentiated
-    /// forward along `y` ([`crate::ir::Program::tangents`]), its rows
-    /// contracted with `w`. Its `(x, x)` block is symmetrized, `(H +
-    /// H^T)/2`; its `(x, u)` block is `sum_i w_i dB_i./dx`, the Jacobian's
-    /// tangents along `u`, and the `(u, x)` block its transpose; the `(u,
-    /// u)` block is zero, `f` being affine in `u` (`B` depends on `q`
-    /// only, MATH.md section 3). Exact to round-off.
+    /// [`InterpretedModel::reduced_rhs_curvatures`] contracted with `w`.
     ///
     /// # Errors
     /// As [`InterpretedModel::call`], and [`CallError::ArgumentLength`]
@@ -106,22 +116,31 @@ impl InterpretedModel {
         u: &[f64],
         w: &[f64],
     ) -> Result<Vec<f64>, CallError> {
+        self.reduced_rhs_curvatures(x, u)?.hessian(w)
+    }
+
+    /// The second derivatives of the rows of the reduced equations' `f` by
+    /// `y = (x, u)`, to be weighted: the exact `reduced_rhs_jacobian`
+    /// program (`df/dx`) differentiated forward along `y`
+    /// ([`crate::ir::Program::tangents`]). Contracted with `w`
+    /// ([`RowCurvatures::hessian`]), the `(x, x)` block is symmetrized,
+    /// `(H + H^T)/2`; the `(x, u)` block is `sum_i w_i dB_i./dx`, the
+    /// Jacobian's tangents along `u`, and the `(u, x)` block its
+    /// transpose; the `(u, u)` block is zero, `f` being affine in `u` (`B`
+    /// depends on `q` only, MATH.md section 3). Exact to round-off.
+    ///
+    /// # Errors
+    /// As [`InterpretedModel::call`].
+    pub fn reduced_rhs_curvatures(&self, x: &[f64], u: &[f64]) -> Result<RowCurvatures, CallError> {
         let (s, p) = (self.sizes.s, self.sizes.p);
-        check_arguments("reduced_rhs_hessian", &[("w", s)], &[w])?;
-        let m = s + p;
-        let seeds: Vec<usize> = (0..m).collect();
+        let seeds: Vec<usize> = (0..s + p).collect();
         let function = function_among(&self.functions, "reduced_rhs_jacobian")?;
         let Tangents { derivatives, .. } = self.tangents(function, &[x, u], &seeds)?;
-        let by_x = contracted(&derivatives, w, (s, m), |i, j| i * s + j);
-        let mut hessian = vec![0.0; m * m];
-        hessian[..s * m].copy_from_slice(&by_x);
-        for l in s..m {
-            for j in 0..s {
-                hessian[l * m + j] = hessian[j * m + l];
-            }
-        }
-        symmetrize(&mut hessian, m, s);
-        Ok(hessian)
+        Ok(RowCurvatures {
+            function: "reduced_rhs_hessian",
+            form: RowLayout::Reduced { s, p },
+            values: derivatives,
+        })
     }
 
     /// The blocks of the Hessian of `w^T qddot` by the parameters
@@ -263,6 +282,86 @@ fn jacobian_entry(n: usize, p: usize, i: usize, j: usize) -> usize {
         j if j < n => i * n + j,
         j if j < 2 * n => n * n + i * n + (j - n),
         j => 2 * n * n + i * p + (j - 2 * n),
+    }
+}
+
+/// The second derivatives of a right-hand side's rows at one point, before
+/// they are weighted: what [`InterpretedModel::acceleration_hessian`],
+/// [`InterpretedModel::reduced_rhs_hessian`] and
+/// [`InterpretedModel::momentum_form_hessian`] contract with their weights.
+/// One evaluation serves every weighting at the point: a collocation's
+/// node is a stage of the intervals on both sides, and Hermite-Simpson's
+/// slopes weigh it once more.
+#[derive(Clone, Debug)]
+pub struct RowCurvatures {
+    /// The function whose weights [`RowCurvatures::hessian`] checks.
+    pub(super) function: &'static str,
+    pub(super) form: RowLayout,
+    /// The derivatives, as `form` lays them out.
+    pub(super) values: Vec<f64>,
+}
+
+/// How [`RowCurvatures`] lays out its derivatives.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum RowLayout {
+    /// The tangents of `acceleration_jacobian`'s outputs along `y = (q,
+    /// qdot, u)`, `m = 2n + p` each.
+    Acceleration { n: usize, p: usize },
+    /// The tangents of `reduced_rhs_jacobian`'s outputs along `y = (x,
+    /// u)`, `m = s + p` each.
+    Reduced { s: usize, p: usize },
+    /// Each of `rows` rows' m x m block, row-major.
+    Blocks { rows: usize, m: usize },
+}
+
+impl RowCurvatures {
+    /// The number of rows: the weights' length.
+    pub fn rows(&self) -> usize {
+        match self.form {
+            RowLayout::Acceleration { n, .. } => n,
+            RowLayout::Reduced { s, .. } => s,
+            RowLayout::Blocks { rows, .. } => rows,
+        }
+    }
+
+    /// The Hessian of `w^T f`, m x m row-major, exact to round-off.
+    ///
+    /// # Errors
+    /// [`CallError::ArgumentLength`] when `w` does not have
+    /// [`RowCurvatures::rows`] entries.
+    pub fn hessian(&self, w: &[f64]) -> Result<Vec<f64>, CallError> {
+        check_arguments(self.function, &[("w", self.rows())], &[w])?;
+        Ok(match self.form {
+            RowLayout::Acceleration { n, p } => {
+                let m = 2 * n + p;
+                let mut hessian =
+                    contracted(&self.values, w, (m, m), |i, j| jacobian_entry(n, p, i, j));
+                symmetrize(&mut hessian, m, m);
+                hessian
+            }
+            RowLayout::Reduced { s, p } => {
+                let m = s + p;
+                let by_x = contracted(&self.values, w, (s, m), |i, j| i * s + j);
+                let mut hessian = vec![0.0; m * m];
+                hessian[..s * m].copy_from_slice(&by_x);
+                for l in s..m {
+                    for j in 0..s {
+                        hessian[l * m + j] = hessian[j * m + l];
+                    }
+                }
+                symmetrize(&mut hessian, m, s);
+                hessian
+            }
+            RowLayout::Blocks { m, .. } => {
+                let mut hessian = vec![0.0; m * m];
+                for (block, weight) in self.values.chunks_exact(m * m).zip(w) {
+                    for (h, second) in hessian.iter_mut().zip(block) {
+                        *h += weight * second;
+                    }
+                }
+                hessian
+            }
+        })
     }
 }
 

@@ -44,7 +44,7 @@ use crate::driver::interpreted::{
     lagrange_rhs_jacobian, momentum_state_names, momentum_unsupported,
 };
 use crate::runtime::system::next_chart;
-use chaplygin_codegen::interpret::{InterpretedModel, evaluated};
+use chaplygin_codegen::interpret::{InterpretedModel, RowCurvatures, evaluated};
 
 /// Why a reduced plan is written in chart 0, as `plan.json` says.
 pub const CHART_REASON: &str = "chart 0, the one simulate starts in where it fits; every node \
@@ -167,24 +167,39 @@ impl Form {
         }
     }
 
-    /// The Hessian of `weights^T f` by `(x, u)` ((s + p)^2, row-major): in
-    /// the Lagrange form the model's `acceleration_hessian` with the last
-    /// `n` weights (the first `n` rows, `qdot`, are linear).
-    pub(super) fn rhs_hessian(
+    /// The second derivatives of the rows of `f` by `(x, u)`, to be
+    /// weighted ([`Form::rhs_hessian`]): in the Lagrange form those of
+    /// `qddot`, the model's `acceleration_curvatures` (the first `n` rows,
+    /// `qdot`, are linear).
+    pub(super) fn rhs_curvatures(
         self,
         model: &InterpretedModel,
         (x, u): (&[f64], &[f64]),
-        weights: &[f64],
-    ) -> Vec<f64> {
+    ) -> RowCurvatures {
         match self {
             Self::Lagrange => {
-                let n = model.sizes().n;
-                let (q, qdot) = x.split_at(n);
-                evaluated(model.acceleration_hessian(q, qdot, u, &weights[n..]))
+                let (q, qdot) = x.split_at(model.sizes().n);
+                evaluated(model.acceleration_curvatures(q, qdot, u))
             }
-            Self::Reduced => evaluated(model.reduced_rhs_hessian(x, u, weights)),
-            Self::Momentum => evaluated(model.momentum_form_hessian(x, u, weights)),
+            Self::Reduced => evaluated(model.reduced_rhs_curvatures(x, u)),
+            Self::Momentum => evaluated(model.momentum_form_curvatures(x, u)),
         }
+    }
+
+    /// The Hessian of `weights^T f` by `(x, u)` ((s + p)^2, row-major) from
+    /// `f`'s [`Form::rhs_curvatures`] at a point: in the Lagrange form with
+    /// the last `n` weights.
+    pub(super) fn rhs_hessian(
+        self,
+        model: &InterpretedModel,
+        curvatures: &RowCurvatures,
+        weights: &[f64],
+    ) -> Vec<f64> {
+        let linear = match self {
+            Self::Lagrange => model.sizes().n,
+            Self::Reduced | Self::Momentum => 0,
+        };
+        evaluated(curvatures.hessian(&weights[linear..]))
     }
 
     /// The velocities `qdot` at the state `x`.

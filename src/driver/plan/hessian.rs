@@ -58,13 +58,21 @@
 //! by `(T, x_{N-1})`. Over a given duration the rows and columns of `T`
 //! are dropped.
 //!
+//! The model's second derivatives at a point are computed once an
+//! evaluation and weighted as often as the point is met
+//! ([`PointCurvatures`]): Hermite-Simpson's five weightings an interval
+//! fall on three points, two of them nodes shared with the neighbouring
+//! intervals.
+//!
 //! The structure is that of a Lagrangian coupling neighbouring nodes
 //! only: each node's lower triangle, then the block of the next node's
 //! rows by its columns, node by node; with a free duration, then `T`'s row
 //! by every node's columns and `T` (entries a scheme does not read stay
 //! zero).
 
-use super::transcription::{Global, Motion, StagePoint, Transcription, finite, share};
+use super::transcription::{
+    Global, Motion, PointCurvatures, StagePoint, Transcription, finite, share,
+};
 
 /// A dense symmetric matrix, row-major: over one interval's variables
 /// `(z_i, z_{i+1}, T)`, or a stage's `(t, x, u)`.
@@ -185,19 +193,26 @@ impl Transcription {
     ) -> bool {
         values.fill(0.0);
         let s = self.state();
+        let mut curvatures = PointCurvatures::default();
         for i in 0..self.nodes - 1 {
             let defect = &multipliers[i * s..(i + 1) * s];
-            let hessian = self.interval_hessian(z, i, objective_factor, defect);
+            let hessian = self.interval_hessian(&mut curvatures, z, i, objective_factor, defect);
             self.scatter(i, &hessian, values);
         }
-        self.add_final_cost(z, objective_factor, values);
+        self.add_final_cost(&mut curvatures, z, objective_factor, values);
         finite(values)
     }
 
     /// `objective_factor hess Phi(T, x_{N-1})` added to the last node's
     /// state and, with a free duration, to `T`'s row: `E^T hess Phi E +
     /// hess (Phi_qdot^T qdot)` by `(T, x)`.
-    fn add_final_cost(&self, z: &[f64], objective_factor: f64, values: &mut [f64]) {
+    fn add_final_cost(
+        &self,
+        curvatures: &mut PointCurvatures,
+        z: &[f64],
+        objective_factor: f64,
+        values: &mut [f64],
+    ) {
         let Some(phi) = &self.costs.terminal else {
             return;
         };
@@ -210,7 +225,8 @@ impl Transcription {
         hessian.values = self.cost_curvature(&phi.hessian(&point), &fx[..n * s]);
         let mut weights = by.qdot;
         weights.resize(s, 0.0);
-        hessian.add_block(1, w, &self.rhs_hessian(&last, &weights), 1.0);
+        let model = self.rhs_hessian(curvatures, &last, &weights);
+        hessian.add_block(1, w, &model, 1.0);
         let offset = self.node_offset(self.nodes - 1);
         for a in 0..s {
             for b in 0..=a {
@@ -231,6 +247,7 @@ impl Transcription {
     /// documentation), `defect` the multipliers of its defect.
     fn interval_hessian(
         &self,
+        curvatures: &mut PointCurvatures,
         z: &[f64],
         i: usize,
         objective_factor: f64,
@@ -243,7 +260,7 @@ impl Transcription {
             let point = self.stage_point(z, i, stage);
             let motion = self.stage_motion(z, i, stage);
             let along = self.stage_derivative(&point, &motion, stage.inputs_at, duration);
-            let (slope, curvature) = self.stage_terms(&point, objective_factor, defect);
+            let (slope, curvature) = self.stage_terms(curvatures, &point, objective_factor, defect);
             let scale = h * stage.weight;
             hessian.add_congruent(&along, &curvature, scale);
             let by_v = row_times(&slope, &along);
@@ -251,7 +268,7 @@ impl Transcription {
             if stage.slopes != 0.0 {
                 let mu = &slope[1..1 + s];
                 let c = scale * stage.slopes * h;
-                let (by_nodes, blocks) = self.slopes_terms(z, i, mu);
+                let (by_nodes, blocks) = self.slopes_terms(curvatures, z, i, mu);
                 hessian.add_duration_outer(&by_nodes, c / duration);
                 hessian.add_block(0, w, &blocks[0], c);
                 hessian.add_block(w, w, &blocks[1], -c);
@@ -294,6 +311,7 @@ impl Transcription {
     /// documentation).
     pub(super) fn stage_terms(
         &self,
+        curvatures: &mut PointCurvatures,
         point: &StagePoint,
         objective_factor: f64,
         defect: &[f64],
@@ -327,7 +345,7 @@ impl Transcription {
                 *g += objective_factor * l;
             }
         }
-        let model = self.rhs_hessian(point, &weights);
+        let model = self.rhs_hessian(curvatures, point, &weights);
         for a in 0..w {
             for (g, d) in curvature[(1 + a) * m + 1..(2 + a) * m]
                 .iter_mut()
@@ -366,6 +384,7 @@ impl Transcription {
     /// df_{i+1}/dz_{i+1}, 0)` and the nodes' `hess (mu^T f)` (w x w each).
     pub(super) fn slopes_terms(
         &self,
+        curvatures: &mut PointCurvatures,
         z: &[f64],
         i: usize,
         mu: &[f64],
@@ -384,7 +403,7 @@ impl Transcription {
                     row[j * w + s + c] += sign * m * d;
                 }
             }
-            self.rhs_hessian(&node, mu)
+            self.rhs_hessian(curvatures, &node, mu)
         });
         (row, blocks)
     }
@@ -427,4 +446,29 @@ fn row_times(row: &[f64], matrix: &[f64]) -> Vec<f64> {
         }
     }
     product
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::transcription::tests::transcription;
+    use super::PointCurvatures;
+    use crate::driver::plan::Scheme;
+
+    /// Hermite-Simpson weighs the model's curvatures five times an interval
+    /// (its three stages, and its slopes' terms at both nodes) at three
+    /// points, its nodes shared with the neighbouring intervals. The
+    /// stages at the nodes and the slopes' nodes are the same points to the
+    /// bit, so that over the two intervals of 3 nodes the curvatures are
+    /// computed at 5 points, not 10.
+    #[test]
+    fn hermite_simpson_computes_each_points_curvatures_once() {
+        let (nlp, z) = transcription(Scheme::HermiteSimpson, true);
+        let s = nlp.state();
+        let mut curvatures = PointCurvatures::default();
+        for i in 0..2 {
+            let defect: Vec<f64> = (0..s).map(|k| 0.4 - 0.1 * (k + i) as f64).collect();
+            nlp.interval_hessian(&mut curvatures, &z, i, 1.0, &defect);
+        }
+        assert_eq!(curvatures.points(), 5);
+    }
 }

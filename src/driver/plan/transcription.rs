@@ -56,8 +56,8 @@
 use super::form::Form;
 use super::nlp::Nlp;
 use crate::driver::expression::{Expression, Gradient, Point};
-use chaplygin_codegen::interpret::InterpretedModel;
-use std::collections::BTreeSet;
+use chaplygin_codegen::interpret::{InterpretedModel, RowCurvatures};
+use std::collections::{BTreeSet, HashMap};
 
 /// A one-step collocation scheme.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -188,6 +188,25 @@ pub(super) struct StagePoint {
     pub(super) x: Vec<f64>,
     pub(super) u: Vec<f64>,
     pub(super) qdot: Vec<f64>,
+}
+
+/// The model's second derivatives ([`Form::rhs_curvatures`]) at the points
+/// met in one evaluation of a Lagrangian's Hessian, by the bits of the
+/// point's `(x, u)`: each point's are computed once and weighted as often
+/// as it is met. A node is a stage of the intervals on both sides of it,
+/// and Hermite-Simpson's slopes weigh both nodes of an interval again, so
+/// that its five weightings an interval fall on three points.
+#[derive(Default)]
+pub(super) struct PointCurvatures {
+    at: HashMap<Vec<u64>, RowCurvatures>,
+}
+
+#[cfg(test)]
+impl PointCurvatures {
+    /// The number of points whose curvatures were computed.
+    pub(super) fn points(&self) -> usize {
+        self.at.len()
+    }
 }
 
 /// How a stage's state moves with the interval's variables: `dX/dz_j`
@@ -455,10 +474,20 @@ impl Transcription {
     }
 
     /// The Hessian of `weights^T f` by `(x, u)` (w x w, row-major) at
-    /// `point` ([`Form::rhs_hessian`]).
-    pub(super) fn rhs_hessian(&self, point: &StagePoint, weights: &[f64]) -> Vec<f64> {
-        self.form
-            .rhs_hessian(&self.model, (&point.x, &point.u), weights)
+    /// `point` ([`Form::rhs_hessian`]), from the point's curvatures in
+    /// `curvatures`, computed there when it has none yet.
+    pub(super) fn rhs_hessian(
+        &self,
+        curvatures: &mut PointCurvatures,
+        point: &StagePoint,
+        weights: &[f64],
+    ) -> Vec<f64> {
+        let key = (point.x.iter().chain(&point.u))
+            .map(|value| value.to_bits())
+            .collect();
+        let at = (curvatures.at.entry(key))
+            .or_insert_with(|| self.form.rhs_curvatures(&self.model, (&point.x, &point.u)));
+        self.form.rhs_hessian(&self.model, at, weights)
     }
 
     /// `df/dx` (s x s) and `df/du` (s x p), row-major, at `point`.
@@ -731,7 +760,10 @@ pub(super) mod tests {
     /// running cost reading the time, coordinates, velocities and inputs,
     /// its final cost the time and the state; with `free_duration`, `T =
     /// 0.8` a variable.
-    fn transcription(scheme: Scheme, free_duration: bool) -> (Transcription, Vec<f64>) {
+    pub(in crate::driver::plan) fn transcription(
+        scheme: Scheme,
+        free_duration: bool,
+    ) -> (Transcription, Vec<f64>) {
         let model =
             InterpretedModel::from_source(include_str!("../catalog/differential_drive.model"))
                 .expect("the model derives");

@@ -29,7 +29,7 @@
 //! estimates up to its own.
 
 use super::Fit;
-use crate::driver::plan::transcription::{StagePoint, Transcription};
+use crate::driver::plan::transcription::{PointCurvatures, StagePoint, Transcription};
 use crate::runtime::nalgebra::DMatrix;
 use chaplygin_codegen::interpret::{ParameterBlocks, evaluated};
 
@@ -90,9 +90,10 @@ impl Fit {
         }
         let z = self.transcribed(y);
         let transcription = self.transcription.borrow();
+        let mut curvatures = PointCurvatures::default();
         for i in 0..self.times.len() - 1 {
             let defect = &multipliers[i * s..(i + 1) * s];
-            let hessian = self.interval_hessian(&transcription, &z, i, defect);
+            let hessian = self.interval_hessian(&transcription, &mut curvatures, &z, i, defect);
             self.scatter(i, &hessian, values);
         }
         let initial = self.initial_terms(transcription.model(), &z[..s]);
@@ -109,6 +110,7 @@ impl Fit {
     fn interval_hessian(
         &self,
         transcription: &Transcription,
+        curvatures: &mut PointCurvatures,
         z: &[f64],
         i: usize,
         defect: &[f64],
@@ -135,7 +137,7 @@ impl Fit {
             for l in 0..estimated {
                 along[(s + l, 2 * s + l)] = 1.0;
             }
-            let (slope, curvature) = transcription.stage_terms(&point, 0.0, defect);
+            let (slope, curvature) = transcription.stage_terms(curvatures, &point, 0.0, defect);
             let weights: Vec<f64> = defect[n..].iter().map(|lambda| -lambda).collect();
             let g = self.curvature_by_state_and_parameters(
                 transcription,
@@ -146,7 +148,7 @@ impl Fit {
             hessian += (along.transpose() * g * &along) * (h * stage.weight);
             if stage.slopes != 0.0 {
                 let mu = &slope[1..1 + s];
-                let (_, blocks) = transcription.slopes_terms(z, i, mu);
+                let (_, blocks) = transcription.slopes_terms(curvatures, z, i, mu);
                 for (j, sign) in [(0, 1.0), (1, -1.0)] {
                     let node = transcription.node_point(z, i + j);
                     let block = &blocks[j];
