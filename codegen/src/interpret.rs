@@ -45,7 +45,7 @@ pub use crate::ir::{Backend, Engine, Interpreter};
 pub use crate::model::drawing::{DISC_THICKNESS, DrawnItem, Figure, Orientation};
 pub use drawing::{Bodies, BodyName, BodyState, ContactName, Drawing};
 pub use fixed::{Fixed, SizeMismatch};
-pub use second::{ParameterBlocks, RowCurvatures};
+pub use second::{ParameterBlocks, ParameterCurvatures, RowCurvatures};
 
 use crate::derive::constraints::ChartFit;
 use crate::derive::port_hamiltonian::momentum_names;

@@ -148,7 +148,9 @@ impl InterpretedModel {
     /// u)` and `theta` (m x P', row-major), the exact
     /// `acceleration_jacobian` differentiated along `theta`; and by
     /// `theta` twice (P' x P'), the `acceleration` program's second
-    /// derivatives along them ([`crate::ir::Program::curvatures`]).
+    /// derivatives along them ([`crate::ir::Program::curvatures`]). The
+    /// contraction of [`InterpretedModel::acceleration_parameter_curvatures`]
+    /// with `w`.
     ///
     /// # Errors
     /// As [`InterpretedModel::acceleration_hessian`], and
@@ -161,30 +163,36 @@ impl InterpretedModel {
         w: &[f64],
         theta: &[usize],
     ) -> Result<ParameterBlocks, CallError> {
+        self.acceleration_parameter_curvatures(q, qdot, u, theta)?
+            .hessian(w)
+    }
+
+    /// The second derivatives of the rows of `qddot` by the parameters
+    /// `theta` at one point, before they are weighted
+    /// ([`ParameterCurvatures::hessian`]).
+    ///
+    /// # Errors
+    /// As [`InterpretedModel::acceleration_parameter_hessian`].
+    pub fn acceleration_parameter_curvatures(
+        &self,
+        q: &[f64],
+        qdot: &[f64],
+        u: &[f64],
+        theta: &[usize],
+    ) -> Result<ParameterCurvatures, CallError> {
         let (n, p) = (self.sizes.n, self.sizes.p);
-        check_arguments("acceleration_parameter_hessian", &[("w", n)], &[w])?;
-        let (m, count) = (2 * n + p, theta.len());
+        let m = 2 * n + p;
         let seeds: Vec<usize> = theta.iter().map(|&k| m + k).collect();
         let jacobian = function_among(&self.functions, "acceleration_jacobian")?;
         let Tangents { derivatives, .. } = self.tangents(jacobian, &[q, qdot, u], &seeds)?;
-        let mixed = contracted(&derivatives, w, (m, count), |i, j| {
-            jacobian_entry(n, p, i, j)
-        });
         let acceleration = function_among(&self.functions, "acceleration")?;
         let second = self.curvatures(acceleration, &[q, qdot, u], &seeds)?;
-        let block = count * count;
-        let mut by_parameters = vec![0.0; block];
-        for (i, weight) in w.iter().enumerate() {
-            for (h, d) in by_parameters
-                .iter_mut()
-                .zip(&second[i * block..(i + 1) * block])
-            {
-                *h += weight * d;
-            }
-        }
-        Ok(ParameterBlocks {
-            mixed,
-            by_parameters,
+        Ok(ParameterCurvatures {
+            n,
+            p,
+            count: theta.len(),
+            mixed: derivatives,
+            second,
         })
     }
 
@@ -372,6 +380,49 @@ pub struct ParameterBlocks {
     pub mixed: Vec<f64>,
     /// By the parameters twice, P' x P' row-major.
     pub by_parameters: Vec<f64>,
+}
+
+/// The second derivatives of the rows of `qddot` by the parameters at one
+/// point, before they are weighted: what
+/// [`InterpretedModel::acceleration_parameter_hessian`] contracts with its
+/// weights, one evaluation for every weighting at the point (as
+/// [`RowCurvatures`]).
+#[derive(Clone, Debug)]
+pub struct ParameterCurvatures {
+    n: usize,
+    p: usize,
+    /// The parameters differentiated by.
+    count: usize,
+    /// The tangents of `acceleration_jacobian`'s outputs along them.
+    mixed: Vec<f64>,
+    /// Each row's `count` x `count` block, row-major.
+    second: Vec<f64>,
+}
+
+impl ParameterCurvatures {
+    /// The blocks of the Hessian of `w^T qddot`, exact to round-off.
+    ///
+    /// # Errors
+    /// [`CallError::ArgumentLength`] when `w` does not have one entry a
+    /// coordinate.
+    pub fn hessian(&self, w: &[f64]) -> Result<ParameterBlocks, CallError> {
+        let (n, p, count) = (self.n, self.p, self.count);
+        check_arguments("acceleration_parameter_hessian", &[("w", n)], &[w])?;
+        let mixed = contracted(&self.mixed, w, (2 * n + p, count), |i, j| {
+            jacobian_entry(n, p, i, j)
+        });
+        let block = count * count;
+        let mut by_parameters = vec![0.0; block];
+        for (rows, weight) in self.second.chunks_exact(block.max(1)).zip(w) {
+            for (h, d) in by_parameters.iter_mut().zip(rows) {
+                *h += weight * d;
+            }
+        }
+        Ok(ParameterBlocks {
+            mixed,
+            by_parameters,
+        })
+    }
 }
 
 #[cfg(test)]

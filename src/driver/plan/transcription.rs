@@ -190,6 +190,16 @@ pub(super) struct StagePoint {
     pub(super) qdot: Vec<f64>,
 }
 
+impl StagePoint {
+    /// The bits of the point's `(x, u)`: what the model's derivatives at
+    /// the point depend on, as a key of the points met.
+    pub(super) fn bits(&self) -> Vec<u64> {
+        (self.x.iter().chain(&self.u))
+            .map(|value| value.to_bits())
+            .collect()
+    }
+}
+
 /// The model's second derivatives ([`Form::rhs_curvatures`]) at the points
 /// met in one evaluation of a Lagrangian's Hessian, by the bits of the
 /// point's `(x, u)`: each point's are computed once and weighted as often
@@ -482,10 +492,7 @@ impl Transcription {
         point: &StagePoint,
         weights: &[f64],
     ) -> Vec<f64> {
-        let key = (point.x.iter().chain(&point.u))
-            .map(|value| value.to_bits())
-            .collect();
-        let at = (curvatures.at.entry(key))
+        let at = (curvatures.at.entry(point.bits()))
             .or_insert_with(|| self.form.rhs_curvatures(&self.model, (&point.x, &point.u)));
         self.form.rhs_hessian(&self.model, at, weights)
     }

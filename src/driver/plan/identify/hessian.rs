@@ -22,7 +22,11 @@
 //! f)` by `(x, theta)` at a node. The initial constraints add `sum_r
 //! lambda_r hess c_{0,r}` by `(x_0, theta)` (`initial`). The blocks by the states are the plan's
 //! ([`Transcription`]'s stage and slope terms); those by `theta` are the
-//! model's `acceleration_parameter_hessian`, exact.
+//! model's `acceleration_parameter_hessian`, exact. Each point's second
+//! derivatives, by the states and by the estimates, are computed once an
+//! evaluation and weighted as often as the point is met (a node is a
+//! stage of the intervals on both sides, and Hermite-Simpson's slopes
+//! weigh an interval's nodes again).
 //!
 //! The structure: node by node, its lower triangle and the next node's
 //! rows by its columns; then each estimate's row, by every state and the
@@ -31,7 +35,18 @@
 use super::Fit;
 use crate::driver::plan::transcription::{PointCurvatures, StagePoint, Transcription};
 use crate::runtime::nalgebra::DMatrix;
-use chaplygin_codegen::interpret::{ParameterBlocks, evaluated};
+use chaplygin_codegen::interpret::{ParameterBlocks, ParameterCurvatures, evaluated};
+use std::collections::HashMap;
+
+/// The model's second derivatives at the points met in one evaluation of
+/// the Hessian, each point's computed once and weighted as often as it is
+/// met: by the states and inputs ([`PointCurvatures`]), and by the states
+/// and the estimates, by the bits of the point's `(x, u)`.
+#[derive(Default)]
+struct Curvatures {
+    rows: PointCurvatures,
+    parameters: HashMap<Vec<u64>, ParameterCurvatures>,
+}
 
 impl Fit {
     /// A node's lower triangle's entries, `s (s + 1) / 2`.
@@ -90,7 +105,7 @@ impl Fit {
         }
         let z = self.transcribed(y);
         let transcription = self.transcription.borrow();
-        let mut curvatures = PointCurvatures::default();
+        let mut curvatures = Curvatures::default();
         for i in 0..self.times.len() - 1 {
             let defect = &multipliers[i * s..(i + 1) * s];
             let hessian = self.interval_hessian(&transcription, &mut curvatures, &z, i, defect);
@@ -110,7 +125,7 @@ impl Fit {
     fn interval_hessian(
         &self,
         transcription: &Transcription,
-        curvatures: &mut PointCurvatures,
+        curvatures: &mut Curvatures,
         z: &[f64],
         i: usize,
         defect: &[f64],
@@ -137,10 +152,12 @@ impl Fit {
             for l in 0..estimated {
                 along[(s + l, 2 * s + l)] = 1.0;
             }
-            let (slope, curvature) = transcription.stage_terms(curvatures, &point, 0.0, defect);
+            let (slope, curvature) =
+                transcription.stage_terms(&mut curvatures.rows, &point, 0.0, defect);
             let weights: Vec<f64> = defect[n..].iter().map(|lambda| -lambda).collect();
             let g = self.curvature_by_state_and_parameters(
                 transcription,
+                &mut curvatures.parameters,
                 &point,
                 |a, b| curvature[(1 + a) * (1 + w) + 1 + b],
                 &weights,
@@ -148,12 +165,13 @@ impl Fit {
             hessian += (along.transpose() * g * &along) * (h * stage.weight);
             if stage.slopes != 0.0 {
                 let mu = &slope[1..1 + s];
-                let (_, blocks) = transcription.slopes_terms(curvatures, z, i, mu);
+                let (_, blocks) = transcription.slopes_terms(&mut curvatures.rows, z, i, mu);
                 for (j, sign) in [(0, 1.0), (1, -1.0)] {
                     let node = transcription.node_point(z, i + j);
                     let block = &blocks[j];
                     let k_j = self.curvature_by_state_and_parameters(
                         transcription,
+                        &mut curvatures.parameters,
                         &node,
                         |a, b| block[a * w + b],
                         &mu[n..],
@@ -167,26 +185,30 @@ impl Fit {
     }
 
     /// The Hessian of `weights^T qddot` by `(x, theta)` at `point`, its
-    /// block by the state `by_state(a, b)`.
+    /// block by the state `by_state(a, b)`, from the point's curvatures by
+    /// the estimates in `at_points`, computed there when it has none yet.
     fn curvature_by_state_and_parameters(
         &self,
         transcription: &Transcription,
+        at_points: &mut HashMap<Vec<u64>, ParameterCurvatures>,
         point: &StagePoint,
         by_state: impl Fn(usize, usize) -> f64,
         weights: &[f64],
     ) -> DMatrix<f64> {
         let (n, s, estimated) = (self.state() / 2, self.state(), self.indices.len());
-        let (q, qdot) = point.x.split_at(n);
+        let at = at_points.entry(point.bits()).or_insert_with(|| {
+            let (q, qdot) = point.x.split_at(n);
+            evaluated(transcription.model().acceleration_parameter_curvatures(
+                q,
+                qdot,
+                &point.u,
+                &self.indices,
+            ))
+        });
         let ParameterBlocks {
             mixed,
             by_parameters,
-        } = evaluated(transcription.model().acceleration_parameter_hessian(
-            q,
-            qdot,
-            &point.u,
-            weights,
-            &self.indices,
-        ));
+        } = evaluated(at.hessian(weights));
         DMatrix::from_fn(s + estimated, s + estimated, |a, b| match (a < s, b < s) {
             (true, true) => by_state(a, b),
             (true, false) => mixed[a * estimated + b - s],
