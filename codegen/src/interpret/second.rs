@@ -413,7 +413,8 @@ impl ParameterCurvatures {
         });
         let block = count * count;
         let mut by_parameters = vec![0.0; block];
-        for (rows, weight) in self.second.chunks_exact(block.max(1)).zip(w) {
+        for (i, weight) in w.iter().enumerate() {
+            let rows = &self.second[i * block..(i + 1) * block];
             for (h, d) in by_parameters.iter_mut().zip(rows) {
                 *h += weight * d;
             }
