@@ -1,0 +1,2 @@
+pub mod mtx;
+pub mod sidecar;

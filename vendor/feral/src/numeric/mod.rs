@@ -1,0 +1,4 @@
+pub mod condition;
+pub mod factorize;
+pub mod solve;
+pub mod solver;
