@@ -8,10 +8,13 @@
 //!   in a `console` block a command follows `$ `, and the lines after it
 //!   are what it prints;
 //! - `cargo run --release -- ARGS` and `chaplygin ARGS` run this test
-//!   build's binary with ARGS, in a scratch directory (where `models`,
-//!   `examples` and `tests` name the repository's); `cargo run --example
-//!   NAME` must name an example (`tests/examples.rs` runs them); any other
-//!   command must be one of [`NOT_RUN`], with the reason;
+//!   build's binary with ARGS; a block's commands run one after the other,
+//!   as a reader pastes them, in a scratch directory of the block's own
+//!   (where `models`, `examples` and `tests` name the repository's, and a
+//!   command reads what an earlier one of its block wrote), the blocks all
+//!   at once; `cargo run --example NAME` must name an example
+//!   (`tests/examples.rs` runs them); any other command must be one of
+//!   [`NOT_RUN`], with the reason;
 //! - what a command prints is its standard output, then its standard
 //!   error: every line the guide shows must be among them, in order, where
 //!   `...` in a line stands for any text (and a line `...` for lines left
@@ -26,10 +29,11 @@ use crate::support::printed::{Token, numbers, tokens};
 use crate::support::scratch;
 use std::path::Path;
 use std::process::{Command, Output};
+use tempfile::TempDir;
 
 /// The commands of the guide no test runs, as written (continuations
 /// joined, comments dropped, words single-spaced), and why.
-const NOT_RUN: [(&str, &str); 7] = [
+const NOT_RUN: [(&str, &str); 6] = [
     ("cargo test --workspace", "the tests themselves"),
     (
         "bash .ci/run",
@@ -55,12 +59,6 @@ const NOT_RUN: [(&str, &str); 7] = [
         "221 designs at 201 speeds, two minutes in the test build; `cli/tests/design_map.rs` \
          checks maps of fewer",
     ),
-    (
-        "chaplygin identify bicycle --data out/ride/trajectory.csv --estimate c=0.09 --nodes 61 \
-         --scheme hermite-simpson --out out/trail",
-        "36 s in the test build; the library's ignored test \
-         `the_bicycles_trail_is_identified_from_a_run` identifies the trail",
-    ),
 ];
 
 /// A command of the guide and what the guide shows it printing.
@@ -73,16 +71,17 @@ struct Shown {
     printed: Vec<String>,
 }
 
-/// The commands of the `sh` and `console` blocks of `page`.
-fn commands(page: &Path) -> Vec<Shown> {
+/// The commands of each `sh` and `console` block of `page`, in order.
+fn commands(page: &Path) -> Vec<Vec<Shown>> {
     let text = std::fs::read_to_string(page).expect("readable");
-    let mut found = Vec::new();
+    let mut all = Vec::new();
     for block in blocks(&text) {
         let console = match block.info.as_str() {
             "sh" => false,
             "console" => true,
             _ => continue,
         };
+        let mut found = Vec::new();
         let mut lines = block.lines.iter().enumerate();
         while let Some((index, line)) = lines.next() {
             let place = || format!("{}:{}", shown(page), block.line + 1 + index);
@@ -105,8 +104,9 @@ fn commands(page: &Path) -> Vec<Shown> {
                 }
             }
         }
+        all.push(found);
     }
-    found
+    all
 }
 
 /// The command `first` at `place`, continued on the next of `lines` while
@@ -188,17 +188,22 @@ fn is_example(name: &str) -> bool {
             })
 }
 
-/// The binary run with `arguments` in a scratch directory of its own,
-/// where `models`, `examples` and `tests` are the repository's.
-fn run(index: usize, arguments: &[String]) -> Output {
-    let directory = scratch(&format!("guide-command-{index}"));
+/// The scratch directory of the block `index`, where `models`, `examples`
+/// and `tests` are the repository's.
+fn block_directory(index: usize) -> TempDir {
+    let directory = scratch(&format!("guide-block-{index}"));
     for shared in ["models", "examples", "tests"] {
         std::os::unix::fs::symlink(root().join(shared), directory.path().join(shared))
             .expect("a link in the scratch directory");
     }
+    directory
+}
+
+/// The binary run with `arguments` in `directory`.
+fn run(directory: &Path, arguments: &[String]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_chaplygin"))
         .args(arguments)
-        .current_dir(directory.path())
+        .current_dir(directory)
         .output()
         .expect("the binary runs")
 }
@@ -262,19 +267,14 @@ fn judged(shown: &Shown, output: &Output) -> Result<(), String> {
     Ok(())
 }
 
-/// The guide's commands run all at once, each in a thread of its own (the
-/// longest, a gait optimization, takes seconds unoptimized), and each
-/// judged by what it printed.
-#[test]
-fn the_guides_commands_run_and_print_what_it_shows() {
-    let shown: Vec<Shown> = guide_pages()
-        .iter()
-        .flat_map(|page| commands(page))
-        .collect();
-    let mut binary_runs = Vec::new();
-    for (index, command) in shown.iter().enumerate() {
+/// The commands of `block` the binary runs, with their arguments; an
+/// example must be the workspace's, and any other command one of
+/// [`NOT_RUN`].
+fn binary_runs(block: &[Shown]) -> Vec<(&Shown, &[String])> {
+    let mut runs = Vec::new();
+    for command in block {
         match kind(&command.words) {
-            Ok(Kind::Binary(arguments)) => binary_runs.push((index, command, arguments)),
+            Ok(Kind::Binary(arguments)) => runs.push((command, arguments)),
             Ok(Kind::Example(name)) => {
                 assert!(is_example(name), "{}: no example `{name}`", command.place);
             }
@@ -282,25 +282,50 @@ fn the_guides_commands_run_and_print_what_it_shows() {
             Err(problem) => panic!("{}: {problem}", command.place),
         }
     }
-    assert!(binary_runs.len() >= 10, "the guide's commands are found");
-    let problems: Vec<String> = std::thread::scope(|scope| {
-        let running: Vec<_> = (binary_runs.iter())
-            .map(|&(index, command, arguments)| {
-                scope.spawn(move || {
-                    let output = run(index, arguments);
-                    judged(command, &output).err().map(|problem| {
-                        format!(
-                            "{}: {problem}\nstdout:\n{}\nstderr:\n{}",
-                            command.place,
-                            String::from_utf8_lossy(&output.stdout),
-                            String::from_utf8_lossy(&output.stderr)
-                        )
-                    })
-                })
+    runs
+}
+
+/// What is wrong with the commands of the block `index`, run one after
+/// the other in its scratch directory.
+fn block_problems(index: usize, runs: &[(&Shown, &[String])]) -> Vec<String> {
+    let directory = block_directory(index);
+    (runs.iter())
+        .filter_map(|&(command, arguments)| {
+            let output = run(directory.path(), arguments);
+            judged(command, &output).err().map(|problem| {
+                format!(
+                    "{}: {problem}\nstdout:\n{}\nstderr:\n{}",
+                    command.place,
+                    String::from_utf8_lossy(&output.stdout),
+                    String::from_utf8_lossy(&output.stderr)
+                )
             })
+        })
+        .collect()
+}
+
+/// The guide's blocks run all at once, each in a thread of its own (the
+/// longest, a gait optimization, takes seconds unoptimized), and each
+/// command judged by what it printed.
+#[test]
+fn the_guides_commands_run_and_print_what_it_shows() {
+    let blocks: Vec<Vec<Shown>> = guide_pages()
+        .iter()
+        .flat_map(|page| commands(page))
+        .collect();
+    let runs: Vec<Vec<(&Shown, &[String])>> =
+        blocks.iter().map(|block| binary_runs(block)).collect();
+    assert!(
+        runs.iter().map(Vec::len).sum::<usize>() >= 10,
+        "the guide's commands are found"
+    );
+    let problems: Vec<String> = std::thread::scope(|scope| {
+        let running: Vec<_> = (runs.iter().enumerate())
+            .filter(|(_, block)| !block.is_empty())
+            .map(|(index, block)| scope.spawn(move || block_problems(index, block)))
             .collect();
         (running.into_iter())
-            .filter_map(|command| command.join().expect("the command's thread"))
+            .flat_map(|block| block.join().expect("the block's thread"))
             .collect()
     });
     assert!(problems.is_empty(), "{}", problems.join("\n\n"));

@@ -599,7 +599,7 @@ fn estimated_trail(noise: f64) -> Estimate {
 }
 
 #[test]
-#[ignore = "18 s in a release build: cargo test --release -p chaplygin --features cli,plan --lib trail -- --ignored"]
+#[ignore = "16-18 s in the test build: cargo test -p chaplygin --features cli,plan --lib trail -- --ignored"]
 fn the_bicycles_trail_is_identified_from_a_run() {
     let exact = estimated_trail(0.0);
     let c = exact.parameters[0].1;
