@@ -26,7 +26,9 @@
 //! input moves are carried (the others' derivatives are zero), and of the
 //! second derivatives the upper triangle is computed, the lower mirrored:
 //! a value costs its operation's chain rule `d` times for the first
-//! derivatives and `d (d + 1) / 2` times more for the second.
+//! derivatives and `d (d + 1) / 2` times more for the second. Along one
+//! direction (a derivative by the one parameter estimated, say) the chain
+//! rules are compiled for one: scalar, the same arithmetic as a row's.
 
 use super::{Instruction, IrError, Op, Program};
 
@@ -133,11 +135,11 @@ impl Program {
         }
         let moving = moving_directions(input_slopes, input_second, d);
         if moving.len() == d {
-            return Ok(self.forward(inputs, input_slopes, input_second, d));
+            return Ok(self.forward_along(inputs, input_slopes, input_second, d));
         }
         let slopes = restricted(input_slopes, d, &moving, 1);
         let second = input_second.map(|second| restricted(second, d, &moving, 2));
-        let carried = self.forward(inputs, &slopes, second.as_deref(), moving.len());
+        let carried = self.forward_along(inputs, &slopes, second.as_deref(), moving.len());
         let rows = self.outputs.len();
         Ok(Curvatures {
             tangents: Tangents {
@@ -151,6 +153,21 @@ impl Program {
         })
     }
 
+    /// [`Program::forward`] along `d` directions, with scalar chain rules
+    /// where `d` is one (a derivative by one parameter, say).
+    fn forward_along(
+        &self,
+        inputs: &[f64],
+        input_slopes: &[f64],
+        input_second: Option<&[f64]>,
+        d: usize,
+    ) -> Curvatures {
+        match d {
+            1 => self.forward(inputs, input_slopes, input_second, One),
+            _ => self.forward(inputs, input_slopes, input_second, d),
+        }
+    }
+
     /// Runs the instructions with their chain rules along `d` directions,
     /// the inputs' derivatives given (second derivatives when
     /// `input_second` is), and gathers the outputs'.
@@ -159,8 +176,9 @@ impl Program {
         inputs: &[f64],
         input_slopes: &[f64],
         input_second: Option<&[f64]>,
-        d: usize,
+        width: impl Width,
     ) -> Curvatures {
+        let d = width.get();
         let mut values = vec![0.0; self.value_count];
         let mut slopes = vec![0.0; self.value_count * d];
         let mut second = vec![0.0; input_second.map_or(0, |_| self.value_count * d * d)];
@@ -169,12 +187,12 @@ impl Program {
                 instruction,
                 inputs,
                 input_slopes,
-                d,
+                width,
                 &mut values,
                 &mut slopes,
             );
             if let Some(given) = input_second {
-                propagate_second(instruction, given, &values, &slopes, d, &mut second);
+                propagate_second(instruction, given, &values, &slopes, width, &mut second);
             }
         }
         let gathered = |per_value: &[f64], width: usize| -> Vec<f64> {
@@ -293,12 +311,12 @@ fn propagate_second(
     given: &[f64],
     values: &[f64],
     slopes: &[f64],
-    d: usize,
+    d: impl Width,
     second: &mut [f64],
 ) {
     let at = |value: super::Value| values[value.index()];
     let result = instruction.result.index();
-    let block = d * d;
+    let block = d.get() * d.get();
     match instruction.op {
         Op::Input(slot) => second[result * block..(result + 1) * block]
             .copy_from_slice(&given[slot * block..(slot + 1) * block]),
@@ -337,11 +355,12 @@ fn propagate_second(
 pub(super) fn chain_second(
     second: &mut [f64],
     slopes: &[f64],
-    d: usize,
+    d: impl Width,
     result: usize,
     partials: &[(usize, f64)],
     curvature: &[(usize, usize, f64)],
 ) {
+    let d = d.get();
     let block = d * d;
     for j in 0..d {
         for l in j..d {
@@ -356,6 +375,30 @@ pub(super) fn chain_second(
             second[result * block + j * d + l] = linear + quadratic;
             second[result * block + l * d + j] = linear + quadratic;
         }
+    }
+}
+
+/// The number of directions derivatives are carried along: a `usize`, or
+/// [`One`], known when compiled, so that the chain rules of one direction
+/// are scalar, without the loops and bounds checks of a row.
+pub(super) trait Width: Copy {
+    /// The number.
+    fn get(self) -> usize;
+}
+
+impl Width for usize {
+    fn get(self) -> usize {
+        self
+    }
+}
+
+/// One direction.
+#[derive(Clone, Copy)]
+pub(super) struct One;
+
+impl Width for One {
+    fn get(self) -> usize {
+        1
     }
 }
 
@@ -454,10 +497,11 @@ fn propagate(
     instruction: &Instruction,
     inputs: &[f64],
     input_slopes: &[f64],
-    d: usize,
+    width: impl Width,
     values: &mut [f64],
     slopes: &mut [f64],
 ) {
+    let d = width.get();
     let result = instruction.result.index();
     let at = |value: super::Value| values[value.index()];
     if let Op::Input(slot) = instruction.op {
@@ -470,20 +514,26 @@ fn propagate(
         let (sine, cos) = at(angle).sin_cos();
         values[result] = sine;
         values[cosine.index()] = cos;
-        chain_slopes(slopes, d, result, &[(angle.index(), cos)]);
-        chain_slopes(slopes, d, cosine.index(), &[(angle.index(), -sine)]);
+        chain_slopes(slopes, width, result, &[(angle.index(), cos)]);
+        chain_slopes(slopes, width, cosine.index(), &[(angle.index(), -sine)]);
         return;
     }
     let (value, partials, count) = partials(&instruction.op, at);
     values[result] = value;
-    chain_slopes(slopes, d, result, &partials[..count]);
+    chain_slopes(slopes, width, result, &partials[..count]);
 }
 
 /// `slopes[result] = sum_k partial_k slopes[operand_k]`, the sum taken in
 /// the operands' order from `-0.0`, as `Iterator::sum` takes it. The one
 /// and two operands of an operation are written out, so that the loop
 /// over the `d` directions runs on slices, without bounds checks.
-pub(super) fn chain_slopes(slopes: &mut [f64], d: usize, result: usize, partials: &[(usize, f64)]) {
+pub(super) fn chain_slopes(
+    slopes: &mut [f64],
+    d: impl Width,
+    result: usize,
+    partials: &[(usize, f64)],
+) {
+    let d = d.get();
     let (before, rest) = slopes.split_at_mut(result * d);
     let (out, after) = rest.split_at_mut(d);
     // an operand's row: an operand is a value other than the result
@@ -660,6 +710,34 @@ mod tests {
 
     /// Every operation's second-order chain rule against central
     /// differences of the exact first derivatives.
+    /// Along one direction the chain rules are scalar ([`super::One`]):
+    /// each direction's derivatives are those the rows of two directions
+    /// carry for it, bit for bit, first and second.
+    #[test]
+    fn one_direction_is_each_column_of_two() {
+        let program = every_operation();
+        let point = [0.7, 0.4];
+        let both = program.curvatures(&point, &[0, 1]).expect("evaluates");
+        let bits = |values: &[f64]| values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        for seed in 0..2 {
+            let alone = program.curvatures(&point, &[seed]).expect("evaluates");
+            let column: Vec<f64> = (both.tangents.derivatives.iter())
+                .skip(seed)
+                .step_by(2)
+                .copied()
+                .collect();
+            assert_eq!(bits(&alone.tangents.derivatives), bits(&column));
+            let diagonal: Vec<f64> = (both.second.iter())
+                .skip(3 * seed)
+                .step_by(4)
+                .copied()
+                .collect();
+            assert_eq!(bits(&alone.second), bits(&diagonal));
+            let tangents = program.tangents(&point, &[seed]).expect("evaluates");
+            assert_eq!(tangents, alone.tangents);
+        }
+    }
+
     #[test]
     fn the_curvatures_agree_with_central_differences_of_the_tangents() {
         let program = every_operation();
