@@ -387,6 +387,14 @@ impl Program {
         self.input_names.len()
     }
 
+    /// Whether the outputs use input slot `slot`: only such a slot is read
+    /// by an [`Op::Input`] (a slot they do not use has no name).
+    pub fn reads(&self, slot: usize) -> bool {
+        self.input_names
+            .get(slot)
+            .is_some_and(|name| !name.is_empty())
+    }
+
     /// The number of values the instructions define.
     pub fn value_count(&self) -> usize {
         self.value_count

@@ -23,9 +23,11 @@
 //! so that the outputs' are those of the composite; [`Program::tangents`]
 //! and [`Program::curvatures`] are the case of unit slopes on the seeded
 //! slots and no second derivatives. Only the directions along which some
-//! input moves are carried (the others' derivatives are zero), and of the
-//! second derivatives the upper triangle is computed, the lower mirrored:
-//! a value costs its operation's chain rule `d` times for the first
+//! input the program reads moves are carried (the others' derivatives are
+//! zero: the benchmark bicycle's `acceleration_jacobian` reads neither its
+//! position's coordinates `x_p`, `y_p` nor their rates, four of its 18
+//! arguments), and of the second derivatives the upper triangle is
+//! computed, the lower mirrored: a value costs its operation's chain rule `d` times for the first
 //! derivatives and `d (d + 1) / 2` times more for the second. Along one
 //! direction (a derivative by the one parameter estimated, say) the chain
 //! rules are compiled for one: scalar, the same arithmetic as a row's.
@@ -133,7 +135,7 @@ impl Program {
         if let Some(second) = input_second {
             check_derivatives(second.len(), inputs.len() * d * d)?;
         }
-        let moving = moving_directions(input_slopes, input_second, d);
+        let moving = moving_directions(input_slopes, input_second, d, |slot| self.reads(slot));
         if moving.len() == d {
             return Ok(self.forward_along(inputs, input_slopes, input_second, d));
         }
@@ -243,14 +245,20 @@ fn check_derivatives(found: usize, expected: usize) -> Result<(), IrError> {
     }
 }
 
-/// The directions, among `d`, along which some input has a nonzero slope
-/// or second derivative, in order.
-fn moving_directions(slopes: &[f64], second: Option<&[f64]>, d: usize) -> Vec<usize> {
+/// The directions, among `d`, along which some input the program `reads`
+/// has a nonzero slope or second derivative, in order: along the others
+/// every value's derivatives are zero.
+fn moving_directions(
+    slopes: &[f64],
+    second: Option<&[f64]>,
+    d: usize,
+    reads: impl Fn(usize) -> bool,
+) -> Vec<usize> {
     let mut moving = vec![false; d];
     for (k, _) in slopes
         .iter()
         .enumerate()
-        .filter(|(_, slope)| **slope != 0.0)
+        .filter(|(k, slope)| **slope != 0.0 && reads(k / d))
     {
         moving[k % d] = true;
     }
@@ -258,7 +266,7 @@ fn moving_directions(slopes: &[f64], second: Option<&[f64]>, d: usize) -> Vec<us
         .unwrap_or_default()
         .iter()
         .enumerate()
-        .filter(|(_, entry)| **entry != 0.0)
+        .filter(|(k, entry)| **entry != 0.0 && reads(k / (d * d)))
     {
         moving[k % d] = true;
         moving[k / d % d] = true;
@@ -676,6 +684,57 @@ mod tests {
         let cosine = s.apply(Function::Cos, sum).expect("applies");
         outputs.push(s.mul2(sine, cosine));
         lower(&s, &symbols, &outputs).expect("lowers")
+    }
+
+    /// A slot the outputs do not use is not read, and no value moves along
+    /// a direction seeded there: its derivatives are zero, the others'
+    /// those of the slots read alone, bit for bit.
+    #[test]
+    fn a_direction_on_a_slot_not_read_is_zero() {
+        let mut s = Store::new();
+        let symbols = ["x", "unused", "y"].map(|name| s.declare(name, SymbolKind::Coordinate));
+        let [x, y] = [symbols[0], symbols[2]].map(|symbol| s.symbol(symbol));
+        let product = s.mul2(x, y);
+        let sine = s.apply(Function::Sin, product).expect("applies");
+        let outputs = [sine, s.div(x, y).expect("a quotient")];
+        let program = lower(&s, &symbols, &outputs).expect("lowers");
+        let read: Vec<bool> = (0..3)
+            .map(|slot| {
+                (program.instructions().iter()).any(
+                    |instruction| matches!(instruction.op, crate::ir::Op::Input(k) if k == slot),
+                )
+            })
+            .collect();
+        assert_eq!(read, [true, false, true]);
+        assert_eq!(
+            read,
+            (0..3).map(|slot| program.reads(slot)).collect::<Vec<_>>()
+        );
+        let point = [0.7, 5.0, 0.4];
+        let all = program.curvatures(&point, &[0, 1, 2]).expect("evaluates");
+        let read_alone = program.curvatures(&point, &[0, 2]).expect("evaluates");
+        for (i, row) in all.tangents.derivatives.chunks(3).enumerate() {
+            assert_eq!(row[1].to_bits(), 0.0f64.to_bits());
+            let alone = &read_alone.tangents.derivatives[2 * i..2 * i + 2];
+            assert_eq!(
+                [row[0], row[2]].map(f64::to_bits),
+                [alone[0], alone[1]].map(f64::to_bits)
+            );
+        }
+        for (i, block) in all.second.chunks(9).enumerate() {
+            let alone = &read_alone.second[4 * i..4 * i + 4];
+            assert!(
+                block[3..6]
+                    .iter()
+                    .chain(block.iter().skip(1).step_by(3))
+                    .all(|v| v.to_bits() == 0)
+            );
+            let read_entries = [block[0], block[2], block[6], block[8]];
+            assert_eq!(
+                read_entries.map(f64::to_bits),
+                [alone[0], alone[1], alone[2], alone[3]].map(f64::to_bits)
+            );
+        }
     }
 
     /// Every operation's chain rule against central differences of the
