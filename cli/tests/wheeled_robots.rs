@@ -6,7 +6,8 @@
 //! radius is checked against the classical Ackermann geometry, and the
 //! kinematic car's against `l / tan(phi)` with its steering angle
 //! prescribed (`--prescribe`), the prescribed force's work against the
-//! energy gained.
+//! energy gained. A plan started from the pose alone completes its start
+//! by the linkage.
 
 use crate::support::{chaplygin, column, read_csv};
 use serde_json::Value;
@@ -248,6 +249,60 @@ fn the_drive_torques_work_is_the_energy_gained() {
         (gained - work).abs() < 1e-8 * gained,
         "{gained} against {work}"
     );
+}
+
+/// A plan from the pose and the left front wheel's angle alone: the start
+/// is held to the constraints, so the linkage sets the right wheel's
+/// angle, `cot(delta_r) = cot(delta_l) + 2 b / l`, and the wheels' angles
+/// and rates meet the rolling constraints at the first node.
+#[test]
+fn the_ackermann_cars_plan_completes_its_start_by_the_linkage() {
+    let out = tempfile::tempdir().expect("a temporary directory");
+    let directory = out.path().to_str().expect("a path");
+    let path = model("ackermann_car");
+    let at_rest = [
+        "--start",
+        "dot(x)=0",
+        "--start",
+        "dot(y)=0",
+        "--start",
+        "dot(theta)=0",
+    ];
+    let stopped = [
+        "--goal",
+        "dot(x)=0",
+        "--goal",
+        "dot(y)=0",
+        "--goal",
+        "dot(theta)=0",
+    ];
+    let pose = ["--start", "x=0", "--start", "y=0", "--start", "theta=0"];
+    let all = [
+        &["plan", path.as_str(), "--duration", "2", "--nodes", "11"][..],
+        &pose,
+        &["--start", "delta_l=0.2"],
+        &at_rest,
+        &["--goal", "x=0.5"],
+        &stopped,
+        &["--out", directory],
+    ]
+    .concat();
+    let output = chaplygin(&all);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let (header, rows) = read_csv(&out.path().join("plan.csv"));
+    let first = |name: &str| column(&header, &rows, name)[0];
+    let (l, b) = (1.0, 0.4);
+    let right = (1.0 / (1.0 / 0.2f64.tan() + 2.0 * b / l)).atan();
+    assert!(
+        (first("delta_r") - right).abs() < 1e-9,
+        "{}",
+        first("delta_r")
+    );
+    assert!(first("constraint_residual") < 1e-12);
+    assert!(first("holonomic_residual") < 1e-12);
+    let last = |name: &str| column(&header, &rows, name).last().copied().expect("rows");
+    assert!((last("x") - 0.5).abs() < 1e-9);
 }
 
 /// Murray and Sastry's kinematic car: drive and steer reach every

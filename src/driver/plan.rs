@@ -33,13 +33,16 @@
 //! `trajectory.csv`. The velocity
 //! constraints `A(q) qdot = 0` and the
 //! configuration constraints `f(q) = 0` are invariants of that flow: a
-//! model with either starts from a state that meets them (every
-//! coordinate and velocity given), and the scheme keeps them to its order
-//! (`plan.csv`'s `constraint_residual` and `holonomic_residual`).
+//! model with either starts from a state that meets them, and the scheme
+//! keeps them to its order (`plan.csv`'s `constraint_residual` and
+//! `holonomic_residual`). A start given whole is checked to meet them; a
+//! start that leaves some of what they tie free is held to them by rows
+//! of the program at the first node (`initial`).
 
 pub mod form;
 mod hessian;
 pub mod identify;
+mod initial;
 pub mod kkt;
 pub mod nlp;
 pub mod replay;

@@ -200,7 +200,25 @@ impl Transcription {
             self.scatter(i, &hessian, values);
         }
         self.add_final_cost(&mut curvatures, z, objective_factor, values);
+        self.add_start(z, &multipliers[self.defects()..], values);
         finite(values)
+    }
+
+    /// `sum_r lambda_r hess c_0r` of the start's rows, `lambda` their
+    /// multipliers, added to the first node's triangle.
+    fn add_start(&self, z: &[f64], lambda: &[f64], values: &mut [f64]) {
+        if lambda.is_empty() {
+            return;
+        }
+        let terms = self.start_terms(z);
+        let first = self.node_offset(0);
+        for (l, hessian) in lambda.iter().zip(&terms.hessians) {
+            for a in 0..hessian.nrows() {
+                for b in 0..=a {
+                    values[first + a * (a + 1) / 2 + b] += l * hessian[(a, b)];
+                }
+            }
+        }
     }
 
     /// `objective_factor hess Phi(T, x_{N-1})` added to the last node's

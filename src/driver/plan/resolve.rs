@@ -14,6 +14,7 @@ pub(super) mod guess;
 
 use super::Request;
 use super::form::Form;
+use super::initial::{self, Held};
 use super::transcription::{Costs, Grid, Transcription};
 use crate::driver::engine::Loaded;
 use crate::driver::expression::{Expression, ExpressionError, Scope, constant};
@@ -127,11 +128,6 @@ pub enum RequestError {
         /// Why.
         source: ExpressionError,
     },
-    /// A model with constraints started from a partial state.
-    #[error(
-        "the model has constraints: --start must give every coordinate and velocity (missing: {0})"
-    )]
-    PartialStart(String),
     /// A bound on a velocity the form's state does not hold.
     #[error(
         "--bound {name}: the {form} form's state does not hold this velocity; bound it with \
@@ -364,27 +360,52 @@ impl Resolver<'_> {
         Ok(variables)
     }
 
-    /// With constraints, the start is given whole and meets them.
-    fn check_start(&self, model: &InterpretedModel) -> Result<(), RequestError> {
+    /// The model's constraints the plan holds at its first node: none
+    /// where the start is given whole (it is checked to meet them), the
+    /// configuration constraints where it leaves a coordinate free, and in
+    /// the Lagrange form the velocity constraints where it leaves a
+    /// coordinate or a velocity free, unless every velocity is given 0.
+    /// (The reduced and momentum states meet the velocity constraints by
+    /// construction.)
+    ///
+    /// # Errors
+    /// [`RequestError::StartOffConstraints`] for a start whose given
+    /// coordinates, or whole state, break them.
+    fn held_at_start(
+        &self,
+        model: &InterpretedModel,
+        form: Form,
+    ) -> Result<Vec<Held>, RequestError> {
         let n = self.n;
-        if model.sizes().c == 0 && model.names().holonomic.is_empty() {
-            return Ok(());
-        }
         let start = &self.ends[0][..2 * n];
-        let missing: Vec<&str> = (0..2 * n)
-            .filter(|&k| start[k].is_none())
-            .map(|k| self.columns[k].as_str())
-            .collect();
-        if !missing.is_empty() {
-            return Err(RequestError::PartialStart(missing.join(", ")));
+        let given = |range: std::ops::Range<usize>| -> Option<Vec<f64>> {
+            start[range].iter().copied().collect()
+        };
+        let (q, qdot) = (given(0..n), given(n..2 * n));
+        let off = |residual: f64| residual > ON_CONSTRAINTS;
+        if let Some(q) = &q {
+            let residual = holonomic_residual(model, q).unwrap_or(0.0);
+            if off(residual) {
+                return Err(RequestError::StartOffConstraints(residual));
+            }
+            if let Some(qdot) = &qdot {
+                let residual = constraint_residual(model, q, qdot);
+                return if off(residual) {
+                    Err(RequestError::StartOffConstraints(residual))
+                } else {
+                    Ok(Vec::new())
+                };
+            }
         }
-        let x: Vec<f64> = start.iter().flatten().copied().collect();
-        let residual = constraint_residual(model, &x[..n], &x[n..])
-            .max(holonomic_residual(model, &x[..n]).unwrap_or(0.0));
-        if residual > ON_CONSTRAINTS {
-            return Err(RequestError::StartOffConstraints(residual));
-        }
-        Ok(())
+        let at_rest = qdot.is_some_and(|qdot| qdot.iter().all(|v| *v == 0.0));
+        let free = [q.is_none(), form == Form::Lagrange && !at_rest];
+        Ok(initial::declared(model)
+            .into_iter()
+            .filter(|held| match held {
+                Held::Configuration => free[0],
+                Held::Velocity => free[1],
+            })
+            .collect())
     }
 }
 
@@ -451,7 +472,7 @@ pub(super) fn transcribe(
             resolver.condition(end, name, text)?;
         }
     }
-    resolver.check_start(&model)?;
+    let held = resolver.held_at_start(&model, form)?;
     let costs = Costs {
         running: running_cost(&model, &resolver.parameters, request.minimize.as_deref())?,
         terminal: request
@@ -482,7 +503,11 @@ pub(super) fn transcribe(
         free_duration: request.free_duration,
         fractions: None,
     };
-    Ok(Transcription::new(model, request.scheme, grid, costs, (lo, hi, guess)).in_form(form))
+    Ok(
+        Transcription::new(model, request.scheme, grid, costs, (lo, hi, guess))
+            .in_form(form)
+            .holding_start(held),
+    )
 }
 
 /// The coordinates' and inputs' names of `model`.

@@ -54,6 +54,7 @@
 //! stage's time `t` moves as `t/T`.
 
 use super::form::Form;
+use super::initial::{self, Held, InitialTerms};
 use super::nlp::Nlp;
 use crate::driver::expression::{Expression, Gradient, Point};
 use chaplygin_codegen::interpret::{InterpretedModel, RowCurvatures};
@@ -176,6 +177,9 @@ pub struct Transcription {
     lo: Vec<f64>,
     hi: Vec<f64>,
     guess: Vec<f64>,
+    /// The model's constraints held at the first node by rows after the
+    /// defects ([`super::initial`]): those the start leaves free to break.
+    start: Vec<Held>,
     /// One interval's structure: (row of its defect, column among its two
     /// nodes' variables).
     local: Vec<(usize, usize)>,
@@ -260,6 +264,7 @@ impl Transcription {
             lo,
             hi,
             guess,
+            start: Vec::new(),
             local: Vec::new(),
             structure: Vec::new(),
         };
@@ -277,12 +282,21 @@ impl Transcription {
         self
     }
 
+    /// The same plan with the constraints `held` held at its first node.
+    pub(super) fn holding_start(mut self, held: Vec<Held>) -> Self {
+        self.start = held;
+        self.structure = self.global_structure();
+        self
+    }
+
     /// The formulation whose state the nodes hold.
     pub fn form(&self) -> Form {
         self.form
     }
 
-    /// The intervals' structure, then the duration's column.
+    /// The intervals' structure, then the duration's column, then the
+    /// start's rows, each dense over the first node's state entries its
+    /// program reads.
     fn global_structure(&self) -> Vec<(usize, usize)> {
         let (s, w) = (self.state(), self.width());
         let intervals = (0..self.nodes - 1)
@@ -290,8 +304,32 @@ impl Transcription {
         let duration = self.global(Global::Duration);
         let by_duration = duration
             .into_iter()
-            .flat_map(|column| (0..(self.nodes - 1) * s).map(move |row| (row, column)));
-        intervals.chain(by_duration).collect()
+            .flat_map(|column| (0..self.defects()).map(move |row| (row, column)));
+        let start = self.start_reads().enumerate().flat_map(|(r, read)| {
+            let row = self.defects() + r;
+            (0..read).map(move |c| (row, c))
+        });
+        intervals.chain(by_duration).chain(start).collect()
+    }
+
+    /// The number of defect rows, `(N - 1) s`; the start's rows follow.
+    pub(super) fn defects(&self) -> usize {
+        (self.nodes - 1) * self.state()
+    }
+
+    /// For each of the start's rows, how many of the first state's entries
+    /// it reads.
+    fn start_reads(&self) -> impl Iterator<Item = usize> + '_ {
+        self.start.iter().flat_map(|held| {
+            let read = held.reads(&self.model);
+            std::iter::repeat_n(read, held.rows(&self.model))
+        })
+    }
+
+    /// The start's rows and their derivatives by the first state.
+    pub(super) fn start_terms(&self, z: &[f64]) -> InitialTerms {
+        let s = self.state();
+        initial::initial_terms(&self.model, &self.start, (&z[..s], s), &[])
     }
 
     /// The model.
@@ -659,7 +697,7 @@ impl Nlp for Transcription {
     }
 
     fn constraints(&self) -> usize {
-        (self.nodes - 1) * self.state()
+        self.defects() + initial::rows(&self.model, &self.start)
     }
 
     fn bounds(&self) -> (&[f64], &[f64]) {
@@ -714,6 +752,8 @@ impl Nlp for Transcription {
         for i in 0..self.nodes - 1 {
             residuals[i * s..(i + 1) * s].copy_from_slice(&self.defect(z, i));
         }
+        let start = self.start_terms(z).values;
+        residuals[self.defects()..].copy_from_slice(&start);
         finite(residuals)
     }
 
@@ -725,7 +765,7 @@ impl Nlp for Transcription {
         let columns = 2 * self.width();
         let per_interval = self.local.len();
         let intervals = (self.nodes - 1) * per_interval;
-        let mut by_duration = Vec::with_capacity(self.constraints());
+        let mut by_duration = Vec::with_capacity(self.defects());
         for i in 0..self.nodes - 1 {
             let (block, by_t) = self.interval_jacobian(z, i);
             let out = &mut values[i * per_interval..(i + 1) * per_interval];
@@ -734,8 +774,17 @@ impl Nlp for Transcription {
             }
             by_duration.extend(by_t);
         }
+        let mut at = intervals;
         if self.global(Global::Duration).is_some() {
-            values[intervals..].copy_from_slice(&by_duration);
+            values[at..at + by_duration.len()].copy_from_slice(&by_duration);
+            at += by_duration.len();
+        }
+        let start = self.start_terms(z).jacobian;
+        for (r, read) in self.start_reads().enumerate() {
+            for c in 0..read {
+                values[at] = start[(r, c)];
+                at += 1;
+            }
         }
         finite(values)
     }
@@ -957,6 +1006,37 @@ pub(super) mod tests {
                     "{label} ({row}, {j}): {exact} vs {numeric}"
                 );
             }
+        }
+    }
+
+    /// A plan's coordinates and inputs, and its running and final costs.
+    pub(in crate::driver::plan) type Named<'a> =
+        ((&'a [&'a str], &'a [&'a str]), (&'a str, &'a str));
+
+    /// Asserts that the exact Jacobian, gradient and Hessian of the
+    /// Lagrangian agree with central differences on `model`'s plan on 3
+    /// nodes ([`three_nodes`], then `made` of it, whose nodes hold
+    /// `state` entries), for every scheme with a fixed and a free
+    /// duration; `label` names the case.
+    pub(in crate::driver::plan) fn assert_every_scheme_agrees(
+        model: &InterpretedModel,
+        (names, costs): Named<'_>,
+        (state, made): (usize, &dyn Fn(Transcription) -> Transcription),
+        label: &str,
+    ) {
+        let width = state + model.sizes().p;
+        for (scheme, free_duration) in Scheme::ALL.iter().flat_map(|&s| [(s, false), (s, true)]) {
+            let (nlp, z) = three_nodes(
+                model.clone(),
+                names,
+                costs,
+                (width, None),
+                (scheme, free_duration),
+            );
+            let nlp = made(nlp);
+            let label = format!("{label} {scheme:?} free {free_duration}");
+            assert_derivatives_agree(&nlp, &z, &label);
+            assert_hessian_agrees(&nlp, &z, &label);
         }
     }
 

@@ -3,11 +3,10 @@
 //! snakeboard.
 
 use super::Form;
+use crate::driver::plan::Request;
 use crate::driver::plan::catalog_tests::built_in;
-use crate::driver::plan::transcription::tests::{
-    assert_derivatives_agree, assert_hessian_agrees, three_nodes,
-};
-use crate::driver::plan::{Request, Scheme};
+use crate::driver::plan::transcription::Transcription;
+use crate::driver::plan::transcription::tests::assert_every_scheme_agrees;
 use crate::driver::simulate::FormulationChoice;
 
 /// `request` in the formulation `choice`.
@@ -33,19 +32,11 @@ fn the_derivatives_agree_with_central_differences_in_the_reduced_and_momentum_fo
     );
     let model = built_in("snakeboard").model;
     for form in [Form::Reduced, Form::Momentum] {
-        let width = form.state(&model) + model.sizes().p;
-        for (scheme, free_duration) in Scheme::ALL.iter().flat_map(|&s| [(s, false), (s, true)]) {
-            let (nlp, z) = three_nodes(
-                model.clone(),
-                names,
-                costs,
-                (width, None),
-                (scheme, free_duration),
-            );
-            let nlp = nlp.in_form(form);
-            let label = format!("{form:?} {scheme:?} free {free_duration}");
-            assert_derivatives_agree(&nlp, &z, &label);
-            assert_hessian_agrees(&nlp, &z, &label);
-        }
+        let made = |nlp: Transcription| nlp.in_form(form);
+        let state = (
+            form.state(&model),
+            &made as &dyn Fn(Transcription) -> Transcription,
+        );
+        assert_every_scheme_agrees(&model, (names, costs), state, &format!("{form:?}"));
     }
 }
