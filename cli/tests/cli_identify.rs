@@ -196,3 +196,85 @@ fn an_interrupted_estimate_keeps_its_last_iterate() {
     assert_eq!(rows.len(), 2001);
     assert_eq!(column(&header, &rows, "data(x)")[0], 0.0);
 }
+
+/// The trailing racer (`tests/models/trailing_racer.model`).
+fn trailing_racer() -> String {
+    format!(
+        "{}/../tests/models/trailing_racer.model",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+/// `simulate`'s `trajectory.csv` of the trailing racer turned by `u1 =
+/// 0.1` for 12 s in `formulation`, written under `dir`.
+fn racer_run(dir: &Path, formulation: &str) -> PathBuf {
+    let out = dir.join(formulation);
+    let arguments = [
+        "simulate",
+        &trailing_racer(),
+        "--formulation",
+        formulation,
+        "--input",
+        "u1=0.1",
+        "--t-end",
+        "12",
+        "--dt",
+        "0.05",
+        "--out",
+        out.to_str().expect("UTF-8"),
+    ];
+    let output = chaplygin(&arguments);
+    assert!(output.status.success(), "{output:?}");
+    out.join("trajectory.csv")
+}
+
+/// The trailing racer's `m2` from one run's trajectory, as `identify`
+/// prints it, or its one-line error.
+fn racer_mass(dir: &Path, data: &Path) -> Result<f64, String> {
+    let out = dir.join("estimate");
+    let arguments = [
+        "identify",
+        &trailing_racer(),
+        "--data",
+        data.to_str().expect("UTF-8"),
+        "--estimate",
+        "m2=0.4",
+        "--out",
+        out.to_str().expect("UTF-8"),
+    ];
+    let output = chaplygin(&arguments);
+    if !output.status.success() {
+        return Err(String::from_utf8_lossy(&output.stderr).trim().to_string());
+    }
+    Ok(estimate(&out)["parameters"]["m2"].as_f64().expect("m2"))
+}
+
+/// `simulate`'s trajectory is data in any formulation: the trailing
+/// racer's reduced run, which changes charts as its joint swings through
+/// the basis' singular angle, is read in the velocities of each row's
+/// chart, and gives the Lagrange run's estimate of `m2`. Its momentum
+/// run's `p1` gives the velocities through the masses, so estimating `m2`
+/// from it is refused in one line.
+#[test]
+fn simulates_trajectory_in_any_form_is_data() {
+    let scratch = scratch("identify_forms");
+    let dir = scratch.path();
+    let reduced = racer_run(dir, "reduced");
+    let (header, rows) = read_csv(&reduced);
+    let charts = column(&header, &rows, "chart");
+    assert!(charts.contains(&0.0) && charts.contains(&1.0), "{charts:?}");
+    let lagrange = racer_mass(dir, &racer_run(dir, "lagrange")).expect("an estimate");
+    let from_reduced = racer_mass(dir, &reduced).expect("an estimate");
+    assert!(
+        (from_reduced - lagrange).abs() < 1e-7 * lagrange,
+        "{from_reduced} against {lagrange}"
+    );
+    let refused = racer_mass(dir, &racer_run(dir, "momentum")).expect_err("refused");
+    assert!(
+        refused.ends_with(
+            "its columns p1 give the velocities through the estimated m2; give the velocities \
+             dot(q) instead (simulate --formulation lagrange)"
+        ),
+        "{refused}"
+    );
+}

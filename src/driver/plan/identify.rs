@@ -86,7 +86,9 @@ const DATA: TableKind = TableKind {
 pub struct Request {
     /// A CSV with `t`, any coordinates or velocities `dot(q)` by name
     /// (measured) and the inputs applied, by name (0 where not given);
-    /// `trajectory.csv`'s `energy` and residual columns are ignored.
+    /// `trajectory.csv`'s `energy` and residual columns are ignored, and a
+    /// run in the reduced or momentum form is read in the velocities its
+    /// state gives.
     #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.csv"))]
     pub data: PathBuf,
     /// `NAME[=GUESS]`: a parameter to estimate, from GUESS or its value
@@ -321,10 +323,7 @@ impl Fit {
         }
         let columns = node_columns(&model);
         let path = request.data.display().to_string();
-        let read = match table {
-            None => Guess::read(DATA, &request.data, &columns)?,
-            Some(table) => Guess::from_table(DATA, &path, table, &columns)?,
-        };
+        let read = Guess::of_model((DATA, &model, &indices), &request.data, table)?;
         let times = node_times(&read, request.nodes)?;
         let nodes = times.len();
         let s = 2 * model.sizes().n;

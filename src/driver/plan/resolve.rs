@@ -484,7 +484,7 @@ pub(super) fn transcribe(
     let read = request
         .guess
         .as_deref()
-        .map(|path| Guess::read(GUESS_TABLE, path, &resolver.columns))
+        .map(|path| Guess::of_model((GUESS_TABLE, &model, &[]), path, None))
         .transpose()?;
     let step = request.duration / (request.nodes - 1) as f64;
     let guess = resolver.guess(read.as_ref(), step);

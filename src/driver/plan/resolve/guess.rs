@@ -2,9 +2,23 @@
 //! each interpolated linearly at the nodes' times and held at its end
 //! values outside the table's range. Lines starting with `#` are skipped:
 //! an interrupted plan's `plan.csv`, marked so, resumes the solve.
+//!
+//! A table in the reduced or the momentum form (a `trajectory.csv` or
+//! `plan.csv` written in it) is read in the coordinates and velocities
+//! its states move with: `dot(q) = X(q) alpha` in the chart of the row's
+//! `chart` column (0 without one), or `dot(q)` reconstructed from `(q,
+//! rdot, p)` ([`Form`]'s velocities). So `simulate`'s trajectory in its
+//! default form is data for `identify` as it stands, unless those
+//! velocities depend on a parameter it estimates (the reduced momenta of
+//! a momentum basis weighted by the masses, say): a one-line error then
+//! asks for the velocities themselves.
 
 use super::RequestError;
+use super::node_columns;
+use crate::driver::plan::form::Form;
 use crate::runtime::record;
+use chaplygin_codegen::interpret::InterpretedModel;
+use std::collections::BTreeSet;
 use std::path::Path;
 
 /// A guess as read: its times, increasing, and its columns of the nodes'
@@ -24,13 +38,36 @@ pub(in crate::driver::plan) struct Table {
 }
 
 impl Guess {
-    /// The table at `path`, its columns among `variables` (a node's) or
-    /// `table.ignored` (read and ignored).
-    pub(in crate::driver::plan) fn read(
-        table: Table,
+    /// The table at `path` or, where given, `read` in memory (which
+    /// messages call `path`), in the coordinates and velocities of
+    /// `model`: its columns among a node's variables or `table.ignored`.
+    /// `estimated` are the indices of the parameters an estimate leaves
+    /// unknown.
+    pub(in crate::driver::plan) fn of_model(
+        (table, model, estimated): (Table, &InterpretedModel, &[usize]),
         path: &Path,
-        variables: &[String],
+        read: Option<&record::Table>,
     ) -> Result<Self, RequestError> {
+        let source = path.display().to_string();
+        let file;
+        let read = match read {
+            Some(read) => read,
+            None => {
+                file = Self::read_file(table, path)?;
+                &file
+            }
+        };
+        let read =
+            in_velocities((model, estimated), read).map_err(|reason| RequestError::GuessFile {
+                flag: table.flag,
+                path: source.clone(),
+                reason,
+            })?;
+        Self::from_table(table, &source, &read, &node_columns(model))
+    }
+
+    /// The table at `path`, as written.
+    fn read_file(table: Table, path: &Path) -> Result<record::Table, RequestError> {
         let source = path.display().to_string();
         let failed = |reason: String| RequestError::GuessFile {
             flag: table.flag,
@@ -53,11 +90,10 @@ impl Guess {
                 numbers(line, header.len()).map_err(|e| failed(format!("row {}: {e}", row + 1)))
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let read = record::Table {
+        Ok(record::Table {
             columns: header,
             rows,
-        };
-        Self::from_table(table, &source, &read, variables)
+        })
     }
 
     /// The table `read`, in memory, which messages call `source`; its
@@ -163,6 +199,131 @@ impl Guess {
     }
 }
 
+/// `read` with the reduced or the momentum form's state in place of the
+/// velocities (every one of that form's state columns, its momenta among
+/// them) rewritten in the coordinates and the velocities `dot(q)`, the
+/// velocities it held and its `chart` column dropped; any other table as
+/// it is.
+///
+/// # Errors
+/// A row whose `chart` is not one of the model's, or whose velocities
+/// cannot be evaluated; velocities that read a parameter of `estimated`.
+fn in_velocities(
+    (model, estimated): (&InterpretedModel, &[usize]),
+    read: &record::Table,
+) -> Result<record::Table, String> {
+    let n = model.sizes().n;
+    let position = |name: &str| read.columns.iter().position(|c| c == name);
+    let lagrange = Form::Lagrange.state_names(model);
+    let found = [Form::Reduced, Form::Momentum]
+        .into_iter()
+        .find_map(|form| {
+            let names = form.state_names(model);
+            let own = names.iter().any(|name| !lagrange.contains(name));
+            let state: Option<Vec<usize>> = names.iter().map(|name| position(name)).collect();
+            state.filter(|_| own).map(|state| (form, state))
+        });
+    let Some((form, state)) = found else {
+        return Ok(read.clone());
+    };
+    let chart = position("chart");
+    let charts: BTreeSet<u64> = (chart.into_iter())
+        .flat_map(|c| read.rows.iter().map(move |row| row[c].to_bits()))
+        .collect();
+    let charts: Vec<usize> = (charts.into_iter().map(f64::from_bits))
+        .map(|chart| {
+            let index = chart as usize;
+            (index as f64 == chart)
+                .then_some(index)
+                .ok_or_else(|| format!("`chart` = {chart} is not a chart's number"))
+        })
+        .collect::<Result<_, _>>()?;
+    let read_by = |k: &usize| reads_parameter(model, form, &charts, *k);
+    let unknown: Vec<&str> = (estimated.iter().filter(|k| read_by(k)))
+        .map(|&k| model.names().parameters[k].as_str())
+        .collect();
+    if !unknown.is_empty() {
+        let names = form.state_names(model);
+        let own: Vec<&str> = (names[n..].iter())
+            .filter(|name| !lagrange.contains(name))
+            .map(String::as_str)
+            .collect();
+        return Err(format!(
+            "its columns {} give the velocities through the estimated {}; give the velocities \
+             dot(q) instead (simulate --formulation lagrange)",
+            own.join(", "),
+            unknown.join(", ")
+        ));
+    }
+    let dropped: Vec<usize> = (state[n..].iter().copied())
+        .chain(chart)
+        .chain(lagrange[n..].iter().filter_map(|name| position(name)))
+        .collect();
+    let kept: Vec<usize> = (0..read.columns.len())
+        .filter(|c| !dropped.contains(c))
+        .collect();
+    let mut columns: Vec<String> = kept.iter().map(|&c| read.columns[c].clone()).collect();
+    columns.extend_from_slice(&lagrange[n..]);
+    let rows = (read.rows.iter().enumerate())
+        .map(|(i, row)| {
+            let x: Vec<f64> = state.iter().map(|&c| row[c]).collect();
+            let qdot = velocities(model, form, &x, chart.map(|c| row[c] as usize))
+                .map_err(|reason| format!("row {}: {reason}", i + 1))?;
+            Ok(kept.iter().map(|&c| row[c]).chain(qdot).collect())
+        })
+        .collect::<Result<_, String>>()?;
+    Ok(record::Table { columns, rows })
+}
+
+/// Whether the velocities of `form`'s state read the parameter of index
+/// `parameter`: in the reduced form, the `velocities` program of each of
+/// `charts` (a chart composed at run time counts as reading every
+/// parameter), in the momentum form `body_velocity` (the group's
+/// reconstruction is kinematic).
+fn reads_parameter(
+    model: &InterpretedModel,
+    form: Form,
+    charts: &[usize],
+    parameter: usize,
+) -> bool {
+    let name = if form == Form::Reduced {
+        "velocities"
+    } else {
+        "body_velocity"
+    };
+    let programs: Vec<_> = (model.programs())
+        .filter(|(function, _)| *function == name)
+        .map(|(_, program)| program)
+        .collect();
+    let parameters = model.parameter_values().len();
+    let reads = |chart: usize| {
+        programs
+            .get(chart)
+            .is_none_or(|program| program.reads(program.input_count() - parameters + parameter))
+    };
+    match form {
+        Form::Reduced if !charts.is_empty() => charts.iter().any(|&c| reads(c)),
+        _ => reads(0),
+    }
+}
+
+/// The velocities `dot(q)` of the state `x` of `form`, the reduced
+/// momenta in `chart` (0 where none is given).
+fn velocities(
+    model: &InterpretedModel,
+    form: Form,
+    x: &[f64],
+    chart: Option<usize>,
+) -> Result<Vec<f64>, String> {
+    let Some(chart) = chart.filter(|_| form == Form::Reduced) else {
+        return Ok(form.velocities(model, x));
+    };
+    let (q, alpha) = x.split_at(model.sizes().n);
+    model
+        .call_in_chart(chart, "velocities", &[q, alpha])
+        .map_err(|error| format!("chart {chart}: {error}"))
+}
+
 /// A row's `width` numbers.
 fn numbers(line: &str, width: usize) -> Result<Vec<f64>, String> {
     let values = line
@@ -194,7 +355,8 @@ mod tests {
             ignored: &["energy"],
             others: "",
         };
-        Guess::read(table, &path, &variables)
+        let read = Guess::read_file(table, &path)?;
+        Guess::from_table(table, &path.display().to_string(), &read, &variables)
     }
 
     #[test]
