@@ -1,10 +1,10 @@
 """``Model.identify`` (docs/INTERFACE.md section 13): the differential
 drive's mass, 5 in the run that made ``tests/data/drive_mass_5.csv``,
 recovered from that run given as a CSV path, a dict, a DataFrame and a
-``Trajectory`` simulated again here, each the same estimate as ``chaplygin
-identify`` writes; bad data refused in one line; estimates pickled; a grid
-of estimates on a process pool, the same as here; Ctrl-C ending a long
-solve."""
+``Trajectory`` simulated again here (in the Lagrange and the reduced
+form), each the same estimate as ``chaplygin identify`` writes; bad data
+refused in one line; estimates pickled; a grid of estimates on a process
+pool, the same as here; Ctrl-C ending a long solve."""
 
 import json
 import os
@@ -60,6 +60,11 @@ def test_every_form_of_the_data_gives_the_command_line_s_estimate(drive, data_pa
         assert estimate.parameters["m"] == pytest.approx(written["parameters"]["m"], rel=1e-9)
         assert estimate.standard_errors["m"] == pytest.approx(written["standard_errors"]["m"], rel=1e-6)
         assert estimate.residual_rms == pytest.approx(written["residual_rms"], rel=1e-6)
+    # the same run in the default, reduced form: its momenta read as velocities
+    reduced = drive.simulate(t_end=2.0, dt=0.05, params={"m": TRUE_MASS}, inputs={"u_right": "0.2*sin(t)", "u_left": 0.1})
+    assert "alpha1" in reduced.columns
+    from_reduced = drive.identify(reduced, estimate=["m"])
+    assert from_reduced.parameters["m"] == pytest.approx(written["parameters"]["m"], rel=1e-6)
     # the truth, to the midpoint rule's error on 41 rows 0.05 s apart
     assert from_csv.parameters["m"] == pytest.approx(TRUE_MASS, abs=5e-4)
     assert max(from_csv.report["kkt"].values()) <= 1e-6

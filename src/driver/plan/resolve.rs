@@ -10,6 +10,7 @@
 //! defects cannot move the state, and the solver would not return).
 
 mod ends;
+mod goal;
 pub(super) mod guess;
 
 use super::Request;
@@ -157,6 +158,12 @@ pub enum RequestError {
     /// A start off the model's constraints.
     #[error("the start is off the model's constraints: residual {0:.1e}")]
     StartOffConstraints(f64),
+    /// A goal whose given velocities no allowed velocity at its pose has.
+    #[error(
+        "--goal: the given velocities break the model's constraints at the goal's pose (least \
+         residual {0:.1e}, relative to them)"
+    )]
+    GoalOffConstraints(f64),
 }
 
 /// What a start or goal is checked against: `|A qdot|` and `|f(q)|` up
@@ -471,6 +478,11 @@ pub(super) fn transcribe(
         for (name, text) in conditions {
             resolver.condition(end, name, text)?;
         }
+    }
+    if let Some(residual) = goal::residual(&model, &resolver.ends[1])
+        && residual > ON_CONSTRAINTS
+    {
+        return Err(RequestError::GoalOffConstraints(residual).into());
     }
     let held = resolver.held_at_start(&model, form)?;
     let costs = Costs {

@@ -273,6 +273,14 @@ fn bad_requests_are_one_line_errors() {
         error.to_string() == "the start is off the model's constraints: residual 1.0e0",
         "{error}"
     );
+    let mut moving = parking(5);
+    moving.goal.push(("dot(x)".into(), "1".into()));
+    let error = plan(differential_drive(), &moving, &Ripopt::default()).expect_err("off");
+    assert_eq!(
+        error.to_string(),
+        "--goal: the given velocities break the model's constraints at the goal's pose (least \
+         residual 1.0e0, relative to them)"
+    );
 }
 
 /// The differential drive's parking from the pose alone, its wheels'
