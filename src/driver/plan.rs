@@ -137,7 +137,7 @@ pub enum PlanError {
     #[error(
         "no verified optimum: the solver says {status} after {iterations} iterations, but the KKT \
          residuals are primal {primal:.1e}, dual {dual:.1e}, complementarity {complementarity:.1e} \
-         (allowed {allowed:.1e})",
+         (allowed {allowed:.1e}){violation}",
         primal = residuals.primal,
         dual = residuals.dual,
         complementarity = residuals.complementarity
@@ -151,6 +151,10 @@ pub enum PlanError {
         residuals: Residuals,
         /// What they may reach.
         allowed: f64,
+        /// Where the primal residual is beyond it, `; the largest
+        /// violation: ` and the constraint furthest from holding, in words;
+        /// else empty.
+        violation: String,
     },
     /// The observer stopped the solve: the last iterate, not an optimum,
     /// its report's status `interrupted`.
@@ -457,11 +461,18 @@ fn verified(nlp: &dyn Nlp, solution: &Solution, tol: f64) -> Result<(Residuals, 
     };
     let allowed = Request::VERIFIED * tol;
     if !residuals.within(allowed) {
+        let violation = kkt::largest_violation(nlp, &solution.z)
+            .filter(|(_, size)| *size > allowed)
+            .map_or_else(String::new, |(row, size)| {
+                let row = nlp.describe_row(&solution.z, row);
+                format!("; the largest violation: {row}, by {size:.1e}")
+            });
         return Err(PlanError::NotVerified {
             status,
             iterations,
             residuals,
             allowed,
+            violation,
         });
     }
     Ok((residuals, objective))

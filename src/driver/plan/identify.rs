@@ -68,7 +68,7 @@ use crate::driver::setup::with_parameters;
 use crate::runtime::nalgebra::DMatrix;
 use crate::runtime::record::{Recorder, Table};
 use chaplygin_codegen::interpret::evaluated;
-use initial::initial_rows;
+use initial::{initial_row_name, initial_rows};
 use std::cell::RefCell;
 use std::ops::ControlFlow;
 use std::path::PathBuf;
@@ -703,6 +703,18 @@ impl Nlp for Fit {
 
     fn jacobian_structure(&self) -> &[(usize, usize)] {
         &self.structure
+    }
+
+    fn describe_row(&self, y: &[f64], row: usize) -> String {
+        let z = self.transcribed(y);
+        let transcription = self.transcription.borrow();
+        match row.checked_sub(self.defects()) {
+            None => transcription.describe_defect(&z, row),
+            Some(r) => format!(
+                "the first row's {}",
+                initial_row_name(transcription.model(), r)
+            ),
+        }
     }
 
     fn jacobian_values(&self, y: &[f64], values: &mut [f64]) -> bool {

@@ -71,6 +71,29 @@ pub(super) fn rows(model: &InterpretedModel, held: &[Held]) -> usize {
     held.iter().map(|h| h.rows(model)).sum()
 }
 
+/// Row `row` of the families `held` in words: its family and its name as
+/// the model declares it.
+pub(super) fn row_name(model: &InterpretedModel, held: &[Held], row: usize) -> String {
+    let names = model.names();
+    let mut first = 0;
+    for &family in held {
+        let rows = family.rows(model);
+        if row < first + rows {
+            let (kind, declared) = match family {
+                Held::Configuration => ("configuration", &names.holonomic),
+                Held::Velocity => ("velocity", &names.constraints),
+            };
+            let r = row - first;
+            return declared.get(r).map_or_else(
+                || format!("{kind} constraint {r}"),
+                |name| format!("{kind} constraint `{name}`"),
+            );
+        }
+        first += rows;
+    }
+    format!("row {row}")
+}
+
 /// The held constraints at a point: their values, their Jacobian by the
 /// state (`state` entries) and the estimated parameters (rows x (state +
 /// P')) and each one's Hessian by the same.

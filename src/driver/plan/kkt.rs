@@ -74,6 +74,16 @@ pub fn residuals(nlp: &dyn Nlp, solution: &Solution) -> Option<Residuals> {
     })
 }
 
+/// The constraint of `nlp` furthest from holding at `z`, and `|c_i(z)|`;
+/// `None` without constraints or where they are not finite.
+pub fn largest_violation(nlp: &dyn Nlp, z: &[f64]) -> Option<(usize, f64)> {
+    let mut c = vec![0.0; nlp.constraints()];
+    if !nlp.residuals(z, &mut c) {
+        return None;
+    }
+    (c.iter().map(|r| r.abs()).enumerate()).max_by(|a, b| a.1.total_cmp(&b.1))
+}
+
 /// `sigma grad J(z) + Jc(z)^T lambda`, from the exact gradient and
 /// Jacobian; `None` where they are not finite.
 pub(super) fn lagrangian_gradient(

@@ -43,6 +43,10 @@ pub trait Nlp {
     /// The entries of `dc/dz` in the order of
     /// [`Nlp::jacobian_structure`]; whether they are finite.
     fn jacobian_values(&self, z: &[f64], values: &mut [f64]) -> bool;
+    /// What constraint `row` holds at `z`, in words, for a message.
+    fn describe_row(&self, _z: &[f64], row: usize) -> String {
+        format!("constraint {row}")
+    }
     /// The (row, column), row >= column, of each entry of the lower
     /// triangle of the Lagrangian's Hessian that may be nonzero; none when
     /// the program has no exact Hessian.

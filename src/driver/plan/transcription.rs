@@ -326,6 +326,15 @@ impl Transcription {
         })
     }
 
+    /// Defect row `row` (below [`Transcription::defects`]) in words: the
+    /// state entry and the interval at `z`.
+    pub(super) fn describe_defect(&self, z: &[f64], row: usize) -> String {
+        let (s, i) = (self.state(), row / self.state());
+        let name = &self.form.state_names(&self.model)[row % s];
+        let [from, to] = [i, i + 1].map(|j| self.node_time(z, j));
+        format!("the defect of `{name}` from t = {from:.4} to {to:.4}")
+    }
+
     /// The start's rows and their derivatives by the first state.
     pub(super) fn start_terms(&self, z: &[f64]) -> InitialTerms {
         let s = self.state();
@@ -759,6 +768,16 @@ impl Nlp for Transcription {
 
     fn jacobian_structure(&self) -> &[(usize, usize)] {
         &self.structure
+    }
+
+    fn describe_row(&self, z: &[f64], row: usize) -> String {
+        match row.checked_sub(self.defects()) {
+            None => self.describe_defect(z, row),
+            Some(r) => {
+                let name = initial::row_name(&self.model, &self.start, r);
+                format!("the start's {name}")
+            }
+        }
     }
 
     fn jacobian_values(&self, z: &[f64], values: &mut [f64]) -> bool {

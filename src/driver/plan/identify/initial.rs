@@ -11,6 +11,11 @@ use crate::driver::plan::initial::{self, InitialTerms};
 use crate::runtime::nalgebra::DMatrix;
 use chaplygin_codegen::interpret::InterpretedModel;
 
+/// The name of initial constraint `row`.
+pub(super) fn initial_row_name(model: &InterpretedModel, row: usize) -> String {
+    initial::row_name(model, &initial::declared(model), row)
+}
+
 /// The number of initial constraints `model` declares.
 pub(super) fn initial_rows(model: &InterpretedModel) -> usize {
     initial::rows(model, &initial::declared(model))

@@ -374,6 +374,24 @@ fn the_constraints_derivatives_agree_with_central_differences() {
     }
 }
 
+/// The differential drive's fit names its rows in words: the first a
+/// defect of the first interval, between the data's first two times, the
+/// last its constraint `left` at the first row.
+#[test]
+fn the_rows_are_named_for_messages() {
+    use crate::driver::plan::nlp::Nlp;
+    let dir = tempfile::tempdir().expect("a directory");
+    let (fit, y) = program_on(dir.path(), PROGRAMS[2], Scheme::Midpoint);
+    let times = uneven_times(13);
+    let first = format!(
+        "the defect of `x` from t = {:.4} to {:.4}",
+        times[0], times[1]
+    );
+    assert_eq!(fit.describe_row(&y, 0), first);
+    let last = fit.describe_row(&y, fit.constraints() - 1);
+    assert_eq!(last, "the first row's velocity constraint `left`");
+}
+
 /// The same rows in memory give the file's estimate, bit for bit.
 #[test]
 fn a_table_in_memory_gives_the_file_s_estimate() {

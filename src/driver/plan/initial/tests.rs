@@ -2,9 +2,11 @@
 //! Jacobian and Hessians, in a plan's Lagrangian.
 
 use super::{Held, declared};
+use crate::driver::plan::Scheme;
 use crate::driver::plan::form::Form;
+use crate::driver::plan::nlp::Nlp;
 use crate::driver::plan::transcription::Transcription;
-use crate::driver::plan::transcription::tests::assert_every_scheme_agrees;
+use crate::driver::plan::transcription::tests::{assert_every_scheme_agrees, three_nodes};
 use chaplygin_codegen::interpret::InterpretedModel;
 
 /// A knife edge held to a trough that tilts with its heading: a
@@ -23,13 +25,31 @@ const BLADE_IN_TROUGH: &str = "pub struct BladeInTrough {
 /// holding the start to both constraints in the Lagrange form and to the
 /// configuration constraint in the reduced one: the exact Jacobian,
 /// gradient and Hessian of the Lagrangian agree with central
-/// differences, for every scheme with a fixed and a free duration.
+/// differences, for every scheme with a fixed and a free duration. The
+/// rows are named in messages by their family and declared name.
 #[test]
 fn the_start_rows_derivatives_agree_with_central_differences() {
     let model = InterpretedModel::from_source(BLADE_IN_TROUGH).expect("the model derives");
     assert_eq!(declared(&model), [Held::Configuration, Held::Velocity]);
     let names = (&["x", "y", "theta"][..], &["push", "turn"][..]);
     let costs = ("push^2 + x*dot(theta)^2 + t*turn", "x^2*dot(y) + t*theta");
+    let (nlp, z) = three_nodes(
+        model.clone(),
+        names,
+        costs,
+        (2 * 3 + 2, None),
+        (Scheme::Midpoint, false),
+    );
+    let nlp = nlp.holding_start(declared(&model));
+    let described: Vec<String> = (12..15).map(|row| nlp.describe_row(&z, row)).collect();
+    assert_eq!(
+        described,
+        [
+            "the start's configuration constraint `trough`",
+            "the start's velocity constraint `blade`",
+            "the start's velocity constraint `trough`",
+        ]
+    );
     let forms = [
         (Form::Lagrange, declared(&model)),
         (Form::Reduced, vec![Held::Configuration]),
