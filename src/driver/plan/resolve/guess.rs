@@ -212,56 +212,20 @@ fn in_velocities(
     (model, estimated): (&InterpretedModel, &[usize]),
     read: &record::Table,
 ) -> Result<record::Table, String> {
-    let n = model.sizes().n;
-    let position = |name: &str| read.columns.iter().position(|c| c == name);
-    let lagrange = Form::Lagrange.state_names(model);
-    let found = [Form::Reduced, Form::Momentum]
-        .into_iter()
-        .find_map(|form| {
-            let names = form.state_names(model);
-            let own = names.iter().any(|name| !lagrange.contains(name));
-            let state: Option<Vec<usize>> = names.iter().map(|name| position(name)).collect();
-            state.filter(|_| own).map(|state| (form, state))
-        });
-    let Some((form, state)) = found else {
+    let width = read.columns.len();
+    let whole = read.rows.iter().all(|row| row.len() == width);
+    let Some((form, state)) = form_of(model, read).filter(|_| whole) else {
         return Ok(read.clone());
     };
+    let position = |name: &str| read.columns.iter().position(|c| c == name);
     let chart = position("chart");
-    let charts: BTreeSet<u64> = (chart.into_iter())
-        .flat_map(|c| read.rows.iter().map(move |row| row[c].to_bits()))
-        .collect();
-    let charts: Vec<usize> = (charts.into_iter().map(f64::from_bits))
-        .map(|chart| {
-            let index = chart as usize;
-            (index as f64 == chart)
-                .then_some(index)
-                .ok_or_else(|| format!("`chart` = {chart} is not a chart's number"))
-        })
-        .collect::<Result<_, _>>()?;
-    let read_by = |k: &usize| reads_parameter(model, form, &charts, *k);
-    let unknown: Vec<&str> = (estimated.iter().filter(|k| read_by(k)))
-        .map(|&k| model.names().parameters[k].as_str())
-        .collect();
-    if !unknown.is_empty() {
-        let names = form.state_names(model);
-        let own: Vec<&str> = (names[n..].iter())
-            .filter(|name| !lagrange.contains(name))
-            .map(String::as_str)
-            .collect();
-        return Err(format!(
-            "its columns {} give the velocities through the estimated {}; give the velocities \
-             dot(q) instead (simulate --formulation lagrange)",
-            own.join(", "),
-            unknown.join(", ")
-        ));
-    }
+    check_estimated((model, form, estimated), &charts_of(read, chart)?)?;
+    let (n, lagrange) = (model.sizes().n, Form::Lagrange.state_names(model));
     let dropped: Vec<usize> = (state[n..].iter().copied())
         .chain(chart)
         .chain(lagrange[n..].iter().filter_map(|name| position(name)))
         .collect();
-    let kept: Vec<usize> = (0..read.columns.len())
-        .filter(|c| !dropped.contains(c))
-        .collect();
+    let kept: Vec<usize> = (0..width).filter(|c| !dropped.contains(c)).collect();
     let mut columns: Vec<String> = kept.iter().map(|&c| read.columns[c].clone()).collect();
     columns.extend_from_slice(&lagrange[n..]);
     let rows = (read.rows.iter().enumerate())
@@ -273,6 +237,68 @@ fn in_velocities(
         })
         .collect::<Result<_, String>>()?;
     Ok(record::Table { columns, rows })
+}
+
+/// The form other than Lagrange's whose whole state `read` holds, its
+/// own columns (the momenta) among them, and the state's columns.
+fn form_of(model: &InterpretedModel, read: &record::Table) -> Option<(Form, Vec<usize>)> {
+    let lagrange = Form::Lagrange.state_names(model);
+    [Form::Reduced, Form::Momentum]
+        .into_iter()
+        .find_map(|form| {
+            let names = form.state_names(model);
+            let own = names.iter().any(|name| !lagrange.contains(name));
+            let position = |name: &String| read.columns.iter().position(|c| c == name);
+            let state: Option<Vec<usize>> = names.iter().map(position).collect();
+            state.filter(|_| own).map(|state| (form, state))
+        })
+}
+
+/// The charts the rows of `read` name in their column `chart`, each once.
+///
+/// # Errors
+/// A value that is no chart's number.
+fn charts_of(read: &record::Table, chart: Option<usize>) -> Result<Vec<usize>, String> {
+    let values: BTreeSet<u64> = (chart.into_iter())
+        .flat_map(|c| read.rows.iter().map(move |row| row[c].to_bits()))
+        .collect();
+    (values.into_iter().map(f64::from_bits))
+        .map(|chart| {
+            let index = chart as usize;
+            (index as f64 == chart)
+                .then_some(index)
+                .ok_or_else(|| format!("`chart` = {chart} is not a chart's number"))
+        })
+        .collect()
+}
+
+/// Whether the velocities of `form`'s state in `charts` are free of the
+/// parameters of indices `estimated`.
+///
+/// # Errors
+/// The columns that give them and the estimated parameters they read.
+fn check_estimated(
+    (model, form, estimated): (&InterpretedModel, Form, &[usize]),
+    charts: &[usize],
+) -> Result<(), String> {
+    let unknown: Vec<&str> = (estimated.iter())
+        .filter(|&&k| reads_parameter(model, form, charts, k))
+        .map(|&k| model.names().parameters[k].as_str())
+        .collect();
+    if unknown.is_empty() {
+        return Ok(());
+    }
+    let (names, lagrange) = (form.state_names(model), Form::Lagrange.state_names(model));
+    let own: Vec<&str> = (names.iter())
+        .filter(|name| !lagrange.contains(name))
+        .map(String::as_str)
+        .collect();
+    Err(format!(
+        "its columns {} give the velocities through the estimated {}; give the velocities \
+         dot(q) instead (simulate --formulation lagrange)",
+        own.join(", "),
+        unknown.join(", ")
+    ))
 }
 
 /// Whether the velocities of `form`'s state read the parameter of index
