@@ -10,31 +10,23 @@
 //! the closed form of its appendix A, every entry to 1e-12 relative (1e-12
 //! absolute where it is 0). Each command derives the bicycle once.
 
+use crate::steady::ROLLING_AT_V;
 use crate::support::benchmark_bicycle::{BenchmarkParameters, CanonicalMatrices};
 use crate::support::canonical_form::{assert_entries, printed_matrix};
 use nalgebra::{Complex, Matrix2};
 use std::path::PathBuf;
 use std::process::Command;
 
-/// Upright straight running at speed `v` (a sweep variable).
-const UPRIGHT: [&str; 10] = [
-    "--at",
-    "dot(theta_r)=-v/rR",
-    "--at",
-    "dot(phi)=0",
-    "--at",
-    "dot(delta)=0",
-    "--at",
-    "phi=0",
-    "--at",
-    "delta=0",
-];
+/// Upright straight running at speed `v` (a sweep variable), with
+/// [`ROLLING_AT_V`].
+const UPRIGHT: [&str; 4] = ["--at", "phi=0", "--at", "delta=0"];
 
 /// The standard output of a successful `chaplygin linearize bicycle` about
 /// upright running with `arguments` added.
 fn upright(arguments: &[&str]) -> String {
     let output = Command::new(env!("CARGO_BIN_EXE_chaplygin"))
         .args(["linearize", "bicycle"])
+        .args(ROLLING_AT_V)
         .args(UPRIGHT)
         .args(arguments)
         .output()

@@ -53,6 +53,36 @@ fn value(header: &[String], row: &[f64], name: &str) -> f64 {
     column(header, &[row.to_vec()], name)[0]
 }
 
+/// The bicycle rolling at `v` (a variable), its lean and steer constant.
+pub const ROLLING_AT_V: [&str; 6] = [
+    "--at",
+    "dot(theta_r)=-v/rR",
+    "--at",
+    "dot(phi)=0",
+    "--at",
+    "dot(delta)=0",
+];
+
+/// The bicycle's `--at` assignments of a steady turn at `lean`
+/// (`phi=...`), [`ROLLING_AT_V`], then `rest`.
+fn bicycle_turn<'a>(lean: &'a str, rest: &[&'a str]) -> Vec<&'a str> {
+    let mut arguments = vec!["--at", lean];
+    arguments.extend(ROLLING_AT_V);
+    arguments.extend(rest);
+    arguments
+}
+
+/// A hands-free turn's input, its unknowns the steer and speed, and the
+/// guess 6 m/s.
+const HANDS_FREE_FROM_6: [&str; 6] = [
+    "--input",
+    "steer_torque=0",
+    "--solve",
+    "delta,v",
+    "--guess",
+    "v=6",
+];
+
 /// The disk's parameters (`models/rolling_disk_3d.model`'s defaults).
 const MASS: f64 = 1.0;
 const RADIUS: f64 = 0.5;
@@ -222,22 +252,7 @@ fn the_bicycles_hands_free_turn_runs_at_the_capsize_speed() {
     let (stdout, header, row) = steady(
         "steady-bicycle-capsize",
         "bicycle",
-        &[
-            "--at",
-            "phi=0.001",
-            "--at",
-            "dot(theta_r)=-v/rR",
-            "--at",
-            "dot(phi)=0",
-            "--at",
-            "dot(delta)=0",
-            "--input",
-            "steer_torque=0",
-            "--solve",
-            "delta,v",
-            "--guess",
-            "v=6",
-        ],
+        &bicycle_turn("phi=0.001", &HANDS_FREE_FROM_6),
     );
     let capsize = BenchmarkParameters::benchmark().capsize_speeds()[0];
     let speed = value(&header, &row, "v");
@@ -247,6 +262,107 @@ fn the_bicycles_hands_free_turn_runs_at_the_capsize_speed() {
     );
     assert_eq!(value(&header, &row, "phi"), 0.001);
     assert_eq!(value(&header, &row, "steer_torque"), 0.0);
+}
+
+/// A coordinate that a configuration constraint ties, named an unknown,
+/// is solved with the constraint a condition of its own. The bicycle's
+/// pitch solved so in a steady turn is the pitch that completing the point
+/// from its constraint gives, with the same speed and steer, to 1e-10. The
+/// Ackermann car's right steer angle at rest is the linkage's closed form
+/// `cot(delta_r) = cot(delta_l) + 2 b / l`. A constraint that neither the
+/// unknowns nor the coordinates left unset change fails in one line
+/// naming it and its residual.
+#[test]
+fn a_coordinate_a_configuration_constraint_ties_is_solved_from_it() {
+    let (_, header, completed) = steady(
+        "steady-pitch-completed",
+        "bicycle",
+        &bicycle_turn("phi=0.2", &HANDS_FREE_FROM_6),
+    );
+    let (_, solved_header, solved) = steady(
+        "steady-pitch-solved",
+        "bicycle",
+        &bicycle_turn(
+            "phi=0.2",
+            &[
+                "--input",
+                "steer_torque=0",
+                "--solve",
+                "delta,v,theta_b",
+                "--guess",
+                "v=6",
+            ],
+        ),
+    );
+    for name in ["theta_b", "delta", "v"] {
+        let (a, b) = (
+            value(&header, &completed, name),
+            value(&solved_header, &solved, name),
+        );
+        assert!(
+            (a - b).abs() <= 1e-10 * a.abs().max(1.0),
+            "{name}: {a} vs {b}"
+        );
+    }
+    assert!(
+        value(&header, &completed, "theta_b").abs() > 1e-4,
+        "the pitch moves"
+    );
+
+    let car = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/models/ackermann_car.model"
+    );
+    let at_rest = [
+        "--at",
+        "dot(x)=0",
+        "--at",
+        "dot(delta_l)=0",
+        "--at",
+        "dot(delta_r)=0",
+    ];
+    let mut arguments = vec![
+        "--at",
+        "delta_l=0.3",
+        "--solve",
+        "delta_r",
+        "--guess",
+        "delta_r=0.2",
+    ];
+    arguments.extend(at_rest);
+    let (_, header, row) = steady("steady-ackermann", car, &arguments);
+    let linkage = (1.0 / (1.0 / 0.3f64.tan() + 2.0 * 0.4 / 1.0)).atan();
+    let right = value(&header, &row, "delta_r");
+    assert!((right - linkage).abs() < 1e-12, "{right} vs {linkage}");
+
+    let mut all = vec![
+        "steady",
+        car,
+        "--at",
+        "delta_l=0.3",
+        "--at",
+        "delta_r=0.1",
+        "--solve",
+        "x",
+    ];
+    all.extend(at_rest);
+    let output = chaplygin(&all);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success() && stderr.lines().count() == 1,
+        "{stderr}"
+    );
+    let residual: f64 = stderr
+        .split("the condition ackermann = 0 still fails by ")
+        .nth(1)
+        .and_then(|rest| rest.split(',').next())
+        .and_then(|number| number.parse().ok())
+        .unwrap_or_else(|| panic!("a residual in {stderr}"));
+    let expected = 0.2f64.sin() - 2.0 * 0.4 * 0.3f64.sin() * 0.1f64.sin();
+    assert!(
+        (residual - expected).abs() < 1e-12,
+        "{residual} vs {expected}"
+    );
 }
 
 /// The circumradius of the triangle of three points.
@@ -264,20 +380,7 @@ fn a_found_turn_simulated_stays_steady() {
     let (_, header, row) = steady(
         "steady-bicycle-turn",
         "bicycle",
-        &[
-            "--at",
-            "phi=0.05",
-            "--at",
-            "dot(theta_r)=-v/rR",
-            "--at",
-            "dot(phi)=0",
-            "--at",
-            "dot(delta)=0",
-            "--solve",
-            "delta,v",
-            "--guess",
-            "v=6",
-        ],
+        &bicycle_turn("phi=0.05", &["--solve", "delta,v", "--guess", "v=6"]),
     );
     let initial: Vec<String> = [
         "phi",
@@ -340,22 +443,10 @@ fn kicked_turn(lean: f64, guess: (f64, f64)) -> (bool, (f64, f64), f64) {
     let (stdout, header, row) = steady(
         "steady-bicycle-kicked",
         "bicycle",
-        &[
-            "--at",
+        &bicycle_turn(
             &phi,
-            "--at",
-            "dot(theta_r)=-v/rR",
-            "--at",
-            "dot(phi)=0",
-            "--at",
-            "dot(delta)=0",
-            "--solve",
-            "delta,v",
-            "--guess",
-            &v,
-            "--guess",
-            &delta,
-        ],
+            &["--solve", "delta,v", "--guess", &v, "--guess", &delta],
+        ),
     );
     assert!(
         (value(&header, &row, "v") - guess.0).abs() < 0.1,
@@ -411,26 +502,21 @@ fn the_reversed_handlebars_family_is_stable_from_its_second_fold() {
     let (stdout, header, rows) = traced(
         "steady-bicycle-reversed",
         "bicycle",
-        &[
-            "--at",
+        &bicycle_turn(
             "phi=lean",
-            "--at",
-            "dot(theta_r)=-v/rR",
-            "--at",
-            "dot(phi)=0",
-            "--at",
-            "dot(delta)=0",
-            "--input",
-            "steer_torque=0",
-            "--solve",
-            "delta,v",
-            "--guess",
-            "v=7.9",
-            "--guess",
-            "delta=3.23",
-            "--trace",
-            "lean=0.55:0.91:0.02",
-        ],
+            &[
+                "--input",
+                "steer_torque=0",
+                "--solve",
+                "delta,v",
+                "--guess",
+                "v=7.9",
+                "--guess",
+                "delta=3.23",
+                "--trace",
+                "lean=0.55:0.91:0.02",
+            ],
+        ),
     );
     let folds: Vec<f64> = (stdout.lines())
         .filter_map(|line| line.strip_prefix("fold at lean = "))
@@ -712,24 +798,19 @@ fn unknowns_the_conditions_do_not_fix_are_refused() {
         stderr.contains("4 unknowns but only 3 conditions"),
         "{stderr}"
     );
-    let bicycle = chaplygin(&[
-        "steady",
-        "bicycle",
-        "--at",
+    let mut arguments = vec!["steady", "bicycle"];
+    arguments.extend(bicycle_turn(
         "phi=lean",
-        "--at",
-        "dot(theta_r)=-v/rR",
-        "--at",
-        "dot(phi)=0",
-        "--at",
-        "dot(delta)=0",
-        "--solve",
-        "delta,v,lean",
-        "--guess",
-        "v=6",
-        "--guess",
-        "lean=0.05",
-    ]);
+        &[
+            "--solve",
+            "delta,v,lean",
+            "--guess",
+            "v=6",
+            "--guess",
+            "lean=0.05",
+        ],
+    ));
+    let bicycle = chaplygin(&arguments);
     let stderr = String::from_utf8_lossy(&bicycle.stderr);
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("the conditions do not fix"), "{stderr}");
@@ -774,21 +855,8 @@ fn printed_value(stdout: &str, prefix: &str) -> f64 {
 /// point solved alone, from its values rounded to 0.1, to 1e-9.
 #[test]
 fn the_bicycles_turns_fold_near_lean_0_42() {
-    let turn = [
-        "--at",
-        "phi=lean",
-        "--at",
-        "dot(theta_r)=-v/rR",
-        "--at",
-        "dot(phi)=0",
-        "--at",
-        "dot(delta)=0",
-        "--input",
-        "steer_torque=0",
-        "--solve",
-        "delta,v",
-    ];
-    let mut arguments = turn.to_vec();
+    let turn = bicycle_turn("phi=lean", &HANDS_FREE_FROM_6[..4]);
+    let mut arguments = turn.clone();
     arguments.extend(["--guess", "v=6", "--trace", "lean=0.01:0.5:0.01"]);
     let (stdout, header, rows) = traced("steady-bicycle-trace", "bicycle", &arguments);
     let lean = column(&header, &rows, "lean");

@@ -17,19 +17,26 @@
 //!
 //! gives the point's derivative (`E` the fixed entries), and that of
 //! `z = (r, w)` follows by the chain rule through the body velocity
-//! `(w_x, w_y) = R(-theta) (xdot, ydot)` of each `se2` factor.
+//! `(w_x, w_y) = R(-theta) (xdot, ydot)` of each `se2` factor. A
+//! configuration constraint without a pivot among the free coordinates
+//! ties fixed ones (an Ackermann linkage's right steer angle, an unknown,
+//! with the left one given): the completion leaves it
+//! ([`point::configuration_leaving_fixed`]) and it is a condition.
 //!
-//! **Gauss-Newton.** The conditions are `R(x) = F(z(x), u(x))`; their
-//! Jacobian `dF/dz dz/dx + dF/du du/dx` is exact but for `d(A qdot)/dq`,
-//! which is by Richardson-extrapolated central differences as in
-//! [`super::steady`] (error of order `eps^(4/5)`). Some conditions hold
-//! identically by the symmetry (a wheel's momentum in a steady turn), so
-//! the step is the least-squares one of least norm, `dx = -J^+ R`, halved
-//! until `|R|` decreases. The iteration stops where no halving decreases
+//! **Gauss-Newton.** The conditions are `R(x) = F(z(x), u(x))` and
+//! `f(q(x)) = 0` (the rows of the constraints the completion meets are 0,
+//! exactly, not their round-off). Their Jacobian, `dF/dz dz/dx + dF/du
+//! du/dx` over `df/dq dq/dx`, is exact but for `d(A qdot)/dq`, which is
+//! by Richardson-extrapolated central differences as in [`super::steady`]
+//! (error of order `eps^(4/5)`). Some conditions hold identically by the
+//! symmetry (a wheel's momentum in a steady turn), so the step is the
+//! least-squares one of least norm, `dx = -J^+ R`, halved until `|R|`
+//! decreases. The iteration stops where no halving decreases
 //! `|R|` (round-off) or the step is round-off in `x`; the point is steady
-//! if it passes the check [`super::linearize`] applies.
+//! if it passes the check [`super::linearize`] applies and meets `f(q) = 0`
+//! to the completion's round-off.
 
-use super::point::{OperatingPoint, PointError, solvable};
+use super::point::{self, OperatingPoint, PointError, solvable};
 use super::steady::{Layout, check_steady, richardson};
 use super::{Dynamics, LinearSystem, largest, pivots};
 use nalgebra::{DMatrix, DVector};
@@ -71,7 +78,9 @@ pub struct Found {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum FindError {
     /// More unknowns than conditions.
-    #[error("{unknowns} unknowns but only {conditions} conditions (the reduced flow's rates)")]
+    #[error(
+        "{unknowns} unknowns but only {conditions} conditions (the reduced flow's rates and the configuration constraints)"
+    )]
     TooManyUnknowns {
         /// The unknowns.
         unknowns: usize,
@@ -100,12 +109,14 @@ pub enum FindError {
     NonFinite,
     /// Gauss-Newton came no closer than this.
     #[error(
-        "no steady motion near the guess: after {steps} Gauss-Newton steps the condition d/dt {quantity} = 0 still fails by {residual:e}, the largest residual (at {at})"
+        "no steady motion near the guess: after {steps} Gauss-Newton steps the condition {condition} = 0 still fails by {residual:e}, the largest residual (at {at})"
     )]
     NotConverged {
-        /// The reduced state entry whose rate stays largest.
-        quantity: String,
-        /// That rate.
+        /// The condition that fails most: `d/dt NAME` of the reduced state
+        /// entry whose rate stays largest, or a configuration constraint's
+        /// name.
+        condition: String,
+        /// Its residual.
         residual: f64,
         /// The steps taken.
         steps: usize,
@@ -157,11 +168,24 @@ const SVD_ITERATIONS: usize = 10_000;
 /// Jacobian counts as zero: a direction the conditions do not fix.
 const RANK: f64 = 1e-9;
 
-/// One iterate: the point, its inputs, the residual and the Jacobian.
+/// One iterate: the point, its inputs, the flow's rates, the pivots
+/// `(constraint, coordinate)` of `df/dq` on the free coordinates there,
+/// and the configuration constraints' residuals, 0 on those with a pivot
+/// (the completion meets them, to round-off).
 struct Iterate {
     point: OperatingPoint,
     u: Vec<f64>,
     rate: DVector<f64>,
+    pivots: Vec<(usize, usize)>,
+    holonomic: DVector<f64>,
+}
+
+impl Iterate {
+    /// The conditions `R`: the rates, then the constraints' residuals.
+    fn conditions(&self) -> DVector<f64> {
+        let rows = self.rate.iter().chain(self.holonomic.iter());
+        DVector::from_iterator(self.rate.len() + self.holonomic.len(), rows.copied())
+    }
 }
 
 /// A steady motion near `guess` of the unknowns `x`, named by `named`,
@@ -178,7 +202,7 @@ pub fn find(
     guess: &[f64],
 ) -> Result<Found, FindError> {
     let layout = Layout::of(model);
-    let conditions = layout.nr() + model.coordinates().len();
+    let conditions = layout.nr() + model.coordinates().len() + model.holonomic().len();
     if guess.len() > conditions {
         return Err(FindError::TooManyUnknowns {
             unknowns: guess.len(),
@@ -190,13 +214,13 @@ pub fn find(
         at: named.assignments(&x),
         source,
     })?;
-    if now.rate.iter().any(|r| !r.is_finite()) {
+    if now.conditions().iter().any(|r| !r.is_finite()) {
         return Err(FindError::NonFinite);
     }
     let mut steps = 0;
     while steps < STEPS {
         let jacobian = conditions_jacobian(model, &layout, &now, &given(&x));
-        let step = least_squares(&jacobian, &now.rate);
+        let step = least_squares(&jacobian, &now.conditions());
         let Some((next, moved)) = line_search(model, &layout, given, (&x, &now), &step) else {
             break;
         };
@@ -206,13 +230,9 @@ pub fn find(
             break;
         }
     }
-    let (_, w) = layout.reduce(&now.point);
-    if let Err(super::SteadyError::NotSteady {
-        quantity, residual, ..
-    }) = check_steady(&layout, &now.rate, &w)
-    {
+    if let Some((condition, residual)) = unmet(model, &layout, &now) {
         return Err(FindError::NotConverged {
-            quantity,
+            condition,
             residual,
             steps,
             at: named.assignments(&x),
@@ -232,8 +252,25 @@ pub fn find(
     })
 }
 
-/// The flow's rates `R` at the point `given` completes, and their
-/// Jacobian `dR/dx` in the unknowns `given` differentiates by.
+/// The condition that fails most at `now` and its residual, if one
+/// fails: a rate by [`check_steady`], else a configuration constraint
+/// beyond round-off (as [`OperatingPoint::solve`] meets them).
+fn unmet(model: &dyn Dynamics, layout: &Layout, now: &Iterate) -> Option<(String, f64)> {
+    let (_, w) = layout.reduce(&now.point);
+    if let Err(super::SteadyError::NotSteady {
+        quantity, residual, ..
+    }) = check_steady(layout, &now.rate, &w)
+    {
+        return Some((format!("d/dt {quantity}"), residual));
+    }
+    let (worst, residual) = largest(now.holonomic.as_slice())?;
+    (residual.abs() > point::round_off(&now.point.q))
+        .then(|| (model.holonomic()[worst].clone(), residual))
+}
+
+/// The conditions `R` at the point `given` completes (the flow's rates,
+/// then the configuration constraints' residuals), and their Jacobian
+/// `dR/dx` in the unknowns `given` differentiates by.
 ///
 /// # Errors
 /// The point cannot be completed.
@@ -244,18 +281,29 @@ pub fn conditions(
     let layout = Layout::of(model);
     let now = iterate(model, &layout, given)?;
     let jacobian = conditions_jacobian(model, &layout, &now, given);
-    Ok((now.rate, jacobian))
+    Ok((now.conditions(), jacobian))
 }
 
-/// The point of `given` completed, and the flow's rates there.
+/// The point of `given` completed, the flow's rates there and the
+/// residuals of the configuration constraints without a pivot among the
+/// free coordinates.
 fn iterate(model: &dyn Dynamics, layout: &Layout, given: &Given) -> Result<Iterate, PointError> {
-    let point = OperatingPoint::solve(model, &given.q, &given.qdot)?;
+    let q = point::configuration_leaving_fixed(model, &given.q)?;
+    let point = OperatingPoint::at(model, q, &given.qdot)?;
+    let free: Vec<usize> = (0..point.q.len())
+        .filter(|&i| given.q[i].is_none())
+        .collect();
+    let pivots = solvable(model, &point.q, &free);
+    let mut holonomic = model.holonomic_residual(&point.q);
+    pivots.iter().for_each(|&(row, _)| holonomic[row] = 0.0);
     let (q, w) = layout.reduce(&point);
     let rate = layout.flow(model, &q, &w, &given.u);
     Ok(Iterate {
         point,
         u: given.u.clone(),
         rate,
+        pivots,
+        holonomic,
     })
 }
 
@@ -279,14 +327,14 @@ fn line_search(
     (x, now): (&[f64], &Iterate),
     step: &DVector<f64>,
 ) -> Option<((Vec<f64>, Iterate), bool)> {
-    let current = size(&now.rate);
+    let current = size(&now.conditions());
     let mut scale = 1.0;
     for _ in 0..HALVINGS {
         let trial: Vec<f64> = (x.iter().zip(step.iter()))
             .map(|(value, delta)| value - scale * delta)
             .collect();
         if let Ok(next) = iterate(model, layout, &given(&trial))
-            && size(&next.rate) < current
+            && size(&next.conditions()) < current
         {
             let moved = (x.iter().zip(&trial))
                 .any(|(a, b)| (a - b).abs() > 4.0 * f64::EPSILON * a.abs().max(1.0));
@@ -345,7 +393,8 @@ fn isolated(jacobian: &DMatrix<f64>, named: &Named<'_>) -> Result<(), FindError>
     }
 }
 
-/// `dR/dx = dF/dz dz/dx + dF/du du/dx` at `now`.
+/// `dR/dx` at `now`: `dF/dz dz/dx + dF/du du/dx` over `df/dq dq/dx` on
+/// the constraints without a pivot (0 on the others).
 fn conditions_jacobian(
     model: &dyn Dynamics,
     layout: &Layout,
@@ -354,18 +403,27 @@ fn conditions_jacobian(
 ) -> DMatrix<f64> {
     let (q, w) = layout.reduce(&now.point);
     let (by_z, by_u) = layout.jacobian(model, &q, &w, &now.u);
-    by_z * reduced_derivative(model, layout, &now.point, given) + by_u * &given.du
+    let dq = coordinate_derivative(model, now, given);
+    let rates = by_z * reduced_derivative(model, layout, &now.point, given, &dq) + by_u * &given.du;
+    let by_q = model.holonomic_jacobian(&now.point.q);
+    let (k, r) = (dq.ncols(), rates.nrows());
+    let mut jacobian = DMatrix::zeros(r + by_q.nrows(), k);
+    jacobian.view_mut((0, 0), (r, k)).copy_from(&rates);
+    for row in (0..by_q.nrows()).filter(|&row| now.pivots.iter().all(|&(r, _)| r != row)) {
+        jacobian.set_row(r + row, &(by_q.row(row) * &dq));
+    }
+    jacobian
 }
 
-/// `dz/dx` at `point` (module documentation).
+/// `dz/dx` at `point` from `dq/dx` (module documentation).
 fn reduced_derivative(
     model: &dyn Dynamics,
     layout: &Layout,
     point: &OperatingPoint,
     given: &Given,
+    dq: &DMatrix<f64>,
 ) -> DMatrix<f64> {
-    let dq = coordinate_derivative(model, point, given);
-    let dqdot = velocity_derivative(model, point, given, &dq);
+    let dqdot = velocity_derivative(model, point, given, dq);
     let (nr, n, k) = (layout.nr(), point.q.len(), given.dq.ncols());
     let mut dz = DMatrix::zeros(nr + n, k);
     for (a, &i) in layout.shape.iter().enumerate() {
@@ -386,21 +444,13 @@ fn reduced_derivative(
 
 /// `dq/dx`: the fixed coordinates' given, the pivots' from
 /// `df/dq dq = 0`, the other free ones' 0.
-fn coordinate_derivative(
-    model: &dyn Dynamics,
-    point: &OperatingPoint,
-    given: &Given,
-) -> DMatrix<f64> {
+fn coordinate_derivative(model: &dyn Dynamics, now: &Iterate, given: &Given) -> DMatrix<f64> {
     let mut dq = given.dq.clone();
-    let free: Vec<usize> = (0..point.q.len())
-        .filter(|&i| given.q[i].is_none())
-        .collect();
-    let chosen = solvable(model, &point.q, &free);
-    if chosen.is_empty() {
+    if now.pivots.is_empty() {
         return dq;
     }
-    let (rows, solved): (Vec<usize>, Vec<usize>) = chosen.into_iter().unzip();
-    let jacobian = model.holonomic_jacobian(&point.q).select_rows(&rows);
+    let (rows, solved): (Vec<usize>, Vec<usize>) = now.pivots.iter().copied().unzip();
+    let jacobian = model.holonomic_jacobian(&now.point.q).select_rows(&rows);
     let rhs = -(&jacobian * &dq);
     let by_solved = jacobian.select_columns(&solved);
     let moved = by_solved

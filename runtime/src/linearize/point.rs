@@ -15,6 +15,8 @@
 //!   unmet, with the smallest residual it reached
 //!   ([`PointError::HolonomicNotConverged`]: no real solution, such as a
 //!   pendulum's height given beyond its length).
+//!   [`configuration_leaving_fixed`] leaves the first kind unmet instead,
+//!   for a caller that moves the given coordinates to meet them.
 //! - Velocities: those given are fixed and the others solved from
 //!   `A(q) qdot = 0`, i.e. `A_free qdot_free = -A_given qdot_given`. If
 //!   that leaves a direction free (`A_free` has a null space), the
@@ -106,7 +108,20 @@ impl OperatingPoint {
         coordinates: &[Option<f64>],
         velocities: &[Option<f64>],
     ) -> Result<OperatingPoint, PointError> {
-        let q = configuration(model, coordinates)?;
+        Self::at(model, configuration(model, coordinates)?, velocities)
+    }
+
+    /// The point at the coordinates `q`, with the velocities given
+    /// (`None` where not) completed as the module documentation says.
+    ///
+    /// # Errors
+    /// [`PointError`]: velocities left free, or velocities contradicting
+    /// the constraints.
+    pub fn at(
+        model: &dyn Dynamics,
+        q: Vec<f64>,
+        velocities: &[Option<f64>],
+    ) -> Result<OperatingPoint, PointError> {
         let names = velocity_names(&model.coordinates());
         let qdot = solve_velocities(
             &model.constraint_matrix(&q),
@@ -128,56 +143,109 @@ pub fn velocity_names(coordinates: &[String]) -> Vec<String> {
 /// # Errors
 /// [`PointError::HolonomicFixed`], [`PointError::HolonomicNotConverged`].
 pub fn configuration(model: &dyn Dynamics, given: &[Option<f64>]) -> Result<Vec<f64>, PointError> {
-    let mut q: Vec<f64> = given.iter().map(|v| v.unwrap_or(0.0)).collect();
-    let names = model.holonomic();
-    if names.is_empty() {
-        return Ok(q);
+    let Start {
+        mut q,
+        pivots,
+        unmet,
+    } = newton_start(model, given);
+    if let Some(&fixed) = unmet.first() {
+        return Err(PointError::HolonomicFixed {
+            constraint: model.holonomic()[fixed].clone(),
+            residual: model.holonomic_residual(&q)[fixed],
+        });
     }
-    if meets(model, &q) {
-        return Ok(q);
-    }
-    let unset: Vec<usize> = (0..q.len()).filter(|&i| given[i].is_none()).collect();
-    let mut chosen = solvable(model, &q, &unset);
-    if let Some(fixed) = unmet_without_pivot(model, &q, &chosen) {
-        let mut generic = q.clone();
-        unset.iter().for_each(|&i| generic[i] = GENERIC_START);
-        let at_generic = solvable(model, &generic, &unset);
-        if unmet_without_pivot(model, &generic, &at_generic).is_some() {
-            let residual = model.holonomic_residual(&q);
-            return Err(PointError::HolonomicFixed {
-                constraint: names[fixed].clone(),
-                residual: residual[fixed],
-            });
-        }
-        (q, chosen) = (generic, at_generic);
-    }
-    newton(model, &mut q, &chosen, &names)?;
+    newton(model, &mut q, &pivots, &[])?;
     Ok(q)
 }
 
-/// The first constraint that no unset coordinate can change (no pivot in
+/// As [`configuration`], but the constraints that no unset coordinate
+/// changes are left unmet instead of refused: a caller that moves the
+/// given coordinates meets them (`steady` solving for a coordinate such a
+/// constraint ties, [`super::find`]).
+///
+/// # Errors
+/// [`PointError::HolonomicNotConverged`] on the other constraints.
+pub fn configuration_leaving_fixed(
+    model: &dyn Dynamics,
+    given: &[Option<f64>],
+) -> Result<Vec<f64>, PointError> {
+    let Start {
+        mut q,
+        pivots,
+        unmet,
+    } = newton_start(model, given);
+    newton(model, &mut q, &pivots, &unmet)?;
+    Ok(q)
+}
+
+/// Where Newton's method on `f(q) = 0` starts (module documentation).
+struct Start {
+    /// The coordinates given, the others 0 or [`GENERIC_START`].
+    q: Vec<f64>,
+    /// The pivots `(constraint, coordinate)` of `df/dq` on the unset
+    /// coordinates there.
+    pivots: Vec<(usize, usize)>,
+    /// The constraints without a pivot that `q` does not meet.
+    unmet: Vec<usize>,
+}
+
+/// The start of Newton's method: the unset coordinates 0, or
+/// [`GENERIC_START`] where that gives every unmet constraint a pivot and 0
+/// does not.
+fn newton_start(model: &dyn Dynamics, given: &[Option<f64>]) -> Start {
+    let q: Vec<f64> = given.iter().map(|v| v.unwrap_or(0.0)).collect();
+    if model.holonomic().is_empty() || meets(model, &q, &[]) {
+        let (pivots, unmet) = (Vec::new(), Vec::new());
+        return Start { q, pivots, unmet };
+    }
+    let unset: Vec<usize> = (0..q.len()).filter(|&i| given[i].is_none()).collect();
+    let pivots = solvable(model, &q, &unset);
+    let unmet = unmet_without_pivot(model, &q, &pivots);
+    if unmet.is_empty() {
+        return Start { q, pivots, unmet };
+    }
+    let mut generic = q.clone();
+    unset.iter().for_each(|&i| generic[i] = GENERIC_START);
+    let at_generic = solvable(model, &generic, &unset);
+    if unmet_without_pivot(model, &generic, &at_generic).is_empty() {
+        let unmet = Vec::new();
+        return Start {
+            q: generic,
+            pivots: at_generic,
+            unmet,
+        };
+    }
+    Start { q, pivots, unmet }
+}
+
+/// The constraints that no unset coordinate can change (no pivot in
 /// `chosen`) and that `q` does not meet already: the constraints the
 /// coordinates given meet alone (an `orient` frame's unit norm, given its
 /// parameters) need no coordinate of their own.
-fn unmet_without_pivot(
-    model: &dyn Dynamics,
-    q: &[f64],
-    chosen: &[(usize, usize)],
-) -> Option<usize> {
+fn unmet_without_pivot(model: &dyn Dynamics, q: &[f64], chosen: &[(usize, usize)]) -> Vec<usize> {
     let residual = model.holonomic_residual(q);
     let tolerance = round_off(q);
     (0..residual.len())
-        .find(|&row| chosen.iter().all(|&(r, _)| r != row) && residual[row].abs() > tolerance)
+        .filter(|&row| chosen.iter().all(|&(r, _)| r != row) && residual[row].abs() > tolerance)
+        .collect()
 }
 
 /// The residual of `f(q)` that counts as met: round-off at `q`'s scale.
-fn round_off(q: &[f64]) -> f64 {
+pub(super) fn round_off(q: &[f64]) -> f64 {
     1e-13 * q.iter().fold(1.0f64, |m, v| m.max(v.abs()))
 }
 
-/// Whether `q` meets `f(q) = 0` to round-off (Newton's criterion).
-fn meets(model: &dyn Dynamics, q: &[f64]) -> bool {
-    largest(model.holonomic_residual(q).as_slice())
+/// `f(q)`, 0 on the constraints `left`.
+fn residual_but(model: &dyn Dynamics, q: &[f64], left: &[usize]) -> DVector<f64> {
+    let mut residual = model.holonomic_residual(q);
+    left.iter().for_each(|&row| residual[row] = 0.0);
+    residual
+}
+
+/// Whether `q` meets `f(q) = 0` but on the constraints `left` to
+/// round-off (Newton's criterion).
+fn meets(model: &dyn Dynamics, q: &[f64], left: &[usize]) -> bool {
+    largest(residual_but(model, q, left).as_slice())
         .is_none_or(|(_, value)| value.abs() <= round_off(q))
 }
 
@@ -188,22 +256,22 @@ pub(super) fn solvable(model: &dyn Dynamics, q: &[f64], unset: &[usize]) -> Vec<
     pivots(&jacobian, unset, 1.0, 1e-12 * jacobian.amax().max(1.0))
 }
 
-/// Newton's method on `f(q) = 0`, each constraint of `pivots` solved for
-/// its coordinate; the constraints without one stay met, or the method
-/// fails.
+/// Newton's method on `f(q) = 0` but the constraints `left`, each
+/// constraint of `pivots` solved for its coordinate; the other constraints
+/// stay met, or the method fails.
 fn newton(
     model: &dyn Dynamics,
     q: &mut [f64],
     pivots: &[(usize, usize)],
-    names: &[String],
+    left: &[usize],
 ) -> Result<(), PointError> {
     let (rows, solved): (Vec<usize>, Vec<usize>) = pivots.iter().copied().unzip();
     let mut closest: Option<(usize, f64)> = None;
     for step in 0..=NEWTON_STEPS {
-        if meets(model, q) {
+        if meets(model, q, left) {
             return Ok(());
         }
-        let residual = model.holonomic_residual(q);
+        let residual = residual_but(model, q, left);
         let Some((worst, value)) = largest(residual.as_slice()) else {
             return Ok(());
         };
@@ -229,7 +297,7 @@ fn newton(
     }
     let (worst, value) = closest.unwrap_or((0, f64::NAN));
     Err(PointError::HolonomicNotConverged {
-        constraint: names[worst].clone(),
+        constraint: model.holonomic()[worst].clone(),
         residual: value,
         iterations: NEWTON_STEPS,
     })
