@@ -33,7 +33,7 @@ use crate::simulate::write_plots;
 use crate::solve_watch::{self, SolverArgs, Written};
 use chaplygin::driver::Failure;
 use chaplygin::driver::plan::replay::Replay;
-use chaplygin::driver::plan::{self, Plan, PlanError, Request};
+use chaplygin::driver::plan::{self, Plan, PlanError, Request, Restart};
 use chaplygin::plot;
 use std::path::{Path, PathBuf};
 
@@ -131,6 +131,18 @@ fn written(
     .into())
 }
 
+/// The words on a plan solved again from its default guess, the inputs
+/// nudged.
+fn restarted(restart: &Restart) -> String {
+    format!(
+        ", from the default guess with the inputs nudged by {} sin(pi t / T) \
+         (from the default guess itself the solver ended {} after {} iterations, unverified)",
+        Request::NUDGE,
+        restart.status,
+        restart.iterations
+    )
+}
+
 /// Writes `plan.csv` (its first line `# MARK` for a plan not kept),
 /// `plan.json`, the plots and the animation, and says so.
 fn write(
@@ -150,7 +162,7 @@ fn write(
     if mark.is_none() {
         crate::say(&format!(
             "objective {:.9e}: a verified optimum ({}, {} nodes, {}) after {} iterations in \
-             {:.2} s; KKT residuals primal {:.1e}, dual {:.1e}, complementarity {:.1e}; \
+             {:.2} s{}; KKT residuals primal {:.1e}, dual {:.1e}, complementarity {:.1e}; \
              replayed within {:.1e} of its variables' scales\n",
             report.objective,
             report.scheme.name(),
@@ -158,6 +170,7 @@ fn write(
             report.solver,
             report.iterations,
             report.seconds,
+            report.restart.as_ref().map_or_else(String::new, restarted),
             report.kkt.primal,
             report.kkt.dual,
             report.kkt.complementarity,

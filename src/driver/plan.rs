@@ -21,6 +21,10 @@
 //!   with its nodes: a plan the model does not follow is an error too
 //!   ([`PlanError::Departs`], the plan kept for inspection).
 //!
+//! A solve from the default guess that ends unverified is solved again
+//! once with the inputs nudged, which breaks the symmetry a default guess
+//! may have ([`Restart`]).
+//!
 //! [`plan_watched`] tells an observer of each of the solver's iterations;
 //! an observer that stops the solve gets the last iterate back, with its
 //! KKT residuals, as [`PlanError::Interrupted`].
@@ -128,6 +132,9 @@ impl Request {
     pub const SHORTEST: f64 = 0.1;
     /// The solver's iterations at most.
     pub const MAX_ITERATIONS: usize = 3000;
+    /// The amplitude of the inputs' nudge when a solve from the default
+    /// guess ends unverified ([`Restart`]).
+    pub const NUDGE: f64 = 1e-2;
 }
 
 /// Why a plan was not made.
@@ -245,6 +252,28 @@ pub struct Report {
     pub kkt: Residuals,
     /// The plan's inputs replayed from its start.
     pub replay: Replay,
+    /// The solve from the default guess that ended unverified, where the
+    /// plan was solved again with the inputs nudged.
+    pub restart: Option<Restart>,
+}
+
+/// A solve from the default guess that ended unverified. The plan is then
+/// solved again from that guess with each input moved by [`Request::NUDGE`]
+/// `sin(pi t / T)`. The default guess holds what the start and goal leave
+/// free at 0, and a model symmetric under a reflection (the trailing
+/// racer, mirrored about its heading) has Newton's method keep such a
+/// guess's motions symmetric: where every way to the goal breaks the
+/// symmetry (the racer driven straight ahead from rest, which it can only
+/// do by wiggling), the solve stalls. The nudge breaks the symmetry; a
+/// plan verified from the default guess is never solved again.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Restart {
+    /// The solver's word on the solve from the default guess.
+    pub status: String,
+    /// Its iterations.
+    pub iterations: usize,
+    /// Its time, in seconds.
+    pub seconds: f64,
 }
 
 impl Report {
@@ -271,6 +300,11 @@ impl Report {
                 "complementarity": self.kkt.complementarity,
             },
             "replay": self.replay.to_json(),
+            "restart": self.restart.as_ref().map(|restart| serde_json::json!({
+                "status": restart.status,
+                "iterations": restart.iterations,
+                "seconds": restart.seconds,
+            })),
         })
     }
 }
@@ -356,27 +390,29 @@ pub fn plan_within(
     if !(replay_tolerance.is_finite() && replay_tolerance > 0.0) {
         return Err(resolve::RequestError::ReplayTolerance(replay_tolerance).into());
     }
-    let transcription = resolve::transcribe(loaded, request)?;
-    let Watched {
-        solution,
-        stopped,
-        seconds,
-    } = solve_watched(solver, &transcription, request.tol, observer);
+    let first = resolve::transcribe(loaded, request)?;
+    let Solved {
+        transcription,
+        watched,
+        verified,
+        restart,
+    } = solve_verified(first, (request, solver), observer)?;
+    let solution = watched.solution;
     let answer = Answer {
         request,
         solver: solver.name(&transcription),
-        seconds,
+        seconds: watched.seconds,
         replay_tolerance,
+        restart,
     };
-    if stopped {
+    let Some((residuals, objective)) = verified else {
         return Err(PlanError::Interrupted(Box::new(last_iterate(
             &transcription,
             &solution,
             answer,
         )?))
         .into());
-    }
-    let (residuals, objective) = verified(&transcription, &solution, request.tol)?;
+    };
     let status = solution.status.clone();
     let duration = transcription.duration(&solution.z);
     let shortest = Request::SHORTEST * request.duration;
@@ -416,6 +452,69 @@ fn within_chart(transcription: &transcription::Transcription, z: &[f64]) -> Resu
         }),
         None => Ok(()),
     }
+}
+
+/// A solve of a plan's program: the program, the solve, its KKT
+/// residuals and objective where verified (`None` where stopped), and
+/// the solve from the default guess that came before.
+struct Solved {
+    transcription: transcription::Transcription,
+    watched: Watched,
+    verified: Option<(Residuals, f64)>,
+    restart: Option<Restart>,
+}
+
+/// `transcription` solved, and where its guess is the default and the
+/// solve ends unverified, solved again with the inputs nudged
+/// ([`Restart`]).
+///
+/// # Errors
+/// [`verified`]'s, the first solve's where the second fails too.
+fn solve_verified(
+    transcription: transcription::Transcription,
+    (request, solver): (&Request, &dyn Solver),
+    observer: &mut Observer<'_>,
+) -> Result<Solved, PlanError> {
+    let watched = solve_watched(solver, &transcription, request.tol, observer);
+    let checked =
+        (!watched.stopped).then(|| verified(&transcription, &watched.solution, request.tol));
+    match checked.transpose() {
+        Err(failure @ PlanError::NotVerified { .. }) if request.guess.is_none() => {
+            let restart = Restart {
+                status: watched.solution.status.clone(),
+                iterations: watched.solution.iterations,
+                seconds: watched.seconds,
+            };
+            let nudged = transcription.nudging_inputs(Request::NUDGE);
+            solve_again(nudged, restart, (request, solver), observer).map_err(|_| failure)
+        }
+        checked => Ok(Solved {
+            transcription,
+            watched,
+            verified: checked?,
+            restart: None,
+        }),
+    }
+}
+
+/// `nudged` solved after `restart`.
+///
+/// # Errors
+/// [`verified`]'s.
+fn solve_again(
+    nudged: transcription::Transcription,
+    restart: Restart,
+    (request, solver): (&Request, &dyn Solver),
+    observer: &mut Observer<'_>,
+) -> Result<Solved, PlanError> {
+    let watched = solve_watched(solver, &nudged, request.tol, observer);
+    let checked = (!watched.stopped).then(|| verified(&nudged, &watched.solution, request.tol));
+    Ok(Solved {
+        transcription: nudged,
+        watched,
+        verified: checked.transpose()?,
+        restart: Some(restart),
+    })
 }
 
 /// A watched solve's outcome.
@@ -504,6 +603,7 @@ struct Answer<'a> {
     solver: &'static str,
     seconds: f64,
     replay_tolerance: f64,
+    restart: Option<Restart>,
 }
 
 impl Answer<'_> {
@@ -535,6 +635,7 @@ impl Answer<'_> {
                 table,
                 self.replay_tolerance,
             ),
+            restart: self.restart.clone(),
         }
     }
 }

@@ -359,6 +359,74 @@ fn an_infeasible_plan_is_an_error() {
     assert!(line.ends_with(worst), "{line}");
 }
 
+/// The trailing racer of `tests/models/trailing_racer.model`: its
+/// dynamics are unchanged by the mirror image about its heading
+/// (`y, theta, phi` and the input negated).
+fn trailing_racer() -> Loaded {
+    let source = Source::File {
+        path: "trailing_racer.model".into(),
+        text: include_str!("../../../tests/models/trailing_racer.model").into(),
+    };
+    load(&source, EngineChoice::Jit).expect("the model derives")
+}
+
+/// The racer driven from rest 0.5 m straight ahead in 4 s, `y` 0 at the
+/// goal and the rest of it free.
+fn straight_ahead() -> Request {
+    let start = [("x", 0.0), ("y", 0.0), ("theta", 0.0), ("phi", 0.0)];
+    let mut request = request(4.0, 41, &start, &[("x", 0.5), ("y", 0.0)]);
+    request.start.extend([
+        ("dot(x)".into(), "0".into()),
+        ("dot(phi)".into(), "0".into()),
+    ]);
+    request.goal.push(("dot(phi)".into(), "0".into()));
+    request
+}
+
+/// The default guess of [`straight_ahead`] (straight ahead, the input 0)
+/// is its own mirror image, and so is every iterate of Newton's method
+/// from it, while the racer can only be propelled by wiggling: the solve
+/// from it ends unverified. Solved again with the inputs nudged, the plan
+/// is verified and wiggles, and it costs what the plan from a wiggling
+/// guess (`phi = 0.1 sin(pi t / T)`, `u1 = 0.1 sin(2 pi t / T)`) costs, to
+/// 1e-7. The plan from that guess, given, is solved once.
+#[test]
+fn a_default_guess_stalled_by_a_symmetry_is_solved_again_nudged() {
+    let nudged = plan(trailing_racer(), &straight_ahead(), &Ripopt::default()).expect("a plan");
+    let restart = nudged.report.restart.as_ref().expect("solved again");
+    assert!(
+        restart.iterations > 0 && restart.status != nudged.report.status,
+        "{restart:?}"
+    );
+    let phi = nudged.table.column("phi").expect("phi");
+    assert!(
+        phi.iter().any(|angle| angle.abs() > 0.1),
+        "no wiggle: {phi:?}"
+    );
+
+    let dir = tempfile::tempdir().expect("a directory");
+    let path = dir.path().join("wiggle.csv");
+    let pi = std::f64::consts::PI;
+    let rows: Vec<String> = (0..=40)
+        .map(|k| f64::from(k) / 40.0)
+        .map(|s| {
+            format!(
+                "{},{},{}",
+                4.0 * s,
+                0.1 * (pi * s).sin(),
+                0.1 * (2.0 * pi * s).sin()
+            )
+        })
+        .collect();
+    std::fs::write(&path, format!("t,phi,u1\n{}\n", rows.join("\n"))).expect("written");
+    let mut request = straight_ahead();
+    request.guess = Some(path);
+    let guessed = plan(trailing_racer(), &request, &Ripopt::default()).expect("a plan");
+    assert!(guessed.report.restart.is_none());
+    let (a, b) = (nudged.report.objective, guessed.report.objective);
+    assert!((a - b).abs() < 1e-7 * b, "{a} vs {b}");
+}
+
 /// The point mass with `m = 1` from rest at 0 to rest at `d = 1` in `T = 1`.
 fn unit_rest_to_rest(scheme: Scheme, nodes: usize) -> Request {
     let mut request = rest_to_rest(scheme, nodes);

@@ -312,6 +312,20 @@ impl Transcription {
         intervals.chain(by_duration).chain(start).collect()
     }
 
+    /// The same program, the inputs of its guess moved by `amplitude
+    /// sin(pi s_i)` at each node `i` (`s_i` its time as a fraction of `T`),
+    /// inside the bounds.
+    pub(super) fn nudging_inputs(mut self, amplitude: f64) -> Self {
+        let (state, width) = (self.state(), self.width());
+        for (node, &s) in self.fractions.iter().enumerate() {
+            for j in node * width + state..(node + 1) * width {
+                let nudged = self.guess[j] + amplitude * (std::f64::consts::PI * s).sin();
+                self.guess[j] = nudged.clamp(self.lo[j], self.hi[j]);
+            }
+        }
+        self
+    }
+
     /// The number of defect rows, `(N - 1) s`; the start's rows follow.
     pub(super) fn defects(&self) -> usize {
         (self.nodes - 1) * self.state()
