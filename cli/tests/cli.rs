@@ -566,7 +566,9 @@ fn initial_velocities_not_given_are_solved_from_the_constraints() {
     assert_eq!(rows[0][column("dot(theta)")], 0.2);
     assert_one_line_error(
         &chaplygin(&["simulate", "sleigh", "--initial", "dot(theta)=1"]),
-        &["leave dot(x), dot(y) free"],
+        &[
+            "leave 1 direction free among dot(x), dot(y), which the constraints tie: give 1 of them too",
+        ],
     );
 }
 
@@ -716,7 +718,7 @@ fn linearize_bad_input_is_one_line_and_a_failure() {
         &sleigh(&["--at", "dot(theta)=0.5"]),
         &["not a steady motion", "d/dt dot(theta)"],
     );
-    assert_one_line_error(&sleigh(&[]), &["leave dot(theta) free"]);
+    assert_one_line_error(&sleigh(&[]), &["leave dot(theta) free: give it too"]);
     assert_one_line_error(
         &sleigh(&["--at", "dot(y)=1"]),
         &["violates constraint `blade`"],

@@ -161,6 +161,41 @@ fn the_ackermann_car_runs_from_heading_zero_and_pi() {
     }
 }
 
+/// The linkage ties the steer rates: from `cot(delta_r) = cot(delta_l) +
+/// 2 b / l`, `dot(delta_r) = (sin(delta_r) / sin(delta_l))^2 dot(delta_l)`.
+/// Given `dot(delta_l)` alone, the run starts at that `dot(delta_r)`;
+/// given neither, it fails in one line asking for one of the two.
+#[test]
+fn one_steer_rate_gives_the_other_by_the_linkage() {
+    let start = [
+        "--t-end",
+        "0.01",
+        "--formulation",
+        "lagrange",
+        "--initial",
+        "delta_l=0.3",
+        "--initial",
+        "dot(x)=1",
+    ];
+    let given = [&start[..], &["--initial", "dot(delta_l)=0.2"]].concat();
+    let (_, (header, rows)) = simulated("ackermann_car", &given);
+    let right = column(&header, &rows, "delta_r")[0];
+    let rate = column(&header, &rows, "dot(delta_r)")[0];
+    let linkage = (right.sin() / 0.3f64.sin()).powi(2) * 0.2;
+    assert!((rate - linkage).abs() < 1e-12, "{rate} vs {linkage}");
+
+    let path = model("ackermann_car");
+    let output = chaplygin(&[&["simulate", path.as_str()], &start[..]].concat());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success() && stderr.lines().count() == 1,
+        "{stderr}"
+    );
+    let asked = "leave 1 direction free among dot(delta_l), dot(delta_r), which the \
+                 constraints tie: give 1 of them too";
+    assert!(stderr.contains(asked), "{stderr}");
+}
+
 /// The rear axle's midpoint turns on the radius of the Ackermann geometry:
 /// `tan(delta_l) = l / (R - b)` for the inner wheel, and
 /// `R = l (cot(delta_l) + cot(delta_r)) / 2` from both.

@@ -172,7 +172,8 @@ fn velocities_left_free_or_contradicting_the_constraints_are_named() {
     assert_eq!(
         free,
         Err(PointError::FreeVelocities {
-            velocities: vec!["dot(x)".into()]
+            velocities: vec!["dot(x)".into()],
+            directions: 1,
         })
     );
     let violated = OperatingPoint::solve(&model, &at_origin, &[Some(0.0), Some(1.0), None]);
@@ -187,7 +188,8 @@ fn velocities_left_free_or_contradicting_the_constraints_are_named() {
     assert_eq!(
         all_free,
         Err(PointError::FreeVelocities {
-            velocities: vec!["dot(x)".into(), "dot(theta)".into()]
+            velocities: vec!["dot(x)".into(), "dot(theta)".into()],
+            directions: 2,
         })
     );
 }

@@ -40,14 +40,13 @@ pub struct OperatingPoint {
 /// Why no operating point was found.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum PointError {
-    /// The velocities given leave these free.
-    #[error(
-        "the velocities given leave {} free: give them too",
-        velocities.join(", ")
-    )]
+    /// The velocities given leave directions free.
+    #[error("the velocities given leave {}", left_free(*directions, velocities))]
     FreeVelocities {
         /// The velocities (`dot(q)`) along a direction the constraints allow.
         velocities: Vec<String>,
+        /// The number of those directions.
+        directions: usize,
     },
     /// The velocities given contradict a constraint.
     #[error(
@@ -131,6 +130,20 @@ impl OperatingPoint {
         )?;
         Ok(OperatingPoint { q, qdot })
     }
+}
+
+/// [`PointError::FreeVelocities`]' words: the velocities left free, or,
+/// where the constraints tie them, how many directions among them.
+fn left_free(directions: usize, velocities: &[String]) -> String {
+    let names = velocities.join(", ");
+    if directions >= velocities.len() {
+        let them = if velocities.len() == 1 { "it" } else { "them" };
+        return format!("{names} free: give {them} too");
+    }
+    let plural = if directions == 1 { "" } else { "s" };
+    format!(
+        "{directions} direction{plural} free among {names}, which the constraints tie: give {directions} of them too"
+    )
 }
 
 /// `dot(q)` for each coordinate `q`.
@@ -342,6 +355,7 @@ pub fn solve_velocities(
     if !left_free.is_empty() {
         return Err(PointError::FreeVelocities {
             velocities: left_free,
+            directions: null_space.len(),
         });
     }
     Ok(qdot)
