@@ -380,6 +380,11 @@ class Model:
     """
 
     def __init__(self, native: Any) -> None:
+        if isinstance(native, (str, bytes, os.PathLike)):
+            raise TypeError(
+                f"Model({native!r}): a Model is made by chaplygin.load(path_or_text) "
+                "or chaplygin.builtin(name)"
+            )
         self._native = native
 
     name = property(lambda self: self._native.name, doc="The built-in's name, or the file's path.")

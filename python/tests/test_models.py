@@ -35,6 +35,11 @@ def test_a_file_and_its_text_load_the_same_model(root):
     assert numpy.array_equal(from_file.acceleration(q, qdot)[0], from_text.acceleration(q, qdot)[0])
     with pytest.raises(FileNotFoundError):
         chaplygin.load(str(root / "models" / "no-such.model"))
+    # A path given to the class itself is pointed to `load`, not kept to
+    # fail at the first use.
+    for given in (str(path), path):
+        with pytest.raises(TypeError, match=r"chaplygin\.load\(path_or_text\)"):
+            chaplygin.Model(given)
 
 
 def test_a_bad_model_raises_model_error_at_its_line_and_column():
