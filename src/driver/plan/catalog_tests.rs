@@ -292,6 +292,8 @@ fn the_unbounded_sideways_snakeboard_plan_fails_its_replay() {
         "{message}"
     );
     assert!(largest.relative > Replay::TOLERANCE, "{largest:?}");
+    let advice = "take more nodes, or a scheme of higher order (--scheme hermite-simpson)";
+    assert!(message.ends_with(advice), "{message}");
 }
 
 #[test]
