@@ -170,6 +170,19 @@ fn definiteness_symmetry_and_dependence_are_checked() {
     let dependent = "struct D { coordinates: [x, y, theta], kinetic_energy: dot(x)^2 + dot(y)^2 + dot(theta)^2,
         constraints: [a = -sin(theta)*dot(x) + cos(theta)*dot(y), b = 2*(-sin(theta)*dot(x) + cos(theta)*dot(y))] }";
     assert!(errors(dependent).contains("constraint `b` depends on the ones before it"));
+    // A zero row is named as constraining nothing: a velocity row of
+    // zeros, and a configuration constraint on the parameters alone.
+    let nothing = "constrains nothing: its row is zero in the velocities";
+    let zero_row = "struct Z { coordinates: [x, y], kinetic_energy: dot(x)^2 + dot(y)^2,
+        constraints: [a = dot(x), b = 0*dot(y)] }";
+    assert!(errors(zero_row).contains(&format!("constraint `b` {nothing}")));
+    let on_parameters = "struct P { coordinates: [x, y], parameters: [l = 1.0],
+        kinetic_energy: dot(x)^2 + dot(y)^2, holonomic: [fixed = l - 1] }";
+    let message = errors(on_parameters);
+    assert!(
+        message.contains(&format!("constraint `fixed` {nothing}")),
+        "{message}"
+    );
     let unknown = "struct U { coordinates: [x], kinetic_enrgy: dot(x)^2 }";
     let message = errors(unknown);
     assert!(

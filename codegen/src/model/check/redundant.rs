@@ -94,7 +94,7 @@ pub(super) fn without_redundant(
 ) -> Option<Rows> {
     while let Some(row) = first_dependent_row(cx, &rows.matrix) {
         if !layout.contacts.contains(&row) {
-            dependent_row_error(cx, &rows.names[row], "constraint", "");
+            constraint_row_error(cx, &rows, row, "");
             return None;
         }
         rows = rows.without(row, Redundancy::Everywhere);
@@ -107,13 +107,32 @@ pub(super) fn without_redundant(
     while let Some(row) = first_dependent_at(cx, &rows, &layout, &points) {
         if !layout.contacts.contains(&row) {
             let on_surface = " on the surface of the holonomic constraints";
-            dependent_row_error(cx, &rows.names[row], "constraint", on_surface);
+            constraint_row_error(cx, &rows, row, on_surface);
             return None;
         }
         rows = rows.without(row, Redundancy::OnHolonomicSurface);
         layout.drop_contact();
     }
     Some(rows)
+}
+
+/// The error on constraint row `row`, which depends on the ones before it
+/// (`where_` says where, if not everywhere). A row that is identically
+/// zero is said to constrain nothing: a configuration constraint's row is
+/// `df/dq`, zero where `f` reads no coordinate.
+fn constraint_row_error(cx: &mut Context, rows: &Rows, row: usize, where_: &str) {
+    let name = &rows.names[row];
+    let matrix = &rows.matrix;
+    if (0..matrix.columns()).all(|j| matrix.get(row, j).is_zero()) {
+        let message = format!(
+            "constraint `{}` constrains nothing: its row is zero in the velocities (a \
+             configuration constraint must read a coordinate)",
+            name.name
+        );
+        cx.diagnostics.error(name.span, message);
+    } else {
+        dependent_row_error(cx, name, "constraint", where_);
+    }
 }
 
 impl Layout<'_> {
