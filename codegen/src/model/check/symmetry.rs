@@ -7,20 +7,58 @@ use crate::model::{GroupFactor, Symmetry, Variable};
 use crate::syntax::{self, BinaryOperator, Expr, Value};
 use proc_macro2::Ident;
 
-/// The Lagrangian and the constraints are invariant under the declared group.
+/// The Lagrangian and the constraints are invariant under the declared
+/// group. Where they are not, but are under an `se2` factor with its
+/// coordinates in another order, the error names that order.
 pub(super) fn check_invariant(cx: &mut Context, symmetry: &Symmetry, model: &Invariants) {
     match first_broken(&mut cx.sym, symmetry, model) {
         Ok(None) => {}
-        Ok(Some(broken)) => cx.diagnostics.error(
-            symmetry.span,
-            format!(
-                "{} not invariant under the declared symmetry group: the momentum \
-                 equation needs the Lagrangian and the constraints to be invariant",
-                broken.describe()
-            ),
-        ),
+        Ok(Some(broken)) => {
+            let reordered = reordered_se2(cx, symmetry, model).map_or_else(String::new, |se2| {
+                format!("; it is invariant under {se2}: se2 takes the position, then the heading")
+            });
+            cx.diagnostics.error(
+                symmetry.span,
+                format!(
+                    "{} not invariant under the declared symmetry group: the momentum \
+                     equation needs the Lagrangian and the constraints to be invariant{reordered}",
+                    broken.describe()
+                ),
+            );
+        }
         Err(error) => cx.diagnostics.error(symmetry.span, error.to_string()),
     }
+}
+
+/// The first `se2(a, b, c)` of an `se2` factor's coordinates in another
+/// order under which, the other factors as declared, the model is
+/// invariant: the heading written first, say.
+fn reordered_se2(cx: &mut Context, symmetry: &Symmetry, model: &Invariants) -> Option<String> {
+    for (k, factor) in symmetry.factors.iter().enumerate() {
+        let GroupFactor::Se2 { x, y, theta } = *factor else {
+            continue;
+        };
+        let orders = [
+            [x, theta, y],
+            [y, x, theta],
+            [y, theta, x],
+            [theta, x, y],
+            [theta, y, x],
+        ];
+        for [a, b, c] in orders {
+            let mut reordered = symmetry.clone();
+            reordered.factors[k] = GroupFactor::Se2 {
+                x: a,
+                y: b,
+                theta: c,
+            };
+            if let Ok(None) = first_broken(&mut cx.sym, &reordered, model) {
+                let name = |i: usize| model.coordinates[i].declared.name.to_string();
+                return Some(format!("se2({}, {}, {})", name(a), name(b), name(c)));
+            }
+        }
+    }
+    None
 }
 
 /// A symmetry is a product of `se2(x, y, theta)`, `translation(q)` and
