@@ -307,11 +307,13 @@ class Plan:
 
     ``plan.objective`` is the cost at the optimum, ``plan.duration`` the
     duration, ``plan.report`` the dict of ``plan.json`` (the grid, scheme,
-    solver, iterations, seconds, status and the KKT residuals ``kkt``
-    computed from the exact derivatives); ``plan.t`` the nodes' times,
-    ``plan["x"]`` any column of ``plan.csv`` by name, ``plan.columns``
-    their names, and ``plan.trajectory`` the rows as a ``Trajectory``, so
-    that ``plan.trajectory.animate()`` draws it. Plans pickle.
+    solver, iterations, seconds, status, the KKT residuals ``kkt``
+    computed from the exact derivatives, and ``restart``, the first solve
+    where the default guess was solved again nudged); ``plan.t`` the
+    nodes' times, ``plan["x"]`` any column of ``plan.csv`` by name,
+    ``plan.columns`` their names, and ``plan.trajectory`` the rows as a
+    ``Trajectory``, so that ``plan.trajectory.animate()`` draws it. Plans
+    pickle.
     """
 
     def __init__(self, trajectory: Trajectory, report: Dict[str, Any]) -> None:
@@ -522,7 +524,10 @@ class Model:
         final coordinates and velocities, and the parameters).
         ``free_duration=True`` makes the duration an unknown, ``duration``
         its first guess. ``guess`` is a CSV file with ``t`` and any of
-        ``plan.csv``'s columns to start from. ``formulation`` is
+        ``plan.csv``'s columns to start from; without it, a solve from the
+        default guess that ends unverified is solved again once with the
+        inputs nudged, and ``report["restart"]`` records the first solve.
+        ``formulation`` is
         ``"lagrange"`` (the nodes hold ``q`` and ``dot(q)``), ``"reduced"``
         (they hold ``q`` and the reduced momenta, in chart 0) or
         ``"momentum"`` (``q``, the shape velocities and the momenta ``p``),
